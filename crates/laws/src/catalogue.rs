@@ -1,0 +1,359 @@
+//! The catalogue of named laws.
+
+use crate::shape::{format_segments, parse_segments};
+use crate::{AccelPiece, EndCondition, Law, LawError, Result, Shape, ShapeSegment, Sine};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// A law chosen from the catalogue with its parameters; [`LawSpec::build`] makes the [`Law`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "kebab-case")]
+pub enum LawSpec {
+    /// Constant acceleration then constant deceleration (parabolic).
+    ConstantAcceleration,
+    /// Simple harmonic: `s = (1 − cos πx)/2`.
+    Harmonic,
+    /// Cycloidal: `s = x − sin(2πx)/(2π)`.
+    Cycloidal,
+    /// 3-4-5 polynomial: `s = 10x³ − 15x⁴ + 6x⁵`.
+    Poly345,
+    /// 4-5-6-7 polynomial: `s = 35x⁴ − 84x⁵ + 70x⁶ − 20x⁷`.
+    Poly4567,
+    /// Modified trapezoid: quarter-sine ramps of relative width `ramp`, constant plateaus,
+    /// a half-cosine crossover of width `2·ramp`.
+    ModifiedTrapezoid {
+        /// Ramp fraction, 0 < ramp ≤ 0.25 (standard 1/8).
+        ramp: f64,
+    },
+    /// Modified sine: quarter sines over the first and last eighths, a half cosine in between.
+    ModifiedSine,
+    /// A general piecewise-acceleration law from (relative length, shape) segments.
+    Piecewise {
+        /// The segments (lengths sum to 1).
+        segments: Vec<ShapeSegment>,
+    },
+}
+
+/// One line of the catalogue.
+#[derive(Debug, Clone, Copy)]
+pub struct CatalogueEntry {
+    /// Name used in the library and the CLI.
+    pub name: &'static str,
+    /// One-line description.
+    pub description: &'static str,
+    /// Parameters as `key=default (range)`, or empty.
+    pub params: &'static str,
+}
+
+/// Every named law, in catalogue order.
+pub const CATALOGUE: &[CatalogueEntry] = &[
+    CatalogueEntry {
+        name: "constant-acceleration",
+        description: "parabolic: +a then −a",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "harmonic",
+        description: "simple harmonic, s = (1 − cos πx)/2",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "cycloidal",
+        description: "s = x − sin(2πx)/2π",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "poly345",
+        description: "3-4-5 polynomial",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "poly4567",
+        description: "4-5-6-7 polynomial",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "modified-trapezoid",
+        description: "sine ramps, constant plateaus",
+        params: "ramp=0.125 (0 < ramp ≤ 0.25)",
+    },
+    CatalogueEntry {
+        name: "modified-sine",
+        description: "quarter sines over 1/8, half cosine between",
+        params: "",
+    },
+    CatalogueEntry {
+        name: "piecewise",
+        description: "general piecewise acceleration",
+        params: "segments=LEN:SHAPE[:LEVEL…],… (lengths sum to 1)",
+    },
+];
+
+fn names() -> String {
+    CATALOGUE
+        .iter()
+        .map(|e| e.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl LawSpec {
+    /// The catalogue name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            LawSpec::ConstantAcceleration => "constant-acceleration",
+            LawSpec::Harmonic => "harmonic",
+            LawSpec::Cycloidal => "cycloidal",
+            LawSpec::Poly345 => "poly345",
+            LawSpec::Poly4567 => "poly4567",
+            LawSpec::ModifiedTrapezoid { .. } => "modified-trapezoid",
+            LawSpec::ModifiedSine => "modified-sine",
+            LawSpec::Piecewise { .. } => "piecewise",
+        }
+    }
+
+    /// The parameters as `key=value` pairs (empty for laws without parameters).
+    pub fn params(&self) -> Vec<(String, String)> {
+        match self {
+            LawSpec::ModifiedTrapezoid { ramp } => vec![("ramp".into(), ramp.to_string())],
+            LawSpec::Piecewise { segments } => vec![("segments".into(), format_segments(segments))],
+            _ => Vec::new(),
+        }
+    }
+
+    /// A human label: the name and its parameters.
+    pub fn label(&self) -> String {
+        let p = self.params();
+        if p.is_empty() {
+            self.name().to_string()
+        } else {
+            let ps: Vec<String> = p.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            format!("{} ({})", self.name(), ps.join(", "))
+        }
+    }
+
+    /// Looks a law up by name and applies `key=value` parameters.
+    pub fn parse<K: AsRef<str>, V: AsRef<str>>(name: &str, params: &[(K, V)]) -> Result<Self> {
+        let mut spec = match name.trim() {
+            "constant-acceleration" => LawSpec::ConstantAcceleration,
+            "harmonic" => LawSpec::Harmonic,
+            "cycloidal" => LawSpec::Cycloidal,
+            "poly345" => LawSpec::Poly345,
+            "poly4567" => LawSpec::Poly4567,
+            "modified-trapezoid" => LawSpec::ModifiedTrapezoid { ramp: 0.125 },
+            "modified-sine" => LawSpec::ModifiedSine,
+            "piecewise" => LawSpec::Piecewise {
+                segments: Vec::new(),
+            },
+            other => {
+                return Err(LawError::UnknownLaw {
+                    name: other.into(),
+                    known: names(),
+                });
+            }
+        };
+        for (k, v) in params {
+            let (k, v) = (k.as_ref().trim(), v.as_ref().trim());
+            match (&mut spec, k) {
+                (LawSpec::ModifiedTrapezoid { ramp }, "ramp") => {
+                    *ramp = v.parse().map_err(|_| LawError::Parse {
+                        field: "ramp".into(),
+                        text: v.into(),
+                        expected: "a number, 0 < ramp ≤ 0.25".into(),
+                    })?;
+                }
+                (LawSpec::Piecewise { segments }, "segments") => {
+                    *segments = parse_segments(v, "segments")?
+                }
+                (s, _) => {
+                    let allowed = CATALOGUE
+                        .iter()
+                        .find(|e| e.name == s.name())
+                        .map(|e| e.params)
+                        .unwrap_or("");
+                    return Err(LawError::UnknownParam {
+                        law: s.name().into(),
+                        key: k.into(),
+                        allowed: if allowed.is_empty() {
+                            "none".into()
+                        } else {
+                            allowed.into()
+                        },
+                    });
+                }
+            }
+        }
+        spec.validate()?;
+        Ok(spec)
+    }
+
+    /// Checks the parameters' ranges.
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            LawSpec::ModifiedTrapezoid { ramp } => {
+                if !(ramp.is_finite() && *ramp > 0.0 && *ramp <= 0.25) {
+                    return Err(LawError::out_of_range(
+                        "ramp",
+                        *ramp,
+                        0.0,
+                        0.25,
+                        "(exclusive of 0)",
+                    ));
+                }
+                Ok(())
+            }
+            LawSpec::Piecewise { segments } if segments.is_empty() => Err(LawError::Parse {
+                field: "segments".into(),
+                text: String::new(),
+                expected: "segments=LEN:SHAPE[:LEVEL…],… e.g. 0.5:constant:1,0.5:constant:-1"
+                    .into(),
+            }),
+            LawSpec::Piecewise { segments } => {
+                for (i, seg) in segments.iter().enumerate() {
+                    LawError::check_range(
+                        &format!("segments[{i}].length"),
+                        seg.length,
+                        0.0,
+                        1.0,
+                        "",
+                    )?;
+                    if seg.length <= 0.0 {
+                        return Err(LawError::out_of_range(
+                            format!("segments[{i}].length"),
+                            seg.length,
+                            0.0,
+                            1.0,
+                            "(exclusive of 0)",
+                        ));
+                    }
+                }
+                let sum: f64 = segments.iter().map(|s| s.length).sum();
+                if (sum - 1.0).abs() > 1e-9 {
+                    return Err(LawError::LengthsDoNotSumToOne {
+                        field: "segments".into(),
+                        sum,
+                    });
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether the law is odd-symmetric about its middle, `s(1 − x) = 1 − s(x)`, by construction.
+    pub fn is_symmetric(&self) -> bool {
+        !matches!(self, LawSpec::Piecewise { .. })
+    }
+
+    /// Builds the law in closed form, normalised to `s(1) = 1` and at rest at both ends.
+    pub fn build(&self) -> Result<Law> {
+        self.validate()?;
+        let rest = EndCondition::Rest;
+        let shapes = |segs: &[(f64, Shape)]| -> Vec<AccelPiece> {
+            segs.iter()
+                .filter(|(w, _)| *w > 0.0)
+                .map(|(w, s)| s.to_piece(*w))
+                .collect()
+        };
+        match self {
+            LawSpec::ConstantAcceleration => Law::from_accel_pieces(
+                &[
+                    AccelPiece::poly(0.5, &[1.0]),
+                    AccelPiece::poly(0.5, &[-1.0]),
+                ],
+                rest,
+                "law",
+            ),
+            LawSpec::Harmonic => Law::from_accel_pieces(
+                &[AccelPiece::with_sine(
+                    1.0,
+                    &[],
+                    Sine {
+                        amp: 1.0,
+                        omega: PI,
+                        phase: FRAC_PI_2,
+                    },
+                )],
+                rest,
+                "law",
+            ),
+            LawSpec::Cycloidal => Law::from_accel_pieces(
+                &[AccelPiece::with_sine(
+                    1.0,
+                    &[],
+                    Sine {
+                        amp: 1.0,
+                        omega: 2.0 * PI,
+                        phase: 0.0,
+                    },
+                )],
+                rest,
+                "law",
+            ),
+            LawSpec::Poly345 => Law::from_accel_pieces(
+                &[AccelPiece::poly(1.0, &[0.0, 60.0, -180.0, 120.0])],
+                rest,
+                "law",
+            ),
+            LawSpec::Poly4567 => Law::from_accel_pieces(
+                &[AccelPiece::poly(
+                    1.0,
+                    &[0.0, 0.0, 420.0, -1680.0, 2100.0, -840.0],
+                )],
+                rest,
+                "law",
+            ),
+            LawSpec::ModifiedTrapezoid { ramp } => {
+                let r = *ramp;
+                let plateau = 0.5 - 2.0 * r;
+                let segs = [
+                    (r, Shape::SineRamp { from: 0.0, to: 1.0 }),
+                    (plateau, Shape::Constant { level: 1.0 }),
+                    (
+                        2.0 * r,
+                        Shape::HalfCosine {
+                            from: 1.0,
+                            to: -1.0,
+                        },
+                    ),
+                    (plateau, Shape::Constant { level: -1.0 }),
+                    (
+                        1.0 - (r + 2.0 * plateau + 2.0 * r),
+                        Shape::CosineRamp {
+                            from: -1.0,
+                            to: 0.0,
+                        },
+                    ),
+                ];
+                Law::from_accel_pieces(&shapes(&segs), rest, "law")
+            }
+            LawSpec::ModifiedSine => {
+                let segs = [
+                    (0.125, Shape::SineRamp { from: 0.0, to: 1.0 }),
+                    (
+                        0.75,
+                        Shape::HalfCosine {
+                            from: 1.0,
+                            to: -1.0,
+                        },
+                    ),
+                    (
+                        0.125,
+                        Shape::CosineRamp {
+                            from: -1.0,
+                            to: 0.0,
+                        },
+                    ),
+                ];
+                Law::from_accel_pieces(&shapes(&segs), rest, "law")
+            }
+            LawSpec::Piecewise { segments } => {
+                let pieces: Vec<AccelPiece> = segments
+                    .iter()
+                    .map(|s| s.shape.to_piece(s.length))
+                    .collect();
+                Law::from_accel_pieces(&pieces, rest, "segments")
+            }
+        }
+    }
+}

@@ -1,0 +1,368 @@
+//! Machine cycles: dwell / rise / dwell / return segments over one turn of the main shaft.
+
+use crate::{Kinematics, Law, LawError, LawSpec, Result};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// The follower's kind of motion, and so the unit of its stroke.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum StrokeUnit {
+    /// A translating follower; strokes in millimetres, results in m, m/s, m/s², m/s³.
+    #[default]
+    Mm,
+    /// A swinging follower; strokes in degrees, results in rad, rad/s, rad/s², rad/s³.
+    Deg,
+}
+
+impl StrokeUnit {
+    /// Factor from the stroke unit to SI (m or rad).
+    pub fn to_si(self) -> f64 {
+        match self {
+            StrokeUnit::Mm => 1e-3,
+            StrokeUnit::Deg => std::f64::consts::PI / 180.0,
+        }
+    }
+
+    /// SI unit names of position, velocity, acceleration and jerk.
+    pub fn si_units(self) -> [&'static str; 4] {
+        match self {
+            StrokeUnit::Mm => ["m", "m/s", "m/s²", "m/s³"],
+            StrokeUnit::Deg => ["rad", "rad/s", "rad/s²", "rad/s³"],
+        }
+    }
+
+    /// ASCII unit suffixes for CSV headers and JSON keys.
+    pub fn key_units(self) -> [&'static str; 4] {
+        match self {
+            StrokeUnit::Mm => ["m", "m_s", "m_s2", "m_s3"],
+            StrokeUnit::Deg => ["rad", "rad_s", "rad_s2", "rad_s3"],
+        }
+    }
+}
+
+/// What a cycle segment does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentKind {
+    /// The follower stands still.
+    Dwell,
+    /// The follower rises by the stroke.
+    Rise,
+    /// The follower returns by the stroke.
+    Return,
+}
+
+/// One segment of a cycle file, as written in TOML (`[[segment]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentSpec {
+    /// dwell, rise or return.
+    pub kind: SegmentKind,
+    /// Start angle of the main shaft in degrees (defaults to the end of the previous segment, or 0).
+    #[serde(default)]
+    pub from_deg: Option<f64>,
+    /// End angle in degrees (give this or `length_deg`).
+    #[serde(default)]
+    pub to_deg: Option<f64>,
+    /// Angular length in degrees (give this or `to_deg`).
+    #[serde(default)]
+    pub length_deg: Option<f64>,
+    /// Law name (rise and return; defaults to `cycloidal`).
+    #[serde(default)]
+    pub law: Option<String>,
+    /// Law parameters, e.g. `{ ramp = 0.1 }`.
+    #[serde(default)]
+    pub params: BTreeMap<String, toml::Value>,
+    /// Stroke in the cycle's unit (defaults to the cycle's `stroke`).
+    #[serde(default)]
+    pub stroke: Option<f64>,
+}
+
+/// A cycle file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CycleSpec {
+    /// Angle of one cycle of the main shaft in degrees (default 360).
+    #[serde(default = "default_period")]
+    pub period_deg: f64,
+    /// `mm` (translating follower) or `deg` (swinging follower).
+    #[serde(default)]
+    pub unit: StrokeUnit,
+    /// Default stroke of rises and returns in `unit`.
+    #[serde(default)]
+    pub stroke: Option<f64>,
+    /// Main-shaft speed in rpm (default 300; the CLI's `--speed-rpm` overrides it).
+    #[serde(default)]
+    pub speed_rpm: Option<f64>,
+    /// The segments, in order.
+    pub segment: Vec<SegmentSpec>,
+}
+
+fn default_period() -> f64 {
+    360.0
+}
+
+/// One segment of a checked cycle.
+#[derive(Debug, Clone)]
+pub struct CycleSegment {
+    /// What it does.
+    pub kind: SegmentKind,
+    /// Start angle (rad).
+    pub start_rad: f64,
+    /// Angular length (rad).
+    pub length_rad: f64,
+    /// The law and its spec (none for dwells).
+    pub law: Option<(LawSpec, Law)>,
+    /// Position at the start (SI: m or rad).
+    pub base_si: f64,
+    /// Signed displacement over the segment (SI).
+    pub stroke_si: f64,
+}
+
+/// A checked machine cycle.
+#[derive(Debug, Clone)]
+pub struct Cycle {
+    /// The stroke unit of the file.
+    pub unit: StrokeUnit,
+    /// Cycle angle (rad).
+    pub period_rad: f64,
+    /// Speed given in the file, if any (rpm).
+    pub speed_rpm: Option<f64>,
+    /// The segments.
+    pub segments: Vec<CycleSegment>,
+}
+
+/// One sample of a cycle in physical units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CyclePoint {
+    /// Main-shaft angle (deg).
+    pub angle_deg: f64,
+    /// Time from the cycle start (s).
+    pub time_s: f64,
+    /// Position, velocity, acceleration, jerk (SI: m… or rad…).
+    pub kin: Kinematics,
+}
+
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+impl Cycle {
+    /// Reads and checks a cycle from TOML text.
+    pub fn from_toml(text: &str) -> Result<Self> {
+        let spec: CycleSpec = toml::from_str(text).map_err(|e| LawError::Parse {
+            field: "cycle file".into(),
+            text: e.message().to_string(),
+            expected:
+                "TOML with [[segment]] tables (kind, from_deg/to_deg or length_deg, law, stroke)"
+                    .into(),
+        })?;
+        Self::new(&spec)
+    }
+
+    /// Checks a cycle: the angles must follow one another without gap or overlap and close the
+    /// cycle, every rise and return needs a positive stroke, and the follower must end where it began.
+    pub fn new(spec: &CycleSpec) -> Result<Self> {
+        let period = LawError::check_range("period_deg", spec.period_deg, 1e-6, 36_000.0, "deg")?;
+        if let Some(n) = spec.speed_rpm {
+            LawError::check_range("speed_rpm", n, 1e-6, 1e6, "rpm")?;
+        }
+        if spec.segment.is_empty() {
+            return Err(LawError::Cycle {
+                field: "segment".into(),
+                reason: "a cycle needs at least one [[segment]]".into(),
+            });
+        }
+        let mut at = spec.segment[0].from_deg.unwrap_or(0.0);
+        let start = at;
+        let mut pos = 0.0;
+        let mut segments = Vec::new();
+        for (i, s) in spec.segment.iter().enumerate() {
+            let f = |name: &str| format!("segment[{i}].{name}");
+            if let Some(from) = s.from_deg {
+                LawError::check_range(&f("from_deg"), from, -36_000.0, 36_000.0, "deg")?;
+                if (from - at).abs() > 1e-9 {
+                    return Err(LawError::Cycle {
+                        field: f("from_deg"),
+                        reason: format!(
+                            "starts at {from}° but the previous segment ends at {at}°: leave no gap or overlap"
+                        ),
+                    });
+                }
+            }
+            let len = match (s.to_deg, s.length_deg) {
+                (Some(to), None) => to - at,
+                (None, Some(l)) => l,
+                _ => {
+                    return Err(LawError::Cycle {
+                        field: f("to_deg"),
+                        reason: "give exactly one of to_deg and length_deg".into(),
+                    });
+                }
+            };
+            if !(len.is_finite() && len > 0.0) {
+                return Err(LawError::Cycle {
+                    field: f(if s.to_deg.is_some() {
+                        "to_deg"
+                    } else {
+                        "length_deg"
+                    }),
+                    reason: format!(
+                        "the segment's length is {len}°; it must be positive (segments in increasing angle)"
+                    ),
+                });
+            }
+            let law = match s.kind {
+                SegmentKind::Dwell => {
+                    if s.law.is_some() || s.stroke.is_some() {
+                        return Err(LawError::Cycle {
+                            field: f("law"),
+                            reason: "a dwell takes no law or stroke".into(),
+                        });
+                    }
+                    None
+                }
+                _ => {
+                    let params: Vec<(String, String)> = s
+                        .params
+                        .iter()
+                        .map(|(k, v)| {
+                            (
+                                k.clone(),
+                                v.as_str().map_or_else(|| v.to_string(), str::to_string),
+                            )
+                        })
+                        .collect();
+                    let spec_law = LawSpec::parse(s.law.as_deref().unwrap_or("cycloidal"), &params)
+                        .map_err(|e| LawError::Cycle {
+                            field: f("law"),
+                            reason: e.to_string(),
+                        })?;
+                    let built = spec_law.build().map_err(|e| LawError::Cycle {
+                        field: f("law"),
+                        reason: e.to_string(),
+                    })?;
+                    Some((spec_law, built))
+                }
+            };
+            let stroke = match s.kind {
+                SegmentKind::Dwell => 0.0,
+                kind => {
+                    let h = s.stroke.or(spec.stroke).ok_or_else(|| LawError::Cycle {
+                        field: f("stroke"),
+                        reason: "a rise or return needs a stroke (here or as the cycle's `stroke`)"
+                            .into(),
+                    })?;
+                    LawError::check_range(
+                        &f("stroke"),
+                        h,
+                        1e-12,
+                        1e6,
+                        if spec.unit == StrokeUnit::Mm {
+                            "mm"
+                        } else {
+                            "deg"
+                        },
+                    )?;
+                    let si = h * spec.unit.to_si();
+                    if kind == SegmentKind::Rise { si } else { -si }
+                }
+            };
+            segments.push(CycleSegment {
+                kind: s.kind,
+                start_rad: at * DEG,
+                length_rad: len * DEG,
+                law,
+                base_si: pos,
+                stroke_si: stroke,
+            });
+            pos += stroke;
+            at += len;
+        }
+        if (at - start - period).abs() > 1e-6 {
+            return Err(LawError::Cycle {
+                field: format!("segment[{}].to_deg", spec.segment.len() - 1),
+                reason: format!(
+                    "the segments span {}°, the cycle is {period}°: the angles must close the cycle",
+                    at - start
+                ),
+            });
+        }
+        let scale = segments
+            .iter()
+            .map(|s| s.stroke_si.abs())
+            .fold(0.0, f64::max);
+        if pos.abs() > 1e-9 * scale.max(1e-12) {
+            return Err(LawError::Cycle {
+                field: "segment".into(),
+                reason: format!(
+                    "the follower ends {:.6} {} from where it started: rises and returns must balance",
+                    pos / spec.unit.to_si(),
+                    if spec.unit == StrokeUnit::Mm {
+                        "mm"
+                    } else {
+                        "deg"
+                    }
+                ),
+            });
+        }
+        Ok(Self {
+            unit: spec.unit,
+            period_rad: period * DEG,
+            speed_rpm: spec.speed_rpm,
+            segments,
+        })
+    }
+
+    /// Kinematics in SI units at main-shaft angle `theta_rad` (wrapped into the cycle) and speed.
+    pub fn eval(&self, theta_rad: f64, speed_rpm: f64) -> Kinematics {
+        let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
+        let start = self.segments[0].start_rad;
+        let th = start + (theta_rad - start).rem_euclid(self.period_rad);
+        let seg = self
+            .segments
+            .iter()
+            .rev()
+            .find(|s| th >= s.start_rad)
+            .unwrap_or(&self.segments[0]);
+        let Some((_, law)) = &seg.law else {
+            return Kinematics {
+                s: seg.base_si,
+                ..Kinematics::default()
+            };
+        };
+        let x = (th - seg.start_rad) / seg.length_rad;
+        let k = law.eval(x);
+        let r = omega / seg.length_rad; // dx/dt
+        let h = seg.stroke_si;
+        Kinematics {
+            s: seg.base_si + h * k.s,
+            v: h * k.v * r,
+            a: h * k.a * r * r,
+            j: h * k.j * r * r * r,
+        }
+    }
+
+    /// `n ≥ 2` samples over one cycle at a speed, both ends included.
+    pub fn sample(&self, n: usize, speed_rpm: f64) -> Vec<CyclePoint> {
+        let n = n.max(2);
+        let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
+        let start = self.segments[0].start_rad;
+        (0..n)
+            .map(|i| {
+                let f = i as f64 / (n - 1) as f64;
+                let th = start + f * self.period_rad;
+                // The last sample is the cycle's end, evaluated as the left limit.
+                let eval_th = if i + 1 == n {
+                    th - 1e-12 * self.period_rad
+                } else {
+                    th
+                };
+                CyclePoint {
+                    angle_deg: th / DEG,
+                    time_s: (th - start) / omega,
+                    kin: self.eval(eval_th, speed_rpm),
+                }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,278 @@
+//! A law: a sequence of closed-form segments covering `[0, 1]`.
+
+use crate::{Kinematics, LawError, MotionLaw, Result, Segment, Sine};
+use serde::Serialize;
+
+/// One piece of acceleration handed to [`Law::from_accel_pieces`]: a width on the `x` axis and the
+/// acceleration `poly(t) + sine(t)` in the piece's local coordinate `t ∈ [0, width]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AccelPiece {
+    /// Width of the piece on the x axis (> 0).
+    pub width: f64,
+    /// Acceleration polynomial in the local coordinate, lowest power first (degree ≤ 5).
+    pub poly: Vec<f64>,
+    /// Optional sinusoidal term.
+    pub sine: Option<Sine>,
+}
+
+impl AccelPiece {
+    /// A piece of polynomial acceleration only.
+    pub fn poly(width: f64, poly: &[f64]) -> Self {
+        Self {
+            width,
+            poly: poly.to_vec(),
+            sine: None,
+        }
+    }
+
+    /// A piece of polynomial plus sinusoid acceleration.
+    pub fn with_sine(width: f64, poly: &[f64], sine: Sine) -> Self {
+        Self {
+            width,
+            poly: poly.to_vec(),
+            sine: Some(sine),
+        }
+    }
+}
+
+/// How [`Law::from_accel_pieces`] treats the end of the integrated motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndCondition {
+    /// A rise between dwells: the velocity must return to zero at `x = 1`
+    /// (to 1e-9 of the peak velocity), else the build fails.
+    Rest,
+    /// The end velocity is free (e.g. a picking law that releases the shuttle at speed).
+    Free,
+}
+
+/// A motion law on `x ∈ [0, 1]`: contiguous [`Segment`]s, `s` and `v` continuous at every joint.
+///
+/// Normalised laws have `s(0) = 0` and `s(1) = 1`. Outside `[0, 1]` the law is held at its
+/// end values (`x` is clamped).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Law {
+    segments: Vec<Segment>,
+}
+
+impl Law {
+    /// Builds a law from contiguous segments. The first must start at 0, the last end at 1, each
+    /// start where the previous ended (within 1e-12), and `s`, `v` be continuous at the joints
+    /// (within 1e-9).
+    pub fn from_segments(segments: Vec<Segment>) -> Result<Self> {
+        let field = "segments";
+        let (Some(first), Some(last)) = (segments.first(), segments.last()) else {
+            return Err(LawError::NotARise {
+                field: field.into(),
+                reason: "a law needs at least one segment".into(),
+            });
+        };
+        if first.x0().abs() > 1e-12 || (last.x1() - 1.0).abs() > 1e-12 {
+            return Err(LawError::Cycle {
+                field: field.into(),
+                reason: format!(
+                    "segments cover [{}, {}], they must cover [0, 1]",
+                    first.x0(),
+                    last.x1()
+                ),
+            });
+        }
+        for (i, w) in segments.windows(2).enumerate() {
+            let (l, r) = (w[0].end(), w[1].start());
+            if (w[0].x1() - w[1].x0()).abs() > 1e-12 {
+                return Err(LawError::Cycle {
+                    field: format!("segments[{}].x0", i + 1),
+                    reason: format!(
+                        "starts at {} but segment {} ends at {}",
+                        w[1].x0(),
+                        i,
+                        w[0].x1()
+                    ),
+                });
+            }
+            let scale = 1.0 + l.s.abs().max(l.v.abs());
+            if (l.s - r.s).abs() > 1e-9 * scale || (l.v - r.v).abs() > 1e-9 * scale {
+                return Err(LawError::NotARise {
+                    field: format!("segments[{}]", i + 1),
+                    reason: "displacement and velocity must be continuous at every joint".into(),
+                });
+            }
+        }
+        Ok(Self { segments })
+    }
+
+    /// Integrates acceleration pieces twice from `s(0) = 0`, `v(0) = 0` in closed form and scales
+    /// the result so that `s(1) = 1`.
+    ///
+    /// The widths must be positive and sum to 1 (±1e-9); `field` names the input in errors.
+    pub fn from_accel_pieces(
+        pieces: &[AccelPiece],
+        end: EndCondition,
+        field: &str,
+    ) -> Result<Self> {
+        if pieces.is_empty() {
+            return Err(LawError::NotARise {
+                field: field.into(),
+                reason: "no acceleration segments given".into(),
+            });
+        }
+        let mut sum = 0.0;
+        for (i, p) in pieces.iter().enumerate() {
+            LawError::check_range(
+                &format!("{field}[{i}].length"),
+                p.width,
+                f64::MIN_POSITIVE,
+                1.0,
+                "",
+            )?;
+            sum += p.width;
+        }
+        if (sum - 1.0).abs() > 1e-9 {
+            return Err(LawError::LengthsDoNotSumToOne {
+                field: field.into(),
+                sum,
+            });
+        }
+        let mut segs = Vec::with_capacity(pieces.len());
+        let (mut x, mut s, mut v) = (0.0, 0.0, 0.0);
+        for (i, p) in pieces.iter().enumerate() {
+            // Snap the last end onto 1 exactly so the law covers [0, 1].
+            let x1 = if i + 1 == pieces.len() {
+                1.0
+            } else {
+                x + p.width / sum
+            };
+            let seg = Segment::from_accel(x, x1, &p.poly, p.sine, s, v).ok_or_else(|| LawError::NotARise {
+                field: format!("{field}[{i}]"),
+                reason: "acceleration must be finite, of polynomial degree ≤ 5, with a non-zero sine frequency"
+                    .into(),
+            })?;
+            let e = seg.end();
+            (x, s, v) = (x1, e.s, e.v);
+            segs.push(seg);
+        }
+        if !(s.is_finite() && s > 0.0) {
+            return Err(LawError::NotARise {
+                field: field.into(),
+                reason: format!(
+                    "the acceleration gives a net displacement of {s:e}; it must be positive to make a rise"
+                ),
+            });
+        }
+        let k = 1.0 / s;
+        let segs: Vec<Segment> = segs.iter().map(|g| g.scaled(k)).collect();
+        if end == EndCondition::Rest {
+            let vmax = segs
+                .iter()
+                .map(|g| g.start().v.abs().max(g.end().v.abs()))
+                .fold(0.0, f64::max);
+            let v1 = v * k;
+            if v1.abs() > 1e-9 * vmax.max(1.0) {
+                return Err(LawError::NotARise {
+                    field: field.into(),
+                    reason: format!(
+                        "the velocity does not return to zero at the end (v(1) = {v1:.6}): the positive and negative \
+                         acceleration areas must balance"
+                    ),
+                });
+            }
+        }
+        Ok(Self { segments: segs })
+    }
+
+    /// The segments, in order.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// The joints between segments (excluding 0 and 1).
+    pub fn joints(&self) -> impl Iterator<Item = f64> + '_ {
+        self.segments.iter().skip(1).map(|g| g.x0())
+    }
+
+    /// Index of the segment containing `x` (the right one at a joint).
+    #[inline]
+    pub fn segment_index(&self, x: f64) -> usize {
+        let n = self.segments.len();
+        if n <= 8 {
+            let mut i = 0;
+            while i + 1 < n && x >= self.segments[i + 1].x0() {
+                i += 1;
+            }
+            i
+        } else {
+            self.segments
+                .partition_point(|g| g.x0() <= x)
+                .saturating_sub(1)
+        }
+    }
+
+    /// Kinematics at `x`, clamped to `[0, 1]`.
+    #[inline]
+    pub fn eval(&self, x: f64) -> Kinematics {
+        let x = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+        let seg = &self.segments[self.segment_index(x)];
+        seg.eval(x)
+    }
+
+    /// Fills `out` with the kinematics at `n = out.len()` evenly spaced points from 0 to 1, both ends
+    /// included. Walks the segments in order and uses an exact angle-addition recurrence for the
+    /// sinusoids, so it is several times faster than calling [`Law::eval`] per point.
+    pub fn sample_into(&self, out: &mut [Kinematics]) {
+        let n = out.len();
+        if n == 0 {
+            return;
+        }
+        if n == 1 {
+            out[0] = self.eval(0.0);
+            return;
+        }
+        let h = 1.0 / (n - 1) as f64;
+        let mut i = 0;
+        for (si, seg) in self.segments.iter().enumerate() {
+            let last = si + 1 == self.segments.len();
+            // Points i.. with x = i·h < x1 (all remaining for the last segment), decided with the
+            // same arithmetic as `eval` so that a point on a joint goes to the right-hand segment.
+            let mut end = if last {
+                n
+            } else {
+                ((seg.x1() / h).ceil() as usize).clamp(i, n)
+            };
+            if !last {
+                while end > i && (end - 1) as f64 * h >= seg.x1() {
+                    end -= 1;
+                }
+                while end < n && (end as f64) * h < seg.x1() {
+                    end += 1;
+                }
+            }
+            if end > i {
+                seg.eval_run(i as f64 * h - seg.x0(), h, &mut out[i..end]);
+            }
+            i = end;
+        }
+        // Make the last point land exactly on x = 1.
+        out[n - 1] = self.eval(1.0);
+    }
+
+    /// `n ≥ 2` evenly spaced samples including both ends, as `(x, kinematics)`.
+    pub fn sample(&self, n: usize) -> Vec<(f64, Kinematics)> {
+        let n = n.max(2);
+        let mut k = vec![Kinematics::default(); n];
+        self.sample_into(&mut k);
+        let h = 1.0 / (n - 1) as f64;
+        k.into_iter()
+            .enumerate()
+            .map(|(i, k)| (if i + 1 == n { 1.0 } else { i as f64 * h }, k))
+            .collect()
+    }
+}
+
+impl MotionLaw for Law {
+    fn eval(&self, x: f64) -> Kinematics {
+        Law::eval(self, x)
+    }
+
+    fn sample_uniform(&self, n: usize) -> Vec<(f64, Kinematics)> {
+        self.sample(n)
+    }
+}

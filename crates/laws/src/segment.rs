@@ -1,0 +1,328 @@
+//! One segment of a law: polynomial plus sinusoid acceleration, integrated in closed form.
+
+use crate::Kinematics;
+use serde::Serialize;
+
+/// Highest degree of the displacement polynomial of a segment (acceleration degree + 2).
+pub const MAX_DEGREE: usize = 7;
+const NC: usize = MAX_DEGREE + 1;
+
+/// A sinusoidal acceleration term `amp · sin(omega · t + phase)` in the local coordinate `t`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+pub struct Sine {
+    /// Amplitude (units of acceleration).
+    pub amp: f64,
+    /// Angular frequency in the local coordinate (rad per unit of `t`); must be non-zero.
+    pub omega: f64,
+    /// Phase at `t = 0` (rad).
+    pub phase: f64,
+}
+
+/// One segment `[x0, x1]` of a law.
+///
+/// In the local coordinate `t = x − x0` the acceleration is a polynomial plus a sinusoid,
+///
+/// $$ a(t) = \sum_{k=0}^{5} c_k t^k + A \sin(\omega t + \varphi), $$
+///
+/// and the displacement, integrated twice in closed form, is
+///
+/// $$ s(t) = \sum_{k=0}^{7} p_k t^k - \frac{A}{\omega^2} \sin(\omega t + \varphi). $$
+///
+/// Velocity and jerk follow by differentiation. Every quantity is exact and costs one
+/// Horner pass plus at most one `sin_cos`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Segment {
+    x0: f64,
+    x1: f64,
+    /// Displacement polynomial in `t`, lowest power first.
+    p: [f64; NC],
+    sine: Option<Sine>,
+}
+
+impl Segment {
+    /// Integrates the acceleration `poly(t) + sine(t)` on `[x0, x1]` twice, with
+    /// `s(0) = s0`, `v(0) = v0` at the segment start.
+    ///
+    /// `accel_poly` holds the acceleration polynomial in the local coordinate `t`, lowest power
+    /// first, of degree at most 5. Returns `None` when the polynomial is too long, an input is not
+    /// finite, `x1 ≤ x0`, or the sine has a zero frequency.
+    pub fn from_accel(
+        x0: f64,
+        x1: f64,
+        accel_poly: &[f64],
+        sine: Option<Sine>,
+        s0: f64,
+        v0: f64,
+    ) -> Option<Self> {
+        if accel_poly.len() > NC - 2 || !(x1 > x0) || !x0.is_finite() || !x1.is_finite() {
+            return None;
+        }
+        let finite = accel_poly.iter().all(|c| c.is_finite()) && s0.is_finite() && v0.is_finite();
+        if !finite {
+            return None;
+        }
+        let sine = match sine {
+            Some(sn) if sn.amp == 0.0 => None,
+            Some(sn)
+                if sn.omega == 0.0
+                    || !(sn.amp.is_finite() && sn.omega.is_finite() && sn.phase.is_finite()) =>
+            {
+                return None;
+            }
+            other => other,
+        };
+        let mut p = [0.0; NC];
+        for (k, c) in accel_poly.iter().enumerate() {
+            p[k + 2] = c / ((k + 1) * (k + 2)) as f64;
+        }
+        p[0] = s0;
+        p[1] = v0;
+        if let Some(sn) = sine {
+            p[0] += sn.amp / (sn.omega * sn.omega) * sn.phase.sin();
+            p[1] += sn.amp / sn.omega * sn.phase.cos();
+        }
+        Some(Self { x0, x1, p, sine })
+    }
+
+    /// Start of the segment.
+    pub fn x0(&self) -> f64 {
+        self.x0
+    }
+
+    /// End of the segment.
+    pub fn x1(&self) -> f64 {
+        self.x1
+    }
+
+    /// Width `x1 − x0`.
+    pub fn width(&self) -> f64 {
+        self.x1 - self.x0
+    }
+
+    /// The displacement polynomial in the local coordinate, lowest power first (8 coefficients).
+    pub fn displacement_poly(&self) -> &[f64; NC] {
+        &self.p
+    }
+
+    /// The sinusoidal acceleration term, if any.
+    pub fn sine(&self) -> Option<Sine> {
+        self.sine
+    }
+
+    /// Degree of the displacement polynomial (0 for a zero polynomial).
+    pub fn degree(&self) -> usize {
+        self.p.iter().rposition(|&c| c != 0.0).unwrap_or(0)
+    }
+
+    /// The same segment with every quantity multiplied by `k` (displacement scale).
+    pub fn scaled(&self, k: f64) -> Self {
+        let mut out = *self;
+        for c in &mut out.p {
+            *c *= k;
+        }
+        if let Some(sn) = &mut out.sine {
+            sn.amp *= k;
+        }
+        out
+    }
+
+    /// The same segment with `ds` added to its displacement.
+    pub fn offset(&self, ds: f64) -> Self {
+        let mut out = *self;
+        out.p[0] += ds;
+        out
+    }
+
+    /// Kinematics at local coordinate `t` (not clamped to the segment).
+    #[inline]
+    pub fn eval_local(&self, t: f64) -> Kinematics {
+        let p = &self.p;
+        // Horner for s and its three derivatives in one pass over the coefficients.
+        let mut s = p[7];
+        let mut v = 7.0 * p[7];
+        let mut a = 42.0 * p[7];
+        let mut j = 210.0 * p[7];
+        s = s.mul_add(t, p[6]);
+        v = v.mul_add(t, 6.0 * p[6]);
+        a = a.mul_add(t, 30.0 * p[6]);
+        j = j.mul_add(t, 120.0 * p[6]);
+        s = s.mul_add(t, p[5]);
+        v = v.mul_add(t, 5.0 * p[5]);
+        a = a.mul_add(t, 20.0 * p[5]);
+        j = j.mul_add(t, 60.0 * p[5]);
+        s = s.mul_add(t, p[4]);
+        v = v.mul_add(t, 4.0 * p[4]);
+        a = a.mul_add(t, 12.0 * p[4]);
+        j = j.mul_add(t, 24.0 * p[4]);
+        s = s.mul_add(t, p[3]);
+        v = v.mul_add(t, 3.0 * p[3]);
+        a = a.mul_add(t, 6.0 * p[3]);
+        j = j.mul_add(t, 6.0 * p[3]);
+        s = s.mul_add(t, p[2]);
+        v = v.mul_add(t, 2.0 * p[2]);
+        a = a.mul_add(t, 2.0 * p[2]);
+        s = s.mul_add(t, p[1]);
+        v = v.mul_add(t, p[1]);
+        s = s.mul_add(t, p[0]);
+        let mut k = Kinematics { s, v, a, j };
+        if let Some(sn) = self.sine {
+            let (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
+            add_sine(&mut k, sn, sin, cos);
+        }
+        k
+    }
+
+    /// The derivative of order `order` of the displacement at local coordinate `t`
+    /// (0 = s, 1 = v, 2 = a, 3 = j, 4 = snap, …).
+    pub fn deriv_local(&self, order: usize, t: f64) -> f64 {
+        let mut acc = 0.0;
+        for k in (order..NC).rev() {
+            let mut c = self.p[k];
+            for m in 0..order {
+                c *= (k - m) as f64;
+            }
+            acc = acc * t + c;
+        }
+        if let Some(sn) = self.sine {
+            // s_sin = -A/ω² sin(ωt+φ); its n-th derivative is -A ω^(n-2) sin(ωt+φ+nπ/2).
+            let w = sn.omega;
+            let arg = w * t + sn.phase + order as f64 * std::f64::consts::FRAC_PI_2;
+            acc -= sn.amp * w.powi(order as i32 - 2) * arg.sin();
+        }
+        acc
+    }
+
+    /// Kinematics at global `x` (not clamped).
+    #[inline]
+    pub fn eval(&self, x: f64) -> Kinematics {
+        self.eval_local(x - self.x0)
+    }
+
+    /// Kinematics at the start of the segment.
+    pub fn start(&self) -> Kinematics {
+        self.eval_local(0.0)
+    }
+
+    /// Kinematics at the end of the segment (left limit at `x1`).
+    pub fn end(&self) -> Kinematics {
+        self.eval_local(self.width())
+    }
+
+    /// Evaluates `n` points `t = t0 + i·h` in this segment into `out`, using an exact
+    /// angle-addition recurrence for the sinusoid (re-seeded every 64 points).
+    pub(crate) fn eval_run(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
+        let Some(sn) = self.sine else {
+            for (i, k) in out.iter_mut().enumerate() {
+                *k = self.poly_only(t0 + i as f64 * h);
+            }
+            return;
+        };
+        let (sh, ch) = (sn.omega * h).sin_cos();
+        let mut sin = 0.0;
+        let mut cos = 1.0;
+        for (i, k) in out.iter_mut().enumerate() {
+            let t = t0 + i as f64 * h;
+            if i % 64 == 0 {
+                (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
+            }
+            let mut kin = self.poly_only(t);
+            add_sine(&mut kin, sn, sin, cos);
+            *k = kin;
+            let ns = sin * ch + cos * sh;
+            cos = cos * ch - sin * sh;
+            sin = ns;
+        }
+    }
+
+    #[inline]
+    fn poly_only(&self, t: f64) -> Kinematics {
+        let no_sine = Self {
+            sine: None,
+            ..*self
+        };
+        no_sine.eval_local(t)
+    }
+}
+
+#[inline]
+fn add_sine(k: &mut Kinematics, sn: Sine, sin: f64, cos: f64) {
+    let w = sn.omega;
+    k.s -= sn.amp / (w * w) * sin;
+    k.v -= sn.amp / w * cos;
+    k.a += sn.amp * sin;
+    k.j += sn.amp * w * cos;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn derivatives_agree_between_routes() {
+        let seg = Segment::from_accel(
+            0.2,
+            0.7,
+            &[1.0, -2.0, 3.0, 0.5, -0.25, 0.125],
+            Some(Sine {
+                amp: 2.0,
+                omega: 5.0,
+                phase: 0.3,
+            }),
+            0.1,
+            -0.4,
+        )
+        .unwrap();
+        for &t in &[0.0, 0.13, 0.37, 0.5] {
+            let k = seg.eval_local(t);
+            for order in 0..4 {
+                assert_relative_eq!(
+                    seg.deriv_local(order, t),
+                    k.order(order),
+                    epsilon = 1e-12,
+                    max_relative = 1e-12
+                );
+            }
+        }
+        let k0 = seg.start();
+        assert_relative_eq!(k0.s, 0.1, epsilon = 1e-15);
+        assert_relative_eq!(k0.v, -0.4, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn run_matches_pointwise() {
+        let seg = Segment::from_accel(
+            0.0,
+            1.0,
+            &[0.5],
+            Some(Sine {
+                amp: 1.0,
+                omega: 40.0,
+                phase: 0.1,
+            }),
+            0.0,
+            0.0,
+        )
+        .unwrap();
+        let mut out = vec![Kinematics::default(); 500];
+        seg.eval_run(0.0, 0.002, &mut out);
+        for (i, k) in out.iter().enumerate() {
+            let e = seg.eval_local(i as f64 * 0.002);
+            assert!((k.j - e.j).abs() < 1e-11 * 40.0, "{i}");
+            assert!((k.s - e.s).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        assert!(Segment::from_accel(0.0, 0.0, &[1.0], None, 0.0, 0.0).is_none());
+        assert!(Segment::from_accel(0.0, 1.0, &[f64::NAN], None, 0.0, 0.0).is_none());
+        assert!(Segment::from_accel(0.0, 1.0, &[0.0; 7], None, 0.0, 0.0).is_none());
+        let bad = Sine {
+            amp: 1.0,
+            omega: 0.0,
+            phase: 0.0,
+        };
+        assert!(Segment::from_accel(0.0, 1.0, &[], Some(bad), 0.0, 0.0).is_none());
+    }
+}

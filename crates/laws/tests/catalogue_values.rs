@@ -1,0 +1,162 @@
+//! Metrics of the catalogue laws against their textbook closed forms, to 1e-9 relative.
+
+use loomkin_laws::{LawSpec, Metrics};
+use std::f64::consts::PI;
+
+fn metrics(name: &str) -> Metrics {
+    LawSpec::parse::<&str, &str>(name, &[])
+        .unwrap()
+        .build()
+        .unwrap()
+        .metrics()
+}
+
+#[track_caller]
+fn close(got: f64, want: f64, what: &str) {
+    let rel = (got - want).abs() / want.abs();
+    assert!(
+        rel < 1e-9,
+        "{what}: got {got}, want {want} (relative error {rel:e})"
+    );
+}
+
+#[test]
+fn cycloidal() {
+    let m = metrics("cycloidal");
+    close(m.cv, 2.0, "Cv");
+    close(m.ca, 2.0 * PI, "Ca");
+    close(m.cj, 4.0 * PI * PI, "Cj");
+    close(m.cm, 3.0 * 3f64.sqrt() * PI / 2.0, "Cm");
+    close(m.ca_pos, 2.0 * PI, "Ca+");
+    close(m.ca_neg, -2.0 * PI, "Ca-");
+    close(m.ca_rms, 2.0 * PI / 2f64.sqrt(), "Ca_rms");
+    close(m.x_ca_pos, 0.25, "x of Ca+");
+}
+
+#[test]
+fn poly345() {
+    let m = metrics("poly345");
+    close(m.cv, 15.0 / 8.0, "Cv");
+    close(m.ca, 10.0 / 3f64.sqrt(), "Ca");
+    close(m.cj, 60.0, "Cj");
+    // ∫(60x − 180x² + 120x³)² dx = 120/7
+    close(m.ca_rms, (120.0f64 / 7.0).sqrt(), "Ca_rms");
+}
+
+#[test]
+fn poly4567() {
+    let m = metrics("poly4567");
+    close(m.cv, 35.0 / 16.0, "Cv");
+    close(m.cj, 52.5, "Cj");
+    // Ca of 4-5-6-7 is 84√5/25 at x = (5 − √5)/10 (a'' = 0 there).
+    close(m.ca, 84.0 * 5f64.sqrt() / 25.0, "Ca");
+}
+
+#[test]
+fn modified_trapezoid() {
+    let m = metrics("modified-trapezoid");
+    close(m.cv, 2.0, "Cv");
+    close(m.ca, 8.0 * PI / (2.0 + PI), "Ca");
+    close(m.cj, 32.0 * PI * PI / (2.0 + PI), "Cj");
+}
+
+#[test]
+fn modified_trapezoid_with_quarter_ramps_is_cycloidal() {
+    let a = LawSpec::ModifiedTrapezoid { ramp: 0.25 }.build().unwrap();
+    let c = LawSpec::Cycloidal.build().unwrap();
+    for i in 0..=100 {
+        let x = i as f64 / 100.0;
+        let (ka, kc) = (a.eval(x), c.eval(x));
+        assert!(
+            (ka.s - kc.s).abs() < 1e-13 && (ka.a - kc.a).abs() < 1e-11,
+            "x = {x}"
+        );
+    }
+}
+
+#[test]
+fn modified_sine() {
+    let m = metrics("modified-sine");
+    close(m.cv, 4.0 * PI / (4.0 + PI), "Cv");
+    close(m.ca, 4.0 * PI * PI / (4.0 + PI), "Ca");
+    close(m.cj, 16.0 * PI.powi(3) / (4.0 + PI), "Cj");
+}
+
+#[test]
+fn harmonic() {
+    let m = metrics("harmonic");
+    close(m.cv, PI / 2.0, "Cv");
+    close(m.ca, PI * PI / 2.0, "Ca");
+    close(m.cm, PI.powi(3) / 8.0, "Cm");
+    close(m.cj, PI.powi(3) / 2.0, "Cj");
+}
+
+#[test]
+fn constant_acceleration() {
+    let m = metrics("constant-acceleration");
+    close(m.cv, 2.0, "Cv");
+    close(m.ca, 4.0, "Ca");
+    close(m.cm, 8.0, "Cm");
+    close(m.ca_rms, 4.0, "Ca_rms");
+    assert_eq!(m.cj, 0.0, "no jerk inside the segments");
+}
+
+#[test]
+fn continuity_classes() {
+    let class = |name: &str| {
+        LawSpec::parse::<&str, &str>(name, &[])
+            .unwrap()
+            .build()
+            .unwrap()
+            .continuity()
+            .class
+    };
+    assert_eq!(
+        class("constant-acceleration"),
+        1,
+        "a jumps at the ends and the middle"
+    );
+    assert_eq!(class("harmonic"), 1, "a jumps against the dwells");
+    assert_eq!(class("cycloidal"), 2);
+    assert_eq!(class("poly345"), 2);
+    assert_eq!(class("poly4567"), 3);
+    assert_eq!(class("modified-sine"), 2);
+    let ca = LawSpec::ConstantAcceleration.build().unwrap().continuity();
+    assert!(
+        (ca.joints[0].da + 8.0).abs() < 1e-12,
+        "a jumps from +4 to −4 at the middle"
+    );
+    assert!((ca.start.da - 4.0).abs() < 1e-12);
+}
+
+#[test]
+fn bad_parameters_name_the_field() {
+    let e = LawSpec::parse("modified-trapezoid", &[("ramp", "0.3")])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("ramp") && e.contains("0.25"), "{e}");
+    let e = LawSpec::parse::<&str, &str>("nonsense", &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cycloidal"), "{e}");
+    let e = LawSpec::parse("cycloidal", &[("ramp", "0.1")])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("ramp"), "{e}");
+    let e = LawSpec::parse(
+        "piecewise",
+        &[("segments", "0.5:constant:1,0.4:constant:-1")],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("sum to 0.9"), "{e}");
+    let e = LawSpec::parse(
+        "piecewise",
+        &[("segments", "0.5:constant:1,0.5:constant:-2")],
+    )
+    .unwrap()
+    .build()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("velocity does not return to zero"), "{e}");
+}

@@ -1,0 +1,78 @@
+//! Machine cycles from TOML.
+
+use loomkin_laws::{Cycle, LawSpec};
+use std::f64::consts::PI;
+
+const CYCLE: &str = r#"
+unit = "mm"
+stroke = 100
+[[segment]]
+kind = "dwell"
+to_deg = 60
+[[segment]]
+kind = "rise"
+to_deg = 180
+law = "cycloidal"
+[[segment]]
+kind = "dwell"
+to_deg = 240
+[[segment]]
+kind = "return"
+to_deg = 360
+law = "modified-trapezoid"
+params = { ramp = 0.125 }
+"#;
+
+#[test]
+fn physical_units_follow_the_chain_rule() {
+    let c = Cycle::from_toml(CYCLE).unwrap();
+    let rpm = 300.0;
+    let omega = rpm * 2.0 * PI / 60.0;
+    let beta = 120f64.to_radians();
+    // Peak acceleration of the cycloidal rise: h·2π·(ω/β)².
+    let k = c.eval(60f64.to_radians() + 0.25 * beta, rpm);
+    assert!((k.a - 0.1 * 2.0 * PI * (omega / beta).powi(2)).abs() < 1e-9 * k.a);
+    assert!((k.s - 0.1 * LawSpec::Cycloidal.build().unwrap().eval(0.25).s).abs() < 1e-15);
+    // In the dwell after the rise the follower sits at the full stroke.
+    assert!((c.eval(200f64.to_radians(), rpm).s - 0.1).abs() < 1e-15);
+    // Velocity against a finite difference in time.
+    let dt = 1e-7;
+    let th = 100f64.to_radians();
+    let fdv = (c.eval(th + omega * dt, rpm).s - c.eval(th - omega * dt, rpm).s) / (2.0 * dt);
+    assert!((fdv - c.eval(th, rpm).v).abs() < 1e-6);
+    let pts = c.sample(361, rpm);
+    assert!(pts.last().unwrap().kin.s.abs() < 1e-9, "the cycle closes");
+    assert!(
+        (pts.last().unwrap().time_s - 0.2).abs() < 1e-12,
+        "one turn at 300 rpm takes 0.2 s"
+    );
+}
+
+#[test]
+fn errors_name_the_field() {
+    let gap = CYCLE.replace("to_deg = 360", "to_deg = 350");
+    let e = Cycle::from_toml(&gap).unwrap_err().to_string();
+    assert!(
+        e.contains("segment[3].to_deg") && e.contains("close"),
+        "{e}"
+    );
+    let bad_law = CYCLE.replace(
+        "law = \"cycloidal\"",
+        "law = \"piecewise\"\nparams = { segments = \"0.6:constant:1,0.6:constant:-1\" }",
+    );
+    let e = Cycle::from_toml(&bad_law).unwrap_err().to_string();
+    assert!(
+        e.contains("segment[1].law") && e.contains("sum to 1.2"),
+        "{e}"
+    );
+    let e = Cycle::from_toml("unit = \"mm\"\n[[segment]]\nkind = \"fly\"\nto_deg = 360\n")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cycle file"), "{e}");
+    let unbalanced = CYCLE.replace(
+        "params = { ramp = 0.125 }",
+        "params = { ramp = 0.125 }\nstroke = 90",
+    );
+    let e = Cycle::from_toml(&unbalanced).unwrap_err().to_string();
+    assert!(e.contains("rises and returns must balance"), "{e}");
+}

@@ -1,0 +1,141 @@
+//! Property tests: derivatives against finite differences, symmetry, closed form against quadrature.
+
+use loomkin_laws::{Law, LawSpec, Shape, ShapeSegment};
+use proptest::prelude::*;
+
+fn catalogue() -> Vec<Law> {
+    [
+        "constant-acceleration",
+        "harmonic",
+        "cycloidal",
+        "poly345",
+        "poly4567",
+        "modified-trapezoid",
+        "modified-sine",
+    ]
+    .iter()
+    .map(|n| {
+        LawSpec::parse::<&str, &str>(n, &[])
+            .unwrap()
+            .build()
+            .unwrap()
+    })
+    .collect()
+}
+
+/// A random balanced piecewise law: random positive-phase shapes, mirrored negative phase.
+fn piecewise() -> impl Strategy<Value = LawSpec> {
+    let shape = prop_oneof![
+        (0.1..2.0f64).prop_map(|l| Shape::Constant { level: l }),
+        (0.0..2.0f64, 0.0..2.0f64).prop_map(|(a, b)| Shape::Linear { from: a, to: b }),
+        (0.0..2.0f64, 0.0..2.0f64).prop_map(|(a, b)| Shape::SineRamp { from: a, to: b }),
+        (0.0..2.0f64, 0.0..2.0f64).prop_map(|(a, b)| Shape::CosineRamp { from: a, to: b }),
+        (0.0..2.0f64, 0.0..2.0f64).prop_map(|(a, b)| Shape::HalfCosine { from: a, to: b }),
+        (0.1..2.0f64).prop_map(|p| Shape::SineArc { peak: p }),
+    ];
+    prop::collection::vec((0.05..1.0f64, shape), 1..5).prop_map(|parts| {
+        let total: f64 = parts.iter().map(|p| p.0).sum::<f64>() * 2.0;
+        let mut segs: Vec<ShapeSegment> = parts
+            .iter()
+            .map(|(l, s)| ShapeSegment {
+                length: l / total,
+                shape: *s,
+            })
+            .collect();
+        let mirror: Vec<ShapeSegment> = segs
+            .iter()
+            .rev()
+            .map(|s| ShapeSegment {
+                length: s.length,
+                shape: s.shape.reversed().scaled(-1.0),
+            })
+            .collect();
+        segs.extend(mirror);
+        LawSpec::Piecewise { segments: segs }
+    })
+}
+
+/// Central differences of order 1 over step h.
+fn fd(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
+    (f(x + h) - f(x - h)) / (2.0 * h)
+}
+
+proptest! {
+    #[test]
+    fn derivatives_match_finite_differences(i in 0usize..7, x in 0.01..0.99f64) {
+        let law = &catalogue()[i];
+        // Stay off joints where a one-sided difference would straddle a jump.
+        prop_assume!(law.joints().all(|j| (j - x).abs() > 1e-3));
+        let h = 1e-5;
+        let k = law.eval(x);
+        prop_assert!((fd(|y| law.eval(y).s, x, h) - k.v).abs() < 1e-7);
+        prop_assert!((fd(|y| law.eval(y).v, x, h) - k.a).abs() < 1e-6 * (1.0 + k.a.abs()));
+        prop_assert!((fd(|y| law.eval(y).a, x, h) - k.j).abs() < 1e-5 * (1.0 + k.j.abs()));
+    }
+
+    #[test]
+    fn symmetric_laws_are_odd_about_the_middle(i in 0usize..7, x in 0.0..1.0f64) {
+        let law = &catalogue()[i];
+        let (l, r) = (law.eval(x), law.eval(1.0 - x));
+        prop_assert!((l.s + r.s - 1.0).abs() < 1e-12);
+        prop_assert!((l.v - r.v).abs() < 1e-11);
+    }
+
+    #[test]
+    fn piecewise_laws_are_normalised_and_match_quadrature(spec in piecewise()) {
+        let law = spec.build().unwrap();
+        let k0 = law.eval(0.0);
+        let k1 = law.eval(1.0);
+        prop_assert!(k0.s.abs() < 1e-15 && k0.v.abs() < 1e-15);
+        prop_assert!((k1.s - 1.0).abs() < 1e-12 && k1.v.abs() < 1e-9);
+        // Independent route: integrate the acceleration numerically (composite Simpson, 400 panels per
+        // segment of the spec), v(b) = v(a) + ∫a, s(b) = s(a) + v(a)(b − a) + ∫(b − t) a(t) dt, and
+        // compare with the closed form at every joint.
+        let LawSpec::Piecewise { segments } = &spec else { unreachable!() };
+        let scale = 1.0 + law.metrics().ca;
+        let (mut x, mut v, mut s) = (0.0, 0.0, 0.0);
+        for seg in segments {
+            let (a0, b0) = (x, x + seg.length);
+            let eps = 1e-13;
+            let m = 400;
+            let h = (b0 - a0) / m as f64;
+            let acc = |t: f64| law.eval(t.clamp(a0 + eps, b0 - eps)).a;
+            let (mut iv, mut is) = (0.0, 0.0);
+            for k in 0..=m {
+                let t = a0 + k as f64 * h;
+                let w = if k == 0 || k == m { 1.0 } else if k % 2 == 1 { 4.0 } else { 2.0 };
+                iv += w * acc(t);
+                is += w * (b0 - t) * acc(t);
+            }
+            s += v * (b0 - a0) + is * h / 3.0;
+            v += iv * h / 3.0;
+            x = b0;
+            let k = law.eval((x - 1e-15).max(0.0));
+            prop_assert!((k.s - s).abs() < 1e-8 * scale, "s at {}: closed {} numeric {}", x, k.s, s);
+            prop_assert!((k.v - v).abs() < 1e-8 * scale, "v at {}: closed {} numeric {}", x, k.v, v);
+        }
+    }
+
+    #[test]
+    fn sampler_matches_pointwise(i in 0usize..7, n in 2usize..3000) {
+        let law = &catalogue()[i];
+        for (x, k) in law.sample(n) {
+            let e = law.eval(x);
+            prop_assert!((k.s - e.s).abs() < 1e-12 && (k.a - e.a).abs() < 1e-9 * (1.0 + e.a.abs()), "x = {}", x);
+        }
+    }
+
+    #[test]
+    fn metrics_bound_dense_samples(spec in piecewise()) {
+        let law = spec.build().unwrap();
+        let m = law.metrics();
+        for (_, k) in law.sample(4001) {
+            prop_assert!(k.v <= m.cv * (1.0 + 1e-12) + 1e-12);
+            prop_assert!(k.a <= m.ca_pos + 1e-9 && k.a >= m.ca_neg - 1e-9);
+            prop_assert!(k.v * k.a <= m.cm + 1e-9);
+        }
+        // ... and the dense maxima come close to the exact ones.
+        let vmax = law.sample(4001).iter().map(|(_, k)| k.v).fold(f64::MIN, f64::max);
+        prop_assert!(m.cv - vmax < 1e-5 * m.cv);
+    }
+}
