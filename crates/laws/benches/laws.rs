@@ -6,53 +6,35 @@ fn main() {
     divan::main();
 }
 
-const LAWS: &[&str] = &[
-    "cycloidal",
-    "poly345",
-    "modified-trapezoid",
-    "modified-sine",
-];
+const LAWS: &[&str] = &["cycloidal", "poly345", "modified-trapezoid", "modified-sine"];
 
 /// 10 000 evaluations on a uniform grid through the segment-walking sampler.
 #[divan::bench(args = LAWS)]
 fn sample_grid_10k(bencher: divan::Bencher, name: &str) {
-    let law = LawSpec::parse::<&str, &str>(name, &[])
-        .unwrap()
-        .build()
-        .unwrap();
+    let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
     let mut out = vec![Kinematics::default(); 10_000];
-    bencher
-        .counter(divan::counter::ItemsCount::new(10_000usize))
-        .bench_local(|| {
-            law.sample_into(divan::black_box(&mut out));
-        });
+    bencher.counter(divan::counter::ItemsCount::new(10_000usize)).bench_local(|| {
+        law.sample_into(divan::black_box(&mut out));
+    });
 }
 
 /// 10 000 pointwise evaluations through `Law::eval`.
 #[divan::bench(args = LAWS)]
 fn eval_pointwise_10k(bencher: divan::Bencher, name: &str) {
-    let law = LawSpec::parse::<&str, &str>(name, &[])
-        .unwrap()
-        .build()
-        .unwrap();
-    bencher
-        .counter(divan::counter::ItemsCount::new(10_000usize))
-        .bench_local(|| {
-            let mut acc = 0.0;
-            for i in 0..10_000 {
-                let k = law.eval(divan::black_box(i as f64 * 1e-4));
-                acc += k.s + k.v + k.a + k.j;
-            }
-            acc
-        });
+    let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
+    bencher.counter(divan::counter::ItemsCount::new(10_000usize)).bench_local(|| {
+        let mut acc = 0.0;
+        for i in 0..10_000 {
+            let k = law.eval(divan::black_box(i as f64 * 1e-4));
+            acc += k.s + k.v + k.a + k.j;
+        }
+        acc
+    });
 }
 
 /// Exact metrics of one law.
 #[divan::bench(args = LAWS)]
 fn metrics(bencher: divan::Bencher, name: &str) {
-    let law = LawSpec::parse::<&str, &str>(name, &[])
-        .unwrap()
-        .build()
-        .unwrap();
+    let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
     bencher.bench_local(|| divan::black_box(&law).metrics());
 }

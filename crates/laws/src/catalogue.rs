@@ -47,41 +47,17 @@ pub struct CatalogueEntry {
 
 /// Every named law, in catalogue order.
 pub const CATALOGUE: &[CatalogueEntry] = &[
-    CatalogueEntry {
-        name: "constant-acceleration",
-        description: "parabolic: +a then −a",
-        params: "",
-    },
-    CatalogueEntry {
-        name: "harmonic",
-        description: "simple harmonic, s = (1 − cos πx)/2",
-        params: "",
-    },
-    CatalogueEntry {
-        name: "cycloidal",
-        description: "s = x − sin(2πx)/2π",
-        params: "",
-    },
-    CatalogueEntry {
-        name: "poly345",
-        description: "3-4-5 polynomial",
-        params: "",
-    },
-    CatalogueEntry {
-        name: "poly4567",
-        description: "4-5-6-7 polynomial",
-        params: "",
-    },
+    CatalogueEntry { name: "constant-acceleration", description: "parabolic: +a then −a", params: "" },
+    CatalogueEntry { name: "harmonic", description: "simple harmonic, s = (1 − cos πx)/2", params: "" },
+    CatalogueEntry { name: "cycloidal", description: "s = x − sin(2πx)/2π", params: "" },
+    CatalogueEntry { name: "poly345", description: "3-4-5 polynomial", params: "" },
+    CatalogueEntry { name: "poly4567", description: "4-5-6-7 polynomial", params: "" },
     CatalogueEntry {
         name: "modified-trapezoid",
         description: "sine ramps, constant plateaus",
         params: "ramp=0.125 (0 < ramp ≤ 0.25)",
     },
-    CatalogueEntry {
-        name: "modified-sine",
-        description: "quarter sines over 1/8, half cosine between",
-        params: "",
-    },
+    CatalogueEntry { name: "modified-sine", description: "quarter sines over 1/8, half cosine between", params: "" },
     CatalogueEntry {
         name: "piecewise",
         description: "general piecewise acceleration",
@@ -90,11 +66,7 @@ pub const CATALOGUE: &[CatalogueEntry] = &[
 ];
 
 fn names() -> String {
-    CATALOGUE
-        .iter()
-        .map(|e| e.name)
-        .collect::<Vec<_>>()
-        .join(", ")
+    CATALOGUE.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
 }
 
 impl LawSpec {
@@ -142,14 +114,9 @@ impl LawSpec {
             "poly4567" => LawSpec::Poly4567,
             "modified-trapezoid" => LawSpec::ModifiedTrapezoid { ramp: 0.125 },
             "modified-sine" => LawSpec::ModifiedSine,
-            "piecewise" => LawSpec::Piecewise {
-                segments: Vec::new(),
-            },
+            "piecewise" => LawSpec::Piecewise { segments: Vec::new() },
             other => {
-                return Err(LawError::UnknownLaw {
-                    name: other.into(),
-                    known: names(),
-                });
+                return Err(LawError::UnknownLaw { name: other.into(), known: names() });
             }
         };
         for (k, v) in params {
@@ -162,23 +129,13 @@ impl LawSpec {
                         expected: "a number, 0 < ramp ≤ 0.25".into(),
                     })?;
                 }
-                (LawSpec::Piecewise { segments }, "segments") => {
-                    *segments = parse_segments(v, "segments")?
-                }
+                (LawSpec::Piecewise { segments }, "segments") => *segments = parse_segments(v, "segments")?,
                 (s, _) => {
-                    let allowed = CATALOGUE
-                        .iter()
-                        .find(|e| e.name == s.name())
-                        .map(|e| e.params)
-                        .unwrap_or("");
+                    let allowed = CATALOGUE.iter().find(|e| e.name == s.name()).map(|e| e.params).unwrap_or("");
                     return Err(LawError::UnknownParam {
                         law: s.name().into(),
                         key: k.into(),
-                        allowed: if allowed.is_empty() {
-                            "none".into()
-                        } else {
-                            allowed.into()
-                        },
+                        allowed: if allowed.is_empty() { "none".into() } else { allowed.into() },
                     });
                 }
             }
@@ -192,31 +149,18 @@ impl LawSpec {
         match self {
             LawSpec::ModifiedTrapezoid { ramp } => {
                 if !(ramp.is_finite() && *ramp > 0.0 && *ramp <= 0.25) {
-                    return Err(LawError::out_of_range(
-                        "ramp",
-                        *ramp,
-                        0.0,
-                        0.25,
-                        "(exclusive of 0)",
-                    ));
+                    return Err(LawError::out_of_range("ramp", *ramp, 0.0, 0.25, "(exclusive of 0)"));
                 }
                 Ok(())
             }
             LawSpec::Piecewise { segments } if segments.is_empty() => Err(LawError::Parse {
                 field: "segments".into(),
                 text: String::new(),
-                expected: "segments=LEN:SHAPE[:LEVEL…],… e.g. 0.5:constant:1,0.5:constant:-1"
-                    .into(),
+                expected: "segments=LEN:SHAPE[:LEVEL…],… e.g. 0.5:constant:1,0.5:constant:-1".into(),
             }),
             LawSpec::Piecewise { segments } => {
                 for (i, seg) in segments.iter().enumerate() {
-                    LawError::check_range(
-                        &format!("segments[{i}].length"),
-                        seg.length,
-                        0.0,
-                        1.0,
-                        "",
-                    )?;
+                    LawError::check_range(&format!("segments[{i}].length"), seg.length, 0.0, 1.0, "")?;
                     if seg.length <= 0.0 {
                         return Err(LawError::out_of_range(
                             format!("segments[{i}].length"),
@@ -229,10 +173,7 @@ impl LawSpec {
                 }
                 let sum: f64 = segments.iter().map(|s| s.length).sum();
                 if (sum - 1.0).abs() > 1e-9 {
-                    return Err(LawError::LengthsDoNotSumToOne {
-                        field: "segments".into(),
-                        sum,
-                    });
+                    return Err(LawError::LengthsDoNotSumToOne { field: "segments".into(), sum });
                 }
                 Ok(())
             }
@@ -250,56 +191,27 @@ impl LawSpec {
         self.validate()?;
         let rest = EndCondition::Rest;
         let shapes = |segs: &[(f64, Shape)]| -> Vec<AccelPiece> {
-            segs.iter()
-                .filter(|(w, _)| *w > 0.0)
-                .map(|(w, s)| s.to_piece(*w))
-                .collect()
+            segs.iter().filter(|(w, _)| *w > 0.0).map(|(w, s)| s.to_piece(*w)).collect()
         };
         match self {
-            LawSpec::ConstantAcceleration => Law::from_accel_pieces(
-                &[
-                    AccelPiece::poly(0.5, &[1.0]),
-                    AccelPiece::poly(0.5, &[-1.0]),
-                ],
-                rest,
-                "law",
-            ),
+            LawSpec::ConstantAcceleration => {
+                Law::from_accel_pieces(&[AccelPiece::poly(0.5, &[1.0]), AccelPiece::poly(0.5, &[-1.0])], rest, "law")
+            }
             LawSpec::Harmonic => Law::from_accel_pieces(
-                &[AccelPiece::with_sine(
-                    1.0,
-                    &[],
-                    Sine {
-                        amp: 1.0,
-                        omega: PI,
-                        phase: FRAC_PI_2,
-                    },
-                )],
+                &[AccelPiece::with_sine(1.0, &[], Sine { amp: 1.0, omega: PI, phase: FRAC_PI_2 })],
                 rest,
                 "law",
             ),
             LawSpec::Cycloidal => Law::from_accel_pieces(
-                &[AccelPiece::with_sine(
-                    1.0,
-                    &[],
-                    Sine {
-                        amp: 1.0,
-                        omega: 2.0 * PI,
-                        phase: 0.0,
-                    },
-                )],
+                &[AccelPiece::with_sine(1.0, &[], Sine { amp: 1.0, omega: 2.0 * PI, phase: 0.0 })],
                 rest,
                 "law",
             ),
-            LawSpec::Poly345 => Law::from_accel_pieces(
-                &[AccelPiece::poly(1.0, &[0.0, 60.0, -180.0, 120.0])],
-                rest,
-                "law",
-            ),
+            LawSpec::Poly345 => {
+                Law::from_accel_pieces(&[AccelPiece::poly(1.0, &[0.0, 60.0, -180.0, 120.0])], rest, "law")
+            }
             LawSpec::Poly4567 => Law::from_accel_pieces(
-                &[AccelPiece::poly(
-                    1.0,
-                    &[0.0, 0.0, 420.0, -1680.0, 2100.0, -840.0],
-                )],
+                &[AccelPiece::poly(1.0, &[0.0, 0.0, 420.0, -1680.0, 2100.0, -840.0])],
                 rest,
                 "law",
             ),
@@ -309,49 +221,22 @@ impl LawSpec {
                 let segs = [
                     (r, Shape::SineRamp { from: 0.0, to: 1.0 }),
                     (plateau, Shape::Constant { level: 1.0 }),
-                    (
-                        2.0 * r,
-                        Shape::HalfCosine {
-                            from: 1.0,
-                            to: -1.0,
-                        },
-                    ),
+                    (2.0 * r, Shape::HalfCosine { from: 1.0, to: -1.0 }),
                     (plateau, Shape::Constant { level: -1.0 }),
-                    (
-                        1.0 - (r + 2.0 * plateau + 2.0 * r),
-                        Shape::CosineRamp {
-                            from: -1.0,
-                            to: 0.0,
-                        },
-                    ),
+                    (1.0 - (r + 2.0 * plateau + 2.0 * r), Shape::CosineRamp { from: -1.0, to: 0.0 }),
                 ];
                 Law::from_accel_pieces(&shapes(&segs), rest, "law")
             }
             LawSpec::ModifiedSine => {
                 let segs = [
                     (0.125, Shape::SineRamp { from: 0.0, to: 1.0 }),
-                    (
-                        0.75,
-                        Shape::HalfCosine {
-                            from: 1.0,
-                            to: -1.0,
-                        },
-                    ),
-                    (
-                        0.125,
-                        Shape::CosineRamp {
-                            from: -1.0,
-                            to: 0.0,
-                        },
-                    ),
+                    (0.75, Shape::HalfCosine { from: 1.0, to: -1.0 }),
+                    (0.125, Shape::CosineRamp { from: -1.0, to: 0.0 }),
                 ];
                 Law::from_accel_pieces(&shapes(&segs), rest, "law")
             }
             LawSpec::Piecewise { segments } => {
-                let pieces: Vec<AccelPiece> = segments
-                    .iter()
-                    .map(|s| s.shape.to_piece(s.length))
-                    .collect();
+                let pieces: Vec<AccelPiece> = segments.iter().map(|s| s.shape.to_piece(s.length)).collect();
                 Law::from_accel_pieces(&pieces, rest, "segments")
             }
         }

@@ -28,32 +28,11 @@ pub struct Joint {
 
 impl Joint {
     fn new(x: f64, left_segment: Option<usize>, left: Kinematics, right: Kinematics) -> Self {
-        let d = [
-            right.s - left.s,
-            right.v - left.v,
-            right.a - left.a,
-            right.j - left.j,
-        ];
-        let scale = [
-            1.0,
-            1.0 + left.v.abs(),
-            1.0 + left.a.abs(),
-            1.0 + left.j.abs(),
-        ];
-        let continuous_up_to = d
-            .iter()
-            .zip(scale)
-            .position(|(dk, sc)| dk.abs() > CONTINUITY_TOL * sc)
-            .map_or(3, |k| k as i32 - 1);
-        Self {
-            x,
-            left_segment,
-            ds: d[0],
-            dv: d[1],
-            da: d[2],
-            dj: d[3],
-            continuous_up_to,
-        }
+        let d = [right.s - left.s, right.v - left.v, right.a - left.a, right.j - left.j];
+        let scale = [1.0, 1.0 + left.v.abs(), 1.0 + left.a.abs(), 1.0 + left.j.abs()];
+        let continuous_up_to =
+            d.iter().zip(scale).position(|(dk, sc)| dk.abs() > CONTINUITY_TOL * sc).map_or(3, |k| k as i32 - 1);
+        Self { x, left_segment, ds: d[0], dv: d[1], da: d[2], dj: d[3], continuous_up_to }
     }
 
     /// Whether s, v, a, j are each continuous here.
@@ -81,33 +60,15 @@ impl Law {
     pub fn continuity(&self) -> Continuity {
         let segs = self.segments();
         let dwell0 = Kinematics::default();
-        let dwell1 = Kinematics {
-            s: 1.0,
-            ..Kinematics::default()
-        };
+        let dwell1 = Kinematics { s: 1.0, ..Kinematics::default() };
         let start = Joint::new(0.0, None, dwell0, segs[0].start());
-        let end = Joint::new(
-            1.0,
-            Some(segs.len() - 1),
-            segs[segs.len() - 1].end(),
-            dwell1,
-        );
+        let end = Joint::new(1.0, Some(segs.len() - 1), segs[segs.len() - 1].end(), dwell1);
         let joints: Vec<Joint> = segs
             .windows(2)
             .enumerate()
             .map(|(i, w)| Joint::new(w[1].x0(), Some(i), w[0].end(), w[1].start()))
             .collect();
-        let class = joints
-            .iter()
-            .chain([&start, &end])
-            .map(|j| j.continuous_up_to)
-            .min()
-            .unwrap_or(3);
-        Continuity {
-            start,
-            joints,
-            end,
-            class,
-        }
+        let class = joints.iter().chain([&start, &end]).map(|j| j.continuous_up_to).min().unwrap_or(3);
+        Continuity { start, joints, end, class }
     }
 }

@@ -152,9 +152,7 @@ impl Cycle {
         let spec: CycleSpec = toml::from_str(text).map_err(|e| LawError::Parse {
             field: "cycle file".into(),
             text: e.message().to_string(),
-            expected:
-                "TOML with [[segment]] tables (kind, from_deg/to_deg or length_deg, law, stroke)"
-                    .into(),
+            expected: "TOML with [[segment]] tables (kind, from_deg/to_deg or length_deg, law, stroke)".into(),
         })?;
         Self::new(&spec)
     }
@@ -201,11 +199,7 @@ impl Cycle {
             };
             if !(len.is_finite() && len > 0.0) {
                 return Err(LawError::Cycle {
-                    field: f(if s.to_deg.is_some() {
-                        "to_deg"
-                    } else {
-                        "length_deg"
-                    }),
+                    field: f(if s.to_deg.is_some() { "to_deg" } else { "length_deg" }),
                     reason: format!(
                         "the segment's length is {len}°; it must be positive (segments in increasing angle)"
                     ),
@@ -225,22 +219,12 @@ impl Cycle {
                     let params: Vec<(String, String)> = s
                         .params
                         .iter()
-                        .map(|(k, v)| {
-                            (
-                                k.clone(),
-                                v.as_str().map_or_else(|| v.to_string(), str::to_string),
-                            )
-                        })
+                        .map(|(k, v)| (k.clone(), v.as_str().map_or_else(|| v.to_string(), str::to_string)))
                         .collect();
                     let spec_law = LawSpec::parse(s.law.as_deref().unwrap_or("cycloidal"), &params)
-                        .map_err(|e| LawError::Cycle {
-                            field: f("law"),
-                            reason: e.to_string(),
-                        })?;
-                    let built = spec_law.build().map_err(|e| LawError::Cycle {
-                        field: f("law"),
-                        reason: e.to_string(),
-                    })?;
+                        .map_err(|e| LawError::Cycle { field: f("law"), reason: e.to_string() })?;
+                    let built =
+                        spec_law.build().map_err(|e| LawError::Cycle { field: f("law"), reason: e.to_string() })?;
                     Some((spec_law, built))
                 }
             };
@@ -249,19 +233,14 @@ impl Cycle {
                 kind => {
                     let h = s.stroke.or(spec.stroke).ok_or_else(|| LawError::Cycle {
                         field: f("stroke"),
-                        reason: "a rise or return needs a stroke (here or as the cycle's `stroke`)"
-                            .into(),
+                        reason: "a rise or return needs a stroke (here or as the cycle's `stroke`)".into(),
                     })?;
                     LawError::check_range(
                         &f("stroke"),
                         h,
                         1e-12,
                         1e6,
-                        if spec.unit == StrokeUnit::Mm {
-                            "mm"
-                        } else {
-                            "deg"
-                        },
+                        if spec.unit == StrokeUnit::Mm { "mm" } else { "deg" },
                     )?;
                     let si = h * spec.unit.to_si();
                     if kind == SegmentKind::Rise { si } else { -si }
@@ -287,30 +266,18 @@ impl Cycle {
                 ),
             });
         }
-        let scale = segments
-            .iter()
-            .map(|s| s.stroke_si.abs())
-            .fold(0.0, f64::max);
+        let scale = segments.iter().map(|s| s.stroke_si.abs()).fold(0.0, f64::max);
         if pos.abs() > 1e-9 * scale.max(1e-12) {
             return Err(LawError::Cycle {
                 field: "segment".into(),
                 reason: format!(
                     "the follower ends {:.6} {} from where it started: rises and returns must balance",
                     pos / spec.unit.to_si(),
-                    if spec.unit == StrokeUnit::Mm {
-                        "mm"
-                    } else {
-                        "deg"
-                    }
+                    if spec.unit == StrokeUnit::Mm { "mm" } else { "deg" }
                 ),
             });
         }
-        Ok(Self {
-            unit: spec.unit,
-            period_rad: period * DEG,
-            speed_rpm: spec.speed_rpm,
-            segments,
-        })
+        Ok(Self { unit: spec.unit, period_rad: period * DEG, speed_rpm: spec.speed_rpm, segments })
     }
 
     /// Kinematics in SI units at main-shaft angle `theta_rad` (wrapped into the cycle) and speed.
@@ -318,28 +285,15 @@ impl Cycle {
         let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
         let start = self.segments[0].start_rad;
         let th = start + (theta_rad - start).rem_euclid(self.period_rad);
-        let seg = self
-            .segments
-            .iter()
-            .rev()
-            .find(|s| th >= s.start_rad)
-            .unwrap_or(&self.segments[0]);
+        let seg = self.segments.iter().rev().find(|s| th >= s.start_rad).unwrap_or(&self.segments[0]);
         let Some((_, law)) = &seg.law else {
-            return Kinematics {
-                s: seg.base_si,
-                ..Kinematics::default()
-            };
+            return Kinematics { s: seg.base_si, ..Kinematics::default() };
         };
         let x = (th - seg.start_rad) / seg.length_rad;
         let k = law.eval(x);
         let r = omega / seg.length_rad; // dx/dt
         let h = seg.stroke_si;
-        Kinematics {
-            s: seg.base_si + h * k.s,
-            v: h * k.v * r,
-            a: h * k.a * r * r,
-            j: h * k.j * r * r * r,
-        }
+        Kinematics { s: seg.base_si + h * k.s, v: h * k.v * r, a: h * k.a * r * r, j: h * k.j * r * r * r }
     }
 
     /// `n ≥ 2` samples over one cycle at a speed, both ends included.
@@ -352,16 +306,8 @@ impl Cycle {
                 let f = i as f64 / (n - 1) as f64;
                 let th = start + f * self.period_rad;
                 // The last sample is the cycle's end, evaluated as the left limit.
-                let eval_th = if i + 1 == n {
-                    th - 1e-12 * self.period_rad
-                } else {
-                    th
-                };
-                CyclePoint {
-                    angle_deg: th / DEG,
-                    time_s: (th - start) / omega,
-                    kin: self.eval(eval_th, speed_rpm),
-                }
+                let eval_th = if i + 1 == n { th - 1e-12 * self.period_rad } else { th };
+                CyclePoint { angle_deg: th / DEG, time_s: (th - start) / omega, kin: self.eval(eval_th, speed_rpm) }
             })
             .collect()
     }

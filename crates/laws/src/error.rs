@@ -84,39 +84,15 @@ pub enum LawError {
 
 impl LawError {
     /// Shorthand for [`LawError::OutOfRange`].
-    pub fn out_of_range(
-        field: impl Into<String>,
-        value: f64,
-        min: f64,
-        max: f64,
-        unit: &str,
-    ) -> Self {
-        let unit = if unit.is_empty() {
-            String::new()
-        } else {
-            format!(" {unit}")
-        };
-        Self::OutOfRange {
-            field: field.into(),
-            value,
-            min,
-            max,
-            unit,
-        }
+    pub fn out_of_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
+        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+        Self::OutOfRange { field: field.into(), value, min, max, unit }
     }
 
     /// Checks `min ≤ value ≤ max` and finiteness.
-    pub fn check_range(
-        field: &str,
-        value: f64,
-        min: f64,
-        max: f64,
-        unit: &str,
-    ) -> Result<f64, Self> {
+    pub fn check_range(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64, Self> {
         if !value.is_finite() {
-            return Err(Self::NotFinite {
-                field: field.into(),
-            });
+            return Err(Self::NotFinite { field: field.into() });
         }
         if value < min || value > max {
             return Err(Self::out_of_range(field, value, min, max, unit));

@@ -18,20 +18,12 @@ pub struct AccelPiece {
 impl AccelPiece {
     /// A piece of polynomial acceleration only.
     pub fn poly(width: f64, poly: &[f64]) -> Self {
-        Self {
-            width,
-            poly: poly.to_vec(),
-            sine: None,
-        }
+        Self { width, poly: poly.to_vec(), sine: None }
     }
 
     /// A piece of polynomial plus sinusoid acceleration.
     pub fn with_sine(width: f64, poly: &[f64], sine: Sine) -> Self {
-        Self {
-            width,
-            poly: poly.to_vec(),
-            sine: Some(sine),
-        }
+        Self { width, poly: poly.to_vec(), sine: Some(sine) }
     }
 }
 
@@ -61,19 +53,12 @@ impl Law {
     pub fn from_segments(segments: Vec<Segment>) -> Result<Self> {
         let field = "segments";
         let (Some(first), Some(last)) = (segments.first(), segments.last()) else {
-            return Err(LawError::NotARise {
-                field: field.into(),
-                reason: "a law needs at least one segment".into(),
-            });
+            return Err(LawError::NotARise { field: field.into(), reason: "a law needs at least one segment".into() });
         };
         if first.x0().abs() > 1e-12 || (last.x1() - 1.0).abs() > 1e-12 {
             return Err(LawError::Cycle {
                 field: field.into(),
-                reason: format!(
-                    "segments cover [{}, {}], they must cover [0, 1]",
-                    first.x0(),
-                    last.x1()
-                ),
+                reason: format!("segments cover [{}, {}], they must cover [0, 1]", first.x0(), last.x1()),
             });
         }
         for (i, w) in segments.windows(2).enumerate() {
@@ -81,12 +66,7 @@ impl Law {
             if (w[0].x1() - w[1].x0()).abs() > 1e-12 {
                 return Err(LawError::Cycle {
                     field: format!("segments[{}].x0", i + 1),
-                    reason: format!(
-                        "starts at {} but segment {} ends at {}",
-                        w[1].x0(),
-                        i,
-                        w[0].x1()
-                    ),
+                    reason: format!("starts at {} but segment {} ends at {}", w[1].x0(), i, w[0].x1()),
                 });
             }
             let scale = 1.0 + l.s.abs().max(l.v.abs());
@@ -104,47 +84,26 @@ impl Law {
     /// the result so that `s(1) = 1`.
     ///
     /// The widths must be positive and sum to 1 (±1e-9); `field` names the input in errors.
-    pub fn from_accel_pieces(
-        pieces: &[AccelPiece],
-        end: EndCondition,
-        field: &str,
-    ) -> Result<Self> {
+    pub fn from_accel_pieces(pieces: &[AccelPiece], end: EndCondition, field: &str) -> Result<Self> {
         if pieces.is_empty() {
-            return Err(LawError::NotARise {
-                field: field.into(),
-                reason: "no acceleration segments given".into(),
-            });
+            return Err(LawError::NotARise { field: field.into(), reason: "no acceleration segments given".into() });
         }
         let mut sum = 0.0;
         for (i, p) in pieces.iter().enumerate() {
-            LawError::check_range(
-                &format!("{field}[{i}].length"),
-                p.width,
-                f64::MIN_POSITIVE,
-                1.0,
-                "",
-            )?;
+            LawError::check_range(&format!("{field}[{i}].length"), p.width, f64::MIN_POSITIVE, 1.0, "")?;
             sum += p.width;
         }
         if (sum - 1.0).abs() > 1e-9 {
-            return Err(LawError::LengthsDoNotSumToOne {
-                field: field.into(),
-                sum,
-            });
+            return Err(LawError::LengthsDoNotSumToOne { field: field.into(), sum });
         }
         let mut segs = Vec::with_capacity(pieces.len());
         let (mut x, mut s, mut v) = (0.0, 0.0, 0.0);
         for (i, p) in pieces.iter().enumerate() {
             // Snap the last end onto 1 exactly so the law covers [0, 1].
-            let x1 = if i + 1 == pieces.len() {
-                1.0
-            } else {
-                x + p.width / sum
-            };
+            let x1 = if i + 1 == pieces.len() { 1.0 } else { x + p.width / sum };
             let seg = Segment::from_accel(x, x1, &p.poly, p.sine, s, v).ok_or_else(|| LawError::NotARise {
                 field: format!("{field}[{i}]"),
-                reason: "acceleration must be finite, of polynomial degree ≤ 5, with a non-zero sine frequency"
-                    .into(),
+                reason: "acceleration must be finite, of polynomial degree ≤ 5, with a non-zero sine frequency".into(),
             })?;
             let e = seg.end();
             (x, s, v) = (x1, e.s, e.v);
@@ -161,10 +120,7 @@ impl Law {
         let k = 1.0 / s;
         let segs: Vec<Segment> = segs.iter().map(|g| g.scaled(k)).collect();
         if end == EndCondition::Rest {
-            let vmax = segs
-                .iter()
-                .map(|g| g.start().v.abs().max(g.end().v.abs()))
-                .fold(0.0, f64::max);
+            let vmax = segs.iter().map(|g| g.start().v.abs().max(g.end().v.abs())).fold(0.0, f64::max);
             let v1 = v * k;
             if v1.abs() > 1e-9 * vmax.max(1.0) {
                 return Err(LawError::NotARise {
@@ -200,9 +156,7 @@ impl Law {
             }
             i
         } else {
-            self.segments
-                .partition_point(|g| g.x0() <= x)
-                .saturating_sub(1)
+            self.segments.partition_point(|g| g.x0() <= x).saturating_sub(1)
         }
     }
 
@@ -232,11 +186,7 @@ impl Law {
             let last = si + 1 == self.segments.len();
             // Points i.. with x = i·h < x1 (all remaining for the last segment), decided with the
             // same arithmetic as `eval` so that a point on a joint goes to the right-hand segment.
-            let mut end = if last {
-                n
-            } else {
-                ((seg.x1() / h).ceil() as usize).clamp(i, n)
-            };
+            let mut end = if last { n } else { ((seg.x1() / h).ceil() as usize).clamp(i, n) };
             if !last {
                 while end > i && (end - 1) as f64 * h >= seg.x1() {
                     end -= 1;
@@ -260,10 +210,7 @@ impl Law {
         let mut k = vec![Kinematics::default(); n];
         self.sample_into(&mut k);
         let h = 1.0 / (n - 1) as f64;
-        k.into_iter()
-            .enumerate()
-            .map(|(i, k)| (if i + 1 == n { 1.0 } else { i as f64 * h }, k))
-            .collect()
+        k.into_iter().enumerate().map(|(i, k)| (if i + 1 == n { 1.0 } else { i as f64 * h }, k)).collect()
     }
 }
 

@@ -49,16 +49,10 @@ struct Peak {
 
 impl Peak {
     fn max() -> Self {
-        Self {
-            value: f64::NEG_INFINITY,
-            x: 0.0,
-        }
+        Self { value: f64::NEG_INFINITY, x: 0.0 }
     }
     fn min() -> Self {
-        Self {
-            value: f64::INFINITY,
-            x: 0.0,
-        }
+        Self { value: f64::INFINITY, x: 0.0 }
     }
     fn take_max(&mut self, value: f64, x: f64) {
         if value > self.value {
@@ -75,13 +69,8 @@ impl Peak {
 impl Law {
     /// The exact characteristic values of the law.
     pub fn metrics(&self) -> Metrics {
-        let (mut cv, mut apos, mut aneg, mut jabs, mut cm) = (
-            Peak::max(),
-            Peak::max(),
-            Peak::min(),
-            Peak::max(),
-            Peak::max(),
-        );
+        let (mut cv, mut apos, mut aneg, mut jabs, mut cm) =
+            (Peak::max(), Peak::max(), Peak::min(), Peak::max(), Peak::max());
         let mut a2 = 0.0;
         for seg in self.segments() {
             let w = seg.width();
@@ -133,7 +122,5 @@ impl Law {
 }
 
 fn panels(seg: &Segment) -> usize {
-    1 + seg
-        .sine()
-        .map_or(0.0, |s| (s.omega.abs() * seg.width() / PI).ceil()) as usize
+    1 + seg.sine().map_or(0.0, |s| (s.omega.abs() * seg.width() / PI).ceil()) as usize
 }

@@ -46,14 +46,7 @@ impl Segment {
     /// `accel_poly` holds the acceleration polynomial in the local coordinate `t`, lowest power
     /// first, of degree at most 5. Returns `None` when the polynomial is too long, an input is not
     /// finite, `x1 ≤ x0`, or the sine has a zero frequency.
-    pub fn from_accel(
-        x0: f64,
-        x1: f64,
-        accel_poly: &[f64],
-        sine: Option<Sine>,
-        s0: f64,
-        v0: f64,
-    ) -> Option<Self> {
+    pub fn from_accel(x0: f64, x1: f64, accel_poly: &[f64], sine: Option<Sine>, s0: f64, v0: f64) -> Option<Self> {
         if accel_poly.len() > NC - 2 || !(x1 > x0) || !x0.is_finite() || !x1.is_finite() {
             return None;
         }
@@ -63,10 +56,7 @@ impl Segment {
         }
         let sine = match sine {
             Some(sn) if sn.amp == 0.0 => None,
-            Some(sn)
-                if sn.omega == 0.0
-                    || !(sn.amp.is_finite() && sn.omega.is_finite() && sn.phase.is_finite()) =>
-            {
+            Some(sn) if sn.omega == 0.0 || !(sn.amp.is_finite() && sn.omega.is_finite() && sn.phase.is_finite()) => {
                 return None;
             }
             other => other,
@@ -236,10 +226,7 @@ impl Segment {
 
     #[inline]
     fn poly_only(&self, t: f64) -> Kinematics {
-        let no_sine = Self {
-            sine: None,
-            ..*self
-        };
+        let no_sine = Self { sine: None, ..*self };
         no_sine.eval_local(t)
     }
 }
@@ -264,11 +251,7 @@ mod tests {
             0.2,
             0.7,
             &[1.0, -2.0, 3.0, 0.5, -0.25, 0.125],
-            Some(Sine {
-                amp: 2.0,
-                omega: 5.0,
-                phase: 0.3,
-            }),
+            Some(Sine { amp: 2.0, omega: 5.0, phase: 0.3 }),
             0.1,
             -0.4,
         )
@@ -276,12 +259,7 @@ mod tests {
         for &t in &[0.0, 0.13, 0.37, 0.5] {
             let k = seg.eval_local(t);
             for order in 0..4 {
-                assert_relative_eq!(
-                    seg.deriv_local(order, t),
-                    k.order(order),
-                    epsilon = 1e-12,
-                    max_relative = 1e-12
-                );
+                assert_relative_eq!(seg.deriv_local(order, t), k.order(order), epsilon = 1e-12, max_relative = 1e-12);
             }
         }
         let k0 = seg.start();
@@ -291,19 +269,8 @@ mod tests {
 
     #[test]
     fn run_matches_pointwise() {
-        let seg = Segment::from_accel(
-            0.0,
-            1.0,
-            &[0.5],
-            Some(Sine {
-                amp: 1.0,
-                omega: 40.0,
-                phase: 0.1,
-            }),
-            0.0,
-            0.0,
-        )
-        .unwrap();
+        let seg =
+            Segment::from_accel(0.0, 1.0, &[0.5], Some(Sine { amp: 1.0, omega: 40.0, phase: 0.1 }), 0.0, 0.0).unwrap();
         let mut out = vec![Kinematics::default(); 500];
         seg.eval_run(0.0, 0.002, &mut out);
         for (i, k) in out.iter().enumerate() {
@@ -318,11 +285,7 @@ mod tests {
         assert!(Segment::from_accel(0.0, 0.0, &[1.0], None, 0.0, 0.0).is_none());
         assert!(Segment::from_accel(0.0, 1.0, &[f64::NAN], None, 0.0, 0.0).is_none());
         assert!(Segment::from_accel(0.0, 1.0, &[0.0; 7], None, 0.0, 0.0).is_none());
-        let bad = Sine {
-            amp: 1.0,
-            omega: 0.0,
-            phase: 0.0,
-        };
+        let bad = Sine { amp: 1.0, omega: 0.0, phase: 0.0 };
         assert!(Segment::from_accel(0.0, 1.0, &[], Some(bad), 0.0, 0.0).is_none());
     }
 }

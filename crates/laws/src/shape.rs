@@ -75,22 +75,10 @@ impl Shape {
         match *self {
             Shape::Zero => Shape::Zero,
             Shape::Constant { level } => Shape::Constant { level: level * k },
-            Shape::Linear { from, to } => Shape::Linear {
-                from: from * k,
-                to: to * k,
-            },
-            Shape::SineRamp { from, to } => Shape::SineRamp {
-                from: from * k,
-                to: to * k,
-            },
-            Shape::CosineRamp { from, to } => Shape::CosineRamp {
-                from: from * k,
-                to: to * k,
-            },
-            Shape::HalfCosine { from, to } => Shape::HalfCosine {
-                from: from * k,
-                to: to * k,
-            },
+            Shape::Linear { from, to } => Shape::Linear { from: from * k, to: to * k },
+            Shape::SineRamp { from, to } => Shape::SineRamp { from: from * k, to: to * k },
+            Shape::CosineRamp { from, to } => Shape::CosineRamp { from: from * k, to: to * k },
+            Shape::HalfCosine { from, to } => Shape::HalfCosine { from: from * k, to: to * k },
             Shape::SineArc { peak } => Shape::SineArc { peak: peak * k },
         }
     }
@@ -115,68 +103,34 @@ impl Shape {
             Shape::Zero => AccelPiece::poly(w, &[]),
             Shape::Constant { level } => AccelPiece::poly(w, &[level]),
             Shape::Linear { from, to } => AccelPiece::poly(w, &[from, (to - from) / w]),
-            Shape::SineRamp { from, to } => AccelPiece::with_sine(
-                w,
-                &[from],
-                Sine {
-                    amp: to - from,
-                    omega: FRAC_PI_2 / w,
-                    phase: 0.0,
-                },
-            ),
+            Shape::SineRamp { from, to } => {
+                AccelPiece::with_sine(w, &[from], Sine { amp: to - from, omega: FRAC_PI_2 / w, phase: 0.0 })
+            }
             // from + d(1 − cos(πu/2)) = to − d·sin(πu/2 + π/2)
-            Shape::CosineRamp { from, to } => AccelPiece::with_sine(
-                w,
-                &[to],
-                Sine {
-                    amp: -(to - from),
-                    omega: FRAC_PI_2 / w,
-                    phase: FRAC_PI_2,
-                },
-            ),
+            Shape::CosineRamp { from, to } => {
+                AccelPiece::with_sine(w, &[to], Sine { amp: -(to - from), omega: FRAC_PI_2 / w, phase: FRAC_PI_2 })
+            }
             // from + d(1 − cos πu)/2 = (from+to)/2 − d/2·sin(πu + π/2)
             Shape::HalfCosine { from, to } => AccelPiece::with_sine(
                 w,
                 &[(from + to) / 2.0],
-                Sine {
-                    amp: -(to - from) / 2.0,
-                    omega: PI / w,
-                    phase: FRAC_PI_2,
-                },
+                Sine { amp: -(to - from) / 2.0, omega: PI / w, phase: FRAC_PI_2 },
             ),
-            Shape::SineArc { peak } => AccelPiece::with_sine(
-                w,
-                &[],
-                Sine {
-                    amp: peak,
-                    omega: PI / w,
-                    phase: 0.0,
-                },
-            ),
+            Shape::SineArc { peak } => AccelPiece::with_sine(w, &[], Sine { amp: peak, omega: PI / w, phase: 0.0 }),
         }
     }
 
     /// Reads a shape written as `NAME[:LEVEL[:LEVEL]]`, e.g. `sine-ramp:0:1`, `constant:1`, `zero`.
     pub fn parse(text: &str, field: &str) -> Result<Self> {
-        let err = || LawError::Parse {
-            field: field.into(),
-            text: text.into(),
-            expected: Self::NAMES.into(),
-        };
+        let err = || LawError::Parse { field: field.into(), text: text.into(), expected: Self::NAMES.into() };
         let mut it = text.split(':').map(str::trim);
         let name = it.next().ok_or_else(err)?;
-        let nums: Vec<f64> = it
-            .map(|t| t.parse::<f64>().map_err(|_| err()))
-            .collect::<Result<_>>()?;
+        let nums: Vec<f64> = it.map(|t| t.parse::<f64>().map_err(|_| err())).collect::<Result<_>>()?;
         if nums.iter().any(|v| !v.is_finite()) {
             return Err(err());
         }
         let two = |ctor: fn(f64, f64) -> Shape| {
-            if nums.len() == 2 {
-                Ok(ctor(nums[0], nums[1]))
-            } else {
-                Err(err())
-            }
+            if nums.len() == 2 { Ok(ctor(nums[0], nums[1])) } else { Err(err()) }
         };
         match name {
             "zero" if nums.is_empty() => Ok(Shape::Zero),
@@ -232,18 +186,12 @@ pub fn parse_segments(text: &str, field: &str) -> Result<Vec<ShapeSegment>> {
                 text: len.into(),
                 expected: "a number in (0, 1]".into(),
             })?;
-            Ok(ShapeSegment {
-                length,
-                shape: Shape::parse(shape, &f)?,
-            })
+            Ok(ShapeSegment { length, shape: Shape::parse(shape, &f)? })
         })
         .collect()
 }
 
 /// Writes segments in the form [`parse_segments`] reads.
 pub fn format_segments(segs: &[ShapeSegment]) -> String {
-    segs.iter()
-        .map(|s| format!("{}:{}", s.length, s.shape))
-        .collect::<Vec<_>>()
-        .join(",")
+    segs.iter().map(|s| format!("{}:{}", s.length, s.shape)).collect::<Vec<_>>().join(",")
 }

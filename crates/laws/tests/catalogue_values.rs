@@ -4,20 +4,13 @@ use loomkin_laws::{LawSpec, Metrics};
 use std::f64::consts::PI;
 
 fn metrics(name: &str) -> Metrics {
-    LawSpec::parse::<&str, &str>(name, &[])
-        .unwrap()
-        .build()
-        .unwrap()
-        .metrics()
+    LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap().metrics()
 }
 
 #[track_caller]
 fn close(got: f64, want: f64, what: &str) {
     let rel = (got - want).abs() / want.abs();
-    assert!(
-        rel < 1e-9,
-        "{what}: got {got}, want {want} (relative error {rel:e})"
-    );
+    assert!(rel < 1e-9, "{what}: got {got}, want {want} (relative error {rel:e})");
 }
 
 #[test]
@@ -67,10 +60,7 @@ fn modified_trapezoid_with_quarter_ramps_is_cycloidal() {
     for i in 0..=100 {
         let x = i as f64 / 100.0;
         let (ka, kc) = (a.eval(x), c.eval(x));
-        assert!(
-            (ka.s - kc.s).abs() < 1e-13 && (ka.a - kc.a).abs() < 1e-11,
-            "x = {x}"
-        );
+        assert!((ka.s - kc.s).abs() < 1e-13 && (ka.a - kc.a).abs() < 1e-11, "x = {x}");
     }
 }
 
@@ -103,60 +93,32 @@ fn constant_acceleration() {
 
 #[test]
 fn continuity_classes() {
-    let class = |name: &str| {
-        LawSpec::parse::<&str, &str>(name, &[])
-            .unwrap()
-            .build()
-            .unwrap()
-            .continuity()
-            .class
-    };
-    assert_eq!(
-        class("constant-acceleration"),
-        1,
-        "a jumps at the ends and the middle"
-    );
+    let class = |name: &str| LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap().continuity().class;
+    assert_eq!(class("constant-acceleration"), 1, "a jumps at the ends and the middle");
     assert_eq!(class("harmonic"), 1, "a jumps against the dwells");
     assert_eq!(class("cycloidal"), 2);
     assert_eq!(class("poly345"), 2);
     assert_eq!(class("poly4567"), 3);
     assert_eq!(class("modified-sine"), 2);
     let ca = LawSpec::ConstantAcceleration.build().unwrap().continuity();
-    assert!(
-        (ca.joints[0].da + 8.0).abs() < 1e-12,
-        "a jumps from +4 to −4 at the middle"
-    );
+    assert!((ca.joints[0].da + 8.0).abs() < 1e-12, "a jumps from +4 to −4 at the middle");
     assert!((ca.start.da - 4.0).abs() < 1e-12);
 }
 
 #[test]
 fn bad_parameters_name_the_field() {
-    let e = LawSpec::parse("modified-trapezoid", &[("ramp", "0.3")])
-        .unwrap_err()
-        .to_string();
+    let e = LawSpec::parse("modified-trapezoid", &[("ramp", "0.3")]).unwrap_err().to_string();
     assert!(e.contains("ramp") && e.contains("0.25"), "{e}");
-    let e = LawSpec::parse::<&str, &str>("nonsense", &[])
-        .unwrap_err()
-        .to_string();
+    let e = LawSpec::parse::<&str, &str>("nonsense", &[]).unwrap_err().to_string();
     assert!(e.contains("cycloidal"), "{e}");
-    let e = LawSpec::parse("cycloidal", &[("ramp", "0.1")])
+    let e = LawSpec::parse("cycloidal", &[("ramp", "0.1")]).unwrap_err().to_string();
+    assert!(e.contains("ramp"), "{e}");
+    let e = LawSpec::parse("piecewise", &[("segments", "0.5:constant:1,0.4:constant:-1")]).unwrap_err().to_string();
+    assert!(e.contains("sum to 0.9"), "{e}");
+    let e = LawSpec::parse("piecewise", &[("segments", "0.5:constant:1,0.5:constant:-2")])
+        .unwrap()
+        .build()
         .unwrap_err()
         .to_string();
-    assert!(e.contains("ramp"), "{e}");
-    let e = LawSpec::parse(
-        "piecewise",
-        &[("segments", "0.5:constant:1,0.4:constant:-1")],
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("sum to 0.9"), "{e}");
-    let e = LawSpec::parse(
-        "piecewise",
-        &[("segments", "0.5:constant:1,0.5:constant:-2")],
-    )
-    .unwrap()
-    .build()
-    .unwrap_err()
-    .to_string();
     assert!(e.contains("velocity does not return to zero"), "{e}");
 }

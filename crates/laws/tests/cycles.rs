@@ -42,37 +42,23 @@ fn physical_units_follow_the_chain_rule() {
     assert!((fdv - c.eval(th, rpm).v).abs() < 1e-6);
     let pts = c.sample(361, rpm);
     assert!(pts.last().unwrap().kin.s.abs() < 1e-9, "the cycle closes");
-    assert!(
-        (pts.last().unwrap().time_s - 0.2).abs() < 1e-12,
-        "one turn at 300 rpm takes 0.2 s"
-    );
+    assert!((pts.last().unwrap().time_s - 0.2).abs() < 1e-12, "one turn at 300 rpm takes 0.2 s");
 }
 
 #[test]
 fn errors_name_the_field() {
     let gap = CYCLE.replace("to_deg = 360", "to_deg = 350");
     let e = Cycle::from_toml(&gap).unwrap_err().to_string();
-    assert!(
-        e.contains("segment[3].to_deg") && e.contains("close"),
-        "{e}"
-    );
+    assert!(e.contains("segment[3].to_deg") && e.contains("close"), "{e}");
     let bad_law = CYCLE.replace(
         "law = \"cycloidal\"",
         "law = \"piecewise\"\nparams = { segments = \"0.6:constant:1,0.6:constant:-1\" }",
     );
     let e = Cycle::from_toml(&bad_law).unwrap_err().to_string();
-    assert!(
-        e.contains("segment[1].law") && e.contains("sum to 1.2"),
-        "{e}"
-    );
-    let e = Cycle::from_toml("unit = \"mm\"\n[[segment]]\nkind = \"fly\"\nto_deg = 360\n")
-        .unwrap_err()
-        .to_string();
+    assert!(e.contains("segment[1].law") && e.contains("sum to 1.2"), "{e}");
+    let e = Cycle::from_toml("unit = \"mm\"\n[[segment]]\nkind = \"fly\"\nto_deg = 360\n").unwrap_err().to_string();
     assert!(e.contains("cycle file"), "{e}");
-    let unbalanced = CYCLE.replace(
-        "params = { ramp = 0.125 }",
-        "params = { ramp = 0.125 }\nstroke = 90",
-    );
+    let unbalanced = CYCLE.replace("params = { ramp = 0.125 }", "params = { ramp = 0.125 }\nstroke = 90");
     let e = Cycle::from_toml(&unbalanced).unwrap_err().to_string();
     assert!(e.contains("rises and returns must balance"), "{e}");
 }

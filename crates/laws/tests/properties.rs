@@ -4,23 +4,10 @@ use loomkin_laws::{Law, LawSpec, Shape, ShapeSegment};
 use proptest::prelude::*;
 
 fn catalogue() -> Vec<Law> {
-    [
-        "constant-acceleration",
-        "harmonic",
-        "cycloidal",
-        "poly345",
-        "poly4567",
-        "modified-trapezoid",
-        "modified-sine",
-    ]
-    .iter()
-    .map(|n| {
-        LawSpec::parse::<&str, &str>(n, &[])
-            .unwrap()
-            .build()
-            .unwrap()
-    })
-    .collect()
+    ["constant-acceleration", "harmonic", "cycloidal", "poly345", "poly4567", "modified-trapezoid", "modified-sine"]
+        .iter()
+        .map(|n| LawSpec::parse::<&str, &str>(n, &[]).unwrap().build().unwrap())
+        .collect()
 }
 
 /// A random balanced piecewise law: random positive-phase shapes, mirrored negative phase.
@@ -35,20 +22,12 @@ fn piecewise() -> impl Strategy<Value = LawSpec> {
     ];
     prop::collection::vec((0.05..1.0f64, shape), 1..5).prop_map(|parts| {
         let total: f64 = parts.iter().map(|p| p.0).sum::<f64>() * 2.0;
-        let mut segs: Vec<ShapeSegment> = parts
-            .iter()
-            .map(|(l, s)| ShapeSegment {
-                length: l / total,
-                shape: *s,
-            })
-            .collect();
+        let mut segs: Vec<ShapeSegment> =
+            parts.iter().map(|(l, s)| ShapeSegment { length: l / total, shape: *s }).collect();
         let mirror: Vec<ShapeSegment> = segs
             .iter()
             .rev()
-            .map(|s| ShapeSegment {
-                length: s.length,
-                shape: s.shape.reversed().scaled(-1.0),
-            })
+            .map(|s| ShapeSegment { length: s.length, shape: s.shape.reversed().scaled(-1.0) })
             .collect();
         segs.extend(mirror);
         LawSpec::Piecewise { segments: segs }
