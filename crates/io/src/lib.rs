@@ -1,1 +1,28 @@
-//! loomkin io.
+//! # loomkin-io — tables, files and plots
+//!
+//! Shared output plumbing of the loomkin tools: numeric [`Table`]s written as CSV or JSON (headers
+//! carry units, non-finite numbers are refused rather than printed), [`open_output`] where `-`
+//! means standard output, and stacked line [`plot::Figure`]s rendered to SVG or PNG with an
+//! embedded font (no system fonts or C libraries needed).
+//!
+//! ```
+//! use loomkin_io::Table;
+//!
+//! let mut t = Table::new(["x", "s"]);
+//! t.push(vec![0.0, 0.0])?;
+//! t.push(vec![1.0, 1.0])?;
+//! let mut csv = Vec::new();
+//! t.write_csv(&mut csv)?;
+//! assert_eq!(String::from_utf8(csv).unwrap(), "x,s\n0,0\n1,1\n");
+//! # Ok::<(), loomkin_io::IoError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod error;
+mod output;
+pub mod plot;
+mod table;
+
+pub use error::IoError;
+pub use output::{create_file, open_output};
+pub use table::Table;

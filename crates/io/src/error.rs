@@ -1,0 +1,49 @@
+//! Errors of the output plumbing.
+
+use thiserror::Error;
+
+/// What can go wrong while writing tables, files or plots.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum IoError {
+    /// A file could not be created or written.
+    #[error("cannot write {path}: {source}")]
+    File {
+        /// The path.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Writing to a stream failed.
+    #[error("write failed: {0}")]
+    Write(#[from] std::io::Error),
+    /// A row of the wrong width.
+    #[error("table row {row} has {got} values, the header has {want} columns")]
+    RowWidth {
+        /// Row index.
+        row: usize,
+        /// Values given.
+        got: usize,
+        /// Columns in the header.
+        want: usize,
+    },
+    /// A value that is not a finite number.
+    #[error("column '{column}' row {row} is not a finite number ({value}); refusing to print it")]
+    NotFinite {
+        /// Column name.
+        column: String,
+        /// Row index.
+        row: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A plot file whose extension is neither `.svg` nor `.png`.
+    #[error("plot file '{path}': the extension must be .svg or .png")]
+    PlotFormat {
+        /// The path.
+        path: String,
+    },
+    /// A figure that cannot be drawn.
+    #[error("plot: {0}")]
+    Plot(String),
+}

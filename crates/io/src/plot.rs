@@ -1,0 +1,244 @@
+//! Stacked line plots rendered to SVG or PNG.
+//!
+//! A [`Figure`] is a column of [`Panel`]s sharing a horizontal quantity; each panel overlays any
+//! number of [`Series`] with a legend. Axis labels are written as `quantity [unit]`. The text font is
+//! embedded (Ubuntu Light, from the `epaint_default_fonts` crate), so plotting needs no system fonts.
+
+use crate::IoError;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// One curve.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// Points `(x, y)`; non-finite points are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers at the points instead of a line.
+    pub markers: bool,
+}
+
+impl Series {
+    /// A line through the points.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, markers: false }
+    }
+
+    /// Markers at the points.
+    pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, markers: true }
+    }
+}
+
+/// One chart of a figure.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Panel {
+    /// Vertical axis label, `quantity [unit]`.
+    pub y_label: String,
+    /// Horizontal axis label for this panel (defaults to the figure's).
+    pub x_label: Option<String>,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// Same scale on both axes (for drawings such as cam profiles).
+    pub equal_aspect: bool,
+}
+
+impl Panel {
+    /// A panel with a label and curves.
+    pub fn new(y_label: impl Into<String>, series: Vec<Series>) -> Self {
+        Self { y_label: y_label.into(), series, ..Self::default() }
+    }
+}
+
+/// A column of panels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Title over the first panel.
+    pub title: String,
+    /// Horizontal axis label, `quantity [unit]`.
+    pub x_label: String,
+    /// The panels, top to bottom.
+    pub panels: Vec<Panel>,
+    /// Size in pixels; `None` picks 1000 × (260 per panel + 60).
+    pub size: Option<(u32, u32)>,
+}
+
+/// Colours of successive series (a palette readable on white and by most colour-blind readers).
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(120, 120, 120),
+];
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is a compile-time constant of a published crate: it cannot fail to parse.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT);
+    });
+}
+
+impl Figure {
+    /// A figure with a title, a horizontal label and panels.
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, panels: Vec<Panel>) -> Self {
+        Self { title: title.into(), x_label: x_label.into(), panels, size: None }
+    }
+
+    /// Renders to `path`; the extension (`.svg` or `.png`) chooses the format.
+    pub fn save(&self, path: &Path) -> Result<(), IoError> {
+        register_font();
+        if self.panels.is_empty() {
+            return Err(IoError::Plot("a figure needs at least one panel".into()));
+        }
+        let size = self.size.unwrap_or((1000, 260 * self.panels.len() as u32 + 60));
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("svg") => self.draw(SVGBackend::new(path, size).into_drawing_area()),
+            Some("png") => self.draw(BitMapBackend::new(path, size).into_drawing_area()),
+            _ => Err(IoError::PlotFormat { path: path.display().to_string() }),
+        }
+        .map_err(|e| match e {
+            IoError::Plot(m) => IoError::Plot(format!("{}: {m}", path.display())),
+            other => other,
+        })
+    }
+
+    /// Renders to an SVG string (for the web workbench and for tests).
+    pub fn to_svg(&self) -> Result<String, IoError> {
+        register_font();
+        let size = self.size.unwrap_or((1000, 260 * self.panels.len().max(1) as u32 + 60));
+        let mut buf = String::new();
+        self.draw(SVGBackend::with_string(&mut buf, size).into_drawing_area())?;
+        Ok(buf)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), IoError> {
+        let err = |e: DrawingAreaErrorKind<DB::ErrorType>| IoError::Plot(e.to_string());
+        root.fill(&WHITE).map_err(err)?;
+        let root = root.titled(&self.title, ("sans-serif", 24)).map_err(err)?;
+        let areas = root.split_evenly((self.panels.len(), 1));
+        for (area, panel) in areas.iter().zip(&self.panels) {
+            draw_panel(area, panel, &self.x_label).map_err(err)?;
+        }
+        root.present().map_err(err)
+    }
+}
+
+fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) =
+        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let span = hi - lo;
+    if span <= 1e-12 * (1.0 + lo.abs().max(hi.abs())) {
+        let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        return (lo - pad, hi + pad);
+    }
+    (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &Panel,
+    fig_x_label: &str,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let pts = || panel.series.iter().flat_map(|s| s.points.iter().copied());
+    let (mut x0, mut x1) = bounds(pts().map(|p| p.0));
+    let (mut y0, mut y1) = bounds(pts().map(|p| p.1));
+    if panel.series.iter().all(|s| s.points.is_empty()) {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if panel.equal_aspect {
+        let (w, h) = area.dim_in_pixel();
+        let (pw, ph) = ((w as f64 - 90.0).max(10.0), (h as f64 - 60.0).max(10.0));
+        let scale = ((x1 - x0) / pw).max((y1 - y0) / ph);
+        let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        (x0, x1) = (cx - scale * pw / 2.0, cx + scale * pw / 2.0);
+        (y0, y1) = (cy - scale * ph / 2.0, cy + scale * ph / 2.0);
+    }
+    let mut chart = ChartBuilder::on(area)
+        .margin(8)
+        .margin_right(20)
+        .x_label_area_size(42)
+        .y_label_area_size(78)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_deref().unwrap_or(fig_x_label))
+        .y_desc(&panel.y_label)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(200, 200, 200))
+        .draw()?;
+    for (i, s) in panel.series.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let finite: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+        let drawn = if s.markers {
+            chart.draw_series(finite.iter().map(|&p| Circle::new(p, 5, color.filled())))?
+        } else {
+            chart.draw_series(LineSeries::new(finite, color.stroke_width(2)))?
+        };
+        if !s.label.is_empty() {
+            drawn
+                .label(s.label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3)));
+        }
+    }
+    if panel.series.iter().filter(|s| !s.label.is_empty()).count() > 0 {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 15))
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn svg_has_labels_and_legend() {
+        let fig = Figure::new(
+            "test",
+            "x [-]",
+            vec![Panel::new(
+                "s [-]",
+                vec![
+                    Series::line("one", vec![(0.0, 0.0), (1.0, 1.0)]),
+                    Series::line("two", vec![(0.0, 1.0), (1.0, 0.0)]),
+                ],
+            )],
+        );
+        let svg = fig.to_svg().unwrap();
+        for text in ["x [-]", "s [-]", "one", "two", "test"] {
+            assert!(svg.contains(text), "{text} missing");
+        }
+    }
+
+    #[test]
+    fn png_renders_and_bad_extension_is_refused() {
+        let dir = std::env::temp_dir().join(format!("loomkin-io-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fig = Figure::new("t", "x", vec![Panel::new("y", vec![Series::line("", vec![(0.0, 2.0), (1.0, 2.0)])])]);
+        let png = dir.join("a.png");
+        fig.save(&png).unwrap();
+        let bytes = std::fs::read(&png).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG");
+        assert!(matches!(fig.save(&dir.join("a.pdf")), Err(IoError::PlotFormat { .. })));
+        std::fs::remove_dir_all(dir).ok();
+    }
+}

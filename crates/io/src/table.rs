@@ -1,0 +1,96 @@
+//! A numeric table with named columns, written as CSV or JSON.
+
+use crate::IoError;
+use std::io::Write;
+
+/// A rectangular table of finite numbers; column names carry their units (`velocity_m_s`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    columns: Vec<String>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// An empty table with these columns.
+    pub fn new<S: Into<String>>(columns: impl IntoIterator<Item = S>) -> Self {
+        Self { columns: columns.into_iter().map(Into::into).collect(), rows: Vec::new() }
+    }
+
+    /// Appends a row; it must be as wide as the header and hold only finite numbers.
+    pub fn push(&mut self, row: Vec<f64>) -> Result<(), IoError> {
+        let r = self.rows.len();
+        if row.len() != self.columns.len() {
+            return Err(IoError::RowWidth { row: r, got: row.len(), want: self.columns.len() });
+        }
+        if let Some((c, &value)) = row.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(IoError::NotFinite { column: self.columns[c].clone(), row: r, value });
+        }
+        self.rows.push(row);
+        Ok(())
+    }
+
+    /// Column names.
+    pub fn columns(&self) -> &[String] {
+        &self.columns
+    }
+
+    /// Rows.
+    pub fn rows(&self) -> &[Vec<f64>] {
+        &self.rows
+    }
+
+    /// Writes the table as CSV: a header line, then one line per row, numbers in the shortest
+    /// form that reads back exactly.
+    pub fn write_csv(&self, w: &mut dyn Write) -> Result<(), IoError> {
+        writeln!(w, "{}", self.columns.join(","))?;
+        let mut line = String::new();
+        for row in &self.rows {
+            line.clear();
+            for (i, v) in row.iter().enumerate() {
+                if i > 0 {
+                    line.push(',');
+                }
+                line.push_str(&fmt_num(*v));
+            }
+            writeln!(w, "{line}")?;
+        }
+        Ok(())
+    }
+
+    /// The rows as a JSON array of objects keyed by column name.
+    pub fn to_json_rows(&self) -> serde_json::Value {
+        let rows = self
+            .rows
+            .iter()
+            .map(|row| {
+                let obj: serde_json::Map<String, serde_json::Value> =
+                    self.columns.iter().cloned().zip(row.iter().map(|v| serde_json::json!(v))).collect();
+                serde_json::Value::Object(obj)
+            })
+            .collect();
+        serde_json::Value::Array(rows)
+    }
+}
+
+/// Shortest round-trip text of a finite number (`-0` printed as `0`).
+pub(crate) fn fmt_num(v: f64) -> String {
+    if v == 0.0 { "0".to_string() } else { format!("{v}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refuses_nan_and_ragged_rows() {
+        let mut t = Table::new(["a_m", "b_s"]);
+        assert!(matches!(t.push(vec![1.0]), Err(IoError::RowWidth { .. })));
+        let e = t.push(vec![1.0, f64::NAN]).unwrap_err().to_string();
+        assert!(e.contains("b_s"), "{e}");
+        t.push(vec![0.5, -0.0]).unwrap();
+        let mut out = Vec::new();
+        t.write_csv(&mut out).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), "a_m,b_s\n0.5,0\n");
+        assert_eq!(t.to_json_rows()[0]["a_m"], 0.5);
+    }
+}
