@@ -1,1 +1,53 @@
-fn main() {}
+//! `loomkin`: design and check the motion of a loom's mechanisms from the command line.
+//!
+//! The binary only parses arguments, calls the libraries and prints. Bad input and usage errors
+//! exit with code 2 and one line on stderr; other failures (an unwritable file) exit with 1.
+
+mod cycle;
+mod law;
+mod util;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// loomkin — motion design for weaving machines (laws, servo drives, picking, dobby, shedding).
+#[derive(Debug, Parser)]
+#[command(name = "loomkin", version, about, long_about = None, max_term_width = 110)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Normalised motion laws: catalogue, metrics, samples, plots.
+    #[command(subcommand)]
+    Law(law::LawCommand),
+    /// A machine cycle (dwell / rise / dwell / return) from a TOML file, in physical units.
+    Cycle(cycle::CycleArgs),
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Law(cmd) => law::run(cmd),
+        Command::Cycle(args) => cycle::run(args),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the error and its causes joined by ": ".
+            eprintln!("loomkin: error: {}", format!("{e:#}").replace('\n', " "));
+            ExitCode::from(util::exit_code(&e))
+        }
+    }
+}

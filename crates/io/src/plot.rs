@@ -44,12 +44,36 @@ pub struct Panel {
     pub series: Vec<Series>,
     /// Same scale on both axes (for drawings such as cam profiles).
     pub equal_aspect: bool,
+    /// Where the legend goes (upper right by default).
+    pub legend: Legend,
+}
+
+/// Placement of a panel's legend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Legend {
+    /// Upper right corner.
+    #[default]
+    UpperRight,
+    /// Upper left corner.
+    UpperLeft,
+    /// Lower right corner.
+    LowerRight,
+    /// Lower left corner.
+    LowerLeft,
+    /// No legend on this panel.
+    Hidden,
 }
 
 impl Panel {
     /// A panel with a label and curves.
     pub fn new(y_label: impl Into<String>, series: Vec<Series>) -> Self {
         Self { y_label: y_label.into(), series, ..Self::default() }
+    }
+
+    /// The same panel with its legend placed elsewhere (or hidden).
+    pub fn with_legend(mut self, legend: Legend) -> Self {
+        self.legend = legend;
+        self
     }
 }
 
@@ -177,8 +201,8 @@ fn draw_panel<DB: DrawingBackend>(
         .y_desc(&panel.y_label)
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(200, 200, 200))
+        .light_line_style(RGBColor(246, 246, 246))
+        .bold_line_style(RGBColor(215, 215, 215))
         .draw()?;
     for (i, s) in panel.series.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
@@ -194,10 +218,17 @@ fn draw_panel<DB: DrawingBackend>(
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3)));
         }
     }
-    if panel.series.iter().filter(|s| !s.label.is_empty()).count() > 0 {
+    let position = match panel.legend {
+        Legend::UpperRight => SeriesLabelPosition::UpperRight,
+        Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+        Legend::LowerRight => SeriesLabelPosition::LowerRight,
+        Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+        Legend::Hidden => return Ok(()),
+    };
+    if panel.series.iter().any(|s| !s.label.is_empty()) {
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(position)
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))

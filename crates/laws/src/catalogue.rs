@@ -149,7 +149,7 @@ impl LawSpec {
         match self {
             LawSpec::ModifiedTrapezoid { ramp } => {
                 if !(ramp.is_finite() && *ramp > 0.0 && *ramp <= 0.25) {
-                    return Err(LawError::out_of_range("ramp", *ramp, 0.0, 0.25, "(exclusive of 0)"));
+                    return Err(LawError::out_of_open_range("ramp", *ramp, 0.0, 0.25, ""));
                 }
                 Ok(())
             }
@@ -162,12 +162,12 @@ impl LawSpec {
                 for (i, seg) in segments.iter().enumerate() {
                     LawError::check_range(&format!("segments[{i}].length"), seg.length, 0.0, 1.0, "")?;
                     if seg.length <= 0.0 {
-                        return Err(LawError::out_of_range(
+                        return Err(LawError::out_of_open_range(
                             format!("segments[{i}].length"),
                             seg.length,
                             0.0,
                             1.0,
-                            "(exclusive of 0)",
+                            "",
                         ));
                     }
                 }

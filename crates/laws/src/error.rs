@@ -9,7 +9,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum LawError {
     /// A numeric parameter outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}")]
+    #[error("{field} = {value} is out of range: allowed {min} {} {field} ≤ {max}{unit}", if *.min_exclusive { "<" } else { "≤" })]
     OutOfRange {
         /// Name of the field.
         field: String,
@@ -21,6 +21,8 @@ pub enum LawError {
         max: f64,
         /// Unit suffix (with a leading space) or empty.
         unit: String,
+        /// Whether the lower bound itself is excluded.
+        min_exclusive: bool,
     },
     /// A value that is not a finite number.
     #[error("{field} is not a finite number")]
@@ -86,7 +88,17 @@ impl LawError {
     /// Shorthand for [`LawError::OutOfRange`].
     pub fn out_of_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
         let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-        Self::OutOfRange { field: field.into(), value, min, max, unit }
+        Self::OutOfRange { field: field.into(), value, min, max, unit, min_exclusive: false }
+    }
+
+    /// Shorthand for [`LawError::OutOfRange`] with an excluded lower bound (`min < value ≤ max`).
+    pub fn out_of_open_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
+        match Self::out_of_range(field, value, min, max, unit) {
+            Self::OutOfRange { field, value, min, max, unit, .. } => {
+                Self::OutOfRange { field, value, min, max, unit, min_exclusive: true }
+            }
+            other => other,
+        }
     }
 
     /// Checks `min ≤ value ≤ max` and finiteness.

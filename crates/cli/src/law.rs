@@ -1,0 +1,251 @@
+//! `loomkin law …`: the catalogue of normalised laws.
+
+use crate::util::{self, Format};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use loomkin_io::Table;
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_laws::{CATALOGUE, Continuity, Joint, Law, LawSpec, Metrics};
+use serde_json::{Value, json};
+use std::path::PathBuf;
+
+/// Subcommands of `loomkin law`.
+#[derive(Debug, Subcommand)]
+pub enum LawCommand {
+    /// The catalogue, one line per law with its metrics.
+    List(ListArgs),
+    /// Exact metrics and the continuity report of one law.
+    Info(InfoArgs),
+    /// N evenly spaced samples of x, s, v, a, j (both ends included).
+    Sample(SampleArgs),
+    /// s, v, a, j stacked in one figure; several laws overlaid.
+    Plot(PlotArgs),
+}
+
+/// Law parameters given as `--param KEY=VALUE`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct Params {
+    /// A law parameter, e.g. `--param ramp=0.1` or `--param segments=0.5:constant:1,0.5:constant:-1`.
+    #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
+    pub params: Vec<(String, String)>,
+}
+
+/// `law list`.
+#[derive(Debug, Args)]
+pub struct ListArgs {
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `law info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// Law name (see `loomkin law list`).
+    law: String,
+    #[command(flatten)]
+    params: Params,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `law sample`.
+#[derive(Debug, Args)]
+pub struct SampleArgs {
+    /// Law name.
+    law: String,
+    /// Number of points (≥ 2), both ends included.
+    #[arg(long, short = 'n')]
+    points: usize,
+    #[command(flatten)]
+    params: Params,
+    #[command(flatten)]
+    format: Format,
+}
+
+/// `law plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// Law names to overlay.
+    #[arg(required = true)]
+    laws: Vec<String>,
+    /// Parameters, applied to every listed law that has the key.
+    #[command(flatten)]
+    params: Params,
+    /// Output file, .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Points per curve.
+    #[arg(long, default_value_t = 801)]
+    points: usize,
+}
+
+/// Runs a `law` subcommand.
+pub fn run(cmd: LawCommand) -> Result<()> {
+    match cmd {
+        LawCommand::List(a) => list(a),
+        LawCommand::Info(a) => info(a),
+        LawCommand::Sample(a) => sample(a),
+        LawCommand::Plot(a) => plot(a),
+    }
+}
+
+/// Builds a law from its name and parameters.
+pub fn build(name: &str, params: &[(String, String)]) -> Result<(LawSpec, Law)> {
+    let spec = LawSpec::parse(name, params)?;
+    let law = spec.build().with_context(|| format!("law '{name}'"))?;
+    Ok((spec, law))
+}
+
+fn list(a: ListArgs) -> Result<()> {
+    let mut rows = Vec::new();
+    for e in CATALOGUE.iter().filter(|e| e.name != "piecewise") {
+        let (_, law) = build(e.name, &[])?;
+        rows.push((e, law.metrics(), law.continuity().class));
+    }
+    if a.json {
+        let laws: Vec<Value> = rows
+            .iter()
+            .map(|(e, m, c)| {
+                let mut v = metrics_json(m);
+                v["name"] = json!(e.name);
+                v["description"] = json!(e.description);
+                v["params"] = json!(e.params);
+                v["continuity_class"] = json!(c);
+                v
+            })
+            .collect();
+        return util::print_json(&json!({ "laws": laws }));
+    }
+    println!("Normalised rise laws (x: fraction of the motion angle, s: fraction of the stroke; values dimensionless)");
+    println!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  description", "law", "Cv", "Ca", "Cj", "Cm", "Ca_rms", "C^k");
+    for (e, m, c) in &rows {
+        let params = if e.params.is_empty() { String::new() } else { format!(" [{}]", e.params) };
+        println!(
+            "{:<22} {:>8.4} {:>8.4} {:>9.3} {:>8.4} {:>8.4} {:>5}  {}{}",
+            e.name, m.cv, m.ca, m.cj, m.cm, m.ca_rms, class_text(*c), e.description, params
+        );
+    }
+    println!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  general piecewise acceleration [segments=LEN:SHAPE[:LEVEL…],…]", "piecewise", "-", "-", "-", "-", "-", "-");
+    println!("C^k: continuity in a dwell-rise-dwell cycle (C1: s, v continuous; C2: also a; C3: also j).");
+    Ok(())
+}
+
+fn class_text(c: i32) -> String {
+    if c < 0 { "none".into() } else { format!("C{c}") }
+}
+
+fn metrics_json(m: &Metrics) -> Value {
+    json!({
+        "cv": m.cv, "x_cv": m.x_cv,
+        "ca": m.ca, "ca_pos": m.ca_pos, "x_ca_pos": m.x_ca_pos, "ca_neg": m.ca_neg, "x_ca_neg": m.x_ca_neg,
+        "cj": m.cj, "x_cj": m.x_cj, "cm": m.cm, "x_cm": m.x_cm, "ca_rms": m.ca_rms,
+    })
+}
+
+fn joint_json(j: &Joint) -> Value {
+    let [s, v, a, jj] = j.flags();
+    json!({
+        "x": j.x, "ds": j.ds, "dv": j.dv, "da": j.da, "dj": j.dj,
+        "continuous": { "s": s, "v": v, "a": a, "j": jj },
+        "continuous_up_to": j.continuous_up_to,
+    })
+}
+
+/// The continuity report as JSON.
+pub fn continuity_json(c: &Continuity) -> Value {
+    json!({
+        "class": c.class,
+        "start": joint_json(&c.start),
+        "joints": c.joints.iter().map(joint_json).collect::<Vec<_>>(),
+        "end": joint_json(&c.end),
+    })
+}
+
+fn info(a: InfoArgs) -> Result<()> {
+    let (spec, law) = build(&a.law, &a.params.params)?;
+    let m = law.metrics();
+    let c = law.continuity();
+    if a.json {
+        let mut v = metrics_json(&m);
+        v["law"] = json!(spec.name());
+        v["params"] = json!(spec.params().into_iter().collect::<std::collections::BTreeMap<_, _>>());
+        v["segments"] = json!(law.segments().len());
+        v["continuity"] = continuity_json(&c);
+        return util::print_json(&v);
+    }
+    println!("law {}", spec.label());
+    println!("  values per unit stroke and unit motion angle (dimensionless)");
+    println!("  Cv   = max v       = {:.10}   at x = {:.6}", m.cv, m.x_cv);
+    println!("  Ca   = max |a|     = {:.10}", m.ca);
+    println!("  Ca+  = max a       = {:.10}   at x = {:.6}", m.ca_pos, m.x_ca_pos);
+    println!("  Ca-  = min a       = {:.10}   at x = {:.6}", m.ca_neg, m.x_ca_neg);
+    println!("  Cj   = max |j|     = {:.10}   at x = {:.6}  (inside segments)", m.cj, m.x_cj);
+    println!("  Cm   = max v·a     = {:.10}   at x = {:.6}", m.cm, m.x_cm);
+    println!("  Ca_rms = √∫a²dx    = {:.10}", m.ca_rms);
+    println!("continuity ({} segments; jumps right − left; dwells at s = 0 before and s = 1 after):", law.segments().len());
+    println!("  {:>10} {:>12} {:>12} {:>12} {:>12}  continuous", "x", "Δs", "Δv", "Δa", "Δj");
+    for j in std::iter::once(&c.start).chain(&c.joints).chain(std::iter::once(&c.end)) {
+        let f = j.flags();
+        let names: Vec<&str> = ["s", "v", "a", "j"].iter().zip(f).filter(|(_, ok)| *ok).map(|(n, _)| *n).collect();
+        println!("  {:>10.6} {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e}  {}", j.x, j.ds, j.dv, j.da, j.dj, if names.is_empty() { "none".into() } else { names.join(", ") });
+    }
+    println!("  class in a dwell-rise-dwell cycle: {}", class_text(c.class));
+    Ok(())
+}
+
+fn sample(a: SampleArgs) -> Result<()> {
+    if a.points < 2 {
+        bail!("--points {} is too few: allowed 2 ≤ N ≤ 10000000", a.points);
+    }
+    if a.points > 10_000_000 {
+        bail!("--points {} is too many: allowed 2 ≤ N ≤ 10000000", a.points);
+    }
+    let (spec, law) = build(&a.law, &a.params.params)?;
+    let samples = law.sample(a.points);
+    if a.format.json {
+        let pts: Vec<Value> = samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
+        return util::print_json(&json!({ "law": spec.name(), "units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts }));
+    }
+    let mut t = Table::new(["x", "s", "v", "a", "j"]);
+    for (x, k) in samples {
+        t.push(vec![x, k.s, k.v, k.a, k.j])?;
+    }
+    util::print_csv(&t)
+}
+
+fn plot(a: PlotArgs) -> Result<()> {
+    if a.points < 2 || a.points > 100_000 {
+        bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
+    }
+    for (k, _) in &a.params.params {
+        let known = a.laws.iter().any(|l| CATALOGUE.iter().any(|e| e.name == l && e.params.starts_with(k.as_str())));
+        if !known {
+            bail!("--param {k}: none of the laws {} has this parameter", a.laws.join(", "));
+        }
+    }
+    let mut panels: Vec<Panel> = ["displacement s [-]", "velocity v = ds/dx [-]", "acceleration a = d²s/dx² [-]", "jerk j = d³s/dx³ [-]"]
+        .iter()
+        .map(|l| Panel::new(*l, Vec::new()))
+        .collect();
+    for name in &a.laws {
+        let applicable: Vec<(String, String)> = a
+            .params
+            .params
+            .iter()
+            .filter(|(k, _)| CATALOGUE.iter().any(|e| e.name == name && e.params.starts_with(k.as_str())))
+            .cloned()
+            .collect();
+        let (spec, law) = build(name, &applicable)?;
+        let samples = law.sample(a.points);
+        for (i, p) in panels.iter_mut().enumerate() {
+            p.series.push(Series::line(spec.label(), samples.iter().map(|(x, k)| (*x, k.order(i))).collect()));
+        }
+    }
+    for (i, p) in panels.iter_mut().enumerate() {
+        p.legend = if i == 0 { Legend::UpperLeft } else { Legend::Hidden };
+    }
+    let fig = Figure::new("Normalised motion laws", "x = fraction of the motion angle [-]", panels);
+    util::save_figure(&fig, &a.output)
+}
