@@ -126,35 +126,7 @@ impl Segment {
     /// Kinematics at local coordinate `t` (not clamped to the segment).
     #[inline]
     pub fn eval_local(&self, t: f64) -> Kinematics {
-        let p = &self.p;
-        // Horner for s and its three derivatives in one pass over the coefficients.
-        let mut s = p[7];
-        let mut v = 7.0 * p[7];
-        let mut a = 42.0 * p[7];
-        let mut j = 210.0 * p[7];
-        s = s.mul_add(t, p[6]);
-        v = v.mul_add(t, 6.0 * p[6]);
-        a = a.mul_add(t, 30.0 * p[6]);
-        j = j.mul_add(t, 120.0 * p[6]);
-        s = s.mul_add(t, p[5]);
-        v = v.mul_add(t, 5.0 * p[5]);
-        a = a.mul_add(t, 20.0 * p[5]);
-        j = j.mul_add(t, 60.0 * p[5]);
-        s = s.mul_add(t, p[4]);
-        v = v.mul_add(t, 4.0 * p[4]);
-        a = a.mul_add(t, 12.0 * p[4]);
-        j = j.mul_add(t, 24.0 * p[4]);
-        s = s.mul_add(t, p[3]);
-        v = v.mul_add(t, 3.0 * p[3]);
-        a = a.mul_add(t, 6.0 * p[3]);
-        j = j.mul_add(t, 6.0 * p[3]);
-        s = s.mul_add(t, p[2]);
-        v = v.mul_add(t, 2.0 * p[2]);
-        a = a.mul_add(t, 2.0 * p[2]);
-        s = s.mul_add(t, p[1]);
-        v = v.mul_add(t, p[1]);
-        s = s.mul_add(t, p[0]);
-        let mut k = Kinematics { s, v, a, j };
+        let mut k = poly_kin(&self.p, t);
         if let Some(sn) = self.sine {
             let (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
             add_sine(&mut k, sn, sin, cos);
@@ -203,7 +175,7 @@ impl Segment {
     pub(crate) fn eval_run(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
         let Some(sn) = self.sine else {
             for (i, k) in out.iter_mut().enumerate() {
-                *k = self.poly_only(t0 + i as f64 * h);
+                *k = poly_kin(&self.p, t0 + i as f64 * h);
             }
             return;
         };
@@ -215,7 +187,7 @@ impl Segment {
             if i % 64 == 0 {
                 (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
             }
-            let mut kin = self.poly_only(t);
+            let mut kin = poly_kin(&self.p, t);
             add_sine(&mut kin, sn, sin, cos);
             *k = kin;
             let ns = sin * ch + cos * sh;
@@ -223,12 +195,40 @@ impl Segment {
             sin = ns;
         }
     }
+}
 
-    #[inline]
-    fn poly_only(&self, t: f64) -> Kinematics {
-        let no_sine = Self { sine: None, ..*self };
-        no_sine.eval_local(t)
-    }
+/// s, v, a, j of the displacement polynomial `p` at `t`, one Horner pass for all four.
+#[inline(always)]
+fn poly_kin(p: &[f64; NC], t: f64) -> Kinematics {
+    // Horner for s and its three derivatives in one pass over the coefficients. (Plain `*`/`+`:
+    // without the `fma` target feature, `mul_add` is a slow library call.)
+    let mut s = p[7];
+    let mut v = 7.0 * p[7];
+    let mut a = 42.0 * p[7];
+    let mut j = 210.0 * p[7];
+    s = s * t + p[6];
+    v = v * t + 6.0 * p[6];
+    a = a * t + 30.0 * p[6];
+    j = j * t + 120.0 * p[6];
+    s = s * t + p[5];
+    v = v * t + 5.0 * p[5];
+    a = a * t + 20.0 * p[5];
+    j = j * t + 60.0 * p[5];
+    s = s * t + p[4];
+    v = v * t + 4.0 * p[4];
+    a = a * t + 12.0 * p[4];
+    j = j * t + 24.0 * p[4];
+    s = s * t + p[3];
+    v = v * t + 3.0 * p[3];
+    a = a * t + 6.0 * p[3];
+    j = j * t + 6.0 * p[3];
+    s = s * t + p[2];
+    v = v * t + 2.0 * p[2];
+    a = a * t + 2.0 * p[2];
+    s = s * t + p[1];
+    v = v * t + p[1];
+    s = s * t + p[0];
+    Kinematics { s, v, a, j }
 }
 
 #[inline]
