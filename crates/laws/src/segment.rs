@@ -47,7 +47,7 @@ impl Segment {
     /// first, of degree at most 5. Returns `None` when the polynomial is too long, an input is not
     /// finite, `x1 ≤ x0`, or the sine has a zero frequency.
     pub fn from_accel(x0: f64, x1: f64, accel_poly: &[f64], sine: Option<Sine>, s0: f64, v0: f64) -> Option<Self> {
-        if accel_poly.len() > NC - 2 || !(x1 > x0) || !x0.is_finite() || !x1.is_finite() {
+        if accel_poly.len() > NC - 2 || x1 <= x0 || x1.is_nan() || !x0.is_finite() || !x1.is_finite() {
             return None;
         }
         let finite = accel_poly.iter().all(|c| c.is_finite()) && s0.is_finite() && v0.is_finite();
