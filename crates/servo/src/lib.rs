@@ -1,1 +1,53 @@
-//! loomkin servo.
+//! # loomkin-servo — servo motion functions from definition points
+//!
+//! After M. Sivčák, *Generation of a motion function for optimal needle rack motion of a CAM-EL
+//! weaving machine* (2017). The acceleration of a normalised rise is the cubic spline through a
+//! few definition points `[X_j, Y_j]` on `[0, 0.5]`, mirrored odd about `(0.5, 0)`; integrated
+//! twice and scaled to a unit stroke it is a [`loomkin_laws::Law`], so every metric, sample and
+//! plot of the law core works on it. On top: the motor torque of a rack-and-pinion servo drive
+//! ([`Drive`], [`summary`], [`torque_curve`]), export of the coefficients and cam tables for the
+//! controller ([`export_coefficients`], [`CamTable`], [`poly5_segments`]) and an optimiser that
+//! moves the points to lower the peak or RMS torque ([`optimize`]).
+//!
+//! ```
+//! use loomkin_servo::{Drive, SplineEnd, SplineLaw, parse_points, summary};
+//!
+//! let pts = parse_points("0:0, 0.08:0.6, 0.17:0.95, 0.25:1, 0.33:0.9, 0.42:0.5, 0.5:0")?;
+//! let spline = SplineLaw::new(&pts, SplineEnd::Natural)?;
+//! let law = spline.law();                       // a law of the core: u°(x) on x ∈ [0, 1]
+//! assert!((law.eval(1.0).s - 1.0).abs() < 1e-12);
+//! assert!((law.eval(0.3).s + law.eval(0.7).s - 1.0).abs() < 1e-12); // odd symmetry
+//! let m = law.metrics();                        // Cv, Ca, Cj, Cm, …
+//! assert!(m.ca > 4.0 && m.ca < 8.0);
+//!
+//! let drive = Drive::needle_rack_default();
+//! let s = summary(law, &drive, 600.0)?;         // peak / RMS torque (N·m), peak power (W)
+//! assert!(s.peak_torque_nm > s.rms_torque_nm && s.peak_power_w > 0.0);
+//! # Ok::<(), loomkin_servo::ServoError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod camtable;
+mod drive;
+mod error;
+mod export;
+mod optimize;
+mod points;
+mod poly;
+mod spline;
+mod torque;
+
+pub use camtable::{
+    CamPoint, CamTable, Interpolation, InterpolationError, Poly5Segment, poly5_csv, poly5_segments, quintic_hermite,
+    slave_at,
+};
+pub use drive::{CYCLE_DEG, CycleLayout, Drive};
+pub use error::{Result, ServoError};
+pub use export::{
+    CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
+    read_json,
+};
+pub use optimize::{Objective, OptimizeOptions, OptimizeReport, optimize};
+pub use points::{END_TOL, MIN_GAP, MIN_POINTS, check_points, default_points, format_points, parse_points};
+pub use spline::{SplineEnd, SplineLaw, slope_at_middle};
+pub use torque::{DrivePoint, Phase, TorqueSummary, summaries, summary, torque_curve};

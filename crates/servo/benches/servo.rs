@@ -1,0 +1,5 @@
+//! Benchmarks of the servo crate (filled in below).
+
+fn main() {
+    divan::main();
+}

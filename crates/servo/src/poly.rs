@@ -1,0 +1,190 @@
+//! Small helpers for real polynomials stored lowest power first.
+
+/// `p(t)` by Horner's rule.
+#[inline]
+pub(crate) fn eval(p: &[f64], t: f64) -> f64 {
+    p.iter().rev().fold(0.0, |acc, &c| acc.mul_add(t, c))
+}
+
+/// The derivative `p'`.
+pub(crate) fn deriv(p: &[f64]) -> Vec<f64> {
+    p.iter().enumerate().skip(1).map(|(k, c)| k as f64 * c).collect()
+}
+
+/// The product `p·q`.
+pub(crate) fn mul(p: &[f64], q: &[f64]) -> Vec<f64> {
+    if p.is_empty() || q.is_empty() {
+        return Vec::new();
+    }
+    let mut r = vec![0.0; p.len() + q.len() - 1];
+    for (i, a) in p.iter().enumerate() {
+        for (j, b) in q.iter().enumerate() {
+            r[i + j] += a * b;
+        }
+    }
+    r
+}
+
+/// `∫₀ʷ p(t) dt`, exactly.
+pub(crate) fn integral(p: &[f64], w: f64) -> f64 {
+    p.iter().enumerate().rev().fold(0.0, |acc, (k, c)| acc * w + c / (k + 1) as f64) * w
+}
+
+/// Coefficients of `q(x) = p(x − x0)` (a Taylor shift: local coordinate `t = x − x0` to global `x`).
+pub(crate) fn shift(p: &[f64], x0: f64) -> Vec<f64> {
+    let n = p.len();
+    let mut q = vec![0.0; n];
+    for (k, &c) in p.iter().enumerate() {
+        // c·(x − x0)^k = c·Σ_m C(k, m) x^m (−x0)^(k−m)
+        let mut binom = 1.0;
+        for m in 0..=k {
+            q[m] += c * binom * (-x0).powi((k - m) as i32);
+            binom = binom * (k - m) as f64 / (m + 1) as f64;
+        }
+    }
+    q
+}
+
+/// Coefficients of `q(τ) = p(h − τ)` (a local polynomial read backwards from the far end).
+pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
+    let n = p.len();
+    let mut q = vec![0.0; n];
+    for (k, &c) in p.iter().enumerate() {
+        // c·(h − τ)^k = c·Σ_m C(k, m) h^(k−m) (−τ)^m
+        let mut binom = 1.0;
+        for m in 0..=k {
+            let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+            q[m] += c * binom * h.powi((k - m) as i32) * sign;
+            binom = binom * (k - m) as f64 / (m + 1) as f64;
+        }
+    }
+    q
+}
+
+/// Largest `|p(t)|` on `[0, w]` and where it occurs (see [`abs_max_by`]).
+pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
+    let dp = deriv(p);
+    abs_max_by(w, n, |t| (eval(p, t), eval(&dp, t)))
+}
+
+/// Largest `|g(t)|` on `[0, w]` and where it occurs, for `f(t) = (g(t), g'(t))`.
+///
+/// The sign changes of `g'` are bracketed on `n` equal sub-intervals and refined by bisection to
+/// rounding (at most 60 halvings); both ends are included. `n` must be large enough to separate
+/// the roots of `g'` (more than the polynomial degree; more for oscillating terms).
+pub(crate) fn abs_max_by(w: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
+    let (g0, mut d0) = f(0.0);
+    let mut best = (g0.abs(), 0.0);
+    let mut take = |v: f64, t: f64| {
+        if v.abs() > best.0 {
+            best = (v.abs(), t);
+        }
+    };
+    let n = n.max(1);
+    let h = w / n as f64;
+    let mut t0 = 0.0;
+    for i in 1..=n {
+        let t1 = if i == n { w } else { i as f64 * h };
+        let (g1, d1) = f(t1);
+        take(g1, t1);
+        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
+            let (mut lo, mut hi) = (t0, t1);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if (f(mid).1 < 0.0) == (d0 < 0.0) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            take(f(t).0, t);
+        }
+        t0 = t1;
+        d0 = d1;
+    }
+    best
+}
+
+/// Nodes and weights of the `n`-point Gauss–Legendre rule on `[−1, 1]` (Newton on `P_n`).
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                // Legendre recurrence for P_n(x) and P_{n−1}(x).
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            (x, 2.0 / ((1.0 - x * x) * dp * dp))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shift_and_reflect_agree_with_direct_evaluation() {
+        let p = [0.3, -1.2, 2.5, 0.7, -0.4, 1.1];
+        let q = shift(&p, 0.37);
+        let r = reflect(&p, 0.21);
+        for &x in &[0.0, 0.4, 0.8, 1.0] {
+            assert!((eval(&q, x) - eval(&p, x - 0.37)).abs() < 1e-13);
+            assert!((eval(&r, x) - eval(&p, 0.21 - x)).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn integral_and_product_agree_with_simpson() {
+        let p = [1.0, -2.0, 0.5, 3.0];
+        let q = [0.2, 1.0, -1.0];
+        let pq = mul(&p, &q);
+        let w = 0.8;
+        let n = 2000;
+        let h = w / n as f64;
+        let f = |t: f64| eval(&p, t) * eval(&q, t);
+        let simpson: f64 = (0..n)
+            .map(|i| {
+                let a = i as f64 * h;
+                h / 6.0 * (f(a) + 4.0 * f(a + h / 2.0) + f(a + h))
+            })
+            .sum();
+        assert!((integral(&pq, w) - simpson).abs() < 1e-12);
+    }
+
+    #[test]
+    fn gauss_legendre_is_exact_to_degree_2n_minus_1() {
+        let rule = gauss_legendre(8);
+        for k in 0..16 {
+            let q: f64 = rule.iter().map(|(x, w)| w * x.powi(k)).sum();
+            let exact = if k % 2 == 0 { 2.0 / (k + 1) as f64 } else { 0.0 };
+            assert!((q - exact).abs() < 1e-14, "x^{k}: {q} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn abs_max_finds_an_interior_peak() {
+        // p = 0.5 − (t − 0.3)²: on [0, 0.6] the peak is the vertex, on [0, 2] the far end.
+        let p = [0.5 - 0.09, 0.6, -1.0];
+        let (v, t) = abs_max(&p, 0.6, 8);
+        assert!((v - 0.5).abs() < 1e-14 && (t - 0.3).abs() < 1e-7, "{v} {t}");
+        let (v, t) = abs_max(&p, 2.0, 8);
+        assert!((v - (1.7f64.powi(2) - 0.5)).abs() < 1e-12 && t == 2.0);
+    }
+}

@@ -1,0 +1,308 @@
+//! Motor torque, RMS torque and power of a drive moved through a law over one main-shaft turn.
+
+use crate::drive::CYCLE_DEG;
+use crate::{Drive, Result, ServoError, poly};
+use loomkin_laws::{Law, Segment};
+use serde::Serialize;
+use std::f64::consts::PI;
+use std::sync::OnceLock;
+
+/// Which part of the main-shaft turn a point belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Phase {
+    /// The forward stroke `u = H·u°(x)`.
+    Rise,
+    /// Standing at `u = H`.
+    DwellAfterRise,
+    /// The return stroke `u = H·(1 − u°(x))`.
+    Return,
+    /// Standing at `u = 0`.
+    DwellAfterReturn,
+}
+
+/// One sample of the drive over the cycle, in SI units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DrivePoint {
+    /// Main-shaft angle (deg), 0…360.
+    pub angle_deg: f64,
+    /// Time from the start of the rise (s).
+    pub time_s: f64,
+    /// The phase.
+    pub phase: Phase,
+    /// Rack position `u` (m).
+    pub u_m: f64,
+    /// Rack velocity `u̇` (m/s).
+    pub v_m_s: f64,
+    /// Rack acceleration `ü` (m/s²).
+    pub a_m_s2: f64,
+    /// Motor torque `M` (N·m).
+    pub torque_nm: f64,
+    /// Motor power `P = M·θ̇_m` (W).
+    pub power_w: f64,
+}
+
+/// Peak and RMS values of the drive at one main-shaft speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TorqueSummary {
+    /// Main-shaft speed (1/min).
+    pub speed_rpm: f64,
+    /// Largest |M| over the turn (N·m), located exactly on the closed form.
+    pub peak_torque_nm: f64,
+    /// Main-shaft angle of the peak torque (deg).
+    pub peak_torque_angle_deg: f64,
+    /// RMS torque over the whole turn, `√((1/T_c)∫M² dt)` (N·m), integrated exactly.
+    pub rms_torque_nm: f64,
+    /// Largest |P| = |M·θ̇_m| over the turn (W).
+    pub peak_power_w: f64,
+    /// Largest rack velocity (m/s).
+    pub peak_velocity_m_s: f64,
+    /// Largest |rack acceleration| (m/s²).
+    pub peak_accel_m_s2: f64,
+    /// Largest motor speed (1/min).
+    pub peak_motor_speed_rpm: f64,
+    /// Duration of the rise (s).
+    pub rise_time_s: f64,
+    /// Duration of one main-shaft turn (s).
+    pub cycle_time_s: f64,
+}
+
+/// `M = α·a + β·v + γ·s + ε` and `θ̇_m = κ·v` in terms of the unit law on one phase.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PhaseModel {
+    phase: Phase,
+    start_deg: f64,
+    length_deg: f64,
+    /// Phase duration (s).
+    duration_s: f64,
+    /// Position at x = 0 and signed stroke (m).
+    base_m: f64,
+    stroke_m: f64,
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    eps: f64,
+    kappa: f64,
+    moving: bool,
+}
+
+/// Checks the speed (1/min).
+fn check_speed(speed_rpm: f64) -> Result<f64> {
+    ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "1/min")
+}
+
+pub(crate) fn models(drive: &Drive, speed_rpm: f64) -> Result<[PhaseModel; 4]> {
+    drive.validate()?;
+    let speed_rpm = check_speed(speed_rpm)?;
+    let lay = drive.layout()?;
+    let deg_per_s = speed_rpm * 6.0;
+    let h = drive.stroke_m;
+    let ftt = drive.force_to_torque_m();
+    let a_c = drive.inertia_coefficient();
+    let b_c = ftt * drive.damping_n_s_m;
+    let c_c = ftt * drive.spring_n_m;
+    let e_c = ftt * (drive.spring_preload_n + drive.constant_force_n);
+    let k_m = drive.motor_rad_per_m();
+    let starts = lay.starts_deg();
+    let lens = [lay.rise_deg, lay.dwell_after_rise_deg, lay.return_deg, lay.dwell_after_return_deg];
+    let phases = [Phase::Rise, Phase::DwellAfterRise, Phase::Return, Phase::DwellAfterReturn];
+    Ok(std::array::from_fn(|i| {
+        let t = lens[i] / deg_per_s;
+        let sign = match phases[i] {
+            Phase::Rise => 1.0,
+            Phase::Return => -1.0,
+            _ => 0.0,
+        };
+        let base = if matches!(phases[i], Phase::DwellAfterRise | Phase::Return) { h } else { 0.0 };
+        let moving = sign != 0.0;
+        let hs = sign * h;
+        PhaseModel {
+            phase: phases[i],
+            start_deg: starts[i],
+            length_deg: lens[i],
+            duration_s: t,
+            base_m: base,
+            stroke_m: hs,
+            alpha: if moving { a_c * hs / (t * t) } else { 0.0 },
+            beta: if moving { b_c * hs / t } else { 0.0 },
+            gamma: c_c * hs,
+            eps: e_c + c_c * base,
+            kappa: if moving { k_m * hs / t } else { 0.0 },
+            moving,
+        }
+    }))
+}
+
+/// Extremes and ∫M² dx of one phase model on one law segment:
+/// `(peak |M|, its local t, peak |P|, its local t, ∫M² dt_local)`.
+fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool) -> (f64, f64, f64, f64, f64) {
+    let w = seg.width();
+    if seg.sine().is_none() {
+        let p = seg.displacement_poly();
+        let (v, a) = (poly::deriv(p), poly::deriv(&poly::deriv(p)));
+        let mut mp = [0.0; 8];
+        for k in 0..8 {
+            mp[k] = m.gamma * p[k] + m.beta * v.get(k).unwrap_or(&0.0) + m.alpha * a.get(k).unwrap_or(&0.0);
+        }
+        mp[0] += m.eps;
+        let deg = seg.degree();
+        let (pm, tm) = poly::abs_max(&mp[..deg.max(1) + 1], w, 2 * deg + 2);
+        let (pp, tp) = if with_power {
+            let pw: Vec<f64> = poly::mul(&mp[..deg.max(1) + 1], &v).iter().map(|c| c * m.kappa).collect();
+            poly::abs_max(&pw, w, 4 * deg + 2)
+        } else {
+            (0.0, 0.0)
+        };
+        let m2 = poly::mul(&mp[..deg.max(1) + 1], &mp[..deg.max(1) + 1]);
+        return (pm, tm, pp, tp, poly::integral(&m2, w));
+    }
+    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * w / PI).ceil()) as usize;
+    let n = 2 * (seg.degree() + 1) + 4 * osc + 4;
+    let (pm, tm) = poly::abs_max_by(w, n, |t| {
+        let k = seg.eval_local(t);
+        (m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps, m.alpha * k.j + m.beta * k.a + m.gamma * k.v)
+    });
+    let (pp, tp) = poly::abs_max_by(w, 2 * n, |t| {
+        let k = seg.eval_local(t);
+        let mm = m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps;
+        let dm = m.alpha * k.j + m.beta * k.a + m.gamma * k.v;
+        (m.kappa * mm * k.v, m.kappa * (dm * k.v + mm * k.a))
+    });
+    let rule = gl8();
+    let panels = 1 + 2 * osc;
+    let hp = w / panels as f64;
+    let mut acc = 0.0;
+    for i in 0..panels {
+        let mid = (i as f64 + 0.5) * hp;
+        for &(x, wt) in rule {
+            let k = seg.eval_local(mid + 0.5 * hp * x);
+            let mm = m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps;
+            acc += 0.5 * hp * wt * mm * mm;
+        }
+    }
+    (pm, tm, pp, tp, acc)
+}
+
+fn gl8() -> &'static [(f64, f64)] {
+    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    RULE.get_or_init(|| poly::gauss_legendre(8))
+}
+
+/// Peak and RMS torque and peak power of `drive` moved through `law` at `speed_rpm` (1/min).
+///
+/// Over one turn (rise, dwell, return, dwell — see [`Drive::layout`]). The extremes are found
+/// exactly per law segment (roots of the derivative bracketed and bisected); the RMS torque is
+/// `√((1/T_c) Σ_phases T_p ∫₀¹ M² dx)`, with `∫M² dx` exact for polynomial segments and 8-point
+/// Gauss–Legendre per half-period for sinusoidal ones.
+pub fn summary(law: &Law, drive: &Drive, speed_rpm: f64) -> Result<TorqueSummary> {
+    let ms = models(drive, speed_rpm)?;
+    let cycle_s = CYCLE_DEG / (speed_rpm * 6.0);
+    let st = stats(law, &ms, cycle_s, true);
+    let met = law.metrics();
+    let h = drive.stroke_m;
+    let t_rise = ms[0].duration_s;
+    let t_min = ms[0].duration_s.min(ms[2].duration_s);
+    let vmax = h * met.cv / t_min;
+    Ok(TorqueSummary {
+        speed_rpm,
+        peak_torque_nm: st.peak_torque_nm,
+        peak_torque_angle_deg: st.peak_torque_angle_deg,
+        rms_torque_nm: st.rms_torque_nm,
+        peak_power_w: st.peak_power_w,
+        peak_velocity_m_s: vmax,
+        peak_accel_m_s2: h * met.ca / (t_min * t_min),
+        peak_motor_speed_rpm: vmax * drive.motor_rad_per_m() * 60.0 / (2.0 * PI),
+        rise_time_s: t_rise,
+        cycle_time_s: cycle_s,
+    })
+}
+
+/// Peak and RMS torque (and, if asked, peak power) over one turn.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stats {
+    pub peak_torque_nm: f64,
+    pub peak_torque_angle_deg: f64,
+    pub rms_torque_nm: f64,
+    pub peak_power_w: f64,
+}
+
+pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: bool) -> Stats {
+    let (mut pk_m, mut pk_m_deg, mut pk_p, mut m2) = (0.0f64, 0.0, 0.0f64, 0.0);
+    for m in ms {
+        if !m.moving {
+            if m.eps.abs() > pk_m && m.length_deg > 0.0 {
+                pk_m = m.eps.abs();
+                pk_m_deg = m.start_deg;
+            }
+            m2 += m.eps * m.eps * m.duration_s;
+            continue;
+        }
+        let mut int = 0.0;
+        for seg in law.segments() {
+            let (a, ta, p, _, i2) = segment_stats(seg, m, with_power);
+            if a > pk_m {
+                pk_m = a;
+                pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
+            }
+            pk_p = pk_p.max(p);
+            int += i2;
+        }
+        m2 += int * m.duration_s;
+    }
+    Stats {
+        peak_torque_nm: pk_m,
+        peak_torque_angle_deg: pk_m_deg,
+        rms_torque_nm: (m2 / cycle_s).sqrt(),
+        peak_power_w: pk_p,
+    }
+}
+
+/// [`summary`] at several speeds.
+pub fn summaries(law: &Law, drive: &Drive, speeds_rpm: &[f64]) -> Result<Vec<TorqueSummary>> {
+    speeds_rpm.iter().map(|&n| summary(law, drive, n)).collect()
+}
+
+/// `n ≥ 2` samples of the drive over one turn (0…360° of the main shaft, both ends included).
+pub fn torque_curve(law: &Law, drive: &Drive, speed_rpm: f64, n: usize) -> Result<Vec<DrivePoint>> {
+    let ms = models(drive, speed_rpm)?;
+    let n = n.max(2);
+    let deg_per_s = speed_rpm * 6.0;
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let angle = CYCLE_DEG * i as f64 / (n - 1) as f64;
+        let idx = ms.iter().rposition(|m| m.length_deg > 0.0 && angle >= m.start_deg).unwrap_or(0);
+        out.push(point(law, &ms[idx], drive, angle, deg_per_s));
+    }
+    Ok(out)
+}
+
+fn point(law: &Law, m: &PhaseModel, drive: &Drive, angle: f64, deg_per_s: f64) -> DrivePoint {
+    let time_s = angle / deg_per_s;
+    if !m.moving {
+        return DrivePoint {
+            angle_deg: angle,
+            time_s,
+            phase: m.phase,
+            u_m: m.base_m,
+            v_m_s: 0.0,
+            a_m_s2: 0.0,
+            torque_nm: m.eps,
+            power_w: 0.0,
+        };
+    }
+    let x = ((angle - m.start_deg) / m.length_deg).clamp(0.0, 1.0);
+    let k = law.eval(x);
+    let t = m.duration_s;
+    let torque = m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps;
+    let v = m.stroke_m * k.v / t;
+    DrivePoint {
+        angle_deg: angle,
+        time_s,
+        phase: m.phase,
+        u_m: m.base_m + m.stroke_m * k.s,
+        v_m_s: v,
+        a_m_s2: m.stroke_m * k.a / (t * t),
+        torque_nm: torque,
+        power_w: torque * v * drive.motor_rad_per_m(),
+    }
+}
