@@ -1,0 +1,161 @@
+//! Non-dominated sorting and Pareto fronts.
+//!
+//! Point `p` dominates `q` when it is at least as good in every objective and strictly better in
+//! one. Points with a non-finite objective are never on a front (they rank last).
+
+use crate::{Result, StudyError};
+use serde::{Deserialize, Serialize};
+use std::cmp::Ordering;
+
+/// Whether an objective is to be made small or large.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Sense {
+    /// Smaller is better.
+    Minimize,
+    /// Larger is better.
+    Maximize,
+}
+
+impl Sense {
+    /// The value as a cost (smaller is better).
+    #[inline]
+    pub fn cost(self, value: f64) -> f64 {
+        match self {
+            Sense::Minimize => value,
+            Sense::Maximize => -value,
+        }
+    }
+}
+
+/// Whether `a` dominates `b` under `senses` (all three slices of equal length).
+pub fn dominates(a: &[f64], b: &[f64], senses: &[Sense]) -> bool {
+    let mut strictly = false;
+    for ((&x, &y), &s) in a.iter().zip(b).zip(senses) {
+        let (x, y) = (s.cost(x), s.cost(y));
+        // A NaN compares as neither smaller nor equal: such a point dominates nothing.
+        if x.partial_cmp(&y).is_none_or(|o| o == Ordering::Greater) {
+            return false;
+        }
+        strictly |= x < y;
+    }
+    strictly
+}
+
+fn costs<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> Result<Vec<f64>> {
+    let m = senses.len();
+    let mut c = Vec::with_capacity(points.len() * m);
+    for (i, p) in points.iter().enumerate() {
+        let p = p.as_ref();
+        if p.len() != m {
+            return Err(StudyError::Shape { field: format!("points[{i}]"), expected: m, found: p.len() });
+        }
+        c.extend(p.iter().zip(senses).map(|(&v, &s)| s.cost(v)));
+    }
+    Ok(c)
+}
+
+/// Indices of the non-dominated points (the first Pareto front), in increasing order of the first
+/// objective's cost (ties broken by the following objectives).
+///
+/// Points are sorted lexicographically by cost, so a dominating point always comes first; each
+/// point is then compared with the front found so far. Two objectives take an `O(n log n)` sweep.
+/// Equal points do not dominate each other: duplicates on the front are all kept.
+pub fn pareto_front<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> Result<Vec<usize>> {
+    let all: Vec<usize> = (0..points.len()).collect();
+    let c = costs(points, senses)?;
+    Ok(front_of(&c, senses.len(), &all))
+}
+
+fn front_of(c: &[f64], m: usize, idx: &[usize]) -> Vec<usize> {
+    let row = |i: usize| &c[i * m..(i + 1) * m];
+    let mut order: Vec<usize> = idx.iter().copied().filter(|&i| row(i).iter().all(|v| v.is_finite())).collect();
+    order.sort_by(|&a, &b| {
+        row(a)
+            .iter()
+            .zip(row(b))
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| *o != Ordering::Equal)
+            .unwrap_or(Ordering::Equal)
+    });
+    let mut front: Vec<usize> = Vec::new();
+    if m == 2 {
+        // After the sort, p is dominated iff an earlier point has a smaller second cost, or the
+        // same second cost with a smaller first cost.
+        let (mut best2, mut best1) = (f64::INFINITY, f64::INFINITY);
+        for i in order {
+            let (c1, c2) = (c[2 * i], c[2 * i + 1]);
+            if c2 < best2 {
+                front.push(i);
+                (best2, best1) = (c2, c1);
+            } else if c2 == best2 && c1 == best1 {
+                front.push(i);
+            }
+        }
+        return front;
+    }
+    for i in order {
+        let dominated = front.iter().any(|&f| {
+            let (a, b) = (row(f), row(i));
+            a.iter().zip(b).all(|(x, y)| x <= y) && a.iter().zip(b).any(|(x, y)| x < y)
+        });
+        if !dominated {
+            front.push(i);
+        }
+    }
+    front
+}
+
+/// Non-dominated sorting: the rank of every point (0 = on the Pareto front, 1 = on the front of
+/// what remains without rank 0, …). Points with a non-finite objective get the rank after the last
+/// front. Fronts are peeled one at a time, so the cost grows with the number of fronts.
+pub fn non_dominated_ranks<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> Result<Vec<usize>> {
+    let m = senses.len();
+    let c = costs(points, senses)?;
+    let mut rank = vec![usize::MAX; points.len()];
+    let finite = |i: usize| c[i * m..(i + 1) * m].iter().all(|v| v.is_finite());
+    let mut left: Vec<usize> = (0..points.len()).filter(|&i| finite(i)).collect();
+    let mut r = 0;
+    while !left.is_empty() {
+        let front = front_of(&c, m, &left);
+        for &i in &front {
+            rank[i] = r;
+        }
+        left.retain(|&i| rank[i] == usize::MAX);
+        r += 1;
+    }
+    for v in &mut rank {
+        if *v == usize::MAX {
+            *v = r;
+        }
+    }
+    Ok(rank)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Sense::*;
+
+    #[test]
+    fn small_front_by_hand() {
+        // (window, accel): maximise window, minimise accel.
+        let p = [[250.0, 60.0], [195.0, 30.0], [175.0, 25.0], [170.0, 26.0], [140.0, 12.0], [140.0, 13.0]];
+        let f = pareto_front(&p, &[Maximize, Minimize]).unwrap();
+        let mut f2 = f.clone();
+        f2.sort();
+        assert_eq!(f2, vec![0, 1, 2, 4]);
+        let r = non_dominated_ranks(&p, &[Maximize, Minimize]).unwrap();
+        assert_eq!(r, vec![0, 0, 0, 1, 0, 1]);
+    }
+
+    #[test]
+    fn duplicates_and_nan() {
+        let p = [[1.0, 1.0], [1.0, 1.0], [f64::NAN, 0.0], [2.0, 0.5]];
+        let mut f = pareto_front(&p, &[Minimize, Minimize]).unwrap();
+        f.sort();
+        assert_eq!(f, vec![0, 1, 3]);
+        assert_eq!(non_dominated_ranks(&p, &[Minimize, Minimize]).unwrap()[2], 1);
+        assert!(pareto_front(&[vec![1.0]], &[Minimize, Minimize]).is_err());
+    }
+}
