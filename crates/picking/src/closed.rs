@@ -1,0 +1,133 @@
+//! The closed-form actual motion under changed settings: the paper's eqs. 29–47, corrected.
+//!
+//! Corrections (see `docs/picking.md` for the reasons): eq. 34 takes `sin μq(t+t₀)` (the printed
+//! `sin μ(t+t₀)` drops q); the stage switch is at u = τ, i.e. t₁ = τ/q − t₀ (printed t = τ − t₀);
+//! in eq. 46, `+Hτ²` is `−Hτ²/q²`, `Iτ` is `Iτ/q`, `2Hτ` is `2Hτ/q`, and `sin(qπ/2)`, `cos(qπ/2)`
+//! are `sin(π/2) = 1`, `cos(π/2) = 0`; eq. 47 reads T = (T' − u₀)/q with u₀ = q·t₀.
+
+use crate::scenario::Scenario;
+use crate::{PickError, Result, State};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Relative gap |C'+1 − μ²q²B'|/(C'+1) below which the closed form is declared resonant.
+///
+/// Near resonance G and the homogeneous constants grow like 1/gap and cancel; with a gap of
+/// 1e-6 the cancellation costs about six of the sixteen digits, still well inside the 1e-7
+/// agreement the two routes are held to.
+pub const RESONANCE_GAP: f64 = 1e-6;
+
+/// The constants of the paper's closed-form solution for one scenario (eqs. 33, 37, 41, 45, 46).
+///
+/// Stage 1 (0 ≤ t < t₁): x = K₁cos ψt + K₂sin ψt + E + (A/μ)·q·F·(t+t₀) − G·sin μq(t+t₀).
+/// Stage 2 (t ≥ t₁): x = H(t+t₀)² + I(t+t₀) + M + K₃cos ψt + K₄sin ψt.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PaperConstants {
+    /// E = (D − D' − s₀)/(C'+1), m.
+    pub e: f64,
+    /// F = (C+1)/(C'+1).
+    pub f: f64,
+    /// G = (A/μ²)·(C+1−μ²B)/(C'+1−μ²q²B'), m.
+    pub g: f64,
+    /// H = F·A·q²/2, m/s².
+    pub h: f64,
+    /// I = F·(A/μ)·q·(1 − π/2), m/s.
+    pub i: f64,
+    /// M = E + AB/(C'+1) + F·(A/μ²)(π²/8 − 1) − F·A·q²·B'/(C'+1), m.
+    pub m: f64,
+    /// K₁, m (eq. 37).
+    pub k1: f64,
+    /// K₂, m (eq. 37).
+    pub k2: f64,
+    /// K₃, m (eq. 45).
+    pub k3: f64,
+    /// K₄, m (eq. 45).
+    pub k4: f64,
+    /// N = x₁(t₁) − x_p2(t₁), m (eq. 46).
+    pub n: f64,
+    /// P = ẋ₁(t₁) − ẋ_p2(t₁), m/s (eq. 46).
+    pub p: f64,
+    /// ϱ = ψ·t₁.
+    pub rho: f64,
+    /// ψ = √((C'+1)/B'), 1/s.
+    pub psi: f64,
+    /// A, m/s², μ·q, 1/s.
+    pub a: f64,
+    /// Forcing circular frequency μ·q of the first stage, 1/s.
+    pub mu_q: f64,
+    /// q = n₂/n₁.
+    pub q: f64,
+    /// t₀ = u₀/q, real-time delay, s.
+    pub t0: f64,
+    /// t₁ = τ/q − t₀: end of the first stage in real time, s (≤ 0 when the play outlasts it).
+    pub t1: f64,
+}
+
+impl PaperConstants {
+    pub(crate) fn new(sc: &Scenario) -> Result<Self> {
+        let crate::cam::BuiltCam::Compound(d) = &sc.cam else {
+            return Err(PickError::NoClosedForm { law: "non-compound".into() });
+        };
+        let (a, mu, tau) = (d.a_m_s2, d.mu_1_s, d.tau_s);
+        let (b, c, dd) = (d.constants.b_s2, d.constants.c, d.constants.d_m);
+        let (bp, cp1, dp) = (sc.k.b_s2, sc.k.c + 1.0, sc.k.d_m);
+        let q = sc.q;
+        let t0 = sc.t0();
+        let t1 = tau / q - t0;
+        let psi = (cp1 / bp).sqrt();
+        let e = (dd - dp - sc.s0) / cp1;
+        let f = (c + 1.0) / cp1;
+        let h = f * a * q * q / 2.0;
+        let i = f * a / mu * q * (1.0 - PI / 2.0);
+        let m = e + a * b / cp1 + f * a / (mu * mu) * (PI * PI / 8.0 - 1.0) - f * a * q * q * bp / cp1;
+        let (g, k1, k2, rho, n, p);
+        if t1 > 0.0 {
+            let den = cp1 - mu * mu * q * q * bp;
+            let gap = den.abs() / cp1;
+            if gap < RESONANCE_GAP {
+                return Err(PickError::Resonance { natural_1_s: psi, forcing_1_s: mu * q, rel_gap: gap });
+            }
+            g = a / (mu * mu) * (c + 1.0 - mu * mu * b) / den;
+            let (s, co) = (mu * q * t0).sin_cos();
+            k1 = g * s - a / mu * q * f * t0 - e;
+            k2 = (g * mu * q * co - a / mu * q * f) / psi;
+            rho = psi * t1;
+            let (sr, cr) = rho.sin_cos();
+            let w = PI / (2.0 - PI);
+            n = w * i * tau / q - h * tau * tau / (q * q) - m + k1 * cr + k2 * sr + e - g;
+            p = -2.0 * h * tau / q + w * i + k2 * psi * cr - k1 * psi * sr;
+        } else {
+            // The play outlasts the sine stage: only stage 2, from rest at t = 0.
+            (g, k1, k2, rho) = (0.0, 0.0, 0.0, 0.0);
+            n = -(h * t0 * t0 + i * t0 + m);
+            p = -(2.0 * h * t0 + i);
+        }
+        let (sr, cr) = rho.sin_cos();
+        let k3 = n * cr - p / psi * sr;
+        let k4 = n * sr + p / psi * cr;
+        Ok(Self { e, f, g, h, i, m, k1, k2, k3, k4, n, p, rho, psi, a, mu_q: mu * q, q, t0, t1 })
+    }
+
+    /// Actual motion at real time `t` ≥ 0 (eqs. 34–36 before t₁, 42–44 after).
+    #[inline]
+    pub fn state(&self, t: f64) -> State {
+        let (sp, cp) = (self.psi * t).sin_cos();
+        let psi2 = self.psi * self.psi;
+        let w = t + self.t0;
+        if t < self.t1 {
+            let (sm, cm) = (self.mu_q * w).sin_cos();
+            let lin = self.a / self.mu_q * self.q * self.q * self.f;
+            State {
+                x_m: self.k1 * cp + self.k2 * sp + self.e + lin * w - self.g * sm,
+                v_m_s: -self.k1 * self.psi * sp + self.k2 * self.psi * cp + lin - self.g * self.mu_q * cm,
+                a_m_s2: -self.k1 * psi2 * cp - self.k2 * psi2 * sp + self.g * self.mu_q * self.mu_q * sm,
+            }
+        } else {
+            State {
+                x_m: self.h * w * w + self.i * w + self.m + self.k3 * cp + self.k4 * sp,
+                v_m_s: 2.0 * self.h * w + self.i - self.k3 * self.psi * sp + self.k4 * self.psi * cp,
+                a_m_s2: 2.0 * self.h - self.k3 * psi2 * cp - self.k4 * psi2 * sp,
+            }
+        }
+    }
+}

@@ -1,0 +1,192 @@
+//! Loom settings that differ from the design: speed, strap play and position, shuttle, checking.
+
+use crate::units::{KG_PER_G, M_PER_CM, M_PER_MM, N_PER_KGF};
+use crate::{Mechanism, PickError, Result};
+use serde::{Deserialize, Serialize};
+
+/// How the instant the shuttle starts (t = 0) is found on the nominal motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StartRule {
+    /// The paper's rule (§2.2): t₀ is read from the designed nominal curve where the cam has
+    /// taken up the play, s(u₀) − s(0) = s₀. The checking force's static deflection D' is not
+    /// re-read: when D' ≠ D the shuttle starts with ẍ(0) = (D − D')/B' ≠ 0.
+    #[default]
+    Paper,
+    /// The shuttle starts when the picker force first balances the checking force:
+    /// s(u₀) − s(0) = s₀ + D' − D (clamped at 0), so ẍ(0) = 0 whenever u₀ > 0.
+    Equilibrium,
+}
+
+/// The loom settings under which the cam is run (SI inside; `with_*` take the paper's units).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// n₂: loom speed, rev/min.
+    pub speed_rpm: f64,
+    /// s'₀: play of the picking-strap loop, m (referred to the strap; s₀ = s'₀·l/k at the picker).
+    pub play_m: f64,
+    /// k: height of the strap loop on the picking stick, m (0 < k < l).
+    pub strap_m: f64,
+    /// m: shuttle mass, kg (a shuttle "weight" Q in grams is its mass in grams).
+    pub shuttle_kg: f64,
+    /// F₀: checking force, N.
+    pub checking_n: f64,
+    /// How t = 0 is placed on the nominal motion.
+    pub start: StartRule,
+}
+
+impl Settings {
+    /// The designed setting of `mechanism`: designed speed, no play, designed k, m and F₀.
+    pub fn designed(mechanism: &Mechanism) -> Self {
+        let p = mechanism.params();
+        Self {
+            speed_rpm: mechanism.design_spec().speed_rpm,
+            play_m: 0.0,
+            strap_m: p.k_m,
+            shuttle_kg: p.shuttle_kg,
+            checking_n: p.checking_n,
+            start: StartRule::Paper,
+        }
+    }
+
+    /// Checks the ranges that do not depend on the cam: speed > 0, play ≥ 0, 0 < k < l,
+    /// m > 0, F₀ ≥ 0. (Play beyond the cam's reach is found when the scenario is resolved.)
+    pub fn validate(&self, mechanism: &Mechanism) -> Result<()> {
+        PickError::check_positive("speed_rpm", self.speed_rpm, 1e5, "rpm")?;
+        let l_m = mechanism.params().l_m;
+        PickError::check_closed("play_mm", self.play_m / M_PER_MM, 0.0, l_m / M_PER_MM, "mm")?;
+        PickError::check_open("strap_cm", self.strap_m / M_PER_CM, 0.0, l_m / M_PER_CM, "cm (0 < k < l)")?;
+        PickError::check_positive("shuttle_g", self.shuttle_kg / KG_PER_G, 1e5, "g")?;
+        PickError::check_closed("checking_kgf", self.checking_n / N_PER_KGF, 0.0, 1e3, "kgf")?;
+        Ok(())
+    }
+
+    /// Sets the loom speed, rev/min.
+    pub fn with_speed_rpm(mut self, v: f64) -> Self {
+        self.speed_rpm = v;
+        self
+    }
+
+    /// Sets the strap-loop play from millimetres.
+    pub fn with_play_mm(mut self, v: f64) -> Self {
+        self.play_m = v * M_PER_MM;
+        self
+    }
+
+    /// Sets the strap-loop height k from centimetres.
+    pub fn with_strap_cm(mut self, v: f64) -> Self {
+        self.strap_m = v * M_PER_CM;
+        self
+    }
+
+    /// Sets the shuttle from its weight in grams.
+    pub fn with_shuttle_g(mut self, v: f64) -> Self {
+        self.shuttle_kg = v * KG_PER_G;
+        self
+    }
+
+    /// Sets the checking force from kilogram-force.
+    pub fn with_checking_kgf(mut self, v: f64) -> Self {
+        self.checking_n = v * N_PER_KGF;
+        self
+    }
+
+    /// Sets the start rule.
+    pub fn with_start(mut self, start: StartRule) -> Self {
+        self.start = start;
+        self
+    }
+}
+
+/// One setting, named as on the command line, valued in the paper's practical unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Setting {
+    /// Loom speed, rev/min (the paper's Fig. 5).
+    Speed,
+    /// Strap-loop play s'₀, mm (Fig. 6).
+    Play,
+    /// Strap-loop height k, cm (Fig. 10).
+    Strap,
+    /// Shuttle weight Q, g (Fig. 7).
+    Shuttle,
+    /// Checking force F₀, kgf (Fig. 8).
+    Checking,
+}
+
+impl Setting {
+    /// All settings, in the paper's order of figures.
+    pub const ALL: [Setting; 5] = [Setting::Speed, Setting::Play, Setting::Shuttle, Setting::Checking, Setting::Strap];
+
+    /// Parses `speed`, `play`, `strap`, `shuttle`, `checking` (also with their unit suffix, e.g. `play-mm`).
+    pub fn parse(name: &str) -> Result<Self> {
+        Ok(match name.trim().to_ascii_lowercase().as_str() {
+            "speed" | "speed-rpm" | "speed_rpm" => Setting::Speed,
+            "play" | "play-mm" | "play_mm" => Setting::Play,
+            "strap" | "strap-cm" | "strap_cm" => Setting::Strap,
+            "shuttle" | "shuttle-g" | "shuttle_g" => Setting::Shuttle,
+            "checking" | "checking-kgf" | "checking_kgf" => Setting::Checking,
+            _ => return Err(PickError::UnknownSetting { name: name.into() }),
+        })
+    }
+
+    /// The setting's name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Setting::Speed => "speed",
+            Setting::Play => "play",
+            Setting::Strap => "strap",
+            Setting::Shuttle => "shuttle",
+            Setting::Checking => "checking",
+        }
+    }
+
+    /// The practical unit of the setting's values.
+    pub fn unit(&self) -> &'static str {
+        match self {
+            Setting::Speed => "rpm",
+            Setting::Play => "mm",
+            Setting::Strap => "cm",
+            Setting::Shuttle => "g",
+            Setting::Checking => "kgf",
+        }
+    }
+
+    /// Column name with unit, e.g. `play_mm`.
+    pub fn key(&self) -> String {
+        format!("{}_{}", self.name(), self.unit())
+    }
+
+    /// `settings` with this setting set to `value` (in [`Setting::unit`]).
+    pub fn apply(&self, settings: Settings, value: f64) -> Settings {
+        match self {
+            Setting::Speed => settings.with_speed_rpm(value),
+            Setting::Play => settings.with_play_mm(value),
+            Setting::Strap => settings.with_strap_cm(value),
+            Setting::Shuttle => settings.with_shuttle_g(value),
+            Setting::Checking => settings.with_checking_kgf(value),
+        }
+    }
+
+    /// The value of this setting in `settings`, in [`Setting::unit`].
+    pub fn value(&self, settings: &Settings) -> f64 {
+        match self {
+            Setting::Speed => settings.speed_rpm,
+            Setting::Play => settings.play_m / M_PER_MM,
+            Setting::Strap => settings.strap_m / M_PER_CM,
+            Setting::Shuttle => settings.shuttle_kg / KG_PER_G,
+            Setting::Checking => settings.checking_n / N_PER_KGF,
+        }
+    }
+
+    /// The paper's range for this setting (Figs. 5–8, 10), in [`Setting::unit`].
+    pub fn paper_range(&self) -> (f64, f64) {
+        match self {
+            Setting::Speed => (160.0, 240.0),
+            Setting::Play => (0.0, 60.0),
+            Setting::Strap => (13.0, 35.0),
+            Setting::Shuttle => (380.0, 520.0),
+            Setting::Checking => (0.0, 10.0),
+        }
+    }
+}

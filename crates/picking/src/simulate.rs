@@ -1,0 +1,290 @@
+//! Simulating a scenario by either route and reading the end-of-pick values.
+
+use crate::closed::PaperConstants;
+use crate::ode::OdeTrajectory;
+use crate::scenario::Scenario;
+use crate::{Mechanism, Nominal, PickError, Result, Settings, State};
+use serde::{Deserialize, Serialize};
+
+/// Which route computes the actual motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// The paper's closed form (eqs. 29–47, corrected). Falls back to [`Method::Ode`] with a
+    /// note when it cannot answer (resonance, or a cam law other than the compound one).
+    #[default]
+    Closed,
+    /// Numerical integration of eq. 28 (DOP853, rtol 1e-13).
+    Ode,
+}
+
+impl Method {
+    /// `closed` or `ode`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Closed => "closed",
+            Method::Ode => "ode",
+        }
+    }
+}
+
+/// What ended the pick.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PickEnd {
+    /// The cam reached the end of its rise, u = T' (the paper's eq. 47).
+    CamEnd,
+    /// The shuttle left the picker earlier: the contact force m·ẍ + F₀ fell to zero.
+    Separation,
+}
+
+/// End-of-pick values of one scenario (SI; names carry units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Outcome {
+    /// Duration of the pick in real time, from the shuttle's start, s.
+    pub t_end_s: f64,
+    /// Delay t₀ = u₀/q between the designed start and the shuttle's start (the play), s.
+    pub t0_s: f64,
+    /// Distance travelled by the shuttle during the pick, x(T), m.
+    pub distance_m: f64,
+    /// Shuttle velocity at the end of the pick, ẋ(T), m/s.
+    pub velocity_m_s: f64,
+    /// Shuttle acceleration at the end of the pick, ẍ(T), m/s².
+    pub accel_end_m_s2: f64,
+    /// Largest shuttle acceleration during the pick, m/s².
+    pub accel_peak_m_s2: f64,
+    /// Time of the largest acceleration, s.
+    pub t_peak_s: f64,
+    /// What ended the pick.
+    pub end: PickEnd,
+    /// Required velocity V_r at this loom speed, m/s.
+    pub required_velocity_m_s: f64,
+    /// (ẋ(T)/V_r − 1)·100, percent.
+    pub velocity_vs_required_pct: f64,
+    /// The route that answered.
+    pub method: Method,
+    /// Why the closed form did not answer, when it was asked and could not.
+    pub note: Option<String>,
+    /// B' at the setting, s².
+    pub b_s2: f64,
+    /// C' at the setting.
+    pub c: f64,
+    /// D' at the setting, m.
+    pub d_m: f64,
+    /// ψ = √((C'+1)/B'), 1/s.
+    pub natural_1_s: f64,
+    /// Play referred to the picker, s₀ = s'₀·l/k, m.
+    pub play_picker_m: f64,
+}
+
+/// One row of a time history: the picker's nominal and the shuttle's actual motion.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Sample {
+    /// Real time from the shuttle's start, s.
+    pub t_s: f64,
+    /// Nominal motion (picker, cam side).
+    pub nominal: Nominal,
+    /// Actual motion (shuttle).
+    pub actual: State,
+}
+
+/// A simulated pick with its time history.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct History {
+    /// End-of-pick values.
+    pub outcome: Outcome,
+    /// Evenly spaced samples from 0 to `outcome.t_end_s`.
+    pub samples: Vec<Sample>,
+}
+
+/// A route made ready: either the closed form's constants or the stored integration.
+enum Route<'a> {
+    Closed(PaperConstants),
+    Ode(OdeTrajectory<'a>),
+}
+
+impl Route<'_> {
+    fn state(&self, t: f64) -> Result<State> {
+        match self {
+            Route::Closed(p) => Ok(p.state(t)),
+            Route::Ode(o) => o.state(t),
+        }
+    }
+}
+
+/// Number of uniform scan intervals for the closed form's extrema and events.
+const SCAN: usize = 512;
+
+fn prepare<'a>(sc: &'a Scenario, method: Method) -> Result<(Route<'a>, Method, Option<String>)> {
+    if method == Method::Closed {
+        match PaperConstants::new(sc) {
+            Ok(p) => return Ok((Route::Closed(p), Method::Closed, None)),
+            Err(e @ (PickError::Resonance { .. } | PickError::NoClosedForm { .. })) => {
+                let note = format!("{e}; answered by numerical integration");
+                return Ok((Route::Ode(OdeTrajectory::new(sc)?), Method::Ode, Some(note)));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok((Route::Ode(OdeTrajectory::new(sc)?), Method::Ode, None))
+}
+
+fn knots(sc: &Scenario, route: &Route<'_>) -> Vec<f64> {
+    match route {
+        Route::Ode(o) if o.len() >= SCAN / 4 => o.knots(),
+        _ => {
+            let mut k: Vec<f64> = (0..=SCAN).map(|i| sc.t_cam_end * i as f64 / SCAN as f64).collect();
+            k.extend(sc.joints.iter().copied());
+            if let Route::Ode(o) = route {
+                k.extend(o.knots());
+            }
+            k.sort_by(f64::total_cmp);
+            k.dedup();
+            k
+        }
+    }
+}
+
+/// Bisection for the first downward zero of the contact force between `lo` (positive) and `hi`.
+fn bisect_contact(sc: &Scenario, route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<f64> {
+    let contact = |t: f64| -> Result<f64> { Ok(sc.shuttle_kg * route.state(t)?.a_m_s2 + sc.checking_n) };
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if contact(mid)? > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(hi)
+}
+
+/// Golden-section search for the largest acceleration in [lo, hi].
+fn refine_peak(route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<(f64, f64)> {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = hi - r * (hi - lo);
+    let mut d = lo + r * (hi - lo);
+    let (mut fc, mut fd) = (route.state(c)?.a_m_s2, route.state(d)?.a_m_s2);
+    for _ in 0..120 {
+        if hi - lo <= 1e-14 * hi.abs().max(1e-3) {
+            break;
+        }
+        if fc > fd {
+            (hi, d, fd) = (d, c, fc);
+            c = hi - r * (hi - lo);
+            fc = route.state(c)?.a_m_s2;
+        } else {
+            (lo, c, fc) = (c, d, fd);
+            d = lo + r * (hi - lo);
+            fd = route.state(d)?.a_m_s2;
+        }
+    }
+    Ok(if fc > fd { (c, fc) } else { (d, fd) })
+}
+
+fn evaluate(
+    m: &Mechanism,
+    st: &Settings,
+    sc: &Scenario,
+    route: &Route<'_>,
+    method: Method,
+    note: Option<String>,
+) -> Result<Outcome> {
+    let ts = knots(sc, route);
+    let mut states = Vec::with_capacity(ts.len());
+    for &t in &ts {
+        states.push(route.state(t)?);
+    }
+    // End of the pick: the cam's end, or the first downward crossing of the contact force.
+    let contact = |s: &State| sc.shuttle_kg * s.a_m_s2 + sc.checking_n;
+    let (mut t_end, mut end, mut n_used) = (sc.t_cam_end, PickEnd::CamEnd, ts.len());
+    let mut armed = false;
+    for i in 0..ts.len() {
+        let f = contact(&states[i]);
+        if armed && f <= 0.0 {
+            t_end = bisect_contact(sc, route, ts[i - 1], ts[i])?;
+            end = PickEnd::Separation;
+            n_used = i;
+            break;
+        }
+        armed |= f > 0.0;
+    }
+    let last = route.state(t_end)?;
+    // Peak acceleration over [0, t_end].
+    let mut best = (t_end, last.a_m_s2);
+    let mut ib = None;
+    for i in 0..n_used {
+        if states[i].a_m_s2 > best.1 {
+            best = (ts[i], states[i].a_m_s2);
+            ib = Some(i);
+        }
+    }
+    if let Some(i) = ib {
+        let lo = ts[i.saturating_sub(1)];
+        let hi = if i + 1 < n_used { ts[i + 1] } else { t_end };
+        if hi > lo {
+            let r = refine_peak(route, lo, hi)?;
+            if r.1 > best.1 {
+                best = r;
+            }
+        }
+    }
+    let vr = m.required().at(st.speed_rpm);
+    Ok(Outcome {
+        t_end_s: t_end,
+        t0_s: sc.t0(),
+        distance_m: last.x_m,
+        velocity_m_s: last.v_m_s,
+        accel_end_m_s2: last.a_m_s2,
+        accel_peak_m_s2: best.1,
+        t_peak_s: best.0,
+        end,
+        required_velocity_m_s: vr,
+        velocity_vs_required_pct: (last.v_m_s / vr - 1.0) * 100.0,
+        method,
+        note,
+        b_s2: sc.k.b_s2,
+        c: sc.k.c,
+        d_m: sc.k.d_m,
+        natural_1_s: sc.psi(),
+        play_picker_m: sc.s0,
+    })
+}
+
+/// Simulates the pick of `mechanism` under `settings` by `method` and returns the end-of-pick values.
+///
+/// Errors: settings out of range (naming the field, value, range and unit), play beyond the
+/// cam's reach, or a solver failure. A resonance never fails: the closed form hands over to the
+/// numerical route and says so in [`Outcome::note`].
+pub fn simulate(mechanism: &Mechanism, settings: &Settings, method: Method) -> Result<Outcome> {
+    let sc = Scenario::new(mechanism, settings)?;
+    let (route, used, note) = prepare(&sc, method)?;
+    evaluate(mechanism, settings, &sc, &route, used, note)
+}
+
+/// Simulates and samples the nominal and actual motion at `n ≥ 2` evenly spaced instants of the pick.
+pub fn history(mechanism: &Mechanism, settings: &Settings, method: Method, n: usize) -> Result<History> {
+    let sc = Scenario::new(mechanism, settings)?;
+    let (route, used, note) = prepare(&sc, method)?;
+    let outcome = evaluate(mechanism, settings, &sc, &route, used, note)?;
+    let n = n.max(2);
+    let mut samples = Vec::with_capacity(n);
+    for i in 0..n {
+        let t = if i + 1 == n { outcome.t_end_s } else { outcome.t_end_s * i as f64 / (n - 1) as f64 };
+        samples.push(Sample { t_s: t, nominal: sc.nominal(t), actual: route.state(t)? });
+    }
+    Ok(History { outcome, samples })
+}
+
+/// The paper's closed-form constants for a scenario (compound cam only); exposed so the
+/// printed and corrected forms of eqs. 33–46 can be compared.
+pub fn closed_form_constants(mechanism: &Mechanism, settings: &Settings) -> Result<PaperConstants> {
+    let sc = Scenario::new(mechanism, settings)?;
+    if !matches!(mechanism.cam(), crate::Cam::Compound) {
+        return Err(PickError::NoClosedForm { law: mechanism.cam().label() });
+    }
+    PaperConstants::new(&sc)
+}

@@ -1,0 +1,55 @@
+//! Sweeps of one setting over a range, evaluated in parallel (the paper's Figs. 5–8 and 10).
+
+use crate::{Mechanism, Method, Outcome, PickError, Result, Setting, Settings, simulate};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepRow {
+    /// Value of the swept setting, in [`Setting::unit`].
+    pub value: f64,
+    /// The end-of-pick values there.
+    pub outcome: Outcome,
+}
+
+/// A setting swept over a range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sweep {
+    /// The swept setting.
+    pub setting: Setting,
+    /// The rows, in order of value.
+    pub rows: Vec<SweepRow>,
+}
+
+impl Sweep {
+    /// Rows where the closed form could not answer and the numerical route did.
+    pub fn fallbacks(&self) -> impl Iterator<Item = &SweepRow> {
+        self.rows.iter().filter(|r| r.outcome.note.is_some())
+    }
+}
+
+/// Runs `setting` from `from` to `to` (its practical unit, both ends included) in `steps ≥ 1`
+/// evenly spaced points over `base`, in parallel. Fails on the first invalid point, naming it.
+pub fn sweep(
+    mechanism: &Mechanism,
+    base: &Settings,
+    setting: Setting,
+    from: f64,
+    to: f64,
+    steps: usize,
+    method: Method,
+) -> Result<Sweep> {
+    PickError::check_closed("from", from, f64::MIN, f64::MAX, setting.unit())?;
+    PickError::check_closed("to", to, f64::MIN, f64::MAX, setting.unit())?;
+    PickError::check_closed("steps", steps as f64, 1.0, 1e6, "")?;
+    let value = |i: usize| if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
+    let rows = (0..steps)
+        .into_par_iter()
+        .map(|i| {
+            let v = value(i);
+            simulate(mechanism, &setting.apply(*base, v), method).map(|outcome| SweepRow { value: v, outcome })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Sweep { setting, rows })
+}
