@@ -5,6 +5,7 @@
 
 mod cycle;
 mod law;
+mod serve;
 mod util;
 
 use clap::{Parser, Subcommand};
@@ -25,12 +26,15 @@ enum Command {
     Law(law::LawCommand),
     /// A machine cycle (dwell / rise / dwell / return) from a TOML file, in physical units.
     Cycle(cycle::CycleArgs),
+    /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
+    Serve(serve::ServeArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Law(cmd) => law::run(cmd),
         Command::Cycle(args) => cycle::run(args),
+        Command::Serve(args) => serve::run(args),
     }
 }
 

@@ -1,1 +1,65 @@
-//! loomkin web workbench.
+//! # loomkin-web — the local workbench
+//!
+//! `loomkin serve` runs this crate: a page of HTML, CSS and JavaScript embedded in the binary and
+//! a JSON API behind it, on 127.0.0.1 only. The page draws its charts itself on `<canvas>`.
+//!
+//! The API is an ordinary [`axum::Router`]; every answer is JSON, every refusal a 4xx with
+//! `{"error": "...", "field": "..."}` naming the offending field. Bodies are limited to
+//! [`MAX_BODY_BYTES`], sample counts to [`MAX_SAMPLES`].
+//!
+//! The computations behind each endpoint are plain functions, usable without a server:
+//!
+//! ```
+//! use loomkin_web::{CompareRequest, compare, parse_json};
+//!
+//! let req: CompareRequest = parse_json(br#"{"laws": [{"name": "cycloidal"}], "samples": 5}"#)?;
+//! let answer = compare(&req)?;
+//! let law = &answer.laws[0];
+//! assert!((law.metrics.cv - 2.0).abs() < 1e-12);      // cycloidal: Cv = 2
+//! assert_eq!(law.samples.s, law.samples.s.iter().map(|s| s.clamp(0.0, 1.0)).collect::<Vec<_>>());
+//! assert_eq!(law.samples.x, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+//! # Ok::<(), loomkin_web::ApiError>(())
+//! ```
+//!
+//! Serving (what `loomkin serve` does):
+//!
+//! ```no_run
+//! # async fn f() -> std::io::Result<()> {
+//! let bound = loomkin_web::bind(8080).await?;   // 127.0.0.1:8080; 0 picks a free port
+//! println!("loomkin workbench at {}", bound.url());
+//! bound.run().await                              // until Ctrl-C
+//! # }
+//! ```
+#![deny(missing_docs)]
+
+mod assets;
+mod catalogue;
+mod error;
+mod json;
+mod limits;
+mod series;
+mod server;
+mod servo_api;
+mod servo_design;
+
+pub use assets::{APP_JS, CHARTS_JS, INDEX_HTML, STYLE_CSS};
+pub use catalogue::{
+    CatalogueItem, CatalogueResponse, CompareRequest, CompareResponse, ComparedLaw, LawChoice, ParamValue, catalogue,
+    compare,
+};
+pub use error::{ApiError, check_count, check_range};
+pub use json::{ApiJson, parse_json, parse_toml};
+pub use limits::{
+    DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS, MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES,
+};
+pub use series::{LawSamples, finite};
+pub use server::{Bound, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
+pub use servo_api::{
+    DesignResponse, EvaluateRequest, EvaluateResponse, ExportFormat, ExportRequest, ExportResponse, LawReport,
+    LoadRequest, OptimizeRequest, OptimizeResponse, SaveRequest, SpeedReport, SplineSamples, TorquePair, evaluate,
+    export, load, optimize_design, save,
+};
+pub use servo_design::{DesignFormat, ServoDesign, servo_error};
+
+/// The views this build serves, in tab order.
+pub const VIEWS: &[&str] = &["servo", "catalogue"];

@@ -1,0 +1,31 @@
+//! `loomkin serve`: the workbench — a local web page with live plots and draggable points.
+
+use crate::util;
+use anyhow::{Result, anyhow};
+use clap::Args;
+use std::io::Write;
+
+/// `loomkin serve`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// Port to listen on; the server listens on 127.0.0.1 only (0 picks a free port).
+    #[arg(long, default_value_t = 8765)]
+    port: u16,
+    /// Open the page in the default browser once the server listens.
+    #[arg(long)]
+    open: bool,
+}
+
+/// Runs `loomkin serve` until Ctrl-C.
+pub fn run(a: ServeArgs) -> Result<()> {
+    loomkin_web::serve_blocking(a.port, |url| {
+        println!("loomkin workbench: {url}  (listening on 127.0.0.1 only; Ctrl-C stops it)");
+        let _ = std::io::stdout().flush();
+        if a.open
+            && let Err(msg) = loomkin_web::open_browser(url)
+        {
+            eprintln!("loomkin: warning: {msg}");
+        }
+    })
+    .map_err(|e| util::failure(anyhow!("cannot serve on 127.0.0.1:{}: {e}", a.port)))
+}

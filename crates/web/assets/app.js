@@ -1,0 +1,394 @@
+// loomkin workbench: the views and their wiring to the JSON API. Written for loomkin.
+(() => {
+"use strict";
+
+const { Chart, PALETTE, fmtValue } = window.LoomkinCharts;
+const $ = (sel) => document.querySelector(sel);
+
+// State visible to tests and to the console.
+const loomkin = (window.loomkin = { ready: false, evalCount: 0, busy: false, charts: {} });
+
+// ---------------------------------------------------------------- API and status
+
+async function api(path, body) {
+  const init = body === undefined ? {} : { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) };
+  const res = await fetch("/api" + path, init);
+  let data = null;
+  try { data = await res.json(); } catch (_) { /* not JSON */ }
+  if (!res.ok) {
+    const msg = data && data.error ? data.error : `${res.status} ${res.statusText}`;
+    const err = new Error(msg);
+    err.field = data && data.field;
+    throw err;
+  }
+  return data;
+}
+
+function status(text, isError) {
+  const el = $("#status");
+  el.textContent = text || "";
+  el.className = isError ? "error" : "";
+}
+
+function download(filename, text, type) {
+  const blob = new Blob([text], { type: type || "text/plain" });
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = filename;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}
+
+function el(tag, props, ...children) {
+  const e = document.createElement(tag);
+  Object.assign(e, props || {});
+  for (const c of children) e.append(c);
+  return e;
+}
+
+function num(v, digits) {
+  if (!isFinite(v)) return "–";
+  return digits === undefined ? fmtValue(v) : v.toFixed(digits);
+}
+
+// ---------------------------------------------------------------- tabs
+
+const VIEW_TITLES = { servo: "Servo law", catalogue: "Law catalogue", shed: "Shedding", picking: "Picking", dobby: "Dobby" };
+const initialised = {};
+
+function showView(name) {
+  for (const b of document.querySelectorAll("#tabs button")) b.setAttribute("aria-selected", String(b.dataset.view === name));
+  for (const s of document.querySelectorAll(".view")) s.hidden = s.id !== "view-" + name;
+  if (!initialised[name] && VIEWS[name]) { initialised[name] = true; VIEWS[name](); }
+  for (const c of Object.values(loomkin.charts)) c.draw();
+  if (location.hash !== "#" + name) history.replaceState(null, "", "#" + name);
+}
+
+// ---------------------------------------------------------------- servo law editor
+
+const DRIVE_FIELDS = [
+  ["stroke_m", "stroke H", "m"],
+  ["motion_angle_deg", "motion angle", "°"],
+  ["moving_mass_kg", "moving mass m", "kg"],
+  ["pinion_radius_m", "pinion radius r", "m"],
+  ["gear_ratio", "gear ratio i", "–"],
+  ["motor_inertia_kg_m2", "motor inertia Jm", "kg·m²"],
+  ["spring_n_m", "spring rate k", "N/m"],
+  ["spring_preload_n", "spring preload Fpre", "N"],
+  ["damping_n_s_m", "damping c", "N·s/m"],
+  ["constant_force_n", "constant force Fc", "N"],
+  ["efficiency", "efficiency η", "–"],
+];
+const MIN_GAP = 0.002;
+const servo = { design: null, result: null, inflight: false, queued: false };
+
+function initServo() {
+  const editor = new Chart($("#servo-editor-chart"), {
+    id: "editor", title: "Acceleration shape — drag the points", height: 300,
+    x: { label: "x = fraction of motion angle", unit: "–", range: [0, 1] },
+    y: { label: "spline f", unit: "def. units", range: [-1.25, 1.25] },
+  });
+  const torque = new Chart($("#servo-torque-chart"), {
+    id: "torque", title: "Motor torque", height: 240,
+    x: { label: "main-shaft angle φ (rise from 0)", unit: "°", range: [0, 360], step: 30 }, y: { label: "torque M", unit: "N·m", includeZero: true },
+  });
+  const power = new Chart($("#servo-power-chart"), {
+    id: "power", title: "Motor power", height: 200,
+    x: { label: "main-shaft angle φ (rise from 0)", unit: "°", range: [0, 360], step: 30 }, y: { label: "power P", unit: "W", includeZero: true },
+  });
+  const kin = {};
+  for (const [k, label] of [["s", "displacement s"], ["v", "velocity v = ds/dx"], ["a", "acceleration a = d²s/dx²"], ["j", "jerk j = d³s/dx³"]]) {
+    kin[k] = new Chart($("#servo-kin-charts"), {
+      id: "kin-" + k, title: label, height: 190, x: { label: "x", unit: "–", range: [0, 1] }, y: { label: k, unit: "–" },
+    });
+  }
+  Object.assign(loomkin.charts, { editor, torque, power, ...Object.fromEntries(Object.entries(kin).map(([k, c]) => ["kin_" + k, c])) });
+  servo.charts = { editor, torque, power, kin };
+  editor.setPoints([], { onDrag: dragPoint, onDragEnd: () => evaluate() });
+
+  const form = $("#drive-form");
+  for (const [key, label, unit] of DRIVE_FIELDS) {
+    const input = el("input", { type: "number", step: "any", name: key, id: "drive-" + key });
+    input.addEventListener("input", () => { readDrive(); evaluate(); });
+    form.append(el("label", {}, `${label} (${unit})`, input));
+  }
+  $("#speeds").addEventListener("input", () => { readSpeeds(); evaluate(); });
+  $("#spline-end").addEventListener("change", (e) => { servo.design.end = e.target.value; evaluate(); });
+  $("#point-add").addEventListener("click", addPoint);
+  $("#optimise").addEventListener("click", optimise);
+  $("#export-coeffs").addEventListener("click", () => exportDesign("coeffs"));
+  $("#export-coeffs-json").addEventListener("click", () => exportDesign("json"));
+  $("#export-cam").addEventListener("click", () => exportDesign("csv"));
+  $("#export-xyva").addEventListener("click", () => exportDesign("xyva"));
+  $("#save-json").addEventListener("click", () => saveDesign("json"));
+  $("#save-toml").addEventListener("click", () => saveDesign("toml"));
+  $("#load-file").addEventListener("change", loadDesign);
+  $("#reset-design").addEventListener("click", () => loadDefault());
+  loadDefault();
+}
+
+async function loadDefault() {
+  try {
+    const d = await api("/servo/default");
+    setDesign(d.design);
+  } catch (e) { status("default design: " + e.message, true); }
+}
+
+function setDesign(design) {
+  servo.design = design;
+  for (const [key] of DRIVE_FIELDS) $("#drive-" + key).value = design.drive[key];
+  $("#speeds").value = design.speeds_rpm.join(", ");
+  $("#spline-end").value = design.end;
+  renderPointsTable();
+  evaluate();
+}
+
+function readDrive() {
+  for (const [key] of DRIVE_FIELDS) {
+    const input = $("#drive-" + key);
+    const v = parseFloat(input.value);
+    input.classList.toggle("bad", !isFinite(v));
+    if (isFinite(v)) servo.design.drive[key] = v;
+  }
+}
+
+function readSpeeds() {
+  const input = $("#speeds");
+  const v = input.value.split(/[,;\s]+/).filter((t) => t).map(Number);
+  const ok = v.length > 0 && v.every((x) => isFinite(x));
+  input.classList.toggle("bad", !ok);
+  if (ok) servo.design.speeds_rpm = v;
+}
+
+function renderPointsTable() {
+  const body = $("#points-table tbody");
+  body.replaceChildren();
+  const pts = servo.design.points, n = pts.length;
+  pts.forEach(([x, y], i) => {
+    const fixed = i === 0 || i === n - 1;
+    const xi = el("input", { type: "number", step: "any", value: String(+x.toFixed(6)), disabled: fixed, id: `pt-x-${i}` });
+    const yi = el("input", { type: "number", step: "any", value: String(+y.toFixed(6)), disabled: fixed, id: `pt-y-${i}` });
+    const onInput = () => {
+      const nx = parseFloat(xi.value), ny = parseFloat(yi.value);
+      if (isFinite(nx) && isFinite(ny)) { pts[i] = [nx, ny]; evaluate(); }
+    };
+    xi.addEventListener("change", onInput);
+    yi.addEventListener("change", onInput);
+    const del = el("button", { type: "button", className: "icon", textContent: "×", title: "remove point", disabled: fixed || n <= 4 });
+    del.addEventListener("click", () => { pts.splice(i, 1); renderPointsTable(); evaluate(); });
+    body.append(el("tr", {}, el("td", { textContent: String(i + 1) }), el("td", {}, xi), el("td", {}, yi), el("td", {}, del)));
+  });
+}
+
+function updatePointsTable() {
+  servo.design.points.forEach(([x, y], i) => {
+    const xi = $(`#pt-x-${i}`), yi = $(`#pt-y-${i}`);
+    if (xi && document.activeElement !== xi) xi.value = String(+x.toFixed(6));
+    if (yi && document.activeElement !== yi) yi.value = String(+y.toFixed(6));
+  });
+}
+
+function addPoint() {
+  // Split the widest interval in the middle, with Y on the current spline.
+  const pts = servo.design.points;
+  let k = 0;
+  for (let i = 1; i < pts.length; i++) if (pts[i][0] - pts[i - 1][0] > pts[k + 1][0] - pts[k][0]) k = i - 1;
+  const x = (pts[k][0] + pts[k + 1][0]) / 2;
+  let y = (pts[k][1] + pts[k + 1][1]) / 2;
+  if (servo.result) y = LoomkinCharts.interp(servo.result.spline.x, servo.result.spline.f, x);
+  pts.splice(k + 1, 0, [x, Math.max(-1, Math.min(1, y))]);
+  renderPointsTable();
+  evaluate();
+}
+
+// Mouse drag of definition point i to chart coordinates (x, y), kept inside its neighbours.
+function dragPoint(i, x, y) {
+  const pts = servo.design.points, n = pts.length;
+  if (i <= 0 || i >= n - 1) return;
+  const lo = pts[i - 1][0] + MIN_GAP, hi = pts[i + 1][0] - MIN_GAP;
+  pts[i] = [Math.min(hi, Math.max(lo, x)), Math.min(1, Math.max(-1, y))];
+  drawPoints();
+  updatePointsTable();
+  evaluate();
+}
+
+function drawPoints() {
+  const pts = servo.design.points, n = pts.length;
+  servo.charts.editor.setPoints(pts.map(([x, y], i) => ({ x, y, fixed: i === 0 || i === n - 1 })));
+}
+
+// One evaluation in flight at a time; while dragging, the newest state is sent when the last answer is in.
+function evaluate() {
+  if (!servo.design) return;
+  if (servo.inflight) { servo.queued = true; return; }
+  servo.inflight = true;
+  loomkin.busy = true;
+  const started = performance.now();
+  api("/servo/evaluate", { design: servo.design, samples: 1000 })
+    .then((r) => {
+      servo.result = r;
+      renderServo(r);
+      status(`evaluated in ${(performance.now() - started).toFixed(0)} ms (server ${r.compute_ms.toFixed(2)} ms)`);
+    })
+    .catch((e) => status(e.message, true))
+    .finally(() => {
+      servo.inflight = false;
+      loomkin.evalCount++;
+      if (servo.queued) { servo.queued = false; evaluate(); } else { loomkin.busy = false; }
+    });
+}
+
+function renderServo(r) {
+  const ch = servo.charts;
+  drawPoints();
+  ch.editor.setSeries([
+    { label: "spline f(x) through the points", x: r.spline.x, y: r.spline.f, color: PALETTE[0] },
+  ]);
+  ch.torque.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.torque_nm, color: PALETTE[k + 1] })));
+  ch.power.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.power_w, color: PALETTE[k + 1] })));
+  const L = r.law.samples;
+  for (const k of ["s", "v", "a", "j"]) ch.kin[k].setSeries([{ label: "", x: L.x, y: L[k], color: PALETTE[0] }]);
+
+  const tb = $("#torque-table tbody");
+  tb.replaceChildren(...r.speeds.map((s, k) => el("tr", {},
+    el("td", { textContent: num(s.speed_rpm) }),
+    el("td", { textContent: num(s.peak_torque_nm, 3), id: `peak-torque-${k}` }),
+    el("td", { textContent: num(s.rms_torque_nm, 3), id: `rms-torque-${k}` }),
+    el("td", { textContent: num(s.peak_power_w, 1), id: `peak-power-${k}` }))));
+  const m = r.law.metrics;
+  const rows = [
+    ["Cv = max v", m.cv], ["Ca = max |a|", m.ca], ["Ca+ / Ca−", `${num(m.ca_pos)} / ${num(m.ca_neg)}`], ["Cj = max |j|", m.cj],
+    ["Cm = max v·a", m.cm], ["Ca,rms", m.ca_rms], ["continuity class", `C${r.law.continuity_class}`],
+    ["end slope D", r.d], ["scale a = c·f", r.scale],
+  ];
+  $("#servo-metrics tbody").replaceChildren(...rows.map(([k, v]) =>
+    el("tr", {}, el("th", { textContent: k }), el("td", { textContent: typeof v === "number" ? num(v) : v }))));
+}
+
+async function optimise() {
+  const btn = $("#optimise");
+  btn.disabled = true;
+  status("optimising…");
+  try {
+    const r = await api("/servo/optimize", { design: servo.design, objective: $("#objective").value });
+    servo.design.points = r.def_points;
+    renderPointsTable();
+    evaluate();
+    const rows = r.before.map((b, k) => {
+      const a = r.after[k];
+      return el("tr", {}, el("td", { textContent: num(b.speed_rpm) }),
+        el("td", { textContent: `${num(b.peak_torque_nm, 2)} → ${num(a.peak_torque_nm, 2)}` }),
+        el("td", { textContent: `${num(b.rms_torque_nm, 2)} → ${num(a.rms_torque_nm, 2)}` }));
+    });
+    $("#optimise-report").replaceChildren(el("table", { className: "data" },
+      el("thead", {}, el("tr", {}, el("th", { textContent: "1/min" }), el("th", { textContent: "peak (N·m)" }), el("th", { textContent: "RMS (N·m)" }))),
+      el("tbody", {}, ...rows)));
+    status(`optimised in ${num(r.elapsed_ms, 0)} ms`);
+  } catch (e) { status("optimise: " + e.message, true); }
+  btn.disabled = false;
+}
+
+async function exportDesign(format) {
+  try {
+    const r = await api("/servo/export", { design: servo.design, format, rows: parseInt($("#cam-rows").value, 10) || 361 });
+    download(r.filename, r.text, r.media_type);
+    status(`exported ${r.filename}` + (r.note ? ` — ${r.note}` : ""));
+  } catch (e) { status("export: " + e.message, true); }
+}
+
+async function saveDesign(format) {
+  try {
+    const r = await api("/servo/design/save", { design: servo.design, format });
+    download(r.filename, r.text, r.media_type);
+    status(`saved ${r.filename}`);
+  } catch (e) { status("save: " + e.message, true); }
+}
+
+async function loadDesign(ev) {
+  const file = ev.target.files[0];
+  if (!file) return;
+  try {
+    const text = await file.text();
+    const format = /\.toml$/i.test(file.name) ? "toml" : /\.json$/i.test(file.name) ? "json" : "auto";
+    const r = await api("/servo/design/load", { text, format });
+    setDesign(r.design);
+    status(`loaded ${file.name}`);
+  } catch (e) { status(`load ${file.name}: ${e.message}`, true); }
+  ev.target.value = "";
+}
+
+// ---------------------------------------------------------------- law catalogue
+
+const catalogueState = { chosen: new Set(["cycloidal", "modified-trapezoid", "poly345"]), params: {} };
+
+async function initCatalogue() {
+  const charts = {};
+  for (const [k, label] of [["s", "displacement s"], ["v", "velocity v = ds/dx"], ["a", "acceleration a = d²s/dx²"], ["j", "jerk j = d³s/dx³"]]) {
+    charts[k] = new Chart($("#catalogue-charts"), { id: "cat-" + k, title: label, height: 240, x: { label: "x", unit: "–", range: [0, 1] }, y: { label: k, unit: "–" } });
+    loomkin.charts["cat_" + k] = charts[k];
+  }
+  catalogueState.charts = charts;
+  try {
+    const cat = await api("/laws");
+    const list = $("#catalogue-list");
+    for (const law of cat.laws) {
+      const box = el("input", { type: "checkbox", checked: catalogueState.chosen.has(law.name), id: "cat-" + law.name });
+      box.addEventListener("change", () => { box.checked ? catalogueState.chosen.add(law.name) : catalogueState.chosen.delete(law.name); compareLaws(); });
+      const row = el("div", { className: "check" }, box, el("label", { htmlFor: box.id, textContent: law.name, title: law.description }));
+      const m = /^(\w+)=([^\s]+)/.exec(law.params);
+      if (m) {
+        const key = m[1];
+        const def = law.name === "piecewise" ? "0.25:sine-ramp:0:1,0.25:cosine-ramp:1:0,0.25:sine-ramp:0:-1,0.25:cosine-ramp:-1:0" : m[2];
+        catalogueState.params[law.name] = { [key]: def };
+        const inp = el("input", { type: "text", value: def, title: law.params, spellcheck: false });
+        inp.addEventListener("change", () => { catalogueState.params[law.name] = { [key]: inp.value }; compareLaws(); });
+        row.append(el("small", { textContent: key + " =" }), inp);
+      }
+      list.append(row, el("div", { className: "hint", textContent: law.description }));
+    }
+  } catch (e) { status("catalogue: " + e.message, true); }
+  compareLaws();
+}
+
+async function compareLaws() {
+  const laws = [...catalogueState.chosen].map((name) => ({ name, params: catalogueState.params[name] || {} }));
+  if (laws.length === 0) return;
+  try {
+    const r = await api("/laws/compare", { laws, samples: 801 });
+    for (const k of ["s", "v", "a", "j"]) {
+      catalogueState.charts[k].setSeries(r.laws.map((l, i) => ({ label: l.label, x: l.samples.x, y: l.samples[k], color: PALETTE[i % PALETTE.length] })));
+    }
+    $("#catalogue-metrics tbody").replaceChildren(...r.laws.map((l, i) => {
+      const sw = el("span", { className: "swatch" });
+      sw.style.background = PALETTE[i % PALETTE.length];
+      const m = l.metrics;
+      return el("tr", {}, el("td", {}, sw, l.label), ...[m.cv, m.ca, m.ca_pos, m.ca_neg, m.cj, m.cm, m.ca_rms].map((v) => el("td", { textContent: num(v) })),
+        el("td", { textContent: "C" + l.continuity_class }));
+    }));
+    status(`${r.laws.length} laws compared`);
+  } catch (e) { status("compare: " + e.message, true); }
+}
+
+// ---------------------------------------------------------------- start
+
+const VIEWS = { servo: initServo, catalogue: initCatalogue };
+window.LoomkinViews = VIEWS;
+
+async function start() {
+  let views = ["servo", "catalogue"];
+  try { views = (await api("/info")).views; } catch (e) { status("info: " + e.message, true); }
+  const tabs = $("#tabs");
+  for (const v of views) {
+    const b = el("button", { type: "button", textContent: VIEW_TITLES[v] || v, role: "tab" });
+    b.dataset.view = v;
+    b.addEventListener("click", () => showView(v));
+    tabs.append(b);
+  }
+  const want = location.hash.slice(1);
+  showView(views.includes(want) ? want : views[0]);
+  loomkin.ready = true;
+}
+
+start();
+})();

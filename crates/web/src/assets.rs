@@ -1,0 +1,33 @@
+//! The page: HTML, CSS and JavaScript written for loomkin, embedded in the binary.
+
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+
+/// The page skeleton.
+pub const INDEX_HTML: &str = include_str!("../assets/index.html");
+/// The style sheet.
+pub const STYLE_CSS: &str = include_str!("../assets/style.css");
+/// The chart drawing code (canvas: axes, grid, legend, hover read-out, draggable points).
+pub const CHARTS_JS: &str = include_str!("../assets/charts.js");
+/// The views and their wiring to the JSON API.
+pub const APP_JS: &str = include_str!("../assets/app.js");
+
+fn asset(body: &'static str, content_type: &'static str) -> Response {
+    ([(header::CONTENT_TYPE, content_type), (header::CACHE_CONTROL, "no-cache")], body).into_response()
+}
+
+pub(crate) async fn index() -> Response {
+    asset(INDEX_HTML, "text/html; charset=utf-8")
+}
+
+pub(crate) async fn style() -> Response {
+    asset(STYLE_CSS, "text/css; charset=utf-8")
+}
+
+pub(crate) async fn charts() -> Response {
+    asset(CHARTS_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn app() -> Response {
+    asset(APP_JS, "text/javascript; charset=utf-8")
+}

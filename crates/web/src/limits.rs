@@ -1,0 +1,25 @@
+//! Bounds on what one request may ask for.
+
+/// Largest request body accepted, in bytes (256 KiB); larger bodies get 413.
+pub const MAX_BODY_BYTES: usize = 256 * 1024;
+
+/// Fewest samples of a law a request may ask for.
+pub const MIN_SAMPLES: usize = 2;
+
+/// Most samples of a law a request may ask for (a sample count above this gets 422).
+pub const MAX_SAMPLES: usize = 5000;
+
+/// Samples used when a request does not say.
+pub const DEFAULT_SAMPLES: usize = 1000;
+
+/// Most laws compared at once in the catalogue view.
+pub const MAX_COMPARE: usize = 8;
+
+/// Most main-shaft speeds evaluated at once.
+pub const MAX_SPEEDS: usize = 6;
+
+/// Most definition points of a servo law.
+pub const MAX_DEF_POINTS: usize = 64;
+
+/// Most rows of an exported cam table.
+pub const MAX_CAM_ROWS: usize = 100_000;

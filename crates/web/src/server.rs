@@ -1,0 +1,187 @@
+//! The router, the loopback listener and the guard rails around every request.
+
+use crate::limits::{DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES};
+use crate::{ApiError, ApiJson, assets, catalogue};
+use axum::Router;
+use axum::extract::{DefaultBodyLimit, Request};
+use axum::http::{StatusCode, header};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use serde::Serialize;
+use std::net::{Ipv4Addr, SocketAddr};
+use tokio::net::TcpListener;
+
+/// The whole application: page, assets and JSON API.
+///
+/// Bodies are limited to [`MAX_BODY_BYTES`]; requests whose `Host` is not a loopback name are
+/// refused (a web page elsewhere cannot reach the workbench by DNS rebinding).
+pub fn router() -> Router {
+    let api = Router::new()
+        .route("/info", get(info))
+        .route("/laws", get(catalogue::get_catalogue))
+        .route("/laws/compare", post(catalogue::post_compare))
+        .merge(crate::servo_api::routes())
+        .fallback(api_not_found);
+    Router::new()
+        .route("/", get(assets::index))
+        .route("/style.css", get(assets::style))
+        .route("/charts.js", get(assets::charts))
+        .route("/app.js", get(assets::app))
+        .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
+        .nest("/api", api)
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn(guard))
+}
+
+async fn api_not_found(req: Request) -> ApiError {
+    ApiError::NotFound { field: "path".into(), message: format!("no endpoint {} {}", req.method(), req.uri().path()) }
+}
+
+/// Loopback host check and security headers.
+async fn guard(req: Request, next: Next) -> Response {
+    if let Some(host) = req.headers().get(header::HOST) {
+        let host = host.to_str().unwrap_or("");
+        let name = host.rsplit_once(':').map_or(host, |(h, _)| h);
+        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+            return (StatusCode::FORBIDDEN, format!("the workbench answers only on 127.0.0.1, not on host '{host}'"))
+                .into_response();
+        }
+    }
+    let mut res = next.run(req).await;
+    let h = res.headers_mut();
+    h.insert(
+        header::CONTENT_SECURITY_POLICY,
+        header::HeaderValue::from_static("default-src 'self'; img-src 'self' data: blob:; style-src 'self'"),
+    );
+    h.insert(header::X_CONTENT_TYPE_OPTIONS, header::HeaderValue::from_static("nosniff"));
+    res
+}
+
+/// Runs a computation on the blocking pool: CPU work does not stall the listener, and a panic
+/// (a bug, never expected) becomes a 500 answer instead of a dropped connection.
+pub(crate) async fn blocking<T: Send + 'static>(
+    f: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    tokio::task::spawn_blocking(f).await.map_err(|e| ApiError::Internal(format!("the computation failed: {e}")))?
+}
+
+/// `GET /api/info`: version, the views this build offers and the request limits.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Info {
+    /// `loomkin`.
+    pub name: &'static str,
+    /// Crate version.
+    pub version: &'static str,
+    /// The views this build serves (`servo`, `catalogue`, …).
+    pub views: Vec<&'static str>,
+    /// Request limits.
+    pub limits: Limits,
+}
+
+/// The request limits, as reported by `GET /api/info`.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Limits {
+    /// Largest request body, bytes.
+    pub max_body_bytes: usize,
+    /// Fewest samples per curve.
+    pub min_samples: usize,
+    /// Most samples per curve.
+    pub max_samples: usize,
+    /// Default samples per curve.
+    pub default_samples: usize,
+    /// Most speeds per request.
+    pub max_speeds: usize,
+}
+
+/// The answer of `GET /api/info`.
+pub fn info_value() -> Info {
+    Info {
+        name: "loomkin",
+        version: env!("CARGO_PKG_VERSION"),
+        views: crate::VIEWS.to_vec(),
+        limits: Limits {
+            max_body_bytes: MAX_BODY_BYTES,
+            min_samples: MIN_SAMPLES,
+            max_samples: MAX_SAMPLES,
+            default_samples: DEFAULT_SAMPLES,
+            max_speeds: MAX_SPEEDS,
+        },
+    }
+}
+
+async fn info() -> ApiJson<Info> {
+    ApiJson(info_value())
+}
+
+/// A listener bound to 127.0.0.1, not yet serving.
+#[derive(Debug)]
+pub struct Bound {
+    listener: TcpListener,
+    addr: SocketAddr,
+}
+
+/// Binds 127.0.0.1:`port` (0 picks a free port). Never binds another interface.
+pub async fn bind(port: u16) -> std::io::Result<Bound> {
+    let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).await?;
+    let addr = listener.local_addr()?;
+    Ok(Bound { listener, addr })
+}
+
+impl Bound {
+    /// The bound address (always 127.0.0.1).
+    pub fn addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// The page's URL, `http://127.0.0.1:PORT/`.
+    pub fn url(&self) -> String {
+        format!("http://{}/", self.addr)
+    }
+
+    /// Serves until `shutdown` completes.
+    pub async fn run_until(self, shutdown: impl Future<Output = ()> + Send + 'static) -> std::io::Result<()> {
+        axum::serve(self.listener, router()).with_graceful_shutdown(shutdown).await
+    }
+
+    /// Serves until Ctrl-C.
+    pub async fn run(self) -> std::io::Result<()> {
+        self.run_until(async {
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
+    }
+}
+
+/// Binds 127.0.0.1:`port`, calls `on_ready` with the page's URL, and serves until Ctrl-C on a
+/// runtime of its own (what `loomkin serve` runs; for callers without an async runtime).
+pub fn serve_blocking(port: u16, on_ready: impl FnOnce(&str)) -> std::io::Result<()> {
+    let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
+    rt.block_on(async {
+        let bound = bind(port).await?;
+        on_ready(&bound.url());
+        bound.run().await
+    })
+}
+
+/// Asks the desktop to open `url` in the default browser (`xdg-open`, `open` or `start`).
+///
+/// Returns an error text when no opener could be started; the server runs on regardless.
+pub fn open_browser(url: &str) -> Result<(), String> {
+    let mut cmd = if cfg!(target_os = "macos") {
+        std::process::Command::new("open")
+    } else if cfg!(windows) {
+        let mut c = std::process::Command::new("cmd");
+        c.args(["/C", "start", ""]);
+        c
+    } else {
+        std::process::Command::new("xdg-open")
+    };
+    cmd.arg(url)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .map(|_| ())
+        .map_err(|e| format!("could not start a browser ({e}); open {url} yourself"))
+}

@@ -1,0 +1,466 @@
+//! The servo law editor's endpoints: evaluate (one drag update), optimise, export, save, load.
+
+use crate::error::{check_count, check_range};
+use crate::limits::{DEFAULT_SAMPLES, MAX_CAM_ROWS, MAX_SAMPLES, MIN_SAMPLES};
+use crate::series::{LawSamples, finite};
+use crate::servo_design::{DesignFormat, ServoDesign, servo_error};
+use crate::{ApiError, ApiJson};
+use axum::Router;
+use axum::routing::{get, post};
+use loomkin_laws::Metrics;
+use loomkin_servo::{
+    CamTable, Interpolation, InterpolationError, Objective, OptimizeOptions, TorqueSummary, export_coeffs_text,
+    export_json, optimize, poly5_csv, poly5_segments, summary, torque_curve,
+};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+pub(crate) fn routes() -> Router {
+    Router::new()
+        .route("/servo/default", get(|| async { ApiJson(DesignResponse { design: ServoDesign::default() }) }))
+        .route("/servo/evaluate", post(post_evaluate))
+        .route("/servo/optimize", post(post_optimize))
+        .route("/servo/export", post(post_export))
+        .route("/servo/design/save", post(post_save))
+        .route("/servo/design/load", post(post_load))
+}
+
+/// `{"design": …}`: answer of `GET /api/servo/default` and `POST /api/servo/design/load`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct DesignResponse {
+    /// The design.
+    pub design: ServoDesign,
+}
+
+/// `POST /api/servo/evaluate` request: one redraw of the editor.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EvaluateRequest {
+    /// The design.
+    pub design: ServoDesign,
+    /// Samples per curve, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default [`DEFAULT_SAMPLES`]).
+    #[serde(default = "default_samples")]
+    pub samples: usize,
+}
+
+fn default_samples() -> usize {
+    DEFAULT_SAMPLES
+}
+
+/// The spline `f(x)` through the definition points (definition units), sampled on `[0, 1]`.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SplineSamples {
+    /// Positions (fraction of the motion angle).
+    pub x: Vec<f64>,
+    /// `f(x)`; the law's acceleration is `a = scale·f`.
+    pub f: Vec<f64>,
+}
+
+/// The normalised law of the design.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct LawReport {
+    /// Exact characteristic values.
+    pub metrics: Metrics,
+    /// Smoothness class in a dwell-rise-dwell cycle.
+    pub continuity_class: i32,
+    /// `s, v, a, j` of the unit rise.
+    pub samples: LawSamples,
+}
+
+/// The drive at one main-shaft speed: summary and curves over one turn.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SpeedReport {
+    /// Peak / RMS torque, peak power and more (see `loomkin_servo::TorqueSummary`).
+    #[serde(flatten)]
+    pub summary: TorqueSummary,
+    /// Main-shaft angle (deg), 0 … 360.
+    pub angle_deg: Vec<f64>,
+    /// Motor torque M (N·m).
+    pub torque_nm: Vec<f64>,
+    /// Motor power P (W).
+    pub power_w: Vec<f64>,
+    /// Rack position u (m).
+    pub u_m: Vec<f64>,
+}
+
+/// `POST /api/servo/evaluate` answer.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct EvaluateResponse {
+    /// The checked definition points (ends snapped to exactly 0 and 0.5).
+    pub points: Vec<[f64; 2]>,
+    /// Slope D of f at x = 0.5.
+    pub d: f64,
+    /// Scale from f to the unit law's acceleration, `a = scale·f`.
+    pub scale: f64,
+    /// The spline through the points.
+    pub spline: SplineSamples,
+    /// The normalised law.
+    pub law: LawReport,
+    /// The drive at each speed, in request order.
+    pub speeds: Vec<SpeedReport>,
+    /// Server time spent on the computation (ms).
+    pub compute_ms: f64,
+}
+
+/// One redraw of the editor: rebuild the law, sample it, the torque curves at every speed.
+pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
+    let t0 = Instant::now();
+    let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
+    let spline = req.design.spline()?;
+    let law = spline.law();
+    let samples = LawSamples::of(law, n);
+    let f = samples.a.iter().map(|a| finite(a / spline.scale())).collect();
+    let mut speeds = Vec::with_capacity(req.design.speeds_rpm.len());
+    for (i, &rpm) in req.design.speeds_rpm.iter().enumerate() {
+        let field = |e| match servo_error(e) {
+            ApiError::Invalid { field, message } if field == "speed_rpm" => {
+                ApiError::invalid(format!("speeds_rpm[{i}]"), message)
+            }
+            e => e,
+        };
+        let s = summary(law, &req.design.drive, rpm).map_err(field)?;
+        let curve = torque_curve(law, &req.design.drive, rpm, n).map_err(field)?;
+        speeds.push(SpeedReport {
+            summary: s,
+            angle_deg: curve.iter().map(|p| finite(p.angle_deg)).collect(),
+            torque_nm: curve.iter().map(|p| finite(p.torque_nm)).collect(),
+            power_w: curve.iter().map(|p| finite(p.power_w)).collect(),
+            u_m: curve.iter().map(|p| finite(p.u_m)).collect(),
+        });
+    }
+    Ok(EvaluateResponse {
+        points: spline.points().to_vec(),
+        d: spline.d(),
+        scale: spline.scale(),
+        spline: SplineSamples { x: samples.x.clone(), f },
+        law: LawReport { metrics: law.metrics(), continuity_class: law.continuity().class, samples },
+        speeds,
+        compute_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+/// `POST /api/servo/optimize` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OptimizeRequest {
+    /// The starting design (its speeds are the optimiser's speeds).
+    pub design: ServoDesign,
+    /// `peak` (default) or `rms` torque.
+    #[serde(default)]
+    pub objective: Objective,
+    /// Move the X of the free points too (default true).
+    #[serde(default = "yes")]
+    pub move_x: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Torques of one law at one speed, before or after optimisation.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct TorquePair {
+    /// Main-shaft speed (1/min).
+    pub speed_rpm: f64,
+    /// Peak torque (N·m).
+    pub peak_torque_nm: f64,
+    /// RMS torque over the turn (N·m).
+    pub rms_torque_nm: f64,
+    /// Peak power (W).
+    pub peak_power_w: f64,
+}
+
+impl From<&TorqueSummary> for TorquePair {
+    fn from(s: &TorqueSummary) -> Self {
+        Self {
+            speed_rpm: s.speed_rpm,
+            peak_torque_nm: s.peak_torque_nm,
+            rms_torque_nm: s.rms_torque_nm,
+            peak_power_w: s.peak_power_w,
+        }
+    }
+}
+
+/// `POST /api/servo/optimize` answer.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct OptimizeResponse {
+    /// `peak` or `rms`.
+    pub objective: Objective,
+    /// The starting law at each speed.
+    pub before: Vec<TorquePair>,
+    /// The optimised law at each speed.
+    pub after: Vec<TorquePair>,
+    /// The optimised definition points `[[X, Y], …]`.
+    pub def_points: Vec<[f64; 2]>,
+    /// Objective evaluations spent.
+    pub evaluations: usize,
+    /// Wall time (ms).
+    pub elapsed_ms: f64,
+}
+
+/// Moves the free points to lower the worst peak (or RMS) torque over the design's speeds.
+pub fn optimize_design(req: &OptimizeRequest) -> Result<OptimizeResponse, ApiError> {
+    let t0 = Instant::now();
+    let spline = req.design.spline()?;
+    let opts = OptimizeOptions {
+        objective: req.objective,
+        speeds_rpm: req.design.speeds_rpm.clone(),
+        move_x: req.move_x,
+        ..OptimizeOptions::default()
+    };
+    let r = optimize(&spline, &req.design.drive, &opts).map_err(servo_error)?;
+    Ok(OptimizeResponse {
+        objective: r.objective,
+        before: r.before.iter().map(TorquePair::from).collect(),
+        after: r.after.iter().map(TorquePair::from).collect(),
+        def_points: r.law.points().to_vec(),
+        evaluations: r.evaluations,
+        elapsed_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+/// Export formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ExportFormat {
+    /// The spline coefficients per interval as documented text.
+    Coeffs,
+    /// The coefficients as JSON (`intervals` with `x_start`, `x_end`, `accel`, `velocity`, `position`).
+    Json,
+    /// Cam table over one turn as CSV (master deg → slave m, m/deg, m/deg²).
+    Csv,
+    /// Cam table as PLCopen-style XYVA points.
+    Xyva,
+    /// The exact law as fifth-degree polynomial segments in master degrees (CSV).
+    Poly5,
+}
+
+/// `POST /api/servo/export` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ExportRequest {
+    /// The design.
+    pub design: ServoDesign,
+    /// What to export.
+    pub format: ExportFormat,
+    /// Rows of a cam table over 0 … 360°, 5 … [`MAX_CAM_ROWS`] (default 361: a 1° step).
+    #[serde(default = "default_rows")]
+    pub rows: usize,
+}
+
+fn default_rows() -> usize {
+    361
+}
+
+/// `POST /api/servo/export` answer: a file for the browser to save.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ExportResponse {
+    /// Suggested file name.
+    pub filename: String,
+    /// Media type.
+    pub media_type: &'static str,
+    /// The file's text.
+    pub text: String,
+    /// For cam tables: what re-interpolating the table as a controller would loses.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub interpolation: Vec<InterpolationError>,
+    /// A one-line summary for the status bar.
+    pub note: String,
+}
+
+/// Writes the export file.
+pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
+    let spline = req.design.spline()?;
+    let drive = &req.design.drive;
+    let (filename, media_type, text) = match req.format {
+        ExportFormat::Coeffs => ("servo-coefficients.txt", "text/plain", export_coeffs_text(&spline)),
+        ExportFormat::Json => ("servo-coefficients.json", "application/json", export_json(&spline)),
+        ExportFormat::Poly5 => {
+            let segs = poly5_segments(spline.law(), drive).map_err(servo_error)?;
+            ("servo-cam-poly5.csv", "text/csv", poly5_csv(&segs))
+        }
+        ExportFormat::Csv | ExportFormat::Xyva => {
+            let rows = check_count("rows", req.rows, 5, MAX_CAM_ROWS)?;
+            let step = check_range("rows", 360.0 / (rows - 1) as f64, 0.0, 90.0, "deg")?;
+            let table = CamTable::new(spline.law(), drive, step).map_err(servo_error)?;
+            let interpolation = Interpolation::ALL
+                .iter()
+                .map(|&m| table.interpolation_error(spline.law(), drive, m))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(servo_error)?;
+            let worst =
+                |m: Interpolation| interpolation.iter().find(|e| e.mode == m).map_or(0.0, |e| e.max_position_error_m);
+            let (name, media, text, mode) = if req.format == ExportFormat::Csv {
+                ("servo-cam.csv", "text/csv", table.to_csv(), Interpolation::Linear)
+            } else {
+                ("servo-cam-xyva.csv", "text/csv", table.to_xyva(), Interpolation::QuinticHermite)
+            };
+            let note = format!(
+                "{} rows, step {:.4}°; re-interpolated {}: worst position error {:.3e} m",
+                table.points.len(),
+                table.step_deg(),
+                mode.name(),
+                worst(mode)
+            );
+            return Ok(ExportResponse { filename: name.into(), media_type: media, text, interpolation, note });
+        }
+    };
+    Ok(ExportResponse { filename: filename.into(), media_type, text, interpolation: Vec::new(), note: String::new() })
+}
+
+/// `POST /api/servo/design/save` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SaveRequest {
+    /// The design.
+    pub design: ServoDesign,
+    /// `json` (default) or `toml`.
+    #[serde(default)]
+    pub format: DesignFormat,
+}
+
+/// Writes the design file (checked first, so a saved file always loads).
+pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
+    req.design.spline()?;
+    let (filename, media_type) = match req.format {
+        DesignFormat::Toml => ("servo-design.toml", "application/toml"),
+        _ => ("servo-design.json", "application/json"),
+    };
+    Ok(ExportResponse {
+        filename: filename.into(),
+        media_type,
+        text: req.design.to_text(req.format)?,
+        interpolation: Vec::new(),
+        note: String::new(),
+    })
+}
+
+/// `POST /api/servo/design/load` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LoadRequest {
+    /// The file's text.
+    pub text: String,
+    /// `json`, `toml` or `auto` (default).
+    #[serde(default = "auto")]
+    pub format: DesignFormat,
+}
+
+fn auto() -> DesignFormat {
+    DesignFormat::Auto
+}
+
+/// Reads a design file.
+pub fn load(req: &LoadRequest) -> Result<DesignResponse, ApiError> {
+    ServoDesign::from_text(&req.text, req.format).map(|design| DesignResponse { design })
+}
+
+async fn post_evaluate(ApiJson(req): ApiJson<EvaluateRequest>) -> Result<ApiJson<EvaluateResponse>, ApiError> {
+    crate::server::blocking(move || evaluate(&req)).await.map(ApiJson)
+}
+
+async fn post_optimize(ApiJson(req): ApiJson<OptimizeRequest>) -> Result<ApiJson<OptimizeResponse>, ApiError> {
+    crate::server::blocking(move || optimize_design(&req)).await.map(ApiJson)
+}
+
+async fn post_export(ApiJson(req): ApiJson<ExportRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {
+    crate::server::blocking(move || export(&req)).await.map(ApiJson)
+}
+
+async fn post_save(ApiJson(req): ApiJson<SaveRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {
+    crate::server::blocking(move || save(&req)).await.map(ApiJson)
+}
+
+async fn post_load(ApiJson(req): ApiJson<LoadRequest>) -> Result<ApiJson<DesignResponse>, ApiError> {
+    crate::server::blocking(move || load(&req)).await.map(ApiJson)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use loomkin_servo::{Drive, SplineLaw};
+
+    fn eval_default(samples: usize) -> EvaluateResponse {
+        evaluate(&EvaluateRequest { design: ServoDesign::default(), samples }).unwrap()
+    }
+
+    #[test]
+    fn evaluate_matches_the_servo_library() {
+        let r = eval_default(1001);
+        let spline = SplineLaw::default_law();
+        let drive = Drive::needle_rack_default();
+        assert_eq!(r.speeds.len(), 2);
+        for s in &r.speeds {
+            let lib = summary(spline.law(), &drive, s.summary.speed_rpm).unwrap();
+            assert_eq!(s.summary, lib);
+            // The sampled curve never exceeds the exact peak and comes close to it.
+            let pk = s.torque_nm.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+            assert!(pk <= lib.peak_torque_nm * (1.0 + 1e-9) && pk > 0.98 * lib.peak_torque_nm, "{pk} {lib:?}");
+            assert_eq!(s.angle_deg.len(), 1001);
+            assert_eq!(*s.angle_deg.last().unwrap(), 360.0);
+        }
+        // The spline passes through the definition points: f(X_j) = Y_j.
+        for &[x, y] in &r.points {
+            let i = (x * 1000.0).round() as usize;
+            if (r.spline.x[i] - x).abs() < 1e-12 {
+                assert!((r.spline.f[i] - y).abs() < 1e-9, "f({x}) = {} ≠ {y}", r.spline.f[i]);
+            }
+            assert!((spline.accel_image(x) - y).abs() < 1e-12);
+        }
+        // f·scale = a, checked at an independent point through the law.
+        let k = spline.law().eval(0.3);
+        assert!((spline.accel_image(0.3) * r.scale - k.a).abs() < 1e-9);
+    }
+
+    #[test]
+    fn moving_a_point_changes_the_torque() {
+        let base = eval_default(200);
+        let mut d = ServoDesign::default();
+        d.points[2][1] = 0.3;
+        let moved = evaluate(&EvaluateRequest { design: d, samples: 200 }).unwrap();
+        let (a, b) = (base.speeds[0].summary.peak_torque_nm, moved.speeds[0].summary.peak_torque_nm);
+        assert!((a - b).abs() > 1e-3 * a, "{a} {b}");
+    }
+
+    #[test]
+    fn bad_requests_name_the_field() {
+        let e = evaluate(&EvaluateRequest { design: ServoDesign::default(), samples: 10_000_000 }).unwrap_err();
+        assert_eq!(e.field(), "samples");
+        let d = ServoDesign { speeds_rpm: vec![600.0, -5.0], ..Default::default() };
+        assert_eq!(evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err().field(), "speeds_rpm[1]");
+        let mut d = ServoDesign::default();
+        d.drive.efficiency = 2.0;
+        assert_eq!(evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err().field(), "drive.efficiency");
+        let req = ExportRequest { design: ServoDesign::default(), format: ExportFormat::Csv, rows: 10_000_000 };
+        assert_eq!(export(&req).unwrap_err().field(), "rows");
+    }
+
+    #[test]
+    fn exports_read_back() {
+        let design = ServoDesign::default();
+        let spline = design.spline().unwrap();
+        let r = export(&ExportRequest { design: design.clone(), format: ExportFormat::Json, rows: 0 }).unwrap();
+        let back = loomkin_servo::read_json(&r.text).unwrap();
+        assert_eq!(back.def_points, spline.points());
+        let r = export(&ExportRequest { design: design.clone(), format: ExportFormat::Csv, rows: 73 }).unwrap();
+        assert_eq!(r.text.lines().count(), 74);
+        assert_eq!(r.interpolation.len(), 3);
+        // Position at 0° and 360° (start dwell) is 0, at the end of the rise the stroke.
+        let cells: Vec<f64> = r.text.lines().nth(1).unwrap().split(',').map(|c| c.parse().unwrap()).collect();
+        assert_eq!(cells[..2], [0.0, 0.0]);
+        let r = export(&ExportRequest { design, format: ExportFormat::Coeffs, rows: 0 }).unwrap();
+        // One interval per pair of points on each half of the rise.
+        assert_eq!(loomkin_servo::read_coeffs_text(&r.text).unwrap().len(), 2 * (spline.points().len() - 1));
+    }
+
+    #[test]
+    fn save_then_load_gives_the_same_design() {
+        let mut design = ServoDesign::default();
+        design.points[1] = [0.07, 0.41];
+        for format in [DesignFormat::Json, DesignFormat::Toml] {
+            let saved = save(&SaveRequest { design: design.clone(), format }).unwrap();
+            let loaded = load(&LoadRequest { text: saved.text, format: DesignFormat::Auto }).unwrap();
+            assert_eq!(loaded.design, design);
+        }
+    }
+}
