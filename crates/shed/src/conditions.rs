@@ -1,0 +1,92 @@
+//! The conditions a law is judged under: the dwell threshold, the frame's stroke and the
+//! main-shaft speed.
+
+use crate::{Result, ShedError};
+use serde::Serialize;
+
+/// Allowed range of the dwell threshold `T` (the paper's 0.75 … 0.99 of the stroke).
+pub const THRESHOLD_RANGE: (f64, f64) = (0.75, 0.99);
+
+/// The threshold that reproduces the paper's Table 3 (see [`crate::table3`]): the frame counts as
+/// still while it is within 5 % of the stroke from its extreme position.
+pub const TABLE3_THRESHOLD: f64 = 0.95;
+
+/// Conditions of evaluation.
+///
+/// * `threshold` `T` — the frame counts as still (conditional dwell) while its displacement is at
+///   least `T` of the stroke from the other extreme, `0.75 ≤ T ≤ 0.99`;
+/// * `stroke_m` `h` — the frame's stroke, m, `0 < h ≤ 1`;
+/// * `speed_rpm` `n` — main-shaft speed, rpm, `0 < n ≤ 5000` (one pick per turn).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Conditions {
+    threshold: f64,
+    stroke_m: f64,
+    speed_rpm: f64,
+}
+
+impl Default for Conditions {
+    /// `T = 0.95`, `h = 0.1 m`, `n = 300 rpm`.
+    fn default() -> Self {
+        Self { threshold: TABLE3_THRESHOLD, stroke_m: 0.1, speed_rpm: 300.0 }
+    }
+}
+
+impl Conditions {
+    /// Validating constructor.
+    pub fn new(threshold: f64, stroke_m: f64, speed_rpm: f64) -> Result<Self> {
+        check_threshold(threshold)?;
+        ShedError::check_open_closed("stroke_m", stroke_m, 0.0, 1.0, "m")?;
+        ShedError::check_open_closed("speed_rpm", speed_rpm, 0.0, 5000.0, "rpm")?;
+        Ok(Self { threshold, stroke_m, speed_rpm })
+    }
+
+    /// The dwell threshold `T`.
+    pub fn threshold(&self) -> f64 {
+        self.threshold
+    }
+
+    /// The frame's stroke `h`, m.
+    pub fn stroke_m(&self) -> f64 {
+        self.stroke_m
+    }
+
+    /// Main-shaft speed `n`, rpm.
+    pub fn speed_rpm(&self) -> f64 {
+        self.speed_rpm
+    }
+
+    /// Main-shaft angular speed `ω = 2πn/60`, rad/s.
+    pub fn omega_rad_s(&self) -> f64 {
+        self.speed_rpm * std::f64::consts::TAU / 60.0
+    }
+
+    /// The factor `h·(ω/Φ)^order` that turns the dimensionless derivative of order `order` of a
+    /// normalised law (per unit stroke, per unit motion angle) into SI units (m, m/s, m/s², m/s³)
+    /// for a motion angle `Φ = motion_deg·π/180` rad.
+    pub fn scale(&self, motion_deg: f64, order: i32) -> f64 {
+        let rate = self.omega_rad_s() / motion_deg.to_radians();
+        self.stroke_m * rate.powi(order)
+    }
+}
+
+/// Checks a dwell threshold: `0.75 ≤ T ≤ 0.99`.
+pub fn check_threshold(threshold: f64) -> Result<f64> {
+    ShedError::check_range("threshold", threshold, THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn validates_and_scales() {
+        assert!(Conditions::new(0.7, 0.1, 300.0).is_err());
+        assert!(Conditions::new(0.995, 0.1, 300.0).is_err());
+        assert!(Conditions::new(0.9, 0.0, 300.0).is_err());
+        assert!(Conditions::new(0.9, 0.1, f64::NAN).is_err());
+        let c = Conditions::new(0.9, 0.1, 300.0).unwrap();
+        // 300 rpm → ω = 10π rad/s; over Φ = π (180°): ω/Φ = 10 s⁻¹; a-factor = 0.1·100 = 10 m/s².
+        assert!((c.scale(180.0, 2) - 10.0).abs() < 1e-12);
+        assert!((c.scale(180.0, 1) - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,159 @@
+//! The criteria a designer weighs: dwells and the weft-insertion window (degrees), characteristic
+//! values of the law (dimensionless) and their physical values for a stroke and a speed.
+
+use crate::dwell::{lead, tail, up_crossings};
+use crate::{Conditions, Result, ShedError, ShedLaw, check_threshold};
+use loomkin_laws::Law;
+use serde::Serialize;
+
+/// Dimensionless criteria of a normalised rise at one threshold `T` — everything that does not
+/// depend on the motion angle, the stroke or the speed.
+///
+/// `x` is the fraction of the motion angle. The rise enters the top position at `x_arrive`
+/// (the last upward crossing of `s = T`) and, the next pick, the same law run downwards
+/// (`1 − s(x)`) leaves it at `x_depart` (the first upward crossing of `s = 1 − T`). For a symmetric
+/// law `x_depart = 1 − x_arrive`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Dimensionless {
+    /// The threshold `T` used.
+    pub threshold: f64,
+    /// Cv = max ds/dx.
+    pub cv: f64,
+    /// Ca = max |d²s/dx²|.
+    pub ca: f64,
+    /// Cj = max |d³s/dx³| inside segments.
+    pub cj: f64,
+    /// Cm = max (v·a).
+    pub cm: f64,
+    /// RMS acceleration over the motion, √(∫₀¹ a² dx).
+    pub ca_rms: f64,
+    /// End of the leading stretch at rest (`s ≡ 0`), fraction of the motion.
+    pub lead: f64,
+    /// Start of the trailing stretch at rest (`s ≡ 1`), fraction of the motion.
+    pub tail: f64,
+    /// First `x` with `s(x) > 1 − T`.
+    pub x_depart: f64,
+    /// Last `x` with `s(x) < T`.
+    pub x_arrive: f64,
+}
+
+impl Dimensionless {
+    /// The criteria of a law of the core, from its closed form: [`Law::metrics`] for the peaks and
+    /// root finding on `s(x) = T` and `s(x) = 1 − T` for the dwell.
+    pub fn of_law(law: &Law, threshold: f64) -> Result<Self> {
+        check_threshold(threshold)?;
+        let m = law.metrics();
+        let arrive = up_crossings(law, threshold).last().copied();
+        let depart = up_crossings(law, 1.0 - threshold).first().copied();
+        let (Some(x_arrive), Some(x_depart)) = (arrive, depart) else {
+            return Err(ShedError::NotARise {
+                field: "law".into(),
+                reason: format!("the displacement never crosses the threshold {threshold}"),
+            });
+        };
+        Ok(Self {
+            threshold,
+            cv: m.cv,
+            ca: m.ca,
+            cj: m.cj,
+            cm: m.cm,
+            ca_rms: m.ca_rms,
+            lead: lead(law),
+            tail: tail(law),
+            x_depart,
+            x_arrive,
+        })
+    }
+
+    /// Fraction of the motion that lies inside the weft-insertion window (the frame within
+    /// `1 − T` of its extreme): `c = x_depart + (1 − x_arrive)`.
+    pub fn window_fraction(&self) -> f64 {
+        self.x_depart + (1.0 - self.x_arrive)
+    }
+
+    /// Window `φ_пп* = 360° − Φ·(1 − c)` for a motion angle `Φ` in degrees.
+    pub fn window_deg(&self, motion_deg: f64) -> f64 {
+        360.0 - motion_deg * (1.0 - self.window_fraction())
+    }
+}
+
+/// All criteria of a heald-frame law at given [`Conditions`].
+///
+/// Angles are degrees of the main shaft over one pick (360°):
+/// `dwell_deg = φ_вр = 360° − Φ + Φ·(lead + 1 − tail)` (the nominal dwell plus any stretch of the
+/// motion at rest), `conditional_dwell_deg = φ_ув = Φ·[(x_depart − lead) + (tail − x_arrive)]`
+/// (both sides of the dwell, already doubled for a symmetric law), `window_deg = φ_пп* = φ_вр + φ_ув`.
+/// Physical peaks for stroke `h` (m), `ω = 2πn/60` (rad/s) and `Φ` (rad):
+/// `v = h·Cv·ω/Φ`, `a = h·Ca·(ω/Φ)²`, `j = h·Cj·(ω/Φ)³`, `(v·a)max = h²·Cm·(ω/Φ)³`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Criteria {
+    /// Motion angle `φ_дв`, deg.
+    pub motion_deg: f64,
+    /// Absolute dwell `φ_вр`, deg.
+    pub dwell_deg: f64,
+    /// Conditional dwell `φ_ув` at the threshold, deg.
+    pub conditional_dwell_deg: f64,
+    /// Weft-insertion window `φ_пп* = φ_вр + φ_ув`, deg.
+    pub window_deg: f64,
+    /// The threshold `T`.
+    pub threshold: f64,
+    /// Cv, dimensionless peak velocity.
+    pub cv: f64,
+    /// Ca, dimensionless peak acceleration (per unit stroke and unit motion angle).
+    pub ca: f64,
+    /// Cj, dimensionless peak jerk.
+    pub cj: f64,
+    /// Cm, dimensionless peak of v·a.
+    pub cm: f64,
+    /// Dimensionless RMS acceleration over the motion.
+    pub ca_rms: f64,
+    /// Peak acceleration per unit stroke on the scale of a full turn, `Ca·(360°/φ_дв)²`
+    /// (comparable between motion angles).
+    pub ca_turn: f64,
+    /// Peak frame velocity, m/s.
+    pub peak_velocity_m_s: f64,
+    /// Peak frame acceleration, m/s².
+    pub peak_accel_m_s2: f64,
+    /// Peak frame jerk, m/s³.
+    pub peak_jerk_m_s3: f64,
+    /// Peak of v·a (drive power per unit moving mass), W/kg = m²/s³.
+    pub peak_power_w_kg: f64,
+    /// RMS frame acceleration over the motion, m/s².
+    pub rms_accel_m_s2: f64,
+}
+
+impl Criteria {
+    /// Combines dimensionless criteria with a motion angle and the physical conditions. The
+    /// threshold of `d` is used (the one in `c` is ignored).
+    pub fn new(motion_deg: f64, d: &Dimensionless, c: &Conditions) -> Self {
+        let phi = motion_deg;
+        let dwell = 360.0 - phi + phi * (d.lead + 1.0 - d.tail);
+        let cond = phi * ((d.x_depart - d.lead) + (d.tail - d.x_arrive));
+        let turn = 360.0 / phi;
+        Self {
+            motion_deg: phi,
+            dwell_deg: dwell,
+            conditional_dwell_deg: cond,
+            window_deg: dwell + cond,
+            threshold: d.threshold,
+            cv: d.cv,
+            ca: d.ca,
+            cj: d.cj,
+            cm: d.cm,
+            ca_rms: d.ca_rms,
+            ca_turn: d.ca * turn * turn,
+            peak_velocity_m_s: d.cv * c.scale(phi, 1),
+            peak_accel_m_s2: d.ca * c.scale(phi, 2),
+            peak_jerk_m_s3: d.cj * c.scale(phi, 3),
+            peak_power_w_kg: d.cm * c.scale(phi, 1) * c.scale(phi, 2),
+            rms_accel_m_s2: d.ca_rms * c.scale(phi, 2),
+        }
+    }
+}
+
+/// Every criterion of a law at the given conditions, through the law core (the generic path).
+pub fn evaluate(law: &ShedLaw, conditions: &Conditions) -> Result<Criteria> {
+    let built = law.build()?;
+    let d = Dimensionless::of_law(&built, conditions.threshold())?;
+    Ok(Criteria::new(law.motion_deg(), &d, conditions))
+}

@@ -1,0 +1,108 @@
+//! Where a closed-form law crosses a level, found by root finding on the closed form: each segment
+//! is cut at the roots of its velocity (so `s` is monotone between the cuts), and a crossing inside
+//! a monotone piece is refined by safeguarded Newton iteration (`s' = v` is known exactly).
+
+use loomkin_laws::{Law, Segment};
+use std::f64::consts::PI;
+
+/// Root of `g` in `[lo, hi]` where `g(lo)` and `g(hi)` have opposite signs; `dg` is its
+/// derivative. Newton steps that leave the shrinking bracket are replaced by bisection.
+pub(crate) fn refine(mut lo: f64, mut hi: f64, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64) -> f64 {
+    let neg_lo = g(lo) < 0.0;
+    let mut t = 0.5 * (lo + hi);
+    for _ in 0..100 {
+        let gt = g(t);
+        if gt == 0.0 {
+            return t;
+        }
+        if (gt < 0.0) == neg_lo {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let d = dg(t);
+        let newton = t - gt / d;
+        let next = if d != 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        if (next - t).abs() <= 2.0 * f64::EPSILON * (1.0 + t.abs()) || hi - lo <= 4.0 * f64::EPSILON * (1.0 + hi.abs())
+        {
+            return next;
+        }
+        t = next;
+    }
+    t
+}
+
+/// Cut points of a segment (local coordinate) between which `s` is monotone: the ends and the
+/// roots of `v`, bracketed on a grid sized to the polynomial degree and the sine frequency.
+fn monotone_cuts(seg: &Segment) -> Vec<f64> {
+    let w = seg.width();
+    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * w / PI).ceil());
+    let n = 2 * (seg.degree() + 1) + 3 * osc as usize;
+    let v = |t: f64| seg.deriv_local(1, t);
+    let mut cuts = vec![0.0];
+    let h = w / n as f64;
+    let mut t0 = 0.0;
+    let mut v0 = v(0.0);
+    for i in 1..=n {
+        let t1 = if i == n { w } else { i as f64 * h };
+        let v1 = v(t1);
+        if v0 != 0.0 && v1 != 0.0 && (v0 < 0.0) != (v1 < 0.0) {
+            cuts.push(refine(t0, t1, v, |t| seg.deriv_local(2, t)));
+        }
+        (t0, v0) = (t1, v1);
+    }
+    cuts.push(w);
+    cuts
+}
+
+/// Every upward crossing of `s = level` (global `x`, ascending): points where `s` passes from below
+/// the level to at or above it.
+pub(crate) fn up_crossings(law: &Law, level: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    for seg in law.segments() {
+        let cuts = monotone_cuts(seg);
+        let g = |t: f64| seg.deriv_local(0, t) - level;
+        for c in cuts.windows(2) {
+            let (a, b) = (c[0], c[1]);
+            let (ga, gb) = (g(a), g(b));
+            if ga < 0.0 && gb >= 0.0 {
+                let t = if gb == 0.0 { b } else { refine(a, b, g, |t| seg.deriv_local(1, t)) };
+                out.push(seg.x0() + t);
+            }
+        }
+    }
+    out
+}
+
+/// End of the leading stretch over which the law stands exactly still at `s = 0` (segments of zero
+/// acceleration entered at rest), as a fraction of the motion.
+pub(crate) fn lead(law: &Law) -> f64 {
+    let mut x = 0.0;
+    for seg in law.segments() {
+        let p = seg.displacement_poly();
+        if seg.sine().is_none() && p.iter().all(|&c| c == 0.0) {
+            x = seg.x1();
+        } else {
+            break;
+        }
+    }
+    x
+}
+
+/// Start of the trailing stretch over which the law stands still at `s = 1` (within rounding).
+pub(crate) fn tail(law: &Law) -> f64 {
+    let mut x = 1.0;
+    for seg in law.segments().iter().rev() {
+        let p = seg.displacement_poly();
+        let still = seg.sine().is_none()
+            && p[2..].iter().all(|&c| c == 0.0)
+            && p[1].abs() * seg.width() <= 1e-12
+            && (p[0] - 1.0).abs() <= 1e-9;
+        if still {
+            x = seg.x0();
+        } else {
+            break;
+        }
+    }
+    x
+}

@@ -1,0 +1,125 @@
+//! The loom's requirement: the window the weft carrier needs, and the threshold that the shed's
+//! height reserve allows.
+
+use crate::{Result, ShedError, THRESHOLD_RANGE};
+use serde::Serialize;
+
+/// Loom data that fix the weft-insertion window a law must give.
+///
+/// **Window.** The carrier (projectile, rapier head, shuttle) of length `l` crosses the warp of
+/// the cloth width `L_т` at the mean speed `v_п`; the shed must be open from the moment its nose
+/// enters the warp until its tail leaves it, a path of `L_т + l` and a time `(L_т + l)/v_п`. The
+/// main shaft turns at `6n` degrees per second (`n` in rpm), so the flight takes
+/// `φ_flight = 6n·(L_т + l)/v_п` degrees. The crossing point (заступ) — and the window with it —
+/// may be set anywhere in a range `D_заст` of main-shaft angle while the carrier's timing stays
+/// fixed, so the window must cover the flight for every setting:
+///
+/// `φ_req = 6·n·(L_т + l)/v_п + D_заст`   (degrees).
+///
+/// The reed width `L_з` (the loom's working width) bounds the cloth, `L_т ≤ L_з`. Where the cloth
+/// sits in the reed does not change the time spent in the warp at a mean speed; a loom set up for
+/// any cloth up to its full width must meet `L_т = L_з`, which is the default.
+///
+/// **Threshold.** The shed is `ΔA_S` (a fraction, the paper's 5…7 %) higher than necessary. If the
+/// opening at the carrier is taken proportional to the frame's displacement from its other
+/// extreme — the paper's own measure of the conditional dwell — the frame may fall back to
+/// `T = 1/(1 + ΔA_S)` of its stroke before the carrier is touched. With `ΔA_S = 5 %` that is
+/// `T = 0.952`, the threshold that reproduces Table 3. If instead both warp sheets move
+/// symmetrically and only the half reserve of each sheet counts, `T = 1 − ΔA_S/(2(1 + ΔA_S))`
+/// ([`LoomRequirement::threshold_both_sheets`]), a stricter value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LoomRequirement {
+    /// Mean carrier speed `v_п`, m/s (0 < v ≤ 200).
+    pub carrier_speed_m_s: f64,
+    /// Reed (working) width `L_з`, m (0 < L ≤ 20).
+    pub reed_width_m: f64,
+    /// Cloth width in the reed `L_т`, m (0 < L_т ≤ L_з).
+    pub cloth_width_m: f64,
+    /// Carrier length `l`, m (0 ≤ l ≤ 2).
+    pub carrier_length_m: f64,
+    /// Range of the crossing-point setting `D_заст`, deg (0 ≤ D < 360).
+    pub crossing_range_deg: f64,
+    /// Shed-height excess `ΔA_S`, fraction (e.g. 0.05 for 5 %).
+    pub shed_excess: f64,
+    /// Main-shaft speed `n`, rpm (0 < n ≤ 5000).
+    pub speed_rpm: f64,
+}
+
+impl LoomRequirement {
+    /// Checks every field's range.
+    pub fn validate(&self) -> Result<()> {
+        ShedError::check_open_closed("carrier_speed_m_s", self.carrier_speed_m_s, 0.0, 200.0, "m/s")?;
+        ShedError::check_open_closed("reed_width_m", self.reed_width_m, 0.0, 20.0, "m")?;
+        ShedError::check_open_closed("cloth_width_m", self.cloth_width_m, 0.0, self.reed_width_m, "m")?;
+        ShedError::check_range("carrier_length_m", self.carrier_length_m, 0.0, 2.0, "m")?;
+        ShedError::check_range("crossing_range_deg", self.crossing_range_deg, 0.0, 359.0, "deg")?;
+        ShedError::check_open_closed("speed_rpm", self.speed_rpm, 0.0, 5000.0, "rpm")?;
+        // T = 1/(1 + e) must lie in the threshold range.
+        let (lo, hi) = (1.0 / THRESHOLD_RANGE.1 - 1.0, 1.0 / THRESHOLD_RANGE.0 - 1.0);
+        ShedError::check_range("shed_excess", self.shed_excess, lo, hi, "(fraction)")?;
+        Ok(())
+    }
+
+    /// Flight angle `φ_flight = 6n·(L_т + l)/v_п`, deg.
+    pub fn flight_deg(&self) -> f64 {
+        6.0 * self.speed_rpm * (self.cloth_width_m + self.carrier_length_m) / self.carrier_speed_m_s
+    }
+
+    /// Required window `φ_req = φ_flight + D_заст`, deg (validated; must be below 360°).
+    pub fn required_window_deg(&self) -> Result<f64> {
+        self.validate()?;
+        let w = self.flight_deg() + self.crossing_range_deg;
+        ShedError::check_open_closed("required_window_deg", w, 0.0, 359.0, "deg (the carrier cannot cross in time)")
+    }
+
+    /// Threshold `T = 1/(1 + ΔA_S)` (opening proportional to the frame's displacement).
+    pub fn threshold(&self) -> f64 {
+        1.0 / (1.0 + self.shed_excess)
+    }
+
+    /// Threshold `T = 1 − ΔA_S/(2(1 + ΔA_S))` (two sheets moving symmetrically).
+    pub fn threshold_both_sheets(&self) -> f64 {
+        1.0 - self.shed_excess / (2.0 * (1.0 + self.shed_excess))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stb() -> LoomRequirement {
+        LoomRequirement {
+            carrier_speed_m_s: 24.0,
+            reed_width_m: 1.8,
+            cloth_width_m: 1.8,
+            carrier_length_m: 0.09,
+            crossing_range_deg: 15.0,
+            shed_excess: 0.05,
+            speed_rpm: 250.0,
+        }
+    }
+
+    #[test]
+    fn window_by_an_independent_route() {
+        let r = stb();
+        // Time in the warp, then degrees turned by the shaft in that time.
+        let t_s = (1.8 + 0.09) / 24.0;
+        let deg_per_s = 250.0 / 60.0 * 360.0;
+        assert!((r.required_window_deg().unwrap() - (t_s * deg_per_s + 15.0)).abs() < 1e-12);
+        assert!((r.threshold() - 0.952_380_952_380_952_4).abs() < 1e-15);
+        assert!(r.threshold_both_sheets() > r.threshold());
+    }
+
+    #[test]
+    fn rejects_impossible_looms() {
+        let mut r = stb();
+        r.cloth_width_m = 2.0;
+        assert!(r.required_window_deg().is_err());
+        let mut r = stb();
+        r.carrier_speed_m_s = 5.0; // 6·250·1.89/5 = 567° > 360°
+        assert!(r.required_window_deg().is_err());
+        let mut r = stb();
+        r.shed_excess = 0.5;
+        assert!(r.validate().is_err());
+    }
+}

@@ -1,0 +1,184 @@
+//! Experiment tables of shedding laws: the paper's designs, full grids over `k_T1 … k_Tn`, the
+//! Pareto front (largest window, least peak acceleration) and the constrained optimum.
+
+use crate::{Conditions, Criteria, Dimensionless, Result, ShedError, Template, check_motion_deg};
+use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
+use serde::Serialize;
+
+/// The paper's Table 1: eight three-part laws, `k1` (rise) and `k2` (plateau) as printed, and
+/// `k3 = 1 − k1 − k2` (which comes out equal to `k1`: a modified-trapezoid family running from
+/// nearly constant acceleration, `k1 = 0.05`, to the cycloidal law, `k1 = 0.5`).
+pub fn table1_design() -> Design {
+    const K1: [f64; 8] = [0.05, 0.10, 0.15, 0.20, 0.35, 0.40, 0.45, 0.50];
+    const K2: [f64; 8] = [0.90, 0.80, 0.70, 0.60, 0.30, 0.20, 0.10, 0.00];
+    let rows: Vec<Vec<f64>> = K1.iter().zip(K2).map(|(&a, b)| vec![a, b, 1.0 - a - b]).collect();
+    Design::from_rows(["k1", "k2", "k3"], &rows).expect("three values per row")
+}
+
+/// The family of the paper's Fig. 1 (for [`Template::lead_trapezoid`]): the lead `k1` from 0 to
+/// 0.5 with a step, `k2 = k4 = (1 − k1)/4`, `k3 = (1 − k1)/2`.
+pub fn fig1_design(step: f64) -> Result<Design> {
+    let axis = loomkin_study::stepped_axis("k1", 0.0, 0.5, step)?;
+    let rows: Vec<Vec<f64>> =
+        axis.iter().map(|&k1| vec![k1, (1.0 - k1) / 4.0, (1.0 - k1) / 2.0, (1.0 - k1) / 4.0]).collect();
+    Ok(Design::from_rows(["k1", "k2", "k3", "k4"], &rows)?)
+}
+
+/// The full grid over `k_T1 … k_Tn` (`n = parts`): every `k_1 … k_{n−1}` on `min, min + step, …`,
+/// `k_n = 1 − Σ`, all within `[min, max]` (the paper's practical range is 0.005 … 0.95).
+pub fn grid_design(parts: usize, min: f64, max: f64, step: f64) -> Result<Design> {
+    Ok(Design::simplex(parts, min, max, step)?)
+}
+
+/// Dimensionless criteria of every row of a design (`None` where the row makes no law, e.g. only
+/// a zero-acceleration part), evaluated in parallel.
+pub fn evaluate_rows(
+    template: &Template,
+    design: &Design,
+    threshold: f64,
+    progress: Progress,
+) -> Result<Vec<Option<Dimensionless>>> {
+    crate::check_threshold(threshold)?;
+    if design.dim() != template.parts() {
+        return Err(ShedError::Parse {
+            field: "design".into(),
+            reason: format!("the family has {} parts, the design {} columns", template.parts(), design.dim()),
+        });
+    }
+    Ok(evaluate_design(design, progress, "laws", |k| template.evaluate(k, threshold).ok()))
+}
+
+/// One evaluated law of a table: its row in the design, its lengths and its criteria.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Candidate {
+    /// Row of the design.
+    pub row: usize,
+    /// The relative lengths `k_T1 … k_Tn`.
+    pub lengths: Vec<f64>,
+    /// The criteria (with the motion angle).
+    pub criteria: Criteria,
+}
+
+fn candidate(design: &Design, row: usize, motion_deg: f64, d: &Dimensionless, c: &Conditions) -> Candidate {
+    Candidate { row, lengths: design.row(row).to_vec(), criteria: Criteria::new(motion_deg, d, c) }
+}
+
+fn check_motions(motions: &[f64]) -> Result<()> {
+    if motions.is_empty() {
+        return Err(ShedError::Parse { field: "motion_deg".into(), reason: "no motion angle given".into() });
+    }
+    motions.iter().try_for_each(|&m| check_motion_deg(m).map(|_| ()))
+}
+
+/// Every row at every motion angle (rows that make no law are left out).
+pub fn table(
+    design: &Design,
+    rows: &[Option<Dimensionless>],
+    motions: &[f64],
+    conditions: &Conditions,
+) -> Result<Vec<Candidate>> {
+    check_motions(motions)?;
+    let mut out = Vec::new();
+    for (i, d) in rows.iter().enumerate() {
+        if let Some(d) = d {
+            out.extend(motions.iter().map(|&m| candidate(design, i, m, d, conditions)));
+        }
+    }
+    Ok(out)
+}
+
+/// The Pareto front of the rows at the given motion angles: no other law has both a window at
+/// least as large and a peak acceleration at most as large (one strictly). Sorted by window,
+/// largest first. Computed per motion angle, then over the union of those fronts.
+pub fn pareto(
+    design: &Design,
+    rows: &[Option<Dimensionless>],
+    motions: &[f64],
+    conditions: &Conditions,
+) -> Result<Vec<Candidate>> {
+    check_motions(motions)?;
+    let senses = [Sense::Maximize, Sense::Minimize];
+    let ok: Vec<usize> = (0..rows.len()).filter(|&i| rows[i].is_some()).collect();
+    let mut pool: Vec<(usize, f64)> = Vec::new();
+    for &m in motions {
+        let a = conditions.scale(m, 2);
+        let pts: Vec<[f64; 2]> = ok
+            .iter()
+            .map(|&i| {
+                let d = rows[i].as_ref().expect("filtered");
+                [d.window_deg(m), d.ca * a]
+            })
+            .collect();
+        pool.extend(pareto_front(&pts, &senses)?.into_iter().map(|j| (ok[j], m)));
+    }
+    let cands: Vec<Candidate> =
+        pool.iter().map(|&(i, m)| candidate(design, i, m, rows[i].as_ref().expect("filtered"), conditions)).collect();
+    let pts: Vec<[f64; 2]> = cands.iter().map(|c| [c.criteria.window_deg, c.criteria.peak_accel_m_s2]).collect();
+    let mut front: Vec<Candidate> = pareto_front(&pts, &senses)?.into_iter().map(|j| cands[j].clone()).collect();
+    front.sort_by(|a, b| b.criteria.window_deg.total_cmp(&a.criteria.window_deg));
+    Ok(front)
+}
+
+/// Whether `a = [window_deg, peak_accel]` dominates `b`: a window at least as large and a peak
+/// acceleration at most as large, one of them strictly.
+pub fn dominates_in(a: &[f64; 2], b: &[f64; 2]) -> bool {
+    loomkin_study::dominates(a, b, &[Sense::Maximize, Sense::Minimize])
+}
+
+/// Checks a required window: `0 < W < 360°`.
+pub fn check_window_deg(window_deg: f64) -> Result<f64> {
+    ShedError::check_range("window_deg", window_deg, 1e-9, 359.999, "deg")
+}
+
+/// The law of least peak acceleration whose window is at least `window_deg`.
+///
+/// With `motions = None` the motion angle is free: for a shape with window fraction `c`
+/// (see [`Dimensionless::window_fraction`]) the window `360° − Φ(1 − c)` falls and the peak
+/// acceleration `∝ Ca/Φ²` falls as `Φ` grows, so the best angle is the largest allowed,
+/// `Φ* = min(360°, (360° − W)/(1 − c))`, and the search runs over the shapes only. With a list of
+/// motion angles, every (shape, angle) pair is tried. `None` when no law qualifies.
+pub fn best(
+    design: &Design,
+    rows: &[Option<Dimensionless>],
+    motions: Option<&[f64]>,
+    window_deg: f64,
+    conditions: &Conditions,
+) -> Result<Option<Candidate>> {
+    check_window_deg(window_deg)?;
+    let h_w2 = conditions.scale(180.0, 2) * std::f64::consts::PI.powi(2);
+    // Peak acceleration for a motion angle: h·Ca·ω²/Φ².
+    let accel = |d: &Dimensionless, m: f64| d.ca * h_w2 / m.to_radians().powi(2);
+    match motions {
+        None => {
+            let phi: Vec<Option<f64>> = rows
+                .iter()
+                .map(|d| {
+                    d.as_ref().map(|d| {
+                        let open = 1.0 - d.window_fraction();
+                        if open <= 0.0 { 360.0 } else { ((360.0 - window_deg) / open).min(360.0) }
+                    })
+                })
+                .collect();
+            let idx: Vec<usize> = (0..rows.len()).collect();
+            let best = argmin_subject_to(
+                &idx,
+                |&i| accel(rows[i].as_ref().expect("feasible"), phi[i].expect("feasible")),
+                |&i| matches!(phi[i], Some(p) if p > 0.0),
+            );
+            Ok(best.map(|i| {
+                candidate(design, i, phi[i].expect("feasible"), rows[i].as_ref().expect("feasible"), conditions)
+            }))
+        }
+        Some(ms) => {
+            check_motions(ms)?;
+            let pairs: Vec<(usize, f64)> =
+                (0..rows.len()).filter(|&i| rows[i].is_some()).flat_map(|i| ms.iter().map(move |&m| (i, m))).collect();
+            let d = |i: usize| rows[i].as_ref().expect("filtered");
+            let best = argmin_subject_to(&pairs, |&(i, m)| accel(d(i), m), |&(i, m)| d(i).window_deg(m) >= window_deg);
+            Ok(best.map(|j| {
+                let (i, m) = pairs[j];
+                candidate(design, i, m, d(i), conditions)
+            }))
+        }
+    }
+}

@@ -1,0 +1,104 @@
+//! Studies: the fast path against the generic one (property test), the Pareto front of a grid
+//! against brute force, the constrained optimum against a search over motion angles.
+
+use loomkin_shed::{
+    Conditions, Progress, Template, best, dominates_in, evaluate_rows, fig1_design, grid_design, pareto, table,
+    table1_design,
+};
+use proptest::prelude::*;
+
+fn lengths(parts: usize) -> impl Strategy<Value = Vec<f64>> {
+    prop::collection::vec(0.0f64..1.0, parts).prop_filter_map("positive sum", |v| {
+        let s: f64 = v.iter().sum();
+        (s > 0.05).then(|| v.iter().map(|x| x / s).collect())
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    #[test]
+    fn fast_path_equals_generic_path(k in lengths(4), threshold in 0.75f64..0.99, fam in 0usize..3) {
+        let t = match fam {
+            0 => Template::lead_trapezoid(),
+            1 => Template::parse("ramps", "linear:0:1,sine-arc:2,half-cosine:1:0.2,cosine-ramp:0.2:0").unwrap(),
+            _ => Template::parse("mixed", "sine-ramp:0:1,linear:1:0.3,constant:0.3,cosine-ramp:0.3:0").unwrap(),
+        };
+        let Ok(g) = t.evaluate_generic(&k, threshold) else { return Ok(()) };
+        let f = t.evaluate_fast(&k, threshold).unwrap();
+        for (name, a, b) in [("cv", f.cv, g.cv), ("ca", f.ca, g.ca), ("cm", f.cm, g.cm), ("ca_rms", f.ca_rms, g.ca_rms),
+                             ("x_depart", f.x_depart, g.x_depart), ("x_arrive", f.x_arrive, g.x_arrive),
+                             ("lead", f.lead, g.lead), ("tail", f.tail, g.tail)] {
+            prop_assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{} {:?} {}: fast {} generic {}", t.name(), k, name, a, b);
+        }
+        prop_assert!((f.cj - g.cj).abs() <= 1e-7 * g.cj, "cj {} vs {}", f.cj, g.cj);
+    }
+}
+
+#[test]
+fn table1_and_fig1_designs() {
+    let d = table1_design();
+    assert_eq!(d.len(), 8);
+    for r in d.rows() {
+        assert!((r[0] - r[2]).abs() < 1e-12, "k3 = k1 in every printed experiment");
+    }
+    let rows = evaluate_rows(&Template::trapezoid(), &d, 0.95, Progress::Hidden).unwrap();
+    let c = table(&d, &rows, &[300.0], &Conditions::default()).unwrap();
+    // From nearly constant acceleration (Ca → 4) to cycloidal (2π): Ca and the window both grow.
+    assert!(
+        c.windows(2)
+            .all(|w| w[1].criteria.ca > w[0].criteria.ca && w[1].criteria.window_deg > w[0].criteria.window_deg)
+    );
+    assert!((c[7].criteria.ca - 2.0 * std::f64::consts::PI).abs() < 1e-9);
+    let f = fig1_design(0.1).unwrap();
+    assert_eq!(f.len(), 6);
+    let rows = evaluate_rows(&Template::lead_trapezoid(), &f, 0.95, Progress::Hidden).unwrap();
+    let c = table(&f, &rows, &[360.0], &Conditions::default()).unwrap();
+    // A longer lead is a longer absolute dwell.
+    assert!(c.windows(2).all(|w| w[1].criteria.dwell_deg > w[0].criteria.dwell_deg));
+    assert!((c[5].criteria.dwell_deg - 0.5 * 360.0 * 0.5 * 2.0).abs() < 1e-9);
+}
+
+#[test]
+fn pareto_front_of_a_grid_against_brute_force() {
+    let t = Template::lead_trapezoid();
+    let d = grid_design(4, 0.0, 0.95, 0.1).unwrap();
+    let rows = evaluate_rows(&t, &d, 0.95, Progress::Hidden).unwrap();
+    let motions = [240.0, 300.0, 360.0];
+    let cond = Conditions::default();
+    let all = table(&d, &rows, &motions, &cond).unwrap();
+    let front = pareto(&d, &rows, &motions, &cond).unwrap();
+    assert!(!front.is_empty());
+    let key = |c: &loomkin_shed::Candidate| [c.criteria.window_deg, c.criteria.peak_accel_m_s2];
+    for a in &front {
+        assert!(!all.iter().any(|b| dominates_in(&key(b), &key(a))), "front member dominated");
+    }
+    for b in &all {
+        let on = front.iter().any(|a| a.row == b.row && a.criteria.motion_deg == b.criteria.motion_deg);
+        if !on {
+            assert!(
+                front.iter().any(|a| dominates_in(&key(a), &key(b)) || key(a) == key(b)),
+                "excluded law not dominated"
+            );
+        }
+    }
+    assert!(front.windows(2).all(|w| w[0].criteria.window_deg >= w[1].criteria.window_deg));
+}
+
+#[test]
+fn free_motion_optimum_beats_every_motion_on_a_grid() {
+    let t = Template::trapezoid();
+    let d = grid_design(3, 0.0, 1.0, 0.05).unwrap();
+    let rows = evaluate_rows(&t, &d, 0.95, Progress::Hidden).unwrap();
+    let cond = Conditions::default();
+    let motions: Vec<f64> = (1..=720).map(|i| i as f64 * 0.5).collect();
+    for w in [140.0, 175.0, 250.0] {
+        let free = best(&d, &rows, None, w, &cond).unwrap().unwrap();
+        let grid = best(&d, &rows, Some(&motions), w, &cond).unwrap().unwrap();
+        assert!(free.criteria.window_deg >= w - 1e-9);
+        assert!(grid.criteria.window_deg >= w);
+        assert!(free.criteria.peak_accel_m_s2 <= grid.criteria.peak_accel_m_s2 * (1.0 + 1e-12));
+        // The grid's best comes within the angle step of the free optimum.
+        assert!(grid.criteria.peak_accel_m_s2 <= free.criteria.peak_accel_m_s2 * 1.01, "W {w}");
+    }
+    assert!(best(&d, &rows, None, 360.0, &cond).is_err());
+}
