@@ -1,5 +1,67 @@
-//! Benchmarks of the servo crate (filled in below).
+//! Costs of the servo workbench operations: one drag update, exact summaries, the optimiser.
+
+use loomkin_laws::Kinematics;
+use loomkin_servo::{
+    CamTable, Drive, Interpolation, Objective, OptimizeOptions, SplineEnd, SplineLaw, default_points, optimize,
+    summary, torque_curve,
+};
 
 fn main() {
     divan::main();
+}
+
+/// One drag update of the workbench: rebuild the law from the points, 1000 samples of the law,
+/// the torque curve (1000 points) and the exact summary at 600 and 750 1/min.
+#[divan::bench]
+fn drag_update(bencher: divan::Bencher) {
+    let pts = default_points();
+    let drive = Drive::needle_rack_default();
+    let mut out = vec![Kinematics::default(); 1000];
+    bencher.bench_local(|| {
+        let law = SplineLaw::new(divan::black_box(&pts), SplineEnd::Natural).unwrap();
+        law.law().sample_into(&mut out);
+        let mut acc = out[500].s;
+        for n in [600.0, 750.0] {
+            let c = torque_curve(law.law(), &drive, n, 1000).unwrap();
+            let s = summary(law.law(), &drive, n).unwrap();
+            acc += c[10].torque_nm + s.peak_torque_nm;
+        }
+        acc
+    });
+}
+
+/// Building the spline law alone (spline solve, mirror, closed-form integration).
+#[divan::bench]
+fn build_law(bencher: divan::Bencher) {
+    let pts = default_points();
+    bencher.bench_local(|| SplineLaw::new(divan::black_box(&pts), SplineEnd::Natural).unwrap());
+}
+
+/// The exact summary (peaks, RMS, power) at one speed.
+#[divan::bench]
+fn summary_one_speed(bencher: divan::Bencher) {
+    let law = SplineLaw::default_law();
+    let drive = Drive::needle_rack_default();
+    bencher.bench_local(|| summary(law.law(), &drive, divan::black_box(600.0)).unwrap());
+}
+
+/// The full optimisation of the default points for the default drive (peak torque).
+#[divan::bench(args = [1, 2], sample_count = 10)]
+fn optimize_peak(bencher: divan::Bencher, speeds: usize) {
+    let start = SplineLaw::default_law();
+    let drive = Drive::needle_rack_default();
+    let speeds_rpm = [600.0, 750.0][..speeds].to_vec();
+    let opts = OptimizeOptions { speeds_rpm, objective: Objective::Peak, ..OptimizeOptions::default() };
+    bencher.bench_local(|| optimize(&start, &drive, &opts).unwrap().objective_after_nm);
+}
+
+/// A 1° cam table and its quintic re-interpolation error.
+#[divan::bench]
+fn cam_table_1deg(bencher: divan::Bencher) {
+    let law = SplineLaw::default_law();
+    let drive = Drive::needle_rack_default();
+    bencher.bench_local(|| {
+        let t = CamTable::new(law.law(), &drive, 1.0).unwrap();
+        t.interpolation_error(law.law(), &drive, Interpolation::QuinticHermite).unwrap().max_position_error_m
+    });
 }

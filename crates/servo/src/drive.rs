@@ -123,14 +123,14 @@ impl Drive {
     /// narrow-fabric needle loom, chosen so that the default definition points (≈ cycloidal
     /// acceleration) need about 5 N·m at 600 1/min, as the paper's original law did:
     /// stroke 80 mm over a motion angle of 150° (return over another 150°, dwells of 30°),
-    /// moving mass 0.5 kg reduced to the rack, pinion radius 25 mm, direct drive (`i = 1`), motor
+    /// moving mass 0.45 kg reduced to the rack, pinion radius 25 mm, direct drive (`i = 1`), motor
     /// inertia 0.9·10⁻⁴ kg·m² (a small servo motor), viscous guide losses 5 N·s/m, efficiency
     /// 0.9, no spring and no constant force.
     pub fn needle_rack_default() -> Self {
         Self {
             stroke_m: 0.08,
             motion_angle_deg: 150.0,
-            moving_mass_kg: 0.5,
+            moving_mass_kg: 0.45,
             pinion_radius_m: 0.025,
             gear_ratio: 1.0,
             motor_inertia_kg_m2: 0.9e-4,

@@ -143,7 +143,7 @@ impl Mapping {
 fn objective_value(law: &SplineLaw, ms: &[([PhaseModel; 4], f64)], obj: Objective) -> f64 {
     let mut worst = 0.0f64;
     for (m, cycle_s) in ms {
-        let s = stats(law.law(), m, *cycle_s, false);
+        let s = stats(law.law(), m, *cycle_s, false, obj == Objective::Rms);
         worst = worst.max(match obj {
             Objective::Peak => s.peak_torque_nm,
             Objective::Rms => s.rms_torque_nm,

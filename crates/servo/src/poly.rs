@@ -63,8 +63,18 @@ pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
 
 /// Largest `|p(t)|` on `[0, w]` and where it occurs (see [`abs_max_by`]).
 pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
-    let dp = deriv(p);
-    abs_max_by(w, n, |t| (eval(p, t), eval(&dp, t)))
+    let mut buf = [0.0; 24];
+    let dp: Vec<f64>;
+    let dp: &[f64] = if p.len() <= 25 {
+        for k in 1..p.len() {
+            buf[k - 1] = k as f64 * p[k];
+        }
+        &buf[..p.len().saturating_sub(1)]
+    } else {
+        dp = deriv(p);
+        &dp
+    };
+    abs_max_by(w, n, |t| (eval(p, t), eval(dp, t)))
 }
 
 /// Largest `|g(t)|` on `[0, w]` and where it occurs, for `f(t) = (g(t), g'(t))`.
@@ -88,25 +98,47 @@ pub(crate) fn abs_max_by(w: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f6
         let (g1, d1) = f(t1);
         take(g1, t1);
         if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            let (mut lo, mut hi) = (t0, t1);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                if (f(mid).1 < 0.0) == (d0 < 0.0) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let t = 0.5 * (lo + hi);
+            let t = root_illinois(t0, t1, d0, d1, |t| f(t).1);
             take(f(t).0, t);
         }
         t0 = t1;
         d0 = d1;
     }
     best
+}
+
+/// A root of `d` in `[a, b]` where `d(a) = da` and `d(b) = db` have opposite signs: regula falsi
+/// with the Illinois modification (superlinear, always bracketed), until a step is below about
+/// 1e-14 of the bracket.
+fn root_illinois(mut a: f64, mut b: f64, mut da: f64, mut db: f64, d: impl Fn(f64) -> f64) -> f64 {
+    let tol = 1e-14 * (b - a).abs() + 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let mut side = 0i8;
+    let mut prev = a;
+    for _ in 0..100 {
+        let c = (a * db - b * da) / (db - da);
+        let c = if c > a.min(b) && c < a.max(b) { c } else { 0.5 * (a + b) };
+        let dc = d(c);
+        if dc == 0.0 || (c - prev).abs() <= tol {
+            return c;
+        }
+        prev = c;
+        if (dc < 0.0) == (db < 0.0) {
+            b = c;
+            db = dc;
+            if side == -1 {
+                da *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            da = dc;
+            if side == 1 {
+                db *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
 }
 
 /// Nodes and weights of the `n`-point Gauss–Legendre rule on `[−1, 1]` (Newton on `P_n`).

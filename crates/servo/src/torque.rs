@@ -135,26 +135,30 @@ pub(crate) fn models(drive: &Drive, speed_rpm: f64) -> Result<[PhaseModel; 4]> {
 
 /// Extremes and ∫M² dx of one phase model on one law segment:
 /// `(peak |M|, its local t, peak |P|, its local t, ∫M² dt_local)`.
-fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool) -> (f64, f64, f64, f64, f64) {
+fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool) -> (f64, f64, f64, f64, f64) {
     let w = seg.width();
     if seg.sine().is_none() {
+        // M(t) = α·s'' + β·s' + γ·s + ε as one polynomial in the local coordinate.
         let p = seg.displacement_poly();
-        let (v, a) = (poly::deriv(p), poly::deriv(&poly::deriv(p)));
         let mut mp = [0.0; 8];
         for k in 0..8 {
-            mp[k] = m.gamma * p[k] + m.beta * v.get(k).unwrap_or(&0.0) + m.alpha * a.get(k).unwrap_or(&0.0);
+            let v = if k < 7 { (k + 1) as f64 * p[k + 1] } else { 0.0 };
+            let a = if k < 6 { ((k + 1) * (k + 2)) as f64 * p[k + 2] } else { 0.0 };
+            mp[k] = m.gamma * p[k] + m.beta * v + m.alpha * a;
         }
         mp[0] += m.eps;
-        let deg = seg.degree();
-        let (pm, tm) = poly::abs_max(&mp[..deg.max(1) + 1], w, 2 * deg + 2);
+        let deg = mp.iter().rposition(|&c| c != 0.0).unwrap_or(0);
+        let mp = &mp[..=deg];
+        let (pm, tm) = poly::abs_max(mp, w, 2 * deg + 2);
         let (pp, tp) = if with_power {
-            let pw: Vec<f64> = poly::mul(&mp[..deg.max(1) + 1], &v).iter().map(|c| c * m.kappa).collect();
-            poly::abs_max(&pw, w, 4 * deg + 2)
+            let v: Vec<f64> = (1..8).map(|k| k as f64 * p[k] * m.kappa).collect();
+            let pw = poly::mul(mp, &v);
+            poly::abs_max(&pw, w, 2 * (deg + 6) + 2)
         } else {
             (0.0, 0.0)
         };
-        let m2 = poly::mul(&mp[..deg.max(1) + 1], &mp[..deg.max(1) + 1]);
-        return (pm, tm, pp, tp, poly::integral(&m2, w));
+        let m2 = if with_rms { poly::integral(&poly::mul(mp, mp), w) } else { 0.0 };
+        return (pm, tm, pp, tp, m2);
     }
     let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * w / PI).ceil()) as usize;
     let n = 2 * (seg.degree() + 1) + 4 * osc + 4;
@@ -197,7 +201,7 @@ fn gl8() -> &'static [(f64, f64)] {
 pub fn summary(law: &Law, drive: &Drive, speed_rpm: f64) -> Result<TorqueSummary> {
     let ms = models(drive, speed_rpm)?;
     let cycle_s = CYCLE_DEG / (speed_rpm * 6.0);
-    let st = stats(law, &ms, cycle_s, true);
+    let st = stats(law, &ms, cycle_s, true, true);
     let met = law.metrics();
     let h = drive.stroke_m;
     let t_rise = ms[0].duration_s;
@@ -226,7 +230,7 @@ pub(crate) struct Stats {
     pub peak_power_w: f64,
 }
 
-pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: bool) -> Stats {
+pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: bool, with_rms: bool) -> Stats {
     let (mut pk_m, mut pk_m_deg, mut pk_p, mut m2) = (0.0f64, 0.0, 0.0f64, 0.0);
     for m in ms {
         if !m.moving {
@@ -239,7 +243,7 @@ pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: b
         }
         let mut int = 0.0;
         for seg in law.segments() {
-            let (a, ta, p, _, i2) = segment_stats(seg, m, with_power);
+            let (a, ta, p, _, i2) = segment_stats(seg, m, with_power, with_rms);
             if a > pk_m {
                 pk_m = a;
                 pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
