@@ -7,11 +7,15 @@ use std::f64::consts::PI;
 
 /// Root of `g` in `[lo, hi]` where `g(lo)` and `g(hi)` have opposite signs; `dg` is its
 /// derivative. Newton steps that leave the shrinking bracket are replaced by bisection.
-pub(crate) fn refine(mut lo: f64, mut hi: f64, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64) -> f64 {
-    let neg_lo = g(lo) < 0.0;
+pub(crate) fn refine(lo: f64, hi: f64, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64) -> f64 {
+    refine_with(lo, hi, g(lo) < 0.0, |t| (g(t), dg(t)))
+}
+
+/// [`refine`] with `f(t) = (g(t), g'(t))` computed together; `neg_lo` is the sign of `g(lo) < 0`.
+pub(crate) fn refine_with(mut lo: f64, mut hi: f64, neg_lo: bool, f: impl Fn(f64) -> (f64, f64)) -> f64 {
     let mut t = 0.5 * (lo + hi);
     for _ in 0..100 {
-        let gt = g(t);
+        let (gt, d) = f(t);
         if gt == 0.0 {
             return t;
         }
@@ -20,7 +24,6 @@ pub(crate) fn refine(mut lo: f64, mut hi: f64, g: impl Fn(f64) -> f64, dg: impl 
         } else {
             hi = t;
         }
-        let d = dg(t);
         let newton = t - gt / d;
         let next = if d != 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
         if (next - t).abs() <= 2.0 * f64::EPSILON * (1.0 + t.abs()) || hi - lo <= 4.0 * f64::EPSILON * (1.0 + hi.abs())

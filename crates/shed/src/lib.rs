@@ -32,6 +32,7 @@ mod criteria;
 mod curve;
 mod dwell;
 mod error;
+mod fast;
 mod paper;
 mod presets;
 mod requirement;

@@ -1,11 +1,10 @@
 //! A family of symmetric laws: fixed shapes of the positive phase, free relative lengths
 //! `k_T1 … k_Tn`. Its criteria have a fast closed-form path used for large experiment tables.
 
-use crate::dwell::refine;
+use crate::fast::{self, levels};
 use crate::{Dimensionless, Result, ShedError, ShedLaw, check_threshold};
-use loomkin_laws::{Segment, Shape, ShapeSegment, Sine};
+use loomkin_laws::{Shape, ShapeSegment};
 use serde::Serialize;
-use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Most parts a template may have.
 pub const MAX_PARTS: usize = 12;
@@ -18,85 +17,6 @@ pub struct Template {
     /// All levels ≥ 0: the acceleration is non-negative over the positive phase, which the fast
     /// path needs (v then peaks at mid-motion and s is convex on the first half).
     fast: bool,
-}
-
-fn levels(shape: &Shape) -> [f64; 2] {
-    match *shape {
-        Shape::SineArc { peak } => [0.0, peak],
-        other => {
-            let (a, b) = other.end_levels();
-            [a, b]
-        }
-    }
-}
-
-/// The acceleration of a shape as the polynomial `c0 + c1·t` and an optional sinusoid, over a
-/// width `w` (the same as `Shape::to_piece`, without allocating).
-#[inline]
-fn piece(shape: &Shape, w: f64) -> ([f64; 2], Option<Sine>) {
-    match *shape {
-        Shape::Zero => ([0.0, 0.0], None),
-        Shape::Constant { level } => ([level, 0.0], None),
-        Shape::Linear { from, to } => ([from, (to - from) / w], None),
-        Shape::SineRamp { from, to } => ([from, 0.0], Some(Sine { amp: to - from, omega: FRAC_PI_2 / w, phase: 0.0 })),
-        Shape::CosineRamp { from, to } => {
-            ([to, 0.0], Some(Sine { amp: -(to - from), omega: FRAC_PI_2 / w, phase: FRAC_PI_2 }))
-        }
-        Shape::HalfCosine { from, to } => {
-            ([(from + to) / 2.0, 0.0], Some(Sine { amp: -(to - from) / 2.0, omega: PI / w, phase: FRAC_PI_2 }))
-        }
-        Shape::SineArc { peak } => ([0.0, 0.0], Some(Sine { amp: peak, omega: PI / w, phase: 0.0 })),
-    }
-}
-
-/// `sup |j|` of a shape over a segment of width `w`, in closed form.
-#[inline]
-fn jerk_peak(shape: &Shape, w: f64) -> f64 {
-    match *shape {
-        Shape::Zero | Shape::Constant { .. } => 0.0,
-        Shape::Linear { from, to } => (to - from).abs() / w,
-        Shape::SineRamp { from, to } | Shape::CosineRamp { from, to } | Shape::HalfCosine { from, to } => {
-            (to - from).abs() * FRAC_PI_2 / w
-        }
-        Shape::SineArc { peak } => peak.abs() * PI / w,
-    }
-}
-
-/// `∫₀¹ a(u)² du` of a shape in its relative coordinate, in closed form.
-#[inline]
-fn square_mean(shape: &Shape) -> f64 {
-    match *shape {
-        Shape::Zero => 0.0,
-        Shape::Constant { level } => level * level,
-        Shape::Linear { from, to } => (from * from + from * to + to * to) / 3.0,
-        // (f + d sin(πu/2))²: f² + 2fd·(2/π) + d²/2.
-        Shape::SineRamp { from, to } => {
-            let d = to - from;
-            from * from + 4.0 * from * d / PI + d * d / 2.0
-        }
-        // to − d cos(πu/2): to² − 2·to·d·(2/π) + d²/2.
-        Shape::CosineRamp { from, to } => {
-            let d = to - from;
-            to * to - 4.0 * to * d / PI + d * d / 2.0
-        }
-        // m − (d/2) cos(πu): m² + d²/8.
-        Shape::HalfCosine { from, to } => {
-            let (m, d) = ((from + to) / 2.0, to - from);
-            m * m + d * d / 8.0
-        }
-        Shape::SineArc { peak } => peak * peak / 2.0,
-    }
-}
-
-/// Whether `a` never decreases over the shape (then `v·a` peaks at the segment's end).
-fn non_decreasing(shape: &Shape) -> bool {
-    match *shape {
-        Shape::SineArc { peak } => peak == 0.0,
-        other => {
-            let (a, b) = other.end_levels();
-            b >= a
-        }
-    }
 }
 
 impl Template {
@@ -220,102 +140,6 @@ impl Template {
                 reason: format!("the family has {} parts, {} lengths given", self.parts(), lengths.len()),
             });
         }
-        let mut sum = 0.0;
-        for (i, &k) in lengths.iter().enumerate() {
-            if !(k.is_finite() && (0.0..=1.0).contains(&k)) {
-                return Err(ShedError::out_of_range(format!("positive[{i}].length"), k, 0.0, 1.0, ""));
-            }
-            sum += k;
-        }
-        if (sum - 1.0).abs() > 1e-9 {
-            return Err(ShedError::LengthsDoNotSumToOne { field: "positive".into(), sum });
-        }
-        let mut segs = [None::<(Segment, &Shape)>; MAX_PARTS];
-        let (mut x, mut s, mut v) = (0.0, 0.0, 0.0);
-        let (mut amax, mut jmax, mut a2, mut lead) = (0.0f64, 0.0f64, 0.0, 0.0);
-        let mut leading = true;
-        for (i, (shape, &k)) in self.shapes.iter().zip(lengths).enumerate() {
-            if k <= 0.0 {
-                continue;
-            }
-            let w = 0.5 * k / sum;
-            let (poly, sine) = piece(shape, w);
-            let seg = Segment::from_accel(x, x + w, &poly, sine, s, v)
-                .ok_or_else(|| ShedError::NotARise { field: format!("positive[{i}]"), reason: "bad segment".into() })?;
-            let lv = levels(shape);
-            let zero = lv[0] == 0.0 && lv[1] == 0.0;
-            if leading && zero {
-                lead = x + w;
-            } else {
-                leading = false;
-            }
-            amax = amax.max(lv[0]).max(lv[1]);
-            jmax = jmax.max(jerk_peak(shape, w));
-            a2 += w * square_mean(shape);
-            let e = seg.end();
-            (x, s, v) = (x + w, e.s, e.v);
-            segs[i] = Some((seg, shape));
-        }
-        if !(s > 0.0 && s.is_finite()) {
-            return Err(ShedError::NotARise {
-                field: "positive".into(),
-                reason: "the positive phase makes no displacement".into(),
-            });
-        }
-        let kn = 0.5 / s;
-        // v·a on the positive phase (unscaled).
-        let mut cm = 0.0f64;
-        for (seg, shape) in segs.iter().flatten() {
-            let w = seg.width();
-            let e = seg.end();
-            cm = cm.max(e.v * e.a);
-            if !non_decreasing(shape) {
-                let st = seg.start();
-                cm = cm.max(st.v * st.a);
-                let g = |t: f64| {
-                    let k = seg.eval_local(t);
-                    k.a * k.a + k.v * k.j
-                };
-                let dg = |t: f64| {
-                    let k = seg.eval_local(t);
-                    3.0 * k.a * k.j + k.v * seg.deriv_local(4, t)
-                };
-                const N: usize = 4;
-                let mut t0 = 0.0;
-                let mut g0 = g(0.0);
-                for m in 1..=N {
-                    let t1 = if m == N { w } else { w * m as f64 / N as f64 };
-                    let g1 = g(t1);
-                    if g0 > 0.0 && g1 < 0.0 {
-                        let r = refine(t0, t1, g, dg);
-                        let k = seg.eval_local(r);
-                        cm = cm.max(k.v * k.a);
-                    }
-                    (t0, g0) = (t1, g1);
-                }
-            }
-        }
-        // x_depart: s(x) = (1 − T)/kn on the convex first half.
-        let target = (1.0 - threshold) / kn;
-        let mut x_depart = 0.5;
-        for (seg, _) in segs.iter().flatten() {
-            if seg.end().s >= target {
-                let g = |t: f64| seg.deriv_local(0, t) - target;
-                x_depart = seg.x0() + refine(0.0, seg.width(), g, |t| seg.deriv_local(1, t));
-                break;
-            }
-        }
-        Ok(Dimensionless {
-            threshold,
-            cv: kn * v,
-            ca: kn * amax,
-            cj: kn * jmax,
-            cm: kn * kn * cm,
-            ca_rms: kn * (2.0 * a2).sqrt(),
-            lead,
-            tail: 1.0 - lead,
-            x_depart,
-            x_arrive: 1.0 - x_depart,
-        })
+        fast::evaluate(&self.shapes, lengths, threshold)
     }
 }
