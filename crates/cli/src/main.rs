@@ -5,6 +5,7 @@
 
 mod cycle;
 mod law;
+mod pick;
 mod serve;
 mod util;
 
@@ -26,6 +27,9 @@ enum Command {
     Law(law::LawCommand),
     /// A machine cycle (dwell / rise / dwell / return) from a TOML file, in physical units.
     Cycle(cycle::CycleArgs),
+    /// Shuttle picking dynamics: compound law design, actual motion under loom settings, sweeps.
+    #[command(subcommand)]
+    Pick(pick::PickCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -34,6 +38,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Law(cmd) => law::run(cmd),
         Command::Cycle(args) => cycle::run(args),
+        Command::Pick(cmd) => pick::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

@@ -37,7 +37,7 @@ impl Cam {
 #[derive(Debug, Clone)]
 pub(crate) enum BuiltCam {
     Compound(Design),
-    Law { law: Law, d_m: f64, stroke_m: f64, rise_s: f64 },
+    Law { law: Law, label: String, d_m: f64, stroke_m: f64, rise_s: f64 },
 }
 
 impl BuiltCam {
@@ -47,7 +47,13 @@ impl BuiltCam {
             Cam::Law { spec, stroke_m, rise_s } => {
                 PickError::check_positive("stroke_m", *stroke_m, 10.0, "m")?;
                 PickError::check_positive("rise_s", *rise_s, 10.0, "s")?;
-                BuiltCam::Law { law: spec.build()?, d_m: design.constants.d_m, stroke_m: *stroke_m, rise_s: *rise_s }
+                BuiltCam::Law {
+                    law: spec.build()?,
+                    label: spec.label(),
+                    d_m: design.constants.d_m,
+                    stroke_m: *stroke_m,
+                    rise_s: *rise_s,
+                }
             }
         })
     }
@@ -57,7 +63,7 @@ impl BuiltCam {
     pub(crate) fn eval(&self, u: f64) -> Nominal {
         match self {
             BuiltCam::Compound(d) => d.nominal(u),
-            BuiltCam::Law { law, d_m, stroke_m, rise_s } => {
+            BuiltCam::Law { law, d_m, stroke_m, rise_s, .. } => {
                 if u >= *rise_s {
                     return Nominal { s_m: d_m + stroke_m, v_m_s: 0.0, a_m_s2: 0.0 };
                 }

@@ -65,8 +65,9 @@ pub struct PaperConstants {
 
 impl PaperConstants {
     pub(crate) fn new(sc: &Scenario) -> Result<Self> {
-        let crate::cam::BuiltCam::Compound(d) = &sc.cam else {
-            return Err(PickError::NoClosedForm { law: "non-compound".into() });
+        let d = match &sc.cam {
+            crate::cam::BuiltCam::Compound(d) => d,
+            crate::cam::BuiltCam::Law { label, .. } => return Err(PickError::NoClosedForm { law: label.clone() }),
         };
         let (a, mu, tau) = (d.a_m_s2, d.mu_1_s, d.tau_s);
         let (b, c, dd) = (d.constants.b_s2, d.constants.c, d.constants.d_m);

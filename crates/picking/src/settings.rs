@@ -141,6 +141,17 @@ impl Setting {
         }
     }
 
+    /// A human description, e.g. `strap-loop position k`.
+    pub fn description(&self) -> &'static str {
+        match self {
+            Setting::Speed => "loom speed",
+            Setting::Play => "strap-loop play",
+            Setting::Strap => "strap-loop position k",
+            Setting::Shuttle => "shuttle weight",
+            Setting::Checking => "checking force",
+        }
+    }
+
     /// The practical unit of the setting's values.
     pub fn unit(&self) -> &'static str {
         match self {

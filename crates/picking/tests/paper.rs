@@ -66,7 +66,11 @@ fn fig5_speed() {
     let s = sweep(&m, &designed(), Setting::Speed, 160.0, 240.0, 81, Method::Closed).unwrap();
     let first = &s.rows[0].outcome;
     assert!((first.velocity_vs_required_pct + 5.2).abs() < 0.2, "{}", first.velocity_vs_required_pct);
-    let best = s.rows.iter().max_by(|a, b| a.outcome.velocity_vs_required_pct.total_cmp(&b.outcome.velocity_vs_required_pct)).unwrap();
+    let best = s
+        .rows
+        .iter()
+        .max_by(|a, b| a.outcome.velocity_vs_required_pct.total_cmp(&b.outcome.velocity_vs_required_pct))
+        .unwrap();
     assert!((best.value - 225.0).abs() <= 8.0 && (best.outcome.velocity_vs_required_pct - 1.8).abs() < 0.15);
     let a = m.design().a_m_s2;
     let last = &s.rows[80].outcome;

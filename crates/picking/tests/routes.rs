@@ -81,7 +81,12 @@ fn closed_form_satisfies_the_equation_and_differentiates() {
                 continue;
             }
             let fsv = (w[2].nominal.s_m - w[0].nominal.s_m) / (2.0 * dt);
-            assert!((fsv - w[1].nominal.v_m_s).abs() < 2e-4 * w[1].nominal.v_m_s.abs().max(1.0), "t = {} {fsv} {:?}", w[1].t_s, w[1].nominal);
+            assert!(
+                (fsv - w[1].nominal.v_m_s).abs() < 2e-4 * w[1].nominal.v_m_s.abs().max(1.0),
+                "t = {} {fsv} {:?}",
+                w[1].t_s,
+                w[1].nominal
+            );
         }
         let first = h.samples[0].actual;
         assert!(first.x_m.abs() < 1e-15 && first.v_m_s.abs() < 1e-13, "starts from rest: {first:?}");

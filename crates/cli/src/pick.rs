@@ -1,0 +1,521 @@
+//! `loomkin pick …`: shuttle picking dynamics of an elastic under-pick mechanism (Jederán 1959).
+
+use crate::util::{self, Format};
+use anyhow::{Result, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use loomkin_io::Table;
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_laws::LawSpec;
+use loomkin_picking::{
+    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate, sweep,
+};
+use serde_json::{Value, json};
+use std::path::PathBuf;
+
+/// Subcommands of `loomkin pick`.
+#[derive(Debug, Subcommand)]
+pub enum PickCommand {
+    /// The designed compound law (eqs. 18–20) and the mechanism constants B, C, D (eq. 4).
+    Design(DesignArgs),
+    /// The actual motion under loom settings: end-of-pick values, or the time history (--csv).
+    Simulate(SimulateArgs),
+    /// One setting over a range (the paper's Figs. 5–8, 10), evaluated in parallel.
+    Sweep(SweepArgs),
+    /// Nominal and actual motion over the pick, like the paper's Fig. 2.
+    Plot(PlotArgs),
+}
+
+/// The mechanism and its cam.
+#[derive(Debug, Args, Clone, Default)]
+pub struct ModelArgs {
+    /// A mechanism described in TOML ([mechanism], [design], optional [required]; SI units).
+    /// Without it: the paper's mechanism.
+    #[arg(long, value_name = "FILE")]
+    mechanism: Option<PathBuf>,
+    /// A law of the catalogue as the nominal cam law instead of the compound law (same stroke
+    /// and rise time; numerical route), e.g. `--law modified-sine`.
+    #[arg(long)]
+    law: Option<String>,
+    /// A parameter of --law, e.g. `--param ramp=0.1`.
+    #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
+    params: Vec<(String, String)>,
+}
+
+/// Loom settings in the paper's practical units; without them the designed setting applies.
+#[derive(Debug, Args, Clone, Default)]
+pub struct SettingsArgs {
+    /// Loom speed, rev/min (designed: 200).
+    #[arg(long, allow_hyphen_values = true)]
+    speed_rpm: Option<f64>,
+    /// Play of the picking-strap loop s'₀, mm (designed: 0).
+    #[arg(long, allow_hyphen_values = true)]
+    play_mm: Option<f64>,
+    /// Height k of the strap loop on the picking stick, cm (designed: 23; 0 < k < l).
+    #[arg(long, allow_hyphen_values = true)]
+    strap_cm: Option<f64>,
+    /// Shuttle weight, g (designed: 419.7).
+    #[arg(long, allow_hyphen_values = true)]
+    shuttle_g: Option<f64>,
+    /// Checking force, kgf (designed: 5).
+    #[arg(long, allow_hyphen_values = true)]
+    checking_kgf: Option<f64>,
+    /// Where the shuttle starts on the nominal curve: the paper's rule or force equilibrium.
+    #[arg(long, value_enum, default_value_t = StartArg::Paper)]
+    start: StartArg,
+}
+
+/// `--start`.
+#[derive(Debug, Clone, Copy, ValueEnum, Default)]
+pub enum StartArg {
+    /// t₀ from the play alone (the paper's §2.2).
+    #[default]
+    Paper,
+    /// The shuttle starts when the picker force balances the checking force.
+    Equilibrium,
+}
+
+/// `--method`.
+#[derive(Debug, Clone, Copy, ValueEnum, Default)]
+pub enum MethodArg {
+    /// The paper's closed form (corrected); falls back to integration at a resonance.
+    #[default]
+    Closed,
+    /// Numerical integration (DOP853).
+    Ode,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Closed => Method::Closed,
+            MethodArg::Ode => Method::Ode,
+        }
+    }
+}
+
+/// `pick design`.
+#[derive(Debug, Args)]
+pub struct DesignArgs {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `pick simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    model: ModelArgs,
+    #[command(flatten)]
+    settings: SettingsArgs,
+    /// Route: closed form or numerical integration.
+    #[arg(long, value_enum, default_value_t = MethodArg::Closed)]
+    method: MethodArg,
+    #[command(flatten)]
+    format: Format,
+    /// Samples of the time history for --csv (both ends included).
+    #[arg(long, default_value_t = 201)]
+    points: usize,
+}
+
+/// `pick sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    /// The setting to sweep: speed (rpm), play (mm), strap (cm), shuttle (g), checking (kgf).
+    setting: String,
+    /// First value, in the setting's unit.
+    #[arg(long, allow_hyphen_values = true)]
+    from: f64,
+    /// Last value, in the setting's unit.
+    #[arg(long, allow_hyphen_values = true)]
+    to: f64,
+    /// Number of points, both ends included.
+    #[arg(long)]
+    steps: usize,
+    #[command(flatten)]
+    model: ModelArgs,
+    #[command(flatten)]
+    settings: SettingsArgs,
+    /// Route: closed form or numerical integration.
+    #[arg(long, value_enum, default_value_t = MethodArg::Closed)]
+    method: MethodArg,
+    #[command(flatten)]
+    format: Format,
+    /// Plot velocity, distance and accelerations against the setting to this file (.svg or .png).
+    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    output: Option<PathBuf>,
+}
+
+/// `pick plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    #[command(flatten)]
+    model: ModelArgs,
+    #[command(flatten)]
+    settings: SettingsArgs,
+    /// Route: closed form or numerical integration.
+    #[arg(long, value_enum, default_value_t = MethodArg::Closed)]
+    method: MethodArg,
+    /// Output file, .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Points per curve.
+    #[arg(long, default_value_t = 601)]
+    points: usize,
+}
+
+/// Runs a `pick` subcommand.
+pub fn run(cmd: PickCommand) -> Result<()> {
+    match cmd {
+        PickCommand::Design(a) => design(a),
+        PickCommand::Simulate(a) => simulate_cmd(a),
+        PickCommand::Sweep(a) => sweep_cmd(a),
+        PickCommand::Plot(a) => plot(a),
+    }
+}
+
+/// A library error: solver failures are run failures (exit 1), everything else is bad input (exit 2).
+fn lib_err(e: PickError) -> anyhow::Error {
+    match e {
+        PickError::Solver { .. } => util::failure(e),
+        e => e.into(),
+    }
+}
+
+fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
+    let mech = match &m.mechanism {
+        Some(path) => Mechanism::from_toml(&util::read_input(path)?).map_err(lib_err)?,
+        None => Mechanism::paper_default(),
+    };
+    if m.law.is_none() && !m.params.is_empty() {
+        bail!("--param needs --law: parameters belong to a catalogue law");
+    }
+    match &m.law {
+        Some(name) if name != "compound" => Ok(mech.with_law(LawSpec::parse(name, &m.params)?).map_err(lib_err)?),
+        _ => Ok(mech),
+    }
+}
+
+fn settings(mech: &Mechanism, a: &SettingsArgs) -> Settings {
+    let mut st = Settings::designed(mech);
+    let flags = [
+        (Setting::Speed, a.speed_rpm),
+        (Setting::Play, a.play_mm),
+        (Setting::Strap, a.strap_cm),
+        (Setting::Shuttle, a.shuttle_g),
+        (Setting::Checking, a.checking_kgf),
+    ];
+    for (s, v) in flags {
+        if let Some(v) = v {
+            st = s.apply(st, v);
+        }
+    }
+    st.with_start(match a.start {
+        StartArg::Paper => StartRule::Paper,
+        StartArg::Equilibrium => StartRule::Equilibrium,
+    })
+}
+
+fn note(o: &Outcome) {
+    if let Some(n) = &o.note {
+        eprintln!("loomkin: note: {n}");
+    }
+}
+
+fn design(a: DesignArgs) -> Result<()> {
+    let mech = mechanism(&a.model)?;
+    let d = mech.design();
+    let k = d.constants;
+    let spec = d.spec;
+    if a.json {
+        return util::print_json(&json!({
+            "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
+            "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
+            "psi_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
+            "velocity_m_s": spec.velocity_m_s, "distance_m": spec.distance_m,
+            "first_stage_m": spec.first_stage_m, "speed_rpm": spec.speed_rpm,
+            "required_velocity_m_s": mech.required().at(spec.speed_rpm),
+            "cam": mech.cam().label(),
+        }));
+    }
+    println!("compound picking law (sine, then constant acceleration), eqs. 18–20");
+    println!(
+        "  for V = {} m/s, X = {} m, X1 = {} m at n = {} rev/min",
+        spec.velocity_m_s, spec.distance_m, spec.first_stage_m, spec.speed_rpm
+    );
+    println!("  A   = {:.4} m/s²   peak shuttle acceleration (eq. 20)", d.a_m_s2);
+    println!("  μ   = {:.4} 1/s    sine-stage frequency (eq. 19)", d.mu_1_s);
+    println!("  τ   = {:.6} s    end of the sine stage, π/(2μ)", d.tau_s);
+    println!("  T'  = {:.6} s    end of the pick (eq. 18)", d.t_end_s);
+    println!("  nominal stroke s(T') − D = {:.6} m", d.stroke_m());
+    println!("mechanism constants (eq. 4): B·ẍ + (C+1)·x = s − D");
+    println!("  B   = {:.6e} s²", k.b_s2);
+    println!("  C   = {:.6e}", k.c);
+    println!("  D   = {:.6e} m", k.d_m);
+    println!("  ψ   = √((C+1)/B) = {:.4} 1/s (natural frequency)", k.natural_1_s());
+    Ok(())
+}
+
+fn outcome_json(o: &Outcome) -> Value {
+    let mut v = json!({
+        "t_end_s": o.t_end_s, "t0_s": o.t0_s, "distance_m": o.distance_m, "velocity_m_s": o.velocity_m_s,
+        "accel_end_m_s2": o.accel_end_m_s2, "accel_peak_m_s2": o.accel_peak_m_s2, "t_peak_s": o.t_peak_s,
+        "end": match o.end { loomkin_picking::PickEnd::CamEnd => "cam-end", loomkin_picking::PickEnd::Separation => "separation" },
+        "required_velocity_m_s": o.required_velocity_m_s, "velocity_vs_required_pct": o.velocity_vs_required_pct,
+        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "psi_1_s": o.natural_1_s,
+        "play_picker_m": o.play_picker_m,
+    });
+    if let Some(n) = &o.note {
+        v["note"] = json!(n);
+    }
+    v
+}
+
+fn history_table(h: &History) -> Result<Table> {
+    let mut t = Table::new(["t_s", "s_m", "v_s_m_s", "a_s_m_s2", "x_m", "v_m_s", "a_m_s2"]);
+    for s in &h.samples {
+        let (n, x) = (s.nominal, s.actual);
+        t.push(vec![s.t_s, n.s_m, n.v_m_s, n.a_m_s2, x.x_m, x.v_m_s, x.a_m_s2])?;
+    }
+    Ok(t)
+}
+
+fn simulate_cmd(a: SimulateArgs) -> Result<()> {
+    let mech = mechanism(&a.model)?;
+    let st = settings(&mech, &a.settings);
+    let method = a.method.into();
+    if a.format.csv {
+        if !(2..=1_000_000).contains(&a.points) {
+            bail!("--points {} is out of range: allowed 2 ≤ N ≤ 1000000", a.points);
+        }
+        let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
+        note(&h.outcome);
+        return util::print_csv(&history_table(&h)?);
+    }
+    let o = simulate(&mech, &st, method).map_err(lib_err)?;
+    note(&o);
+    if a.format.json {
+        return util::print_json(&outcome_json(&o));
+    }
+    println!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name());
+    println!(
+        "  speed {} rev/min, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
+        fmt(st.speed_rpm),
+        fmt(st.play_m * 1e3),
+        fmt(st.strap_m * 1e2),
+        fmt(st.shuttle_kg * 1e3),
+        fmt(st.checking_n / loomkin_picking::units::N_PER_KGF)
+    );
+    println!("  t0           = {:.6} s   (delay taking up the play)", o.t0_s);
+    println!(
+        "  t_end        = {:.6} s   ({})",
+        o.t_end_s,
+        if o.end == loomkin_picking::PickEnd::CamEnd { "end of the cam's rise" } else { "the shuttle left the picker" }
+    );
+    println!("  distance     = {:.6} m", o.distance_m);
+    println!(
+        "  velocity     = {:.4} m/s  (required {:.4} m/s, {:+.2} %)",
+        o.velocity_m_s, o.required_velocity_m_s, o.velocity_vs_required_pct
+    );
+    println!("  accel at end = {:.3} m/s²", o.accel_end_m_s2);
+    println!("  accel peak   = {:.3} m/s² at t = {:.6} s", o.accel_peak_m_s2, o.t_peak_s);
+    println!("  B' = {:.6e} s², C' = {:.6e}, D' = {:.6e} m, ψ = {:.3} 1/s", o.b_s2, o.c, o.d_m, o.natural_1_s);
+    Ok(())
+}
+
+fn fmt(v: f64) -> String {
+    let s = format!("{v:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+const SWEEP_COLUMNS: [&str; 10] = [
+    "t_end_s",
+    "t0_s",
+    "distance_m",
+    "velocity_m_s",
+    "accel_end_m_s2",
+    "accel_peak_m_s2",
+    "t_peak_s",
+    "required_velocity_m_s",
+    "velocity_vs_required_pct",
+    "ode_fallback",
+];
+
+fn sweep_table(s: &Sweep) -> Result<Table> {
+    let mut cols = vec![s.setting.key()];
+    cols.extend(SWEEP_COLUMNS.iter().map(|c| c.to_string()));
+    let mut t = Table::new(cols);
+    for r in &s.rows {
+        let o = &r.outcome;
+        t.push(vec![
+            r.value,
+            o.t_end_s,
+            o.t0_s,
+            o.distance_m,
+            o.velocity_m_s,
+            o.accel_end_m_s2,
+            o.accel_peak_m_s2,
+            o.t_peak_s,
+            o.required_velocity_m_s,
+            o.velocity_vs_required_pct,
+            if o.note.is_some() { 1.0 } else { 0.0 },
+        ])?;
+    }
+    Ok(t)
+}
+
+fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    let setting = Setting::parse(&a.setting)?;
+    if !(1..=1_000_000).contains(&a.steps) {
+        bail!("--steps {} is out of range: allowed 1 ≤ N ≤ 1000000", a.steps);
+    }
+    let mech = mechanism(&a.model)?;
+    let st = settings(&mech, &a.settings);
+    let s = sweep(&mech, &st, setting, a.from, a.to, a.steps, a.method.into()).map_err(lib_err)?;
+    let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
+    if let Some(first) = s.fallbacks().next() {
+        eprintln!(
+            "loomkin: note: at {} of {} points (first at {} = {} {}) {}",
+            fallbacks.len(),
+            s.rows.len(),
+            setting.name(),
+            first.value,
+            setting.unit(),
+            first.outcome.note.as_deref().unwrap_or("")
+        );
+    }
+    if let Some(path) = &a.output {
+        return util::save_figure(&sweep_figure(&s), path);
+    }
+    if a.format.csv {
+        return util::print_csv(&sweep_table(&s)?);
+    }
+    if a.format.json {
+        let rows: Vec<Value> = s
+            .rows
+            .iter()
+            .map(|r| {
+                let mut v = outcome_json(&r.outcome);
+                v[setting.key()] = json!(r.value);
+                v
+            })
+            .collect();
+        return util::print_json(&json!({
+            "setting": setting.name(), "unit": setting.unit(), "method": Method::from(a.method).name(),
+            "fallback_values": fallbacks, "rows": rows,
+        }));
+    }
+    println!(
+        "{:>14} {:>10} {:>10} {:>12} {:>14} {:>15} {:>13} {:>9}",
+        setting.key(),
+        "t_end_s",
+        "distance_m",
+        "velocity_m_s",
+        "accel_end_m_s2",
+        "accel_peak_m_s2",
+        "V_r_m_s",
+        "V/V_r-1_%"
+    );
+    for r in &s.rows {
+        let o = &r.outcome;
+        println!(
+            "{:>14.4} {:>10.6} {:>10.6} {:>12.4} {:>14.3} {:>15.3} {:>13.4} {:>9.2}",
+            r.value,
+            o.t_end_s,
+            o.distance_m,
+            o.velocity_m_s,
+            o.accel_end_m_s2,
+            o.accel_peak_m_s2,
+            o.required_velocity_m_s,
+            o.velocity_vs_required_pct
+        );
+    }
+    Ok(())
+}
+
+fn sweep_figure(s: &Sweep) -> Figure {
+    let pts = |f: &dyn Fn(&Outcome) -> f64| s.rows.iter().map(|r| (r.value, f(&r.outcome))).collect::<Vec<_>>();
+    let panels = vec![
+        Panel::new(
+            "velocity [m/s]",
+            vec![
+                Series::line("shuttle velocity at the end of the pick", pts(&|o| o.velocity_m_s)),
+                Series::line("required velocity V_r", pts(&|o| o.required_velocity_m_s)),
+            ],
+        )
+        .with_legend(Legend::LowerRight),
+        Panel::new("distance [cm]", vec![Series::line("path of the pick X", pts(&|o| o.distance_m * 100.0))]),
+        Panel::new(
+            "acceleration [m/s²]",
+            vec![
+                Series::line("at the end of the pick", pts(&|o| o.accel_end_m_s2)),
+                Series::line("peak during the pick", pts(&|o| o.accel_peak_m_s2)),
+            ],
+        )
+        .with_legend(Legend::UpperLeft),
+    ];
+    Figure::new(
+        format!("Effect of the {} on the end of the pick", s.setting.description()),
+        format!("{} [{}]", s.setting.description(), s.setting.unit()),
+        panels,
+    )
+}
+
+fn plot(a: PlotArgs) -> Result<()> {
+    if !(2..=1_000_000).contains(&a.points) {
+        bail!("--points {} is out of range: allowed 2 ≤ N ≤ 1000000", a.points);
+    }
+    let mech = mechanism(&a.model)?;
+    let st = settings(&mech, &a.settings);
+    let method = a.method.into();
+    let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
+    note(&h.outcome);
+    let designed = Settings::designed(&mech).with_start(st.start);
+    let reference =
+        if st != designed { Some(history(&mech, &designed, method, a.points).map_err(lib_err)?) } else { None };
+    let ms = |t: f64| t * 1e3;
+    let curve = |h: &History, f: &dyn Fn(&loomkin_picking::Sample) -> f64| {
+        h.samples.iter().map(|s| (ms(s.t_s), f(s))).collect::<Vec<_>>()
+    };
+    let mut panels = vec![
+        Panel::new(
+            "displacement [mm]",
+            vec![
+                Series::line("nominal s", curve(&h, &|s| s.nominal.s_m * 1e3)),
+                Series::line("actual x", curve(&h, &|s| s.actual.x_m * 1e3)),
+            ],
+        )
+        .with_legend(Legend::UpperLeft),
+        Panel::new(
+            "velocity [m/s]",
+            vec![
+                Series::line("nominal v_s", curve(&h, &|s| s.nominal.v_m_s)),
+                Series::line("actual v", curve(&h, &|s| s.actual.v_m_s)),
+            ],
+        )
+        .with_legend(Legend::UpperLeft),
+        Panel::new(
+            "acceleration [m/s²]",
+            vec![
+                Series::line("nominal a_s", curve(&h, &|s| s.nominal.a_m_s2)),
+                Series::line("actual a", curve(&h, &|s| s.actual.a_m_s2)),
+            ],
+        )
+        .with_legend(Legend::UpperLeft),
+    ];
+    if let Some(r) = &reference {
+        panels[0].series.push(Series::line("actual x, designed setting", curve(r, &|s| s.actual.x_m * 1e3)));
+        panels[1].series.push(Series::line("actual v, designed setting", curve(r, &|s| s.actual.v_m_s)));
+        panels[2].series.push(Series::line("actual a, designed setting", curve(r, &|s| s.actual.a_m_s2)));
+    }
+    let title = format!(
+        "Picking: nominal and actual motion (cam {}, {} rev/min, play {} mm, k = {} cm)",
+        mech.cam().label(),
+        fmt(st.speed_rpm),
+        fmt(st.play_m * 1e3),
+        fmt(st.strap_m * 1e2)
+    );
+    util::save_figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output)
+}
