@@ -1,0 +1,52 @@
+//! A full input revolution of the modulator at 0.1° steps (3601 positions): analysis of the paper's
+//! ellipse, analysis of a spline cam, synthesis of the default law; plus the vector-loop primitives.
+
+use loomkin_mech::{
+    AnalysisOptions, Cam, ModulatorGeometry, NewtonOptions, OutputLawSpec, SynthesisOptions, Vec2, analyze, cam_loop,
+    synthesize,
+};
+use nalgebra::SVector;
+
+fn main() {
+    divan::main();
+}
+
+/// Task 1 with the paper's ellipse, 3601 positions with rates and all checks.
+#[divan::bench]
+fn analyze_ellipse_0_1deg(bencher: divan::Bencher) {
+    let (g, cam) = (ModulatorGeometry::PAPER, Cam::paper());
+    let o = AnalysisOptions { step_deg: 0.1, ..AnalysisOptions::default() };
+    bencher.counter(divan::counter::ItemsCount::new(3601usize)).bench_local(|| analyze(&g, &cam, &o).unwrap());
+}
+
+/// Task 1 with a synthesised cam given as 720 points (periodic spline).
+#[divan::bench]
+fn analyze_spline_cam_0_1deg(bencher: divan::Bencher) {
+    let g = ModulatorGeometry::PAPER;
+    let s =
+        synthesize(&g, &OutputLawSpec::default(), &SynthesisOptions { step_deg: 0.5, ..Default::default() }).unwrap();
+    let pts: Vec<Vec2> = s.cam.centre.iter().map(|p| Vec2::new(p[0], p[1])).collect();
+    let cam = Cam::from_points(&pts).unwrap();
+    let o = AnalysisOptions { step_deg: 0.1, ..AnalysisOptions::default() };
+    bencher.counter(divan::counter::ItemsCount::new(3601usize)).bench_local(|| analyze(&g, &cam, &o).unwrap());
+}
+
+/// Task 2 with the default law: 3601 closed-form positions, walls and all checks.
+#[divan::bench]
+fn synthesize_default_0_1deg(bencher: divan::Bencher) {
+    let (g, law) = (ModulatorGeometry::PAPER, OutputLawSpec::default());
+    let o = SynthesisOptions { step_deg: 0.1, ..SynthesisOptions::default() };
+    bencher.counter(divan::counter::ItemsCount::new(3601usize)).bench_local(|| synthesize(&g, &law, &o).unwrap());
+}
+
+/// The bare continuation of loop (2) over 3601 inputs (Newton + rates per step).
+#[divan::bench]
+fn trace_cam_loop_0_1deg(bencher: divan::Bencher) {
+    let (g, cam) = (ModulatorGeometry::PAPER, Cam::paper());
+    let sys = cam_loop(&g, &cam).unwrap();
+    let q0 = loomkin_mech::assemble(&g, &cam, 0.0).unwrap();
+    let xs: Vec<f64> = (0..=3600).map(|i| (i as f64 * 0.1).to_radians()).collect();
+    bencher
+        .counter(divan::counter::ItemsCount::new(3601usize))
+        .bench_local(|| sys.trace(&xs, SVector::<f64, 2>::new(q0[0], q0[1]), &NewtonOptions::default()).unwrap());
+}

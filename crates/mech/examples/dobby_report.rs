@@ -1,0 +1,137 @@
+//! Prints the figures quoted in docs/notes/issue-5.md: task 1 with the paper's ellipse, task 2 with
+//! the default law, the α sweep and the round-trip convergence.
+//! Run: `cargo run --release -p loomkin-mech --example dobby_report`.
+
+use loomkin_mech::{
+    AnalysisOptions, Cam, ModulatorGeometry, OutputLawSpec, SynthesisOptions, Vec2, alpha_sweep, analyze, synthesize,
+    wrap_pi,
+};
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "—".into())
+}
+
+fn main() -> Result<(), loomkin_mech::MechError> {
+    let g = ModulatorGeometry::default();
+    let a = analyze(&g, &Cam::paper(), &AnalysisOptions { step_deg: 0.1, ..Default::default() })?;
+    let c = &a.summary.checks;
+    println!("## task 1: ellipse a = 0.366 m, b = 0.577 m, α = θ = 47°, step 0.1°");
+    println!(
+        "ω6 ∈ [{:.4}, {:.4}] rad/s, ε6 ∈ [{:.4}, {:.4}] rad/s², turn {:.6}°",
+        c.omega6_min_rad_s, c.omega6_max_rad_s, c.eps6_min_rad_s2, c.eps6_max_rad_s2, c.phi6_turn_deg
+    );
+    println!(
+        "μ6 max {:.2}° at {:.1}°, μB max {:.2}° at {:.1}°, μC max {:.2}° at {:.1}°",
+        c.mu_out_max_deg,
+        c.mu_out_max_at_phi2_deg,
+        c.mu_b_max_deg,
+        c.mu_b_max_at_phi2_deg,
+        c.mu_c_max_deg,
+        c.mu_c_max_at_phi2_deg
+    );
+    println!(
+        "ρB min {} m, ρC min {} m, |φ3 − φ2| max {:.3}° (limit {:.3}°), admissible α [{:.3}, {:.3}]°, θ ({:.3}, {:.3})°",
+        opt(c.rho_b_min_m),
+        opt(c.rho_c_min_m),
+        a.summary.slot_deviation_max_deg,
+        a.summary.slot_deviation_limit_deg,
+        a.summary.admissible_alpha_deg[0],
+        a.summary.admissible_alpha_deg[1],
+        a.summary.admissible_theta_deg[0],
+        a.summary.admissible_theta_deg[1]
+    );
+    let r0 = &a.rows[0];
+    println!(
+        "start φ2 = 0: p = {:.4}°, φ3 = {:.4}°, φ6 = {:.4}°, S53 = {:.5} m, B = ({:.5}, {:.5}) m",
+        r0.cam_param.to_degrees(),
+        r0.phi3_deg,
+        r0.phi6_deg,
+        r0.s53_m,
+        r0.b_x_m,
+        r0.b_y_m
+    );
+    for w in &a.warnings {
+        println!("  warning: {}", w.message);
+    }
+
+    let s = synthesize(&g, &OutputLawSpec::default(), &SynthesisOptions { step_deg: 0.1, ..Default::default() })?;
+    let c = &s.summary.checks;
+    println!("\n## task 2: {}, α = θ = 47°, roller {} m, step 0.1°", s.summary.law, s.summary.roller_m);
+    println!(
+        "ω6 max {:.4} rad/s, ε6 ∈ [{:.4}, {:.4}] rad/s², |φ6 − φ2| max {:.3}° (limit {:.3}°)",
+        c.omega6_max_rad_s, c.eps6_min_rad_s2, c.eps6_max_rad_s2, s.summary.lag_max_deg, s.summary.lag_limit_deg
+    );
+    println!(
+        "μ6 max {:.2}° at {:.1}°, μB max {:.2}° at {:.1}°, μC max {:.2}° at {:.1}°",
+        c.mu_out_max_deg,
+        c.mu_out_max_at_phi2_deg,
+        c.mu_b_max_deg,
+        c.mu_b_max_at_phi2_deg,
+        c.mu_c_max_deg,
+        c.mu_c_max_at_phi2_deg
+    );
+    println!(
+        "ρB min {} m at {:.1}°, ρC min {} m at {:.1}°, undercut {}, admissible α ({:.3}, {:.3})°",
+        opt(c.rho_b_min_m),
+        c.rho_b_min_at_phi2_deg,
+        opt(c.rho_c_min_m),
+        c.rho_c_min_at_phi2_deg,
+        s.summary.undercut,
+        s.summary.admissible_alpha_deg[0],
+        s.summary.admissible_alpha_deg[1]
+    );
+    let dmax = loomkin_mech::max_dwell_deg(&OutputLawSpec::default(), g.max_lag_deg())?;
+    println!("largest dwell keeping |φ6 − φ2| < arccos(l6/l2): {}°", opt(dmax));
+    for w in &s.warnings {
+        println!("  warning: {}", w.message);
+    }
+
+    println!("\n## α sweep (θ = α): analysis of the ellipse | synthesis of the default law");
+    println!(
+        "| α (°) | ω6 min | ω6 max | μ6 max | μB max | μC max | ρC′ min (m) | syn μB max | syn μ6 max | syn ρ min (m) |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let alphas: Vec<f64> = (0..=6).map(|i| 30.0 + 5.0 * i as f64).collect();
+    let o = AnalysisOptions { step_deg: 0.5, ..Default::default() };
+    let so = SynthesisOptions { step_deg: 0.5, ..Default::default() };
+    let sweep = alpha_sweep(&g, &Cam::paper(), &OutputLawSpec::default(), &alphas, &o, &so)?;
+    for (r, alpha) in sweep.iter().zip(&alphas) {
+        let syn_mu6 = synthesize(&g.with_alpha_deg(*alpha)?, &OutputLawSpec::default(), &so)
+            .map(|s| format!("{:.2}", s.summary.checks.mu_out_max_deg))
+            .unwrap_or_else(|_| "—".into());
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.alpha_deg,
+            opt(r.an_omega6_min_rad_s),
+            opt(r.an_omega6_max_rad_s),
+            opt(r.an_mu_out_max_deg),
+            opt(r.an_mu_b_max_deg),
+            opt(r.an_mu_c_max_deg),
+            opt(r.an_rho_c_min_m),
+            r.syn_error.as_ref().map(|_| "fold".to_string()).unwrap_or_else(|| opt(r.syn_mu_b_max_deg)),
+            syn_mu6,
+            opt(r.syn_rho_b_min_m)
+        );
+    }
+
+    println!("\n## round trip: synthesise → n points of Γ → periodic spline → analyse (0.1° steps)");
+    println!("| n points | max |Δφ6| (°) | max |Δω6| (rad/s) | ratio to previous |");
+    println!("|---|---|---|---|");
+    let law = OutputLawSpec::default().build()?;
+    let mut prev: Option<f64> = None;
+    for n in [90usize, 180, 360, 720, 1440, 2880] {
+        let s = synthesize(&g, law.spec(), &SynthesisOptions { step_deg: 360.0 / n as f64, ..Default::default() })?;
+        let pts: Vec<Vec2> = s.cam.centre.iter().map(|p| Vec2::new(p[0], p[1])).collect();
+        let a = analyze(&g, &Cam::from_points(&pts)?, &AnalysisOptions { step_deg: 0.1, ..Default::default() })?;
+        let (mut e0, mut e1) = (0.0f64, 0.0f64);
+        for st in &a.states {
+            let o = law.eval(st.phi2);
+            e0 = e0.max(wrap_pi(st.phi6[0] - o.phi6).abs().to_degrees());
+            e1 = e1.max((st.phi6[1] - o.d1).abs());
+        }
+        let ratio = prev.map(|p| format!("{:.1}", p / e0)).unwrap_or_else(|| "—".into());
+        println!("| {n} | {e0:.3e} | {e1:.3e} | {ratio} |");
+        prev = Some(e0);
+    }
+    Ok(())
+}

@@ -1,0 +1,124 @@
+//! Closed parametric plane curves: the cam profiles a vector loop can run on.
+
+use crate::planar::{Vec2, curvature};
+use crate::{MechError, Result};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// A point of a parametric curve `r(p)` with its first two derivatives in the parameter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvePoint {
+    /// Position `r(p)` (m).
+    pub r: Vec2,
+    /// Tangent `dr/dp` (m per unit of p).
+    pub d1: Vec2,
+    /// `d²r/dp²` (m per unit of p²).
+    pub d2: Vec2,
+}
+
+impl CurvePoint {
+    /// Signed curvature `κ = (r′ × r″)/|r′|³` (1/m); `None` at a stationary point.
+    pub fn curvature(&self) -> Option<f64> {
+        curvature(self.d1, self.d2)
+    }
+}
+
+/// A closed plane curve `r(p)`, periodic in its parameter `p` with period [`PlaneCurve::period`].
+///
+/// Implemented by [`Ellipse`] and by [`crate::ClosedSpline`] (a curve through a point table).
+pub trait PlaneCurve: std::fmt::Debug + Send + Sync {
+    /// Position and derivatives at parameter `p` (any real `p`; the curve is periodic).
+    fn eval(&self, p: f64) -> CurvePoint;
+
+    /// Period of the parameter (rad for an ellipse, m of chord length for a spline).
+    fn period(&self) -> f64;
+
+    /// `n` points evenly spaced in the parameter over one period (the last one not repeated).
+    fn points(&self, n: usize) -> Vec<Vec2> {
+        let h = self.period() / n.max(1) as f64;
+        (0..n).map(|i| self.eval(i as f64 * h).r).collect()
+    }
+}
+
+/// The ellipse `r(p) = c + (a cos p, b sin p)` (semi-axes `a` along x, `b` along y, in m).
+///
+/// This is the cam Γ of the paper's task 1, eq. (12): `a = 0.366 m`, `b = 0.577 m`, centred on O.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Ellipse {
+    /// Semi-axis along x (m).
+    pub a_m: f64,
+    /// Semi-axis along y (m).
+    pub b_m: f64,
+    /// Centre x (m).
+    pub cx_m: f64,
+    /// Centre y (m).
+    pub cy_m: f64,
+}
+
+impl Ellipse {
+    /// The paper's cam: `a = 0.366 m`, `b = 0.577 m`, centred on the frame axis O.
+    pub const PAPER: Ellipse = Ellipse { a_m: 0.366, b_m: 0.577, cx_m: 0.0, cy_m: 0.0 };
+
+    /// A centred ellipse with semi-axes `a_m`, `b_m` (each in (0, 100] m).
+    pub fn new(a_m: f64, b_m: f64) -> Result<Self> {
+        Self::with_centre(a_m, b_m, 0.0, 0.0)
+    }
+
+    /// An ellipse with semi-axes `a_m`, `b_m` centred at `(cx_m, cy_m)`.
+    pub fn with_centre(a_m: f64, b_m: f64, cx_m: f64, cy_m: f64) -> Result<Self> {
+        for (f, v) in [("a_m", a_m), ("b_m", b_m)] {
+            MechError::check_range(f, v, 0.0, 100.0, "m")?;
+            if v <= 0.0 {
+                return Err(MechError::out_of_range(f, v, 0.0, 100.0, "m (exclusive of 0)"));
+            }
+        }
+        MechError::check_range("cx_m", cx_m, -100.0, 100.0, "m")?;
+        MechError::check_range("cy_m", cy_m, -100.0, 100.0, "m")?;
+        Ok(Self { a_m, b_m, cx_m, cy_m })
+    }
+}
+
+impl PlaneCurve for Ellipse {
+    #[inline]
+    fn eval(&self, p: f64) -> CurvePoint {
+        let (s, c) = p.sin_cos();
+        CurvePoint {
+            r: Vec2::new(self.cx_m + self.a_m * c, self.cy_m + self.b_m * s),
+            d1: Vec2::new(-self.a_m * s, self.b_m * c),
+            d2: Vec2::new(-self.a_m * c, -self.b_m * s),
+        }
+    }
+
+    fn period(&self) -> f64 {
+        TAU
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ellipse_derivatives_match_finite_differences() {
+        let el = Ellipse::PAPER;
+        let h = 1e-6;
+        for p in [0.0, 0.7, 2.5, -1.2] {
+            let k = el.eval(p);
+            let d1 = (el.eval(p + h).r - el.eval(p - h).r) / (2.0 * h);
+            let d2 = (el.eval(p + h).d1 - el.eval(p - h).d1) / (2.0 * h);
+            assert!((d1 - k.d1).norm() < 1e-9);
+            assert!((d2 - k.d2).norm() < 1e-9);
+        }
+        // Curvature at the end of the major axis b: κ = b/a²; at the end of a: κ = a/b².
+        let k_top = el.eval(std::f64::consts::FRAC_PI_2).curvature().unwrap();
+        assert!((k_top - el.b_m / (el.a_m * el.a_m)).abs() < 1e-12);
+        let k_side = el.eval(0.0).curvature().unwrap();
+        assert!((k_side - el.a_m / (el.b_m * el.b_m)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn ellipse_rejects_bad_axes() {
+        assert!(matches!(Ellipse::new(0.0, 1.0), Err(MechError::OutOfRange { .. })));
+        assert!(matches!(Ellipse::new(f64::NAN, 1.0), Err(MechError::NotFinite { .. })));
+    }
+}

@@ -1,0 +1,398 @@
+//! Task 1, analysis: the cam Γ is given; find φ3, S53, φ6 and their rates over a revolution.
+//!
+//! Loop (2), `r(p) + l3·e(φ3 + α) = l2·e(φ2)` with the roller centre B = r(p) on Γ, has no closed
+//! form for a general cam: it is traced by Newton with continuation ([`LoopSystem::trace`]) in the
+//! unknowns `(p, φ3)`. Loop (3) then follows in closed form ([`ModulatorState`]).
+
+use super::cam::Cam;
+use super::checks::{Warning, counter_cam_fold};
+use super::geometry::ModulatorGeometry;
+use super::kinematics::{ModulatorState, state_from_phi3};
+use super::report::{CamChecks, CamProfile, check_states, undercut};
+use crate::newton::NewtonOptions;
+use crate::planar::{Vec2, e, wrap_pi};
+use crate::vloop::{LoopSystem, Scalar, VectorLoop};
+use crate::{MechError, Result};
+use nalgebra::SVector;
+use serde::Serialize;
+
+/// Settings of an analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnalysisOptions {
+    /// Step of the input angle (deg), 0.01…30; rounded so that a whole number of steps makes 360°.
+    pub step_deg: f64,
+    /// First input angle (deg); the paper starts at 0.
+    pub start_deg: f64,
+    /// Constant input speed ω2 (rad/s); the paper's 1 rad/s makes rates read as ratios.
+    pub input_speed_rad_s: f64,
+    /// Roller radius (m) for the undercut check and the groove walls, if any.
+    pub roller_m: Option<f64>,
+    /// Pressure angles above this (deg) raise a warning.
+    pub pressure_limit_deg: f64,
+    /// Newton settings.
+    pub newton: NewtonOptions,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        Self {
+            step_deg: 1.0,
+            start_deg: 0.0,
+            input_speed_rad_s: 1.0,
+            roller_m: None,
+            pressure_limit_deg: 60.0,
+            newton: NewtonOptions::default(),
+        }
+    }
+}
+
+/// One row of an analysis (time rates at the constant input speed).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AnalysisRow {
+    /// Input angle φ2 (deg).
+    pub phi2_deg: f64,
+    /// Time since the start (s).
+    pub t_s: f64,
+    /// Parameter p of the cam curve at B.
+    pub cam_param: f64,
+    /// Slot angle φ3 (deg), continuous.
+    pub phi3_deg: f64,
+    /// Output angle φ6 (deg), continuous.
+    pub phi6_deg: f64,
+    /// Slider position S53 = |AD| (m).
+    pub s53_m: f64,
+    /// ω3 (rad/s).
+    pub omega3_rad_s: f64,
+    /// ω6 (rad/s).
+    pub omega6_rad_s: f64,
+    /// Slider speed dS53/dt (m/s).
+    pub v53_m_s: f64,
+    /// ε3 (rad/s²).
+    pub eps3_rad_s2: f64,
+    /// ε6 (rad/s²).
+    pub eps6_rad_s2: f64,
+    /// Slider acceleration (m/s²).
+    pub a53_m_s2: f64,
+    /// Roller centre B x (m).
+    pub b_x_m: f64,
+    /// Roller centre B y (m).
+    pub b_y_m: f64,
+    /// Roller centre C x (m).
+    pub c_x_m: f64,
+    /// Roller centre C y (m).
+    pub c_y_m: f64,
+    /// Output pressure angle (deg).
+    pub mu_out_deg: f64,
+    /// Pressure angle at roller B (deg).
+    pub mu_b_deg: f64,
+    /// Pressure angle at roller C (deg).
+    pub mu_c_deg: f64,
+    /// Signed curvature of Γ at B along the travel (1/m).
+    pub kappa_b_1_m: f64,
+    /// Signed curvature of Γ′ at C along the travel (1/m).
+    pub kappa_c_1_m: f64,
+}
+
+impl AnalysisRow {
+    pub(crate) fn new(g: &ModulatorGeometry, s: &ModulatorState, cam_param: f64, t_s: f64, w2: f64) -> Self {
+        Self {
+            phi2_deg: s.phi2.to_degrees(),
+            t_s,
+            cam_param,
+            phi3_deg: s.phi3[0].to_degrees(),
+            phi6_deg: s.phi6[0].to_degrees(),
+            s53_m: s.s53[0],
+            omega3_rad_s: s.phi3[1] * w2,
+            omega6_rad_s: s.phi6[1] * w2,
+            v53_m_s: s.s53[1] * w2,
+            eps3_rad_s2: s.phi3[2] * w2 * w2,
+            eps6_rad_s2: s.phi6[2] * w2 * w2,
+            a53_m_s2: s.s53[2] * w2 * w2,
+            b_x_m: s.b[0].x,
+            b_y_m: s.b[0].y,
+            c_x_m: s.c[0].x,
+            c_y_m: s.c[0].y,
+            mu_out_deg: s.mu_out_deg(),
+            mu_b_deg: s.mu_b_deg(g),
+            mu_c_deg: s.mu_c_deg(g),
+            kappa_b_1_m: s.kappa_b(),
+            kappa_c_1_m: s.kappa_c(),
+        }
+    }
+}
+
+/// Summary of an analysis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AnalysisSummary {
+    /// The cam.
+    pub cam: String,
+    /// Geometry used.
+    pub geometry: ModulatorGeometry,
+    /// Input speed ω2 (rad/s).
+    pub input_speed_rad_s: f64,
+    /// Input step used (deg).
+    pub step_deg: f64,
+    /// Largest |φ3 − φ2| over the revolution (deg); the slot meets crank 6 while it is below
+    /// `arcsin(l6/l2)`.
+    pub slot_deviation_max_deg: f64,
+    /// The limit `arcsin(l6/l2)` (deg).
+    pub slot_deviation_limit_deg: f64,
+    /// Range of α (deg) for which the slot meets crank 6 over the whole revolution with this cam
+    /// (the roller path does not depend on α).
+    pub admissible_alpha_deg: [f64; 2],
+    /// Open range of θ (deg) for which the arm AC is never normal to the derived counter-cam Γ′:
+    /// `(max δ, 180° + min δ)`, `δ = φ3 − φ2`.
+    pub admissible_theta_deg: [f64; 2],
+    /// Undercut of Γ by the roller, if a roller radius was given.
+    pub undercut_b: bool,
+    /// Undercut of Γ′ by the roller, if a roller radius was given.
+    pub undercut_c: bool,
+    /// The checks of the revolution.
+    #[serde(flatten)]
+    pub checks: CamChecks,
+}
+
+/// The result of an analysis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Analysis {
+    /// One row per input step, the last one closing the revolution.
+    pub rows: Vec<AnalysisRow>,
+    /// Summary.
+    pub summary: AnalysisSummary,
+    /// Warnings (pressure angles, undercut, cusps, self-crossings).
+    pub warnings: Vec<Warning>,
+    /// The counter-cam Γ′ derived from the motion (roller-centre curve and, with a roller, walls).
+    pub counter_cam: CamProfile,
+    /// Full states (positions and φ2-derivatives), parallel to `rows`.
+    #[serde(skip)]
+    pub states: Vec<ModulatorState>,
+}
+
+/// Loop (2) alone, unknowns `q = (p, φ3)`: `r(p) + l3·e(φ3 + α) − l2·e(φ2) = 0`.
+pub fn cam_loop(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<2>> {
+    let l = VectorLoop::new()
+        .plus_curve(cam.curve().clone(), Scalar::unknown(0))
+        .plus_polar(Scalar::constant(g.l3_m), Scalar::unknown_plus(1, g.alpha_rad()))
+        .minus_polar(Scalar::constant(g.l2_m), Scalar::input_plus(0.0));
+    LoopSystem::new(vec![l])
+}
+
+/// Both loops (2) and (3), unknowns `q = (p, φ3, S53, φ6)`:
+/// `r(p) + l3·e(φ3 + α) − l2·e(φ2) = 0` and `l6·e(φ6) + S53·e(φ3) − l2·e(φ2) = 0`.
+pub fn modulator_loops(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<4>> {
+    let l1 = VectorLoop::new()
+        .plus_curve(cam.curve().clone(), Scalar::unknown(0))
+        .plus_polar(Scalar::constant(g.l3_m), Scalar::unknown_plus(1, g.alpha_rad()))
+        .minus_polar(Scalar::constant(g.l2_m), Scalar::input_plus(0.0));
+    let l2 = VectorLoop::new()
+        .plus_polar(Scalar::constant(g.l6_m), Scalar::unknown(3))
+        .plus_polar(Scalar::unknown(2), Scalar::unknown(1))
+        .minus_polar(Scalar::constant(g.l2_m), Scalar::input_plus(0.0));
+    LoopSystem::new(vec![l1, l2])
+}
+
+/// Range `[min, max]` (m) of the distance from A to the cam curve at φ2 (sampled, 2048 points).
+fn reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> (f64, f64) {
+    let a = g.l2_m * e(phi2);
+    let c = cam.curve();
+    let n = 2048;
+    (0..n)
+        .map(|i| (c.eval(c.period() * i as f64 / n as f64).r - a).norm())
+        .fold((f64::INFINITY, 0.0), |(lo, hi), d| (lo.min(d), hi.max(d)))
+}
+
+fn no_reach(g: &ModulatorGeometry, phi2: f64, lo: f64, hi: f64) -> MechError {
+    MechError::CannotBuild {
+        phi2_deg: phi2.to_degrees(),
+        condition: format!(
+            "roller B cannot reach cam Γ: the distance from A to Γ spans [{lo:.6}, {hi:.6}] m but the arm AB is \
+             l3 = {} m",
+            g.l3_m
+        ),
+        admissible: Some(format!("l3 ∈ [{lo:.6}, {hi:.6}] m at this angle")),
+    }
+}
+
+/// The assembly `(p, φ3)` at input angle `phi2` (rad): among the points of Γ at distance l3 from A,
+/// the one whose slot angle φ3 is closest to φ2 (the slot best aligned with OA, so that it can meet
+/// crank 6). Roots are bracketed on 2048 samples of the curve and refined by bisection and Newton.
+pub fn assemble(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> Result<[f64; 2]> {
+    let a = g.l2_m * e(phi2);
+    let c = cam.curve();
+    let n = 2048;
+    let per = c.period();
+    let f = |p: f64| (a - c.eval(p).r).norm_squared() - g.l3_m * g.l3_m;
+    let mut best: Option<(f64, [f64; 2])> = None;
+    let mut prev = f(0.0);
+    for i in 1..=n {
+        let (p0, p1) = (per * (i - 1) as f64 / n as f64, per * i as f64 / n as f64);
+        let cur = f(p1);
+        if prev == 0.0 || prev.signum() != cur.signum() {
+            let (mut lo, mut hi, mut flo) = (p0, p1, prev);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                let fm = f(mid);
+                if fm.signum() == flo.signum() {
+                    (lo, flo) = (mid, fm);
+                } else {
+                    hi = mid;
+                }
+            }
+            let p = 0.5 * (lo + hi);
+            let ab = a - c.eval(p).r;
+            let phi3 = phi2 + wrap_pi(ab.y.atan2(ab.x) - g.alpha_rad() - phi2);
+            let score = (phi3 - phi2).abs();
+            if best.is_none_or(|(s, _)| score < s) {
+                best = Some((score, [p, phi3]));
+            }
+        }
+        prev = cur;
+    }
+    let Some((_, q)) = best else {
+        let (lo, hi) = reach(g, cam, phi2);
+        return Err(no_reach(g, phi2, lo, hi));
+    };
+    let sys = cam_loop(g, cam)?;
+    let pos = sys.solve_position(phi2, SVector::<f64, 2>::new(q[0], q[1]), &NewtonOptions::default())?;
+    Ok([pos.q[0], pos.q[1]])
+}
+
+/// The input grid (rad): `n = ⌈360/step⌉` equal steps from `start_deg`, both ends included.
+pub(crate) fn input_grid(start_deg: f64, step_deg: f64) -> (Vec<f64>, f64) {
+    let n = ((360.0 / step_deg) - 1e-9).ceil().max(1.0) as usize;
+    let h = 360.0 / n as f64;
+    ((0..=n).map(|i| (start_deg + i as f64 * h).to_radians()).collect(), h)
+}
+
+pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
+    MechError::check_range("step_deg", step_deg, 0.01, 30.0, "°")?;
+    MechError::check_range("input_speed_rad_s", speed, 1e-6, 1e4, "rad/s")?;
+    MechError::check_range("pressure_limit_deg", limit, 0.0, 90.0, "°")?;
+    if let Some(r) = roller {
+        MechError::check_range("roller_m", r, 0.0, 10.0, "m")?;
+    }
+    Ok(())
+}
+
+/// Analyses the modulator with cam Γ over one input revolution.
+///
+/// Errors, each naming the input angle: the roller cannot reach Γ; a fold where the arm AB is normal
+/// to Γ (the cam cannot drive the lever); the slot misses the output crank
+/// (`|φ3 − φ2| > arcsin(l6/l2)`), with the admissible range of α for this cam.
+pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Result<Analysis> {
+    g.validate()?;
+    check_common(opts.step_deg, opts.input_speed_rad_s, opts.roller_m, opts.pressure_limit_deg)?;
+    MechError::check_range("start_deg", opts.start_deg, -360.0, 360.0, "°")?;
+    let (xs, step) = input_grid(opts.start_deg, opts.step_deg);
+    let q0 = assemble(g, cam, xs[0])?;
+    let sys = cam_loop(g, cam)?;
+    let traced = sys.trace(&xs, SVector::<f64, 2>::new(q0[0], q0[1]), &opts.newton).map_err(|err| match err {
+        MechError::BranchLost { from, to, .. } => diagnose_cam(g, cam, from, to),
+        MechError::Singular { input, .. } | MechError::NoConvergence { input, .. } => {
+            diagnose_cam(g, cam, input, input)
+        }
+        other => other,
+    })?;
+
+    // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
+    let sigma = (g.l6_m / g.l2_m).asin();
+    let (mut eta_min, mut eta_max, mut worst) = (f64::INFINITY, f64::NEG_INFINITY, (0.0f64, 0usize));
+    for (k, st) in traced.iter().enumerate() {
+        let d = wrap_pi(st.q[1] - st.input);
+        eta_min = eta_min.min(d + g.alpha_rad());
+        eta_max = eta_max.max(d + g.alpha_rad());
+        if d.abs() > worst.0 {
+            worst = (d.abs(), k);
+        }
+    }
+    let alpha_range = [(eta_max - sigma).to_degrees(), (eta_min + sigma).to_degrees()];
+    if worst.0 > sigma {
+        let st = &traced[worst.1];
+        let d = wrap_pi(st.q[1] - st.input);
+        let admissible = if alpha_range[0] <= alpha_range[1] {
+            format!("admissible α ∈ [{:.3}, {:.3}]° for this cam", alpha_range[0], alpha_range[1])
+        } else {
+            format!(
+                "no α works for this cam: φ3 − φ2 + α spans {:.3}°, more than 2·arcsin(l6/l2) = {:.3}°",
+                (eta_max - eta_min).to_degrees(),
+                2.0 * sigma.to_degrees()
+            )
+        };
+        return Err(MechError::CannotBuild {
+            phi2_deg: st.input.to_degrees(),
+            condition: format!(
+                "the slot misses the output crank: |sin(φ3 − φ2)| = {:.5} > l6/l2 = {:.5} (φ3 − φ2 = {:.3}°)",
+                d.sin().abs(),
+                g.l6_m / g.l2_m,
+                d.to_degrees()
+            ),
+            admissible: Some(admissible),
+        });
+    }
+
+    let w2 = opts.input_speed_rad_s;
+    let mut states = Vec::with_capacity(traced.len());
+    let mut rows = Vec::with_capacity(traced.len());
+    let mut phi6_ref = traced[0].input;
+    for st in &traced {
+        let s = state_from_phi3(g, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
+            MechError::CannotBuild {
+                phi2_deg: st.input.to_degrees(),
+                condition: format!("loop (3) cannot close: {e}"),
+                admissible: None,
+            }
+        })?;
+        phi6_ref = s.phi6[0];
+        rows.push(AnalysisRow::new(g, &s, st.q[0], (st.input - xs[0]) / w2, w2));
+        states.push(s);
+    }
+    let mut warnings = Vec::new();
+    let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
+    let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
+    let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let theta_range = [dmax.to_degrees(), 180.0 + dmin.to_degrees()];
+    let xs_done: Vec<f64> = states.iter().map(|s| s.phi2).collect();
+    counter_cam_fold(g, &xs_done, &deltas, theta_range, &mut warnings);
+    let checks = check_states(g, &states, w2, opts.pressure_limit_deg, &mut warnings);
+    let (ub, uc) = match opts.roller_m {
+        Some(r) => undercut(&checks, r, &mut warnings),
+        None => (false, false),
+    };
+    let path: Vec<(Vec2, Vec2)> = states[..states.len() - 1].iter().map(|s| (s.c[0], s.c[1])).collect();
+    let counter_cam = CamProfile::from_path(&path, opts.roller_m.unwrap_or(0.0));
+    let summary = AnalysisSummary {
+        cam: cam.label().to_string(),
+        geometry: *g,
+        input_speed_rad_s: w2,
+        step_deg: step,
+        slot_deviation_max_deg: worst.0.to_degrees(),
+        slot_deviation_limit_deg: sigma.to_degrees(),
+        admissible_alpha_deg: alpha_range,
+        admissible_theta_deg: theta_range,
+        undercut_b: ub,
+        undercut_c: uc,
+        checks,
+    };
+    Ok(Analysis { rows, summary, warnings, counter_cam, states })
+}
+
+/// Names the reason the cam loop could not be followed between `from` and `to` (rad).
+fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechError {
+    for k in 0..=16 {
+        let x = from + (to - from) * k as f64 / 16.0;
+        let (lo, hi) = reach(g, cam, x);
+        if g.l3_m < lo || g.l3_m > hi {
+            return no_reach(g, x, lo, hi);
+        }
+    }
+    MechError::CannotBuild {
+        phi2_deg: from.to_degrees(),
+        condition: format!(
+            "fold between φ2 = {:.3}° and {:.3}°: the arm AB becomes normal to cam Γ (pressure angle at roller B \
+             reaches 90°), so the cam cannot drive the lever past it",
+            from.to_degrees(),
+            to.to_degrees()
+        ),
+        admissible: Some("the fold does not depend on α; change the cam, l2 or l3".into()),
+    }
+}

@@ -1,0 +1,207 @@
+//! Checks shared by analysis and synthesis: pressure angles, curvature, closure, self-intersection.
+
+use crate::planar::{Vec2, cross};
+use serde::Serialize;
+
+/// What a [`Warning`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum WarningCode {
+    /// A pressure angle above the limit set in the options.
+    PressureAngle,
+    /// The roller radius exceeds a cam's smallest radius of curvature: the groove wall is undercut.
+    Undercut,
+    /// A roller-centre curve or a groove wall crosses itself.
+    SelfIntersection,
+    /// A roller-centre curve has a stationary point (cusp).
+    Cusp,
+    /// The counter-cam roller's arm becomes normal to its cam (pressure angle 90°): Γ′ cannot hold
+    /// the lever there, though cam Γ still drives it.
+    CounterCamFold,
+}
+
+/// A condition the user can still go on with, located at an input angle where it applies.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// Kind.
+    pub code: WarningCode,
+    /// Input angle φ2 (deg) of the worst point, if located.
+    pub phi2_deg: Option<f64>,
+    /// The condition with its numbers and the admissible range.
+    pub message: String,
+}
+
+/// Pressure angle (deg, 0…90) at a roller: the angle between the cam normal (the line of the
+/// contact force) and the roller centre's velocity relative to the input crank, which is normal to
+/// the lever arm. `cos μ = |t̂ · û|` with `t̂` the cam tangent and `û` the arm direction. A
+/// stationary tangent (cusp) gives 90°.
+pub fn roller_pressure_angle_deg(tangent: Vec2, arm: Vec2) -> f64 {
+    let (nt, na) = (tangent.norm(), arm.norm());
+    let usable = nt > 1e-300 && na > 1e-300 && nt.is_finite() && na.is_finite();
+    if !usable {
+        return 90.0;
+    }
+    (tangent.dot(&arm).abs() / (nt * na)).min(1.0).acos().to_degrees()
+}
+
+/// Pressure angle (deg, 0…90) at the output: the slot pushes slider 5 normal to the slot,
+/// direction `e⊥(φ3)`, while D moves along `e⊥(φ6)`: `μ6 = arccos |cos(φ3 − φ6)|`.
+pub fn output_pressure_angle_deg(phi3: f64, phi6: f64) -> f64 {
+    (phi3 - phi6).cos().abs().min(1.0).acos().to_degrees()
+}
+
+/// Warns where the counter-cam arm AC becomes normal to Γ′: `C′·(C − A) = l2 sin(θ − δ)` vanishes,
+/// `δ = φ3 − φ2`; `xs` are the input angles (rad) parallel to `deltas`.
+pub(crate) fn counter_cam_fold(
+    g: &super::geometry::ModulatorGeometry,
+    xs: &[f64],
+    deltas: &[f64],
+    theta_range: [f64; 2],
+    warnings: &mut Vec<Warning>,
+) {
+    if let Some(k) = deltas.iter().position(|d| {
+        let v = g.theta_rad() - d;
+        v <= 0.0 || v >= std::f64::consts::PI
+    }) {
+        warnings.push(Warning {
+            code: WarningCode::CounterCamFold,
+            phi2_deg: Some(xs[k].to_degrees()),
+            message: format!(
+                "fold at roller C at φ2 = {:.3}°: the arm AC is normal to counter-cam Γ′ (φ3 − φ2 = {:.3}°, θ = {:.3}°), \
+                 Γ′ cannot hold the lever there; admissible θ ∈ ({:.3}, {:.3})°",
+                xs[k].to_degrees(),
+                deltas[k].to_degrees(),
+                g.theta_deg,
+                theta_range[0],
+                theta_range[1]
+            ),
+        });
+    }
+}
+
+/// A running maximum with the input angle where it occurs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Peak {
+    pub value: f64,
+    pub at_deg: f64,
+}
+
+impl Default for Peak {
+    fn default() -> Self {
+        Self { value: f64::NEG_INFINITY, at_deg: 0.0 }
+    }
+}
+
+impl Peak {
+    pub fn push(&mut self, value: f64, at_deg: f64) {
+        if value.is_finite() && value > self.value {
+            *self = Self { value, at_deg };
+        }
+    }
+    pub fn value_or(&self, d: f64) -> f64 {
+        if self.value.is_finite() { self.value } else { d }
+    }
+}
+
+/// A crossing of a polyline with itself.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Crossing {
+    /// Index of the first segment (from point i to i+1).
+    pub segment_a: usize,
+    /// Index of the second segment.
+    pub segment_b: usize,
+    /// Crossing point x (m).
+    pub x_m: f64,
+    /// Crossing point y (m).
+    pub y_m: f64,
+}
+
+/// Proper crossings of a polyline with itself (closed: the last point joins the first), at most
+/// `limit`. Neighbouring segments are not compared. A sweep over the segments sorted by their
+/// leftmost x keeps the cost near `n log n` for cam-like curves.
+pub fn self_intersections(points: &[Vec2], closed: bool, limit: usize) -> Vec<Crossing> {
+    let n = points.len();
+    let nseg = if closed { n } else { n.saturating_sub(1) };
+    if nseg < 3 {
+        return Vec::new();
+    }
+    let seg = |i: usize| (points[i], points[(i + 1) % n]);
+    let mut order: Vec<usize> = (0..nseg).collect();
+    let minx = |i: usize| {
+        let (a, b) = seg(i);
+        a.x.min(b.x)
+    };
+    order.sort_by(|&i, &j| minx(i).total_cmp(&minx(j)));
+    let mut active: Vec<usize> = Vec::new();
+    let mut out = Vec::new();
+    for &i in &order {
+        let (a, b) = seg(i);
+        let x0 = a.x.min(b.x);
+        active.retain(|&j| {
+            let (c, d) = seg(j);
+            c.x.max(d.x) >= x0
+        });
+        for &j in &active {
+            let adjacent = i.abs_diff(j) <= 1 || (closed && i.abs_diff(j) == nseg - 1);
+            if adjacent {
+                continue;
+            }
+            let (c, d) = seg(j);
+            if let Some(p) = segment_crossing(a, b, c, d) {
+                out.push(Crossing { segment_a: i.min(j), segment_b: i.max(j), x_m: p.x, y_m: p.y });
+                if out.len() >= limit {
+                    return out;
+                }
+            }
+        }
+        active.push(i);
+    }
+    out
+}
+
+/// The proper crossing point of segments `ab` and `cd`, if any.
+fn segment_crossing(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> Option<Vec2> {
+    if a.y.max(b.y) < c.y.min(d.y) || c.y.max(d.y) < a.y.min(b.y) {
+        return None;
+    }
+    let (r, s) = (b - a, d - c);
+    let den = cross(r, s);
+    if den == 0.0 {
+        return None;
+    }
+    let t = cross(c - a, s) / den;
+    let u = cross(c - a, r) / den;
+    ((0.0..1.0).contains(&t) && (0.0..1.0).contains(&u)).then(|| a + t * r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planar::e;
+
+    #[test]
+    fn a_figure_eight_crosses_once_and_a_circle_never() {
+        let n = 400;
+        let eight: Vec<Vec2> = (0..n)
+            .map(|i| {
+                let t = std::f64::consts::TAU * i as f64 / n as f64;
+                Vec2::new(t.sin(), (2.0 * t).sin() / 2.0)
+            })
+            .collect();
+        let x = self_intersections(&eight, true, 10);
+        assert_eq!(x.len(), 1, "{x:?}");
+        assert!(x[0].x_m.abs() < 1e-3 && x[0].y_m.abs() < 1e-3);
+        let circle: Vec<Vec2> = (0..n).map(|i| e(std::f64::consts::TAU * i as f64 / n as f64)).collect();
+        assert!(self_intersections(&circle, true, 10).is_empty());
+    }
+
+    #[test]
+    fn pressure_angles_are_in_range() {
+        assert!((roller_pressure_angle_deg(Vec2::new(1.0, 0.0), Vec2::new(1.0, 0.0))).abs() < 1e-12);
+        assert!((roller_pressure_angle_deg(Vec2::new(0.0, 2.0), Vec2::new(1.0, 0.0)) - 90.0).abs() < 1e-12);
+        assert_eq!(roller_pressure_angle_deg(Vec2::zeros(), Vec2::new(1.0, 0.0)), 90.0);
+        assert!((output_pressure_angle_deg(0.3, 0.3)).abs() < 1e-6);
+        assert!((output_pressure_angle_deg(0.0, 2.0) - (180.0 - 2.0f64.to_degrees())).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,13 @@
+//! The modulator of a Stäubli-type rotary dobby (series 2600): geometry, analysis (task 1),
+//! synthesis (task 2), checks and the α sweep.
+
+pub(crate) mod analysis;
+pub(crate) mod cam;
+pub(crate) mod checks;
+pub(crate) mod geometry;
+pub(crate) mod kinematics;
+pub(crate) mod law;
+pub(crate) mod pose;
+pub(crate) mod report;
+pub(crate) mod sweep;
+pub(crate) mod synthesis;

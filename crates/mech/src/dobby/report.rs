@@ -1,0 +1,218 @@
+//! Checks over a traced revolution: extremes of rates, pressure angles, curvature, closure,
+//! self-intersection, undercut; shared by analysis and synthesis.
+
+use super::checks::{Peak, Warning, WarningCode, self_intersections};
+use super::geometry::ModulatorGeometry;
+use super::kinematics::ModulatorState;
+use crate::planar::{Vec2, perp};
+use serde::Serialize;
+
+/// The checks of one revolution (all angles in deg, lengths in m, rates at the input speed).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CamChecks {
+    /// Smallest output speed ω6 (rad/s).
+    pub omega6_min_rad_s: f64,
+    /// Largest output speed ω6 (rad/s).
+    pub omega6_max_rad_s: f64,
+    /// Smallest output acceleration ε6 (rad/s²).
+    pub eps6_min_rad_s2: f64,
+    /// Largest output acceleration ε6 (rad/s²).
+    pub eps6_max_rad_s2: f64,
+    /// Output turn over the revolution, φ6(end) − φ6(start) (deg); 360 for one revolution.
+    pub phi6_turn_deg: f64,
+    /// Largest output pressure angle μ6 (deg).
+    pub mu_out_max_deg: f64,
+    /// Input angle φ2 of the largest μ6 (deg).
+    pub mu_out_max_at_phi2_deg: f64,
+    /// Largest pressure angle at roller B on cam Γ (deg).
+    pub mu_b_max_deg: f64,
+    /// Input angle φ2 of the largest μB (deg).
+    pub mu_b_max_at_phi2_deg: f64,
+    /// Largest pressure angle at roller C on counter-cam Γ′ (deg).
+    pub mu_c_max_deg: f64,
+    /// Input angle φ2 of the largest μC (deg).
+    pub mu_c_max_at_phi2_deg: f64,
+    /// Smallest radius of curvature of Γ's roller-centre curve (m); `None` if it is straight.
+    pub rho_b_min_m: Option<f64>,
+    /// Input angle φ2 of the smallest radius of curvature of Γ (deg).
+    pub rho_b_min_at_phi2_deg: f64,
+    /// Smallest radius of curvature of Γ′'s roller-centre curve (m); `None` if it is straight.
+    pub rho_c_min_m: Option<f64>,
+    /// Input angle φ2 of the smallest radius of curvature of Γ′ (deg).
+    pub rho_c_min_at_phi2_deg: f64,
+    /// Largest roller radius (m) that undercuts neither groove: `min(ρB_min, ρC_min)`.
+    pub roller_max_m: Option<f64>,
+    /// Distance between the first and last point of B's path (m): 0 for a closed revolution.
+    pub closure_gap_b_m: f64,
+    /// Distance between the first and last point of C's path (m).
+    pub closure_gap_c_m: f64,
+    /// Self-crossings of the roller-centre curve of Γ.
+    pub self_intersections_b: usize,
+    /// Self-crossings of the roller-centre curve of Γ′.
+    pub self_intersections_c: usize,
+}
+
+/// Polylines of one cam: its roller-centre curve and the two groove walls offset by the roller
+/// radius `r` along the left normal `n̂ = perp(B′)/|B′|` of the direction of travel (`+r`) and
+/// against it (`−r`). No point is repeated at the end: the polylines are closed.
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct CamProfile {
+    /// Roller-centre curve (m).
+    pub centre: Vec<[f64; 2]>,
+    /// Groove wall `centre + r·n̂` (m).
+    pub wall_left: Vec<[f64; 2]>,
+    /// Groove wall `centre − r·n̂` (m).
+    pub wall_right: Vec<[f64; 2]>,
+}
+
+impl CamProfile {
+    /// The profile of a path `(point, tangent)` for roller radius `r_m` (0 gives empty walls).
+    pub(crate) fn from_path(path: &[(Vec2, Vec2)], r_m: f64) -> Self {
+        let mut out = CamProfile::default();
+        let mut last_n = Vec2::new(0.0, 1.0);
+        for (p, t) in path {
+            let n = t.norm();
+            if n > 1e-12 {
+                last_n = perp(*t) / n;
+            }
+            out.centre.push([p.x, p.y]);
+            if r_m > 0.0 {
+                let (l, r) = (p + r_m * last_n, p - r_m * last_n);
+                out.wall_left.push([l.x, l.y]);
+                out.wall_right.push([r.x, r.y]);
+            }
+        }
+        out
+    }
+}
+
+fn to_vec2(p: &[[f64; 2]]) -> Vec<Vec2> {
+    p.iter().map(|q| Vec2::new(q[0], q[1])).collect()
+}
+
+/// Self-crossings of a closed polyline given as `[x, y]` pairs.
+pub(crate) fn crossings(p: &[[f64; 2]]) -> usize {
+    self_intersections(&to_vec2(p), true, 1000).len()
+}
+
+/// Runs every check over the states of one revolution (the last state closes the revolution).
+pub(crate) fn check_states(
+    g: &ModulatorGeometry,
+    states: &[ModulatorState],
+    w2: f64,
+    pressure_limit_deg: f64,
+    warnings: &mut Vec<Warning>,
+) -> CamChecks {
+    let (mut w6max, mut w6min, mut e6max, mut e6min) =
+        (Peak::default(), Peak::default(), Peak::default(), Peak::default());
+    let (mut mo, mut mb, mut mc, mut kb, mut kc) =
+        (Peak::default(), Peak::default(), Peak::default(), Peak::default(), Peak::default());
+    let mut cusp_c: Option<f64> = None;
+    for s in states {
+        let deg = s.phi2.to_degrees();
+        w6max.push(s.phi6[1] * w2, deg);
+        w6min.push(-s.phi6[1] * w2, deg);
+        e6max.push(s.phi6[2] * w2 * w2, deg);
+        e6min.push(-s.phi6[2] * w2 * w2, deg);
+        mo.push(s.mu_out_deg(), deg);
+        mb.push(s.mu_b_deg(g), deg);
+        mc.push(s.mu_c_deg(g), deg);
+        kb.push(s.kappa_b().abs(), deg);
+        kc.push(s.kappa_c().abs(), deg);
+        if s.c[1].norm() < 1e-9 * g.l2_m && cusp_c.is_none() {
+            cusp_c = Some(deg);
+        }
+    }
+    let (first, last) = (states[0], states[states.len() - 1]);
+    let rho = |k: &Peak| (k.value.is_finite() && k.value > 0.0).then(|| 1.0 / k.value);
+    let (rho_b, rho_c) = (rho(&kb), rho(&kc));
+    let pts = |f: &dyn Fn(&ModulatorState) -> Vec2| -> Vec<Vec2> {
+        states[..states.len() - 1].iter().map(f).collect::<Vec<_>>()
+    };
+    let (pb, pc) = (pts(&|s| s.b[0]), pts(&|s| s.c[0]));
+    let xb = self_intersections(&pb, true, 1000);
+    let xc = self_intersections(&pc, true, 1000);
+    for (name, peak) in
+        [("the output (slot on crank 6)", mo), ("roller B on cam Γ", mb), ("roller C on counter-cam Γ′", mc)]
+    {
+        if peak.value > pressure_limit_deg {
+            warnings.push(Warning {
+                code: WarningCode::PressureAngle,
+                phi2_deg: Some(peak.at_deg),
+                message: format!(
+                    "pressure angle at {name} reaches {:.2}° at φ2 = {:.2}°, above the limit {pressure_limit_deg}°",
+                    peak.value, peak.at_deg
+                ),
+            });
+        }
+    }
+    if let Some(at) = cusp_c {
+        warnings.push(Warning {
+            code: WarningCode::Cusp,
+            phi2_deg: Some(at),
+            message: format!("the counter-cam curve Γ′ has a stationary point (cusp) at φ2 = {at:.2}°"),
+        });
+    }
+    for (name, x) in [("cam Γ", &xb), ("counter-cam Γ′", &xc)] {
+        if let Some(c) = x.first() {
+            warnings.push(Warning {
+                code: WarningCode::SelfIntersection,
+                phi2_deg: None,
+                message: format!(
+                    "the roller-centre curve of {name} crosses itself {} time(s), first at ({:.6}, {:.6}) m",
+                    x.len(),
+                    c.x_m,
+                    c.y_m
+                ),
+            });
+        }
+    }
+    CamChecks {
+        omega6_min_rad_s: -w6min.value_or(0.0),
+        omega6_max_rad_s: w6max.value_or(0.0),
+        eps6_min_rad_s2: -e6min.value_or(0.0),
+        eps6_max_rad_s2: e6max.value_or(0.0),
+        phi6_turn_deg: (last.phi6[0] - first.phi6[0]).to_degrees(),
+        mu_out_max_deg: mo.value_or(0.0),
+        mu_out_max_at_phi2_deg: mo.at_deg,
+        mu_b_max_deg: mb.value_or(0.0),
+        mu_b_max_at_phi2_deg: mb.at_deg,
+        mu_c_max_deg: mc.value_or(0.0),
+        mu_c_max_at_phi2_deg: mc.at_deg,
+        rho_b_min_m: rho_b,
+        rho_b_min_at_phi2_deg: kb.at_deg,
+        rho_c_min_m: rho_c,
+        rho_c_min_at_phi2_deg: kc.at_deg,
+        roller_max_m: match (rho_b, rho_c) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        },
+        closure_gap_b_m: (last.b[0] - first.b[0]).norm(),
+        closure_gap_c_m: (last.c[0] - first.c[0]).norm(),
+        self_intersections_b: xb.len(),
+        self_intersections_c: xc.len(),
+    }
+}
+
+/// Undercut flags and warnings for a roller radius against the smallest radii of curvature.
+pub(crate) fn undercut(checks: &CamChecks, roller_m: f64, warnings: &mut Vec<Warning>) -> (bool, bool) {
+    let mut flag = |rho: Option<f64>, at: f64, name: &str| -> bool {
+        match rho {
+            Some(r) if r < roller_m => {
+                warnings.push(Warning {
+                    code: WarningCode::Undercut,
+                    phi2_deg: Some(at),
+                    message: format!(
+                        "undercut of {name}: roller radius {roller_m} m exceeds the smallest radius of curvature \
+                         {r:.6} m at φ2 = {at:.2}°; admissible roller radius < {r:.6} m"
+                    ),
+                });
+                true
+            }
+            _ => false,
+        }
+    };
+    let b = flag(checks.rho_b_min_m, checks.rho_b_min_at_phi2_deg, "cam Γ");
+    let c = flag(checks.rho_c_min_m, checks.rho_c_min_at_phi2_deg, "counter-cam Γ′");
+    (b, c)
+}

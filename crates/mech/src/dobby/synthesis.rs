@@ -1,0 +1,275 @@
+//! Task 2, synthesis: the output law φ6(φ2) is given; find the roller-centre curves of cam Γ and
+//! counter-cam Γ′ and their groove walls.
+//!
+//! Everything is closed form: `S53·e(φ3) = l2·e(φ2) − l6·e(φ6)` gives φ3 and S53, then
+//! `B = A − l3·e(φ3 + α)` and `C = A + l3′·e(φ3 + π − θ)` (eqs. (2), (8), (9)).
+
+use super::analysis::{check_common, input_grid};
+use super::checks::{Warning, WarningCode, counter_cam_fold};
+use super::geometry::ModulatorGeometry;
+use super::kinematics::{ModulatorState, state_from_phi6};
+use super::law::{OutputLawSpec, max_dwell_deg};
+use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
+use crate::planar::{Vec2, wrap_pi};
+use crate::{MechError, Result};
+use serde::Serialize;
+
+/// Settings of a synthesis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SynthesisOptions {
+    /// Step of the input angle (deg), 0.01…30, rounded to a whole number of steps per turn.
+    pub step_deg: f64,
+    /// Constant input speed ω2 (rad/s).
+    pub input_speed_rad_s: f64,
+    /// Roller radius (m) of both rollers, for the groove walls and the undercut check; 0…10.
+    pub roller_m: f64,
+    /// Pressure angles above this (deg) raise a warning.
+    pub pressure_limit_deg: f64,
+}
+
+impl Default for SynthesisOptions {
+    fn default() -> Self {
+        Self { step_deg: 1.0, input_speed_rad_s: 1.0, roller_m: 0.03, pressure_limit_deg: 60.0 }
+    }
+}
+
+/// One row of a synthesis (time rates at the constant input speed).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SynthesisRow {
+    /// Input angle φ2 (deg).
+    pub phi2_deg: f64,
+    /// Output angle φ6 (deg), continuous.
+    pub phi6_deg: f64,
+    /// ω6 (rad/s).
+    pub omega6_rad_s: f64,
+    /// ε6 (rad/s²).
+    pub eps6_rad_s2: f64,
+    /// Slot angle φ3 (deg), continuous.
+    pub phi3_deg: f64,
+    /// ω3 (rad/s).
+    pub omega3_rad_s: f64,
+    /// Slider position S53 (m).
+    pub s53_m: f64,
+    /// Roller centre B on Γ, x (m).
+    pub b_x_m: f64,
+    /// Roller centre B on Γ, y (m).
+    pub b_y_m: f64,
+    /// Roller centre C on Γ′, x (m).
+    pub c_x_m: f64,
+    /// Roller centre C on Γ′, y (m).
+    pub c_y_m: f64,
+    /// Output pressure angle (deg).
+    pub mu_out_deg: f64,
+    /// Pressure angle at roller B (deg).
+    pub mu_b_deg: f64,
+    /// Pressure angle at roller C (deg).
+    pub mu_c_deg: f64,
+    /// Signed curvature of Γ at B along the travel (1/m).
+    pub kappa_b_1_m: f64,
+    /// Signed curvature of Γ′ at C along the travel (1/m).
+    pub kappa_c_1_m: f64,
+}
+
+impl SynthesisRow {
+    fn new(g: &ModulatorGeometry, s: &ModulatorState, w2: f64) -> Self {
+        Self {
+            phi2_deg: s.phi2.to_degrees(),
+            phi6_deg: s.phi6[0].to_degrees(),
+            omega6_rad_s: s.phi6[1] * w2,
+            eps6_rad_s2: s.phi6[2] * w2 * w2,
+            phi3_deg: s.phi3[0].to_degrees(),
+            omega3_rad_s: s.phi3[1] * w2,
+            s53_m: s.s53[0],
+            b_x_m: s.b[0].x,
+            b_y_m: s.b[0].y,
+            c_x_m: s.c[0].x,
+            c_y_m: s.c[0].y,
+            mu_out_deg: s.mu_out_deg(),
+            mu_b_deg: s.mu_b_deg(g),
+            mu_c_deg: s.mu_c_deg(g),
+            kappa_b_1_m: s.kappa_b(),
+            kappa_c_1_m: s.kappa_c(),
+        }
+    }
+}
+
+/// Summary of a synthesis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SynthesisSummary {
+    /// The output law, e.g. `2 × (dwell 40°, cycloidal rise)`.
+    pub law: String,
+    /// Geometry used.
+    pub geometry: ModulatorGeometry,
+    /// Roller radius (m).
+    pub roller_m: f64,
+    /// Input speed ω2 (rad/s).
+    pub input_speed_rad_s: f64,
+    /// Input step used (deg).
+    pub step_deg: f64,
+    /// Largest |φ6 − φ2| (deg).
+    pub lag_max_deg: f64,
+    /// Its limit `arccos(l6/l2)` (deg), where the output pressure angle reaches 90°.
+    pub lag_limit_deg: f64,
+    /// Open range of α (deg) free of a fold at roller B for this law: `(−min δ, 180° − max δ)`,
+    /// `δ = φ3 − φ2`.
+    pub admissible_alpha_deg: [f64; 2],
+    /// Open range of θ (deg) free of a fold at roller C: `(max δ, 180° + min δ)`.
+    pub admissible_theta_deg: [f64; 2],
+    /// Roller radius exceeds Γ's smallest radius of curvature.
+    pub undercut_b: bool,
+    /// Roller radius exceeds Γ′'s smallest radius of curvature.
+    pub undercut_c: bool,
+    /// Either cam undercut.
+    pub undercut: bool,
+    /// Self-crossings of Γ's groove walls (both).
+    pub wall_self_intersections_b: usize,
+    /// Self-crossings of Γ′'s groove walls (both).
+    pub wall_self_intersections_c: usize,
+    /// The checks of the revolution.
+    #[serde(flatten)]
+    pub checks: CamChecks,
+}
+
+/// The result of a synthesis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Synthesis {
+    /// One row per input step, the last one closing the revolution.
+    pub rows: Vec<SynthesisRow>,
+    /// Summary.
+    pub summary: SynthesisSummary,
+    /// Warnings (pressure angles, undercut, self-crossings).
+    pub warnings: Vec<Warning>,
+    /// Cam Γ: roller-centre curve and groove walls.
+    pub cam: CamProfile,
+    /// Counter-cam Γ′: roller-centre curve and groove walls.
+    pub counter_cam: CamProfile,
+    /// Full states, parallel to `rows`.
+    #[serde(skip)]
+    pub states: Vec<ModulatorState>,
+}
+
+fn law_label(spec: &OutputLawSpec) -> String {
+    format!(
+        "{} × (dwell {}° centred at {}°, {} rise of {}°)",
+        spec.cycles,
+        spec.dwell_deg,
+        spec.dwell_centre_deg,
+        spec.rise.label(),
+        360.0 / f64::from(spec.cycles)
+    )
+}
+
+/// Synthesises the cams for the output law `law`.
+///
+/// Errors, each naming the input angle: the law leaves the admissible range
+/// `|φ6 − φ2| < arccos(l6/l2)` (with the largest admissible dwell); a fold at roller B or C (an arm
+/// normal to its cam), with the admissible range of α or θ. Undercut, high pressure angles and
+/// crossing walls are warnings.
+pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOptions) -> Result<Synthesis> {
+    g.validate()?;
+    check_common(opts.step_deg, opts.input_speed_rad_s, Some(opts.roller_m), opts.pressure_limit_deg)?;
+    let out = law.build()?;
+    let (xs, step) = input_grid(0.0, opts.step_deg);
+    let w2 = opts.input_speed_rad_s;
+
+    // The law must keep the output pressure angle below 90°: |φ6 − φ2| < arccos(l6/l2).
+    let lag_limit = (g.l6_m / g.l2_m).acos();
+    let mut worst_lag = (0.0f64, 0.0f64);
+    let mut states = Vec::with_capacity(xs.len());
+    let mut phi3_ref = xs[0];
+    for &x in &xs {
+        let o = out.eval(x);
+        let lag = wrap_pi(o.phi6 - x);
+        if lag.abs() > worst_lag.0 {
+            worst_lag = (lag.abs(), x);
+        }
+        let s = state_from_phi6(g, x, [o.phi6, o.d1, o.d2], phi3_ref);
+        phi3_ref = s.phi3[0];
+        states.push(s);
+    }
+    if worst_lag.0 >= lag_limit {
+        let dmax = max_dwell_deg(law, lag_limit.to_degrees())?;
+        let admissible = match dmax {
+            Some(d) => format!(
+                "admissible |φ6 − φ2| < {:.3}°; with this rise law and {} cycle(s) the dwell must be < {d:.2}°",
+                lag_limit.to_degrees(),
+                law.cycles
+            ),
+            None => format!("admissible |φ6 − φ2| < {:.3}°; no dwell works with this rise law", lag_limit.to_degrees()),
+        };
+        return Err(MechError::CannotBuild {
+            phi2_deg: worst_lag.1.to_degrees(),
+            condition: format!(
+                "the output law leaves the admissible range: |φ6 − φ2| = {:.3}° ≥ arccos(l6/l2) = {:.3}° (the slot \
+                 is normal to OD, output pressure angle 90°)",
+                worst_lag.0.to_degrees(),
+                lag_limit.to_degrees()
+            ),
+            admissible: Some(admissible),
+        });
+    }
+
+    // Folds: B′·(B − A) ∝ sin(α + δ), C′·(C − A) ∝ sin(θ − δ) with δ = φ3 − φ2.
+    let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
+    let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
+    let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let alpha_range = [(-dmin).to_degrees(), 180.0 - dmax.to_degrees()];
+    let theta_range = [dmax.to_degrees(), 180.0 + dmin.to_degrees()];
+    if let Some(k) = deltas.iter().position(|d| {
+        let v = g.alpha_rad() + d;
+        v <= 0.0 || v >= std::f64::consts::PI
+    }) {
+        return Err(MechError::CannotBuild {
+            phi2_deg: xs[k].to_degrees(),
+            condition: format!(
+                "fold at roller B: the arm AB is normal to cam Γ (φ3 − φ2 = {:.3}°, α = {:.3}°), the cam cannot \
+                 drive the lever past it",
+                deltas[k].to_degrees(),
+                g.alpha_deg
+            ),
+            admissible: Some(format!("admissible α ∈ ({:.3}, {:.3})° for this law", alpha_range[0], alpha_range[1])),
+        });
+    }
+    let mut warnings = Vec::new();
+    counter_cam_fold(g, &xs, &deltas, theta_range, &mut warnings);
+    let checks = check_states(g, &states, w2, opts.pressure_limit_deg, &mut warnings);
+    let (ub, uc) = undercut(&checks, opts.roller_m, &mut warnings);
+    let path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
+        states[..states.len() - 1].iter().map(f).collect()
+    };
+    let cam = CamProfile::from_path(&path(&|s| (s.b[0], s.b[1])), opts.roller_m);
+    let counter_cam = CamProfile::from_path(&path(&|s| (s.c[0], s.c[1])), opts.roller_m);
+    let wb = crossings(&cam.wall_left) + crossings(&cam.wall_right);
+    let wc = crossings(&counter_cam.wall_left) + crossings(&counter_cam.wall_right);
+    for (name, n) in [("cam Γ", wb), ("counter-cam Γ′", wc)] {
+        if n > 0 {
+            warnings.push(Warning {
+                code: WarningCode::SelfIntersection,
+                phi2_deg: None,
+                message: format!(
+                    "the groove walls of {name} cross themselves {n} time(s) (roller {} m)",
+                    opts.roller_m
+                ),
+            });
+        }
+    }
+    let rows = states.iter().map(|s| SynthesisRow::new(g, s, w2)).collect();
+    let summary = SynthesisSummary {
+        law: law_label(law),
+        geometry: *g,
+        roller_m: opts.roller_m,
+        input_speed_rad_s: w2,
+        step_deg: step,
+        lag_max_deg: worst_lag.0.to_degrees(),
+        lag_limit_deg: lag_limit.to_degrees(),
+        admissible_alpha_deg: alpha_range,
+        admissible_theta_deg: theta_range,
+        undercut_b: ub,
+        undercut_c: uc,
+        undercut: ub || uc,
+        wall_self_intersections_b: wb,
+        wall_self_intersections_c: wc,
+        checks,
+    };
+    Ok(Synthesis { rows, summary, warnings, cam, counter_cam, states })
+}

@@ -1,0 +1,91 @@
+//! Small planar helpers: unit vectors, the perpendicular, the 2-D cross product, angle wrapping.
+
+use nalgebra::Vector2;
+
+/// A point or a vector of the plane, in metres unless stated.
+pub type Vec2 = Vector2<f64>;
+
+/// Unit vector at angle `a` (rad) anticlockwise from +x: `e(a) = (cos a, sin a)`.
+#[inline]
+pub fn e(a: f64) -> Vec2 {
+    let (s, c) = a.sin_cos();
+    Vec2::new(c, s)
+}
+
+/// Unit vector `e⊥(a) = e(a + π/2) = (−sin a, cos a)` = `de/da`.
+#[inline]
+pub fn e_perp(a: f64) -> Vec2 {
+    let (s, c) = a.sin_cos();
+    Vec2::new(-s, c)
+}
+
+/// The vector turned a quarter turn anticlockwise: `(x, y) ↦ (−y, x)`.
+#[inline]
+pub fn perp(v: Vec2) -> Vec2 {
+    Vec2::new(-v.y, v.x)
+}
+
+/// The scalar 2-D cross product `u × v = uₓ v_y − u_y vₓ`.
+#[inline]
+pub fn cross(u: Vec2, v: Vec2) -> f64 {
+    u.x * v.y - u.y * v.x
+}
+
+/// The angle wrapped into `(−π, π]`.
+#[inline]
+pub fn wrap_pi(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let r = a - t * (a / t).round();
+    if r <= -std::f64::consts::PI { r + t } else { r }
+}
+
+/// The representative of `a + 2πk` nearest to `reference` (for unwrapping a continuous angle).
+#[inline]
+pub fn unwrap_near(a: f64, reference: f64) -> f64 {
+    reference + wrap_pi(a - reference)
+}
+
+/// Signed curvature `κ = (r′ × r″)/|r′|³` (1/m) of a curve from its first two derivatives;
+/// `None` at a stationary point (`r′ = 0`).
+#[inline]
+pub fn curvature(d1: Vec2, d2: Vec2) -> Option<f64> {
+    let n = d1.norm();
+    if n < 1e-300 || !n.is_finite() {
+        return None;
+    }
+    let k = cross(d1, d2) / (n * n * n);
+    k.is_finite().then_some(k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_and_unwrap() {
+        use std::f64::consts::PI;
+        assert!((wrap_pi(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_pi(-PI) - PI).abs() < 1e-12);
+        assert!((wrap_pi(0.5) - 0.5).abs() < 1e-15);
+        assert!((unwrap_near(0.1, 2.0 * PI) - (2.0 * PI + 0.1)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn e_perp_is_the_derivative_of_e() {
+        let h = 1e-6;
+        for a in [-2.0, 0.3, 1.7] {
+            let fd = (e(a + h) - e(a - h)) / (2.0 * h);
+            assert!((fd - e_perp(a)).norm() < 1e-9);
+            assert!((perp(e(a)) - e_perp(a)).norm() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn circle_curvature_is_one_over_radius() {
+        // r(p) = R e(p): r' = R e⊥, r'' = −R e; κ = 1/R for an anticlockwise circle.
+        let r = 0.25;
+        let k = curvature(r * e_perp(0.4), -r * e(0.4)).unwrap();
+        assert!((k - 1.0 / r).abs() < 1e-12);
+        assert!(curvature(Vec2::zeros(), Vec2::new(1.0, 0.0)).is_none());
+    }
+}
