@@ -82,6 +82,7 @@ const DRIVE_FIELDS = [
 ];
 const MIN_GAP = 0.002;
 const servo = { design: null, result: null, inflight: false, queued: false };
+loomkin.design = () => servo.design;
 
 function initServo() {
   const editor = new Chart($("#servo-editor-chart"), {

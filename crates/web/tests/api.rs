@@ -1,0 +1,346 @@
+//! Every endpoint of the JSON API, good and bad requests, through the router (`oneshot`) and
+//! through a real loopback server that must keep serving after bad requests.
+
+mod common;
+
+use axum::body::{Body, to_bytes};
+use axum::http::{Request, StatusCode, header};
+use loomkin_web::{MAX_BODY_BYTES, MAX_SAMPLES, ServoDesign, router};
+use serde_json::{Value, json};
+use tower::ServiceExt;
+
+async fn call(method: &str, path: &str, body: Option<String>) -> (StatusCode, String, String) {
+    let req = Request::builder()
+        .method(method)
+        .uri(path)
+        .header(header::CONTENT_TYPE, "application/json")
+        .body(body.map_or_else(Body::empty, Body::from))
+        .expect("request");
+    let res = router().oneshot(req).await.expect("infallible");
+    let status = res.status();
+    let ctype = res.headers().get(header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).unwrap_or("").to_string();
+    let bytes = to_bytes(res.into_body(), usize::MAX).await.expect("body");
+    (status, ctype, String::from_utf8_lossy(&bytes).to_string())
+}
+
+async fn post(path: &str, body: Value) -> (StatusCode, Value) {
+    let (s, _, text) = call("POST", path, Some(body.to_string())).await;
+    (s, serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: not JSON ({e}): {text}")))
+}
+
+async fn get(path: &str) -> (StatusCode, Value) {
+    let (s, _, text) = call("GET", path, None).await;
+    (s, serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: not JSON ({e}): {text}")))
+}
+
+/// A refusal: the status, a JSON `error` message, and `field` naming what was wrong.
+fn assert_refused(res: &(StatusCode, Value), status: StatusCode, field: &str) {
+    assert_eq!(res.0, status, "{}", res.1);
+    assert_eq!(res.1["field"], field, "{}", res.1);
+    let msg = res.1["error"].as_str().expect("error message");
+    assert!(!msg.is_empty() && !msg.contains("NaN"), "{msg}");
+}
+
+fn design() -> Value {
+    serde_json::to_value(ServoDesign::default()).expect("design")
+}
+
+#[tokio::test]
+async fn page_and_assets_are_served_with_their_types() {
+    for (path, ctype, needle) in [
+        ("/", "text/html", "<script src=\"/app.js\">"),
+        ("/app.js", "text/javascript", "/servo/evaluate"),
+        ("/charts.js", "text/javascript", "class Chart"),
+        ("/style.css", "text/css", ".chart"),
+    ] {
+        let (s, t, body) = call("GET", path, None).await;
+        assert_eq!(s, StatusCode::OK, "{path}");
+        assert!(t.starts_with(ctype), "{path}: {t}");
+        assert!(body.contains(needle), "{path} lacks {needle}");
+    }
+    let (s, _, _) = call("GET", "/favicon.ico", None).await;
+    assert_eq!(s, StatusCode::NO_CONTENT);
+}
+
+#[tokio::test]
+async fn info_lists_views_and_limits() {
+    let (s, v) = get("/api/info").await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(v["name"], "loomkin");
+    assert_eq!(v["views"][0], "servo");
+    assert_eq!(v["limits"]["max_samples"], MAX_SAMPLES);
+    assert_eq!(v["limits"]["max_body_bytes"], MAX_BODY_BYTES);
+}
+
+#[tokio::test]
+async fn unknown_endpoints_and_methods_are_refused() {
+    assert_refused(&get("/api/nothing-here").await, StatusCode::NOT_FOUND, "path");
+    let (s, _, _) = call("GET", "/api/servo/evaluate", None).await;
+    assert_eq!(s, StatusCode::METHOD_NOT_ALLOWED);
+}
+
+#[tokio::test]
+async fn catalogue_lists_every_law() {
+    let (s, v) = get("/api/laws").await;
+    assert_eq!(s, StatusCode::OK);
+    let names: Vec<&str> = v["laws"].as_array().expect("laws").iter().filter_map(|l| l["name"].as_str()).collect();
+    let expected: Vec<&str> = loomkin_laws::CATALOGUE.iter().map(|e| e.name).collect();
+    assert_eq!(names, expected);
+}
+
+#[tokio::test]
+async fn compare_overlays_laws_with_exact_metrics() {
+    let (s, v) = post(
+        "/api/laws/compare",
+        json!({"laws": [{"name": "harmonic"}, {"name": "modified-trapezoid", "params": {"ramp": "0.125"}},
+                         {"name": "piecewise", "params": {"segments": "0.5:constant:1,0.5:constant:-1"}}],
+               "samples": 21}),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    let laws = v["laws"].as_array().expect("laws");
+    assert_eq!(laws.len(), 3);
+    // Harmonic: Cv = π/2, Ca = π²/2 (closed form).
+    let pi = std::f64::consts::PI;
+    assert!((laws[0]["metrics"]["cv"].as_f64().unwrap() - pi / 2.0).abs() < 1e-12);
+    assert!((laws[0]["metrics"]["ca"].as_f64().unwrap() - pi * pi / 2.0).abs() < 1e-9);
+    // Piecewise ±1 acceleration is the constant-acceleration law: Ca = 4, Cv = 2.
+    assert!((laws[2]["metrics"]["ca"].as_f64().unwrap() - 4.0).abs() < 1e-12);
+    assert_eq!(laws[1]["samples"]["x"].as_array().unwrap().len(), 21);
+}
+
+#[tokio::test]
+async fn compare_refuses_bad_requests_naming_the_field() {
+    let huge = json!({"laws": [{"name": "cycloidal"}], "samples": 1_000_000_000u64});
+    assert_refused(&post("/api/laws/compare", huge).await, StatusCode::UNPROCESSABLE_ENTITY, "samples");
+    let neg = json!({"laws": [{"name": "cycloidal"}], "samples": -3});
+    assert_refused(&post("/api/laws/compare", neg).await, StatusCode::BAD_REQUEST, "samples");
+    let typo = json!({"laws": [{"name": 7}]});
+    assert_refused(&post("/api/laws/compare", typo).await, StatusCode::BAD_REQUEST, "laws[0].name");
+    let unknown = json!({"laws": [{"name": "parabolic-ish"}]});
+    assert_refused(&post("/api/laws/compare", unknown).await, StatusCode::UNPROCESSABLE_ENTITY, "laws[0]");
+    let ramp = json!({"laws": [{"name": "modified-trapezoid", "params": {"ramp": 0.9}}]});
+    let r = post("/api/laws/compare", ramp).await;
+    assert_refused(&r, StatusCode::UNPROCESSABLE_ENTITY, "laws[0]");
+    assert!(r.1["error"].as_str().unwrap().contains("ramp"));
+    let many = json!({"laws": vec![json!({"name": "cycloidal"}); 9]});
+    assert_refused(&post("/api/laws/compare", many).await, StatusCode::UNPROCESSABLE_ENTITY, "laws");
+    let extra = json!({"laws": [{"name": "cycloidal"}], "sampels": 5});
+    assert_refused(&post("/api/laws/compare", extra).await, StatusCode::BAD_REQUEST, "sampels");
+    let (s, _, text) = call("POST", "/api/laws/compare", Some("not JSON at all".into())).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(text.contains("\"field\":\"body\""), "{text}");
+}
+
+#[tokio::test]
+async fn default_design_evaluates() {
+    let (s, v) = get("/api/servo/default").await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(v["design"], design());
+    let (s, r) = post("/api/servo/evaluate", json!({"design": v["design"], "samples": 1000})).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    let speeds = r["speeds"].as_array().expect("speeds");
+    assert_eq!(speeds.len(), 2);
+    for key in ["speed_rpm", "peak_torque_nm", "rms_torque_nm", "peak_power_w"] {
+        assert!(speeds[0][key].as_f64().is_some_and(f64::is_finite), "{key}");
+    }
+    assert_eq!(speeds[1]["torque_nm"].as_array().unwrap().len(), 1000);
+    // Peak torque grows with the square of the speed for an inertia-dominated drive; here the
+    // damping term is small, so the ratio lies just below (750/600)² = 1.5625.
+    let ratio = speeds[1]["peak_torque_nm"].as_f64().unwrap() / speeds[0]["peak_torque_nm"].as_f64().unwrap();
+    assert!(ratio > 1.45 && ratio < 1.5625, "{ratio}");
+}
+
+#[tokio::test]
+async fn evaluate_refuses_bad_designs_naming_the_field() {
+    let mut d = design();
+    d["drive"]["stroke_m"] = json!(-0.1);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "drive.stroke_m",
+    );
+    let mut d = design();
+    d["drive"]["stroke_m"] = json!("eighty");
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::BAD_REQUEST,
+        "design.drive.stroke_m",
+    );
+    let mut d = design();
+    d["points"][3] = json!([0.05, 0.5]);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "points[3]",
+    );
+    let mut d = design();
+    d["points"][2][1] = json!(7.0);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "points[2][1]",
+    );
+    let mut d = design();
+    d["speeds_rpm"] = json!([600, 1e9]);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "speeds_rpm[1]",
+    );
+    let mut d = design();
+    d["speeds_rpm"] = json!([]);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "speeds_rpm",
+    );
+    let mut d = design();
+    d["points"] = json!(vec![[0.0, 0.0]; 100]);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "points",
+    );
+    let huge = json!({"design": design(), "samples": MAX_SAMPLES + 1});
+    assert_refused(&post("/api/servo/evaluate", huge).await, StatusCode::UNPROCESSABLE_ENTITY, "samples");
+    let mut d = design();
+    d["drive"]["motion_angle_deg"] = json!(300.0);
+    assert_refused(
+        &post("/api/servo/evaluate", json!({"design": d})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "drive.motion_angle_deg",
+    );
+    let mut d = design();
+    d["end"] = json!("sideways");
+    assert_refused(&post("/api/servo/evaluate", json!({"design": d})).await, StatusCode::BAD_REQUEST, "design.end");
+}
+
+#[tokio::test]
+async fn optimise_lowers_the_peak_torque() {
+    let (s, r) = post("/api/servo/optimize", json!({"design": design(), "objective": "peak"})).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    for k in 0..2 {
+        let before = r["before"][k]["peak_torque_nm"].as_f64().unwrap();
+        let after = r["after"][k]["peak_torque_nm"].as_f64().unwrap();
+        assert!(after <= before, "speed {k}: {after} > {before}");
+    }
+    // The worst speed (750 1/min) improves measurably.
+    assert!(
+        r["after"][1]["peak_torque_nm"].as_f64().unwrap() < 0.99 * r["before"][1]["peak_torque_nm"].as_f64().unwrap()
+    );
+    assert_eq!(r["def_points"].as_array().unwrap().len(), 7);
+    // The answer's points evaluate to the reported torque.
+    let mut d = design();
+    d["points"] = r["def_points"].clone();
+    let (_, e) = post("/api/servo/evaluate", json!({"design": d, "samples": 10})).await;
+    assert_eq!(e["speeds"][1]["peak_torque_nm"], r["after"][1]["peak_torque_nm"]);
+    assert_refused(
+        &post("/api/servo/optimize", json!({"design": design(), "objective": "cheapest"})).await,
+        StatusCode::BAD_REQUEST,
+        "objective",
+    );
+}
+
+#[tokio::test]
+async fn export_every_format() {
+    for (format, name, needle) in [
+        ("coeffs", "servo-coefficients.txt", "# columns: j x_start x_end"),
+        ("json", "servo-coefficients.json", "\"intervals\""),
+        ("csv", "servo-cam.csv", "master_deg,slave_m"),
+        ("xyva", "servo-cam-xyva.csv", "X,Y,V,A"),
+        ("poly5", "servo-cam-poly5.csv", "master_start_deg"),
+    ] {
+        let (s, r) = post("/api/servo/export", json!({"design": design(), "format": format, "rows": 91})).await;
+        assert_eq!(s, StatusCode::OK, "{format}: {r}");
+        assert_eq!(r["filename"], name);
+        assert!(r["text"].as_str().unwrap().contains(needle), "{format}");
+    }
+    let (_, r) = post("/api/servo/export", json!({"design": design(), "format": "csv", "rows": 91})).await;
+    // 91 rows over 0…360°: a 4° step; a header and 91 data lines.
+    assert_eq!(r["text"].as_str().unwrap().lines().count(), 92);
+    assert_eq!(r["interpolation"].as_array().unwrap().len(), 3);
+    assert_refused(
+        &post("/api/servo/export", json!({"design": design(), "format": "csv", "rows": 100_000_000})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "rows",
+    );
+    assert_refused(
+        &post("/api/servo/export", json!({"design": design(), "format": "pdf"})).await,
+        StatusCode::BAD_REQUEST,
+        "format",
+    );
+}
+
+#[tokio::test]
+async fn save_and_load_round_trip_without_loss() {
+    let mut d = design();
+    d["points"][1] = json!([0.0712345678901234, 0.4187654321]);
+    d["drive"]["return_angle_deg"] = json!(120.5);
+    d["end"] = json!("clamped");
+    for format in ["json", "toml"] {
+        let (s, saved) = post("/api/servo/design/save", json!({"design": d, "format": format})).await;
+        assert_eq!(s, StatusCode::OK, "{saved}");
+        assert!(saved["filename"].as_str().unwrap().ends_with(format));
+        let (s, loaded) = post("/api/servo/design/load", json!({"text": saved["text"], "format": "auto"})).await;
+        assert_eq!(s, StatusCode::OK, "{loaded}");
+        assert_eq!(loaded["design"], d, "{format}");
+    }
+    let bad = "points = [[0.0, 0.0], [0.1, 0.5], [0.3, 1.0], [0.5, 0.0]]\nspeeds_rpm = [600.0]\n[drive]\nstroke_m = 0.08\n\
+               motion_angle_deg = 150.0\npinion_radius_m = 0.0\n";
+    assert_refused(
+        &post("/api/servo/design/load", json!({"text": bad, "format": "toml"})).await,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "drive.pinion_radius_m",
+    );
+    assert_refused(
+        &post("/api/servo/design/load", json!({"text": "{oops", "format": "json"})).await,
+        StatusCode::BAD_REQUEST,
+        "text",
+    );
+    assert_refused(
+        &post("/api/servo/design/load", json!({"text": "points = \"many\"", "format": "toml"})).await,
+        StatusCode::BAD_REQUEST,
+        "points",
+    );
+    let invalid =
+        post("/api/servo/design/save", json!({"design": {"points": [], "speeds_rpm": [600], "drive": d["drive"]}}));
+    assert_refused(&invalid.await, StatusCode::UNPROCESSABLE_ENTITY, "points");
+}
+
+#[tokio::test]
+async fn oversized_bodies_are_refused() {
+    let big = format!("{{\"laws\": [{{\"name\": \"cycloidal\"}}], \"pad\": \"{}\"}}", "x".repeat(MAX_BODY_BYTES));
+    let (s, _, text) = call("POST", "/api/laws/compare", Some(big)).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE, "{text}");
+    assert!(text.contains("\"field\":\"body\""), "{text}");
+}
+
+#[test]
+fn real_server_keeps_serving_after_bad_requests() {
+    let addr = common::spawn_server();
+    let bad: [&[u8]; 5] = [
+        b"{",
+        b"\xff\xfe not utf8",
+        br#"{"design": {"points": "x"}}"#,
+        br#"{"design": null, "samples": 99999999999999999999999}"#,
+        &[b'['; 100_000],
+    ];
+    for body in bad {
+        let r = common::request(addr, "POST", "/api/servo/evaluate", Some(body)).expect("answer");
+        assert!((400..500).contains(&r.status), "{} {}", r.status, r.body);
+        assert!(r.json()["field"].is_string(), "{}", r.body);
+    }
+    let big = vec![b' '; MAX_BODY_BYTES + 10];
+    let r = common::request(addr, "POST", "/api/servo/evaluate", Some(&big)).expect("answer");
+    assert_eq!(r.status, 413);
+    // Another host name (DNS rebinding) is refused.
+    let r = common::request_with_host(addr, "GET", "/api/info", None, "evil.example:80").expect("answer");
+    assert_eq!(r.status, 403);
+    // And a good request still works.
+    let body = json!({"design": design(), "samples": 50}).to_string();
+    let r = common::request(addr, "POST", "/api/servo/evaluate", Some(body.as_bytes())).expect("answer");
+    assert_eq!(r.status, 200, "{}", r.body);
+    assert!(r.json()["speeds"][0]["peak_torque_nm"].as_f64().unwrap() > 0.0);
+    assert!(addr.ip().is_loopback());
+}
