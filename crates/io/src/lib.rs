@@ -18,6 +18,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod dxf;
 mod error;
 mod output;
 pub mod plot;
