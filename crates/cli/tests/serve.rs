@@ -1,0 +1,72 @@
+//! `loomkin serve`: prints its URL on 127.0.0.1, serves the page and the API, refuses bad ports.
+
+use assert_cmd::Command as AssertCommand;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+struct Server(Child);
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn get(host_port: &str, path: &str) -> String {
+    let mut s = TcpStream::connect(host_port).expect("connect");
+    s.set_read_timeout(Some(Duration::from_secs(30))).expect("timeout");
+    write!(s, "GET {path} HTTP/1.1\r\nHost: {host_port}\r\nConnection: close\r\n\r\n").expect("write");
+    let mut out = String::new();
+    s.read_to_string(&mut out).expect("read");
+    out
+}
+
+#[test]
+fn serve_prints_a_loopback_url_and_answers() {
+    let bin = assert_cmd::cargo::cargo_bin!("loomkin");
+    let child = Command::new(bin)
+        .args(["serve", "--port", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start loomkin serve");
+    let mut server = Server(child);
+    let mut line = String::new();
+    BufReader::new(server.0.stdout.take().expect("stdout")).read_line(&mut line).expect("first line");
+    assert!(line.contains("127.0.0.1 only"), "{line}");
+    let url = line.split_whitespace().find(|w| w.starts_with("http://127.0.0.1:")).expect("URL in the first line");
+    let host_port = url.trim_start_matches("http://").trim_end_matches('/');
+    let page = get(host_port, "/");
+    assert!(page.starts_with("HTTP/1.1 200"), "{page}");
+    assert!(page.contains("loomkin workbench"));
+    let info = get(host_port, "/api/info");
+    let body = info.split("\r\n\r\n").nth(1).expect("body");
+    let v: serde_json::Value = serde_json::from_str(body).expect("JSON");
+    assert_eq!(v["views"][0], "servo");
+}
+
+#[test]
+fn bad_port_is_a_usage_error() {
+    let out = AssertCommand::new(assert_cmd::cargo::cargo_bin!("loomkin"))
+        .args(["serve", "--port", "70000"])
+        .assert()
+        .code(2);
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(err.contains("--port"), "{err}");
+}
+
+#[test]
+fn busy_port_fails_with_one_line() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").expect("bind");
+    let port = taken.local_addr().expect("addr").port().to_string();
+    let out = AssertCommand::new(assert_cmd::cargo::cargo_bin!("loomkin"))
+        .args(["serve", "--port", &port])
+        .timeout(Duration::from_secs(20))
+        .assert()
+        .code(1);
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(err.contains(&format!("cannot serve on 127.0.0.1:{port}")) && err.lines().count() == 1, "{err}");
+}
