@@ -7,6 +7,7 @@ mod cycle;
 mod law;
 mod pick;
 mod serve;
+mod servo;
 mod util;
 
 use clap::{Parser, Subcommand};
@@ -30,6 +31,9 @@ enum Command {
     /// Shuttle picking dynamics: compound law design, actual motion under loom settings, sweeps.
     #[command(subcommand)]
     Pick(pick::PickCommand),
+    /// Servo motion laws from definition points: spline law, drive torque, controller export, optimisation.
+    #[command(subcommand)]
+    Servo(servo::ServoCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -39,6 +43,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Law(cmd) => law::run(cmd),
         Command::Cycle(args) => cycle::run(args),
         Command::Pick(cmd) => pick::run(cmd),
+        Command::Servo(cmd) => servo::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

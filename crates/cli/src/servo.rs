@@ -1,0 +1,510 @@
+//! `loomkin servo …`: servo motion laws from definition points (Sivčák 2017), drive torque,
+//! controller export, optimisation.
+
+use crate::util::{self, Format};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use loomkin_io::Table;
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_servo::{
+    CamTable, Drive, Interpolation, Objective, OptimizeOptions, SplineEnd, SplineLaw, TorqueSummary,
+    export_coeffs_text, export_json, format_points, parse_points, poly5_csv, poly5_segments, summaries, torque_curve,
+};
+use serde_json::{Value, json};
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The default definition points: the cycloid's acceleration sin(2πX) at X = j/12 (the paper
+/// does not list its points).
+const DEFAULT_DEF: &str = "0:0,0.0833333333333333:0.5,0.1666666666666667:0.8660254037844386,0.25:1,\
+0.3333333333333333:0.8660254037844387,0.4166666666666667:0.5,0.5:0";
+
+/// Subcommands of `loomkin servo`.
+#[derive(Debug, Subcommand)]
+pub enum ServoCommand {
+    /// The law through the definition points: D, metrics (Cv, Ca, Cj, Cm…), samples.
+    Law(LawArgs),
+    /// Peak torque, RMS torque over the turn and peak power of the drive at one or more speeds.
+    Torque(TorqueArgs),
+    /// Move the free definition points to minimise the peak (or RMS) motor torque.
+    Optimize(OptimizeArgs),
+    /// Write coefficients (text/JSON), a cam table (CSV), XYVA points or quintic segments.
+    Export(ExportArgs),
+    /// Acceleration image with its definition points, and the motor torque over the turn (Fig. 3).
+    Plot(PlotArgs),
+}
+
+/// The definition points and the spline's start condition.
+#[derive(Debug, Args, Clone)]
+pub struct DefArgs {
+    /// Definition points "X:Y,X:Y,…": X from 0 to 0.5 increasing, Y₁ = Y_N = 0, other Y in
+    /// [-1, 1]. Default: the cycloid's acceleration sampled at X = j/12 (7 points).
+    #[arg(long = "def", value_name = "X:Y,…", default_value = DEFAULT_DEF, hide_default_value = true)]
+    def: String,
+    /// Condition of the acceleration spline at x = 0: natural (f'' = 0) or clamped (f' = 0).
+    #[arg(long, value_name = "natural|clamped", default_value = "natural")]
+    end: String,
+}
+
+impl DefArgs {
+    fn build(&self) -> Result<SplineLaw> {
+        let end = SplineEnd::parse(&self.end)?;
+        let pts = parse_points(&self.def)?;
+        SplineLaw::new(&pts, end).context("--def")
+    }
+}
+
+/// The drive file.
+#[derive(Debug, Args, Clone)]
+pub struct DriveArgs {
+    /// Drive file (TOML with a [drive] table); default: the built-in needle-rack drive.
+    #[arg(long, value_name = "FILE")]
+    drive: Option<PathBuf>,
+}
+
+impl DriveArgs {
+    fn load(&self) -> Result<Drive> {
+        match &self.drive {
+            None => Ok(Drive::needle_rack_default()),
+            Some(p) => {
+                let text = util::read_input(p)?;
+                Drive::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))
+            }
+        }
+    }
+}
+
+/// `servo law`.
+#[derive(Debug, Args)]
+pub struct LawArgs {
+    #[command(flatten)]
+    def: DefArgs,
+    /// Print N samples of x, s, v, a, j instead of the metrics (with --csv or --json).
+    #[arg(long, value_name = "N")]
+    sample: Option<usize>,
+    #[command(flatten)]
+    format: Format,
+}
+
+/// `servo torque`.
+#[derive(Debug, Args)]
+pub struct TorqueArgs {
+    #[command(flatten)]
+    def: DefArgs,
+    #[command(flatten)]
+    drive: DriveArgs,
+    /// Main-shaft speeds in 1/min, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "600,750")]
+    speed_rpm: Vec<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `servo optimize`.
+#[derive(Debug, Args)]
+pub struct OptimizeArgs {
+    #[command(flatten)]
+    def: DefArgs,
+    #[command(flatten)]
+    drive: DriveArgs,
+    /// Main-shaft speeds in 1/min (comma separated): the worst value over them is minimised.
+    #[arg(long, value_delimiter = ',', default_value = "600")]
+    speed_rpm: Vec<f64>,
+    /// Quantity to minimise: peak or rms motor torque.
+    #[arg(long, value_name = "peak|rms", default_value = "peak")]
+    objective: String,
+    /// Number of Nelder–Mead starts (the given points, then pseudo-random ones).
+    #[arg(long, default_value_t = 6)]
+    starts: usize,
+    /// Keep the X of the points and move only their Y.
+    #[arg(long)]
+    fixed_x: bool,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `servo export`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    #[command(flatten)]
+    def: DefArgs,
+    #[command(flatten)]
+    drive: DriveArgs,
+    /// coeffs (documented text), json (intervals), csv (cam table), xyva (PLCopen-style
+    /// points), poly5 (exact fifth-degree segments in master degrees).
+    #[arg(long, value_name = "coeffs|json|csv|xyva|poly5")]
+    format: String,
+    /// Output file (`-` for standard output).
+    #[arg(short, long)]
+    output: String,
+    /// Cam table resolution in degrees of the main shaft (csv, xyva).
+    #[arg(long, default_value_t = 1.0)]
+    step_deg: f64,
+    /// Print the re-interpolation report as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `servo plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    #[command(flatten)]
+    def: DefArgs,
+    #[command(flatten)]
+    drive: DriveArgs,
+    /// Main-shaft speeds in 1/min, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "600")]
+    speed_rpm: Vec<f64>,
+    /// A second set of definition points to overlay (e.g. the optimised one).
+    #[arg(long, value_name = "X:Y,…")]
+    compare: Option<String>,
+    /// Output file, .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Runs a `servo` subcommand.
+pub fn run(cmd: ServoCommand) -> Result<()> {
+    match cmd {
+        ServoCommand::Law(a) => law(a),
+        ServoCommand::Torque(a) => torque(a),
+        ServoCommand::Optimize(a) => optimize(a),
+        ServoCommand::Export(a) => export(a),
+        ServoCommand::Plot(a) => plot(a),
+    }
+}
+
+fn check_speeds(speeds: &[f64]) -> Result<()> {
+    if speeds.is_empty() {
+        bail!("--speed-rpm: give at least one speed");
+    }
+    for &n in speeds {
+        if !(n.is_finite() && n > 0.0 && n <= 1e5) {
+            bail!("--speed-rpm {n} out of range: allowed 0 < speed ≤ 100000 1/min");
+        }
+    }
+    Ok(())
+}
+
+fn points_json(pts: &[[f64; 2]]) -> Value {
+    json!(pts.iter().map(|p| json!([p[0], p[1]])).collect::<Vec<_>>())
+}
+
+fn law(a: LawArgs) -> Result<()> {
+    let sl = a.def.build()?;
+    let law = sl.law();
+    if let Some(n) = a.sample {
+        if !(2..=10_000_000).contains(&n) {
+            bail!("--sample {n} out of range: allowed 2 ≤ N ≤ 10000000");
+        }
+        let samples = law.sample(n);
+        if a.format.json {
+            let pts: Vec<Value> =
+                samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
+            return util::print_json(
+                &json!({"units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts}),
+            );
+        }
+        let mut t = Table::new(["x", "s", "v", "a", "j"]);
+        for (x, k) in samples {
+            t.push(vec![x, k.s, k.v, k.a, k.j])?;
+        }
+        return util::print_csv(&t);
+    }
+    let m = law.metrics();
+    let c = law.continuity();
+    if a.format.csv {
+        bail!("--csv needs --sample N (the metrics are printed as text or --json)");
+    }
+    if a.format.json {
+        return util::print_json(&json!({
+            "def_points": points_json(sl.points()),
+            "end": sl.end().name(),
+            "d": sl.d(),
+            "scale": sl.scale(),
+            "cv": m.cv, "x_cv": m.x_cv,
+            "ca": m.ca, "ca_pos": m.ca_pos, "x_ca_pos": m.x_ca_pos, "ca_neg": m.ca_neg, "x_ca_neg": m.x_ca_neg,
+            "cj": m.cj, "x_cj": m.x_cj, "cm": m.cm, "x_cm": m.x_cm, "ca_rms": m.ca_rms,
+            "continuity_class": c.class,
+            "intervals": law.segments().len(),
+            "spline_b": sl.spline_coefficients(),
+        }));
+    }
+    println!(
+        "servo law through {} definition points ({} start), unit stroke on x = 0…1",
+        sl.points().len(),
+        sl.end().name()
+    );
+    println!("  def = {}", format_points(sl.points()));
+    println!("  D = f'(0.5) = {:.10}   (slope of the acceleration image at the middle)", sl.d());
+    println!("  scale 1/F(1) = {:.10}  (unit-law acceleration = scale · f)", sl.scale());
+    println!("  values per unit stroke and unit motion angle (dimensionless)");
+    println!("  Cv   = max v     = {:.10}   at x = {:.6}", m.cv, m.x_cv);
+    println!(
+        "  Ca   = max |a|   = {:.10}   (a+ {:.6} at x = {:.6}, a- {:.6} at x = {:.6})",
+        m.ca, m.ca_pos, m.x_ca_pos, m.ca_neg, m.x_ca_neg
+    );
+    println!("  Cj   = max |j|   = {:.10}   at x = {:.6}", m.cj, m.x_cj);
+    println!("  Cm   = max v·a   = {:.10}   at x = {:.6}", m.cm, m.x_cm);
+    println!("  Ca_rms = √∫a²dx  = {:.10}", m.ca_rms);
+    let ck = if c.class < 0 { "none".to_string() } else { format!("C{}", c.class) };
+    println!("  continuity in a dwell-rise-dwell cycle: {ck}");
+    Ok(())
+}
+
+fn summary_json(s: &TorqueSummary) -> Value {
+    json!({
+        "speed_rpm": s.speed_rpm,
+        "peak_torque_nm": s.peak_torque_nm,
+        "peak_torque_angle_deg": s.peak_torque_angle_deg,
+        "rms_torque_nm": s.rms_torque_nm,
+        "peak_power_w": s.peak_power_w,
+        "peak_velocity_m_s": s.peak_velocity_m_s,
+        "peak_accel_m_s2": s.peak_accel_m_s2,
+        "peak_motor_speed_rpm": s.peak_motor_speed_rpm,
+        "rise_time_s": s.rise_time_s,
+        "cycle_time_s": s.cycle_time_s,
+    })
+}
+
+fn drive_json(d: &Drive) -> Result<Value> {
+    let lay = d.layout()?;
+    let mut v = serde_json::to_value(d)?;
+    v["layout_deg"] = json!({
+        "rise": lay.rise_deg, "dwell_after_rise": lay.dwell_after_rise_deg,
+        "return": lay.return_deg, "dwell_after_return": lay.dwell_after_return_deg,
+    });
+    Ok(v)
+}
+
+fn print_drive(d: &Drive) -> Result<()> {
+    let lay = d.layout()?;
+    println!(
+        "drive: stroke {} mm over {}°, mass {} kg, pinion r {} mm, i {}, J_m {:e} kg·m², k {} N/m, F_pre {} N, c {} N·s/m, F_c {} N, η {}",
+        d.stroke_m * 1e3,
+        d.motion_angle_deg,
+        d.moving_mass_kg,
+        d.pinion_radius_m * 1e3,
+        d.gear_ratio,
+        d.motor_inertia_kg_m2,
+        d.spring_n_m,
+        d.spring_preload_n,
+        d.damping_n_s_m,
+        d.constant_force_n,
+        d.efficiency
+    );
+    println!(
+        "cycle (deg of the main shaft): rise {} | dwell {} | return {} | dwell {}",
+        lay.rise_deg, lay.dwell_after_rise_deg, lay.return_deg, lay.dwell_after_return_deg
+    );
+    Ok(())
+}
+
+fn torque(a: TorqueArgs) -> Result<()> {
+    check_speeds(&a.speed_rpm)?;
+    let sl = a.def.build()?;
+    let d = a.drive.load()?;
+    let res = summaries(sl.law(), &d, &a.speed_rpm)?;
+    if a.json {
+        return util::print_json(&json!({
+            "def_points": points_json(sl.points()),
+            "drive": drive_json(&d)?,
+            "results": res.iter().map(summary_json).collect::<Vec<_>>(),
+        }));
+    }
+    print_drive(&d)?;
+    println!(
+        "{:>12} {:>16} {:>14} {:>14} {:>14} {:>16}",
+        "speed 1/min", "peak torque N·m", "at angle deg", "RMS torque N·m", "peak power W", "motor max 1/min"
+    );
+    for s in &res {
+        println!(
+            "{:>12.1} {:>16.4} {:>14.2} {:>14.4} {:>14.1} {:>16.0}",
+            s.speed_rpm,
+            s.peak_torque_nm,
+            s.peak_torque_angle_deg,
+            s.rms_torque_nm,
+            s.peak_power_w,
+            s.peak_motor_speed_rpm
+        );
+    }
+    Ok(())
+}
+
+fn worst(v: &[TorqueSummary]) -> Value {
+    let pk = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
+    let rms = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
+    json!({"peak_torque_nm": pk, "rms_torque_nm": rms, "per_speed": v.iter().map(summary_json).collect::<Vec<_>>()})
+}
+
+fn optimize(a: OptimizeArgs) -> Result<()> {
+    check_speeds(&a.speed_rpm)?;
+    if !(1..=1000).contains(&a.starts) {
+        bail!("--starts {} out of range: allowed 1 ≤ starts ≤ 1000", a.starts);
+    }
+    let sl = a.def.build()?;
+    let d = a.drive.load()?;
+    let opts = OptimizeOptions {
+        objective: Objective::parse(&a.objective)?,
+        speeds_rpm: a.speed_rpm.clone(),
+        starts: a.starts,
+        move_x: !a.fixed_x,
+        ..OptimizeOptions::default()
+    };
+    let t0 = Instant::now();
+    let r = loomkin_servo::optimize(&sl, &d, &opts)?;
+    let elapsed = t0.elapsed().as_secs_f64();
+    let pts = r.law.points();
+    if a.json {
+        return util::print_json(&json!({
+            "objective": opts.objective.name(),
+            "speeds_rpm": a.speed_rpm,
+            "before": worst(&r.before),
+            "after": worst(&r.after),
+            "def_points": points_json(pts),
+            "def": format_points(pts),
+            "end": r.law.end().name(),
+            "evaluations": r.evaluations,
+            "elapsed_s": elapsed,
+        }));
+    }
+    print_drive(&d)?;
+    println!(
+        "minimised the {} motor torque (worst over {} speed(s)) in {:.3} s, {} evaluations",
+        opts.objective.name(),
+        a.speed_rpm.len(),
+        elapsed,
+        r.evaluations
+    );
+    println!(
+        "{:>12} {:>18} {:>18} {:>16} {:>16} {:>9}",
+        "speed 1/min", "peak before N·m", "peak after N·m", "RMS before N·m", "RMS after N·m", "peak Δ %"
+    );
+    for (b, f) in r.before.iter().zip(&r.after) {
+        println!(
+            "{:>12.1} {:>18.4} {:>18.4} {:>16.4} {:>16.4} {:>9.1}",
+            b.speed_rpm,
+            b.peak_torque_nm,
+            f.peak_torque_nm,
+            b.rms_torque_nm,
+            f.rms_torque_nm,
+            100.0 * (f.peak_torque_nm / b.peak_torque_nm - 1.0)
+        );
+    }
+    println!("optimised definition points (use with --def):");
+    println!("  {}", format_points(pts));
+    Ok(())
+}
+
+fn export(a: ExportArgs) -> Result<()> {
+    let sl = a.def.build()?;
+    let d = a.drive.load()?;
+    let format = a.format.trim().to_ascii_lowercase();
+    let text = match format.as_str() {
+        "coeffs" => export_coeffs_text(&sl),
+        "json" => export_json(&sl),
+        "csv" => CamTable::new(sl.law(), &d, a.step_deg)?.to_csv(),
+        "xyva" => CamTable::new(sl.law(), &d, a.step_deg)?.to_xyva(),
+        "poly5" => poly5_csv(&poly5_segments(sl.law(), &d)?),
+        other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5"),
+    };
+    {
+        let mut w = loomkin_io::open_output(&a.output).map_err(util::failure)?;
+        w.write_all(text.as_bytes()).map_err(util::failure)?;
+        w.flush().map_err(util::failure)?;
+    }
+    if a.output != "-" {
+        eprintln!("wrote {}", a.output);
+    }
+    if !matches!(format.as_str(), "csv" | "xyva") {
+        return Ok(());
+    }
+    // What the table loses when the controller interpolates between its points.
+    let table = CamTable::new(sl.law(), &d, a.step_deg)?;
+    let errs: Vec<_> =
+        Interpolation::ALL.iter().map(|&m| table.interpolation_error(sl.law(), &d, m)).collect::<Result<_, _>>()?;
+    if a.json {
+        let v: Vec<Value> = errs
+            .iter()
+            .map(|e| {
+                json!({
+                    "interpolation": e.mode.name(),
+                    "step_deg": e.step_deg,
+                    "max_position_error_m": e.max_position_error_m,
+                    "max_velocity_error_m_per_deg": e.max_velocity_error_m_per_deg,
+                    "max_accel_error_m_per_deg2": e.max_accel_error_m_per_deg2,
+                    "rel_position_error": e.rel_position_error,
+                    "rel_velocity_error": e.rel_velocity_error,
+                    "rel_accel_error": e.rel_accel_error,
+                })
+            })
+            .collect();
+        return util::print_json(&json!({"format": format, "points": table.points.len(), "reinterpolation": v}));
+    }
+    println!(
+        "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated (checked at 16 points per step):",
+        table.points.len(),
+        table.step_deg()
+    );
+    println!(
+        "{:>16} {:>14} {:>18} {:>20} {:>10} {:>10} {:>10}",
+        "interpolation", "position m", "velocity m/deg", "accel m/deg²", "pos/H", "vel/max", "acc/max"
+    );
+    for e in &errs {
+        println!(
+            "{:>16} {:>14.3e} {:>18.3e} {:>20.3e} {:>10.2e} {:>10.2e} {:>10.2e}",
+            e.mode.name(),
+            e.max_position_error_m,
+            e.max_velocity_error_m_per_deg,
+            e.max_accel_error_m_per_deg2,
+            e.rel_position_error,
+            e.rel_velocity_error,
+            e.rel_accel_error
+        );
+    }
+    println!(
+        "(xyva points are meant for quintic-Hermite interpolation; csv positions alone give the linear or cubic rows)"
+    );
+    Ok(())
+}
+
+fn plot(a: PlotArgs) -> Result<()> {
+    check_speeds(&a.speed_rpm)?;
+    let d = a.drive.load()?;
+    let mut laws = vec![("given", a.def.build()?)];
+    if let Some(c) = &a.compare {
+        let other = DefArgs { def: c.clone(), end: a.def.end.clone() };
+        laws.push(("compare", other.build().context("--compare")?));
+    }
+    let n = 721;
+    let mut image = Panel::new("acceleration image f(x) [-]", Vec::new());
+    image.x_label = Some("x = fraction of the motion angle [-]".into());
+    let mut unit = Panel::new("unit law u°(x) [-]", Vec::new()).with_legend(Legend::UpperLeft);
+    unit.x_label = Some("x = fraction of the motion angle [-]".into());
+    let mut torque = Panel::new("motor torque M [N·m]", Vec::new()).with_legend(Legend::LowerRight);
+    for (name, sl) in &laws {
+        let f: Vec<(f64, f64)> = (0..n).map(|i| i as f64 / (n - 1) as f64).map(|x| (x, sl.accel_image(x))).collect();
+        image.series.push(Series::line(format!("{name}: f(x)"), f));
+        image.series.push(Series::markers(
+            format!("{name}: definition points"),
+            sl.points().iter().map(|p| (p[0], p[1])).collect(),
+        ));
+        unit.series.push(Series::line(*name, sl.law().sample(n).into_iter().map(|(x, k)| (x, k.s)).collect()));
+        for &rpm in &a.speed_rpm {
+            let c = torque_curve(sl.law(), &d, rpm, 1441)?;
+            torque.series.push(Series::line(
+                format!("{name}, {rpm} 1/min"),
+                c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect(),
+            ));
+        }
+    }
+    let fig = Figure::new(
+        "Servo motion law from definition points and motor torque over one turn",
+        "main-shaft angle [deg]",
+        vec![image, unit, torque],
+    );
+    util::save_figure(&fig, &a.output)
+}
