@@ -49,10 +49,11 @@ impl Settings {
         }
     }
 
-    /// Checks the ranges that do not depend on the cam: speed > 0, play ≥ 0, 0 < k < l,
+    /// Checks the ranges that do not depend on the cam: 1 ≤ speed ≤ 10 000 rev/min, play ≥ 0, 0 < k < l,
     /// m > 0, F₀ ≥ 0. (Play beyond the cam's reach is found when the scenario is resolved.)
     pub fn validate(&self, mechanism: &Mechanism) -> Result<()> {
-        PickError::check_positive("speed_rpm", self.speed_rpm, 1e5, "rpm")?;
+        // Below 1 rev/min the pick lasts minutes and the integrator would follow ~10⁵ oscillations.
+        PickError::check_closed("speed_rpm", self.speed_rpm, 1.0, 1e4, "rpm")?;
         let l_m = mechanism.params().l_m;
         PickError::check_closed("play_mm", self.play_m / M_PER_MM, 0.0, l_m / M_PER_MM, "mm")?;
         PickError::check_open("strap_cm", self.strap_m / M_PER_CM, 0.0, l_m / M_PER_CM, "cm (0 < k < l)")?;
