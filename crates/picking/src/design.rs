@@ -184,6 +184,17 @@ mod tests {
         }
     }
 
+    /// X₁ < X is the condition T' > τ: as X₁ → X the constant-acceleration stage vanishes.
+    #[test]
+    fn first_stage_limit() {
+        let k = Params::paper().constants();
+        let mut s = DesignSpec::paper();
+        s.first_stage_m = s.distance_m * (1.0 - 1e-9);
+        let d = Design::new(s, k).unwrap();
+        assert!((d.t_end_s - d.tau_s) / d.tau_s < 1e-6);
+        assert!((d.actual(d.tau_s).v_m_s - s.velocity_m_s).abs() < 1e-6 * s.velocity_m_s);
+    }
+
     #[test]
     fn bad_spec_is_an_error() {
         let mut s = DesignSpec::paper();

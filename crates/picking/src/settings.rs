@@ -202,3 +202,34 @@ impl Setting {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_round_trip_through_their_practical_units() {
+        let m = Mechanism::paper_default();
+        let base = Settings::designed(&m);
+        for s in Setting::ALL {
+            assert_eq!(Setting::parse(s.name()).unwrap(), s);
+            assert_eq!(Setting::parse(&s.key()).unwrap(), s);
+            let (a, b) = s.paper_range();
+            let v = 0.5 * (a + b);
+            let applied = s.apply(base, v);
+            assert!((s.value(&applied) - v).abs() < 1e-12 * v.abs().max(1.0));
+            assert!(applied.validate(&m).is_ok());
+        }
+        assert!((Setting::Checking.value(&base) - 5.0).abs() < 1e-12, "the paper's F₀ is 5 kgf");
+        assert!(Setting::parse("weight").is_err());
+    }
+
+    #[test]
+    fn out_of_range_settings_name_field_range_and_unit() {
+        let m = Mechanism::paper_default();
+        let e = Settings::designed(&m).with_strap_cm(74.0).validate(&m).unwrap_err().to_string();
+        assert!(e.contains("strap_cm = 74") && e.contains("cm"), "{e}");
+        let e = Settings::designed(&m).with_shuttle_g(-1.0).validate(&m).unwrap_err().to_string();
+        assert!(e.contains("shuttle_g") && e.contains(" g"), "{e}");
+    }
+}
