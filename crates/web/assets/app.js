@@ -49,7 +49,9 @@ function el(tag, props, ...children) {
 
 function num(v, digits) {
   if (!isFinite(v)) return "–";
-  return digits === undefined ? fmtValue(v) : v.toFixed(digits);
+  if (digits === undefined) return fmtValue(v);
+  const t = v.toFixed(digits);
+  return /^-0(\.0*)?$/.test(t) ? t.slice(1) : t; // never "-0.0"
 }
 
 // ---------------------------------------------------------------- tabs
@@ -371,9 +373,67 @@ async function compareLaws() {
   } catch (e) { status("compare: " + e.message, true); }
 }
 
+
+// ---------------------------------------------------------------- picking scenario
+
+const picking = { values: {}, inflight: false, queued: false };
+
+async function initPicking() {
+  const root = $("#picking-root");
+  const panel = el("div", { className: "panel" }, el("h2", { textContent: "Loom settings" }),
+    el("p", { className: "hint", textContent: "The paper's under-pick mechanism (Jederán 1959), its cam designed for V = 17 m/s over X = 0.22 m. Move a slider: the pick is recomputed." }));
+  const method = el("select", { id: "picking-method" }, el("option", { value: "closed", textContent: "closed form (corrected)" }), el("option", { value: "ode", textContent: "numerical (DOP853)" }));
+  method.addEventListener("change", simulatePick);
+  const table = el("table", { className: "data", id: "picking-outcome" }, el("caption", { textContent: "End of the pick" }), el("tbody"));
+  const charts = el("div", { className: "grid-charts" });
+  root.append(el("div", { className: "results" }, panel, table), charts);
+  const mk = (id, title, label, unit) => new Chart(charts, { id, title, height: 230, x: { label: "time from shuttle start t", unit: "ms" }, y: { label, unit } });
+  picking.charts = { x: mk("pick-x", "Displacement", "displacement", "mm"), v: mk("pick-v", "Velocity", "velocity", "m/s"), a: mk("pick-a", "Acceleration", "acceleration", "m/s²") };
+  Object.assign(loomkin.charts, { pick_x: picking.charts.x, pick_v: picking.charts.v, pick_a: picking.charts.a });
+  try {
+    const info = await api("/picking/settings");
+    for (const s of info.settings) {
+      picking.values[s.key] = s.designed;
+      const out = el("output", { textContent: `${num(s.designed)} ${s.unit}` });
+      const range = el("input", { type: "range", min: String(s.min), max: String(s.max), step: String((s.max - s.min) / 200), value: String(s.designed), id: "pick-" + s.key });
+      range.addEventListener("input", () => { picking.values[s.key] = +range.value; out.textContent = `${num(+range.value)} ${s.unit}`; simulatePick(); });
+      panel.append(el("label", { className: "slider" }, el("span", { textContent: `${s.description} (${s.unit})` }), range, out));
+    }
+    panel.append(el("label", { className: "slider" }, el("span", { textContent: "route" }), method));
+  } catch (e) { status("picking: " + e.message, true); }
+  simulatePick();
+}
+
+function simulatePick() {
+  if (picking.inflight) { picking.queued = true; return; }
+  picking.inflight = true;
+  api("/picking/simulate", { settings: picking.values, method: $("#picking-method").value, samples: 400 })
+    .then((r) => {
+      const c = r.curves, ch = picking.charts;
+      ch.x.setSeries([{ label: "cam (nominal) s", x: c.t_ms, y: c.nominal_mm, dash: [6, 4] }, { label: "shuttle x", x: c.t_ms, y: c.actual_mm }]);
+      ch.v.setSeries([{ label: "cam (nominal)", x: c.t_ms, y: c.nominal_v_m_s, dash: [6, 4] }, { label: "shuttle", x: c.t_ms, y: c.actual_v_m_s }]);
+      ch.a.setSeries([{ label: "cam (nominal)", x: c.t_ms, y: c.nominal_a_m_s2, dash: [6, 4] }, { label: "shuttle", x: c.t_ms, y: c.actual_a_m_s2 }]);
+      const o = r.outcome;
+      const rows = [
+        ["shuttle velocity at the end", `${num(o.velocity_m_s, 3)} m/s`, "pick-velocity"],
+        ["required velocity", `${num(o.required_velocity_m_s, 3)} m/s`],
+        ["velocity above the required", `${num(o.velocity_vs_required_pct, 1)} %`],
+        ["picking distance", `${num(o.distance_m * 1e3, 1)} mm`],
+        ["pick duration", `${num(o.t_end_s * 1e3, 2)} ms`],
+        ["peak acceleration", `${num(o.accel_peak_m_s2, 0)} m/s²`],
+        ["end of the pick", o.end === "separation" ? "shuttle left the picker early" : "end of the cam rise"],
+        ["route", o.method + (o.note ? ` — ${o.note}` : "")],
+      ];
+      $("#picking-outcome tbody").replaceChildren(...rows.map(([k, v, id]) => el("tr", {}, el("th", { textContent: k }), el("td", { textContent: v, id: id || "" }))));
+      status("pick simulated");
+    })
+    .catch((e) => status("picking: " + e.message, true))
+    .finally(() => { picking.inflight = false; if (picking.queued) { picking.queued = false; simulatePick(); } });
+}
+
 // ---------------------------------------------------------------- start
 
-const VIEWS = { servo: initServo, catalogue: initCatalogue };
+const VIEWS = { servo: initServo, catalogue: initCatalogue, picking: initPicking };
 window.LoomkinViews = VIEWS;
 
 async function start() {

@@ -37,6 +37,7 @@ mod catalogue;
 mod error;
 mod json;
 mod limits;
+mod picking_api;
 mod series;
 mod server;
 mod servo_api;
@@ -52,6 +53,9 @@ pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
     DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS, MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES,
 };
+pub use picking_api::{
+    PickingCurves, PickingRequest, PickingResponse, SettingInfo, SettingsInfo, settings_info, simulate as simulate_pick,
+};
 pub use series::{LawSamples, finite};
 pub use server::{Bound, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
 pub use servo_api::{
@@ -62,4 +66,4 @@ pub use servo_api::{
 pub use servo_design::{DesignFormat, ServoDesign, servo_error};
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "picking"];
