@@ -27,6 +27,9 @@ pub struct Dimensionless {
     pub cm: f64,
     /// RMS acceleration over the motion, √(∫₀¹ a² dx).
     pub ca_rms: f64,
+    /// Largest jump of the acceleration, at a joint or against the dwells at `x = 0` and `x = 1`
+    /// (a jump means an unbounded jerk, which `cj` does not count).
+    pub a_jump: f64,
     /// End of the leading stretch at rest (`s ≡ 0`), fraction of the motion.
     pub lead: f64,
     /// Start of the trailing stretch at rest (`s ≡ 1`), fraction of the motion.
@@ -58,6 +61,13 @@ impl Dimensionless {
             cj: m.cj,
             cm: m.cm,
             ca_rms: m.ca_rms,
+            a_jump: {
+                let c = law.continuity();
+                std::iter::once(&c.start)
+                    .chain(&c.joints)
+                    .chain(std::iter::once(&c.end))
+                    .fold(0.0, |m, j| m.max(j.da.abs()))
+            },
             lead: lead(law),
             tail: tail(law),
             x_depart,
@@ -85,6 +95,8 @@ impl Dimensionless {
 /// (both sides of the dwell, already doubled for a symmetric law), `window_deg = φ_пп* = φ_вр + φ_ув`.
 /// Physical peaks for stroke `h` (m), `ω = 2πn/60` (rad/s) and `Φ` (rad):
 /// `v = h·Cv·ω/Φ`, `a = h·Ca·(ω/Φ)²`, `j = h·Cj·(ω/Φ)³`, `(v·a)max = h²·Cm·(ω/Φ)³`.
+/// `peak_jerk_m_s3` is the jerk inside segments; where the acceleration jumps
+/// (`accel_jump_m_s2 > 0`) the jerk is unbounded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Criteria {
     /// Motion angle `φ_дв`, deg.
@@ -107,6 +119,8 @@ pub struct Criteria {
     pub cm: f64,
     /// Dimensionless RMS acceleration over the motion.
     pub ca_rms: f64,
+    /// Dimensionless largest jump of the acceleration (0 for a law without jumps).
+    pub a_jump: f64,
     /// Peak acceleration per unit stroke on the scale of a full turn, `Ca·(360°/φ_дв)²`
     /// (comparable between motion angles).
     pub ca_turn: f64,
@@ -120,6 +134,8 @@ pub struct Criteria {
     pub peak_power_w_kg: f64,
     /// RMS frame acceleration over the motion, m/s².
     pub rms_accel_m_s2: f64,
+    /// Largest jump of the frame acceleration, m/s² (where the jerk is unbounded).
+    pub accel_jump_m_s2: f64,
 }
 
 impl Criteria {
@@ -141,12 +157,14 @@ impl Criteria {
             cj: d.cj,
             cm: d.cm,
             ca_rms: d.ca_rms,
+            a_jump: d.a_jump,
             ca_turn: d.ca * turn * turn,
             peak_velocity_m_s: d.cv * c.scale(phi, 1),
             peak_accel_m_s2: d.ca * c.scale(phi, 2),
             peak_jerk_m_s3: d.cj * c.scale(phi, 3),
             peak_power_w_kg: d.cm * c.scale(phi, 1) * c.scale(phi, 2),
             rms_accel_m_s2: d.ca_rms * c.scale(phi, 2),
+            accel_jump_m_s2: d.a_jump * c.scale(phi, 2),
         }
     }
 }

@@ -145,6 +145,9 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
     let (mut x, mut s, mut v) = (0.0, 0.0, 0.0);
     let (mut amax, mut jmax, mut a2, mut lead) = (0.0f64, 0.0f64, 0.0, 0.0);
     let mut leading = true;
+    // Jumps of a: at x = 0 against the dwell, between segments, and 2·|a(½)| at mid-motion where
+    // the mirror flips the sign (the end x = 1 mirrors x = 0).
+    let (mut jump, mut a_prev) = (0.0f64, 0.0);
     for (shape, &k) in shapes.iter().zip(lengths) {
         if k <= 0.0 {
             continue;
@@ -158,6 +161,9 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
             leading = false;
         }
         amax = amax.max(lv[0]).max(lv[1]);
+        let (a_in, a_out) = shape.end_levels();
+        jump = jump.max((a_in - a_prev).abs());
+        a_prev = a_out;
         jmax = jmax.max(jerk_peak(shape, w));
         a2 += w * square_mean(shape);
         let e = seg.at(w);
@@ -171,6 +177,7 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
             reason: "the positive phase makes no displacement".into(),
         });
     }
+    jump = jump.max(2.0 * a_prev.abs());
     let segs = &segs[..n];
     let kn = 0.5 / s;
     // Peak of v·a on the positive phase (unscaled): at a segment's end where a does not fall,
@@ -226,6 +233,7 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
         cj: kn * jmax,
         cm: kn * kn * cm,
         ca_rms: kn * (2.0 * a2).sqrt(),
+        a_jump: kn * jump,
         lead,
         tail: 1.0 - lead,
         x_depart,

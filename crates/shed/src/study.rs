@@ -125,6 +125,14 @@ pub fn dominates_in(a: &[f64; 2], b: &[f64; 2]) -> bool {
     loomkin_study::dominates(a, b, &[Sense::Maximize, Sense::Minimize])
 }
 
+/// Indices of the Pareto front of `[window_deg, peak_accel]` points (largest window, least
+/// acceleration), in the order of decreasing window.
+pub fn pareto_indices(points: &[[f64; 2]]) -> Result<Vec<usize>> {
+    let mut f = pareto_front(points, &[Sense::Maximize, Sense::Minimize])?;
+    f.sort_by(|&a, &b| points[b][0].total_cmp(&points[a][0]));
+    Ok(f)
+}
+
 /// Checks a required window: `0 < W < 360°`.
 pub fn check_window_deg(window_deg: f64) -> Result<f64> {
     ShedError::check_range("window_deg", window_deg, 1e-9, 359.999, "deg")
@@ -137,14 +145,27 @@ pub fn check_window_deg(window_deg: f64) -> Result<f64> {
 /// acceleration `∝ Ca/Φ²` falls as `Φ` grows, so the best angle is the largest allowed,
 /// `Φ* = min(360°, (360° − W)/(1 − c))`, and the search runs over the shapes only. With a list of
 /// motion angles, every (shape, angle) pair is tried. `None` when no law qualifies.
+///
+/// Least acceleration alone drives the choice towards constant acceleration (Ca → 4) with its
+/// jumps of acceleration; `max_jerk_m_s3` bounds the peak jerk `h·Cj·(ω/Φ)³` and excludes laws
+/// whose acceleration jumps (checked at the chosen angle, where the jerk is least since it falls
+/// as `Φ` grows).
 pub fn best(
     design: &Design,
     rows: &[Option<Dimensionless>],
     motions: Option<&[f64]>,
     window_deg: f64,
+    max_jerk_m_s3: Option<f64>,
     conditions: &Conditions,
 ) -> Result<Option<Candidate>> {
     check_window_deg(window_deg)?;
+    if let Some(j) = max_jerk_m_s3 {
+        ShedError::check_open_closed("max_jerk_m_s3", j, 0.0, f64::MAX, "m/s³")?;
+    }
+    let jmax = max_jerk_m_s3.unwrap_or(f64::INFINITY);
+    let jerk_ok = |d: &Dimensionless, m: f64| {
+        jmax.is_infinite() || (d.a_jump <= 1e-9 * d.ca && d.cj * conditions.scale(m, 3) <= jmax)
+    };
     let h_w2 = conditions.scale(180.0, 2) * std::f64::consts::PI.powi(2);
     // Peak acceleration for a motion angle: h·Ca·ω²/Φ².
     let accel = |d: &Dimensionless, m: f64| d.ca * h_w2 / m.to_radians().powi(2);
@@ -163,7 +184,7 @@ pub fn best(
             let best = argmin_subject_to(
                 &idx,
                 |&i| accel(rows[i].as_ref().expect("feasible"), phi[i].expect("feasible")),
-                |&i| matches!(phi[i], Some(p) if p > 0.0),
+                |&i| matches!(phi[i], Some(p) if p > 0.0 && jerk_ok(rows[i].as_ref().expect("some"), p)),
             );
             Ok(best.map(|i| {
                 candidate(design, i, phi[i].expect("feasible"), rows[i].as_ref().expect("feasible"), conditions)
@@ -174,11 +195,36 @@ pub fn best(
             let pairs: Vec<(usize, f64)> =
                 (0..rows.len()).filter(|&i| rows[i].is_some()).flat_map(|i| ms.iter().map(move |&m| (i, m))).collect();
             let d = |i: usize| rows[i].as_ref().expect("filtered");
-            let best = argmin_subject_to(&pairs, |&(i, m)| accel(d(i), m), |&(i, m)| d(i).window_deg(m) >= window_deg);
+            let best = argmin_subject_to(
+                &pairs,
+                |&(i, m)| accel(d(i), m),
+                |&(i, m)| d(i).window_deg(m) >= window_deg && jerk_ok(d(i), m),
+            );
             Ok(best.map(|j| {
                 let (i, m) = pairs[j];
                 candidate(design, i, m, d(i), conditions)
             }))
         }
     }
+}
+
+/// Reads a list of motion angles: `300`, `180,270,300` or `MIN:MAX:STEP` (e.g. `180:360:10`),
+/// each in (0, 360] deg.
+pub fn parse_motion_angles(text: &str) -> Result<Vec<f64>> {
+    let bad = |t: &str| ShedError::Parse {
+        field: "motion_deg".into(),
+        reason: format!("cannot read '{t}': expected DEG, DEG,DEG,… or MIN:MAX:STEP in degrees"),
+    };
+    let num = |t: &str| t.trim().parse::<f64>().map_err(|_| bad(text));
+    let out: Vec<f64> = if text.contains(':') {
+        let p: Vec<&str> = text.split(':').collect();
+        if p.len() != 3 {
+            return Err(bad(text));
+        }
+        loomkin_study::stepped_axis("motion_deg", num(p[0])?, num(p[1])?, num(p[2])?)?
+    } else {
+        text.split(',').map(num).collect::<Result<_>>()?
+    };
+    check_motions(&out)?;
+    Ok(out)
 }

@@ -118,6 +118,7 @@ fn brute(positive: &[ShapeSegment], threshold: f64) -> Dimensionless {
         cj,
         cm,
         ca_rms: a2.sqrt(),
+        a_jump: 0.0, // not sampled (compared between the fast and generic paths only)
         lead: 0.0,
         tail: 1.0,
         x_depart: depart,

@@ -27,7 +27,7 @@ proptest! {
         let f = t.evaluate_fast(&k, threshold).unwrap();
         for (name, a, b) in [("cv", f.cv, g.cv), ("ca", f.ca, g.ca), ("cm", f.cm, g.cm), ("ca_rms", f.ca_rms, g.ca_rms),
                              ("x_depart", f.x_depart, g.x_depart), ("x_arrive", f.x_arrive, g.x_arrive),
-                             ("lead", f.lead, g.lead), ("tail", f.tail, g.tail)] {
+                             ("lead", f.lead, g.lead), ("tail", f.tail, g.tail), ("a_jump", f.a_jump, g.a_jump)] {
             prop_assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{} {:?} {}: fast {} generic {}", t.name(), k, name, a, b);
         }
         prop_assert!((f.cj - g.cj).abs() <= 1e-7 * g.cj, "cj {} vs {}", f.cj, g.cj);
@@ -92,13 +92,43 @@ fn free_motion_optimum_beats_every_motion_on_a_grid() {
     let cond = Conditions::default();
     let motions: Vec<f64> = (1..=720).map(|i| i as f64 * 0.5).collect();
     for w in [140.0, 175.0, 250.0] {
-        let free = best(&d, &rows, None, w, &cond).unwrap().unwrap();
-        let grid = best(&d, &rows, Some(&motions), w, &cond).unwrap().unwrap();
+        let free = best(&d, &rows, None, w, None, &cond).unwrap().unwrap();
+        let grid = best(&d, &rows, Some(&motions), w, None, &cond).unwrap().unwrap();
         assert!(free.criteria.window_deg >= w - 1e-9);
         assert!(grid.criteria.window_deg >= w);
         assert!(free.criteria.peak_accel_m_s2 <= grid.criteria.peak_accel_m_s2 * (1.0 + 1e-12));
         // The grid's best comes within the angle step of the free optimum.
         assert!(grid.criteria.peak_accel_m_s2 <= free.criteria.peak_accel_m_s2 * 1.01, "W {w}");
     }
-    assert!(best(&d, &rows, None, 360.0, &cond).is_err());
+    assert!(best(&d, &rows, None, 360.0, None, &cond).is_err());
+    // Least acceleration alone picks nearly constant acceleration (the smallest k1, k3 on the grid);
+    // a jerk limit moves the choice to smoother ramps, at a higher acceleration.
+    let free = best(&d, &rows, None, 175.0, None, &cond).unwrap().unwrap();
+    assert!(free.criteria.ca < 4.2, "Ca {}", free.criteria.ca);
+    assert!(free.criteria.accel_jump_m_s2 > 0.0, "constant acceleration jumps at the ends");
+    let limit = 2000.0;
+    let smooth = best(&d, &rows, None, 175.0, Some(limit), &cond).unwrap().unwrap();
+    assert!(smooth.criteria.peak_jerk_m_s3 <= limit && smooth.criteria.window_deg >= 175.0 - 1e-9);
+    assert!(smooth.criteria.peak_accel_m_s2 > free.criteria.peak_accel_m_s2);
+    // Brute force over every row confirms the constrained optimum.
+    for (i, r) in rows.iter().enumerate() {
+        let Some(r) = r else { continue };
+        let phi = ((360.0 - 175.0) / (1.0 - r.window_fraction())).min(360.0);
+        let c = loomkin_shed::Criteria::new(phi, r, &cond);
+        if c.peak_jerk_m_s3 <= limit && c.accel_jump_m_s2 == 0.0 {
+            assert!(c.peak_accel_m_s2 >= smooth.criteria.peak_accel_m_s2 * (1.0 - 1e-12), "row {i}");
+        }
+    }
+}
+
+#[test]
+fn motion_angle_lists() {
+    use loomkin_shed::parse_motion_angles;
+    assert_eq!(parse_motion_angles("300").unwrap(), vec![300.0]);
+    assert_eq!(parse_motion_angles("180, 270").unwrap(), vec![180.0, 270.0]);
+    assert_eq!(parse_motion_angles("180:360:90").unwrap(), vec![180.0, 270.0, 360.0]);
+    assert!(parse_motion_angles("0").is_err());
+    assert!(parse_motion_angles("300:400:50").is_err());
+    assert!(parse_motion_angles("a").is_err());
+    assert!(parse_motion_angles("1:2").is_err());
 }
