@@ -431,9 +431,112 @@ function simulatePick() {
     .finally(() => { picking.inflight = false; if (picking.queued) { picking.queued = false; simulatePick(); } });
 }
 
+
+// ---------------------------------------------------------------- shedding Pareto explorer
+
+const shed = { result: null, chosen: 0 };
+
+function initShed() {
+  const root = $("#shed-root");
+  const field = (label, input) => el("label", {}, label, input);
+  const family = el("select", { id: "shed-family" },
+    el("option", { value: "trapezoid", textContent: "trapezoid (sine rise, plateau, cosine fall)" }),
+    el("option", { value: "lead-trapezoid", textContent: "lead-trapezoid (zero lead + trapezoid)" }),
+    el("option", { value: "linear-trapezoid", textContent: "linear-trapezoid" }));
+  const inputs = {
+    step: el("input", { type: "number", step: "any", value: "0.025", id: "shed-step" }),
+    motions: el("input", { type: "text", value: "180, 200, 220, 240, 260, 280, 300", id: "shed-motions", spellcheck: false }),
+    threshold: el("input", { type: "number", step: "any", value: "0.95", id: "shed-threshold" }),
+    stroke: el("input", { type: "number", step: "any", value: "0.1", id: "shed-stroke" }),
+    speed: el("input", { type: "number", step: "any", value: "300", id: "shed-speed" }),
+  };
+  const form = el("div", { className: "panel" }, el("h2", { textContent: "Family and grid" }),
+    el("p", { className: "hint", textContent: "Heald-frame laws (Makarov et al. 2004): every law of the family on a grid of relative lengths k_Ti, at each motion angle. Click a point of the Pareto front to see that law." }),
+    el("div", { className: "grid2" }, field("law family", family), field("grid step of k_Ti (–)", inputs.step),
+      field("motion angles φ (°)", inputs.motions), field("dwell threshold T (–)", inputs.threshold),
+      field("stroke h (m)", inputs.stroke), field("main-shaft speed n (1/min)", inputs.speed)));
+  const table = el("table", { className: "data", id: "shed-chosen" }, el("caption", { textContent: "Chosen law" }), el("tbody"));
+  const charts = el("div", { className: "charts" });
+  root.append(el("div", { className: "results" }, form, table), charts);
+  shed.pareto = new Chart(charts, { id: "shed-pareto", title: "Pareto explorer", height: 360,
+    x: { label: "weft-crossing window φ*", unit: "°" }, y: { label: "peak frame acceleration", unit: "m/s²" } });
+  const row = el("div", { className: "grid-charts" });
+  charts.append(row);
+  const mk = (id, title, label, unit) => new Chart(row, { id, title, height: 220, x: { label: "main-shaft angle", unit: "°", range: [0, 360], step: 30 }, y: { label, unit } });
+  shed.s = mk("shed-s", "Frame displacement", "s", "mm");
+  shed.v = mk("shed-v", "Frame velocity", "v", "m/s");
+  shed.a = mk("shed-a", "Frame acceleration", "a", "m/s²");
+  Object.assign(loomkin.charts, { shed_pareto: shed.pareto, shed_s: shed.s, shed_v: shed.v, shed_a: shed.a });
+  shed.pareto.setHandlers({ onClick: (x, y, px, py) => pickFront(px, py) });
+  for (const e of [family, ...Object.values(inputs)]) e.addEventListener("change", computePareto);
+  shed.inputs = { family, ...inputs };
+  computePareto();
+}
+
+function shedConditions() {
+  const i = shed.inputs;
+  return { threshold: +i.threshold.value, stroke_m: +i.stroke.value, speed_rpm: +i.speed.value };
+}
+
+async function computePareto() {
+  const i = shed.inputs;
+  const motions_deg = i.motions.value.split(/[,;\s]+/).filter((t) => t).map(Number);
+  status("evaluating the grid…");
+  try {
+    const r = await api("/shed/pareto", { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() });
+    shed.result = r;
+    const byMotion = {};
+    r.cloud.motion_deg.forEach((m, k) => {
+      (byMotion[m] = byMotion[m] || { x: [], y: [] }).x.push(r.cloud.window_deg[k]);
+      byMotion[m].y.push(r.cloud.peak_accel_m_s2[k]);
+    });
+    const front = [...r.front].sort((a, b) => a.criteria.window_deg - b.criteria.window_deg);
+    shed.front = front;
+    const series = Object.entries(byMotion).map(([m, d], k) => ({ label: `φ = ${m}°`, mode: "points", radius: 1.3, x: d.x, y: d.y, color: PALETTE[(k + 1) % PALETTE.length] }));
+    series.push({ label: "Pareto front", mode: "markers", line: true, radius: 4, color: "#111827", x: front.map((c) => c.criteria.window_deg), y: front.map((c) => c.criteria.peak_accel_m_s2) });
+    shed.series = series;
+    shed.pareto.setSeries(series);
+    status(`${r.laws} laws × ${Object.keys(byMotion).length} motion angles; ${r.front.length} on the Pareto front`);
+    chooseLaw(Math.floor(front.length / 2));
+  } catch (e) { status("shedding: " + e.message, true); }
+}
+
+function pickFront(px, py) {
+  if (!shed.front || !shed.pareto.L) return;
+  let best = -1, bd = Infinity;
+  shed.front.forEach((c, k) => {
+    const [qx, qy] = shed.pareto.toPx(shed.pareto.L, c.criteria.window_deg, c.criteria.peak_accel_m_s2);
+    const d = (qx - px) ** 2 + (qy - py) ** 2;
+    if (d < bd) { bd = d; best = k; }
+  });
+  if (best >= 0) chooseLaw(best);
+}
+
+async function chooseLaw(k) {
+  const c = shed.front[k];
+  if (!c) return;
+  const sel = { label: "chosen", mode: "markers", radius: 7, color: "#f59e0b", hover: false, x: [c.criteria.window_deg], y: [c.criteria.peak_accel_m_s2] };
+  shed.pareto.setSeries([...shed.series, sel]);
+  try {
+    const r = await api("/shed/law", { family: shed.inputs.family.value, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shedConditions() });
+    shed.s.setSeries([{ label: "", x: r.angle_deg, y: r.s_mm }]);
+    shed.v.setSeries([{ label: "", x: r.angle_deg, y: r.v_m_s }]);
+    shed.a.setSeries([{ label: "", x: r.angle_deg, y: r.a_m_s2 }]);
+    const q = r.criteria;
+    const rows = [
+      ["relative lengths k_Ti", c.lengths.map((v) => num(v, 3)).join(" : ")],
+      ["motion angle φ", `${num(q.motion_deg, 1)} °`], ["dwell", `${num(q.dwell_deg, 1)} °`],
+      ["conditional dwell", `${num(q.conditional_dwell_deg, 1)} °`], ["window φ*", `${num(q.window_deg, 1)} °`],
+      ["Ca", num(q.ca)], ["Cv", num(q.cv)], ["peak acceleration", `${num(q.peak_accel_m_s2, 1)} m/s²`],
+      ["peak velocity", `${num(q.peak_velocity_m_s, 3)} m/s`], ["RMS acceleration", `${num(q.rms_accel_m_s2, 1)} m/s²`],
+    ];
+    $("#shed-chosen tbody").replaceChildren(...rows.map(([a, b]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b }))));
+  } catch (e) { status("shedding law: " + e.message, true); }
+}
+
 // ---------------------------------------------------------------- start
 
-const VIEWS = { servo: initServo, catalogue: initCatalogue, picking: initPicking };
+const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking };
 window.LoomkinViews = VIEWS;
 
 async function start() {

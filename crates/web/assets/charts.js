@@ -102,6 +102,10 @@ class Chart {
     this.draw();
   }
 
+  setHandlers(handlers) {
+    this.handlers = handlers;
+  }
+
   // The data ranges, widened to nice ticks; fixed ranges are kept.
   layout() {
     const dpr = window.devicePixelRatio || 1;
@@ -184,6 +188,18 @@ class Chart {
     // Series, clipped to the plot.
     c.save(); c.beginPath(); c.rect(L.left, L.top, L.pw, L.ph); c.clip();
     for (const s of this.series) {
+      if (s.mode === "points" || s.mode === "markers") {
+        c.fillStyle = s.color;
+        const r = s.radius || 1.6;
+        for (let i = 0; i < s.x.length; i++) {
+          if (!isFinite(s.x[i]) || !isFinite(s.y[i])) continue;
+          const [px, py] = this.toPx(L, s.x[i], s.y[i]);
+          if (s.mode === "points") c.fillRect(px - r, py - r, 2 * r, 2 * r);
+          else { c.beginPath(); c.arc(px, py, r, 0, 2 * Math.PI); c.fill(); c.strokeStyle = "#111827"; c.lineWidth = 1; c.stroke(); }
+        }
+        if (s.mode === "points") continue;
+        if (!s.line) continue;
+      }
       c.strokeStyle = s.color; c.lineWidth = s.width || 1.8; c.setLineDash(s.dash || []);
       c.beginPath();
       let pen = false;
@@ -221,8 +237,12 @@ class Chart {
     }
     for (const s of this.series) {
       if (!s.label) continue;
-      c.strokeStyle = s.color; c.lineWidth = 2.5; c.setLineDash(s.dash || []);
-      c.beginPath(); c.moveTo(x, 13); c.lineTo(x + 18, 13); c.stroke(); c.setLineDash([]);
+      if (s.mode === "points" || s.mode === "markers") {
+        c.fillStyle = s.color; c.beginPath(); c.arc(x + 9, 13, 4, 0, 2 * Math.PI); c.fill();
+      } else {
+        c.strokeStyle = s.color; c.lineWidth = 2.5; c.setLineDash(s.dash || []);
+        c.beginPath(); c.moveTo(x, 13); c.lineTo(x + 18, 13); c.stroke(); c.setLineDash([]);
+      }
       c.fillStyle = "#1f2937"; c.fillText(s.label, x + 22, 13);
       x += 22 + c.measureText(s.label).width + 14;
     }
@@ -236,6 +256,7 @@ class Chart {
     c.beginPath(); c.moveTo(px + 0.5, L.top); c.lineTo(px + 0.5, L.top + L.ph); c.stroke(); c.setLineDash([]);
     const lines = [[null, `${this.opts.x.label} = ${fmtValue(x)}${this.opts.x.unit ? " " + this.opts.x.unit : ""}`]];
     for (const s of this.series) {
+      if (s.mode === "points" || s.hover === false) continue;
       const y = interp(s.x, s.y, x);
       if (!isFinite(y)) continue;
       const [, py] = this.toPx(L, x, y);
@@ -276,7 +297,13 @@ class Chart {
   onDown(e) {
     const [px, py] = this.eventXY(e);
     const i = this.nearestPoint(px, py);
-    if (i < 0) return;
+    if (i < 0) {
+      if (this.handlers && this.handlers.onClick && this.L) {
+        const [x, y] = this.fromPx(this.L, px, py);
+        this.handlers.onClick(x, y, px, py);
+      }
+      return;
+    }
     this.drag = { i };
     try { this.canvas.setPointerCapture(e.pointerId); } catch (_) { /* synthetic pointers */ }
     e.preventDefault();

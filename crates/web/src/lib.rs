@@ -42,6 +42,7 @@ mod series;
 mod server;
 mod servo_api;
 mod servo_design;
+mod shed_api;
 
 pub use assets::{APP_JS, CHARTS_JS, INDEX_HTML, STYLE_CSS};
 pub use catalogue::{
@@ -64,6 +65,10 @@ pub use servo_api::{
     export, load, optimize_design, save,
 };
 pub use servo_design::{DesignFormat, ServoDesign, servo_error};
+pub use shed_api::{
+    MAX_MOTIONS, MAX_SHED_POINTS, MAX_SHED_ROWS, ParetoRequest, ParetoResponse, ShedCloud, ShedConditions,
+    ShedLawRequest, ShedLawResponse, shed_law, shed_pareto,
+};
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "picking"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking"];

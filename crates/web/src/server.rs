@@ -23,6 +23,7 @@ pub fn router() -> Router {
         .route("/laws/compare", post(catalogue::post_compare))
         .merge(crate::servo_api::routes())
         .merge(crate::picking_api::routes())
+        .merge(crate::shed_api::routes())
         .fallback(api_not_found);
     Router::new()
         .route("/", get(assets::index))

@@ -1,0 +1,308 @@
+//! The shedding view: a family of heald-frame laws on a grid of relative lengths, its Pareto front
+//! (largest weft-crossing window, least peak acceleration), and one chosen law over the cycle.
+
+use crate::error::{check_count, check_range};
+use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
+use crate::series::finite;
+use crate::{ApiError, ApiJson};
+use axum::Router;
+use axum::routing::post;
+use loomkin_shed::{
+    Candidate, Conditions, Criteria, Progress, ShedError, THRESHOLD_RANGE, Template, cycle_curve, evaluate,
+    evaluate_rows, grid_design, pareto, table,
+};
+use serde::{Deserialize, Serialize};
+
+/// Most laws (grid rows) one Pareto request may evaluate.
+pub const MAX_SHED_ROWS: usize = 20_000;
+/// Most (law, motion angle) points one Pareto answer may carry.
+pub const MAX_SHED_POINTS: usize = 60_000;
+/// Most motion angles per request.
+pub const MAX_MOTIONS: usize = 12;
+
+pub(crate) fn routes() -> Router {
+    Router::new().route("/shed/pareto", post(post_pareto)).route("/shed/law", post(post_law))
+}
+
+/// Evaluation conditions shared by both shedding requests.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ShedConditions {
+    /// Dwell threshold T (fraction of the stroke), 0.75 … 0.99 (default 0.95).
+    #[serde(default = "default_threshold")]
+    pub threshold: f64,
+    /// Frame stroke h (m), default 0.1.
+    #[serde(default = "default_stroke")]
+    pub stroke_m: f64,
+    /// Main-shaft speed n (1/min), default 300.
+    #[serde(default = "default_speed")]
+    pub speed_rpm: f64,
+}
+
+fn default_threshold() -> f64 {
+    0.95
+}
+fn default_stroke() -> f64 {
+    0.1
+}
+fn default_speed() -> f64 {
+    300.0
+}
+
+impl Default for ShedConditions {
+    fn default() -> Self {
+        Self { threshold: default_threshold(), stroke_m: default_stroke(), speed_rpm: default_speed() }
+    }
+}
+
+impl ShedConditions {
+    fn build(&self) -> Result<Conditions, ApiError> {
+        check_range("conditions.threshold", self.threshold, THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "")?;
+        check_range("conditions.stroke_m", self.stroke_m, 1e-4, 1.0, "m")?;
+        check_range("conditions.speed_rpm", self.speed_rpm, 1.0, 5000.0, "1/min")?;
+        Conditions::new(self.threshold, self.stroke_m, self.speed_rpm).map_err(|e| shed_error("conditions", e))
+    }
+}
+
+fn shed_error(default_field: &str, e: ShedError) -> ApiError {
+    let field = match &e {
+        ShedError::OutOfRange { field, .. }
+        | ShedError::LengthsDoNotSumToOne { field, .. }
+        | ShedError::Parse { field, .. }
+        | ShedError::NotARise { field, .. } => field.clone(),
+        _ => default_field.to_string(),
+    };
+    ApiError::invalid(field, e)
+}
+
+/// `POST /api/shed/pareto` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ParetoRequest {
+    /// Law family: `trapezoid` (3 parts), `lead-trapezoid` (4), `linear-trapezoid` (3).
+    pub family: String,
+    /// Grid step of the relative lengths k_Ti (0.005 … 0.5).
+    pub step: f64,
+    /// Smallest relative length on the grid (default 0.005, the paper's practical minimum).
+    #[serde(default = "default_min")]
+    pub min_length: f64,
+    /// Motion angles φ (deg), 1 … [`MAX_MOTIONS`] of them, each in (0, 360].
+    pub motions_deg: Vec<f64>,
+    /// Evaluation conditions.
+    #[serde(default)]
+    pub conditions: ShedConditions,
+}
+
+fn default_min() -> f64 {
+    0.005
+}
+
+/// All evaluated (law, motion angle) points, in columns.
+#[derive(Debug, Clone, Serialize, PartialEq, Default)]
+pub struct ShedCloud {
+    /// Weft-crossing window φ* (deg).
+    pub window_deg: Vec<f64>,
+    /// Peak frame acceleration (m/s²).
+    pub peak_accel_m_s2: Vec<f64>,
+    /// Motion angle (deg).
+    pub motion_deg: Vec<f64>,
+}
+
+/// `POST /api/shed/pareto` answer.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ParetoResponse {
+    /// Number of laws on the grid that make a law.
+    pub laws: usize,
+    /// Every (law, motion angle) point.
+    pub cloud: ShedCloud,
+    /// The Pareto front, largest window first.
+    pub front: Vec<Candidate>,
+}
+
+/// Evaluates the grid of the family and its Pareto front.
+pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
+    let template = Template::named(&req.family).map_err(|e| ApiError::invalid("family", e))?;
+    let cond = req.conditions.build()?;
+    check_count("motions_deg", req.motions_deg.len(), 1, MAX_MOTIONS)?;
+    for (i, &m) in req.motions_deg.iter().enumerate() {
+        check_range(&format!("motions_deg[{i}]"), m, 1.0, 360.0, "deg")?;
+    }
+    let min = check_range("min_length", req.min_length, 0.0, 0.3, "")?;
+    let step = check_range("step", req.step, 0.005, 0.5, "")?;
+    // Bound the work before building the grid: the generator walks the cube of the free lengths.
+    let axis = ((1.0 - min) / step).floor() + 1.0;
+    let cube = axis.powi(template.parts() as i32 - 1);
+    if cube > 40.0 * MAX_SHED_ROWS as f64 {
+        let smallest = (1.0 - min) / ((40.0 * MAX_SHED_ROWS as f64).powf(1.0 / (template.parts() as f64 - 1.0)) - 1.0);
+        return Err(ApiError::invalid(
+            "step",
+            format!(
+                "step = {step} gives about {cube:.0} grid points for the {} parts of '{}': use step ≥ {:.3}",
+                template.parts(),
+                req.family,
+                smallest
+            ),
+        ));
+    }
+    let design = grid_design(template.parts(), min, 1.0, step).map_err(|e| shed_error("step", e))?;
+    check_count("step", design.len(), 1, MAX_SHED_ROWS).map_err(|_| {
+        ApiError::invalid(
+            "step",
+            format!(
+                "step = {step} gives {} laws, at most {MAX_SHED_ROWS} are allowed: use a larger step",
+                design.len()
+            ),
+        )
+    })?;
+    let rows =
+        evaluate_rows(&template, &design, cond.threshold(), Progress::Hidden).map_err(|e| shed_error("family", e))?;
+    let laws = rows.iter().filter(|r| r.is_some()).count();
+    if laws * req.motions_deg.len() > MAX_SHED_POINTS {
+        return Err(ApiError::invalid(
+            "step",
+            format!(
+                "{laws} laws × {} motion angles exceed {MAX_SHED_POINTS} points: use a larger step or fewer angles",
+                req.motions_deg.len()
+            ),
+        ));
+    }
+    let all = table(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    let front = pareto(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    let cloud = ShedCloud {
+        window_deg: all.iter().map(|c| finite(c.criteria.window_deg)).collect(),
+        peak_accel_m_s2: all.iter().map(|c| finite(c.criteria.peak_accel_m_s2)).collect(),
+        motion_deg: all.iter().map(|c| c.criteria.motion_deg).collect(),
+    };
+    Ok(ParetoResponse { laws, cloud, front })
+}
+
+/// `POST /api/shed/law` request: one law of a family.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ShedLawRequest {
+    /// Law family (as in [`ParetoRequest::family`]).
+    pub family: String,
+    /// Relative lengths k_T1 … k_Tn of the positive phase (sum 1).
+    pub lengths: Vec<f64>,
+    /// Motion angle φ (deg).
+    pub motion_deg: f64,
+    /// Evaluation conditions.
+    #[serde(default)]
+    pub conditions: ShedConditions,
+    /// Samples over the turn (default 721).
+    #[serde(default = "default_samples")]
+    pub samples: usize,
+}
+
+fn default_samples() -> usize {
+    721
+}
+
+/// `POST /api/shed/law` answer: criteria and the frame's motion over one turn.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ShedLawResponse {
+    /// The criteria (window, conditional dwell, Ca, peak acceleration, …).
+    pub criteria: Criteria,
+    /// Main-shaft angle (deg).
+    pub angle_deg: Vec<f64>,
+    /// Frame displacement (mm).
+    pub s_mm: Vec<f64>,
+    /// Frame velocity (m/s).
+    pub v_m_s: Vec<f64>,
+    /// Frame acceleration (m/s²).
+    pub a_m_s2: Vec<f64>,
+}
+
+/// The chosen law over one turn.
+pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
+    let template = Template::named(&req.family).map_err(|e| ApiError::invalid("family", e))?;
+    let cond = req.conditions.build()?;
+    let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
+    check_count("lengths", req.lengths.len(), template.parts(), template.parts())?;
+    for (i, &k) in req.lengths.iter().enumerate() {
+        check_range(&format!("lengths[{i}]"), k, 0.0, 1.0, "")?;
+    }
+    check_range("motion_deg", req.motion_deg, 1.0, 360.0, "deg")?;
+    let law = template.law(req.motion_deg, &req.lengths).map_err(|e| shed_error("lengths", e))?;
+    let criteria = evaluate(&law, &cond).map_err(|e| shed_error("lengths", e))?;
+    let curve = cycle_curve(&law, &cond, n).map_err(|e| shed_error("lengths", e))?;
+    Ok(ShedLawResponse {
+        criteria,
+        angle_deg: curve.iter().map(|p| finite(p.angle_deg)).collect(),
+        s_mm: curve.iter().map(|p| finite(p.s_m * 1e3)).collect(),
+        v_m_s: curve.iter().map(|p| finite(p.v_m_s)).collect(),
+        a_m_s2: curve.iter().map(|p| finite(p.a_m_s2)).collect(),
+    })
+}
+
+async fn post_pareto(ApiJson(req): ApiJson<ParetoRequest>) -> Result<ApiJson<ParetoResponse>, ApiError> {
+    crate::server::blocking(move || shed_pareto(&req)).await.map(ApiJson)
+}
+
+async fn post_law(ApiJson(req): ApiJson<ShedLawRequest>) -> Result<ApiJson<ShedLawResponse>, ApiError> {
+    crate::server::blocking(move || shed_law(&req)).await.map(ApiJson)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn req(step: f64) -> ParetoRequest {
+        ParetoRequest {
+            family: "trapezoid".into(),
+            step,
+            min_length: 0.005,
+            motions_deg: vec![200.0, 300.0],
+            conditions: ShedConditions::default(),
+        }
+    }
+
+    #[test]
+    fn front_is_non_dominated_and_its_laws_evaluate_alike() {
+        let r = shed_pareto(&req(0.05)).unwrap();
+        assert!(r.laws > 10 && !r.front.is_empty());
+        assert_eq!(r.cloud.window_deg.len(), r.laws * 2);
+        // No cloud point beats a front point in both criteria.
+        for f in &r.front {
+            let (w, a) = (f.criteria.window_deg, f.criteria.peak_accel_m_s2);
+            let beaten = r
+                .cloud
+                .window_deg
+                .iter()
+                .zip(&r.cloud.peak_accel_m_s2)
+                .any(|(&cw, &ca)| cw >= w && ca <= a && (cw > w + 1e-9 || ca < a - 1e-9));
+            assert!(!beaten, "front point ({w}, {a}) is dominated");
+        }
+        // The law endpoint, through the generic path, gives the front's numbers (fast path).
+        let f = &r.front[0];
+        let l = shed_law(&ShedLawRequest {
+            family: "trapezoid".into(),
+            lengths: f.lengths.clone(),
+            motion_deg: f.criteria.motion_deg,
+            conditions: ShedConditions::default(),
+            samples: 361,
+        })
+        .unwrap();
+        assert!((l.criteria.window_deg - f.criteria.window_deg).abs() < 1e-6);
+        assert!((l.criteria.peak_accel_m_s2 - f.criteria.peak_accel_m_s2).abs() < 1e-6 * f.criteria.peak_accel_m_s2);
+        let amax = l.a_m_s2.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        assert!(amax <= l.criteria.peak_accel_m_s2 * (1.0 + 1e-9) && amax > 0.97 * l.criteria.peak_accel_m_s2);
+    }
+
+    #[test]
+    fn fine_grids_and_bad_values_are_refused() {
+        assert_eq!(shed_pareto(&req(0.001)).map(|_| ()).unwrap_err().field(), "step");
+        let mut r = req(0.05);
+        r.family = "lead-trapezoid".into();
+        r.step = 0.005;
+        assert_eq!(shed_pareto(&r).unwrap_err().field(), "step");
+        r.family = "hexagon".into();
+        assert_eq!(shed_pareto(&r).unwrap_err().field(), "family");
+        let mut r = req(0.05);
+        r.motions_deg = vec![400.0];
+        assert_eq!(shed_pareto(&r).unwrap_err().field(), "motions_deg[0]");
+        let mut r = req(0.05);
+        r.conditions.threshold = 0.5;
+        assert_eq!(shed_pareto(&r).unwrap_err().field(), "conditions.threshold");
+    }
+}
