@@ -7,6 +7,7 @@ mod cycle;
 mod law;
 mod pick;
 mod serve;
+mod shed;
 mod servo;
 mod util;
 
@@ -34,6 +35,9 @@ enum Command {
     /// Servo motion laws from definition points: spline law, drive torque, controller export, optimisation.
     #[command(subcommand)]
     Servo(servo::ServoCommand),
+    /// Shedding (heald-frame) laws: dwell criteria, experiment tables, Pareto choice of a law.
+    #[command(subcommand)]
+    Shed(shed::ShedCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -44,6 +48,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Cycle(args) => cycle::run(args),
         Command::Pick(cmd) => pick::run(cmd),
         Command::Servo(cmd) => servo::run(cmd),
+        Command::Shed(cmd) => shed::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

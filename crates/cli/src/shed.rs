@@ -1,0 +1,708 @@
+//! `loomkin shed …`: heald-frame laws, dwell criteria, experiment tables, Pareto choice.
+
+use crate::util::{self, failure};
+use anyhow::{Result, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_shed::{
+    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedLaw, Template, evaluate, preset,
+};
+use serde_json::{Value, json};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Subcommands of `loomkin shed`.
+#[derive(Debug, Subcommand)]
+pub enum ShedCommand {
+    /// The named laws of the paper (Tables 2 and 3).
+    List(ListArgs),
+    /// All criteria of one law: a preset or a TOML definition.
+    Law(LawArgs),
+    /// An experiment table: the presets, Table 1, the Fig. 1 family or a full grid over k_T1…k_Tn.
+    Table(TableArgs),
+    /// The Pareto front (largest window, least peak acceleration) of an experiment table.
+    Pareto(ParetoArgs),
+    /// The law of least peak acceleration whose window is at least W.
+    Best(BestArgs),
+    /// The window a loom needs, from its carrier, widths, crossing-point range and speed.
+    Window(WindowArgs),
+    /// Displacement and acceleration over the frame's cycle (two picks) for several laws.
+    Plot(PlotArgs),
+}
+
+/// Physical conditions shared by the subcommands.
+#[derive(Debug, Args, Clone)]
+pub struct Physical {
+    /// Frame stroke, mm.
+    #[arg(long, default_value_t = 100.0)]
+    stroke_mm: f64,
+    /// Main-shaft speed, rpm (one pick per turn).
+    #[arg(long, default_value_t = 300.0)]
+    speed_rpm: f64,
+}
+
+/// The dwell threshold.
+#[derive(Debug, Args, Clone)]
+pub struct Threshold {
+    /// Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme;
+    /// 0.75 ≤ T ≤ 0.99 (0.95 reproduces the paper's Table 3).
+    #[arg(long, default_value_t = loomkin_shed::TABLE3_THRESHOLD)]
+    threshold: f64,
+}
+
+fn conditions(p: &Physical, t: f64) -> Result<Conditions> {
+    Ok(Conditions::new(t, p.stroke_mm / 1000.0, p.speed_rpm)?)
+}
+
+/// `shed list`.
+#[derive(Debug, Args)]
+pub struct ListArgs {
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `shed law`.
+#[derive(Debug, Args)]
+pub struct LawArgs {
+    /// Preset name (basic, traditional, dobby, semi-smooth, smooth).
+    #[arg(required_unless_present = "spec", conflicts_with = "spec")]
+    name: Option<String>,
+    /// A law defined in TOML (motion_deg, positive, optional negative and positive_fraction).
+    #[arg(long, value_name = "FILE.toml")]
+    spec: Option<PathBuf>,
+    /// Override the motion angle φ_дв, deg (0 < φ ≤ 360).
+    #[arg(long)]
+    motion_deg: Option<f64>,
+    #[command(flatten)]
+    threshold: Threshold,
+    #[command(flatten)]
+    physical: Physical,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Which experiment table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DesignKind {
+    /// The five named laws.
+    Presets,
+    /// The paper's Table 1 (eight three-part laws, k3 = 1 − k1 − k2).
+    Table1,
+    /// The family of the paper's Fig. 1: a lead k1 from 0 to 0.5, k2 = k4 = (1 − k1)/4, k3 = (1 − k1)/2.
+    Fig1,
+    /// The full grid over k_T1…k_Tn with a step, Σk = 1.
+    Grid,
+}
+
+/// The experiment design and the family of laws it runs over.
+#[derive(Debug, Args, Clone)]
+pub struct DesignArgs {
+    /// Family of shapes of the positive phase: trapezoid (rise, plateau, fall), lead-trapezoid
+    /// (zero, rise, plateau, fall) or linear-trapezoid.
+    #[arg(long)]
+    family: Option<String>,
+    /// Custom shapes of the positive phase instead of a family, e.g. "sine-ramp:0:1,constant:1,cosine-ramp:1:0".
+    #[arg(long, conflicts_with = "family")]
+    shapes: Option<String>,
+    /// Grid step of k (grid and fig1 designs).
+    #[arg(long)]
+    step: Option<f64>,
+    /// Least relative length in the grid (default 0.05; 0.01 for best; the paper's practical range is 0.005…0.95).
+    #[arg(long)]
+    min_k: Option<f64>,
+    /// Largest relative length in the grid (default 0.9; 0.98 for best).
+    #[arg(long)]
+    max_k: Option<f64>,
+    /// Motion angles φ_дв, deg: DEG, DEG,DEG,… or MIN:MAX:STEP.
+    #[arg(long)]
+    motion_deg: Option<String>,
+}
+
+/// `shed table`.
+#[derive(Debug, Args)]
+pub struct TableArgs {
+    /// Experiment design.
+    #[arg(long, value_enum, default_value_t = DesignKind::Presets)]
+    design: DesignKind,
+    #[command(flatten)]
+    d: DesignArgs,
+    #[command(flatten)]
+    threshold: Threshold,
+    #[command(flatten)]
+    physical: Physical,
+    #[command(flatten)]
+    format: util::Format,
+}
+
+/// `shed pareto`.
+#[derive(Debug, Args)]
+pub struct ParetoArgs {
+    /// Experiment design (default: the grid, step 0.05, at motion angles 180:360:10).
+    #[arg(long, value_enum, default_value_t = DesignKind::Grid)]
+    design: DesignKind,
+    #[command(flatten)]
+    d: DesignArgs,
+    #[command(flatten)]
+    threshold: Threshold,
+    #[command(flatten)]
+    physical: Physical,
+    #[command(flatten)]
+    format: util::Format,
+    /// Plot the front (with the presets for reference) to an .svg or .png file.
+    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    output: Option<PathBuf>,
+}
+
+/// Loom data that set the required window (and the threshold) in loom terms.
+#[derive(Debug, Args, Clone)]
+pub struct LoomArgs {
+    /// Mean speed of the weft carrier, m/s.
+    #[arg(long)]
+    carrier_speed_m_s: Option<f64>,
+    /// Reed (working) width of the loom, m.
+    #[arg(long, requires = "carrier_speed_m_s")]
+    reed_width_m: Option<f64>,
+    /// Cloth width in the reed, m (default: the reed width).
+    #[arg(long, requires = "carrier_speed_m_s")]
+    cloth_width_m: Option<f64>,
+    /// Carrier length, m.
+    #[arg(long, default_value_t = 0.0)]
+    carrier_length_m: f64,
+    /// Range of the crossing-point (заступ) setting, deg.
+    #[arg(long, default_value_t = 0.0)]
+    crossing_range_deg: f64,
+    /// Shed-height excess over the necessary opening, fraction (0.05 = 5 %); sets T = 1/(1 + excess).
+    #[arg(long, default_value_t = 0.05)]
+    shed_excess: f64,
+}
+
+impl LoomArgs {
+    fn requirement(&self, speed_rpm: f64) -> Result<Option<LoomRequirement>> {
+        let Some(v) = self.carrier_speed_m_s else { return Ok(None) };
+        let Some(reed) = self.reed_width_m else { bail!("--reed-width-m is needed with --carrier-speed-m-s") };
+        let r = LoomRequirement {
+            carrier_speed_m_s: v,
+            reed_width_m: reed,
+            cloth_width_m: self.cloth_width_m.unwrap_or(reed),
+            carrier_length_m: self.carrier_length_m,
+            crossing_range_deg: self.crossing_range_deg,
+            shed_excess: self.shed_excess,
+            speed_rpm,
+        };
+        r.required_window_deg()?;
+        Ok(Some(r))
+    }
+}
+
+/// `shed best`.
+#[derive(Debug, Args)]
+pub struct BestArgs {
+    /// Required window φ_пп*, deg (0 < W < 360); or give the loom data instead.
+    #[arg(long, required_unless_present = "carrier_speed_m_s", conflicts_with = "carrier_speed_m_s")]
+    window_deg: Option<f64>,
+    #[command(flatten)]
+    loom: LoomArgs,
+    /// Dwell threshold T, 0.75 ≤ T ≤ 0.99 (default 0.95, or 1/(1 + shed excess) with loom data).
+    #[arg(long)]
+    threshold: Option<f64>,
+    /// Upper limit on the peak frame jerk, m/s³ (least acceleration alone favours constant
+    /// acceleration with its jerk peaks).
+    #[arg(long)]
+    max_jerk_m_s3: Option<f64>,
+    /// Experiment design searched (default: the grid of the trapezoid family, step 0.01).
+    #[arg(long, value_enum, default_value_t = DesignKind::Grid)]
+    design: DesignKind,
+    #[command(flatten)]
+    d: DesignArgs,
+    #[command(flatten)]
+    physical: Physical,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `shed window`.
+#[derive(Debug, Args)]
+pub struct WindowArgs {
+    #[command(flatten)]
+    loom: LoomArgs,
+    /// Main-shaft speed, rpm.
+    #[arg(long, default_value_t = 300.0)]
+    speed_rpm: f64,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `shed plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// Preset names to overlay.
+    laws: Vec<String>,
+    /// Laws defined in TOML files (repeatable).
+    #[arg(long, value_name = "FILE.toml")]
+    spec: Vec<PathBuf>,
+    /// Output file, .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Points per curve.
+    #[arg(long, default_value_t = 1441)]
+    points: usize,
+    #[command(flatten)]
+    physical: Physical,
+}
+
+/// Runs a `shed` subcommand.
+pub fn run(cmd: ShedCommand) -> Result<()> {
+    match cmd {
+        ShedCommand::List(a) => list(a),
+        ShedCommand::Law(a) => law(a),
+        ShedCommand::Table(a) => table(a),
+        ShedCommand::Pareto(a) => pareto(a),
+        ShedCommand::Best(a) => best(a),
+        ShedCommand::Window(a) => window(a),
+        ShedCommand::Plot(a) => plot(a),
+    }
+}
+
+fn load(name: Option<&str>, spec: Option<&PathBuf>) -> Result<(String, ShedLaw)> {
+    match (name, spec) {
+        (_, Some(path)) => {
+            let text = util::read_input(path)?;
+            let law = ShedLaw::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            Ok((path.display().to_string(), law))
+        }
+        (Some(n), None) => Ok((n.to_string(), preset(n)?)),
+        (None, None) => bail!("give a law name or --spec FILE.toml"),
+    }
+}
+
+fn criteria_json(c: &Criteria, cond: &Conditions) -> Value {
+    let mut v = serde_json::to_value(c).unwrap_or(Value::Null);
+    v["stroke_mm"] = json!(cond.stroke_m() * 1000.0);
+    v["speed_rpm"] = json!(cond.speed_rpm());
+    v
+}
+
+fn definition_json(law: &ShedLaw) -> Value {
+    json!({
+        "motion_deg": law.motion_deg(),
+        "symmetric": law.is_symmetric(),
+        "positive_fraction": law.positive_fraction(),
+        "positive": law.positive_text(),
+        "negative": law.negative_text(),
+    })
+}
+
+fn list(a: ListArgs) -> Result<()> {
+    if a.json {
+        let v: Vec<Value> = PRESETS
+            .iter()
+            .map(|p| {
+                json!({"name": p.name, "name_ru": p.name_ru, "motion_deg": p.motion_deg, "dwell_deg": 360.0 - p.motion_deg,
+                       "table_shape": p.table_shape, "positive": p.positive})
+            })
+            .collect();
+        return util::print_json(&json!({ "laws": v }));
+    }
+    println!(
+        "{:<12} {:<13} {:>10} {:>9}  positive phase of the acceleration",
+        "law", "paper", "motion_deg", "dwell_deg"
+    );
+    for p in PRESETS {
+        println!(
+            "{:<12} {:<13} {:>10} {:>9}  {} = {}",
+            p.name,
+            p.name_ru,
+            p.motion_deg,
+            360.0 - p.motion_deg,
+            p.table_shape,
+            p.positive
+        );
+    }
+    Ok(())
+}
+
+fn law(a: LawArgs) -> Result<()> {
+    let (name, mut law) = load(a.name.as_deref(), a.spec.as_ref())?;
+    if let Some(m) = a.motion_deg {
+        law = law.with_motion_deg(m)?;
+    }
+    let cond = conditions(&a.physical, a.threshold.threshold)?;
+    let c = evaluate(&law, &cond)?;
+    if a.json {
+        let mut v = criteria_json(&c, &cond);
+        v["law"] = json!(name);
+        v["definition"] = definition_json(&law);
+        v["segments"] = json!(law.positive_text());
+        return util::print_json(&v);
+    }
+    println!("law {name}: motion {} deg, positive phase {}", law.motion_deg(), law.positive_text());
+    print_criteria(&c, &cond);
+    Ok(())
+}
+
+fn print_criteria(c: &Criteria, cond: &Conditions) {
+    println!(
+        "  at T = {} (frame within {:.1} % of its stroke), stroke {} mm, {} rpm",
+        c.threshold,
+        100.0 * (1.0 - c.threshold),
+        cond.stroke_m() * 1000.0,
+        cond.speed_rpm()
+    );
+    println!("  motion φ_дв              = {:>10.3} deg", c.motion_deg);
+    println!("  absolute dwell φ_вр      = {:>10.3} deg", c.dwell_deg);
+    println!("  conditional dwell φ_ув   = {:>10.3} deg", c.conditional_dwell_deg);
+    println!("  window φ_пп* = φ_вр+φ_ув = {:>10.3} deg", c.window_deg);
+    println!(
+        "  Cv = {:.6}  Ca = {:.6}  Cj = {:.4}  Cm = {:.6}  Ca_rms = {:.6}  (dimensionless)",
+        c.cv, c.ca, c.cj, c.cm, c.ca_rms
+    );
+    println!("  Ca·(360/φ_дв)²           = {:>10.4} (peak acceleration on the scale of a turn)", c.ca_turn);
+    println!("  peak velocity            = {:>10.4} m/s", c.peak_velocity_m_s);
+    println!("  peak acceleration        = {:>10.4} m/s²", c.peak_accel_m_s2);
+    println!("  RMS acceleration         = {:>10.4} m/s² (over the motion)", c.rms_accel_m_s2);
+    println!("  peak jerk                = {:>10.2} m/s³", c.peak_jerk_m_s3);
+    println!("  peak v·a                 = {:>10.4} W/kg", c.peak_power_w_kg);
+    if c.accel_jump_m_s2 > 0.0 {
+        println!("  acceleration jump        = {:>10.4} m/s² (unbounded jerk there)", c.accel_jump_m_s2);
+    }
+}
+
+/// The rows of a table: an optional law name, the lengths and the criteria.
+struct Rows {
+    k_names: Vec<String>,
+    rows: Vec<(Option<String>, Candidate)>,
+}
+
+fn template(d: &DesignArgs, default: &str) -> Result<Template> {
+    Ok(match (&d.shapes, &d.family) {
+        (Some(s), _) => Template::parse("custom", s)?,
+        (None, Some(f)) => Template::named(f)?,
+        (None, None) => Template::named(default)?,
+    })
+}
+
+/// Grid defaults of a subcommand: step, least and largest k.
+type GridDefaults = (f64, f64, f64);
+const TABLE_GRID: GridDefaults = (0.05, 0.05, 0.9);
+const BEST_GRID: GridDefaults = (0.01, 0.01, 0.98);
+
+fn design_rows(kind: DesignKind, d: &DesignArgs, default_motion: &str, cond: &Conditions) -> Result<Rows> {
+    if kind == DesignKind::Presets {
+        if d.family.is_some() || d.shapes.is_some() || d.motion_deg.is_some() || d.step.is_some() {
+            bail!("--design presets takes no --family, --shapes, --step or --motion-deg");
+        }
+        let mut rows = Vec::new();
+        for p in PRESETS {
+            let law = p.law()?;
+            let c = evaluate(&law, cond)?;
+            let lengths = law.positive().iter().map(|s| s.length).collect();
+            rows.push((Some(p.name.to_string()), Candidate { row: rows.len(), lengths, criteria: c }));
+        }
+        return Ok(Rows { k_names: Vec::new(), rows });
+    }
+    let (t, design) = study_design(kind, d, TABLE_GRID)?;
+    let motions = loomkin_shed::parse_motion_angles(d.motion_deg.as_deref().unwrap_or(default_motion))?;
+    let dims = loomkin_shed::evaluate_rows(&t, &design, cond.threshold(), Progress::Auto)?;
+    let rows = loomkin_shed::table(&design, &dims, &motions, cond)?;
+    Ok(Rows { k_names: design.names().to_vec(), rows: rows.into_iter().map(|c| (None, c)).collect() })
+}
+
+fn study_design(kind: DesignKind, d: &DesignArgs, g: GridDefaults) -> Result<(Template, loomkin_shed::Design)> {
+    if kind != DesignKind::Grid && (d.min_k.is_some() || d.max_k.is_some()) {
+        bail!("--min-k and --max-k apply to --design grid only");
+    }
+    let (t, design) = match kind {
+        DesignKind::Table1 => (template(d, "trapezoid")?, loomkin_shed::table1_design()),
+        DesignKind::Fig1 => (template(d, "lead-trapezoid")?, loomkin_shed::fig1_design(d.step.unwrap_or(g.0))?),
+        DesignKind::Grid | DesignKind::Presets => {
+            let t = template(d, "trapezoid")?;
+            let grid = loomkin_shed::grid_design(
+                t.parts(),
+                d.min_k.unwrap_or(g.1),
+                d.max_k.unwrap_or(g.2),
+                d.step.unwrap_or(g.0),
+            )?;
+            (t, grid)
+        }
+    };
+    if design.dim() != t.parts() {
+        bail!(
+            "--design {kind:?}: the design has {} lengths, the family '{}' {} parts",
+            design.dim(),
+            t.name(),
+            t.parts()
+        );
+    }
+    Ok((t, design))
+}
+
+const COLUMNS: [&str; 18] = [
+    "motion_deg",
+    "dwell_deg",
+    "conditional_dwell_deg",
+    "window_deg",
+    "threshold",
+    "cv",
+    "ca",
+    "cj",
+    "cm",
+    "ca_rms",
+    "ca_turn",
+    "peak_velocity_m_s",
+    "peak_accel_m_s2",
+    "peak_jerk_m_s3",
+    "peak_power_w_kg",
+    "rms_accel_m_s2",
+    "a_jump",
+    "accel_jump_m_s2",
+];
+
+fn values(c: &Criteria) -> [f64; 18] {
+    [
+        c.motion_deg,
+        c.dwell_deg,
+        c.conditional_dwell_deg,
+        c.window_deg,
+        c.threshold,
+        c.cv,
+        c.ca,
+        c.cj,
+        c.cm,
+        c.ca_rms,
+        c.ca_turn,
+        c.peak_velocity_m_s,
+        c.peak_accel_m_s2,
+        c.peak_jerk_m_s3,
+        c.peak_power_w_kg,
+        c.rms_accel_m_s2,
+        c.a_jump,
+        c.accel_jump_m_s2,
+    ]
+}
+
+fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
+    let named = rows.rows.iter().any(|(n, _)| n.is_some());
+    if format.json {
+        let v: Vec<Value> = rows
+            .rows
+            .iter()
+            .map(|(n, c)| {
+                let mut v = criteria_json(&c.criteria, cond);
+                if let Some(n) = n {
+                    v["law"] = json!(n);
+                } else {
+                    v["row"] = json!(c.row);
+                }
+                v["lengths"] = json!(c.lengths);
+                v
+            })
+            .collect();
+        return util::print_json(&json!({ "rows": v }));
+    }
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    if format.csv {
+        let mut header: Vec<String> = Vec::new();
+        if named {
+            header.push("law".into());
+        } else {
+            header.push("row".into());
+        }
+        header.extend(rows.k_names.iter().cloned());
+        header.extend(COLUMNS.iter().map(|s| s.to_string()));
+        writeln!(out, "{}", header.join(",")).map_err(failure)?;
+        for (n, c) in &rows.rows {
+            let vals = values(&c.criteria);
+            if let Some(bad) = c.lengths.iter().chain(&vals).find(|v| !v.is_finite()) {
+                return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {}", c.row)));
+            }
+            let mut line = n.clone().unwrap_or_else(|| c.row.to_string());
+            let ks = if named { &[][..] } else { &c.lengths[..] };
+            for v in ks.iter().chain(&vals) {
+                line.push(',');
+                line.push_str(&format!("{v}"));
+            }
+            writeln!(out, "{line}").map_err(failure)?;
+        }
+        return out.flush().map_err(failure);
+    }
+    writeln!(
+        out,
+        "{title} (T = {}, stroke {} mm, {} rpm)",
+        cond.threshold(),
+        cond.stroke_m() * 1000.0,
+        cond.speed_rpm()
+    )
+    .map_err(failure)?;
+    let first = if named { "law".to_string() } else { "lengths k_T".to_string() };
+    writeln!(
+        out,
+        "{first:<28} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10} {:>11}",
+        "motion°", "dwell°", "cond°", "window°", "Ca", "Ca_turn", "a_max m/s²"
+    )
+    .map_err(failure)?;
+    for (n, c) in &rows.rows {
+        let label =
+            n.clone().unwrap_or_else(|| c.lengths.iter().map(|k| format!("{k:.3}")).collect::<Vec<_>>().join(" "));
+        let k = &c.criteria;
+        writeln!(
+            out,
+            "{label:<28} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.4} {:>10.3} {:>11.3}",
+            k.motion_deg, k.dwell_deg, k.conditional_dwell_deg, k.window_deg, k.ca, k.ca_turn, k.peak_accel_m_s2
+        )
+        .map_err(failure)?;
+    }
+    out.flush().map_err(failure)
+}
+
+fn table(a: TableArgs) -> Result<()> {
+    let cond = conditions(&a.physical, a.threshold.threshold)?;
+    let rows = design_rows(a.design, &a.d, "300", &cond)?;
+    emit(&rows, a.format, &cond, "experiment table")
+}
+
+fn pareto(a: ParetoArgs) -> Result<()> {
+    let cond = conditions(&a.physical, a.threshold.threshold)?;
+    let front = if a.design == DesignKind::Presets {
+        let all = design_rows(a.design, &a.d, "180:360:10", &cond)?;
+        let pts: Vec<[f64; 2]> =
+            all.rows.iter().map(|(_, c)| [c.criteria.window_deg, c.criteria.peak_accel_m_s2]).collect();
+        let idx = loomkin_shed::pareto_indices(&pts)?;
+        Rows { k_names: all.k_names.clone(), rows: idx.into_iter().map(|i| all.rows[i].clone()).collect() }
+    } else {
+        let (t, design) = study_design(a.design, &a.d, TABLE_GRID)?;
+        let motions = loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or("180:360:10"))?;
+        let dims = loomkin_shed::evaluate_rows(&t, &design, cond.threshold(), Progress::Auto)?;
+        let front = loomkin_shed::pareto(&design, &dims, &motions, &cond)?;
+        Rows { k_names: design.names().to_vec(), rows: front.into_iter().map(|c| (None, c)).collect() }
+    };
+    if let Some(path) = &a.output {
+        let line: Vec<(f64, f64)> =
+            front.rows.iter().map(|(_, c)| (c.criteria.window_deg, c.criteria.peak_accel_m_s2)).collect();
+        let mut series = vec![Series { markers: true, ..Series::line("Pareto front", line) }];
+        for p in PRESETS {
+            let c = evaluate(&p.law()?, &cond)?;
+            series.push(Series::markers(p.name, vec![(c.window_deg, c.peak_accel_m_s2)]));
+        }
+        let panel = Panel::new("peak frame acceleration [m/s²]", series).with_legend(Legend::UpperLeft);
+        let fig = Figure::new(
+            format!(
+                "Pareto front: window vs peak acceleration (T = {}, stroke {} mm, {} rpm)",
+                cond.threshold(),
+                cond.stroke_m() * 1000.0,
+                cond.speed_rpm()
+            ),
+            "weft-insertion window φ_пп* [deg]",
+            vec![panel],
+        );
+        return util::save_figure(&fig, path);
+    }
+    emit(&front, a.format, &cond, "Pareto front: largest window, least peak acceleration")
+}
+
+fn best(a: BestArgs) -> Result<()> {
+    let req = a.loom.requirement(a.physical.speed_rpm)?;
+    let (w, t) = match (&req, a.window_deg) {
+        (Some(r), _) => (r.required_window_deg()?, a.threshold.unwrap_or(r.threshold())),
+        (None, Some(w)) => (w, a.threshold.unwrap_or(loomkin_shed::TABLE3_THRESHOLD)),
+        (None, None) => bail!("give --window-deg or the loom data (--carrier-speed-m-s, --reed-width-m, …)"),
+    };
+    let cond = conditions(&a.physical, t)?;
+    loomkin_shed::check_window_deg(w)?;
+    if a.design == DesignKind::Presets {
+        bail!("--design presets is not searched by best; use table1, fig1 or grid");
+    }
+    let d = &a.d;
+    let (tpl, design) = study_design(a.design, d, BEST_GRID)?;
+    let motions = match &d.motion_deg {
+        Some(m) => Some(loomkin_shed::parse_motion_angles(m)?),
+        None => None,
+    };
+    let dims = loomkin_shed::evaluate_rows(&tpl, &design, t, Progress::Auto)?;
+    let Some(b) = loomkin_shed::best(&design, &dims, motions.as_deref(), w, a.max_jerk_m_s3, &cond)? else {
+        bail!("no law of the family '{}' gives a window of {w} deg at T = {t}", tpl.name());
+    };
+    let law = tpl.law(b.criteria.motion_deg, &b.lengths)?;
+    if a.json {
+        let mut v = criteria_json(&b.criteria, &cond);
+        v["required_window_deg"] = json!(w);
+        v["family"] = json!(tpl.name());
+        v["lengths"] = json!(b.lengths);
+        v["segments"] = json!(law.positive_text());
+        v["definition"] = definition_json(&law);
+        v["laws_searched"] = json!(design.len());
+        if let Some(j) = a.max_jerk_m_s3 {
+            v["max_jerk_m_s3"] = json!(j);
+        }
+        if let Some(r) = &req {
+            v["loom"] = serde_json::to_value(r).unwrap_or(Value::Null);
+        }
+        return util::print_json(&v);
+    }
+    println!(
+        "least peak acceleration with a window ≥ {w:.3} deg ({} laws of the family '{}' searched{})",
+        design.len(),
+        tpl.name(),
+        if motions.is_some() { "" } else { ", motion angle free" }
+    );
+    println!("  motion {:.3} deg, positive phase {}", b.criteria.motion_deg, law.positive_text());
+    print_criteria(&b.criteria, &cond);
+    Ok(())
+}
+
+fn window(a: WindowArgs) -> Result<()> {
+    let Some(r) = a.loom.requirement(a.speed_rpm)? else {
+        bail!("--carrier-speed-m-s and --reed-width-m are required");
+    };
+    let w = r.required_window_deg()?;
+    if a.json {
+        let mut v = serde_json::to_value(r).unwrap_or(Value::Null);
+        v["flight_deg"] = json!(r.flight_deg());
+        v["required_window_deg"] = json!(w);
+        v["threshold"] = json!(r.threshold());
+        v["threshold_both_sheets"] = json!(r.threshold_both_sheets());
+        return util::print_json(&v);
+    }
+    println!("flight in the warp   φ_flight = 6n(L_cloth + l_carrier)/v = {:.3} deg", r.flight_deg());
+    println!("required window      φ_req = φ_flight + D_crossing      = {w:.3} deg");
+    println!("dwell threshold      T = 1/(1 + ΔA_S)                    = {:.4}", r.threshold());
+    println!("  (both sheets moving: T = 1 − ΔA_S/(2(1 + ΔA_S))         = {:.4})", r.threshold_both_sheets());
+    Ok(())
+}
+
+fn plot(a: PlotArgs) -> Result<()> {
+    if a.laws.is_empty() && a.spec.is_empty() {
+        bail!("give at least one law name or --spec FILE.toml");
+    }
+    if a.points < 2 || a.points > 100_000 {
+        bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
+    }
+    let cond = conditions(&a.physical, loomkin_shed::TABLE3_THRESHOLD)?;
+    let mut laws = Vec::new();
+    for n in &a.laws {
+        laws.push(load(Some(n), None)?);
+    }
+    for s in &a.spec {
+        laws.push(load(None, Some(s))?);
+    }
+    let mut s_series = Vec::new();
+    let mut a_series = Vec::new();
+    for (name, law) in &laws {
+        let pts = loomkin_shed::cycle_curve(law, &cond, a.points)?;
+        let label = format!("{name} ({}°)", law.motion_deg());
+        s_series.push(Series::line(label.clone(), pts.iter().map(|p| (p.angle_deg, p.s_m * 1000.0)).collect()));
+        a_series.push(Series::line(label, pts.iter().map(|p| (p.angle_deg, p.a_m_s2)).collect()));
+    }
+    let fig = Figure::new(
+        format!("Heald frame over two picks (stroke {} mm, {} rpm)", a.physical.stroke_mm, a.physical.speed_rpm),
+        "main-shaft angle [deg]",
+        vec![
+            Panel::new("frame position [mm]", s_series).with_legend(Legend::UpperRight),
+            Panel::new("frame acceleration [m/s²]", a_series).with_legend(Legend::Hidden),
+        ],
+    );
+    util::save_figure(&fig, &a.output)
+}
