@@ -4,6 +4,7 @@
 //! exit with code 2 and one line on stderr; other failures (an unwritable file) exit with 1.
 
 mod cycle;
+mod dobby;
 mod law;
 mod pick;
 mod serve;
@@ -38,6 +39,9 @@ enum Command {
     /// Shedding (heald-frame) laws: dwell criteria, experiment tables, Pareto choice of a law.
     #[command(subcommand)]
     Shed(shed::ShedCommand),
+    /// Rotary-dobby modulator: cam analysis, conjugate-cam synthesis, plots, α sweep.
+    #[command(subcommand)]
+    Dobby(dobby::DobbyCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -49,6 +53,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Pick(cmd) => pick::run(cmd),
         Command::Servo(cmd) => servo::run(cmd),
         Command::Shed(cmd) => shed::run(cmd),
+        Command::Dobby(cmd) => dobby::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

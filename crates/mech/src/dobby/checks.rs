@@ -26,7 +26,8 @@ pub enum WarningCode {
 pub struct Warning {
     /// Kind.
     pub code: WarningCode,
-    /// Input angle φ2 (deg) of the worst point, if located.
+    /// Input angle φ2 (deg) of the worst point, if located (absent from JSON otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub phi2_deg: Option<f64>,
     /// The condition with its numbers and the admissible range.
     pub message: String,

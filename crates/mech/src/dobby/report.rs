@@ -33,14 +33,17 @@ pub struct CamChecks {
     /// Input angle φ2 of the largest μC (deg).
     pub mu_c_max_at_phi2_deg: f64,
     /// Smallest radius of curvature of Γ's roller-centre curve (m); `None` if it is straight.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rho_b_min_m: Option<f64>,
     /// Input angle φ2 of the smallest radius of curvature of Γ (deg).
     pub rho_b_min_at_phi2_deg: f64,
     /// Smallest radius of curvature of Γ′'s roller-centre curve (m); `None` if it is straight.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rho_c_min_m: Option<f64>,
     /// Input angle φ2 of the smallest radius of curvature of Γ′ (deg).
     pub rho_c_min_at_phi2_deg: f64,
     /// Largest roller radius (m) that undercuts neither groove: `min(ρB_min, ρC_min)`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub roller_max_m: Option<f64>,
     /// Distance between the first and last point of B's path (m): 0 for a closed revolution.
     pub closure_gap_b_m: f64,

@@ -14,30 +14,43 @@ pub struct SweepRow {
     /// Lever angle α = θ (deg).
     pub alpha_deg: f64,
     /// Analysis error, if the cam cannot drive the mechanism at this α.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_error: Option<String>,
     /// Analysis: smallest ω6 (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_omega6_min_rad_s: Option<f64>,
     /// Analysis: largest ω6 (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_omega6_max_rad_s: Option<f64>,
     /// Analysis: largest output pressure angle (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_mu_out_max_deg: Option<f64>,
     /// Analysis: largest pressure angle at roller B (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_mu_b_max_deg: Option<f64>,
     /// Analysis: largest pressure angle at roller C (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_mu_c_max_deg: Option<f64>,
     /// Analysis: smallest radius of curvature of the derived counter-cam Γ′ (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub an_rho_c_min_m: Option<f64>,
     /// Synthesis error, if the law cannot be built at this α.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_error: Option<String>,
     /// Synthesis: largest pressure angle at roller B (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_mu_b_max_deg: Option<f64>,
     /// Synthesis: largest pressure angle at roller C (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_mu_c_max_deg: Option<f64>,
     /// Synthesis: smallest radius of curvature of Γ (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_rho_b_min_m: Option<f64>,
     /// Synthesis: smallest radius of curvature of Γ′ (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_rho_c_min_m: Option<f64>,
     /// Synthesis: undercut of either cam by the roller.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_undercut: Option<bool>,
 }
 

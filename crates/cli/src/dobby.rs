@@ -1,0 +1,787 @@
+//! `loomkin dobby …`: the modulator of a Stäubli-type rotary dobby (series 2600): analysis of a
+//! given cam (task 1), synthesis of the conjugate cams for an output law (task 2), plots, α sweep.
+
+use crate::util::{self, Format};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use loomkin_io::Table;
+use loomkin_io::dxf::{DxfPolyline, DxfUnit, save_dxf};
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_laws::LawSpec;
+use loomkin_mech::{
+    Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
+    SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
+};
+use serde_json::{Value, json};
+use std::path::PathBuf;
+
+/// Subcommands of `loomkin dobby`.
+#[derive(Debug, Subcommand)]
+pub enum DobbyCommand {
+    /// Task 1: the motion produced by a given cam Γ (roller-centre curve) over one input turn.
+    Analyze(AnalyzeArgs),
+    /// Task 2: cam Γ and counter-cam Γ′ (roller-centre curves and groove walls) for an output law.
+    Synthesize(SynthesizeArgs),
+    /// The law (φ6, ω6, ε6 against φ2) or the cams with the mechanism drawn at an angle.
+    Plot(PlotArgs),
+    /// The α sweep of the paper: analysis of the cam and synthesis of the law for each α (θ = α).
+    Sweep(SweepArgs),
+}
+
+/// Link lengths and lever angles; defaults are the paper's (eq. 10, α = 47°).
+#[derive(Debug, Args, Clone)]
+pub struct GeometryArgs {
+    /// Angle α between the slot and the arm AB, deg (the paper: 30…60, figures at 47).
+    #[arg(long, default_value_t = 47.0, allow_hyphen_values = true)]
+    alpha_deg: f64,
+    /// Angle θ between the slot and the arm AC, deg (default: θ = α, a symmetric lever).
+    #[arg(long, allow_hyphen_values = true)]
+    theta_deg: Option<f64>,
+    /// Input crank OA, m.
+    #[arg(long, default_value_t = 0.66, allow_hyphen_values = true)]
+    l2_m: f64,
+    /// Arm AB to the cam roller, m.
+    #[arg(long, default_value_t = 0.36, allow_hyphen_values = true)]
+    l3_m: f64,
+    /// Arm AC to the counter-cam roller, m.
+    #[arg(long, default_value_t = 0.36, allow_hyphen_values = true)]
+    l3p_m: f64,
+    /// Output crank OD, m (< l2).
+    #[arg(long, default_value_t = 0.40, allow_hyphen_values = true)]
+    l6_m: f64,
+    /// Input speed, rev/min (default: ω2 = 1 rad/s as in the paper, so rates read as ratios).
+    #[arg(long, allow_hyphen_values = true)]
+    input_rpm: Option<f64>,
+    /// Pressure angles above this raise a warning, deg.
+    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
+    pressure_limit_deg: f64,
+}
+
+impl GeometryArgs {
+    fn geometry(&self) -> Result<ModulatorGeometry> {
+        let theta = self.theta_deg.unwrap_or(self.alpha_deg);
+        Ok(ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, self.alpha_deg, theta)?)
+    }
+
+    fn speed_rad_s(&self) -> Result<f64> {
+        match self.input_rpm {
+            None => Ok(1.0),
+            Some(n) if n.is_finite() && n > 0.0 && n <= 1e5 => Ok(n * std::f64::consts::TAU / 60.0),
+            Some(n) => bail!("--input-rpm {n} is out of range: allowed 0 < n ≤ 100000 rev/min"),
+        }
+    }
+}
+
+/// The cam of task 1.
+#[derive(Debug, Args, Clone)]
+pub struct CamArgs {
+    /// The cam's roller-centre curve, `ellipse:a=A,b=B` (m); default the paper's a=0.366, b=0.577.
+    #[arg(long, value_name = "ellipse:a=…,b=…")]
+    cam: Option<String>,
+    /// The cam as a point table (CSV or blanks; columns x_m,y_m or b_x_m,b_y_m, else the first two),
+    /// fitted by a periodic cubic spline.
+    #[arg(long, value_name = "FILE", conflicts_with = "cam")]
+    cam_file: Option<PathBuf>,
+}
+
+impl CamArgs {
+    fn cam(&self) -> Result<Cam> {
+        if let Some(path) = &self.cam_file {
+            let text = util::read_input(path)?;
+            let pts = parse_point_table(&text).with_context(|| format!("{}", path.display()))?;
+            return Cam::from_points(&pts).with_context(|| format!("{}", path.display()));
+        }
+        match &self.cam {
+            None => Ok(Cam::paper()),
+            Some(spec) => parse_ellipse(spec),
+        }
+    }
+}
+
+fn parse_ellipse(spec: &str) -> Result<Cam> {
+    let usage = "expected --cam ellipse:a=A,b=B with the semi-axes in m, e.g. ellipse:a=0.366,b=0.577";
+    let Some(rest) = spec.trim().strip_prefix("ellipse:") else { bail!("--cam '{spec}': {usage}") };
+    let (mut a, mut b) = (None, None);
+    for kv in rest.split(',') {
+        let (k, v) = util::parse_key_value(kv).map_err(|e| anyhow::anyhow!("--cam '{spec}': {e}; {usage}"))?;
+        let v: f64 = v.parse().map_err(|_| anyhow::anyhow!("--cam '{spec}': '{v}' is not a number; {usage}"))?;
+        match k.as_str() {
+            "a" => a = Some(v),
+            "b" => b = Some(v),
+            _ => bail!("--cam '{spec}': unknown key '{k}'; {usage}"),
+        }
+    }
+    let (Some(a), Some(b)) = (a, b) else { bail!("--cam '{spec}': {usage}") };
+    Ok(Cam::ellipse(a, b)?)
+}
+
+/// The output law of task 2.
+#[derive(Debug, Args, Clone)]
+pub struct LawArgs {
+    /// Dwell of the output per cycle, deg of input.
+    #[arg(long, default_value_t = 40.0, allow_hyphen_values = true)]
+    dwell_deg: f64,
+    /// Input angle at the centre of the first dwell, also the output angle held there, deg.
+    #[arg(long, default_value_t = 90.0, allow_hyphen_values = true)]
+    dwell_centre_deg: f64,
+    /// Cycles (dwell + rise of 360°/cycles) per input turn.
+    #[arg(long, default_value_t = 2)]
+    cycles: u32,
+    /// Shape of each rise: a law of the catalogue (see `loomkin law list`).
+    #[arg(long, default_value = "cycloidal")]
+    law: String,
+    /// A parameter of --law, e.g. `--param ramp=0.1`.
+    #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
+    params: Vec<(String, String)>,
+}
+
+impl LawArgs {
+    fn spec(&self) -> Result<OutputLawSpec> {
+        let rise = LawSpec::parse(&self.law, &self.params)?;
+        Ok(OutputLawSpec {
+            cycles: self.cycles,
+            dwell_deg: self.dwell_deg,
+            dwell_centre_deg: self.dwell_centre_deg,
+            rise,
+        })
+    }
+}
+
+/// `dobby analyze`.
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    #[command(flatten)]
+    geometry: GeometryArgs,
+    #[command(flatten)]
+    cam: CamArgs,
+    /// Input step, deg (0.01…30).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    step_deg: f64,
+    /// Roller radius for the undercut check of Γ and the derived Γ′, m.
+    #[arg(long, allow_hyphen_values = true)]
+    roller_m: Option<f64>,
+    #[command(flatten)]
+    format: Format,
+}
+
+/// `dobby synthesize`.
+#[derive(Debug, Args)]
+pub struct SynthesizeArgs {
+    #[command(flatten)]
+    geometry: GeometryArgs,
+    #[command(flatten)]
+    law: LawArgs,
+    /// Roller radius of both rollers (groove walls, undercut check), m.
+    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
+    roller_m: f64,
+    /// Input step, deg (0.01…30).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    step_deg: f64,
+    #[command(flatten)]
+    format: Format,
+    /// Write the cams (roller-centre curves and groove walls) as DXF polylines to this file.
+    #[arg(long, value_name = "FILE")]
+    dxf: Option<PathBuf>,
+    /// Unit of the DXF coordinates.
+    #[arg(long, value_enum, default_value_t = UnitArg::Mm)]
+    dxf_unit: UnitArg,
+    /// Write the cam point tables (centre curves and walls of Γ and Γ′) as CSV to this file.
+    #[arg(long, value_name = "FILE")]
+    points_csv: Option<PathBuf>,
+}
+
+/// `--dxf-unit`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum UnitArg {
+    /// Millimetres.
+    Mm,
+    /// Metres.
+    M,
+}
+
+/// `--what` of `dobby plot`.
+#[derive(Debug, Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum WhatArg {
+    /// φ6, ω6, ε6 (and φ3) against φ2.
+    Law,
+    /// The cams with the mechanism drawn at `--at-deg`.
+    Cams,
+}
+
+/// `--task` of `dobby plot`.
+#[derive(Debug, Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum TaskArg {
+    /// Task 1: the given cam (`--cam`, `--cam-file`).
+    Analyze,
+    /// Task 2: the output law (`--dwell-deg`, `--law`, …).
+    Synthesize,
+}
+
+/// `dobby plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// Which task to plot.
+    #[arg(long, value_enum, default_value_t = TaskArg::Synthesize)]
+    task: TaskArg,
+    /// What to draw.
+    #[arg(long, value_enum, default_value_t = WhatArg::Law)]
+    what: WhatArg,
+    /// Input angle at which the mechanism is drawn (with --what cams), deg.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    at_deg: f64,
+    #[command(flatten)]
+    geometry: GeometryArgs,
+    #[command(flatten)]
+    cam: CamArgs,
+    #[command(flatten)]
+    law: LawArgs,
+    /// Roller radius (groove walls), m; task 2 default 0.03, task 1 none.
+    #[arg(long, allow_hyphen_values = true)]
+    roller_m: Option<f64>,
+    /// Input step, deg.
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    step_deg: f64,
+    /// Output file, .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// `dobby sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    /// First α, deg.
+    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+    from: f64,
+    /// Last α, deg.
+    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
+    to: f64,
+    /// α step, deg.
+    #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
+    by: f64,
+    #[command(flatten)]
+    geometry: GeometryArgs,
+    #[command(flatten)]
+    cam: CamArgs,
+    #[command(flatten)]
+    law: LawArgs,
+    /// Roller radius for the synthesis, m.
+    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
+    roller_m: f64,
+    /// Input step, deg.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    step_deg: f64,
+    #[command(flatten)]
+    format: Format,
+}
+
+/// Runs a `dobby` subcommand.
+pub fn run(cmd: DobbyCommand) -> Result<()> {
+    match cmd {
+        DobbyCommand::Analyze(a) => analyze_cmd(a),
+        DobbyCommand::Synthesize(a) => synthesize_cmd(a),
+        DobbyCommand::Plot(a) => plot_cmd(a),
+        DobbyCommand::Sweep(a) => sweep_cmd(a),
+    }
+}
+
+fn warn(ws: &[Warning]) {
+    for w in ws {
+        eprintln!("loomkin: warning: {}", w.message);
+    }
+}
+
+fn analysis_options(g: &GeometryArgs, step_deg: f64, roller_m: Option<f64>) -> Result<AnalysisOptions> {
+    Ok(AnalysisOptions {
+        step_deg,
+        input_speed_rad_s: g.speed_rad_s()?,
+        roller_m,
+        pressure_limit_deg: g.pressure_limit_deg,
+        ..AnalysisOptions::default()
+    })
+}
+
+fn synthesis_options(g: &GeometryArgs, step_deg: f64, roller_m: f64) -> Result<SynthesisOptions> {
+    Ok(SynthesisOptions {
+        step_deg,
+        input_speed_rad_s: g.speed_rad_s()?,
+        roller_m,
+        pressure_limit_deg: g.pressure_limit_deg,
+    })
+}
+
+const ANALYSIS_COLUMNS: [&str; 21] = [
+    "phi2_deg",
+    "t_s",
+    "phi3_deg",
+    "phi6_deg",
+    "s53_m",
+    "omega3_rad_s",
+    "omega6_rad_s",
+    "v53_m_s",
+    "eps3_rad_s2",
+    "eps6_rad_s2",
+    "a53_m_s2",
+    "b_x_m",
+    "b_y_m",
+    "c_x_m",
+    "c_y_m",
+    "mu_out_deg",
+    "mu_b_deg",
+    "mu_c_deg",
+    "kappa_b_1_m",
+    "kappa_c_1_m",
+    "cam_param",
+];
+
+fn analysis_table(a: &Analysis) -> Result<Table> {
+    let mut t = Table::new(ANALYSIS_COLUMNS);
+    for r in &a.rows {
+        t.push(vec![
+            r.phi2_deg,
+            r.t_s,
+            r.phi3_deg,
+            r.phi6_deg,
+            r.s53_m,
+            r.omega3_rad_s,
+            r.omega6_rad_s,
+            r.v53_m_s,
+            r.eps3_rad_s2,
+            r.eps6_rad_s2,
+            r.a53_m_s2,
+            r.b_x_m,
+            r.b_y_m,
+            r.c_x_m,
+            r.c_y_m,
+            r.mu_out_deg,
+            r.mu_b_deg,
+            r.mu_c_deg,
+            r.kappa_b_1_m,
+            r.kappa_c_1_m,
+            r.cam_param,
+        ])?;
+    }
+    Ok(t)
+}
+
+const SYNTHESIS_COLUMNS: [&str; 16] = [
+    "phi2_deg",
+    "phi6_deg",
+    "omega6_rad_s",
+    "eps6_rad_s2",
+    "phi3_deg",
+    "omega3_rad_s",
+    "s53_m",
+    "b_x_m",
+    "b_y_m",
+    "c_x_m",
+    "c_y_m",
+    "mu_out_deg",
+    "mu_b_deg",
+    "mu_c_deg",
+    "kappa_b_1_m",
+    "kappa_c_1_m",
+];
+
+fn synthesis_table(s: &Synthesis) -> Result<Table> {
+    let mut t = Table::new(SYNTHESIS_COLUMNS);
+    for r in &s.rows {
+        t.push(vec![
+            r.phi2_deg,
+            r.phi6_deg,
+            r.omega6_rad_s,
+            r.eps6_rad_s2,
+            r.phi3_deg,
+            r.omega3_rad_s,
+            r.s53_m,
+            r.b_x_m,
+            r.b_y_m,
+            r.c_x_m,
+            r.c_y_m,
+            r.mu_out_deg,
+            r.mu_b_deg,
+            r.mu_c_deg,
+            r.kappa_b_1_m,
+            r.kappa_c_1_m,
+        ])?;
+    }
+    Ok(t)
+}
+
+fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
+    let g = a.geometry.geometry()?;
+    let cam = a.cam.cam()?;
+    let res = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+    warn(&res.warnings);
+    if a.format.csv {
+        return util::print_csv(&analysis_table(&res)?);
+    }
+    if a.format.json {
+        return util::print_json(&json!({
+            "summary": serde_json::to_value(&res.summary)?,
+            "warnings": serde_json::to_value(&res.warnings)?,
+            "rows": serde_json::to_value(&res.rows)?,
+        }));
+    }
+    let s = &res.summary;
+    let c = &s.checks;
+    println!("rotary-dobby modulator, task 1 (analysis): cam {}", s.cam);
+    print_geometry(&g, s.input_speed_rad_s, s.step_deg);
+    println!(
+        "  output speed ω6      {:.5} … {:.5} rad/s ({:.4} … {:.4} × ω2)",
+        c.omega6_min_rad_s,
+        c.omega6_max_rad_s,
+        c.omega6_min_rad_s / s.input_speed_rad_s,
+        c.omega6_max_rad_s / s.input_speed_rad_s
+    );
+    println!("  output accel. ε6     {:.5} … {:.5} rad/s²", c.eps6_min_rad_s2, c.eps6_max_rad_s2);
+    print_checks(c);
+    println!(
+        "  |φ3 − φ2| max        {:.3}° (limit arcsin(l6/l2) = {:.3}°); admissible α for this cam: {:.3}° … {:.3}°",
+        s.slot_deviation_max_deg, s.slot_deviation_limit_deg, s.admissible_alpha_deg[0], s.admissible_alpha_deg[1]
+    );
+    Ok(())
+}
+
+fn print_geometry(g: &ModulatorGeometry, w2: f64, step: f64) {
+    println!(
+        "  l2 = {} m, l3 = {} m, l3′ = {} m, l6 = {} m, α = {}°, θ = {}°, ω2 = {:.6} rad/s, step {:.4}°",
+        g.l2_m, g.l3_m, g.l3p_m, g.l6_m, g.alpha_deg, g.theta_deg, w2, step
+    );
+}
+
+fn print_checks(c: &loomkin_mech::CamChecks) {
+    let rho = |v: Option<f64>| v.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "straight".into());
+    println!("  output turn          {:.6}° per input turn", c.phi6_turn_deg);
+    println!("  pressure angle μ6    max {:.2}° at φ2 = {:.2}° (output)", c.mu_out_max_deg, c.mu_out_max_at_phi2_deg);
+    println!(
+        "  pressure angle μB    max {:.2}° at φ2 = {:.2}° (roller B on Γ)",
+        c.mu_b_max_deg, c.mu_b_max_at_phi2_deg
+    );
+    println!(
+        "  pressure angle μC    max {:.2}° at φ2 = {:.2}° (roller C on Γ′)",
+        c.mu_c_max_deg, c.mu_c_max_at_phi2_deg
+    );
+    println!("  min radius of curv.  Γ {} at φ2 = {:.2}°", rho(c.rho_b_min_m), c.rho_b_min_at_phi2_deg);
+    println!("                       Γ′ {} at φ2 = {:.2}°", rho(c.rho_c_min_m), c.rho_c_min_at_phi2_deg);
+    println!(
+        "  closure              Γ {:.3e} m, Γ′ {:.3e} m; self-crossings Γ {}, Γ′ {}",
+        c.closure_gap_b_m, c.closure_gap_c_m, c.self_intersections_b, c.self_intersections_c
+    );
+}
+
+fn profile_polylines(prefix: &str, p: &CamProfile) -> Vec<DxfPolyline> {
+    let mut v = vec![DxfPolyline::closed(format!("{prefix}_CENTRE"), p.centre.clone())];
+    if !p.wall_left.is_empty() {
+        v.push(DxfPolyline::closed(format!("{prefix}_WALL_LEFT"), p.wall_left.clone()));
+        v.push(DxfPolyline::closed(format!("{prefix}_WALL_RIGHT"), p.wall_right.clone()));
+    }
+    v
+}
+
+fn points_table(s: &Synthesis) -> Result<Table> {
+    let mut t = Table::new([
+        "phi2_deg",
+        "b_x_m",
+        "b_y_m",
+        "b_left_x_m",
+        "b_left_y_m",
+        "b_right_x_m",
+        "b_right_y_m",
+        "c_x_m",
+        "c_y_m",
+        "c_left_x_m",
+        "c_left_y_m",
+        "c_right_x_m",
+        "c_right_y_m",
+    ]);
+    let (b, c) = (&s.cam, &s.counter_cam);
+    for i in 0..b.centre.len() {
+        let w = |v: &Vec<[f64; 2]>, k: usize| v.get(i).map(|p| p[k]).unwrap_or(0.0);
+        t.push(vec![
+            s.rows[i].phi2_deg,
+            b.centre[i][0],
+            b.centre[i][1],
+            w(&b.wall_left, 0),
+            w(&b.wall_left, 1),
+            w(&b.wall_right, 0),
+            w(&b.wall_right, 1),
+            c.centre[i][0],
+            c.centre[i][1],
+            w(&c.wall_left, 0),
+            w(&c.wall_left, 1),
+            w(&c.wall_right, 0),
+            w(&c.wall_right, 1),
+        ])?;
+    }
+    Ok(t)
+}
+
+fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
+    let g = a.geometry.geometry()?;
+    let law = a.law.spec()?;
+    let res = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+    warn(&res.warnings);
+    if let Some(path) = &a.dxf {
+        let mut polys = profile_polylines("CAM", &res.cam);
+        polys.extend(profile_polylines("COUNTER_CAM", &res.counter_cam));
+        let unit = match a.dxf_unit {
+            UnitArg::Mm => DxfUnit::Millimetre,
+            UnitArg::M => DxfUnit::Metre,
+        };
+        save_dxf(&polys, unit, path).map_err(util::failure)?;
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some(path) = &a.points_csv {
+        let mut f = loomkin_io::create_file(path).map_err(util::failure)?;
+        points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
+        eprintln!("wrote {}", path.display());
+    }
+    if a.format.csv {
+        return util::print_csv(&synthesis_table(&res)?);
+    }
+    if a.format.json {
+        return util::print_json(&json!({
+            "summary": serde_json::to_value(&res.summary)?,
+            "warnings": serde_json::to_value(&res.warnings)?,
+            "rows": serde_json::to_value(&res.rows)?,
+        }));
+    }
+    if a.dxf.is_some() || a.points_csv.is_some() {
+        return Ok(());
+    }
+    let s = &res.summary;
+    println!("rotary-dobby modulator, task 2 (synthesis): {}", s.law);
+    print_geometry(&g, s.input_speed_rad_s, s.step_deg);
+    println!("  roller radius        {} m", s.roller_m);
+    println!(
+        "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
+        s.checks.omega6_max_rad_s, s.checks.eps6_min_rad_s2, s.checks.eps6_max_rad_s2
+    );
+    println!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg);
+    print_checks(&s.checks);
+    println!(
+        "  undercut             Γ {}, Γ′ {}; largest roller without undercut {}",
+        yes_no(s.undercut_b),
+        yes_no(s.undercut_c),
+        s.checks.roller_max_m.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "any".into())
+    );
+    println!(
+        "  admissible α         ({:.3}°, {:.3}°) for this law (no fold at roller B)",
+        s.admissible_alpha_deg[0], s.admissible_alpha_deg[1]
+    );
+    Ok(())
+}
+
+fn yes_no(b: bool) -> &'static str {
+    if b { "yes" } else { "no" }
+}
+
+fn law_panels(states: &[ModulatorState], w2: f64) -> Vec<Panel> {
+    let pts = |f: &dyn Fn(&ModulatorState) -> f64| -> Vec<(f64, f64)> {
+        states.iter().map(|s| (s.phi2.to_degrees(), f(s))).collect()
+    };
+    vec![
+        Panel::new(
+            "angle [deg]",
+            vec![
+                Series::line("output φ6", pts(&|s| s.phi6[0].to_degrees())),
+                Series::line("slot φ3", pts(&|s| s.phi3[0].to_degrees())),
+                Series::line("input φ2", pts(&|s| s.phi2.to_degrees())),
+            ],
+        )
+        .with_legend(Legend::UpperLeft),
+        Panel::new("speed ω6 [rad/s]", vec![Series::line("ω6", pts(&|s| s.phi6[1] * w2))]),
+        Panel::new("acceleration ε6 [rad/s²]", vec![Series::line("ε6", pts(&|s| s.phi6[2] * w2 * w2))]),
+    ]
+}
+
+fn xy(p: &[[f64; 2]], close: bool) -> Vec<(f64, f64)> {
+    let mut v: Vec<(f64, f64)> = p.iter().map(|q| (q[0], q[1])).collect();
+    if close && let Some(f) = v.first().copied() {
+        v.push(f);
+    }
+    v
+}
+
+/// The cams with the mechanism at one state. With a roller the groove walls are drawn, else the
+/// roller-centre curves. Links are separate series: a polyline that doubles back on itself draws a
+/// miter spike in the bitmap backend. (The plot font has no prime, so Γ′ is written Γ'.)
+fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, st: &ModulatorState) -> Panel {
+    let mut series = if gamma.wall_left.is_empty() {
+        vec![
+            Series::line("cam Γ (roller centre B)", xy(&gamma.centre, true)),
+            Series::line("counter-cam Γ' (roller centre C)", xy(&gamma_p.centre, true)),
+        ]
+    } else {
+        vec![
+            Series::line("cam Γ, groove wall +r", xy(&gamma.wall_left, true)),
+            Series::line("cam Γ, groove wall -r", xy(&gamma.wall_right, true)),
+            Series::line("counter-cam Γ', groove wall +r", xy(&gamma_p.wall_left, true)),
+            Series::line("counter-cam Γ', groove wall -r", xy(&gamma_p.wall_right, true)),
+        ]
+    };
+    let p = st.pose(g);
+    let t = |q: [f64; 2]| (q[0], q[1]);
+    // The slot runs from A through D and a little beyond.
+    let beyond = [p.d[0] + 0.25 * (p.d[0] - p.a[0]), p.d[1] + 0.25 * (p.d[1] - p.a[1])];
+    series.push(Series::line(format!("crank 2 (OA) at φ2 = {:.1}°", p.phi2_deg), vec![t(p.o), t(p.a)]));
+    series.push(Series::line("crank 6 (OD)", vec![t(p.o), t(p.d)]));
+    series.push(Series::line("lever 3: arms AB, AC", vec![t(p.b), t(p.a), t(p.c)]));
+    series.push(Series::line("slot of lever 3 (A, D)", vec![t(p.a), t(beyond)]));
+    series.push(Series::markers("joints O, A, B, C, D", vec![t(p.o), t(p.a), t(p.b), t(p.c), t(p.d)]));
+    let mut panel = Panel::new("y [m]", series).with_legend(Legend::LowerRight);
+    panel.x_label = Some("x [m]".into());
+    panel.equal_aspect = true;
+    panel
+}
+
+fn plot_cmd(a: PlotArgs) -> Result<()> {
+    let g = a.geometry.geometry()?;
+    let w2 = a.geometry.speed_rad_s()?;
+    let (states, gamma, gamma_p, title) = match a.task {
+        TaskArg::Analyze => {
+            let cam = a.cam.cam()?;
+            let r = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+            warn(&r.warnings);
+            let path: Vec<[f64; 2]> = r.rows[..r.rows.len() - 1].iter().map(|x| [x.b_x_m, x.b_y_m]).collect();
+            let gamma = walls_of(&path, &r.states, a.roller_m.unwrap_or(0.0));
+            (r.states, gamma, r.counter_cam, format!("Modulator, task 1: cam {}, α = {}°", cam.label(), g.alpha_deg))
+        }
+        TaskArg::Synthesize => {
+            let law = a.law.spec()?;
+            let r = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m.unwrap_or(0.03))?)?;
+            warn(&r.warnings);
+            let title = format!("Modulator, task 2: {}, α = {}°", r.summary.law, g.alpha_deg);
+            (r.states, r.cam, r.counter_cam, title)
+        }
+    };
+    let fig = match a.what {
+        WhatArg::Law => Figure::new(title, "input angle φ2 [deg]", law_panels(&states, w2)),
+        WhatArg::Cams => {
+            let st = nearest_state(&states, a.at_deg).context("no state to draw")?;
+            let mut f = Figure::new(title, "x [m]", vec![cams_panel(&g, &gamma, &gamma_p, st)]);
+            f.size = Some((1000, 1000));
+            f
+        }
+    };
+    util::save_figure(&fig, &a.output)
+}
+
+/// Cam Γ of an analysis as a profile (walls from the path's tangents).
+fn walls_of(path: &[[f64; 2]], states: &[ModulatorState], roller_m: f64) -> CamProfile {
+    let mut p = CamProfile { centre: path.to_vec(), ..CamProfile::default() };
+    if roller_m > 0.0 {
+        for s in &states[..path.len()] {
+            let n = s.b[1].norm();
+            let nrm = if n > 0.0 { [-s.b[1].y / n, s.b[1].x / n] } else { [0.0, 0.0] };
+            let b = s.b[0];
+            p.wall_left.push([b.x + roller_m * nrm[0], b.y + roller_m * nrm[1]]);
+            p.wall_right.push([b.x - roller_m * nrm[0], b.y - roller_m * nrm[1]]);
+        }
+    }
+    p
+}
+
+fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    if !(a.by > 0.0 && a.by.is_finite() && a.from.is_finite() && a.to.is_finite() && a.to >= a.from) {
+        bail!("--from {} --to {} --by {}: need from ≤ to and by > 0", a.from, a.to, a.by);
+    }
+    let n = ((a.to - a.from) / a.by + 1e-9).floor() as usize + 1;
+    if n > 1000 {
+        bail!("--by {} gives {n} values of α: allowed at most 1000", a.by);
+    }
+    let alphas: Vec<f64> = (0..n).map(|i| a.from + i as f64 * a.by).collect();
+    let g = a.geometry.geometry()?;
+    let rows = alpha_sweep(
+        &g,
+        &a.cam.cam()?,
+        &a.law.spec()?,
+        &alphas,
+        &analysis_options(&a.geometry, a.step_deg, None)?,
+        &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?,
+    )
+    .map_err(|e: MechError| anyhow::Error::from(e))?;
+    if a.format.json {
+        return util::print_json(&json!({ "rows": rows.iter().map(row_json).collect::<Vec<Value>>() }));
+    }
+    let cols = [
+        "alpha_deg",
+        "an_ok",
+        "an_omega6_min_rad_s",
+        "an_omega6_max_rad_s",
+        "an_mu_out_max_deg",
+        "an_mu_b_max_deg",
+        "an_mu_c_max_deg",
+        "syn_ok",
+        "syn_mu_b_max_deg",
+        "syn_mu_c_max_deg",
+        "syn_rho_b_min_m",
+        "syn_rho_c_min_m",
+        "syn_undercut",
+    ];
+    let mut t = Table::new(cols);
+    // A task that failed at this α has 0 in its *_ok column and 0 in its values.
+    for r in &rows {
+        let z = |v: Option<f64>| v.unwrap_or(0.0);
+        t.push(vec![
+            r.alpha_deg,
+            if r.an_error.is_none() { 1.0 } else { 0.0 },
+            z(r.an_omega6_min_rad_s),
+            z(r.an_omega6_max_rad_s),
+            z(r.an_mu_out_max_deg),
+            z(r.an_mu_b_max_deg),
+            z(r.an_mu_c_max_deg),
+            if r.syn_error.is_none() { 1.0 } else { 0.0 },
+            z(r.syn_mu_b_max_deg),
+            z(r.syn_mu_c_max_deg),
+            z(r.syn_rho_b_min_m),
+            z(r.syn_rho_c_min_m),
+            if r.syn_undercut == Some(true) { 1.0 } else { 0.0 },
+        ])?;
+    }
+    if a.format.csv {
+        return util::print_csv(&t);
+    }
+    println!("α sweep (θ = α): analysis of the cam | synthesis of the law");
+    println!(
+        "{:>8} {:>12} {:>12} {:>10} {:>10} {:>10} | {:>10} {:>10} {:>12}",
+        "α_deg",
+        "ω6_min_rad_s",
+        "ω6_max_rad_s",
+        "μ6_max_deg",
+        "μB_max_deg",
+        "μC_max_deg",
+        "μB_max_deg",
+        "μC_max_deg",
+        "ρ_min_m"
+    );
+    let f =
+        |v: Option<f64>, w: usize, p: usize| v.map(|x| format!("{x:>w$.p$}")).unwrap_or_else(|| format!("{:>w$}", "—"));
+    for r in &rows {
+        println!(
+            "{:>8.2} {} {} {} {} {} | {} {} {}",
+            r.alpha_deg,
+            f(r.an_omega6_min_rad_s, 12, 5),
+            f(r.an_omega6_max_rad_s, 12, 5),
+            f(r.an_mu_out_max_deg, 10, 2),
+            f(r.an_mu_b_max_deg, 10, 2),
+            f(r.an_mu_c_max_deg, 10, 2),
+            f(r.syn_mu_b_max_deg, 10, 2),
+            f(r.syn_mu_c_max_deg, 10, 2),
+            f(r.syn_rho_b_min_m.zip(r.syn_rho_c_min_m).map(|(a, b)| a.min(b)), 12, 5),
+        );
+        for e in [&r.an_error, &r.syn_error].into_iter().flatten() {
+            println!("{:>8}   {e}", "");
+        }
+    }
+    Ok(())
+}
+
+/// A sweep row as JSON: failed tasks carry their error text instead of numbers (no nulls).
+fn row_json(r: &loomkin_mech::SweepRow) -> Value {
+    let mut v = serde_json::to_value(r).unwrap_or(Value::Null);
+    if let Value::Object(m) = &mut v {
+        m.retain(|_, x| !x.is_null());
+    }
+    v
+}

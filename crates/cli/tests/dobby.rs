@@ -1,0 +1,166 @@
+//! `loomkin dobby …` run as a user runs it: contract keys, exit codes, error lines, files.
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn loomkin() -> Command {
+    Command::cargo_bin("loomkin").unwrap()
+}
+
+fn stdout_json(args: &[&str]) -> Value {
+    let out = loomkin().args(args).output().unwrap();
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Runs, expects exit code 2 and one line on stderr containing every `needle`.
+fn usage_error(args: &[&str], needles: &[&str]) {
+    let out = loomkin().args(args).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "{args:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
+    }
+    assert!(!err.contains("panicked") && !err.contains("NaN"), "{err}");
+    assert!(out.stdout.is_empty());
+}
+
+fn num(v: &Value, k: &str) -> f64 {
+    v[k].as_f64().unwrap_or_else(|| panic!("key {k} missing or not a number in {v}"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("loomkin-dobby-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn analyze_json_has_the_contract_keys() {
+    let v = stdout_json(&["dobby", "analyze", "--json", "--step-deg", "2"]);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 181);
+    for k in ["phi2_deg", "phi3_deg", "phi6_deg", "s53_m", "omega3_rad_s", "omega6_rad_s", "eps6_rad_s2"] {
+        assert!(rows[0][k].is_f64() || rows[0][k].is_i64(), "key {k} missing in {}", rows[0]);
+    }
+    let s = &v["summary"];
+    for k in ["omega6_min_rad_s", "omega6_max_rad_s", "mu_out_max_deg", "mu_b_max_deg", "mu_c_max_deg"] {
+        assert!(s[k].is_f64(), "summary key {k} missing");
+    }
+    // The paper's cam at α = 47°: the output turns once, at 0.598…1.470 × ω2.
+    assert!((num(s, "phi6_turn_deg") - 360.0).abs() < 1e-6);
+    assert!((num(s, "omega6_min_rad_s") - 0.598).abs() < 1e-3 && (num(s, "omega6_max_rad_s") - 1.470).abs() < 1e-3);
+}
+
+#[test]
+fn input_rpm_scales_the_rates() {
+    let base = stdout_json(&["dobby", "analyze", "--json", "--step-deg", "5"]);
+    let fast = stdout_json(&["dobby", "analyze", "--json", "--step-deg", "5", "--input-rpm", "60"]);
+    let w2 = std::f64::consts::TAU; // 60 rpm
+    let (r0, r1) = (&base["rows"][7], &fast["rows"][7]);
+    assert!((num(r1, "omega6_rad_s") - w2 * num(r0, "omega6_rad_s")).abs() < 1e-9);
+    assert!((num(r1, "eps6_rad_s2") - w2 * w2 * num(r0, "eps6_rad_s2")).abs() < 1e-8);
+    assert_eq!(num(r1, "phi6_deg"), num(r0, "phi6_deg"));
+}
+
+#[test]
+fn synthesize_json_has_the_contract_keys_and_the_paper_start() {
+    let v = stdout_json(&["dobby", "synthesize", "--json"]);
+    let rows = v["rows"].as_array().unwrap();
+    for k in ["phi2_deg", "phi6_deg", "omega6_rad_s", "phi3_deg", "s53_m", "b_x_m", "b_y_m", "c_x_m", "c_y_m"] {
+        assert!(rows[0][k].is_number(), "key {k} missing");
+    }
+    let r = &rows[90];
+    assert!((num(r, "phi6_deg") - 90.0).abs() < 1e-9 && (num(r, "phi3_deg") - 90.0).abs() < 1e-9);
+    assert!((num(r, "s53_m") - 0.26).abs() < 1e-12);
+    let s = &v["summary"];
+    for k in ["rho_b_min_m", "rho_c_min_m", "mu_out_max_deg", "mu_b_max_deg", "mu_c_max_deg", "undercut"] {
+        assert!(!s[k].is_null(), "summary key {k} missing");
+    }
+    assert_eq!(s["undercut"], false);
+}
+
+#[test]
+fn synthesize_csv_round_trips_through_analyze() {
+    let out = loomkin().args(["dobby", "synthesize", "--csv", "--step-deg", "0.5"]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("phi2_deg,phi6_deg,omega6_rad_s"));
+    let path = tmp("cam.csv");
+    std::fs::write(&path, &text).unwrap();
+    let v = stdout_json(&["dobby", "analyze", "--cam-file", path.to_str().unwrap(), "--json"]);
+    // The dwell comes back: ω6 ≈ 0 between φ2 = 70° and 110°.
+    let rows = v["rows"].as_array().unwrap();
+    for r in &rows[72..=108] {
+        assert!(num(r, "omega6_rad_s").abs() < 1e-3, "{r}");
+        assert!((num(r, "phi6_deg") - 90.0).abs() < 1e-3);
+    }
+}
+
+#[test]
+fn dxf_and_point_files_are_written() {
+    let (dxf, pts) = (tmp("cams.dxf"), tmp("pts.csv"));
+    let out = loomkin()
+        .args(["dobby", "synthesize", "--dxf", dxf.to_str().unwrap(), "--points-csv", pts.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let d = std::fs::read_to_string(&dxf).unwrap();
+    assert_eq!(d.matches("LWPOLYLINE").count(), 6);
+    for layer in ["CAM_CENTRE", "CAM_WALL_LEFT", "COUNTER_CAM_WALL_RIGHT"] {
+        assert!(d.contains(layer), "{layer}");
+    }
+    let p = std::fs::read_to_string(&pts).unwrap();
+    assert!(p.starts_with("phi2_deg,b_x_m,b_y_m,b_left_x_m"));
+    assert_eq!(p.lines().count(), 361);
+}
+
+#[test]
+fn plots_are_written() {
+    for (what, task) in [("law", "synthesize"), ("cams", "synthesize"), ("cams", "analyze")] {
+        let path = tmp(&format!("{what}-{task}.svg"));
+        let out = loomkin()
+            .args(["dobby", "plot", "--what", what, "--task", task, "--at-deg", "30", "-o", path.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("<svg") && svg.contains(if what == "law" { "ω6" } else { "joints" }));
+    }
+}
+
+#[test]
+fn sweep_reports_the_fold_below_the_admissible_alpha() {
+    let v = stdout_json(&["dobby", "sweep", "--json", "--step-deg", "2"]);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 7);
+    assert!(rows[0]["syn_error"].as_str().unwrap().contains("fold at roller B"));
+    assert!(rows[6]["syn_mu_b_max_deg"].is_f64() && rows[6]["an_omega6_max_rad_s"].is_f64());
+}
+
+#[test]
+fn bad_input_is_one_line_with_exit_code_2() {
+    usage_error(&["dobby", "analyze", "--l6-m", "0.2"], &["slot misses the output crank", "φ2 ="]);
+    usage_error(&["dobby", "analyze", "--l6-m", "0.3", "--alpha-deg", "60"], &["admissible α ∈ ["]);
+    usage_error(&["dobby", "analyze", "--cam", "ellipse:a=0.1,b=0.1"], &["cannot reach cam Γ"]);
+    usage_error(&["dobby", "analyze", "--cam", "circle:r=1"], &["ellipse:a="]);
+    usage_error(&["dobby", "synthesize", "--dwell-deg", "120"], &["admissible range", "dwell must be <"]);
+    usage_error(&["dobby", "synthesize", "--alpha-deg", "30"], &["fold at roller B", "admissible α ∈ (35.8"]);
+    usage_error(&["dobby", "synthesize", "--step-deg", "0"], &["step_deg"]);
+    usage_error(&["dobby", "synthesize", "--law", "nope"], &["unknown law"]);
+    usage_error(&["dobby", "analyze", "--input-rpm", "-5"], &["--input-rpm"]);
+    usage_error(&["dobby", "analyze", "--cam-file", "/nonexistent/cam.csv"], &["cannot read"]);
+    let bad = tmp("bad.csv");
+    std::fs::write(&bad, "x_m,y_m\n0,0\n1,zz\n").unwrap();
+    usage_error(&["dobby", "analyze", "--cam-file", bad.to_str().unwrap()], &["line 3"]);
+}
+
+#[test]
+fn undercut_is_a_warning_not_an_error() {
+    let out = loomkin().args(["dobby", "synthesize", "--roller-m", "0.08", "--json"]).output().unwrap();
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("warning: undercut of cam Γ"), "{err}");
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["summary"]["undercut"], true);
+}
