@@ -534,9 +534,115 @@ async function chooseLaw(k) {
   } catch (e) { status("shedding law: " + e.message, true); }
 }
 
+
+// ---------------------------------------------------------------- dobby modulator
+
+const dobby = { req: null, result: null };
+
+async function initDobby() {
+  const root = $("#dobby-root");
+  const inputs = {
+    cycles: el("input", { type: "number", min: "1", max: "6", step: "1", id: "dobby-cycles" }),
+    dwell: el("input", { type: "number", step: "any", id: "dobby-dwell" }),
+    centre: el("input", { type: "number", step: "any", id: "dobby-centre" }),
+    rise: el("select", { id: "dobby-rise" }),
+    alpha: el("input", { type: "number", step: "any", id: "dobby-alpha" }),
+    roller: el("input", { type: "number", step: "any", id: "dobby-roller" }),
+  };
+  for (const name of ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"]) inputs.rise.append(el("option", { value: name, textContent: name }));
+  const angle = el("input", { type: "range", min: "0", max: "360", step: "1", value: "40", id: "dobby-angle" });
+  const angleOut = el("output", { textContent: "40°" });
+  const field = (label, input) => el("label", {}, label, input);
+  const panel = el("div", { className: "panel" }, el("h2", { textContent: "Output law and modulator" }),
+    el("p", { className: "hint", textContent: "Stäubli-type rotary-dobby modulator: the conjugate cams Γ (roller B) and Γ′ (roller C) synthesised for the output law. Move the slider to turn the input crank." }),
+    el("div", { className: "grid2" }, field("cycles per turn (–)", inputs.cycles), field("dwell per cycle (°)", inputs.dwell),
+      field("first dwell centred at (°)", inputs.centre), field("rise law", inputs.rise),
+      field("angle α slot–arm AB (°)", inputs.alpha), field("roller radius (mm)", inputs.roller)),
+    el("label", { className: "slider" }, el("span", { textContent: "input angle φ2 (°)" }), angle, angleOut));
+  const table = el("table", { className: "data", id: "dobby-summary" }, el("caption", { textContent: "Checks" }), el("tbody"));
+  const charts = el("div", { className: "grid-charts" });
+  root.append(el("div", { className: "results" }, panel, table), charts);
+  dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", title: "Cams and mechanism", height: 480, unit: "mm", scale: 1000 });
+  const side = el("div", { className: "charts" });
+  charts.append(side);
+  const mk = (id, title, label, unit) => new Chart(side, { id, title, height: 150, x: { label: "input angle φ2", unit: "°", range: [0, 360], step: 30 }, y: { label, unit } });
+  dobby.phi = mk("dobby-phi", "Output angle", "φ6", "°");
+  dobby.omega = mk("dobby-omega", "Output speed and acceleration at ω2 = 1 rad/s", "ω6, ε6", "rad/s, rad/s²");
+  dobby.mu = mk("dobby-mu", "Pressure angles", "μ", "°");
+  Object.assign(loomkin.charts, { dobby_phi: dobby.phi, dobby_omega: dobby.omega, dobby_mu: dobby.mu });
+  angle.addEventListener("input", () => { angleOut.textContent = `${angle.value}°`; drawDobby(); });
+  dobby.inputs = inputs; dobby.angle = angle;
+  try {
+    dobby.req = await api("/dobby/default");
+    const r = dobby.req;
+    inputs.cycles.value = r.law.cycles; inputs.dwell.value = r.law.dwell_deg; inputs.centre.value = r.law.dwell_centre_deg;
+    inputs.rise.value = r.law.rise.name; inputs.alpha.value = r.geometry.alpha_deg; inputs.roller.value = r.roller_m * 1000;
+  } catch (e) { status("dobby: " + e.message, true); return; }
+  for (const e of Object.values(inputs)) e.addEventListener("change", synthesizeDobby);
+  synthesizeDobby();
+}
+
+async function synthesizeDobby() {
+  const i = dobby.inputs, r = dobby.req;
+  r.law.cycles = parseInt(i.cycles.value, 10); r.law.dwell_deg = +i.dwell.value; r.law.dwell_centre_deg = +i.centre.value;
+  r.law.rise = { name: i.rise.value, params: {} }; r.geometry.alpha_deg = +i.alpha.value; r.roller_m = +i.roller.value / 1000;
+  try {
+    const res = await api("/dobby/synthesize", r);
+    dobby.result = res;
+    const c = res.curves;
+    dobby.phi.setSeries([{ label: "φ6", x: c.phi2_deg, y: c.phi6_deg }]);
+    dobby.omega.setSeries([{ label: "ω6 (rad/s)", x: c.phi2_deg, y: c.omega6_rad_s }, { label: "ε6 (rad/s²)", x: c.phi2_deg, y: c.eps6_rad_s2 }]);
+    dobby.mu.setSeries([{ label: "roller B", x: c.phi2_deg, y: c.mu_b_deg }, { label: "roller C", x: c.phi2_deg, y: c.mu_c_deg }, { label: "output", x: c.phi2_deg, y: c.mu_out_deg }]);
+    const all = [...res.cam.wall_left, ...res.cam.wall_right, ...res.counter_cam.wall_left, ...res.counter_cam.wall_right, ...res.cam.centre, ...res.counter_cam.centre, ...res.poses.flatMap((p) => [p.a, p.b, p.c, p.d])];
+    const xs = all.map((p) => p[0]), ys = all.map((p) => p[1]);
+    const pad = 0.04;
+    dobby.bounds = [Math.min(...xs) - pad, Math.min(...ys) - pad, Math.max(...xs) + pad, Math.max(...ys) + pad];
+    const s = res.summary, ch = s.checks || s; // the checks may be flattened into the summary
+    const rows = [
+      ["output law", s.law], ["largest lag |φ6 − φ2|", `${num(s.lag_max_deg, 2)}° (limit ${num(s.lag_limit_deg, 2)}°)`],
+      ["admissible α", `${num(s.admissible_alpha_deg[0], 1)}° … ${num(s.admissible_alpha_deg[1], 1)}°`],
+      ["ω6 range", `${num(ch.omega6_min_rad_s, 3)} … ${num(ch.omega6_max_rad_s, 3)} rad/s`],
+      ["ε6 range", `${num(ch.eps6_min_rad_s2, 3)} … ${num(ch.eps6_max_rad_s2, 3)} rad/s²`],
+      ["max pressure angle B / C", `${num(ch.mu_b_max_deg, 1)}° / ${num(ch.mu_c_max_deg, 1)}°`],
+      ["undercut", s.undercut ? "yes" : "no"], ["warnings", res.warnings.length ? res.warnings.map((w) => w.message).join("; ") : "none"],
+    ];
+    $("#dobby-summary tbody").replaceChildren(...rows.map(([a, b]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b }))));
+    status("cams synthesised");
+    drawDobby();
+  } catch (e) { status("dobby: " + e.message, true); }
+}
+
+function drawDobby() {
+  const res = dobby.result;
+  if (!res) return;
+  const phi = +dobby.angle.value % 360;
+  let k = 0, bd = Infinity;
+  res.poses.forEach((p, j) => { const d = Math.abs(p.phi2_deg - phi); if (d < bd) { bd = d; k = j; } });
+  const p = res.poses[k], r = dobby.req.roller_m;
+  const far = [p.a[0] + 1.4 * (p.d[0] - p.a[0]), p.a[1] + 1.4 * (p.d[1] - p.a[1])];
+  const items = [
+    { kind: "line", pts: res.cam.wall_left, color: "#1f5fa8", width: 1.5, legend: "Γ" },
+    { kind: "line", pts: res.cam.wall_right, color: "#1f5fa8", width: 1.5 },
+    { kind: "line", pts: res.cam.centre, color: "#1f5fa8", width: 1, dash: [4, 4] },
+    { kind: "line", pts: res.counter_cam.wall_left, color: "#15803d", width: 1.5, legend: "Γ′" },
+    { kind: "line", pts: res.counter_cam.wall_right, color: "#15803d", width: 1.5 },
+    { kind: "line", pts: res.counter_cam.centre, color: "#15803d", width: 1, dash: [4, 4] },
+    { kind: "line", pts: [p.a, far], color: "#9ca3af", width: 5, legend: "slot" },
+    { kind: "line", pts: [p.o, p.a], color: "#111827", width: 4, legend: "crank OA" },
+    { kind: "line", pts: [p.b, p.a, p.c], color: "#c2410c", width: 4, legend: "lever BAC" },
+    { kind: "line", pts: [p.o, p.d], color: "#7c3aed", width: 4, legend: "crank OD" },
+    { kind: "circle", c: p.b, r, color: "#c2410c", fill: "rgba(194,65,12,0.15)" },
+    { kind: "circle", c: p.c, r, color: "#c2410c", fill: "rgba(194,65,12,0.15)" },
+    ...[p.o, p.a, p.d].map((q) => ({ kind: "circle", c: q, r: 0, minPx: 4, color: "#111827", fill: "#fff" })),
+    ...[["O", p.o], ["A", p.a], ["B", p.b], ["C", p.c], ["D", p.d]].map(([t, q]) => ({ kind: "label", at: q, text: t })),
+  ];
+  dobby.scene.setItems(items, dobby.bounds);
+  for (const ch of [dobby.phi, dobby.omega, dobby.mu]) { ch.markerX = p.phi2_deg; ch.draw(); }
+}
+
 // ---------------------------------------------------------------- start
 
-const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking };
+const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking, dobby: initDobby };
 window.LoomkinViews = VIEWS;
 
 async function start() {

@@ -32,6 +32,7 @@ function niceTicks(lo, hi, count) {
 // A number for a label: enough digits for the step, no trailing noise; never "NaN".
 function fmtTick(v, step) {
   if (!isFinite(v)) return "–";
+  if (Math.abs(v) < Math.abs(step) * 1e-6) v = 0; // no "-0"
   const d = Math.max(0, Math.min(8, -Math.floor(Math.log10(step) + 1e-9)));
   return v.toFixed(d);
 }
@@ -221,6 +222,10 @@ class Chart {
         c.strokeStyle = "#111827"; c.lineWidth = 1.2; c.stroke();
       });
     }
+    if (this.markerX !== undefined && this.markerX !== null) {
+      const [mx] = this.toPx(L, this.markerX, 0);
+      c.strokeStyle = "#f59e0b"; c.lineWidth = 2; c.beginPath(); c.moveTo(mx, L.top); c.lineTo(mx, L.top + L.ph); c.stroke();
+    }
     c.restore();
     this.drawLegend(L);
     if (this.hoverX !== null) this.drawHover(L);
@@ -344,5 +349,101 @@ function niceTicksIn(lo, hi, count, fixedStep) {
   return { step, ticks };
 }
 
-window.LoomkinCharts = { Chart, PALETTE, fmtValue, interp, niceTicks };
+
+// A drawing of a mechanism in the plane, equal scale on both axes, with a grid in mm.
+// items: [{kind: "line", pts: [[x, y], …], color, width, dash, closed},
+//         {kind: "circle", c: [x, y], r, color, fill, width}, {kind: "label", at: [x, y], text, color}]
+class Scene {
+  constructor(container, opts) {
+    this.opts = opts;
+    this.items = [];
+    this.wrap = document.createElement("div");
+    this.wrap.className = "chart";
+    if (opts.id) this.wrap.id = opts.id;
+    this.canvas = document.createElement("canvas");
+    this.canvas.style.height = (opts.height || 420) + "px";
+    this.canvas.setAttribute("role", "img");
+    this.canvas.setAttribute("aria-label", opts.title || "mechanism");
+    this.wrap.appendChild(this.canvas);
+    container.appendChild(this.wrap);
+    this.ctx = this.canvas.getContext("2d");
+    if (window.ResizeObserver) new ResizeObserver(() => this.draw()).observe(this.canvas);
+  }
+
+  // bounds: [xmin, ymin, xmax, ymax] in data units, kept fixed while the items change.
+  setItems(items, bounds) {
+    this.items = items;
+    if (bounds) this.bounds = bounds;
+    this.draw();
+  }
+
+  draw() {
+    const dpr = window.devicePixelRatio || 1;
+    const w = this.canvas.clientWidth || 600, h = this.canvas.clientHeight || 420;
+    this.canvas.width = Math.round(w * dpr); this.canvas.height = Math.round(h * dpr);
+    const c = this.ctx;
+    c.setTransform(dpr, 0, 0, dpr, 0, 0);
+    c.clearRect(0, 0, w, h);
+    if (!this.bounds) return;
+    const [x0, y0, x1, y1] = this.bounds;
+    const left = 56, right = 12, top = 28, bottom = 38;
+    const pw = w - left - right, ph = h - top - bottom;
+    const k = Math.min(pw / (x1 - x0), ph / (y1 - y0));
+    const cx = left + pw / 2 - k * (x0 + x1) / 2, cy = top + ph / 2 + k * (y0 + y1) / 2;
+    const P = ([x, y]) => [cx + k * x, cy - k * y];
+    const scale = this.opts.scale || 1, unit = this.opts.unit || "";
+    // Grid and axes in display units.
+    const gx0 = (left - cx) / k, gx1 = (left + pw - cx) / k, gy0 = (cy - top - ph) / k, gy1 = (cy - top) / k;
+    const step = niceStep((gx1 - gx0) * scale, pw / 80) / scale;
+    c.font = "12px system-ui, sans-serif"; c.strokeStyle = "#e3e6ea"; c.fillStyle = "#4b5563"; c.lineWidth = 1;
+    c.textAlign = "center"; c.textBaseline = "top";
+    for (let t = Math.ceil(gx0 / step) * step; t <= gx1; t += step) {
+      const [px] = P([t, 0]);
+      c.beginPath(); c.moveTo(px + 0.5, top); c.lineTo(px + 0.5, top + ph); c.stroke();
+      c.fillText(fmtTick(t * scale, step * scale), px, top + ph + 4);
+    }
+    c.textAlign = "right"; c.textBaseline = "middle";
+    for (let t = Math.ceil(gy0 / step) * step; t <= gy1; t += step) {
+      const [, py] = P([0, t]);
+      c.beginPath(); c.moveTo(left, py + 0.5); c.lineTo(left + pw, py + 0.5); c.stroke();
+      c.fillText(fmtTick(t * scale, step * scale), left - 5, py);
+    }
+    c.strokeStyle = "#6b7280"; c.strokeRect(left + 0.5, top + 0.5, pw, ph);
+    c.fillStyle = "#111827"; c.textAlign = "center"; c.textBaseline = "bottom";
+    c.fillText(axisTitle("x", unit), left + pw / 2, h - 2);
+    c.save(); c.translate(13, top + ph / 2); c.rotate(-Math.PI / 2); c.textBaseline = "middle"; c.fillText(axisTitle("y", unit), 0, 0); c.restore();
+    c.save(); c.beginPath(); c.rect(left, top, pw, ph); c.clip();
+    for (const it of this.items) {
+      if (it.kind === "line" && it.pts.length) {
+        c.strokeStyle = it.color || "#111827"; c.lineWidth = it.width || 1.5; c.setLineDash(it.dash || []);
+        c.beginPath();
+        it.pts.forEach((p, i) => { const [px, py] = P(p); if (i) c.lineTo(px, py); else c.moveTo(px, py); });
+        if (it.closed) c.closePath();
+        c.stroke(); c.setLineDash([]);
+      } else if (it.kind === "circle") {
+        const [px, py] = P(it.c);
+        c.beginPath(); c.arc(px, py, Math.max(it.r * k, it.minPx || 0), 0, 2 * Math.PI);
+        if (it.fill) { c.fillStyle = it.fill; c.fill(); }
+        c.strokeStyle = it.color || "#111827"; c.lineWidth = it.width || 1.5; c.stroke();
+      } else if (it.kind === "label") {
+        const [px, py] = P(it.at);
+        c.fillStyle = it.color || "#111827"; c.font = "600 13px system-ui, sans-serif"; c.textAlign = "left"; c.textBaseline = "bottom";
+        c.fillText(it.text, px + 6, py - 4);
+      }
+    }
+    c.restore();
+    // Legend.
+    c.textAlign = "left"; c.textBaseline = "middle"; c.font = "12px system-ui, sans-serif";
+    let lx = left;
+    if (this.opts.title) { c.font = "600 13px system-ui, sans-serif"; c.fillStyle = "#111827"; c.fillText(this.opts.title, lx, 13); lx += c.measureText(this.opts.title).width + 18; c.font = "12px system-ui, sans-serif"; }
+    for (const it of this.items) {
+      if (!it.legend) continue;
+      c.strokeStyle = it.color; c.lineWidth = 2.5; c.setLineDash(it.dash || []);
+      c.beginPath(); c.moveTo(lx, 13); c.lineTo(lx + 18, 13); c.stroke(); c.setLineDash([]);
+      c.fillStyle = "#1f2937"; c.fillText(it.legend, lx + 22, 13); lx += 22 + c.measureText(it.legend).width + 14;
+    }
+  }
+}
+
+window.LoomkinCharts = { Chart, Scene, PALETTE, fmtValue, interp, niceTicks };
 })();

@@ -37,7 +37,7 @@ pub fn catalogue() -> CatalogueResponse {
 }
 
 /// A parameter value: the page may send a number or text (`segments` is text).
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(untagged)]
 pub enum ParamValue {
     /// A number.
@@ -47,7 +47,8 @@ pub enum ParamValue {
 }
 
 impl ParamValue {
-    fn text(&self) -> String {
+    /// The value as the text `LawSpec::parse` reads.
+    pub fn text(&self) -> String {
         match self {
             ParamValue::Number(v) => v.to_string(),
             ParamValue::Text(t) => t.clone(),
@@ -56,7 +57,7 @@ impl ParamValue {
 }
 
 /// One law to compare: a catalogue name and its parameters.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct LawChoice {
     /// Catalogue name (`cycloidal`, `modified-trapezoid`, …).
@@ -64,6 +65,14 @@ pub struct LawChoice {
     /// Parameters, e.g. `{"ramp": 0.125}`.
     #[serde(default)]
     pub params: BTreeMap<String, ParamValue>,
+}
+
+impl LawChoice {
+    /// The catalogue law with these parameters.
+    pub fn spec(&self) -> Result<LawSpec, loomkin_laws::LawError> {
+        let params: Vec<(String, String)> = self.params.iter().map(|(k, v)| (k.clone(), v.text())).collect();
+        LawSpec::parse(&self.name, &params)
+    }
 }
 
 /// `POST /api/laws/compare` request.
@@ -109,8 +118,7 @@ pub fn compare(req: &CompareRequest) -> Result<CompareResponse, ApiError> {
     check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
     let mut laws = Vec::with_capacity(req.laws.len());
     for (i, choice) in req.laws.iter().enumerate() {
-        let params: Vec<(String, String)> = choice.params.iter().map(|(k, v)| (k.clone(), v.text())).collect();
-        let spec = LawSpec::parse(&choice.name, &params).map_err(|e| ApiError::invalid(format!("laws[{i}]"), e))?;
+        let spec = choice.spec().map_err(|e| ApiError::invalid(format!("laws[{i}]"), e))?;
         let law = spec.build().map_err(|e| ApiError::invalid(format!("laws[{i}]"), e))?;
         laws.push(ComparedLaw {
             name: spec.name(),

@@ -34,6 +34,7 @@
 
 mod assets;
 mod catalogue;
+mod dobby_api;
 mod error;
 mod json;
 mod limits;
@@ -49,6 +50,7 @@ pub use catalogue::{
     CatalogueItem, CatalogueResponse, CompareRequest, CompareResponse, ComparedLaw, LawChoice, ParamValue, catalogue,
     compare,
 };
+pub use dobby_api::{DobbyCurves, DobbyLaw, DobbyRequest, DobbyResponse, dobby_synthesize};
 pub use error::{ApiError, check_count, check_range};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
@@ -71,4 +73,4 @@ pub use shed_api::{
 };
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby"];

@@ -24,6 +24,7 @@ pub fn router() -> Router {
         .merge(crate::servo_api::routes())
         .merge(crate::picking_api::routes())
         .merge(crate::shed_api::routes())
+        .merge(crate::dobby_api::routes())
         .fallback(api_not_found);
     Router::new()
         .route("/", get(assets::index))

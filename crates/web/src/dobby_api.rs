@@ -1,0 +1,192 @@
+//! The dobby view: conjugate cams of a rotary-dobby modulator synthesised for an output law, and
+//! the mechanism's joints at every input angle (the page draws it at the angle of a slider).
+
+use crate::catalogue::LawChoice;
+use crate::error::check_range;
+use crate::series::finite;
+use crate::{ApiError, ApiJson};
+use axum::Router;
+use axum::routing::{get, post};
+use loomkin_mech::{
+    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, SynthesisOptions, SynthesisSummary,
+    Warning, synthesize,
+};
+use serde::{Deserialize, Serialize};
+
+pub(crate) fn routes() -> Router {
+    Router::new()
+        .route("/dobby/default", get(|| async { ApiJson(DobbyRequest::default()) }))
+        .route("/dobby/synthesize", post(post_synthesize))
+}
+
+/// The output law of the modulator.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DobbyLaw {
+    /// Cycles per input revolution, 1 … 6.
+    pub cycles: u32,
+    /// Output dwell per cycle (deg of input).
+    pub dwell_deg: f64,
+    /// Input angle at the centre of the first dwell (deg).
+    pub dwell_centre_deg: f64,
+    /// Shape of each rise: a law of the catalogue.
+    pub rise: LawChoice,
+}
+
+/// `POST /api/dobby/synthesize` request (and `GET /api/dobby/default` answer: the paper's case).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DobbyRequest {
+    /// The output law.
+    pub law: DobbyLaw,
+    /// The modulator's links (m) and angles (deg).
+    pub geometry: ModulatorGeometry,
+    /// Roller radius (m), 0 … 0.2.
+    pub roller_m: f64,
+    /// Step of the input angle (deg), 0.25 … 10.
+    pub step_deg: f64,
+}
+
+impl Default for DobbyRequest {
+    /// The paper's geometry and its task 2: two dwells of 40° centred at 90° and 270°, cycloidal rises.
+    fn default() -> Self {
+        let spec = OutputLawSpec::default();
+        Self {
+            law: DobbyLaw {
+                cycles: spec.cycles,
+                dwell_deg: spec.dwell_deg,
+                dwell_centre_deg: spec.dwell_centre_deg,
+                rise: LawChoice { name: spec.rise.name().into(), params: Default::default() },
+            },
+            geometry: ModulatorGeometry::default(),
+            roller_m: SynthesisOptions::default().roller_m,
+            step_deg: 1.0,
+        }
+    }
+}
+
+/// Per input angle, in columns.
+#[derive(Debug, Clone, Serialize, PartialEq, Default)]
+pub struct DobbyCurves {
+    /// Input angle φ2 (deg).
+    pub phi2_deg: Vec<f64>,
+    /// Output angle φ6 (deg).
+    pub phi6_deg: Vec<f64>,
+    /// Output speed ω6 at ω2 = 1 rad/s (rad/s).
+    pub omega6_rad_s: Vec<f64>,
+    /// Output acceleration ε6 at ω2 = 1 rad/s (rad/s²).
+    pub eps6_rad_s2: Vec<f64>,
+    /// Pressure angle at the cam roller B (deg).
+    pub mu_b_deg: Vec<f64>,
+    /// Pressure angle at the counter-cam roller C (deg).
+    pub mu_c_deg: Vec<f64>,
+    /// Output pressure angle (deg).
+    pub mu_out_deg: Vec<f64>,
+}
+
+/// `POST /api/dobby/synthesize` answer.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct DobbyResponse {
+    /// Summary and checks.
+    pub summary: SynthesisSummary,
+    /// Warnings (pressure angles, undercut, crossing walls).
+    pub warnings: Vec<Warning>,
+    /// The cam Γ (roller B): roller-centre curve and groove walls (m).
+    pub cam: CamProfile,
+    /// The counter-cam Γ′ (roller C).
+    pub counter_cam: CamProfile,
+    /// The curves.
+    pub curves: DobbyCurves,
+    /// Joint positions at every input angle of `curves` (m).
+    pub poses: Vec<MechanismPose>,
+}
+
+fn mech_error(e: MechError) -> ApiError {
+    let field = match &e {
+        MechError::OutOfRange { field, .. } | MechError::NotFinite { field } | MechError::Invalid { field, .. } => {
+            field.clone()
+        }
+        _ => "law".into(),
+    };
+    ApiError::invalid(field, e)
+}
+
+/// Synthesises the cams and samples the mechanism.
+pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
+    let step = check_range("step_deg", req.step_deg, 0.25, 10.0, "deg")?;
+    let roller = check_range("roller_m", req.roller_m, 0.0, 0.2, "m")?;
+    check_range("law.cycles", f64::from(req.law.cycles), 1.0, 6.0, "")?;
+    let rise = req.law.rise.spec().map_err(|e| ApiError::invalid("law.rise", e))?;
+    let spec = OutputLawSpec {
+        cycles: req.law.cycles,
+        dwell_deg: req.law.dwell_deg,
+        dwell_centre_deg: req.law.dwell_centre_deg,
+        rise,
+    };
+    let opts = SynthesisOptions { step_deg: step, roller_m: roller, ..SynthesisOptions::default() };
+    let s = synthesize(&req.geometry, &spec, &opts).map_err(mech_error)?;
+    let col = |f: &dyn Fn(&loomkin_mech::SynthesisRow) -> f64| s.rows.iter().map(|r| finite(f(r))).collect::<Vec<_>>();
+    let curves = DobbyCurves {
+        phi2_deg: col(&|r| r.phi2_deg),
+        phi6_deg: col(&|r| r.phi6_deg),
+        omega6_rad_s: col(&|r| r.omega6_rad_s),
+        eps6_rad_s2: col(&|r| r.eps6_rad_s2),
+        mu_b_deg: col(&|r| r.mu_b_deg),
+        mu_c_deg: col(&|r| r.mu_c_deg),
+        mu_out_deg: col(&|r| r.mu_out_deg),
+    };
+    let poses = s.states.iter().map(|st| st.pose(&req.geometry)).collect();
+    Ok(DobbyResponse {
+        summary: s.summary,
+        warnings: s.warnings,
+        cam: s.cam,
+        counter_cam: s.counter_cam,
+        curves,
+        poses,
+    })
+}
+
+async fn post_synthesize(ApiJson(req): ApiJson<DobbyRequest>) -> Result<ApiJson<DobbyResponse>, ApiError> {
+    crate::server::blocking(move || dobby_synthesize(&req)).await.map(ApiJson)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+        (a[0] - b[0]).hypot(a[1] - b[1])
+    }
+
+    #[test]
+    fn poses_keep_the_link_lengths_and_rollers_ride_the_cams() {
+        let req = DobbyRequest { step_deg: 2.0, ..DobbyRequest::default() };
+        let r = dobby_synthesize(&req).unwrap();
+        let g = &req.geometry;
+        assert_eq!(r.poses.len(), r.curves.phi2_deg.len());
+        for (k, p) in r.poses.iter().enumerate() {
+            assert!((dist(p.o, p.a) - g.l2_m).abs() < 1e-9);
+            assert!((dist(p.a, p.b) - g.l3_m).abs() < 1e-9);
+            assert!((dist(p.a, p.c) - g.l3p_m).abs() < 1e-9);
+            assert!((dist(p.o, p.d) - g.l6_m).abs() < 1e-9);
+            // Roller B's centre is on the cam's roller-centre curve.
+            assert!(r.cam.centre.iter().any(|q| dist(*q, p.b) < 1e-9), "pose {k}");
+        }
+        // Dwell: φ6 is held at the dwell centre (90°) around φ2 = 90°.
+        let i = r.curves.phi2_deg.iter().position(|&x| (x - 90.0).abs() < 1e-9).unwrap();
+        assert!((r.curves.phi6_deg[i] - 90.0).abs() < 1e-9 && r.curves.omega6_rad_s[i].abs() < 1e-9);
+    }
+
+    #[test]
+    fn bad_requests_name_the_field() {
+        let mut req = DobbyRequest { step_deg: 0.001, ..DobbyRequest::default() };
+        assert_eq!(dobby_synthesize(&req).unwrap_err().field(), "step_deg");
+        req.step_deg = 2.0;
+        req.law.rise.name = "zigzag".into();
+        assert_eq!(dobby_synthesize(&req).unwrap_err().field(), "law.rise");
+        req.law.rise.name = "cycloidal".into();
+        req.law.dwell_deg = 170.0;
+        let e = dobby_synthesize(&req).unwrap_err();
+        assert!(e.status().is_client_error(), "{e}");
+    }
+}
