@@ -6,7 +6,9 @@ const { Chart, PALETTE, fmtValue } = window.LoomkinCharts;
 const $ = (sel) => document.querySelector(sel);
 
 // State visible to tests and to the console.
-const loomkin = (window.loomkin = { ready: false, evalCount: 0, busy: false, charts: {} });
+const loomkin = (window.loomkin = { ready: false, evalCount: 0, busy: false, charts: {}, errors: [] });
+window.addEventListener("error", (e) => loomkin.errors.push(String(e.message)));
+window.addEventListener("unhandledrejection", (e) => loomkin.errors.push(String(e.reason)));
 
 // ---------------------------------------------------------------- API and status
 

@@ -344,3 +344,87 @@ fn real_server_keeps_serving_after_bad_requests() {
     assert!(r.json()["speeds"][0]["peak_torque_nm"].as_f64().unwrap() > 0.0);
     assert!(addr.ip().is_loopback());
 }
+
+#[tokio::test]
+async fn picking_settings_and_simulation() {
+    let (s, info) = get("/api/picking/settings").await;
+    assert_eq!(s, StatusCode::OK);
+    let keys: Vec<&str> = info["settings"].as_array().unwrap().iter().filter_map(|s| s["key"].as_str()).collect();
+    assert_eq!(keys, ["speed_rpm", "play_mm", "shuttle_g", "checking_kgf", "strap_cm"]);
+    let (s, r) = post("/api/picking/simulate", json!({"samples": 30})).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    assert!((r["outcome"]["velocity_m_s"].as_f64().unwrap() - 17.0).abs() < 1e-9);
+    assert_eq!(r["curves"]["t_ms"].as_array().unwrap().len(), 30);
+    // A faster loom throws the shuttle faster; the numerical route agrees with the closed form.
+    let fast = json!({"settings": {"speed_rpm": 220.0}, "samples": 10});
+    let (_, closed) = post("/api/picking/simulate", fast.clone()).await;
+    let mut ode = fast;
+    ode["method"] = json!("ode");
+    let (_, ode) = post("/api/picking/simulate", ode).await;
+    let (vc, vo) =
+        (closed["outcome"]["velocity_m_s"].as_f64().unwrap(), ode["outcome"]["velocity_m_s"].as_f64().unwrap());
+    assert!(vc > 17.0 && (vc / vo - 1.0).abs() < 1e-6, "{vc} {vo}");
+    let bad = json!({"settings": {"shuttle_g": "heavy"}});
+    assert_refused(&post("/api/picking/simulate", bad).await, StatusCode::BAD_REQUEST, "settings.shuttle_g");
+    let bad = json!({"settings": {"speed_rpm": 1e7}});
+    assert_refused(&post("/api/picking/simulate", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "settings.speed_rpm");
+    let bad = json!({"settings": {"colour": 1}});
+    assert_refused(&post("/api/picking/simulate", bad).await, StatusCode::BAD_REQUEST, "settings.colour");
+    let bad = json!({"samples": 10_000_000});
+    assert_refused(&post("/api/picking/simulate", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "samples");
+}
+
+#[tokio::test]
+async fn shedding_pareto_and_law() {
+    let req = json!({"family": "trapezoid", "step": 0.05, "motions_deg": [240, 300],
+                     "conditions": {"threshold": 0.95, "stroke_m": 0.1, "speed_rpm": 300}});
+    let (s, r) = post("/api/shed/pareto", req).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    let front = r["front"].as_array().expect("front");
+    assert!(!front.is_empty());
+    // Sorted by window, largest first, with the acceleration falling along it.
+    let w: Vec<f64> = front.iter().map(|c| c["criteria"]["window_deg"].as_f64().unwrap()).collect();
+    let a: Vec<f64> = front.iter().map(|c| c["criteria"]["peak_accel_m_s2"].as_f64().unwrap()).collect();
+    assert!(w.windows(2).all(|p| p[0] >= p[1]) && a.windows(2).all(|p| p[0] >= p[1]), "{w:?} {a:?}");
+    let pick = &front[front.len() / 2];
+    let law = json!({"family": "trapezoid", "lengths": pick["lengths"], "motion_deg": pick["criteria"]["motion_deg"], "samples": 181});
+    let (s, l) = post("/api/shed/law", law).await;
+    assert_eq!(s, StatusCode::OK, "{l}");
+    assert_eq!(l["angle_deg"].as_array().unwrap().len(), 181);
+    assert!(
+        (l["criteria"]["window_deg"].as_f64().unwrap() - pick["criteria"]["window_deg"].as_f64().unwrap()).abs() < 1e-6
+    );
+    let fine = json!({"family": "lead-trapezoid", "step": 0.005, "motions_deg": [300]});
+    assert_refused(&post("/api/shed/pareto", fine).await, StatusCode::UNPROCESSABLE_ENTITY, "step");
+    let angles = json!({"family": "trapezoid", "step": 0.1, "motions_deg": vec![300; 13]});
+    assert_refused(&post("/api/shed/pareto", angles).await, StatusCode::UNPROCESSABLE_ENTITY, "motions_deg");
+    let t = json!({"family": "trapezoid", "step": 0.1, "motions_deg": [300], "conditions": {"threshold": 2}});
+    assert_refused(&post("/api/shed/pareto", t).await, StatusCode::UNPROCESSABLE_ENTITY, "conditions.threshold");
+    let wrong = json!({"family": "trapezoid", "lengths": [0.5, 0.5], "motion_deg": 300});
+    assert_refused(&post("/api/shed/law", wrong).await, StatusCode::UNPROCESSABLE_ENTITY, "lengths");
+}
+
+#[tokio::test]
+async fn dobby_default_and_synthesis() {
+    let (s, d) = get("/api/dobby/default").await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(d["law"]["rise"]["name"], "cycloidal");
+    let mut req = d.clone();
+    req["step_deg"] = json!(5.0);
+    let (s, r) = post("/api/dobby/synthesize", req.clone()).await;
+    assert_eq!(s, StatusCode::OK, "{r}");
+    assert_eq!(r["poses"].as_array().unwrap().len(), 73);
+    assert_eq!(r["curves"]["phi2_deg"].as_array().unwrap().len(), 73);
+    assert!(!r["cam"]["centre"].as_array().unwrap().is_empty());
+    let mut bad = req.clone();
+    bad["geometry"]["l6_m"] = json!(-1.0);
+    let res = post("/api/dobby/synthesize", bad).await;
+    assert_eq!(res.0, StatusCode::UNPROCESSABLE_ENTITY, "{}", res.1);
+    assert!(res.1["field"].as_str().unwrap().contains("l6"), "{}", res.1);
+    let mut bad = req.clone();
+    bad["law"]["cycles"] = json!(40);
+    assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "law.cycles");
+    let mut bad = req;
+    bad["roller_m"] = json!("big");
+    assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::BAD_REQUEST, "roller_m");
+}

@@ -17,7 +17,8 @@ use std::time::{Duration, Instant};
 
 fn find(env: &str, names: &[&str], extra: &[&str]) -> Option<PathBuf> {
     if let Some(p) = std::env::var_os(env) {
-        return Some(PathBuf::from(p));
+        let p = PathBuf::from(p);
+        return p.is_file().then_some(p);
     }
     let path = std::env::var_os("PATH").unwrap_or_default();
     for dir in std::env::split_paths(&path) {
@@ -232,4 +233,28 @@ fn drag_a_definition_point_and_the_torque_changes() {
     assert_eq!(rows, json!(3));
     let row = d.text("#catalogue-metrics tbody tr:first-child");
     assert!(row.starts_with("cycloidal") && row.contains("6.283"), "{row}");
+
+    // The study views render their first result.
+    for (view, ready) in
+        [("shed", "#shed-chosen tbody tr"), ("picking", "#pick-velocity"), ("dobby", "#dobby-summary tbody tr")]
+    {
+        d.click(&format!("#tabs button[data-view='{view}']"));
+        d.wait_for(view, &format!("return document.querySelector(\"{ready}\") !== null"));
+        let status = d.script("return document.querySelector('#status').className");
+        assert_ne!(status, json!("error"), "{view}: {}", d.text("#status"));
+    }
+    // A picking slider: more strap play throws the shuttle faster (the paper's Fig. 6).
+    let v0 = d.text("#pick-velocity");
+    d.script(
+        "const r = document.querySelector('#pick-play_mm'); r.value = 15.5; \
+         r.dispatchEvent(new Event('input')); return true",
+    );
+    let v1 = d.wait_for(
+        "the pick after moving the slider",
+        &format!("const t = document.querySelector('#pick-velocity').textContent; return t !== '{v0}' ? t : null"),
+    );
+    let v1: f64 = v1.as_str().and_then(|t| t.trim_end_matches(" m/s").parse().ok()).expect("velocity");
+    assert!((v1 - 20.88).abs() < 0.05, "{v1}");
+    let errors = d.script("return loomkin.errors");
+    assert_eq!(errors, json!([]), "script errors on the page");
 }
