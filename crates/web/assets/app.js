@@ -95,12 +95,12 @@ function initServo() {
     y: { label: "spline f", unit: "def. units", range: [-1.25, 1.25] },
   });
   const torque = new Chart($("#servo-torque-chart"), {
-    id: "torque", title: "Motor torque", height: 240,
-    x: { label: "main-shaft angle φ (rise from 0)", unit: "°", range: [0, 360], step: 30 }, y: { label: "torque M", unit: "N·m", includeZero: true },
+    id: "torque", title: "Motor torque over one turn (rise from 0°)", height: 240,
+    x: { label: "main-shaft angle φ", unit: "°", range: [0, 360], step: 30 }, y: { label: "torque M", unit: "N·m", includeZero: true },
   });
   const power = new Chart($("#servo-power-chart"), {
-    id: "power", title: "Motor power", height: 200,
-    x: { label: "main-shaft angle φ (rise from 0)", unit: "°", range: [0, 360], step: 30 }, y: { label: "power P", unit: "W", includeZero: true },
+    id: "power", title: "Motor power over one turn", height: 200,
+    x: { label: "main-shaft angle φ", unit: "°", range: [0, 360], step: 30 }, y: { label: "power P", unit: "W", includeZero: true },
   });
   const kin = {};
   for (const [k, label] of [["s", "displacement s"], ["v", "velocity v = ds/dx"], ["a", "acceleration a = d²s/dx²"], ["j", "jerk j = d³s/dx³"]]) {

@@ -130,11 +130,13 @@ class Chart {
     if (this.opts.x.range) [xlo, xhi] = this.opts.x.range;
     if (this.opts.y.range) [ylo, yhi] = this.opts.y.range;
     if (this.opts.y.includeZero) { ylo = Math.min(ylo, 0); yhi = Math.max(yhi, 0); }
-    const left = 64, right = 14, top = 30, bottom = 42;
+    const left = 64, right = 14, bottom = 42;
+    const legend = this.legendLayout(left, w - right);
+    const top = 30 + 17 * (legend.rows - 1);
     const pw = Math.max(w - left - right, 10), ph = Math.max(h - top - bottom, 10);
     const xt = this.opts.x.range ? { lo: xlo, hi: xhi, ...niceTicksIn(xlo, xhi, pw / 80, this.opts.x.step) } : niceTicks(xlo, xhi, pw / 80);
     const yt = this.opts.y.range ? { lo: ylo, hi: yhi, ...niceTicksIn(ylo, yhi, ph / 40) } : niceTicks(ylo, yhi, ph / 40);
-    return { dpr, w, h, left, top, pw, ph, xt, yt };
+    return { dpr, w, h, left, top, pw, ph, xt, yt, legend };
   }
 
   toPx(L, x, y) {
@@ -231,25 +233,46 @@ class Chart {
     if (this.hoverX !== null) this.drawHover(L);
   }
 
-  drawLegend(L) {
+  // Positions of the title and legend entries, wrapped onto as many rows as needed.
+  legendLayout(x0, x1) {
     const c = this.ctx;
-    c.textAlign = "left"; c.textBaseline = "middle"; c.font = "12px system-ui, sans-serif";
-    let x = L.left;
+    const items = [];
+    let x = x0, row = 0;
     if (this.opts.title) {
-      c.fillStyle = "#111827"; c.font = "600 13px system-ui, sans-serif";
-      c.fillText(this.opts.title, x, 13); x += c.measureText(this.opts.title).width + 18;
-      c.font = "12px system-ui, sans-serif";
+      c.font = "600 13px system-ui, sans-serif";
+      items.push({ title: this.opts.title, x, row });
+      x += c.measureText(this.opts.title).width + 18;
     }
+    c.font = "12px system-ui, sans-serif";
     for (const s of this.series) {
       if (!s.label) continue;
+      const wdt = 22 + c.measureText(s.label).width + 14;
+      if (x + wdt > x1 && x > x0) { row++; x = x0; }
+      items.push({ s, x, row });
+      x += wdt;
+    }
+    return { items, rows: row + 1 };
+  }
+
+  drawLegend(L) {
+    const c = this.ctx;
+    c.textAlign = "left"; c.textBaseline = "middle";
+    for (const it of L.legend.items) {
+      const y = 13 + 17 * it.row;
+      if (it.title) {
+        c.fillStyle = "#111827"; c.font = "600 13px system-ui, sans-serif";
+        c.fillText(it.title, it.x, y);
+        continue;
+      }
+      const s = it.s;
+      c.font = "12px system-ui, sans-serif";
       if (s.mode === "points" || s.mode === "markers") {
-        c.fillStyle = s.color; c.beginPath(); c.arc(x + 9, 13, 4, 0, 2 * Math.PI); c.fill();
+        c.fillStyle = s.color; c.beginPath(); c.arc(it.x + 9, y, 4, 0, 2 * Math.PI); c.fill();
       } else {
         c.strokeStyle = s.color; c.lineWidth = 2.5; c.setLineDash(s.dash || []);
-        c.beginPath(); c.moveTo(x, 13); c.lineTo(x + 18, 13); c.stroke(); c.setLineDash([]);
+        c.beginPath(); c.moveTo(it.x, y); c.lineTo(it.x + 18, y); c.stroke(); c.setLineDash([]);
       }
-      c.fillStyle = "#1f2937"; c.fillText(s.label, x + 22, 13);
-      x += 22 + c.measureText(s.label).width + 14;
+      c.fillStyle = "#1f2937"; c.fillText(s.label, it.x + 22, y);
     }
   }
 

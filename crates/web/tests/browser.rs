@@ -220,6 +220,16 @@ fn drag_a_definition_point_and_the_torque_changes() {
     let api = common::request(server, "POST", "/api/servo/evaluate", Some(body.as_bytes())).expect("evaluate");
     let api_nm = api.json()["speeds"][0]["peak_torque_nm"].as_f64().expect("peak torque");
     assert!((api_nm - after_nm).abs() < 1e-3 + 1e-6 * api_nm, "page {after_nm} vs API {api_nm}");
+    // Hover over the torque chart: the read-out shows the torque at both speeds.
+    let r = d.script("const r = loomkin.charts.torque.canvas.getBoundingClientRect(); return [r.left + r.width * 0.3, r.top + r.height / 2]");
+    let (hx, hy) = (r[0].as_f64().expect("x").round() as i64, r[1].as_f64().expect("y").round() as i64);
+    d.cmd(
+        "POST",
+        "/actions",
+        Some(json!({"actions": [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+                                 "actions": [{"type": "pointerMove", "duration": 0, "origin": "viewport", "x": hx, "y": hy}]}]})),
+    );
+    assert!(d.script("return loomkin.charts.torque.hoverX").as_f64().is_some_and(|x| x > 0.0 && x < 360.0));
     let shot = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-drag.png");
     d.screenshot(&shot);
     eprintln!("peak torque at the first speed: {before_nm} N·m → {after_nm} N·m; screenshot {}", shot.display());
