@@ -132,3 +132,18 @@ fn motion_angle_lists() {
     assert!(parse_motion_angles("a").is_err());
     assert!(parse_motion_angles("1:2").is_err());
 }
+
+#[test]
+fn a_lead_is_a_shorter_motion() {
+    // Fig. 1's lead k1 of zero acceleration at motion Φ is the three-part law (k2, k3, k4)/(1 − k1)
+    // at motion Φ(1 − k1): same window, same physical peaks.
+    let cond = Conditions::default();
+    let k = [0.2, 0.2, 0.4, 0.2];
+    let a = loomkin_shed::evaluate(&Template::lead_trapezoid().law(300.0, &k).unwrap(), &cond).unwrap();
+    let rest: Vec<f64> = k[1..].iter().map(|x| x / 0.8).collect();
+    let b = loomkin_shed::evaluate(&Template::trapezoid().law(240.0, &rest).unwrap(), &cond).unwrap();
+    assert!((a.window_deg - b.window_deg).abs() < 1e-9);
+    assert!((a.dwell_deg - b.dwell_deg).abs() < 1e-9);
+    assert!((a.peak_accel_m_s2 - b.peak_accel_m_s2).abs() < 1e-9 * b.peak_accel_m_s2);
+    assert!((a.peak_jerk_m_s3 - b.peak_jerk_m_s3).abs() < 1e-7 * b.peak_jerk_m_s3);
+}
