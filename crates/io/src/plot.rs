@@ -19,17 +19,33 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Draw markers at the points instead of a line.
     pub markers: bool,
+    /// Colour as RGB; `None` takes the next colour of the palette.
+    pub color: Option<[u8; 3]>,
+    /// Draw the line dashed.
+    pub dashed: bool,
 }
 
 impl Series {
     /// A line through the points.
     pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, markers: false }
+        Self { label: label.into(), points, ..Self::default() }
     }
 
     /// Markers at the points.
     pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, markers: true }
+        Self { label: label.into(), points, markers: true, ..Self::default() }
+    }
+
+    /// The same series in a given colour.
+    pub fn with_color(mut self, rgb: [u8; 3]) -> Self {
+        self.color = Some(rgb);
+        self
+    }
+
+    /// The same series drawn dashed.
+    pub fn with_dashes(mut self) -> Self {
+        self.dashed = true;
+        self
     }
 }
 
@@ -205,10 +221,12 @@ fn draw_panel<DB: DrawingBackend>(
         .bold_line_style(RGBColor(215, 215, 215))
         .draw()?;
     for (i, s) in panel.series.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+        let color = s.color.map_or(PALETTE[i % PALETTE.len()], |[r, g, b]| RGBColor(r, g, b));
         let finite: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
         let drawn = if s.markers {
             chart.draw_series(finite.iter().map(|&p| Circle::new(p, 5, color.filled())))?
+        } else if s.dashed {
+            chart.draw_series(DashedLineSeries::new(finite, 8, 5, color.stroke_width(2)))?
         } else {
             chart.draw_series(LineSeries::new(finite, color.stroke_width(2)))?
         };
@@ -255,6 +273,7 @@ mod tests {
             )],
         );
         let svg = fig.to_svg().unwrap();
+        assert!(svg.contains("#010203"), "the chosen colour is used");
         for text in ["x [-]", "s [-]", "one", "two", "test"] {
             assert!(svg.contains(text), "{text} missing");
         }
