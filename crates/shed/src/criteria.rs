@@ -63,10 +63,12 @@ impl Dimensionless {
             ca_rms: m.ca_rms,
             a_jump: {
                 let c = law.continuity();
-                std::iter::once(&c.start)
+                let jump = std::iter::once(&c.start)
                     .chain(&c.joints)
                     .chain(std::iter::once(&c.end))
-                    .fold(0.0, |m, j| m.max(j.da.abs()))
+                    .fold(0.0, |m: f64, j| m.max(j.da.abs()));
+                // Rounding at a continuous joint is not a jump.
+                if jump <= 1e-12 * (1.0 + m.ca) { 0.0 } else { jump }
             },
             lead: lead(law),
             tail: tail(law),

@@ -90,7 +90,25 @@ pub fn check_motion_deg(motion_deg: f64) -> Result<f64> {
 /// The mirror image of positive-phase segments: reversed order, each shape reversed in time and
 /// negated, so that `a(1 − x) = −a(x)`.
 pub fn mirror(positive: &[ShapeSegment]) -> Vec<ShapeSegment> {
-    positive.iter().rev().map(|s| ShapeSegment { length: s.length, shape: s.shape.reversed().scaled(-1.0) }).collect()
+    positive
+        .iter()
+        .rev()
+        .map(|s| ShapeSegment { length: s.length, shape: positive_zero(s.shape.reversed().scaled(-1.0)) })
+        .collect()
+}
+
+/// The same shape with every `-0` level written as `0` (so that texts read `0`, not `-0`).
+fn positive_zero(shape: Shape) -> Shape {
+    let z = |v: f64| v + 0.0;
+    match shape {
+        Shape::Zero => Shape::Zero,
+        Shape::Constant { level } => Shape::Constant { level: z(level) },
+        Shape::Linear { from, to } => Shape::Linear { from: z(from), to: z(to) },
+        Shape::SineRamp { from, to } => Shape::SineRamp { from: z(from), to: z(to) },
+        Shape::CosineRamp { from, to } => Shape::CosineRamp { from: z(from), to: z(to) },
+        Shape::HalfCosine { from, to } => Shape::HalfCosine { from: z(from), to: z(to) },
+        Shape::SineArc { peak } => Shape::SineArc { peak: z(peak) },
+    }
 }
 
 /// Net area `∫ a du` of a shape over a segment of the given width.

@@ -164,7 +164,9 @@ fn fill(axis: &[f64], row: &mut [f64], i: usize, sum: f64, min: f64, max: f64, o
     if i + 1 == n {
         let last = 1.0 - sum;
         if last >= min - TOL && last <= max + TOL {
-            row[i] = last.clamp(min, max).max(0.0);
+            // Rounded to 12 decimals so that 1 − Σ prints as the lattice value it is meant to be
+            // (the sum stays within 1e-12 of one).
+            row[i] = ((last * 1e12).round() / 1e12).clamp(min, max).max(0.0);
             out.extend_from_slice(row);
         }
         return;
