@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 /// Most laws (grid rows) one Pareto request may evaluate.
 pub const MAX_SHED_ROWS: usize = 20_000;
 /// Most (law, motion angle) points one Pareto answer may carry.
-pub const MAX_SHED_POINTS: usize = 60_000;
+pub const MAX_SHED_POINTS: usize = 120_000;
 /// Most motion angles per request.
 pub const MAX_MOTIONS: usize = 12;
 
@@ -97,15 +97,16 @@ fn default_min() -> f64 {
     0.005
 }
 
-/// All evaluated (law, motion angle) points, in columns.
+/// All evaluated (law, motion angle) points, in columns, in single precision (for drawing; the
+/// front carries the exact values).
 #[derive(Debug, Clone, Serialize, PartialEq, Default)]
 pub struct ShedCloud {
     /// Weft-crossing window φ* (deg).
-    pub window_deg: Vec<f64>,
+    pub window_deg: Vec<f32>,
     /// Peak frame acceleration (m/s²).
-    pub peak_accel_m_s2: Vec<f64>,
+    pub peak_accel_m_s2: Vec<f32>,
     /// Motion angle (deg).
-    pub motion_deg: Vec<f64>,
+    pub motion_deg: Vec<f32>,
 }
 
 /// `POST /api/shed/pareto` answer.
@@ -169,9 +170,9 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
     let all = table(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
     let front = pareto(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
     let cloud = ShedCloud {
-        window_deg: all.iter().map(|c| finite(c.criteria.window_deg)).collect(),
-        peak_accel_m_s2: all.iter().map(|c| finite(c.criteria.peak_accel_m_s2)).collect(),
-        motion_deg: all.iter().map(|c| c.criteria.motion_deg).collect(),
+        window_deg: all.iter().map(|c| finite(c.criteria.window_deg) as f32).collect(),
+        peak_accel_m_s2: all.iter().map(|c| finite(c.criteria.peak_accel_m_s2) as f32).collect(),
+        motion_deg: all.iter().map(|c| c.criteria.motion_deg as f32).collect(),
     };
     Ok(ParetoResponse { laws, cloud, front })
 }
@@ -270,7 +271,9 @@ mod tests {
                 .window_deg
                 .iter()
                 .zip(&r.cloud.peak_accel_m_s2)
-                .any(|(&cw, &ca)| cw >= w && ca <= a && (cw > w + 1e-9 || ca < a - 1e-9));
+                // The cloud is single precision: a point beats the front only by more than 1e-6.
+                .map(|(&cw, &ca)| (f64::from(cw), f64::from(ca)))
+                .any(|(cw, ca)| cw >= w && ca <= a && (cw > w * (1.0 + 1e-6) || ca < a * (1.0 - 1e-6)));
             assert!(!beaten, "front point ({w}, {a}) is dominated");
         }
         // The law endpoint, through the generic path, gives the front's numbers (fast path).
