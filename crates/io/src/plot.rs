@@ -268,7 +268,7 @@ mod tests {
                 "s [-]",
                 vec![
                     Series::line("one", vec![(0.0, 0.0), (1.0, 1.0)]),
-                    Series::line("two", vec![(0.0, 1.0), (1.0, 0.0)]),
+                    Series::line("two", vec![(0.0, 1.0), (1.0, 0.0)]).with_dashes().with_color([1, 2, 3]),
                 ],
             )],
         );
