@@ -83,6 +83,8 @@ const DRIVE_FIELDS = [
   ["damping_n_s_m", "damping c", "N·s/m"],
   ["constant_force_n", "constant force Fc", "N"],
   ["efficiency", "efficiency η", "–"],
+  ["return_angle_deg", "return angle", "°", "= motion angle"],
+  ["dwell_after_rise_deg", "dwell after rise", "°", "half the rest"],
 ];
 const MIN_GAP = 0.002;
 const servo = { design: null, result: null, inflight: false, queued: false };
@@ -102,19 +104,23 @@ function initServo() {
     id: "power", title: "Motor power over one turn", height: 200,
     x: { label: "main-shaft angle φ", unit: "°", range: [0, 360], step: 30 }, y: { label: "power P", unit: "W", includeZero: true },
   });
+  const rack = new Chart($("#servo-rack-chart"), {
+    id: "rack", title: "Rack position over one turn", height: 180,
+    x: { label: "main-shaft angle φ", unit: "°", range: [0, 360], step: 30 }, y: { label: "position u", unit: "mm", includeZero: true },
+  });
   const kin = {};
   for (const [k, label] of [["s", "displacement s"], ["v", "velocity v = ds/dx"], ["a", "acceleration a = d²s/dx²"], ["j", "jerk j = d³s/dx³"]]) {
     kin[k] = new Chart($("#servo-kin-charts"), {
       id: "kin-" + k, title: label, height: 190, x: { label: "x", unit: "–", range: [0, 1] }, y: { label: k, unit: "–" },
     });
   }
-  Object.assign(loomkin.charts, { editor, torque, power, ...Object.fromEntries(Object.entries(kin).map(([k, c]) => ["kin_" + k, c])) });
-  servo.charts = { editor, torque, power, kin };
+  Object.assign(loomkin.charts, { editor, torque, power, rack, ...Object.fromEntries(Object.entries(kin).map(([k, c]) => ["kin_" + k, c])) });
+  servo.charts = { editor, torque, power, rack, kin };
   editor.setPoints([], { onDrag: dragPoint, onDragEnd: () => evaluate() });
 
   const form = $("#drive-form");
-  for (const [key, label, unit] of DRIVE_FIELDS) {
-    const input = el("input", { type: "number", step: "any", name: key, id: "drive-" + key });
+  for (const [key, label, unit, optional] of DRIVE_FIELDS) {
+    const input = el("input", { type: "number", step: "any", name: key, id: "drive-" + key, placeholder: optional || "" }); // optional: blank = default
     input.addEventListener("input", () => { readDrive(); evaluate(); });
     form.append(el("label", {}, `${label} (${unit})`, input));
   }
@@ -126,6 +132,7 @@ function initServo() {
   $("#export-coeffs-json").addEventListener("click", () => exportDesign("json"));
   $("#export-cam").addEventListener("click", () => exportDesign("csv"));
   $("#export-xyva").addEventListener("click", () => exportDesign("xyva"));
+  $("#export-poly5").addEventListener("click", () => exportDesign("poly5"));
   $("#save-json").addEventListener("click", () => saveDesign("json"));
   $("#save-toml").addEventListener("click", () => saveDesign("toml"));
   $("#load-file").addEventListener("change", loadDesign);
@@ -142,7 +149,7 @@ async function loadDefault() {
 
 function setDesign(design) {
   servo.design = design;
-  for (const [key] of DRIVE_FIELDS) $("#drive-" + key).value = design.drive[key];
+  for (const [key] of DRIVE_FIELDS) $("#drive-" + key).value = design.drive[key] ?? "";
   $("#speeds").value = design.speeds_rpm.join(", ");
   $("#spline-end").value = design.end;
   renderPointsTable();
@@ -150,8 +157,9 @@ function setDesign(design) {
 }
 
 function readDrive() {
-  for (const [key] of DRIVE_FIELDS) {
+  for (const [key, , , optional] of DRIVE_FIELDS) {
     const input = $("#drive-" + key);
+    if (optional && input.value.trim() === "") { delete servo.design.drive[key]; input.classList.remove("bad"); continue; }
     const v = parseFloat(input.value);
     input.classList.toggle("bad", !isFinite(v));
     if (isFinite(v)) servo.design.drive[key] = v;
@@ -252,6 +260,7 @@ function renderServo(r) {
   ]);
   ch.torque.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.torque_nm, color: PALETTE[k + 1] })));
   ch.power.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.power_w, color: PALETTE[k + 1] })));
+  if (r.speeds.length) ch.rack.setSeries([{ label: "", x: r.speeds[0].angle_deg, y: r.speeds[0].u_m.map((u) => u * 1000) }]);
   const L = r.law.samples;
   for (const k of ["s", "v", "a", "j"]) ch.kin[k].setSeries([{ label: "", x: L.x, y: L[k], color: PALETTE[0] }]);
 
