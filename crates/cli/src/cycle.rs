@@ -41,7 +41,14 @@ pub fn run(a: CycleArgs) -> Result<()> {
     let [pu, vu, au, ju] = cycle.unit.key_units();
     let samples = cycle.sample(a.points, rpm);
     if a.format.csv {
-        let mut t = Table::new(["angle_deg".to_string(), "time_s".into(), format!("s_{pu}"), format!("v_{vu}"), format!("a_{au}"), format!("j_{ju}")]);
+        let mut t = Table::new([
+            "angle_deg".to_string(),
+            "time_s".into(),
+            format!("s_{pu}"),
+            format!("v_{vu}"),
+            format!("a_{au}"),
+            format!("j_{ju}"),
+        ]);
         for p in &samples {
             t.push(vec![p.angle_deg, p.time_s, p.kin.s, p.kin.v, p.kin.a, p.kin.j])?;
         }
@@ -67,7 +74,9 @@ pub fn run(a: CycleArgs) -> Result<()> {
     }
     if let Some(out) = a.output {
         let [su, vs, as_, js] = cycle.unit.si_units();
-        let col = |f: fn(&loomkin_laws::Kinematics) -> f64| samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect::<Vec<_>>();
+        let col = |f: fn(&loomkin_laws::Kinematics) -> f64| {
+            samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect::<Vec<_>>()
+        };
         let panels = vec![
             Panel::new(format!("position [{su}]"), vec![Series::line("", col(|k| k.s))]),
             Panel::new(format!("velocity [{vs}]"), vec![Series::line("", col(|k| k.v))]),
@@ -78,8 +87,22 @@ pub fn run(a: CycleArgs) -> Result<()> {
         return util::save_figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out);
     }
     let [su, vs, as_, _] = cycle.unit.si_units();
-    println!("cycle {} at {rpm} rpm (one cycle {:.6} s)", a.file.display(), cycle.period_rad / (rpm * std::f64::consts::TAU / 60.0));
-    println!("{:>3} {:<7} {:>9} {:>9} {:<36} {:>12} {:>14} {:>14}", "#", "kind", "from[deg]", "to[deg]", "law", format!("stroke[{su}]"), format!("max|v|[{vs}]"), format!("max|a|[{as_}]"));
+    println!(
+        "cycle {} at {rpm} rpm (one cycle {:.6} s)",
+        a.file.display(),
+        cycle.period_rad / (rpm * std::f64::consts::TAU / 60.0)
+    );
+    println!(
+        "{:>3} {:<7} {:>9} {:>9} {:<36} {:>12} {:>14} {:>14}",
+        "#",
+        "kind",
+        "from[deg]",
+        "to[deg]",
+        "law",
+        format!("stroke[{su}]"),
+        format!("max|v|[{vs}]"),
+        format!("max|a|[{as_}]")
+    );
     let [pk, vk, ak, _] = cycle.unit.key_units();
     for (i, s) in summary.iter().enumerate() {
         println!(

@@ -124,10 +124,21 @@ fn list(a: ListArgs) -> Result<()> {
         let params = if e.params.is_empty() { String::new() } else { format!(" [{}]", e.params) };
         println!(
             "{:<22} {:>8.4} {:>8.4} {:>9.3} {:>8.4} {:>8.4} {:>5}  {}{}",
-            e.name, m.cv, m.ca, m.cj, m.cm, m.ca_rms, class_text(*c), e.description, params
+            e.name,
+            m.cv,
+            m.ca,
+            m.cj,
+            m.cm,
+            m.ca_rms,
+            class_text(*c),
+            e.description,
+            params
         );
     }
-    println!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  general piecewise acceleration [segments=LEN:SHAPE[:LEVEL…],…]", "piecewise", "-", "-", "-", "-", "-", "-");
+    println!(
+        "{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  general piecewise acceleration [segments=LEN:SHAPE[:LEVEL…],…]",
+        "piecewise", "-", "-", "-", "-", "-", "-"
+    );
     println!("C^k: continuity in a dwell-rise-dwell cycle (C1: s, v continuous; C2: also a; C3: also j).");
     Ok(())
 }
@@ -184,12 +195,23 @@ fn info(a: InfoArgs) -> Result<()> {
     println!("  Cj   = max |j|     = {:.10}   at x = {:.6}  (inside segments)", m.cj, m.x_cj);
     println!("  Cm   = max v·a     = {:.10}   at x = {:.6}", m.cm, m.x_cm);
     println!("  Ca_rms = √∫a²dx    = {:.10}", m.ca_rms);
-    println!("continuity ({} segments; jumps right − left; dwells at s = 0 before and s = 1 after):", law.segments().len());
+    println!(
+        "continuity ({} segments; jumps right − left; dwells at s = 0 before and s = 1 after):",
+        law.segments().len()
+    );
     println!("  {:>10} {:>12} {:>12} {:>12} {:>12}  continuous", "x", "Δs", "Δv", "Δa", "Δj");
     for j in std::iter::once(&c.start).chain(&c.joints).chain(std::iter::once(&c.end)) {
         let f = j.flags();
         let names: Vec<&str> = ["s", "v", "a", "j"].iter().zip(f).filter(|(_, ok)| *ok).map(|(n, _)| *n).collect();
-        println!("  {:>10.6} {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e}  {}", j.x, j.ds, j.dv, j.da, j.dj, if names.is_empty() { "none".into() } else { names.join(", ") });
+        println!(
+            "  {:>10.6} {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e}  {}",
+            j.x,
+            j.ds,
+            j.dv,
+            j.da,
+            j.dj,
+            if names.is_empty() { "none".into() } else { names.join(", ") }
+        );
     }
     println!("  class in a dwell-rise-dwell cycle: {}", class_text(c.class));
     Ok(())
@@ -205,8 +227,11 @@ fn sample(a: SampleArgs) -> Result<()> {
     let (spec, law) = build(&a.law, &a.params.params)?;
     let samples = law.sample(a.points);
     if a.format.json {
-        let pts: Vec<Value> = samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
-        return util::print_json(&json!({ "law": spec.name(), "units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts }));
+        let pts: Vec<Value> =
+            samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
+        return util::print_json(
+            &json!({ "law": spec.name(), "units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts }),
+        );
     }
     let mut t = Table::new(["x", "s", "v", "a", "j"]);
     for (x, k) in samples {
@@ -225,10 +250,11 @@ fn plot(a: PlotArgs) -> Result<()> {
             bail!("--param {k}: none of the laws {} has this parameter", a.laws.join(", "));
         }
     }
-    let mut panels: Vec<Panel> = ["displacement s [-]", "velocity v = ds/dx [-]", "acceleration a = d²s/dx² [-]", "jerk j = d³s/dx³ [-]"]
-        .iter()
-        .map(|l| Panel::new(*l, Vec::new()))
-        .collect();
+    let mut panels: Vec<Panel> =
+        ["displacement s [-]", "velocity v = ds/dx [-]", "acceleration a = d²s/dx² [-]", "jerk j = d³s/dx³ [-]"]
+            .iter()
+            .map(|l| Panel::new(*l, Vec::new()))
+            .collect();
     for name in &a.laws {
         let applicable: Vec<(String, String)> = a
             .params

@@ -8,8 +8,8 @@ mod dobby;
 mod law;
 mod pick;
 mod serve;
-mod shed;
 mod servo;
+mod shed;
 mod util;
 
 use clap::{Parser, Subcommand};

@@ -51,7 +51,9 @@ pub fn print_json(value: &serde_json::Value) -> anyhow::Result<()> {
 fn check_finite(v: &serde_json::Value, path: &str) -> anyhow::Result<()> {
     match v {
         serde_json::Value::Null => Err(anyhow!("internal: '{path}' is not a finite number")).map_err(failure),
-        serde_json::Value::Array(a) => a.iter().enumerate().try_for_each(|(i, x)| check_finite(x, &format!("{path}[{i}]"))),
+        serde_json::Value::Array(a) => {
+            a.iter().enumerate().try_for_each(|(i, x)| check_finite(x, &format!("{path}[{i}]")))
+        }
         serde_json::Value::Object(o) => o.iter().try_for_each(|(k, x)| check_finite(x, &format!("{path}.{k}"))),
         _ => Ok(()),
     }

@@ -55,7 +55,9 @@ fn sample_csv_has_n_rows_and_both_ends() {
 fn list_covers_the_catalogue() {
     let v = stdout_json(&["law", "list", "--json"]);
     let names: Vec<&str> = v["laws"].as_array().unwrap().iter().map(|l| l["name"].as_str().unwrap()).collect();
-    for n in ["constant-acceleration", "harmonic", "cycloidal", "poly345", "poly4567", "modified-trapezoid", "modified-sine"] {
+    for n in
+        ["constant-acceleration", "harmonic", "cycloidal", "poly345", "poly4567", "modified-trapezoid", "modified-sine"]
+    {
         assert!(names.contains(&n), "{n}");
     }
 }
@@ -98,14 +100,21 @@ fn bad_input_exits_2_with_a_clear_line() {
     usage_error(&["law", "info", "cycloidal", "--param", "ramp=0.1"], &["no parameter 'ramp'"]);
     usage_error(&["law", "sample", "cycloidal", "--points", "1"], &["--points", "2 ≤ N"]);
     usage_error(&["law", "info", "piecewise", "--param", "segments=0.5:constant:1,0.4:constant:-1"], &["sum to 0.9"]);
-    usage_error(&["law", "info", "piecewise", "--param", "segments=0.5:bogus:1,0.5:constant:-1"], &["segments[0]", "sine-ramp"]);
+    usage_error(
+        &["law", "info", "piecewise", "--param", "segments=0.5:bogus:1,0.5:constant:-1"],
+        &["segments[0]", "sine-ramp"],
+    );
     usage_error(&["law", "plot", "cycloidal", "-o", "x.pdf"], &[".svg or .png"]);
     usage_error(&["law", "frobnicate"], &["frobnicate"]);
     usage_error(&["cycle", "/nonexistent/cycle.toml"], &["cannot read"]);
     let dir = std::env::temp_dir().join(format!("loomkin-cli-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("open.toml");
-    std::fs::write(&f, "stroke = 10\n[[segment]]\nkind = \"rise\"\nto_deg = 180\n[[segment]]\nkind = \"return\"\nto_deg = 350\n").unwrap();
+    std::fs::write(
+        &f,
+        "stroke = 10\n[[segment]]\nkind = \"rise\"\nto_deg = 180\n[[segment]]\nkind = \"return\"\nto_deg = 350\n",
+    )
+    .unwrap();
     usage_error(&["cycle", f.to_str().unwrap()], &["segment[1].to_deg", "close the cycle"]);
     std::fs::write(&f, "stroke = [").unwrap();
     usage_error(&["cycle", f.to_str().unwrap()], &["cycle file"]);
