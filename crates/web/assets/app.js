@@ -563,13 +563,20 @@ async function initDobby() {
   for (const name of ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"]) inputs.rise.append(el("option", { value: name, textContent: name }));
   const angle = el("input", { type: "range", min: "0", max: "360", step: "1", value: "40", id: "dobby-angle" });
   const angleOut = el("output", { textContent: "40°" });
+  const play = el("button", { type: "button", id: "dobby-play", textContent: "▶ turn the crank" });
+  let timer = null;
+  play.addEventListener("click", () => {
+    if (timer) { clearInterval(timer); timer = null; play.textContent = "▶ turn the crank"; return; }
+    play.textContent = "⏸ stop";
+    timer = setInterval(() => { angle.value = String((+angle.value + 2) % 360); angleOut.textContent = `${angle.value}°`; drawDobby(); }, 40);
+  });
   const field = (label, input) => el("label", {}, label, input);
   const panel = el("div", { className: "panel" }, el("h2", { textContent: "Output law and modulator" }),
     el("p", { className: "hint", textContent: "Stäubli-type rotary-dobby modulator: the conjugate cams Γ (roller B) and Γ′ (roller C) synthesised for the output law. Move the slider to turn the input crank." }),
     el("div", { className: "grid2" }, field("cycles per turn (–)", inputs.cycles), field("dwell per cycle (°)", inputs.dwell),
       field("first dwell centred at (°)", inputs.centre), field("rise law", inputs.rise),
       field("angle α slot–arm AB (°)", inputs.alpha), field("roller radius (mm)", inputs.roller)),
-    el("label", { className: "slider" }, el("span", { textContent: "input angle φ2 (°)" }), angle, angleOut));
+    el("label", { className: "slider" }, el("span", { textContent: "input angle φ2 (°)" }), angle, angleOut), play);
   const table = el("table", { className: "data", id: "dobby-summary" }, el("caption", { textContent: "Checks" }), el("tbody"));
   const charts = el("div", { className: "grid-charts" });
   root.append(el("div", { className: "results" }, panel, table), charts);
