@@ -285,7 +285,7 @@ async function optimise() {
   btn.disabled = true;
   status("optimising…");
   try {
-    const r = await api("/servo/optimize", { design: servo.design, objective: $("#objective").value });
+    const r = await api("/servo/optimize", { design: servo.design, objective: $("#objective").value, move_x: $("#move-x").checked });
     servo.design.points = r.def_points;
     renderPointsTable();
     evaluate();
