@@ -83,7 +83,11 @@ fn closed_form_matches_numerical_quadrature() {
 /// Criteria by brute force: a million samples, the largest |a|, |j| (by central differences of a
 /// away from joints), v·a, and the crossings of s = T and s = 1 − T by scanning.
 fn brute(positive: &[ShapeSegment], threshold: f64) -> Dimensionless {
-    let law = ShedLaw::symmetric(300.0, positive.to_vec()).unwrap().build().unwrap();
+    brute_law(&ShedLaw::symmetric(300.0, positive.to_vec()).unwrap(), threshold)
+}
+
+fn brute_law(law: &ShedLaw, threshold: f64) -> Dimensionless {
+    let law = law.build().unwrap();
     let n = 1_000_000;
     let pts = law.sample(n + 1);
     let (mut cv, mut ca, mut cm, mut a2) = (0.0f64, 0.0f64, f64::MIN, 0.0);
@@ -162,5 +166,27 @@ fn criteria_match_brute_force_sampling() {
             assert!((fast.cj - b.cj).abs() < 1e-4 * fast.cj, "{} {k:?} cj {} vs {}", t.name(), fast.cj, b.cj);
             assert!(b.ca <= fast.ca * (1.0 + 1e-12) && b.cv <= fast.cv * (1.0 + 1e-12));
         }
+    }
+}
+
+#[test]
+fn asymmetric_law_criteria_match_brute_force() {
+    let law = ShedLaw::from_toml(
+        r#"
+        motion_deg = 320
+        positive = "0.3:sine-ramp:0:1,0.4:constant:1,0.3:cosine-ramp:1:0"
+        negative = "0.2:sine-ramp:0:-1,0.6:constant:-1,0.2:cosine-ramp:-1:0"
+        positive_fraction = 0.4
+    "#,
+    )
+    .unwrap();
+    for threshold in [0.8, 0.95] {
+        let d = Dimensionless::of_law(&law.build().unwrap(), threshold).unwrap();
+        let b = brute_law(&law, threshold);
+        assert!((d.x_depart - b.x_depart).abs() < 1e-6 && (d.x_arrive - b.x_arrive).abs() < 1e-6);
+        // Asymmetric: the departure and arrival sides differ.
+        assert!((d.x_depart - (1.0 - d.x_arrive)).abs() > 1e-3);
+        assert!((d.ca - b.ca).abs() < 1e-9 * d.ca && (d.cv - b.cv).abs() < 1e-9 * d.cv);
+        assert!((d.cm - b.cm).abs() < 1e-6 * d.cm && (d.ca_rms - b.ca_rms).abs() < 1e-4 * d.ca_rms);
     }
 }
