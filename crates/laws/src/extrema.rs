@@ -13,32 +13,62 @@ pub(crate) fn brackets(seg: &Segment, deg: usize) -> usize {
 
 /// Roots in `[0, w]` of `g`, whose derivative is `dg`, found by sign changes on `n` sub-intervals.
 /// Calls `found` with every root.
-pub(crate) fn roots(w: f64, n: usize, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64, mut found: impl FnMut(f64)) {
+///
+/// A sub-interval whose ends have the same sign can still hide a pair of close roots; where `dg`
+/// changes sign inside it, the extremum of `g` there is located (bisection on `dg`) and, if `g`
+/// changes sign at it, both roots are refined on either side.
+pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), mut found: impl FnMut(f64)) {
+    let g = |t: f64| gd(t).0;
     let h = w / n as f64;
     let mut t0 = 0.0;
-    let mut g0 = g(t0);
+    let (mut g0, mut d0) = gd(t0);
     for i in 1..=n {
         let t1 = if i == n { w } else { i as f64 * h };
-        let g1 = g(t1);
+        let (g1, d1) = gd(t1);
         if g0 == 0.0 {
             found(t0);
         } else if g0.signum() != g1.signum() && g1 != 0.0 {
-            found(refine(t0, t1, g0, &g, &dg));
+            found(refine(t0, t1, g0, &gd));
+        } else if g1 != 0.0 && d0.signum() != d1.signum() && d0 != 0.0 && d1 != 0.0 {
+            let tm = bisect(t0, t1, d0, &|t| gd(t).1);
+            let gm = g(tm);
+            if gm == 0.0 {
+                found(tm);
+            } else if gm.signum() != g0.signum() {
+                found(refine(t0, tm, g0, &gd));
+                found(refine(tm, t1, gm, &gd));
+            }
         }
-        t0 = t1;
-        g0 = g1;
+        (t0, g0, d0) = (t1, g1, d1);
     }
     if g0 == 0.0 {
         found(w);
     }
 }
 
+/// Plain bisection for a sign change of `f` in `[lo, hi]` (`flo = f(lo)`).
+fn bisect(mut lo: f64, mut hi: f64, flo: f64, f: &impl Fn(f64) -> f64) -> f64 {
+    let neg_lo = flo < 0.0;
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if (f(mid) < 0.0) == neg_lo {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// Newton iteration kept inside a shrinking bracket `[lo, hi]` where `g` changes sign.
-fn refine(mut lo: f64, mut hi: f64, glo: f64, g: &impl Fn(f64) -> f64, dg: &impl Fn(f64) -> f64) -> f64 {
+fn refine(mut lo: f64, mut hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
     let neg_lo = glo < 0.0;
     let mut t = 0.5 * (lo + hi);
     for _ in 0..60 {
-        let gt = g(t);
+        let (gt, d) = gd(t);
         if gt == 0.0 {
             return t;
         }
@@ -47,7 +77,6 @@ fn refine(mut lo: f64, mut hi: f64, glo: f64, g: &impl Fn(f64) -> f64, dg: &impl
         } else {
             hi = t;
         }
-        let d = dg(t);
         let newton = t - gt / d;
         let next = if d != 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
         if (next - t).abs() <= 1e-15 * (1.0 + t.abs()) || hi - lo <= 4.0 * f64::EPSILON * (1.0 + hi.abs()) {
@@ -56,4 +85,27 @@ fn refine(mut lo: f64, mut hi: f64, glo: f64, g: &impl Fn(f64) -> f64, dg: &impl
         t = next;
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_a_close_pair_of_roots_inside_one_subinterval() {
+        // g = (t − 0.5)² − 1e-6: roots 0.499 and 0.501, one sub-interval [0.25, 0.75] holds both.
+        let mut got = Vec::new();
+        roots(1.0, 4, |t| ((t - 0.5) * (t - 0.5) - 1e-6, 2.0 * (t - 0.5)), |r| got.push(r));
+        assert_eq!(got.len(), 2, "{got:?}");
+        assert!((got[0] - 0.499).abs() < 1e-12 && (got[1] - 0.501).abs() < 1e-12, "{got:?}");
+    }
+
+    #[test]
+    fn finds_simple_roots() {
+        let mut got = Vec::new();
+        roots(4.0, 7, |t| (t.sin(), t.cos()), |r| got.push(r));
+        assert_eq!(got.len(), 2, "{got:?}");
+        assert_eq!(got[0], 0.0);
+        assert!((got[1] - std::f64::consts::PI).abs() < 1e-14);
+    }
 }

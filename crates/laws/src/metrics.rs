@@ -76,7 +76,6 @@ impl Law {
             let w = seg.width();
             let x0 = seg.x0();
             let deg = seg.degree();
-            let d = |k: usize, t: f64| seg.deriv_local(k, t);
             let mut visit = |t: f64| {
                 let k = seg.eval_local(t);
                 let x = x0 + t;
@@ -91,18 +90,28 @@ impl Law {
             // v extrema: roots of a; a extrema: roots of j; j extrema: roots of snap.
             for k in 2..=4 {
                 let n = brackets(seg, deg.saturating_sub(k));
-                roots(w, n, |t| d(k, t), |t| d(k + 1, t), &mut visit);
+                roots(
+                    w,
+                    n,
+                    |t| {
+                        let d = seg.derivs_local(t);
+                        (d[k], d[k + 1])
+                    },
+                    &mut visit,
+                );
             }
             // (v·a)' = a² + v·j, whose derivative is 3·a·j + v·snap.
             let n = brackets(seg, 2 * deg.saturating_sub(2));
             roots(
                 w,
                 n,
-                |t| d(2, t).powi(2) + d(1, t) * d(3, t),
-                |t| 3.0 * d(2, t) * d(3, t) + d(1, t) * d(4, t),
+                |t| {
+                    let d = seg.derivs_local(t);
+                    (d[2] * d[2] + d[1] * d[3], 3.0 * d[2] * d[3] + d[1] * d[4])
+                },
                 &mut visit,
             );
-            a2 += integrate(0.0, w, panels(seg), |t| d(2, t).powi(2));
+            a2 += integrate(0.0, w, panels(seg), |t| seg.deriv_local(2, t).powi(2));
         }
         Metrics {
             cv: cv.value,

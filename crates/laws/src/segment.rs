@@ -138,12 +138,11 @@ impl Segment {
     /// (0 = s, 1 = v, 2 = a, 3 = j, 4 = snap, …).
     pub fn deriv_local(&self, order: usize, t: f64) -> f64 {
         let mut acc = 0.0;
-        for k in (order..NC).rev() {
-            let mut c = self.p[k];
-            for m in 0..order {
-                c *= (k - m) as f64;
+        if order < NC {
+            let f = &FALLING[order];
+            for k in (order..NC).rev() {
+                acc = acc * t + self.p[k] * f[k];
             }
-            acc = acc * t + c;
         }
         if let Some(sn) = self.sine {
             // s_sin = -A/ω² sin(ωt+φ); its n-th derivative is -A ω^(n-2) sin(ωt+φ+nπ/2).
@@ -152,6 +151,30 @@ impl Segment {
             acc -= sn.amp * w.powi(order as i32 - 2) * arg.sin();
         }
         acc
+    }
+
+    /// The derivatives of orders 0 to 5 of the displacement at local `t`, with one `sin_cos`.
+    pub fn derivs_local(&self, t: f64) -> [f64; 6] {
+        let mut out = [0.0; 6];
+        for (order, o) in out.iter_mut().enumerate() {
+            let f = &FALLING[order];
+            let mut acc = 0.0;
+            for k in (order..NC).rev() {
+                acc = acc * t + self.p[k] * f[k];
+            }
+            *o = acc;
+        }
+        if let Some(sn) = self.sine {
+            // n-th derivative of -A/ω² sin(θ) is -A ω^(n-2) sin(θ + nπ/2): cycle through sin, cos, −sin, −cos.
+            let (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
+            let cycle = [sin, cos, -sin, -cos];
+            let mut scale = -sn.amp / (sn.omega * sn.omega);
+            for (order, o) in out.iter_mut().enumerate() {
+                *o += scale * cycle[order % 4];
+                scale *= sn.omega;
+            }
+        }
+        out
     }
 
     /// Kinematics at global `x` (not clamped).
@@ -196,6 +219,27 @@ impl Segment {
         }
     }
 }
+
+/// `FALLING[n][k] = k!/(k − n)!`, the factor of `t^(k−n)` in the n-th derivative of `t^k`.
+const FALLING: [[f64; NC]; NC] = {
+    let mut table = [[0.0; NC]; NC];
+    let mut n = 0;
+    while n < NC {
+        let mut k = n;
+        while k < NC {
+            let mut f = 1.0;
+            let mut m = 0;
+            while m < n {
+                f *= (k - m) as f64;
+                m += 1;
+            }
+            table[n][k] = f;
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+};
 
 /// s, v, a, j of the displacement polynomial `p` at `t`, one Horner pass for all four.
 #[inline(always)]
