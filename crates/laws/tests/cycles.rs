@@ -62,3 +62,39 @@ fn errors_name_the_field() {
     let e = Cycle::from_toml(&unbalanced).unwrap_err().to_string();
     assert!(e.contains("rises and returns must balance"), "{e}");
 }
+
+#[test]
+fn swinging_follower_in_radians_and_a_shifted_start() {
+    let text = r#"
+unit = "deg"
+[[segment]]
+kind = "rise"
+from_deg = 30
+length_deg = 90
+law = "poly345"
+stroke = 20
+[[segment]]
+kind = "dwell"
+length_deg = 90
+[[segment]]
+kind = "return"
+length_deg = 180
+law = "cycloidal"
+stroke = 20
+"#;
+    let c = Cycle::from_toml(text).unwrap();
+    let rpm = 120.0;
+    let omega = rpm * 2.0 * PI / 60.0;
+    let h = 20f64.to_radians();
+    // Mid-rise of the 3-4-5 law: s = h/2, v = h·(15/8)·ω/β.
+    let k = c.eval(75f64.to_radians(), rpm);
+    assert!((k.s - h / 2.0).abs() < 1e-14);
+    assert!((k.v - h * 15.0 / 8.0 * omega / 90f64.to_radians()).abs() < 1e-12);
+    // Angles wrap: 390° is 30°, the start of the rise; 10° lies in the return (210°–390°).
+    assert!(c.eval(390f64.to_radians(), rpm).s.abs() < 1e-15);
+    let back = c.eval(10f64.to_radians(), rpm);
+    let law = LawSpec::Cycloidal.build().unwrap();
+    let x = (370.0 - 210.0) / 180.0;
+    assert!((back.s - h * (1.0 - law.eval(x).s)).abs() < 1e-14);
+    assert!(back.v < 0.0, "returning");
+}
