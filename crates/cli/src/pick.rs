@@ -28,7 +28,7 @@ pub enum PickCommand {
 /// The mechanism and its cam.
 #[derive(Debug, Args, Clone, Default)]
 pub struct ModelArgs {
-    /// A mechanism described in TOML ([mechanism], [design], optional [required]; SI units).
+    /// A mechanism described in TOML (`[mechanism]`, `[design]`, optional `[required]`; SI units).
     /// Without it: the paper's mechanism.
     #[arg(long, value_name = "FILE")]
     mechanism: Option<PathBuf>,

@@ -58,7 +58,7 @@ impl DefArgs {
 /// The drive file.
 #[derive(Debug, Args, Clone)]
 pub struct DriveArgs {
-    /// Drive file (TOML with a [drive] table); default: the built-in needle-rack drive.
+    /// Drive file (TOML with a `[drive]` table); default: the built-in needle-rack drive.
     #[arg(long, value_name = "FILE")]
     drive: Option<PathBuf>,
 }
