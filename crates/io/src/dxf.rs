@@ -17,9 +17,9 @@
 
 use crate::IoError;
 use dxf::entities::{Entity, EntityType, LwPolyline};
-use dxf::enums::{AcadVersion, Units};
+use dxf::enums::{AcadVersion, DrawingUnits, Units};
 use dxf::tables::Layer;
-use dxf::{Color, Drawing, LwPolylineVertex};
+use dxf::{Color, Drawing, LwPolylineVertex, Point};
 use std::io::Write;
 use std::path::Path;
 
@@ -96,6 +96,23 @@ fn drawing(polylines: &[DxfPolyline], unit: DxfUnit) -> Result<Drawing, IoError>
     let mut d = Drawing::new();
     d.header.version = AcadVersion::R2000;
     d.header.default_drawing_units = unit.units();
+    // Metric drawing ($MEASUREMENT = 1) and the true extents and limits, so that CAD packages open
+    // the drawing zoomed on the cams instead of on the default 12 × 9 inch sheet at the origin.
+    d.header.drawing_units = DrawingUnits::Metric;
+    let k = unit.scale();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for q in polylines.iter().flat_map(|p| &p.points) {
+        for i in 0..2 {
+            lo[i] = lo[i].min(q[i] * k);
+            hi[i] = hi[i].max(q[i] * k);
+        }
+    }
+    if lo[0].is_finite() {
+        d.header.minimum_drawing_extents = Point::new(lo[0], lo[1], 0.0);
+        d.header.maximum_drawing_extents = Point::new(hi[0], hi[1], 0.0);
+        d.header.minimum_drawing_limits = Point::new(lo[0], lo[1], 0.0);
+        d.header.maximum_drawing_limits = Point::new(hi[0], hi[1], 0.0);
+    }
     let mut layers: Vec<&str> = Vec::new();
     for p in polylines {
         if !layers.contains(&p.layer.as_str()) {
@@ -107,7 +124,6 @@ fn drawing(polylines: &[DxfPolyline], unit: DxfUnit) -> Result<Drawing, IoError>
         let layer = Layer { name: name.to_string(), color: Color::from_index((i % 6 + 1) as u8), ..Default::default() };
         d.add_layer(layer);
     }
-    let k = unit.scale();
     for p in polylines {
         let mut poly = LwPolyline::default();
         poly.set_is_closed(p.closed);
@@ -166,6 +182,13 @@ mod tests {
         assert!(!w.is_closed());
         assert!(back.layers().any(|l| l.name == "WALL"));
         assert_eq!(back.header.default_drawing_units, Units::Millimeters);
+        assert_eq!(back.header.drawing_units, DrawingUnits::Metric);
+        // Extents from the points themselves (mm): x ∈ [−200, 500], y ∈ [−300, 300].
+        let xs = circle.iter().map(|q| q[0]).chain([0.0, 0.5]);
+        let (xmin, xmax) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+        let (lo, hi) = (&back.header.minimum_drawing_extents, &back.header.maximum_drawing_extents);
+        assert!((lo.x - 1000.0 * xmin).abs() < 1e-9 && (hi.x - 1000.0 * xmax).abs() < 1e-9, "{lo:?} {hi:?}");
+        assert!((lo.y + 300.0).abs() < 1e-9 && (hi.y - 300.0).abs() < 1e-9, "{lo:?} {hi:?}");
     }
 
     #[test]
