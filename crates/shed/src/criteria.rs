@@ -1,7 +1,7 @@
 //! The criteria a designer weighs: dwells and the weft-insertion window (degrees), characteristic
 //! values of the law (dimensionless) and their physical values for a stroke and a speed.
 
-use crate::dwell::{lead, tail, up_crossings};
+use crate::dwell::{down_crossings, lead, tail, up_crossings};
 use crate::{Conditions, Result, ShedError, ShedLaw, check_threshold};
 use loomkin_laws::Law;
 use serde::Serialize;
@@ -9,10 +9,15 @@ use serde::Serialize;
 /// Dimensionless criteria of a normalised rise at one threshold `T` — everything that does not
 /// depend on the motion angle, the stroke or the speed.
 ///
-/// `x` is the fraction of the motion angle. The rise enters the top position at `x_arrive`
-/// (the last upward crossing of `s = T`) and, the next pick, the same law run downwards
-/// (`1 − s(x)`) leaves it at `x_depart` (the first upward crossing of `s = 1 − T`). For a symmetric
-/// law `x_depart = 1 − x_arrive`.
+/// `x` is the fraction of the motion angle. The frame counts as still while it is within `1 − T`
+/// of the stroke from an end position. The rise enters that band around the top position at
+/// `x_arrive` (the last entry: an upward crossing of `s = T`, or, for a law that overshoots its end
+/// by more than `1 − T`, a downward crossing of `s = 2 − T`) and, the next pick, the same law run
+/// downwards (`1 − s(x)`) leaves it at `x_depart` (the first exit: an upward crossing of
+/// `s = 1 − T`, or a downward crossing of `s = −(1 − T)` for a law that first undershoots). The
+/// frame arrives at and leaves the bottom position at the same fractions (it falls with `1 − s`
+/// and rises with `s`), so the band is the same around both dwells. For a symmetric law
+/// `x_depart = 1 − x_arrive`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Dimensionless {
     /// The threshold `T` used.
@@ -34,20 +39,31 @@ pub struct Dimensionless {
     pub lead: f64,
     /// Start of the trailing stretch at rest (`s ≡ 1`), fraction of the motion.
     pub tail: f64,
-    /// First `x` with `s(x) > 1 − T`.
+    /// First `x` with `|s(x)| > 1 − T` (the frame leaves the band around its start position).
     pub x_depart: f64,
-    /// Last `x` with `s(x) < T`.
+    /// Last `x` with `|s(x) − 1| > 1 − T` (the frame enters the band around its end position).
     pub x_arrive: f64,
 }
 
 impl Dimensionless {
     /// The criteria of a law of the core, from its closed form: [`Law::metrics`] for the peaks and
-    /// root finding on `s(x) = T` and `s(x) = 1 − T` for the dwell.
+    /// root finding on `s(x) = T`, `s(x) = 1 − T` (and `s = 2 − T`, `s = −(1 − T)` for laws that
+    /// overshoot their ends) for the dwell.
     pub fn of_law(law: &Law, threshold: f64) -> Result<Self> {
         check_threshold(threshold)?;
         let m = law.metrics();
-        let arrive = up_crossings(law, threshold).last().copied();
-        let depart = up_crossings(law, 1.0 - threshold).first().copied();
+        let band = 1.0 - threshold;
+        // Last entry into |s − 1| ≤ 1 − T, first exit from |s| ≤ 1 − T.
+        let last = |v: Vec<f64>| v.last().copied();
+        let first = |v: Vec<f64>| v.first().copied();
+        let arrive = match (last(up_crossings(law, threshold)), last(down_crossings(law, 1.0 + band))) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        let depart = match (first(up_crossings(law, band)), first(down_crossings(law, -band))) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
         let (Some(x_arrive), Some(x_depart)) = (arrive, depart) else {
             return Err(ShedError::NotARise {
                 field: "law".into(),

@@ -61,15 +61,26 @@ fn monotone_cuts(seg: &Segment) -> Vec<f64> {
 /// Every upward crossing of `s = level` (global `x`, ascending): points where `s` passes from below
 /// the level to at or above it.
 pub(crate) fn up_crossings(law: &Law, level: f64) -> Vec<f64> {
+    crossings(law, level, 1.0)
+}
+
+/// Every downward crossing of `s = level` (global `x`, ascending): points where `s` passes from
+/// above the level to at or below it.
+pub(crate) fn down_crossings(law: &Law, level: f64) -> Vec<f64> {
+    crossings(law, level, -1.0)
+}
+
+/// Crossings of `s = level` where `sign·(s − level)` passes from negative to zero or positive.
+fn crossings(law: &Law, level: f64, sign: f64) -> Vec<f64> {
     let mut out = Vec::new();
     for seg in law.segments() {
         let cuts = monotone_cuts(seg);
-        let g = |t: f64| seg.deriv_local(0, t) - level;
+        let g = |t: f64| sign * (seg.deriv_local(0, t) - level);
         for c in cuts.windows(2) {
             let (a, b) = (c[0], c[1]);
             let (ga, gb) = (g(a), g(b));
             if ga < 0.0 && gb >= 0.0 {
-                let t = if gb == 0.0 { b } else { refine(a, b, g, |t| seg.deriv_local(1, t)) };
+                let t = if gb == 0.0 { b } else { refine(a, b, g, |t| sign * seg.deriv_local(1, t)) };
                 out.push(seg.x0() + t);
             }
         }

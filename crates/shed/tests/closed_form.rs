@@ -81,7 +81,8 @@ fn closed_form_matches_numerical_quadrature() {
 }
 
 /// Criteria by brute force: a million samples, the largest |a|, |j| (by central differences of a
-/// away from joints), v·a, and the crossings of s = T and s = 1 − T by scanning.
+/// away from joints), v·a, and by scanning the first `x` with `|s| > 1 − T` and the last with
+/// `|s − 1| > 1 − T`.
 fn brute(positive: &[ShapeSegment], threshold: f64) -> Dimensionless {
     brute_law(&ShedLaw::symmetric(300.0, positive.to_vec()).unwrap(), threshold)
 }
@@ -99,10 +100,11 @@ fn brute_law(law: &ShedLaw, threshold: f64) -> Dimensionless {
         if i < n {
             a2 += k.a * k.a / n as f64;
         }
-        if k.s > 1.0 - threshold {
+        // Still: within 1 − T of the stroke from the start (s = 0) or the end (s = 1) position.
+        if k.s.abs() > 1.0 - threshold {
             depart = depart.min(*x);
         }
-        if k.s < threshold {
+        if (k.s - 1.0).abs() > 1.0 - threshold {
             arrive = arrive.max(*x);
         }
     }
@@ -189,4 +191,50 @@ fn asymmetric_law_criteria_match_brute_force() {
         assert!((d.ca - b.ca).abs() < 1e-9 * d.ca && (d.cv - b.cv).abs() < 1e-9 * d.cv);
         assert!((d.cm - b.cm).abs() < 1e-6 * d.cm && (d.ca_rms - b.ca_rms).abs() < 1e-4 * d.ca_rms);
     }
+}
+
+/// A law that swings past its end positions by more than `1 − T` is not still there: the dwell band
+/// is `|s − 1| ≤ 1 − T` around the top, `|s| ≤ 1 − T` around the bottom, not `s ≥ T`.
+#[test]
+fn overshooting_law_is_not_still_beyond_its_end() {
+    // a = 1 on [0, ½], −3 on [½, ¾], +1 on [¾, 1] (rescale factor 1): raw v(½) = ½, v(¾) = −¼,
+    // v(1) = 0 and raw s(1) = 1/8; over the last part s_raw = 1/8 + (1 − x)²/2, so the normalised
+    // s = 1 + 4(1 − x)² peaks at 4/3 (at x = 2/3) and re-enters |s − 1| ≤ 1 − T at
+    // 1 − x = √((1 − T)/4).
+    let law = ShedLaw::from_toml(
+        r#"
+        motion_deg = 300
+        positive = "1:constant:1"
+        negative = "0.5:constant:-3,0.5:constant:1"
+        positive_fraction = 0.5
+    "#,
+    )
+    .unwrap();
+    let built = law.build().unwrap();
+    assert!((built.eval(2.0 / 3.0).s - 4.0 / 3.0).abs() < 1e-12);
+    for threshold in [0.8, 0.95, 0.99] {
+        let d = Dimensionless::of_law(&built, threshold).unwrap();
+        let x_arrive = 1.0 - ((1.0 - threshold) / 4.0).sqrt();
+        assert!((d.x_arrive - x_arrive).abs() < 1e-12, "T {threshold}: {} vs {x_arrive}", d.x_arrive);
+        // Departure: raw s = x²/2 on the first half, normalised s = 4x², s = 1 − T at √((1 − T)/4).
+        assert!((d.x_depart - ((1.0 - threshold) / 4.0).sqrt()).abs() < 1e-12);
+        let b = brute_law(&law, threshold);
+        assert!((d.x_arrive - b.x_arrive).abs() < 2e-6 && (d.x_depart - b.x_depart).abs() < 2e-6);
+    }
+    // And one that first undershoots its start: a = −1 then +3 over the positive phase.
+    let law = ShedLaw::from_toml(
+        r#"
+        motion_deg = 300
+        positive = "0.5:constant:-1,0.5:constant:3"
+        negative = "1:constant:-1"
+    "#,
+    )
+    .unwrap();
+    let built = law.build().unwrap();
+    let threshold = 0.99;
+    let d = Dimensionless::of_law(&built, threshold).unwrap();
+    let b = brute_law(&law, threshold);
+    assert!(built.eval(0.125).s < -(1.0 - threshold), "the law must undershoot by more than the band");
+    assert!(built.eval(d.x_depart).s < 0.0, "it leaves the band downwards");
+    assert!((d.x_depart - b.x_depart).abs() < 2e-6 && (d.x_arrive - b.x_arrive).abs() < 2e-6);
 }
