@@ -5,7 +5,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedLaw, Template, evaluate, preset,
+    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedError, ShedLaw, Template, evaluate, preset,
 };
 use serde_json::{Value, json};
 use std::io::Write;
@@ -34,10 +34,10 @@ pub enum ShedCommand {
 #[derive(Debug, Args, Clone)]
 pub struct Physical {
     /// Frame stroke, mm.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     stroke_mm: f64,
     /// Main-shaft speed, rpm (one pick per turn).
-    #[arg(long, default_value_t = 300.0)]
+    #[arg(long, default_value_t = 300.0, allow_hyphen_values = true)]
     speed_rpm: f64,
 }
 
@@ -46,11 +46,13 @@ pub struct Physical {
 pub struct Threshold {
     /// Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme;
     /// 0.75 ≤ T ≤ 0.99 (0.95 reproduces the paper's Table 3).
-    #[arg(long, default_value_t = loomkin_shed::TABLE3_THRESHOLD)]
+    #[arg(long, default_value_t = loomkin_shed::TABLE3_THRESHOLD, allow_hyphen_values = true)]
     threshold: f64,
 }
 
 fn conditions(p: &Physical, t: f64) -> Result<Conditions> {
+    // Checked here in the unit of the flag; the library checks the same range in metres.
+    ShedError::check_open_closed("stroke_mm", p.stroke_mm, 0.0, 1000.0, "mm")?;
     Ok(Conditions::new(t, p.stroke_mm / 1000.0, p.speed_rpm)?)
 }
 
@@ -72,7 +74,7 @@ pub struct LawArgs {
     #[arg(long, value_name = "FILE.toml")]
     spec: Option<PathBuf>,
     /// Override the motion angle φ_дв, deg (0 < φ ≤ 360).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     motion_deg: Option<f64>,
     #[command(flatten)]
     threshold: Threshold,
@@ -107,16 +109,16 @@ pub struct DesignArgs {
     #[arg(long, conflicts_with = "family")]
     shapes: Option<String>,
     /// Grid step of k (grid and fig1 designs).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     step: Option<f64>,
     /// Least relative length in the grid (default 0.05; 0.01 for best; the paper's practical range is 0.005…0.95).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     min_k: Option<f64>,
     /// Largest relative length in the grid (default 0.9; 0.98 for best).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     max_k: Option<f64>,
     /// Motion angles φ_дв, deg: DEG, DEG,DEG,… or MIN:MAX:STEP.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     motion_deg: Option<String>,
 }
 
@@ -159,22 +161,22 @@ pub struct ParetoArgs {
 #[derive(Debug, Args, Clone)]
 pub struct LoomArgs {
     /// Mean speed of the weft carrier, m/s.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     carrier_speed_m_s: Option<f64>,
     /// Reed (working) width of the loom, m.
-    #[arg(long, requires = "carrier_speed_m_s")]
+    #[arg(long, requires = "carrier_speed_m_s", allow_hyphen_values = true)]
     reed_width_m: Option<f64>,
     /// Cloth width in the reed, m (default: the reed width).
-    #[arg(long, requires = "carrier_speed_m_s")]
+    #[arg(long, requires = "carrier_speed_m_s", allow_hyphen_values = true)]
     cloth_width_m: Option<f64>,
     /// Carrier length, m.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     carrier_length_m: f64,
     /// Range of the crossing-point (заступ) setting, deg.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     crossing_range_deg: f64,
     /// Shed-height excess over the necessary opening, fraction (0.05 = 5 %); sets T = 1/(1 + excess).
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.05, allow_hyphen_values = true)]
     shed_excess: f64,
 }
 
@@ -200,16 +202,21 @@ impl LoomArgs {
 #[derive(Debug, Args)]
 pub struct BestArgs {
     /// Required window φ_пп*, deg (0 < W < 360); or give the loom data instead.
-    #[arg(long, required_unless_present = "carrier_speed_m_s", conflicts_with = "carrier_speed_m_s")]
+    #[arg(
+        long,
+        required_unless_present = "carrier_speed_m_s",
+        conflicts_with = "carrier_speed_m_s",
+        allow_hyphen_values = true
+    )]
     window_deg: Option<f64>,
     #[command(flatten)]
     loom: LoomArgs,
     /// Dwell threshold T, 0.75 ≤ T ≤ 0.99 (default 0.95, or 1/(1 + shed excess) with loom data).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     threshold: Option<f64>,
     /// Upper limit on the peak frame jerk, m/s³ (least acceleration alone favours constant
     /// acceleration with its jerk peaks).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     max_jerk_m_s3: Option<f64>,
     /// Experiment design searched (default: the grid of the trapezoid family, step 0.01).
     #[arg(long, value_enum, default_value_t = DesignKind::Grid)]
@@ -229,7 +236,7 @@ pub struct WindowArgs {
     #[command(flatten)]
     loom: LoomArgs,
     /// Main-shaft speed, rpm.
-    #[arg(long, default_value_t = 300.0)]
+    #[arg(long, default_value_t = 300.0, allow_hyphen_values = true)]
     speed_rpm: f64,
     /// Print JSON.
     #[arg(long)]

@@ -18,6 +18,7 @@ fn fails_with_2(args: &[&str], needle: &str) {
     assert_eq!(out.status.code(), Some(2), "{args:?}");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains(needle), "{args:?}: stderr {err:?} lacks {needle:?}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: one line on stderr, got {err:?}");
     assert!(out.stdout.is_empty(), "{args:?}: nothing on stdout");
 }
 
@@ -79,6 +80,61 @@ fn bad_input_exits_2() {
     fails_with_2(&["shed", "table", "--design", "grid", "--motion-deg", "0:360:30"], "motion_deg");
     fails_with_2(&["shed", "table", "--design", "table1", "--family", "lead-trapezoid"], "parts");
     fails_with_2(&["shed", "plot", "-o", "x.txt", "basic"], "x.txt");
+}
+
+#[test]
+fn hostile_numbers_name_the_flag_in_one_line() {
+    // Negative values reach the range check (not clap's "unexpected argument" with a usage block).
+    fails_with_2(&["shed", "law", "dobby", "--threshold", "-1"], "threshold = -1");
+    fails_with_2(&["shed", "law", "dobby", "--motion-deg", "-5"], "motion_deg = -5");
+    fails_with_2(&["shed", "law", "dobby", "--stroke-mm", "-1"], "stroke_mm = -1");
+    fails_with_2(&["shed", "law", "dobby", "--speed-rpm", "-300"], "speed_rpm = -300");
+    fails_with_2(&["shed", "law", "dobby", "--threshold", "NaN"], "threshold = NaN");
+    fails_with_2(&["shed", "law", "dobby", "--speed-rpm", "inf"], "speed_rpm = ∞");
+    fails_with_2(&["shed", "best", "--window-deg", "-5"], "window_deg = -5");
+    fails_with_2(&["shed", "table", "--design", "grid", "--step", "-0.1"], "k.step = -0.1");
+    fails_with_2(&["shed", "table", "--design", "grid", "--motion-deg", "-10"], "motion_deg = -10");
+    fails_with_2(&["shed", "window", "--carrier-speed-m-s", "-24", "--reed-width-m", "1.8"], "carrier_speed_m_s");
+    // Huge values and open bounds print compactly, in the unit of the flag.
+    let out = loomkin().args(["shed", "law", "dobby", "--stroke-mm", "1e300"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("stroke_mm = 1e300") && err.contains("1000 mm") && err.len() < 200, "{err}");
+    let out = loomkin().args(["shed", "table", "--design", "grid", "--step", "0"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("≤ ∞") && err.len() < 200, "{err}");
+}
+
+/// `best` over a list of motion angles against brute force over the same family: every row of
+/// `shed table` at those angles, the least peak acceleration among those with a window ≥ W.
+#[test]
+fn best_agrees_with_brute_force_over_the_table() {
+    let common = ["--family", "trapezoid", "--step", "0.05", "--min-k", "0.05", "--max-k", "0.9", "--threshold", "0.9"];
+    let motions = "200:360:20";
+    let mut args = vec!["shed", "table", "--design", "grid", "--motion-deg", motions, "--json"];
+    args.extend(common);
+    let table = json(&args);
+    let rows = table["rows"].as_array().unwrap();
+    for w in [120.0, 160.0, 200.0, 240.0] {
+        let brute = rows
+            .iter()
+            .filter(|r| r["window_deg"].as_f64().unwrap() >= w)
+            .map(|r| r["peak_accel_m_s2"].as_f64().unwrap())
+            .fold(f64::INFINITY, f64::min);
+        let ws = format!("{w}");
+        let mut args = vec!["shed", "best", "--window-deg", &ws, "--motion-deg", motions, "--json"];
+        args.extend(common);
+        let b = json(&args);
+        assert!(b["window_deg"].as_f64().unwrap() >= w);
+        assert_eq!(b["peak_accel_m_s2"].as_f64().unwrap(), brute, "W = {w}");
+        // With the angle free the optimum is at least as good, and its window is exactly W
+        // unless the angle hits 360°.
+        let mut args = vec!["shed", "best", "--window-deg", &ws, "--json"];
+        args.extend(common);
+        let f = json(&args);
+        assert!(f["peak_accel_m_s2"].as_f64().unwrap() <= brute);
+        let (fw, fm) = (f["window_deg"].as_f64().unwrap(), f["motion_deg"].as_f64().unwrap());
+        assert!((fw - w).abs() < 1e-9 || (fm == 360.0 && fw >= w), "W = {w}: window {fw} at {fm}°");
+    }
 }
 
 #[test]

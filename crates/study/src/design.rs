@@ -25,7 +25,15 @@ pub struct Design {
 pub fn stepped_axis(field: &str, min: f64, max: f64, step: f64) -> Result<Vec<f64>> {
     StudyError::check_range(&format!("{field}.min"), min, f64::MIN, f64::MAX, "")?;
     StudyError::check_range(&format!("{field}.max"), max, min, f64::MAX, "")?;
-    StudyError::check_range(&format!("{field}.step"), step, f64::MIN_POSITIVE, f64::MAX, "")?;
+    if !(step.is_finite() && step > 0.0) {
+        return Err(StudyError::OutOfRange {
+            field: format!("{field}.step"),
+            value: step,
+            min: 0.0,
+            max: f64::MAX,
+            unit: " (exclusive of the minimum)".into(),
+        });
+    }
     let n = ((max - min) / step + TOL).floor();
     if n + 1.0 > MAX_POINTS as f64 {
         return Err(StudyError::TooLarge { field: field.into(), points: (n + 1.0) as u128, limit: MAX_POINTS });

@@ -7,7 +7,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum StudyError {
     /// A numeric parameter outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}")]
+    #[error("{field} = {} is out of range: allowed {} ≤ {field} ≤ {}{unit}", num(.value), num(.min), num(.max))]
     OutOfRange {
         /// Name of the field.
         field: String,
@@ -51,6 +51,24 @@ impl StudyError {
         let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
         Err(Self::OutOfRange { field: field.into(), value, min, max, unit })
     }
+}
+
+/// A number for an error line: `∞` for the largest finite value (an open upper bound), plain
+/// text for ordinary magnitudes, the exponent form for very large or small ones, at most 12
+/// significant digits (so that `f64::MAX` or `1e300` do not print as hundreds of digits).
+pub(crate) fn num(v: &f64) -> String {
+    let v = *v;
+    if v.is_nan() {
+        return "NaN".into();
+    }
+    if v >= f64::MAX {
+        return "∞".into();
+    }
+    if v <= f64::MIN {
+        return "−∞".into();
+    }
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
 }
 
 /// Result alias of the study tools.
