@@ -180,6 +180,51 @@ fn slot_missing_the_crank_names_the_angle_and_the_alpha_range() {
     assert!(a[0] < 30.0 && a[1] > 60.0, "{a:?}");
 }
 
+/// Review regression: a slot pointing away from O (|φ3 − φ2| > 90°) was reported as
+/// "|sin(φ3 − φ2)| = 0.571 > l6/l2 = 0.606", a false inequality. The message now states the real
+/// condition, checked here against the state computed independently from the closed triangle OAB.
+#[test]
+fn a_slot_pointing_away_from_o_is_named_truthfully() {
+    let g = ModulatorGeometry::PAPER.with_alpha_deg(170.0).unwrap();
+    let msg = analyze(&g, &Cam::paper(), &opts(1.0)).unwrap_err().to_string();
+    assert!(msg.contains("points away from O") && !msg.contains("|sin(φ3 − φ2)| ="), "{msg}");
+    // Where the sine form is used, the inequality it prints holds.
+    let g = ModulatorGeometry { l6_m: 0.3, ..ModulatorGeometry::PAPER.with_alpha_deg(60.0).unwrap() };
+    let msg = analyze(&g, &Cam::paper(), &opts(1.0)).unwrap_err().to_string();
+    let num = |key: &str| -> f64 {
+        let rest = &msg[msg.find(key).unwrap() + key.len()..];
+        rest.split(|c: char| c == ' ' || c == ')').next().unwrap().parse().unwrap()
+    };
+    assert!(num("|sin(φ3 − φ2)| = ") > num("l6/l2 = "), "{msg}");
+}
+
+/// Review regression: the admissible α of an analysis was the raw interval `[max η − σ, min η + σ]`
+/// and could start below 0° (e.g. [−12.5, 46.5]° for a flat ellipse), outside the valid lever
+/// angles. It is clipped to (0°, 180°), and the clipped range is still right: α just inside the
+/// upper bound assembles, just outside it does not.
+#[test]
+fn the_admissible_alpha_range_stays_within_valid_lever_angles() {
+    let cam = Cam::ellipse(0.366, 0.31).unwrap();
+    let g = ModulatorGeometry::PAPER.with_alpha_deg(20.0).unwrap();
+    let a = analyze(&g, &cam, &opts(1.0)).unwrap().summary.admissible_alpha_deg;
+    assert!(a[0] == 0.0 && a[1] > 40.0 && a[1] < 180.0, "{a:?}");
+    assert!(analyze(&g.with_alpha_deg(1.0).unwrap(), &cam, &opts(1.0)).is_ok());
+    assert!(analyze(&g.with_alpha_deg(a[1] - 0.05).unwrap(), &cam, &opts(1.0)).is_ok());
+    let msg = analyze(&g.with_alpha_deg(a[1] + 0.05).unwrap(), &cam, &opts(1.0)).unwrap_err().to_string();
+    assert!(msg.contains("admissible α ∈ (0.000,"), "{msg}");
+}
+
+/// Review regression: the l3 given as admissible was the distance range at one input angle only.
+/// Over the whole turn the roller reaches the paper's ellipse for l3 between the largest nearest
+/// distance and the smallest farthest distance from the crank circle `|A| = l2`; both occur at
+/// φ2 = 0 (A on the short axis): `l2 − a = 0.294 m` and `l2 + a = 1.026 m`.
+#[test]
+fn out_of_reach_gives_the_l3_range_over_the_turn() {
+    let g = ModulatorGeometry { l3_m: 2.0, ..ModulatorGeometry::PAPER };
+    let msg = analyze(&g, &Cam::paper(), &opts(1.0)).unwrap_err().to_string();
+    assert!(msg.contains("for l3 ∈ (0.294000, 1.026000) m"), "{msg}");
+}
+
 #[test]
 fn a_cam_out_of_reach_is_named() {
     let cam = Cam::ellipse(0.1, 0.1).unwrap();

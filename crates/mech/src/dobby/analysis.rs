@@ -201,16 +201,37 @@ fn reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> (f64, f64) {
         .fold((f64::INFINITY, 0.0), |(lo, hi), d| (lo.min(d), hi.max(d)))
 }
 
-fn no_reach(g: &ModulatorGeometry, phi2: f64, lo: f64, hi: f64) -> MechError {
-    MechError::CannotBuild {
-        phi2_deg: phi2.to_degrees(),
-        condition: format!(
+/// Range of l3 (m) for which roller B reaches Γ at every input angle: `[max min|A − Γ|, min max|A − Γ|]`
+/// over the turn (360 input angles), or `None` if it is empty.
+fn reach_over_turn(g: &ModulatorGeometry, cam: &Cam) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    for k in 0..360 {
+        let (a, b) = reach(g, cam, (k as f64).to_radians());
+        lo = lo.max(a);
+        hi = hi.min(b);
+    }
+    (lo < hi).then_some((lo, hi))
+}
+
+fn no_reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64, lo: f64, hi: f64) -> MechError {
+    let condition = if g.l3_m < lo || g.l3_m > hi {
+        format!(
             "roller B cannot reach cam Γ: the distance from A to Γ spans [{lo:.6}, {hi:.6}] m but the arm AB is \
              l3 = {} m",
             g.l3_m
-        ),
-        admissible: Some(format!("l3 ∈ [{lo:.6}, {hi:.6}] m at this angle")),
-    }
+        )
+    } else {
+        format!(
+            "roller B only touches cam Γ (the circle of radius l3 = {} m about A is tangent to Γ; the distance from A \
+             to Γ spans [{lo:.6}, {hi:.6}] m): the arm AB is normal to Γ there",
+            g.l3_m
+        )
+    };
+    let admissible = match reach_over_turn(g, cam) {
+        Some((a, b)) => format!("the roller reaches this cam over the whole turn for l3 ∈ ({a:.6}, {b:.6}) m"),
+        None => "no l3 reaches this cam over the whole turn; change the cam or l2 (point tables are in metres)".into(),
+    };
+    MechError::CannotBuild { phi2_deg: phi2.to_degrees(), condition, admissible: Some(admissible) }
 }
 
 /// The assembly `(p, φ3)` at input angle `phi2` (rad): among the points of Γ at distance l3 from A,
@@ -250,7 +271,7 @@ pub fn assemble(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> Result<[f64; 2]>
     }
     let Some((_, q)) = best else {
         let (lo, hi) = reach(g, cam, phi2);
-        return Err(no_reach(g, phi2, lo, hi));
+        return Err(no_reach(g, cam, phi2, lo, hi));
     };
     let sys = cam_loop(g, cam)?;
     let pos = sys.solve_position(phi2, SVector::<f64, 2>::new(q[0], q[1]), &NewtonOptions::default())?;
@@ -305,12 +326,21 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
             worst = (d.abs(), k);
         }
     }
-    let alpha_range = [(eta_max - sigma).to_degrees(), (eta_min + sigma).to_degrees()];
+    // |φ3 − φ2| ≤ σ for every φ2 ⇔ α ∈ [max η − σ, min η + σ], within the valid (0°, 180°).
+    let alpha_range = [(eta_max - sigma).to_degrees().max(0.0), (eta_min + sigma).to_degrees().min(180.0)];
     if worst.0 > sigma {
         let st = &traced[worst.1];
         let d = wrap_pi(st.q[1] - st.input);
-        let admissible = if alpha_range[0] <= alpha_range[1] {
-            format!("admissible α ∈ [{:.3}, {:.3}]° for this cam", alpha_range[0], alpha_range[1])
+        let admissible = if alpha_range[0] < alpha_range[1] {
+            // α = 0° and 180° themselves are not valid levers: the bound is open there.
+            let open = |v: f64| v <= 0.0 || v >= 180.0;
+            format!(
+                "admissible α ∈ {}{:.3}, {:.3}{}° for this cam",
+                if open(alpha_range[0]) { '(' } else { '[' },
+                alpha_range[0],
+                alpha_range[1],
+                if open(alpha_range[1]) { ')' } else { ']' }
+            )
         } else {
             format!(
                 "no α works for this cam: φ3 − φ2 + α spans {:.3}°, more than 2·arcsin(l6/l2) = {:.3}°",
@@ -318,14 +348,26 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
                 2.0 * sigma.to_degrees()
             )
         };
-        return Err(MechError::CannotBuild {
-            phi2_deg: st.input.to_degrees(),
-            condition: format!(
-                "the slot misses the output crank: |sin(φ3 − φ2)| = {:.5} > l6/l2 = {:.5} (φ3 − φ2 = {:.3}°)",
+        let condition = if d.cos() > 0.0 {
+            format!(
+                "the slot misses the output crank: |sin(φ3 − φ2)| = {:.5} > l6/l2 = {:.5} (φ3 − φ2 = {:.3}°, \
+                 |φ3 − φ2| must stay ≤ arcsin(l6/l2) = {:.3}°)",
                 d.sin().abs(),
                 g.l6_m / g.l2_m,
-                d.to_degrees()
-            ),
+                d.to_degrees(),
+                sigma.to_degrees()
+            )
+        } else {
+            format!(
+                "the slot misses the output crank: φ3 − φ2 = {:.3}°, so the slot from A points away from O and meets \
+                 the circle of crank 6 only behind A (|φ3 − φ2| must stay ≤ arcsin(l6/l2) = {:.3}°)",
+                d.to_degrees(),
+                sigma.to_degrees()
+            )
+        };
+        return Err(MechError::CannotBuild {
+            phi2_deg: st.input.to_degrees(),
+            condition,
             admissible: Some(admissible),
         });
     }
@@ -350,7 +392,7 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
     let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
     let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let theta_range = [dmax.to_degrees(), 180.0 + dmin.to_degrees()];
+    let theta_range = [dmax.to_degrees().max(0.0), (180.0 + dmin.to_degrees()).min(180.0)];
     let xs_done: Vec<f64> = states.iter().map(|s| s.phi2).collect();
     counter_cam_fold(g, &xs_done, &deltas, theta_range, &mut warnings);
     let checks = check_states(g, &states, w2, opts.pressure_limit_deg, &mut warnings);
@@ -382,7 +424,7 @@ fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechErr
         let x = from + (to - from) * k as f64 / 16.0;
         let (lo, hi) = reach(g, cam, x);
         if g.l3_m < lo || g.l3_m > hi {
-            return no_reach(g, x, lo, hi);
+            return no_reach(g, cam, x, lo, hi);
         }
     }
     MechError::CannotBuild {

@@ -213,8 +213,10 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
     let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
     let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
     let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let alpha_range = [(-dmin).to_degrees(), 180.0 - dmax.to_degrees()];
-    let theta_range = [dmax.to_degrees(), 180.0 + dmin.to_degrees()];
+    // sin(α + δ) ≠ 0 for every φ2 ⇔ α ∈ (−min δ, 180° − max δ); likewise θ − δ ∈ (0°, 180°).
+    // Both within the valid (0°, 180°); an empty range (lower ≥ upper) means no angle works.
+    let alpha_range = [(-dmin).to_degrees().max(0.0), (180.0 - dmax.to_degrees()).min(180.0)];
+    let theta_range = [dmax.to_degrees().max(0.0), (180.0 + dmin.to_degrees()).min(180.0)];
     if let Some(k) = deltas.iter().position(|d| {
         let v = g.alpha_rad() + d;
         v <= 0.0 || v >= std::f64::consts::PI
@@ -227,7 +229,11 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
                 deltas[k].to_degrees(),
                 g.alpha_deg
             ),
-            admissible: Some(format!("admissible α ∈ ({:.3}, {:.3})° for this law", alpha_range[0], alpha_range[1])),
+            admissible: Some(if alpha_range[0] < alpha_range[1] {
+                format!("admissible α ∈ ({:.3}, {:.3})° for this law", alpha_range[0], alpha_range[1])
+            } else {
+                format!("no α works for this law: φ3 − φ2 spans {:.3}°, not less than 180°", (dmax - dmin).to_degrees())
+            }),
         });
     }
     let mut warnings = Vec::new();
