@@ -9,7 +9,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum PickError {
     /// A numeric input outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} {lo} {field} {hi} {max}{unit}")]
+    #[error("{field} = {} is out of range: allowed {} {lo} {field} {hi} {}{unit}", num(*value), num(*min), num(*max))]
     OutOfRange {
         /// Name of the field (with its unit suffix, e.g. `play_mm`).
         field: String,
@@ -34,8 +34,9 @@ pub enum PickError {
     },
     /// The strap-loop play is larger than the cam can take up before the end of its rise.
     #[error(
-        "play_mm = {play_mm} is beyond the cam's reach: the play at the picker ({play_picker_mm:.2} mm = play·l/k) \
-         must be less than the cam's remaining travel {reach_mm:.2} mm"
+        "play_mm = {} is beyond the cam's reach: the play at the picker ({play_picker_mm:.2} mm = play·l/k) \
+         must be less than the cam's remaining travel {reach_mm:.2} mm",
+        num(*play_mm)
     )]
     PlayBeyondReach {
         /// Play of the strap loop s'₀ in mm.
@@ -44,6 +45,57 @@ pub enum PickError {
         play_picker_mm: f64,
         /// Nominal picker travel available over the cam's rise, in mm.
         reach_mm: f64,
+    },
+    /// With `--start equilibrium` the picker must take up the play and the extra static
+    /// deflection D' − D under the checking force before the shuttle moves; together they exceed
+    /// the cam's travel.
+    #[error(
+        "checking_kgf = {} with the equilibrium start is beyond the cam's reach: the play at the \
+         picker ({play_picker_mm:.2} mm) plus the extra static deflection D' − D = {extra_mm:.2} mm under the \
+         checking force must be less than the cam's travel {reach_mm:.2} mm",
+        num(*checking_kgf)
+    )]
+    CheckingBeyondReach {
+        /// Checking force F₀ in kgf.
+        checking_kgf: f64,
+        /// Play referred to the picker, s₀ = s'₀·l/k, in mm.
+        play_picker_mm: f64,
+        /// D' − D, in mm.
+        extra_mm: f64,
+        /// Nominal picker travel over the cam's rise, in mm.
+        reach_mm: f64,
+    },
+    /// The strap position is so close to the pivot that B', C', D' (∝ 1/k²) overflow.
+    #[error(
+        "strap_cm = {} is out of range: the constants B', C', D' of eq. 4 (∝ 1/k²) are not finite; \
+         allowed 0 < strap_cm < {} cm with finite constants",
+        num(*strap_cm),
+        num(*l_cm)
+    )]
+    StrapTooLow {
+        /// Strap-loop height k in cm.
+        strap_cm: f64,
+        /// Stick length l in cm.
+        l_cm: f64,
+    },
+    /// The mechanism oscillates too fast, or too many times over the pick, for the routes to
+    /// follow it accurately (real picking mechanisms have ψ of 10²–10³ 1/s and a few cycles).
+    #[error(
+        "the setting gives a natural frequency ψ = {natural_1_s:.4e} 1/s and {cycles:.4e} oscillations over the \
+         pick of {duration_s:.4e} s: allowed ψ ≤ {max_natural_1_s:e} 1/s and at most {max_cycles} oscillations \
+         (check the compliances, masses, the design velocity and the loom speed)"
+    )]
+    TooManyOscillations {
+        /// ψ = √((C'+1)/B') in 1/s.
+        natural_1_s: f64,
+        /// Duration of the cam's rise in real time, s.
+        duration_s: f64,
+        /// ψ·duration/(2π).
+        cycles: f64,
+        /// Largest ψ accepted, 1/s.
+        max_natural_1_s: f64,
+        /// Largest number of oscillations accepted.
+        max_cycles: f64,
     },
     /// The closed form cannot answer: the forcing frequency μ·q meets the natural frequency ψ.
     #[error(
@@ -129,6 +181,12 @@ impl PickError {
         }
         Ok(value)
     }
+}
+
+/// A number for an error line: plain when of ordinary size, in exponent form when very large
+/// or very small (so that 1e308 does not print as 309 digits).
+fn num(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e7).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
 }
 
 /// Result alias of the picking study.

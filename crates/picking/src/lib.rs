@@ -56,6 +56,7 @@ pub use mechanism::Mechanism;
 pub use ode::{ODE_ATOL, ODE_RTOL, integrate};
 pub use params::{Constants, Params};
 pub use required::RequiredVelocity;
+pub use scenario::{MAX_CYCLES, MAX_NATURAL_1_S};
 pub use settings::{Setting, Settings, StartRule};
 pub use simulate::{History, Method, Outcome, PickEnd, Sample, closed_form_constants, history, simulate};
 pub use sweep::{Sweep, SweepRow, sweep};

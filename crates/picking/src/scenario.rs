@@ -1,8 +1,21 @@
 //! A mechanism under given settings, resolved into the equation B'·ẍ + (C'+1)·x = s(t) − s₀ − D'.
 
 use crate::cam::BuiltCam;
-use crate::units::M_PER_MM;
+use crate::units::{M_PER_CM, M_PER_MM, N_PER_KGF};
 use crate::{Constants, Mechanism, Nominal, PickError, Result, Settings, StartRule};
+use std::f64::consts::PI;
+
+/// Largest natural frequency ψ = √((C'+1)/B') accepted, 1/s (real mechanisms: 10²–10³ 1/s).
+///
+/// Above it the equation is so stiff that the integrator's rounding noise (ẍ is the small
+/// difference of two terms of size ψ²·x) forces ever smaller steps, and the closed form's
+/// accelerations lose digits the same way.
+pub const MAX_NATURAL_1_S: f64 = 3e4;
+
+/// Largest number of natural oscillations ψ·T/(2π) over the cam's rise accepted. The paper's
+/// mechanism stays below 750 at any accepted setting (1 rev/min, k next to l); beyond a few
+/// thousand the numerical route's step count grows past its budget.
+pub const MAX_CYCLES: f64 = 1000.0;
 
 /// Everything the two routes need about one scenario.
 ///
@@ -36,6 +49,9 @@ impl Scenario {
         let cam = m.built_cam()?;
         let design = *m.design();
         let k = p.constants_at(st.strap_m, st.shuttle_kg, st.checking_n);
+        if !(k.b_s2.is_finite() && k.b_s2 > 0.0 && k.c.is_finite() && k.d_m.is_finite()) {
+            return Err(PickError::StrapTooLow { strap_cm: st.strap_m / M_PER_CM, l_cm: p.l_m / M_PER_CM });
+        }
         let q = st.speed_rpm / m.design_spec().speed_rpm;
         let s0 = st.play_m * p.l_m / st.strap_m;
         let travel = match st.start {
@@ -45,15 +61,34 @@ impl Scenario {
         let reach = cam.reach_m();
         let u0 = match cam.time_of_travel(travel) {
             Some(u0) if travel < reach => u0,
-            _ => {
+            _ if s0 >= reach || st.start == StartRule::Paper => {
                 return Err(PickError::PlayBeyondReach {
                     play_mm: st.play_m / M_PER_MM,
                     play_picker_mm: s0 / M_PER_MM,
-                    reach_mm: (reach - (travel - s0)) / M_PER_MM,
+                    reach_mm: reach / M_PER_MM,
+                });
+            }
+            _ => {
+                return Err(PickError::CheckingBeyondReach {
+                    checking_kgf: st.checking_n / N_PER_KGF,
+                    play_picker_mm: s0 / M_PER_MM,
+                    extra_mm: (k.d_m - design.constants.d_m) / M_PER_MM,
+                    reach_mm: reach / M_PER_MM,
                 });
             }
         };
         let t_cam_end = (cam.end_u() - u0) / q;
+        let psi = k.natural_1_s();
+        let cycles = psi * t_cam_end / (2.0 * PI);
+        if !(psi <= MAX_NATURAL_1_S && cycles <= MAX_CYCLES) {
+            return Err(PickError::TooManyOscillations {
+                natural_1_s: psi,
+                duration_s: t_cam_end,
+                cycles,
+                max_natural_1_s: MAX_NATURAL_1_S,
+                max_cycles: MAX_CYCLES,
+            });
+        }
         let joints = cam.joints_u().into_iter().map(|u| (u - u0) / q).filter(|&t| t > 0.0 && t < t_cam_end).collect();
         Ok(Self { cam, k, q, u0, s0, t_cam_end, joints, shuttle_kg: st.shuttle_kg, checking_n: st.checking_n })
     }

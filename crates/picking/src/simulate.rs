@@ -112,8 +112,13 @@ impl Route<'_> {
     }
 }
 
-/// Number of uniform scan intervals for the closed form's extrema and events.
+/// Least number of uniform scan intervals for the closed form's extrema and events.
 const SCAN: usize = 512;
+
+/// Scan intervals per natural oscillation: a dip of the contact force below zero or a peak of
+/// the acceleration lies within (1 − cos(π/32)) ≈ 0.5 % of the oscillation's amplitude of a scan
+/// point, so no event or peak of the free oscillation is stepped over.
+const SCAN_PER_CYCLE: f64 = 32.0;
 
 fn prepare<'a>(sc: &'a Scenario, method: Method) -> Result<(Route<'a>, Method, Option<String>)> {
     if method == Method::Closed {
@@ -133,7 +138,10 @@ fn knots(sc: &Scenario, route: &Route<'_>) -> Vec<f64> {
     match route {
         Route::Ode(o) if o.len() >= SCAN / 4 => o.knots(),
         _ => {
-            let mut k: Vec<f64> = (0..=SCAN).map(|i| sc.t_cam_end * i as f64 / SCAN as f64).collect();
+            let cycles = sc.psi() * sc.t_cam_end / (2.0 * std::f64::consts::PI);
+            // cycles ≤ MAX_CYCLES (checked when the scenario is built), so n stays ≤ 32 000.
+            let n = SCAN.max((SCAN_PER_CYCLE * cycles).ceil() as usize);
+            let mut k: Vec<f64> = (0..=n).map(|i| sc.t_cam_end * i as f64 / n as f64).collect();
             k.extend(sc.joints.iter().copied());
             if let Route::Ode(o) = route {
                 k.extend(o.knots());
@@ -213,16 +221,32 @@ fn evaluate(
         armed |= f > 0.0;
     }
     let last = route.state(t_end)?;
-    // Peak acceleration over [0, t_end].
+    // Peak acceleration over [0, t_end]: every local maximum of the scan that may hide the
+    // global one is refined. Between scan points h apart, an oscillation of amplitude a_osc at
+    // ψ rises at most a_osc·(1 − cos(ψh/2)) above the nearer point, so any local maximum within
+    // twice that of the best scan value is a candidate (many nearly equal peaks when the pick
+    // lasts many natural periods).
     let mut best = (t_end, last.a_m_s2);
-    let mut ib = None;
+    let (mut a_min, mut a_max, mut h_max) = (last.a_m_s2, last.a_m_s2, 0.0f64);
     for i in 0..n_used {
-        if states[i].a_m_s2 > best.1 {
-            best = (ts[i], states[i].a_m_s2);
-            ib = Some(i);
+        let a = states[i].a_m_s2;
+        (a_min, a_max) = (a_min.min(a), a_max.max(a));
+        if a > best.1 {
+            best = (ts[i], a);
         }
+        let next = if i + 1 < n_used { ts[i + 1] } else { t_end };
+        h_max = h_max.max(next - ts[i]);
     }
-    if let Some(i) = ib {
+    let half_phase = (0.5 * sc.psi() * h_max).min(std::f64::consts::PI);
+    let slack = (1.0 - half_phase.cos()) * (a_max - a_min) + 1e-12 * best.1.abs();
+    let grid_best = best.1;
+    let a_at = |i: usize| if i < n_used { states[i].a_m_s2 } else { last.a_m_s2 };
+    for i in 0..n_used {
+        let a = states[i].a_m_s2;
+        let local_max = (i == 0 || a >= states[i - 1].a_m_s2) && a >= a_at(i + 1);
+        if !local_max || a < grid_best - slack {
+            continue;
+        }
         let lo = ts[i.saturating_sub(1)];
         let hi = if i + 1 < n_used { ts[i + 1] } else { t_end };
         if hi > lo {
@@ -233,6 +257,10 @@ fn evaluate(
         }
     }
     let vr = m.required().at(st.speed_rpm);
+    let values = [t_end, last.x_m, last.v_m_s, last.a_m_s2, best.0, best.1, vr];
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(PickError::Solver { reason: "the end-of-pick values are not finite numbers".into() });
+    }
     Ok(Outcome {
         t_end_s: t_end,
         t0_s: sc.t0(),

@@ -141,3 +141,54 @@ fn outcomes_are_continuous_in_the_settings() {
     let fast = simulate(&m, &Settings::designed(&m).with_speed_rpm(200.0 + 1e-6), Method::Closed).unwrap();
     assert!((fast.distance_m - base.distance_m).abs() < 1e-8);
 }
+
+/// The paper's mechanism made 1/3.1e-5 times stiffer in the stick and strap (ψ ≈ 2.9·10⁴ 1/s,
+/// about 180 times the paper's): the pick lasts tens to hundreds of natural periods.
+fn stiff() -> Mechanism {
+    let paper = Mechanism::paper_default();
+    let mut p = *paper.params();
+    p.c1_m_per_n *= 3.1e-5;
+    p.c23_m_per_n *= 3.1e-5;
+    Mechanism::new(p, *paper.design_spec()).unwrap()
+}
+
+/// With many natural periods in the pick, the closed form's scan must not step over the first
+/// dip of the contact force (separation) nor pick the wrong one of many nearly equal acceleration
+/// peaks: the stored integration steps of the numerical route are an independent scan.
+/// (Regression: a fixed 512-point scan found the separation ~9 periods late and a peak 1.5e-4 low.)
+#[test]
+fn many_natural_periods_events_and_peaks_agree() {
+    let m = stiff();
+    assert!(m.params().constants().natural_1_s() > 2.5e4);
+    for st in [
+        Settings::designed(&m).with_speed_rpm(150.0).with_play_mm(2.0).with_checking_kgf(200.0),
+        Settings::designed(&m).with_speed_rpm(40.0).with_checking_kgf(50.0),
+        Settings::designed(&m).with_speed_rpm(35.0).with_play_mm(5.0),
+    ] {
+        let (c, o) = (simulate(&m, &st, Method::Closed).unwrap(), simulate(&m, &st, Method::Ode).unwrap());
+        assert_eq!(c.method, Method::Closed);
+        assert_agree(&c, &o, 1e-7);
+    }
+}
+
+/// Settings the routes cannot follow are refused with an error naming the limit, not answered
+/// with noise: a mechanism 10⁸ times stiffer, or a strap so low that B', C', D' overflow.
+#[test]
+fn unfollowable_settings_are_refused() {
+    let paper = Mechanism::paper_default();
+    let mut p = *paper.params();
+    p.c1_m_per_n *= 1e-8;
+    p.c23_m_per_n *= 1e-8;
+    let m = Mechanism::new(p, *paper.design_spec()).unwrap();
+    for method in [Method::Closed, Method::Ode] {
+        let e = simulate(&m, &Settings::designed(&m), method).unwrap_err();
+        assert!(matches!(e, PickError::TooManyOscillations { .. }), "{e}");
+        assert!(e.to_string().contains("natural frequency"));
+    }
+    // 1 rev/min: many periods, still followed (the paper's mechanism is never refused).
+    let slow = Settings::designed(&paper).with_speed_rpm(1.0).with_strap_cm(73.9);
+    let (c, o) = (simulate(&paper, &slow, Method::Closed).unwrap(), simulate(&paper, &slow, Method::Ode).unwrap());
+    assert_agree(&c, &o, 1e-7);
+    let e = simulate(&paper, &Settings::designed(&paper).with_strap_cm(1e-300), Method::Closed).unwrap_err();
+    assert!(matches!(e, PickError::StrapTooLow { .. }) && e.to_string().contains("strap_cm = 1e-300"), "{e}");
+}
