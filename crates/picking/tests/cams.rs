@@ -50,12 +50,14 @@ fn catalogue_cams_match_an_independent_integrator() {
 }
 
 /// With a nearly rigid mechanism the shuttle follows the cam: x ≈ s − s(0), for any cam.
+/// (10⁻⁴ of the paper's compliances: ψ ≈ 1.6·10⁴ 1/s, within the accepted ψ ≤ 3·10⁴ 1/s; the
+/// deflection B·ẍ + C·x + D is then below 3 µm.)
 #[test]
 fn a_stiff_mechanism_follows_the_cam() {
     let paper = Mechanism::paper_default();
     let mut p = *paper.params();
-    p.c1_m_per_n *= 1e-6;
-    p.c23_m_per_n *= 1e-6;
+    p.c1_m_per_n *= 1e-4;
+    p.c23_m_per_n *= 1e-4;
     let stiff = Mechanism::new(p, *paper.design_spec()).unwrap();
     for m in [stiff.clone(), stiff.clone().with_law(LawSpec::Cycloidal).unwrap()] {
         let h = history(&m, &Settings::designed(&m), Method::Ode, 101).unwrap();
