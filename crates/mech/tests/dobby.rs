@@ -193,7 +193,7 @@ fn a_slot_pointing_away_from_o_is_named_truthfully() {
     let msg = analyze(&g, &Cam::paper(), &opts(1.0)).unwrap_err().to_string();
     let num = |key: &str| -> f64 {
         let rest = &msg[msg.find(key).unwrap() + key.len()..];
-        rest.split(|c: char| c == ' ' || c == ')').next().unwrap().parse().unwrap()
+        rest.split([' ', ')']).next().unwrap().parse().unwrap()
     };
     assert!(num("|sin(φ3 − φ2)| = ") > num("l6/l2 = "), "{msg}");
 }
