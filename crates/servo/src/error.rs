@@ -11,7 +11,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum ServoError {
     /// A definition point that breaks a rule (order, range, end values, finiteness).
-    #[error("definition point {index} [{x}, {y}]: {reason}")]
+    #[error("definition point {index} [{}, {}]: {reason}", num(*x), num(*y))]
     Point {
         /// Number of the point, 1-based (the paper's `j`).
         index: usize,
@@ -37,7 +37,7 @@ pub enum ServoError {
         reason: String,
     },
     /// A numeric value outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}")]
+    #[error("{field} = {} is out of range: allowed {} ≤ {field} ≤ {}{unit}", num(*value), num(*min), num(*max))]
     OutOfRange {
         /// Name of the field.
         field: String,
@@ -91,6 +91,20 @@ impl ServoError {
         }
         Ok(value)
     }
+}
+
+/// A number for a message: shortest round-trip form for ordinary magnitudes, scientific notation
+/// for very large or small ones, and at most 12 significant digits (so `0.1 + 1e-4` reads
+/// `0.1001`, not `0.10010000000000001`).
+pub(crate) fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let a = v.abs();
+    // Round to 12 significant digits through the exponent form, then print the shorter of the
+    // plain and the scientific form.
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    if a == 0.0 || (1e-4..1e9).contains(&a) { format!("{rounded}") } else { format!("{rounded:e}") }
 }
 
 /// Result alias of the servo crate.

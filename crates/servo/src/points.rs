@@ -1,5 +1,6 @@
 //! Definition points: validation, parsing and the built-in default set.
 
+use crate::error::num;
 use crate::{Result, ServoError};
 
 /// Fewest definition points the spline accepts (the paper uses N = 7).
@@ -7,6 +8,10 @@ pub const MIN_POINTS: usize = 4;
 
 /// Smallest allowed gap between consecutive X (keeps the spline system well conditioned).
 pub const MIN_GAP: f64 = 1e-4;
+
+/// Smallest allowed largest |Y|: the law is scale-free in Y (it is normalised to a unit
+/// stroke), so only a set of all-but-zero Y, whose normalisation would overflow, is refused.
+pub const MIN_Y_MAX: f64 = 1e-12;
 
 /// Tolerance within which the fixed end values (X₁ = 0, X_N = 0.5, Y₁ = Y_N = 0) are accepted
 /// and then snapped exactly.
@@ -33,7 +38,7 @@ pub fn default_points() -> Vec<[f64; 2]> {
 /// Rules (point numbers `j` are 1-based, as in the paper):
 /// - at least [`MIN_POINTS`] points, every coordinate finite;
 /// - `X₁ = 0`, `X_N = 0.5`, X strictly increasing with gaps of at least [`MIN_GAP`];
-/// - `Y₁ = Y_N = 0`, every other `Y ∈ [−1, 1]` (the paper uses `[0, 1]`; negative values are
+/// - `Y₁ = Y_N = 0`, every other `Y ∈ [−1, 1]`, the largest |Y| at least [`MIN_Y_MAX`] (the paper uses `[0, 1]`; negative values are
 ///   allowed so that a designer can shape the acceleration freely, the net motion must still be
 ///   a rise).
 pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
@@ -69,7 +74,7 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
         if x < prev + MIN_GAP {
             return Err(bad(
                 j,
-                format!("X must increase: it must be at least X{} + {MIN_GAP} = {}", j, prev + MIN_GAP),
+                format!("X must increase: it must be at least X{} + {MIN_GAP} = {}", j, num(prev + MIN_GAP)),
             ));
         }
     }
@@ -79,9 +84,14 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
             return Err(bad(j, "Y must lie in [-1, 1]".into()));
         }
     }
-    if out.iter().all(|p| p[1] == 0.0) {
+    let y_max = out.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
+    if y_max < MIN_Y_MAX {
         return Err(ServoError::NoRise {
-            reason: "every Y is zero: the acceleration is zero, there is no motion".into(),
+            reason: format!(
+                "the largest |Y| is {}: the acceleration is (almost) zero, there is no motion \
+                 (Y are relative accelerations: give at least one |Y| ≥ {MIN_Y_MAX}, e.g. in [0, 1] as the paper)",
+                num(y_max)
+            ),
         });
     }
     Ok(out)

@@ -167,17 +167,34 @@ impl SplineLaw {
             pieces.push(AccelPiece::poly(h, &mirrored));
         }
         let raw_half = half_displacement(&points, &local);
-        if raw_half.is_nan() || raw_half <= 0.0 {
+        let scale = 1.0 / (2.0 * raw_half);
+        if raw_half.is_nan() || raw_half <= 0.0 || !scale.is_finite() {
+            // Where the spline swings lowest on [0, 0.5] (it may dip below zero between points
+            // even when every Y is positive, e.g. after a steep slope D at x = 0.5).
+            let (f_min, x_min) = points
+                .windows(2)
+                .zip(&local)
+                .flat_map(|(p, c)| {
+                    let h = p[1][0] - p[0][0];
+                    (0..=32).map(move |k| {
+                        let t = h * k as f64 / 32.0;
+                        (poly::eval(c, t), p[0][0] + t)
+                    })
+                })
+                .fold((f64::INFINITY, 0.0), |a, b| if b.0 < a.0 { b } else { a });
             return Err(ServoError::NoRise {
                 reason: format!(
-                    "the acceleration through these points gives a net displacement of {:.6e}: \
-                     it must be positive (make the Y of the first half mostly positive)",
-                    2.0 * raw_half
+                    "the acceleration spline through these points gives a net displacement F(1) = {:.4e}: \
+                     it must be positive (the spline reaches f = {:.3} at x = {:.3}; move or add points so that \
+                     f stays mostly positive on [0, 0.5])",
+                    2.0 * raw_half,
+                    f_min,
+                    x_min
                 ),
             });
         }
         let law = Law::from_accel_pieces(&pieces, EndCondition::Rest, "def_points")?;
-        Ok(Self { points, end, d, local, scale: 1.0 / (2.0 * raw_half), law })
+        Ok(Self { points, end, d, local, scale, law })
     }
 
     /// The law through the built-in [`crate::default_points`] (natural start).
