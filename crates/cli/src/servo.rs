@@ -58,7 +58,8 @@ impl DefArgs {
 /// The drive file.
 #[derive(Debug, Args, Clone)]
 pub struct DriveArgs {
-    /// Drive file (TOML with a `[drive]` table); default: the built-in needle-rack drive.
+    /// Drive file: TOML with a `[drive]` table, or a design file saved by the workbench (TOML or
+    /// JSON; only its drive is read). Default: the built-in needle-rack drive.
     #[arg(long, value_name = "FILE")]
     drive: Option<PathBuf>,
 }
@@ -69,7 +70,7 @@ impl DriveArgs {
             None => Ok(Drive::needle_rack_default()),
             Some(p) => {
                 let text = util::read_input(p)?;
-                Drive::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))
+                Drive::from_text(&text).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))
             }
         }
     }
@@ -223,7 +224,11 @@ fn law(a: LawArgs) -> Result<()> {
         return util::print_json(&json!({
             "def_points": points_json(sl.points()),
             "end": sl.end().name(),
+            "units": "d: slope of the acceleration image f (through the points) at x = 0.5; \
+                      d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
+                      per unit stroke and unit motion angle (dimensionless)",
             "d": sl.d(),
+            "d_unit": sl.d() * sl.scale(),
             "scale": sl.scale(),
             "cv": m.cv, "x_cv": m.x_cv,
             "ca": m.ca, "ca_pos": m.ca_pos, "x_ca_pos": m.x_ca_pos, "ca_neg": m.ca_neg, "x_ca_neg": m.x_ca_neg,
@@ -412,9 +417,11 @@ fn export(a: ExportArgs) -> Result<()> {
         other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5"),
     };
     {
-        let mut w = loomkin_io::open_output(&a.output).map_err(util::failure)?;
-        w.write_all(text.as_bytes()).map_err(util::failure)?;
-        w.flush().map_err(util::failure)?;
+        // The io error already names the file and its cause: pass its text on, once.
+        let fail = |e: &dyn std::fmt::Display| util::failure(anyhow::anyhow!("{e}"));
+        let mut w = loomkin_io::open_output(&a.output).map_err(|e| fail(&e))?;
+        w.write_all(text.as_bytes()).map_err(|e| fail(&format!("cannot write {}: {e}", a.output)))?;
+        w.flush().map_err(|e| fail(&format!("cannot write {}: {e}", a.output)))?;
     }
     if a.output != "-" {
         eprintln!("wrote {}", a.output);
@@ -445,7 +452,7 @@ fn export(a: ExportArgs) -> Result<()> {
         return util::print_json(&json!({"format": format, "points": table.points.len(), "reinterpolation": v}));
     }
     println!(
-        "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated (checked at 16 points per step):",
+        "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated:",
         table.points.len(),
         table.step_deg()
     );

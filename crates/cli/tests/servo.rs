@@ -175,3 +175,83 @@ fn bad_input_is_a_one_line_usage_error() {
     usage_error(&["servo", "export", "--format", "csv", "--step-deg", "0", "-o", "-"], &["step_deg"]);
     usage_error(&["servo", "torque", "--drive", "/nonexistent/drive.toml"], &["/nonexistent/drive.toml"]);
 }
+
+/// A design saved by the workbench (TOML or JSON) serves as `--drive FILE`: its drive is read
+/// (here a non-default one, checked against the pure-inertia closed form), its points ignored.
+#[test]
+fn a_workbench_design_file_serves_as_drive_file() {
+    use loomkin_web::{DesignFormat, ServoDesign};
+    let mut design = ServoDesign::default();
+    design.drive = loomkin_servo::Drive::pure_inertia(0.06, 140.0, 0.8, 0.03);
+    let ca = stdout_json(&["servo", "law", "--json"])["ca"].as_f64().unwrap();
+    let t = (140.0 / 360.0) * 60.0 / 700.0;
+    let expected = 0.03 * 0.8 * ca * 0.06 / (t * t);
+    for (format, name) in [(DesignFormat::Toml, "design.toml"), (DesignFormat::Json, "design.json")] {
+        let f = tmp(name);
+        std::fs::write(&f, design.to_text(format).unwrap()).unwrap();
+        let v = stdout_json(&["servo", "torque", "--drive", f.to_str().unwrap(), "--speed-rpm", "700", "--json"]);
+        let got = v["results"][0]["peak_torque_nm"].as_f64().unwrap();
+        assert!((got - expected).abs() < 1e-9 * expected, "{name}: {got} vs {expected}");
+        assert_eq!(v["drive"]["stroke_m"].as_f64().unwrap(), 0.06);
+    }
+}
+
+/// Drive files: keys left out are 0 (gear ratio and efficiency 1); every bad key or value is one
+/// line naming the key.
+#[test]
+fn bad_drive_files_name_the_key() {
+    let f = tmp("bad-drive.toml");
+    let path = f.to_str().unwrap();
+    let base = "[drive]\nstroke_m = 0.1\nmotion_angle_deg = 150\npinion_radius_m = 0.02\nmoving_mass_kg = 1\n";
+    for (extra, needles) in [
+        ("damping = 3\n", &["drive.damping", "unknown key", "damping_n_s_m"][..]),
+        ("efficiency = \"high\"\n", &["drive.efficiency", "a number"][..]),
+        ("efficiency = 0\n", &["drive.efficiency = 0", "0.001"][..]),
+        ("efficiency = nan\n", &["drive.efficiency is not a finite number"][..]),
+        ("gear_ratio = -2\n", &["drive.gear_ratio = -2"][..]),
+        ("return_angle_deg = 250\n", &["return 250"][..]),
+        ("stroke_m = 0.2\n", &["line 6"][..]),
+        ("[extra]\nx = 1\n", &["extra", "unknown top-level key"][..]),
+        ("motor_inertia_kg_m2 = inf\n", &["drive.motor_inertia_kg_m2 is not a finite number"][..]),
+    ] {
+        std::fs::write(&f, format!("{base}{extra}")).unwrap();
+        usage_error(&["servo", "torque", "--drive", path], needles);
+    }
+    std::fs::write(&f, "").unwrap();
+    usage_error(&["servo", "torque", "--drive", path], &["no [drive] table"]);
+    std::fs::write(&f, "[drive]\nstroke_m = 0.1\nmotion_angle_deg = 150\n").unwrap();
+    usage_error(&["servo", "torque", "--drive", path], &["drive.pinion_radius_m = 0"]);
+    std::fs::write(&f, "{\"drive\": {\"stroke_m\": \"x\"}}").unwrap();
+    usage_error(&["servo", "torque", "--drive", path], &["drive.stroke_m", "a number in m"]);
+    std::fs::write(&f, [0xff, 0xfe, 0x00]).unwrap();
+    usage_error(&["servo", "torque", "--drive", path], &["bad-drive.toml"]);
+    // Left-out keys: no damping, no inertia, gear ratio and efficiency 1 → the pure-inertia torque.
+    std::fs::write(&f, base).unwrap();
+    let v = stdout_json(&["servo", "torque", "--drive", path, "--speed-rpm", "600", "--json"]);
+    let ca = stdout_json(&["servo", "law", "--json"])["ca"].as_f64().unwrap();
+    let t = (150.0 / 360.0) * 60.0 / 600.0;
+    let expected = 0.02 * 1.0 * ca * 0.1 / (t * t);
+    assert!((v["results"][0]["peak_torque_nm"].as_f64().unwrap() - expected).abs() < 1e-9 * expected);
+    assert_eq!(v["drive"]["gear_ratio"], 1.0);
+    assert_eq!(v["drive"]["efficiency"], 1.0);
+}
+
+/// Extreme definition points: readable one-line messages, never a panic or an internal error.
+#[test]
+fn extreme_points_are_refused_with_readable_messages() {
+    usage_error(&["servo", "law", "--def", "0:0,0.1:1e308,0.3:1,0.5:0"], &["definition point 2 [0.1, 1e308]"]);
+    usage_error(&["servo", "law", "--def", "0:0,0.2:1e-320,0.3:1e-320,0.5:0", "--json"], &["largest |Y|"]);
+    usage_error(&["servo", "law", "--def", "0:0,0.1:0.5,0.10001:1,0.5:0"], &["at least X2 + 0.0001 = 0.1001"]);
+    usage_error(&["servo", "law", "--def", "0:0,0.272:0.052,0.353:0.68,0.5:0"], &["net displacement", "f = -0.3"]);
+    usage_error(&["servo", "law", "--def", "0:0,0.1:inf,0.3:1,0.5:0"], &["definition point 2", "finite"]);
+    // Tiny but valid Y give the same law as Y of order 1.
+    let a = stdout_json(&["servo", "law", "--def", "0:0,0.2:1e-9,0.3:1e-9,0.5:0", "--json"]);
+    let b = stdout_json(&["servo", "law", "--def", "0:0,0.2:1,0.3:1,0.5:0", "--json"]);
+    assert!((a["ca"].as_f64().unwrap() - b["ca"].as_f64().unwrap()).abs() < 1e-9);
+    // An unwritable output is exit 1 with the cause once.
+    let out =
+        loomkin().args(["servo", "export", "--format", "json", "-o", "/nonexistent/dir/x.json"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.matches("No such file").count(), 1, "{err}");
+}

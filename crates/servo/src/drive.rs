@@ -84,10 +84,54 @@ fn one() -> f64 {
     1.0
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct DriveFile {
-    drive: Drive,
+/// The keys of a `[drive]` table and their units.
+pub const DRIVE_KEYS: [(&str, &str); 13] = [
+    ("stroke_m", "m"),
+    ("motion_angle_deg", "deg"),
+    ("moving_mass_kg", "kg"),
+    ("pinion_radius_m", "m"),
+    ("gear_ratio", ""),
+    ("motor_inertia_kg_m2", "kg·m²"),
+    ("spring_n_m", "N/m"),
+    ("spring_preload_n", "N"),
+    ("damping_n_s_m", "N·s/m"),
+    ("constant_force_n", "N"),
+    ("efficiency", ""),
+    ("return_angle_deg", "deg"),
+    ("dwell_after_rise_deg", "deg"),
+];
+
+/// The top-level keys of a workbench design file besides `drive` (definition points, spline
+/// start condition, speeds); a drive file may hold them, [`Drive::from_toml`] ignores them.
+pub const DESIGN_KEYS: [&str; 3] = ["points", "end", "speeds_rpm"];
+
+/// A value of the `[drive]` table: a number, or the (shortened) text of something else.
+enum Entry {
+    Number(f64),
+    Other(String),
+}
+
+impl Entry {
+    fn from_toml(v: &toml::Value) -> Self {
+        match v {
+            toml::Value::Integer(i) => Self::Number(*i as f64),
+            toml::Value::Float(x) => Self::Number(*x),
+            other => Self::Other(short(&other.to_string())),
+        }
+    }
+
+    fn from_json(v: &serde_json::Value) -> Self {
+        match v.as_f64() {
+            Some(x) => Self::Number(x),
+            None => Self::Other(short(&v.to_string())),
+        }
+    }
+}
+
+/// At most 40 characters of a value's text, on one line.
+fn short(text: &str) -> String {
+    let one: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    if one.chars().count() > 40 { format!("{}…", one.chars().take(40).collect::<String>()) } else { one }
 }
 
 /// The four phases of one main-shaft turn, with their angles (deg).
@@ -165,15 +209,124 @@ impl Drive {
     }
 
     /// Reads a drive from TOML text with a `[drive]` table, and checks it.
+    ///
+    /// A key left out is 0, except `gear_ratio` and `efficiency` (1) and the optional cycle keys.
+    /// Besides `[drive]` the file may hold the other top-level keys of a workbench design file
+    /// ([`DESIGN_KEYS`]: `points`, `end`, `speeds_rpm`), which are ignored here, so a design
+    /// saved by the workbench serves as a drive file. Every other key, and every value that is
+    /// not a number, is an error naming the key.
     pub fn from_toml(text: &str) -> Result<Self> {
-        let file: DriveFile = toml::from_str(text).map_err(|e| ServoError::Parse {
-            field: "drive file".into(),
-            text: e.message().to_string(),
-            expected: "TOML with a [drive] table (stroke_m, motion_angle_deg, moving_mass_kg, pinion_radius_m, …)"
-                .into(),
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            let line = e.span().map(|r| text[..r.start.min(text.len())].matches('\n').count() + 1);
+            let at = line.map(|l| format!(" at line {l}")).unwrap_or_default();
+            ServoError::Parse {
+                field: "drive file".into(),
+                text: format!("{}{at}", e.message().trim()),
+                expected: "TOML with a [drive] table".into(),
+            }
         })?;
-        file.drive.validate()?;
-        Ok(file.drive)
+        let top: Vec<String> = table.keys().cloned().collect();
+        let drive = table.get("drive").map(|v| match v {
+            toml::Value::Table(t) => Ok(t.iter().map(|(k, v)| (k.clone(), Entry::from_toml(v))).collect()),
+            other => Err(short(&other.to_string())),
+        });
+        Self::from_entries(&top, drive)
+    }
+
+    /// Reads a drive from JSON text, `{"drive": {…}}` (the JSON form of a workbench design file
+    /// also serves); the same rules as [`Drive::from_toml`].
+    pub fn from_json(text: &str) -> Result<Self> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| ServoError::Parse {
+            field: "drive file".into(),
+            text: format!("{e}"),
+            expected: "JSON with a \"drive\" object".into(),
+        })?;
+        let Some(obj) = value.as_object() else {
+            return Err(ServoError::Parse {
+                field: "drive file".into(),
+                text: short(&value.to_string()),
+                expected: "a JSON object with a \"drive\" object".into(),
+            });
+        };
+        let top: Vec<String> = obj.keys().cloned().collect();
+        let drive = obj.get("drive").map(|v| match v {
+            serde_json::Value::Object(o) => Ok(o.iter().map(|(k, v)| (k.clone(), Entry::from_json(v))).collect()),
+            other => Err(short(&other.to_string())),
+        });
+        Self::from_entries(&top, drive)
+    }
+
+    /// Reads a drive file in JSON (text starting with `{`) or TOML, see [`Drive::from_toml`].
+    pub fn from_text(text: &str) -> Result<Self> {
+        if text.trim_start().starts_with('{') { Self::from_json(text) } else { Self::from_toml(text) }
+    }
+
+    /// Builds and checks a drive from the top-level keys of a file and the entries of its
+    /// `drive` table (`Err` holds the text of a `drive` value that is not a table).
+    fn from_entries(top: &[String], drive: Option<std::result::Result<Vec<(String, Entry)>, String>>) -> Result<Self> {
+        let expected_top =
+            format!("a [drive] table (a workbench design file may also hold {})", DESIGN_KEYS.join(", "));
+        if let Some(k) = top.iter().find(|k| *k != "drive" && !DESIGN_KEYS.contains(&k.as_str())) {
+            return Err(ServoError::Parse {
+                field: k.clone(),
+                text: format!("unknown top-level key '{k}'"),
+                expected: expected_top,
+            });
+        }
+        let entries = match drive {
+            None => {
+                return Err(ServoError::Parse {
+                    field: "drive".into(),
+                    text: "no [drive] table".into(),
+                    expected: expected_top,
+                });
+            }
+            Some(Err(text)) => {
+                return Err(ServoError::Parse { field: "drive".into(), text, expected: expected_top });
+            }
+            Some(Ok(e)) => e,
+        };
+        let mut d = Self { gear_ratio: 1.0, efficiency: 1.0, ..Self::pure_inertia(0.0, 0.0, 0.0, 0.0) };
+        for (key, entry) in entries {
+            let Some(&(_, unit)) = DRIVE_KEYS.iter().find(|(k, _)| *k == key) else {
+                let keys: Vec<&str> = DRIVE_KEYS.iter().map(|(k, _)| *k).collect();
+                return Err(ServoError::Parse {
+                    field: format!("drive.{key}"),
+                    text: format!("unknown key '{key}'"),
+                    expected: format!("one of {}", keys.join(", ")),
+                });
+            };
+            let x = match entry {
+                Entry::Number(x) => x,
+                Entry::Other(text) => {
+                    let unit = if unit.is_empty() { String::new() } else { format!(" in {unit}") };
+                    return Err(ServoError::Parse {
+                        field: format!("drive.{key}"),
+                        text,
+                        expected: format!("a number{unit}"),
+                    });
+                }
+            };
+            let slot = match key.as_str() {
+                "stroke_m" => &mut d.stroke_m,
+                "motion_angle_deg" => &mut d.motion_angle_deg,
+                "moving_mass_kg" => &mut d.moving_mass_kg,
+                "pinion_radius_m" => &mut d.pinion_radius_m,
+                "gear_ratio" => &mut d.gear_ratio,
+                "motor_inertia_kg_m2" => &mut d.motor_inertia_kg_m2,
+                "spring_n_m" => &mut d.spring_n_m,
+                "spring_preload_n" => &mut d.spring_preload_n,
+                "damping_n_s_m" => &mut d.damping_n_s_m,
+                "constant_force_n" => &mut d.constant_force_n,
+                "efficiency" => &mut d.efficiency,
+                "return_angle_deg" => d.return_angle_deg.insert(0.0),
+                // The last key of DRIVE_KEYS (the key was found there above).
+                _ => d.dwell_after_rise_deg.insert(0.0),
+            };
+            *slot = x;
+        }
+        d.validate()?;
+        Ok(d)
     }
 
     /// The drive as TOML text with a `[drive]` table.
@@ -269,5 +422,48 @@ mod tests {
         d.motion_angle_deg = 150.0;
         d.efficiency = 1.5;
         assert!(d.validate().unwrap_err().to_string().contains("efficiency"));
+    }
+
+    /// Every kind of bad file names the key (or the line) at fault.
+    #[test]
+    fn bad_files_name_the_key() {
+        let base = "[drive]\nstroke_m = 0.1\nmotion_angle_deg = 120\npinion_radius_m = 0.02\n";
+        let msg = |text: &str| Drive::from_toml(text).unwrap_err().to_string();
+        let e = msg(&format!("{base}stroke_mm = 0.1\n"));
+        assert!(e.starts_with("drive.stroke_mm:") && e.contains("unknown key"), "{e}");
+        let e = msg(&format!("{base}moving_mass_kg = \"heavy\"\n"));
+        assert!(e.starts_with("drive.moving_mass_kg:") && e.contains("a number in kg"), "{e}");
+        let e = msg(&format!("{base}efficiency = nan\n"));
+        assert!(e.contains("drive.efficiency is not a finite number"), "{e}");
+        let e = msg(&format!("{base}stroke_m = 0.2\n"));
+        assert!(e.contains("line 5"), "{e}");
+        let e = msg(&format!("speed = 3\n{base}"));
+        assert!(e.starts_with("speed:") && e.contains("unknown top-level key"), "{e}");
+        let e = msg("stroke_m = 0.1\n");
+        assert!(e.starts_with("stroke_m:"), "{e}");
+        let e = msg("drive = 3\n");
+        assert!(e.starts_with("drive:"), "{e}");
+        let e = msg("");
+        assert!(e.starts_with("drive:") && e.contains("no [drive] table"), "{e}");
+        let e = Drive::from_json("{\"drive\": {\"stroke_m\": null}}").unwrap_err().to_string();
+        assert!(e.starts_with("drive.stroke_m:"), "{e}");
+        let e = Drive::from_json("[1, 2]").unwrap_err().to_string();
+        assert!(e.starts_with("drive file:"), "{e}");
+    }
+
+    /// A workbench design file (points, end, speeds and the drive) serves as a drive file, in
+    /// TOML and in JSON; its points and speeds are ignored.
+    #[test]
+    fn a_design_file_serves_as_a_drive_file() {
+        let toml_text = "# design\npoints = [[0.0, 0.0], [0.2, 1.0], [0.3, 1.0], [0.5, 0.0]]\nend = \"clamped\"\n\
+                         speeds_rpm = [600.0]\n\n[drive]\nstroke_m = 0.05\nmotion_angle_deg = 140\n\
+                         pinion_radius_m = 0.02\nmoving_mass_kg = 0.3\nreturn_angle_deg = 150\n";
+        let d = Drive::from_text(toml_text).unwrap();
+        assert_eq!((d.stroke_m, d.motion_angle_deg, d.return_angle_deg), (0.05, 140.0, Some(150.0)));
+        assert_eq!((d.gear_ratio, d.efficiency, d.damping_n_s_m), (1.0, 1.0, 0.0));
+        let json_text = "{\"points\": [[0, 0], [0.2, 1], [0.3, 1], [0.5, 0]], \"end\": \"natural\", \
+                         \"speeds_rpm\": [600], \"drive\": {\"stroke_m\": 0.05, \"motion_angle_deg\": 140, \
+                         \"pinion_radius_m\": 0.02, \"moving_mass_kg\": 0.3, \"return_angle_deg\": 150}}";
+        assert_eq!(Drive::from_text(json_text).unwrap(), d);
     }
 }

@@ -41,13 +41,13 @@ pub use camtable::{
     CamPoint, CamTable, Interpolation, InterpolationError, Poly5Segment, poly5_csv, poly5_segments, quintic_hermite,
     slave_at,
 };
-pub use drive::{CYCLE_DEG, CycleLayout, Drive};
+pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, DRIVE_KEYS, Drive};
 pub use error::{Result, ServoError};
 pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
     read_json,
 };
 pub use optimize::{Objective, OptimizeOptions, OptimizeReport, optimize};
-pub use points::{END_TOL, MIN_GAP, MIN_POINTS, check_points, default_points, format_points, parse_points};
+pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
 pub use spline::{SplineEnd, SplineLaw, slope_at_middle};
 pub use torque::{DrivePoint, Phase, TorqueSummary, summaries, summary, torque_curve};
