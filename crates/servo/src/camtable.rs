@@ -4,7 +4,7 @@
 use crate::drive::CYCLE_DEG;
 use crate::spline::solve_tridiagonal;
 use crate::{Drive, Result, ServoError, poly};
-use loomkin_laws::Law;
+use loomkin_laws::{Law, Segment};
 use serde::Serialize;
 
 /// One point of a cam table: master angle, slave position and its derivatives with respect to
@@ -146,9 +146,17 @@ impl CamTable {
     }
 
     /// Re-interpolates the table as a controller would and returns the worst errors against the
-    /// exact law, checked at 16 points inside every table interval.
+    /// exact law.
+    ///
+    /// Every table interval is cut at the joints of the exact cycle inside it (the law's segment
+    /// joints in the rise and the return, and the phase boundaries); on each piece the exact
+    /// motion is one smooth law segment, and the largest |error| of position, velocity and
+    /// acceleration is located by bracketing the sign changes of its derivative (the error of the
+    /// next derivative) and refining them to rounding. The errors relative to the peaks use the
+    /// exact peaks `H·Cv/φ_min` and `H·Ca/φ_min²` of the law's metrics.
     pub fn interpolation_error(&self, law: &Law, drive: &Drive, mode: Interpolation) -> Result<InterpolationError> {
         let lay = drive.layout()?;
+        let stroke = drive.stroke_m;
         let h = self.step_deg();
         let pts = &self.points;
         let n = pts.len() - 1;
@@ -156,8 +164,8 @@ impl CamTable {
             Interpolation::CubicSpline => natural_spline_moments(pts, h),
             _ => Vec::new(),
         };
+        let joints = cycle_joints(law, &lay);
         let (mut ep, mut ev, mut ea) = (0.0f64, 0.0f64, 0.0f64);
-        let (mut pv, mut pa) = (0.0f64, 0.0f64);
         for i in 0..n {
             let (p0, p1) = (pts[i], pts[i + 1]);
             let c: Vec<f64> = match mode {
@@ -174,18 +182,30 @@ impl CamTable {
                 )
                 .to_vec(),
             };
-            let dc = poly::deriv(&c);
-            let ddc = poly::deriv(&dc);
-            for k in 0..=16 {
-                let t = h * k as f64 / 16.0;
-                let [y, v, a] = slave_in(law, drive.stroke_m, &lay, p0.master_deg + t);
-                ep = ep.max((poly::eval(&c, t) - y).abs());
-                ev = ev.max((poly::eval(&dc, t) - v).abs());
-                ea = ea.max((poly::eval(&ddc, t) - a).abs());
-                pv = pv.max(v.abs());
-                pa = pa.max(a.abs());
+            // The interpolant and its first three derivatives (local t = master − X_i).
+            let mut d = vec![c];
+            for _ in 0..3 {
+                let next = poly::deriv(&d[d.len() - 1]);
+                d.push(next);
+            }
+            let inner = joints.iter().map(|&j| j - p0.master_deg).filter(|&t| t > 0.0 && t < h);
+            let cuts: Vec<f64> = std::iter::once(0.0).chain(inner).chain(std::iter::once(h)).collect();
+            for w in cuts.windows(2) {
+                let (t0, t1) = (w[0], w[1]);
+                let piece = Piece::at(law, stroke, &lay, p0.master_deg + 0.5 * (t0 + t1));
+                for (q, worst) in [&mut ep, &mut ev, &mut ea].into_iter().enumerate() {
+                    let (e, _) = poly::abs_max_by(t1 - t0, 16, |tau| {
+                        let t = t0 + tau;
+                        let ex = piece.eval(p0.master_deg + t);
+                        (poly::eval(&d[q], t) - ex[q], poly::eval(&d[q + 1], t) - ex[q + 1])
+                    });
+                    *worst = worst.max(e);
+                }
             }
         }
+        let met = law.metrics();
+        let phi = lay.rise_deg.min(lay.return_deg);
+        let (pv, pa) = (stroke * met.cv / phi, stroke * met.ca / (phi * phi));
         let rel = |e: f64, p: f64| if p > 0.0 { e / p } else { 0.0 };
         Ok(InterpolationError {
             mode,
@@ -193,10 +213,65 @@ impl CamTable {
             max_position_error_m: ep,
             max_velocity_error_m_per_deg: ev,
             max_accel_error_m_per_deg2: ea,
-            rel_position_error: rel(ep, drive.stroke_m),
+            rel_position_error: rel(ep, stroke),
             rel_velocity_error: rel(ev, pv),
             rel_accel_error: rel(ea, pa),
         })
+    }
+}
+
+/// The master angles (deg) where the exact cycle changes its formula: the law's segment joints in
+/// the rise and the return and the phase boundaries, sorted.
+fn cycle_joints(law: &Law, lay: &crate::CycleLayout) -> Vec<f64> {
+    let st = lay.starts_deg();
+    let mut out: Vec<f64> = Vec::new();
+    for (start, len) in [(st[0], lay.rise_deg), (st[2], lay.return_deg)] {
+        out.extend(law.segments().iter().map(|seg| start + len * seg.x0()));
+        out.push(start + len);
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
+/// One smooth piece of the exact cycle: a dwell, or one law segment in the rise or the return.
+enum Piece<'a> {
+    Dwell(f64),
+    Moving { seg: &'a Segment, start_deg: f64, len_deg: f64, base_m: f64, stroke_m: f64 },
+}
+
+impl<'a> Piece<'a> {
+    /// The piece that holds master angle `deg` (an angle strictly inside a piece).
+    fn at(law: &'a Law, h: f64, lay: &crate::CycleLayout, deg: f64) -> Self {
+        let st = lay.starts_deg();
+        let (start, len, base, sign) = if deg < st[1] {
+            (st[0], lay.rise_deg, 0.0, 1.0)
+        } else if deg >= st[2] && deg < st[3] {
+            (st[2], lay.return_deg, h, -1.0)
+        } else {
+            return Self::Dwell(if deg < st[2] { h } else { 0.0 });
+        };
+        let x = (deg - start) / len;
+        let segs = law.segments();
+        let k = segs.partition_point(|s| s.x1() <= x).min(segs.len() - 1);
+        Self::Moving { seg: &segs[k], start_deg: start, len_deg: len, base_m: base, stroke_m: sign * h }
+    }
+
+    /// `[Y, dY/dX, d²Y/dX², d³Y/dX³]` (m, m/deg, m/deg², m/deg³) at master angle `deg`, from this
+    /// piece's formula (extended a little past its ends, so a jump at a joint is not seen).
+    fn eval(&self, deg: f64) -> [f64; 4] {
+        match *self {
+            Self::Dwell(y) => [y, 0.0, 0.0, 0.0],
+            Self::Moving { seg, start_deg, len_deg, base_m, stroke_m } => {
+                let k = seg.eval_local((deg - start_deg) / len_deg - seg.x0());
+                [
+                    base_m + stroke_m * k.s,
+                    stroke_m * k.v / len_deg,
+                    stroke_m * k.a / len_deg.powi(2),
+                    stroke_m * k.j / len_deg.powi(3),
+                ]
+            }
+        }
     }
 }
 
