@@ -158,7 +158,8 @@ fn objective_value(law: &SplineLaw, ms: &[([PhaseModel; 4], f64)], obj: Objectiv
 /// `y_bounds`; with `move_x`, the X gaps may each grow or shrink by up to `max_gap_factor` (and
 /// are renormalised to end at 0.5), so the points stay in order. Each start runs a bounded
 /// Nelder–Mead (vertices projected onto the box) and is restarted once from its result; the best
-/// of all starts is returned. Deterministic for a given `seed`.
+/// of all starts is returned, its Y scaled to a largest |Y| of 1 (the same law). Deterministic
+/// for a given `seed`.
 pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Result<OptimizeReport> {
     drive.validate()?;
     if opts.speeds_rpm.is_empty() {
@@ -204,14 +205,23 @@ pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Res
             best = (z2, f2);
         }
     }
-    let law = SplineLaw::new(&map.points(&best.0), end)?;
+    // The law does not change when every Y is multiplied by the same positive factor (it is
+    // normalised to a unit stroke), so the optimiser may end anywhere along that ray: report the
+    // points scaled to a largest |Y| of 1, as the paper draws them.
+    let mut pts = map.points(&best.0);
+    let y_max = pts.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
+    if y_max > 0.0 {
+        pts.iter_mut().for_each(|p| p[1] /= y_max);
+    }
+    let law = SplineLaw::new(&pts, end)?;
+    let objective_after_nm = objective_value(&law, &ms, opts.objective);
     Ok(OptimizeReport {
         objective: opts.objective,
         before: summaries(start.law(), drive, &opts.speeds_rpm)?,
         after: summaries(law.law(), drive, &opts.speeds_rpm)?,
         law,
         objective_before_nm: f0,
-        objective_after_nm: best.1,
+        objective_after_nm,
         evaluations: evals,
     })
 }

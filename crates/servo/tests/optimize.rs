@@ -23,6 +23,9 @@ fn optimiser_lowers_the_peak_torque_of_the_default_drive() {
     // Points valid and within the bounds [0, 1].
     let pts = check_points(r.law.points()).unwrap();
     assert!(pts.iter().all(|p| (0.0..=1.0).contains(&p[1])));
+    // Reported with the largest |Y| scaled to 1 (the law is the same for any common factor).
+    let y_max = pts.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
+    assert!((y_max - 1.0).abs() < 1e-15, "{y_max}");
     // Deterministic.
     let again = optimize(&start, &d, &opts).unwrap();
     assert_eq!(again.law.points(), r.law.points());
