@@ -38,7 +38,21 @@ pub fn stepped_axis(field: &str, min: f64, max: f64, step: f64) -> Result<Vec<f6
     if n + 1.0 > MAX_POINTS as f64 {
         return Err(StudyError::TooLarge { field: field.into(), points: (n + 1.0) as u128, limit: MAX_POINTS });
     }
-    Ok((0..=n as usize).map(|i| (min + i as f64 * step).min(max)).collect())
+    Ok((0..=n as usize).map(|i| round_sig12(min + i as f64 * step).min(max)).collect())
+}
+
+/// `v` rounded to 12 significant digits, so that `0.05 + 2·0.05` is the lattice value `0.15`
+/// (not `0.15000000000000002`) when printed; the change is below 1e-12 relative.
+fn round_sig12(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let scale = 10f64.powi(11 - v.abs().log10().floor() as i32);
+    if !scale.is_finite() || scale == 0.0 {
+        return v;
+    }
+    let r = (v * scale).round() / scale;
+    if r.is_finite() { r } else { v }
 }
 
 impl Design {
@@ -247,6 +261,15 @@ mod tests {
         assert!(stepped_axis("x", 0.0, 1.0, 0.0).is_err());
         assert!(stepped_axis("x", 1.0, 0.0, 0.1).is_err());
         assert!(stepped_axis("x", 0.0, 1.0, 1e-12).is_err());
+        // Lattice values print as such (0.05 + 2·0.05 is 0.15000000000000002 in floating point).
+        let b = stepped_axis("k", 0.05, 0.9, 0.05).unwrap();
+        assert!(b.iter().enumerate().all(|(i, &v)| format!("{v}") == format!("{}", (5 + 5 * i) as f64 / 100.0)));
+        let m = stepped_axis("deg", 180.0, 360.0, 0.1).unwrap();
+        assert!(
+            m.iter()
+                .enumerate()
+                .all(|(i, &v)| format!("{v}").len() <= 5 && (v - (180.0 + i as f64 * 0.1)).abs() < 1e-9)
+        );
         assert!(Design::from_rows(["a", "b"], &[vec![1.0]]).is_err());
     }
 }
