@@ -101,14 +101,34 @@ pub struct DobbyResponse {
     pub poses: Vec<MechanismPose>,
 }
 
+/// Maps an error of the mechanisms crate to the request field it concerns: the library's own
+/// names (`l6_m`, `dwell_deg`) are placed under `geometry.` or `law.` as in the request.
 fn mech_error(e: MechError) -> ApiError {
-    let field = match &e {
+    const GEOMETRY: [&str; 6] = ["l2_m", "l3_m", "l3p_m", "l6_m", "alpha_deg", "theta_deg"];
+    const LAW: [&str; 3] = ["cycles", "dwell_deg", "dwell_centre_deg"];
+    let (field, prefix) = match &e {
         MechError::OutOfRange { field, .. } | MechError::NotFinite { field } | MechError::Invalid { field, .. } => {
-            field.clone()
+            let prefix = if GEOMETRY.contains(&field.as_str()) {
+                Some("geometry")
+            } else if LAW.contains(&field.as_str()) {
+                Some("law")
+            } else {
+                None
+            };
+            (field.clone(), prefix)
         }
-        _ => "law".into(),
+        // A fold of the lever for which the library names the admissible range of α.
+        MechError::CannotBuild { admissible: Some(a), .. } if a.contains('α') => {
+            ("alpha_deg".into(), Some("geometry"))
+        }
+        MechError::Law(_) => ("rise".into(), Some("law")),
+        _ => ("law".into(), None),
     };
-    ApiError::invalid(field, e)
+    let err = ApiError::invalid(field, e);
+    match prefix {
+        Some(p) => err.within(p),
+        None => err,
+    }
 }
 
 /// Synthesises the cams and samples the mechanism.
@@ -188,5 +208,19 @@ mod tests {
         req.law.dwell_deg = 170.0;
         let e = dobby_synthesize(&req).unwrap_err();
         assert!(e.status().is_client_error(), "{e}");
+        req.law.dwell_deg = -10.0;
+        let e = dobby_synthesize(&req).unwrap_err();
+        assert_eq!(e.field(), "law.dwell_deg", "{e}");
+        req.law.dwell_deg = 40.0;
+        req.geometry.l6_m = 1.0;
+        let e = dobby_synthesize(&req).unwrap_err();
+        assert_eq!(e.field(), "geometry.l6_m", "{e}");
+        assert!(e.to_string().starts_with("geometry.l6_m = 1 is out of range"), "{e}");
+        req.geometry.l6_m = 0.4;
+        req.geometry.alpha_deg = 179.0;
+        req.geometry.theta_deg = 179.0;
+        let e = dobby_synthesize(&req).unwrap_err();
+        assert_eq!(e.field(), "geometry.alpha_deg", "{e}");
+        assert!(e.to_string().contains("admissible α"), "{e}");
     }
 }

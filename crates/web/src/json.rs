@@ -41,14 +41,31 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
 }
 
 /// Decodes TOML text, naming the path of the first bad value in the error.
+///
+/// The message is one line: `line L, column C: what is wrong` (the TOML crate's own text
+/// draws the line with a caret over several lines).
 pub fn parse_toml<T: DeserializeOwned>(text: &str) -> Result<T, ApiError> {
     let de = toml::Deserializer::parse(text)
-        .map_err(|e| ApiError::BadJson { field: "text".into(), message: e.to_string().trim().to_string() })?;
+        .map_err(|e| ApiError::BadJson { field: "text".into(), message: toml_message(text, &e) })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let field = if path.is_empty() || path == "." || path == "?" { "text".to_string() } else { path };
-        ApiError::BadJson { field, message: e.into_inner().to_string().trim().to_string() }
+        ApiError::BadJson { field, message: toml_message(text, &e.into_inner()) }
     })
+}
+
+/// `line L, column C: message` of a TOML error (1-based, columns in characters).
+fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+    match e.span() {
+        Some(span) => {
+            let before = text.get(..span.start.min(text.len())).unwrap_or(text);
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+            format!("line {line}, column {column}: {message}")
+        }
+        None => message,
+    }
 }
 
 impl<T: serde::Serialize> IntoResponse for ApiJson<T> {
@@ -63,6 +80,7 @@ mod tests {
     use serde::Deserialize;
 
     #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
     #[allow(dead_code)]
     struct Inner {
         stroke_m: f64,
@@ -86,6 +104,11 @@ mod tests {
         let e = parse_toml::<Outer>("[drive]\nstroke_m = \"x\"\n").unwrap_err();
         assert_eq!(e.field(), "drive.stroke_m");
         assert!(parse_toml::<Outer>("[drive]\nstroke_m = 0.1\n").is_ok());
-        assert!(parse_toml::<Outer>("[drive\n").is_err());
+        let e = parse_toml::<Outer>("# a design\n[drive\n").unwrap_err();
+        assert_eq!(e.field(), "text");
+        let text = e.to_string();
+        assert!(text.starts_with("text: line 2, column ") && !text.contains('\n'), "{text}");
+        let e = parse_toml::<Outer>("[drive]\nstroke_m = 0.1\nbogus = 2\n").unwrap_err();
+        assert_eq!(e.to_string(), "drive.bogus: line 3, column 1: unknown field `bogus`, expected `stroke_m`");
     }
 }

@@ -3,8 +3,8 @@
 use crate::limits::{DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES};
 use crate::{ApiError, ApiJson, assets, catalogue};
 use axum::Router;
-use axum::extract::{DefaultBodyLimit, Request};
-use axum::http::{StatusCode, header};
+use axum::extract::{DefaultBodyLimit, OriginalUri, Request};
+use axum::http::{Method, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -37,21 +37,48 @@ pub fn router() -> Router {
         .layer(middleware::from_fn(guard))
 }
 
-async fn api_not_found(req: Request) -> ApiError {
-    ApiError::NotFound { field: "path".into(), message: format!("no endpoint {} {}", req.method(), req.uri().path()) }
+async fn api_not_found(method: Method, OriginalUri(uri): OriginalUri) -> ApiError {
+    ApiError::NotFound { field: "path".into(), message: format!("no endpoint {method} {}", uri.path()) }
 }
 
-/// Loopback host check and security headers.
+/// Loopback host check, JSON bodies for the router's own refusals, security headers.
 async fn guard(req: Request, next: Next) -> Response {
     if let Some(host) = req.headers().get(header::HOST) {
         let host = host.to_str().unwrap_or("");
         let name = host.rsplit_once(':').map_or(host, |(h, _)| h);
         if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
-            return (StatusCode::FORBIDDEN, format!("the workbench answers only on 127.0.0.1, not on host '{host}'"))
-                .into_response();
+            let message = format!("the workbench answers only on 127.0.0.1, not on host '{host}'");
+            return ApiError::Forbidden { field: "host".into(), message }.into_response();
         }
     }
+    let (method, path) = (req.method().clone(), req.uri().path().to_string());
     let mut res = next.run(req).await;
+    // The router answers a wrong method (405) and an unknown page (404) with an empty body: say
+    // what was wrong in the same JSON form as every other refusal.
+    if res.headers().get(header::CONTENT_TYPE).is_none() {
+        let refusal = match res.status() {
+            StatusCode::METHOD_NOT_ALLOWED => {
+                // Every route takes exactly one of GET and POST (the router adds the `Allow`
+                // header after this layer has run).
+                let hint = match method {
+                    Method::GET | Method::HEAD => "this endpoint takes a POST with a JSON body",
+                    Method::POST => "this endpoint answers GET",
+                    _ => "the endpoints take GET or POST (see the Allow header)",
+                };
+                Some(ApiError::MethodNotAllowed {
+                    field: "method".into(),
+                    message: format!("{method} is not allowed on {path}: {hint}"),
+                })
+            }
+            StatusCode::NOT_FOUND => {
+                Some(ApiError::NotFound { field: "path".into(), message: format!("no page {method} {path}") })
+            }
+            _ => None,
+        };
+        if let Some(e) = refusal {
+            res = e.into_response();
+        }
+    }
     let h = res.headers_mut();
     h.insert(
         header::CONTENT_SECURITY_POLICY,

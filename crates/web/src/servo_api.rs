@@ -106,7 +106,7 @@ pub struct EvaluateResponse {
 pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
     let t0 = Instant::now();
     let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
-    let spline = req.design.spline()?;
+    let spline = req.design.spline().map_err(|e| e.within("design"))?;
     let law = spline.law();
     let samples = LawSamples::of(law, n);
     let f = samples.a.iter().map(|a| finite(a / spline.scale())).collect();
@@ -114,9 +114,9 @@ pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
     for (i, &rpm) in req.design.speeds_rpm.iter().enumerate() {
         let field = |e| match servo_error(e) {
             ApiError::Invalid { field, message } if field == "speed_rpm" => {
-                ApiError::invalid(format!("speeds_rpm[{i}]"), message)
+                ApiError::invalid(format!("speeds_rpm[{i}]"), message).within("design")
             }
-            e => e,
+            e => e.within("design"),
         };
         let s = summary(law, &req.design.drive, rpm).map_err(field)?;
         let curve = torque_curve(law, &req.design.drive, rpm, n).map_err(field)?;
@@ -201,14 +201,14 @@ pub struct OptimizeResponse {
 /// Moves the free points to lower the worst peak (or RMS) torque over the design's speeds.
 pub fn optimize_design(req: &OptimizeRequest) -> Result<OptimizeResponse, ApiError> {
     let t0 = Instant::now();
-    let spline = req.design.spline()?;
+    let spline = req.design.spline().map_err(|e| e.within("design"))?;
     let opts = OptimizeOptions {
         objective: req.objective,
         speeds_rpm: req.design.speeds_rpm.clone(),
         move_x: req.move_x,
         ..OptimizeOptions::default()
     };
-    let r = optimize(&spline, &req.design.drive, &opts).map_err(servo_error)?;
+    let r = optimize(&spline, &req.design.drive, &opts).map_err(|e| servo_error(e).within("design"))?;
     Ok(OptimizeResponse {
         objective: r.objective,
         before: r.before.iter().map(TorquePair::from).collect(),
@@ -270,13 +270,13 @@ pub struct ExportResponse {
 
 /// Writes the export file.
 pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
-    let spline = req.design.spline()?;
+    let spline = req.design.spline().map_err(|e| e.within("design"))?;
     let drive = &req.design.drive;
     let (filename, media_type, text) = match req.format {
         ExportFormat::Coeffs => ("servo-coefficients.txt", "text/plain", export_coeffs_text(&spline)),
         ExportFormat::Json => ("servo-coefficients.json", "application/json", export_json(&spline)),
         ExportFormat::Poly5 => {
-            let segs = poly5_segments(spline.law(), drive).map_err(servo_error)?;
+            let segs = poly5_segments(spline.law(), drive).map_err(|e| servo_error(e).within("design"))?;
             ("servo-cam-poly5.csv", "text/csv", poly5_csv(&segs))
         }
         ExportFormat::Csv | ExportFormat::Xyva => {
@@ -321,7 +321,7 @@ pub struct SaveRequest {
 
 /// Writes the design file (checked first, so a saved file always loads).
 pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
-    req.design.spline()?;
+    req.design.spline().map_err(|e| e.within("design"))?;
     let (filename, media_type) = match req.format {
         DesignFormat::Toml => ("servo-design.toml", "application/toml"),
         _ => ("servo-design.json", "application/json"),
@@ -427,10 +427,12 @@ mod tests {
         let e = evaluate(&EvaluateRequest { design: ServoDesign::default(), samples: 10_000_000 }).unwrap_err();
         assert_eq!(e.field(), "samples");
         let d = ServoDesign { speeds_rpm: vec![600.0, -5.0], ..Default::default() };
-        assert_eq!(evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err().field(), "speeds_rpm[1]");
+        assert_eq!(evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err().field(), "design.speeds_rpm[1]");
         let mut d = ServoDesign::default();
         d.drive.efficiency = 2.0;
-        assert_eq!(evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err().field(), "drive.efficiency");
+        let e = evaluate(&EvaluateRequest { design: d, samples: 10 }).unwrap_err();
+        assert_eq!(e.field(), "design.drive.efficiency");
+        assert!(e.to_string().starts_with("design.drive.efficiency = 2 is out of range"), "{e}");
         let req = ExportRequest { design: ServoDesign::default(), format: ExportFormat::Csv, rows: 10_000_000 };
         assert_eq!(export(&req).unwrap_err().field(), "rows");
     }

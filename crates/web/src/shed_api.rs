@@ -64,6 +64,8 @@ impl ShedConditions {
     }
 }
 
+/// Maps an error of the shedding crate to the request field: the library's `positive` /
+/// `negative` phase is built from the request's `lengths`.
 fn shed_error(default_field: &str, e: ShedError) -> ApiError {
     let field = match &e {
         ShedError::OutOfRange { field, .. }
@@ -72,6 +74,11 @@ fn shed_error(default_field: &str, e: ShedError) -> ApiError {
         | ShedError::NotARise { field, .. } => field.clone(),
         _ => default_field.to_string(),
     };
+    if field.starts_with("positive") || field.starts_with("negative") {
+        let text = e.to_string();
+        let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text);
+        return ApiError::invalid("lengths", format!("lengths: {reason}"));
+    }
     ApiError::invalid(field, e)
 }
 
@@ -307,5 +314,22 @@ mod tests {
         let mut r = req(0.05);
         r.conditions.threshold = 0.5;
         assert_eq!(shed_pareto(&r).unwrap_err().field(), "conditions.threshold");
+    }
+
+    #[test]
+    fn bad_lengths_are_named_as_in_the_request() {
+        let law = |family: &str, lengths: Vec<f64>| ShedLawRequest {
+            family: family.into(),
+            lengths,
+            motion_deg: 200.0,
+            conditions: ShedConditions::default(),
+            samples: 11,
+        };
+        let e = shed_law(&law("trapezoid", vec![0.5, 0.5, 0.5])).unwrap_err();
+        assert_eq!(e.field(), "lengths", "{e}");
+        assert!(e.to_string().starts_with("lengths: relative lengths k_Ti sum to 1.5"), "{e}");
+        // Only the zero-acceleration lead: no rise.
+        let e = shed_law(&law("lead-trapezoid", vec![1.0, 0.0, 0.0, 0.0])).unwrap_err();
+        assert_eq!(e.field(), "lengths", "{e}");
     }
 }

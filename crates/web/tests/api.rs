@@ -74,9 +74,24 @@ async fn info_lists_views_and_limits() {
 
 #[tokio::test]
 async fn unknown_endpoints_and_methods_are_refused() {
-    assert_refused(&get("/api/nothing-here").await, StatusCode::NOT_FOUND, "path");
-    let (s, _, _) = call("GET", "/api/servo/evaluate", None).await;
-    assert_eq!(s, StatusCode::METHOD_NOT_ALLOWED);
+    let r = get("/api/nothing-here").await;
+    assert_refused(&r, StatusCode::NOT_FOUND, "path");
+    assert!(r.1["error"].as_str().unwrap().contains("GET /api/nothing-here"), "{}", r.1);
+    assert_refused(&get("/no-such-page").await, StatusCode::NOT_FOUND, "path");
+    // A wrong method answers 405 with a JSON body saying which method the endpoint takes.
+    for (method, path, takes) in [
+        ("GET", "/api/servo/evaluate", "POST"),
+        ("POST", "/api/info", "GET"),
+        ("POST", "/api/servo/default", "GET"),
+        ("PUT", "/api/laws/compare", "GET or POST"),
+        ("DELETE", "/api/picking/settings", "GET or POST"),
+    ] {
+        let (s, ctype, text) = call(method, path, Some("{}".into())).await;
+        assert!(ctype.starts_with("application/json"), "{method} {path}: {ctype}");
+        let v: Value = serde_json::from_str(&text).expect("JSON");
+        assert_refused(&(s, v.clone()), StatusCode::METHOD_NOT_ALLOWED, "method");
+        assert!(v["error"].as_str().unwrap().contains(takes), "{method} {path}: {v}");
+    }
 }
 
 #[tokio::test]
@@ -158,7 +173,7 @@ async fn evaluate_refuses_bad_designs_naming_the_field() {
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "drive.stroke_m",
+        "design.drive.stroke_m",
     );
     let mut d = design();
     d["drive"]["stroke_m"] = json!("eighty");
@@ -172,35 +187,35 @@ async fn evaluate_refuses_bad_designs_naming_the_field() {
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "points[3]",
+        "design.points[3]",
     );
     let mut d = design();
     d["points"][2][1] = json!(7.0);
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "points[2][1]",
+        "design.points[2][1]",
     );
     let mut d = design();
     d["speeds_rpm"] = json!([600, 1e9]);
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "speeds_rpm[1]",
+        "design.speeds_rpm[1]",
     );
     let mut d = design();
     d["speeds_rpm"] = json!([]);
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "speeds_rpm",
+        "design.speeds_rpm",
     );
     let mut d = design();
     d["points"] = json!(vec![[0.0, 0.0]; 100]);
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "points",
+        "design.points",
     );
     let huge = json!({"design": design(), "samples": MAX_SAMPLES + 1});
     assert_refused(&post("/api/servo/evaluate", huge).await, StatusCode::UNPROCESSABLE_ENTITY, "samples");
@@ -209,11 +224,27 @@ async fn evaluate_refuses_bad_designs_naming_the_field() {
     assert_refused(
         &post("/api/servo/evaluate", json!({"design": d})).await,
         StatusCode::UNPROCESSABLE_ENTITY,
-        "drive.motion_angle_deg",
+        "design.drive.motion_angle_deg",
     );
     let mut d = design();
     d["end"] = json!("sideways");
     assert_refused(&post("/api/servo/evaluate", json!({"design": d})).await, StatusCode::BAD_REQUEST, "design.end");
+    // A huge value is named and written short, not in 301 digits.
+    let mut d = design();
+    d["drive"]["moving_mass_kg"] = json!(-1e300);
+    let r = post("/api/servo/evaluate", json!({"design": d})).await;
+    assert_refused(&r, StatusCode::UNPROCESSABLE_ENTITY, "design.drive.moving_mass_kg");
+    let msg = r.1["error"].as_str().unwrap();
+    assert!(msg.contains("-1e300") && msg.len() < 160, "{msg}");
+    // Not-a-number spellings JSON does not have: NaN, Infinity, an overflowing literal.
+    let text = json!({"design": design()}).to_string();
+    for bad in ["NaN", "Infinity", "-Infinity", "1e999", "\"inf\"", "null"] {
+        let body = text.replacen("\"stroke_m\":0.08", &format!("\"stroke_m\":{bad}"), 1);
+        assert_ne!(body, text);
+        let (s, _, answer) = call("POST", "/api/servo/evaluate", Some(body)).await;
+        let v: Value = serde_json::from_str(&answer).expect("JSON refusal");
+        assert_refused(&(s, v), StatusCode::BAD_REQUEST, "design.drive.stroke_m");
+    }
 }
 
 #[tokio::test]
@@ -305,7 +336,12 @@ async fn save_and_load_round_trip_without_loss() {
     );
     let invalid =
         post("/api/servo/design/save", json!({"design": {"points": [], "speeds_rpm": [600], "drive": d["drive"]}}));
-    assert_refused(&invalid.await, StatusCode::UNPROCESSABLE_ENTITY, "points");
+    assert_refused(&invalid.await, StatusCode::UNPROCESSABLE_ENTITY, "design.points");
+    // A TOML syntax error is one line with its position.
+    let r = post("/api/servo/design/load", json!({"text": "# design\npoints = [[0, 0]", "format": "toml"})).await;
+    assert_refused(&r, StatusCode::BAD_REQUEST, "text");
+    let msg = r.1["error"].as_str().unwrap();
+    assert!(msg.starts_with("text: line 2, column ") && !msg.contains('\n'), "{msg}");
 }
 
 #[tokio::test]
@@ -337,6 +373,15 @@ fn real_server_keeps_serving_after_bad_requests() {
     // Another host name (DNS rebinding) is refused.
     let r = common::request_with_host(addr, "GET", "/api/info", None, "evil.example:80").expect("answer");
     assert_eq!(r.status, 403);
+    assert_eq!(r.json()["field"], "host");
+    // Wrong methods and unknown paths.
+    for (method, path, status) in
+        [("GET", "/api/servo/evaluate", 405), ("DELETE", "/api/info", 405), ("GET", "/api/x", 404), ("GET", "/x", 404)]
+    {
+        let r = common::request(addr, method, path, None).expect("answer");
+        assert_eq!(r.status, status, "{method} {path}: {}", r.body);
+        assert!(r.json()["field"].is_string(), "{}", r.body);
+    }
     // And a good request still works.
     let body = json!({"design": design(), "samples": 50}).to_string();
     let r = common::request(addr, "POST", "/api/servo/evaluate", Some(body.as_bytes())).expect("answer");
@@ -402,6 +447,10 @@ async fn shedding_pareto_and_law() {
     assert_refused(&post("/api/shed/pareto", t).await, StatusCode::UNPROCESSABLE_ENTITY, "conditions.threshold");
     let wrong = json!({"family": "trapezoid", "lengths": [0.5, 0.5], "motion_deg": 300});
     assert_refused(&post("/api/shed/law", wrong).await, StatusCode::UNPROCESSABLE_ENTITY, "lengths");
+    let sum = json!({"family": "trapezoid", "lengths": [0.5, 0.5, 0.5], "motion_deg": 300});
+    assert_refused(&post("/api/shed/law", sum).await, StatusCode::UNPROCESSABLE_ENTITY, "lengths");
+    let flat = json!({"family": "lead-trapezoid", "lengths": [1, 0, 0, 0], "motion_deg": 300});
+    assert_refused(&post("/api/shed/law", flat).await, StatusCode::UNPROCESSABLE_ENTITY, "lengths");
 }
 
 #[tokio::test]
@@ -424,7 +473,20 @@ async fn dobby_default_and_synthesis() {
     let mut bad = req.clone();
     bad["law"]["cycles"] = json!(40);
     assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "law.cycles");
-    let mut bad = req;
+    let mut bad = req.clone();
     bad["roller_m"] = json!("big");
     assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::BAD_REQUEST, "roller_m");
+    // The library's names are placed where they are in the request.
+    let mut bad = req.clone();
+    bad["geometry"]["l2_m"] = json!(0.0);
+    assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "geometry.l2_m");
+    let mut bad = req.clone();
+    bad["law"]["dwell_centre_deg"] = json!(1e300);
+    let r = post("/api/dobby/synthesize", bad).await;
+    assert_refused(&r, StatusCode::UNPROCESSABLE_ENTITY, "law.dwell_centre_deg");
+    assert!(r.1["error"].as_str().unwrap().contains("= 1e300 "), "{}", r.1);
+    let mut bad = req;
+    bad["geometry"]["alpha_deg"] = json!(5.0);
+    bad["geometry"]["theta_deg"] = json!(5.0);
+    assert_refused(&post("/api/dobby/synthesize", bad).await, StatusCode::UNPROCESSABLE_ENTITY, "geometry.alpha_deg");
 }
