@@ -151,6 +151,52 @@ mod tests {
     }
 
     #[test]
+    fn a_float_serde_json_reads_one_ulp_off_by_default_loads_back_exactly() {
+        // Found by the property below: without serde_json's `float_roundtrip` this value came
+        // back as -6.5105854551879e268.
+        let mut d = ServoDesign::default();
+        d.drive.motor_inertia_kg_m2 = -6.510585455187901e268;
+        let back: ServoDesign = parse_json(d.to_text(DesignFormat::Json).unwrap().as_bytes()).unwrap();
+        assert_eq!(back.drive.motor_inertia_kg_m2.to_bits(), d.drive.motor_inertia_kg_m2.to_bits());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+        /// Any finite `f64` in any field (subnormal, huge, negative zero, many digits) comes back
+        /// bit for bit from both file forms; the checks are not involved.
+        #[test]
+        fn every_finite_value_survives_both_file_forms(
+            bits in proptest::collection::vec(proptest::num::f64::NORMAL | proptest::num::f64::SUBNORMAL
+                | proptest::num::f64::ZERO | proptest::num::f64::NEGATIVE | proptest::num::f64::POSITIVE, 20),
+            clamped: bool,
+            with_return: bool,
+        ) {
+            let v = |i: usize| bits[i];
+            let mut d = ServoDesign {
+                points: vec![[v(0), v(1)], [v(2), v(3)], [v(4), v(5)], [v(6), v(7)]],
+                end: if clamped { SplineEnd::Clamped } else { SplineEnd::Natural },
+                speeds_rpm: vec![v(8), v(9)],
+                ..Default::default()
+            };
+            let dr = &mut d.drive;
+            (dr.stroke_m, dr.motion_angle_deg, dr.moving_mass_kg, dr.pinion_radius_m) = (v(10), v(11), v(12), v(13));
+            (dr.gear_ratio, dr.motor_inertia_kg_m2, dr.spring_n_m, dr.spring_preload_n) = (v(14), v(15), v(16), v(17));
+            (dr.damping_n_s_m, dr.constant_force_n, dr.efficiency) = (v(18), v(19), v(0));
+            dr.return_angle_deg = with_return.then_some(v(1));
+            dr.dwell_after_rise_deg = with_return.then_some(v(2));
+            let json: ServoDesign = parse_json(d.to_text(DesignFormat::Json).unwrap().as_bytes()).unwrap();
+            let toml: ServoDesign = parse_toml(&d.to_text(DesignFormat::Toml).unwrap()).unwrap();
+            let bits_of = |d: &ServoDesign| serde_json::to_value(d).unwrap().to_string();
+            for back in [&json, &toml] {
+                proptest::prop_assert_eq!(back, &d);
+                // PartialEq treats −0 and 0 alike: compare the shortest forms too.
+                proptest::prop_assert_eq!(bits_of(back), bits_of(&d));
+            }
+        }
+    }
+
+    #[test]
     fn bad_files_name_the_field() {
         let d = ServoDesign::default();
         let text = d.to_text(DesignFormat::Toml).unwrap().replace("stroke_m = 0.08", "stroke_m = -1.0");
