@@ -446,6 +446,9 @@ function simulatePick() {
 // ---------------------------------------------------------------- shedding Pareto explorer
 
 const shed = { result: null, chosen: 0 };
+// One clearly different colour per motion angle (up to 12), none close to the black front or
+// the amber "chosen" marker.
+const CLOUD_COLOURS = ["#1d4ed8", "#0891b2", "#16a34a", "#9333ea", "#db2777", "#dc2626", "#92400e", "#4f46e5", "#0f766e", "#65a30d", "#64748b", "#be123c"];
 
 function initShed() {
   const root = $("#shed-root");
@@ -473,10 +476,11 @@ function initShed() {
     x: { label: "weft-crossing window φ*", unit: "°" }, y: { label: "peak frame acceleration", unit: "m/s²" } });
   const row = el("div", { className: "grid-charts" });
   charts.append(row);
-  const mk = (id, title, label, unit) => new Chart(row, { id, title, height: 220, x: { label: "main-shaft angle", unit: "°", range: [0, 360], step: 30 }, y: { label, unit } });
-  shed.s = mk("shed-s", "Frame displacement", "s", "mm");
-  shed.v = mk("shed-v", "Frame velocity", "v", "m/s");
-  shed.a = mk("shed-a", "Frame acceleration", "a", "m/s²");
+  // The frame's period is two picks: up over the first turn, down over the second (0 … 720°).
+  const mk = (id, title, label, unit) => new Chart(row, { id, title, height: 220, x: { label: "main-shaft angle", unit: "°", range: [0, 720], step: 90 }, y: { label, unit, includeZero: true } });
+  shed.s = mk("shed-s", "Frame displacement (up, then down)", "s", "mm");
+  shed.v = mk("shed-v", "Frame velocity over two picks", "v", "m/s");
+  shed.a = mk("shed-a", "Frame acceleration over two picks", "a", "m/s²");
   Object.assign(loomkin.charts, { shed_pareto: shed.pareto, shed_s: shed.s, shed_v: shed.v, shed_a: shed.a });
   shed.pareto.setHandlers({ onClick: (x, y, px, py) => pickFront(px, py) });
   for (const e of [family, ...Object.values(inputs)]) e.addEventListener("change", computePareto);
@@ -503,7 +507,7 @@ async function computePareto() {
     });
     const front = [...r.front].sort((a, b) => a.criteria.window_deg - b.criteria.window_deg);
     shed.front = front;
-    const series = Object.entries(byMotion).map(([m, d], k) => ({ label: `φ = ${m}°`, mode: "points", radius: 1.3, x: d.x, y: d.y, color: PALETTE[(k + 1) % PALETTE.length] }));
+    const series = Object.entries(byMotion).map(([m, d], k) => ({ label: `φ = ${m}°`, mode: "points", radius: 1.3, x: d.x, y: d.y, color: CLOUD_COLOURS[k % CLOUD_COLOURS.length] }));
     series.push({ label: "Pareto front", mode: "markers", line: true, radius: 4, color: "#111827", x: front.map((c) => c.criteria.window_deg), y: front.map((c) => c.criteria.peak_accel_m_s2) });
     shed.series = series;
     shed.pareto.setSeries(series);
@@ -583,8 +587,8 @@ async function initDobby() {
   dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", title: "Cams and mechanism", height: 480, unit: "mm", scale: 1000 });
   const side = el("div", { className: "charts" });
   charts.append(side);
-  const mk = (id, title, label, unit) => new Chart(side, { id, title, height: 150, x: { label: "input angle φ2", unit: "°", range: [0, 360], step: 30 }, y: { label, unit } });
-  dobby.phi = mk("dobby-phi", "Output angle", "φ6", "°");
+  const mk = (id, title, label, unit, step) => new Chart(side, { id, title, height: 150, x: { label: "input angle φ2", unit: "°", range: [0, 360], step: 30 }, y: { label, unit, step } });
+  dobby.phi = mk("dobby-phi", "Output angle", "φ6", "°", 90);
   dobby.omega = mk("dobby-omega", "Output speed and acceleration at ω2 = 1 rad/s", "ω6, ε6", "rad/s, rad/s²");
   dobby.mu = mk("dobby-mu", "Pressure angles", "μ", "°");
   Object.assign(loomkin.charts, { dobby_phi: dobby.phi, dobby_omega: dobby.omega, dobby_mu: dobby.mu });

@@ -14,14 +14,16 @@ function niceStep(range, count) {
   return (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * p;
 }
 
-// Ticks covering [lo, hi], and the bounds widened to whole steps.
-function niceTicks(lo, hi, count) {
+// Ticks covering [lo, hi], and the bounds widened to whole steps (a multiple of fixedStep when
+// given, e.g. 90 for angles in degrees).
+function niceTicks(lo, hi, count, fixedStep) {
   if (!isFinite(lo) || !isFinite(hi)) { lo = 0; hi = 1; }
   if (hi - lo < 1e-12 * Math.max(1, Math.abs(lo), Math.abs(hi))) {
     const d = Math.abs(lo) > 0 ? Math.abs(lo) * 0.1 : 1;
     lo -= d; hi += d;
   }
-  const step = niceStep(hi - lo, count);
+  let step = niceStep(hi - lo, count);
+  if (fixedStep) step = fixedStep * Math.max(1, Math.round(step / fixedStep));
   const a = Math.floor(lo / step + 1e-9) * step;
   const b = Math.ceil(hi / step - 1e-9) * step;
   const ticks = [];
@@ -135,7 +137,7 @@ class Chart {
     const top = 30 + 17 * (legend.rows - 1);
     const pw = Math.max(w - left - right, 10), ph = Math.max(h - top - bottom, 10);
     const xt = this.opts.x.range ? { lo: xlo, hi: xhi, ...niceTicksIn(xlo, xhi, pw / 80, this.opts.x.step) } : niceTicks(xlo, xhi, pw / 80);
-    const yt = this.opts.y.range ? { lo: ylo, hi: yhi, ...niceTicksIn(ylo, yhi, ph / 40) } : niceTicks(ylo, yhi, ph / 40);
+    const yt = this.opts.y.range ? { lo: ylo, hi: yhi, ...niceTicksIn(ylo, yhi, ph / 40) } : niceTicks(ylo, yhi, ph / 40, this.opts.y.step);
     return { dpr, w, h, left, top, pw, ph, xt, yt, legend };
   }
 
