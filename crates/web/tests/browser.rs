@@ -17,8 +17,10 @@ use std::time::{Duration, Instant};
 
 fn find(env: &str, names: &[&str], extra: &[&str]) -> Option<PathBuf> {
     if let Some(p) = std::env::var_os(env) {
+        // An explicit path that does not exist is a mistake to report, not a reason to skip.
         let p = PathBuf::from(p);
-        return p.is_file().then_some(p);
+        assert!(p.is_file(), "{env}={} is not a file", p.display());
+        return Some(p);
     }
     let path = std::env::var_os("PATH").unwrap_or_default();
     for dir in std::env::split_paths(&path) {
@@ -41,7 +43,7 @@ struct Driver {
     child: Child,
     addr: SocketAddr,
     session: String,
-    _profile: TempDir,
+    profile: TempDir,
 }
 
 struct TempDir(PathBuf);
@@ -63,22 +65,40 @@ impl Drop for Driver {
 }
 
 impl Driver {
+    /// Starts ChromeDriver on a free port (again on another port if it exits at once, e.g. when
+    /// the port was taken between the check and the start), then a headless Chromium session.
+    /// Every wait is bounded.
     fn start(chromium: &PathBuf, chromedriver: &PathBuf) -> Driver {
-        let port = free_port();
-        let child = Command::new(chromedriver)
-            .arg(format!("--port={port}"))
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("start chromedriver");
-        let addr: SocketAddr = ([127, 0, 0, 1], port).into();
-        let profile = std::env::temp_dir().join(format!("loomkin-browser-test-{}-{port}", std::process::id()));
-        let mut d = Driver { child, addr, session: String::new(), _profile: TempDir(profile.clone()) };
-        let t0 = Instant::now();
-        while common::request(addr, "GET", "/status", None).map(|r| r.status != 200).unwrap_or(true) {
-            assert!(t0.elapsed() < Duration::from_secs(20), "chromedriver did not answer on {addr}");
-            std::thread::sleep(Duration::from_millis(100));
-        }
+        let mut attempt = 0;
+        let mut d = loop {
+            attempt += 1;
+            let port = free_port();
+            let child = Command::new(chromedriver)
+                .arg(format!("--port={port}"))
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .expect("start chromedriver");
+            let addr: SocketAddr = ([127, 0, 0, 1], port).into();
+            let profile = std::env::temp_dir().join(format!("loomkin-browser-test-{}-{port}", std::process::id()));
+            let mut d = Driver { child, addr, session: String::new(), profile: TempDir(profile) };
+            let t0 = Instant::now();
+            let up = loop {
+                if common::request(addr, "GET", "/status", None).is_ok_and(|r| r.status == 200) {
+                    break true;
+                }
+                if d.child.try_wait().ok().flatten().is_some() {
+                    break false;
+                }
+                assert!(t0.elapsed() < Duration::from_secs(20), "chromedriver did not answer on {addr}");
+                std::thread::sleep(Duration::from_millis(100));
+            };
+            if up {
+                break d;
+            }
+            assert!(attempt < 3, "chromedriver exited at start three times");
+        };
+        let profile = d.profile.0.clone();
         let caps = json!({"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
             "goog:chromeOptions": {
@@ -88,6 +108,8 @@ impl Driver {
                          "--disable-dev-shm-usage", "--window-size=1400,1300",
                          format!("--user-data-dir={}", profile.display())],
             },
+            // Bounded waits inside the browser too (the defaults allow a 300 s page load).
+            "timeouts": {"implicit": 0, "pageLoad": 30_000, "script": 15_000},
         }}});
         let r = d.cmd("POST", "/session", Some(caps));
         d.session = r["sessionId"].as_str().expect("session id").to_string();
@@ -244,6 +266,8 @@ fn drag_a_definition_point_and_the_torque_changes() {
     let row = d.text("#catalogue-metrics tbody tr:first-child");
     assert!(row.starts_with("cycloidal") && row.contains("6.283"), "{row}");
 
+    d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-catalogue.png"));
+
     // The study views render their first result.
     for (view, ready) in
         [("shed", "#shed-chosen tbody tr"), ("picking", "#pick-velocity"), ("dobby", "#dobby-summary tbody tr")]
@@ -252,7 +276,18 @@ fn drag_a_definition_point_and_the_torque_changes() {
         d.wait_for(view, &format!("return document.querySelector(\"{ready}\") !== null"));
         let status = d.script("return document.querySelector('#status').className");
         assert_ne!(status, json!("error"), "{view}: {}", d.text("#status"));
+        d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("workbench-{view}.png")));
     }
+    // The frame's motion is drawn over its whole period of two picks (0 … 720°), not cut at 360°.
+    d.click("#tabs button[data-view='shed']");
+    let span = d.wait_for(
+        "the chosen shedding law",
+        "const c = loomkin.charts.shed_s; return c.series.length && c.L ? [c.L.xt.lo, c.L.xt.hi, \
+         Math.max(...c.series[0].x)] : null",
+    );
+    let span: Vec<f64> = span.as_array().expect("span").iter().filter_map(Value::as_f64).collect();
+    assert_eq!(span, [0.0, 720.0, 720.0], "shedding chart x range");
+    d.click("#tabs button[data-view='picking']");
     // A picking slider: more strap play throws the shuttle faster (the paper's Fig. 6).
     let v0 = d.text("#pick-velocity");
     d.script(
