@@ -15,13 +15,24 @@ impl Drop for Server {
     }
 }
 
-fn get(host_port: &str, path: &str) -> String {
-    let mut s = TcpStream::connect(host_port).expect("connect");
+/// One request with `Connection: close`; every wait is bounded.
+fn send(host_port: &str, method: &str, path: &str, body: &str) -> String {
+    let addr: std::net::SocketAddr = host_port.parse().expect("address");
+    let mut s = TcpStream::connect_timeout(&addr, Duration::from_secs(10)).expect("connect");
     s.set_read_timeout(Some(Duration::from_secs(30))).expect("timeout");
-    write!(s, "GET {path} HTTP/1.1\r\nHost: {host_port}\r\nConnection: close\r\n\r\n").expect("write");
+    write!(
+        s,
+        "{method} {path} HTTP/1.1\r\nHost: {host_port}\r\nConnection: close\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .expect("write");
     let mut out = String::new();
     s.read_to_string(&mut out).expect("read");
     out
+}
+
+fn get(host_port: &str, path: &str) -> String {
+    send(host_port, "GET", path, "")
 }
 
 #[test]
@@ -34,8 +45,15 @@ fn serve_prints_a_loopback_url_and_answers() {
         .spawn()
         .expect("start loomkin serve");
     let mut server = Server(child);
-    let mut line = String::new();
-    BufReader::new(server.0.stdout.take().expect("stdout")).read_line(&mut line).expect("first line");
+    // The first line, waited for at most 30 s (a server that never starts fails, not hangs).
+    let stdout = server.0.stdout.take().expect("stdout");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = tx.send(line);
+    });
+    let line = rx.recv_timeout(Duration::from_secs(30)).expect("loomkin serve printed nothing in 30 s");
     assert!(line.contains("127.0.0.1 only"), "{line}");
     let url = line.split_whitespace().find(|w| w.starts_with("http://127.0.0.1:")).expect("URL in the first line");
     let host_port = url.trim_start_matches("http://").trim_end_matches('/');
@@ -46,6 +64,17 @@ fn serve_prints_a_loopback_url_and_answers() {
     let body = info.split("\r\n\r\n").nth(1).expect("body");
     let v: serde_json::Value = serde_json::from_str(body).expect("JSON");
     assert_eq!(v["views"][0], "servo");
+    // Bad requests get a 4xx naming the field, and the server keeps serving.
+    for (method, path, body, status, field) in [
+        ("POST", "/api/servo/evaluate", "{oops", "400", "body"),
+        ("POST", "/api/laws/compare", r#"{"laws": [{"name": "cycloidal"}], "samples": 99999999}"#, "422", "samples"),
+        ("GET", "/api/servo/evaluate", "", "405", "method"),
+    ] {
+        let answer = send(host_port, method, path, body);
+        assert!(answer.starts_with(&format!("HTTP/1.1 {status}")), "{answer}");
+        assert!(answer.contains(&format!("\"field\":\"{field}\"")), "{answer}");
+    }
+    assert!(get(host_port, "/api/info").starts_with("HTTP/1.1 200"));
 }
 
 #[test]
