@@ -132,6 +132,12 @@ class Chart {
     if (this.opts.x.range) [xlo, xhi] = this.opts.x.range;
     if (this.opts.y.range) [ylo, yhi] = this.opts.y.range;
     if (this.opts.y.includeZero) { ylo = Math.min(ylo, 0); yhi = Math.max(yhi, 0); }
+    if (!this.opts.y.range && isFinite(ylo) && isFinite(yhi)) {
+      // 2 % headroom away from zero, so that no curve runs hidden along the frame.
+      const pad = 0.02 * (yhi - ylo);
+      if (yhi > 0) yhi += pad;
+      if (ylo < 0) ylo -= pad;
+    }
     const left = 64, right = 14, bottom = 42;
     const legend = this.legendLayout(left, w - right);
     const top = 30 + 17 * (legend.rows - 1);
