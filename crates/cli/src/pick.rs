@@ -6,6 +6,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::LawSpec;
+use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
     History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate, sweep,
 };
@@ -39,6 +40,33 @@ pub struct ModelArgs {
     /// A parameter of --law, e.g. `--param ramp=0.1`.
     #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
     params: Vec<(String, String)>,
+    /// Design: shuttle velocity V at the end of the pick, m/s (paper: 17). Redesigns the cam.
+    #[arg(long, allow_hyphen_values = true)]
+    velocity_m_s: Option<f64>,
+    /// Design: pick distance X, cm (paper: 22).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "distance_m")]
+    distance_cm: Option<f64>,
+    /// Design: pick distance X, m (the same as --distance-cm, in metres).
+    #[arg(long, allow_hyphen_values = true)]
+    distance_m: Option<f64>,
+    /// Design: distance X1 of the first (sine) stage, cm (paper: 8.6; 0 < X1 < X).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "first_stage_m")]
+    first_stage_cm: Option<f64>,
+    /// Design: distance X1 of the first stage, m (the same as --first-stage-cm, in metres).
+    #[arg(long, allow_hyphen_values = true)]
+    first_stage_m: Option<f64>,
+    /// Design: loom speed n1 the cam is designed for, rev/min (paper: 200).
+    #[arg(long, allow_hyphen_values = true)]
+    design_speed_rpm: Option<f64>,
+    /// Required velocity V_r: retardation p of the shuttle in the shed, % (default 10).
+    #[arg(long, allow_hyphen_values = true)]
+    retardation_pct: Option<f64>,
+    /// Required velocity V_r: shuttle length plus shuttle race s, m (default 1.53).
+    #[arg(long, allow_hyphen_values = true)]
+    path_m: Option<f64>,
+    /// Required velocity V_r: free shed opening φ_s as crank angle, degrees (default 120).
+    #[arg(long, allow_hyphen_values = true)]
+    free_shed_deg: Option<f64>,
 }
 
 /// Loom settings in the paper's practical units; without them the designed setting applies.
@@ -188,6 +216,27 @@ fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
     let mech = match &m.mechanism {
         Some(path) => Mechanism::from_toml(&util::read_input(path)?).map_err(lib_err)?,
         None => Mechanism::paper_default(),
+    };
+    let design = [m.velocity_m_s, m.distance_cm, m.distance_m, m.first_stage_cm, m.first_stage_m, m.design_speed_rpm];
+    let mech = if design.iter().any(Option::is_some) {
+        let mut spec = *mech.design_spec();
+        spec.velocity_m_s = m.velocity_m_s.unwrap_or(spec.velocity_m_s);
+        spec.distance_m = m.distance_cm.map(|v| v * M_PER_CM).or(m.distance_m).unwrap_or(spec.distance_m);
+        spec.first_stage_m = m.first_stage_cm.map(|v| v * M_PER_CM).or(m.first_stage_m).unwrap_or(spec.first_stage_m);
+        spec.speed_rpm = m.design_speed_rpm.unwrap_or(spec.speed_rpm);
+        let required = *mech.required();
+        Mechanism::new(*mech.params(), spec).and_then(|n| n.with_required(required)).map_err(lib_err)?
+    } else {
+        mech
+    };
+    let mech = if m.retardation_pct.is_some() || m.path_m.is_some() || m.free_shed_deg.is_some() {
+        let mut r = *mech.required();
+        r.retardation_pct = m.retardation_pct.unwrap_or(r.retardation_pct);
+        r.path_m = m.path_m.unwrap_or(r.path_m);
+        r.free_shed_deg = m.free_shed_deg.unwrap_or(r.free_shed_deg);
+        mech.with_required(r).map_err(lib_err)?
+    } else {
+        mech
     };
     if m.law.is_none() && !m.params.is_empty() {
         bail!("--param needs --law: parameters belong to a catalogue law");

@@ -160,3 +160,89 @@ fn a_catalogue_law_as_the_cam() {
     let o = stdout_json(&["pick", "simulate", "--law", "modified-sine", "--method", "ode", "--json"]);
     assert_eq!(o["velocity_m_s"], v["velocity_m_s"]);
 }
+
+/// `pick design` at a non-paper V, X, X₁, n₁ (flags in the paper's units) against eqs. 18–20
+/// evaluated here, and the mechanism constants unchanged by a redesign.
+#[test]
+fn design_flags_redesign_the_cam() {
+    let v = stdout_json(&[
+        "pick",
+        "design",
+        "--velocity-m-s",
+        "19.5",
+        "--distance-cm",
+        "26",
+        "--first-stage-cm",
+        "7.25",
+        "--design-speed-rpm",
+        "230",
+        "--json",
+    ]);
+    let (vel, x, x1) = (19.5f64, 0.26f64, 0.0725f64);
+    let pi = std::f64::consts::PI;
+    let a = vel * vel / (2.0 * x - (pi - 3.0) / (pi / 2.0 - 1.0) * x1);
+    let mu = a * ((pi - 3.0) / (2.0 * a * x - vel * vel)).sqrt(); // the second form of eq. 19
+    let t_end = vel / a - 1.0 / mu + pi / (2.0 * mu);
+    for (k, want) in [("a_m_s2", a), ("mu_1_s", mu), ("tau_s", pi / (2.0 * mu)), ("t_end_s", t_end)] {
+        assert!((num(&v, k) / want - 1.0).abs() < 1e-12, "{k}: {} vs {want}", num(&v, k));
+    }
+    let paper = stdout_json(&["pick", "design", "--json"]);
+    for k in ["b_s2", "c", "d_m"] {
+        assert_eq!(v[k], paper[k]);
+    }
+    // The redesigned cam at its own setting gives back V and X; metres and centimetres agree.
+    let s = stdout_json(&[
+        "pick",
+        "simulate",
+        "--velocity-m-s",
+        "19.5",
+        "--distance-m",
+        "0.26",
+        "--first-stage-m",
+        "0.0725",
+        "--design-speed-rpm",
+        "230",
+        "--json",
+    ]);
+    assert!((num(&s, "velocity_m_s") - vel).abs() < 1e-9 && (num(&s, "distance_m") - x).abs() < 1e-10);
+    assert!((num(&s, "t_end_s") - t_end).abs() < 1e-15);
+    usage_error(&["pick", "design", "--distance-cm", "5"], &["first_stage_m", "0 < first_stage_m < 0.05 m"]);
+    usage_error(&["pick", "design", "--velocity-m-s", "-3"], &["velocity_m_s = -3"]);
+}
+
+/// The required velocity V_r = 100/(100 − p)·6·n·s/φ_s from its flags.
+#[test]
+fn required_velocity_flags() {
+    let v = stdout_json(&[
+        "pick",
+        "simulate",
+        "--speed-rpm",
+        "185",
+        "--retardation-pct",
+        "8",
+        "--path-m",
+        "1.7",
+        "--free-shed-deg",
+        "130",
+        "--json",
+    ]);
+    // Independent route: the path over the time the shed is open, raised by the retardation.
+    let t_open_s = 130.0 / 360.0 * 60.0 / 185.0;
+    assert!((num(&v, "required_velocity_m_s") - 1.7 / t_open_s / 0.92).abs() < 1e-12);
+    usage_error(&["pick", "simulate", "--retardation-pct", "100"], &["retardation_pct", "< 100 %"]);
+    usage_error(&["pick", "simulate", "--free-shed-deg", "0"], &["free_shed_deg"]);
+}
+
+/// Inputs the routes cannot follow, and the equilibrium start beyond the cam: exit 2, one line.
+#[test]
+fn unfollowable_inputs_exit_2() {
+    usage_error(&["pick", "simulate", "--strap-cm", "1e-300", "--json"], &["strap_cm = 1e-300", "not finite"]);
+    usage_error(
+        &["pick", "simulate", "--start", "equilibrium", "--checking-kgf", "1000"],
+        &["checking_kgf = 1000", "beyond the cam's reach"],
+    );
+    usage_error(&["pick", "simulate", "--speed-rpm", "1e308"], &["speed_rpm = 1e308", "10000 rpm"]);
+    let out = loomkin().args(["pick", "simulate", "--velocity-m-s", "1e-6", "--json"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("oscillations"));
+}
