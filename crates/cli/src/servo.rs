@@ -449,20 +449,26 @@ fn export(a: ExportArgs) -> Result<()> {
                 })
             })
             .collect();
-        return util::print_json(&json!({"format": format, "points": table.points.len(), "reinterpolation": v}));
+        let report = json!({"format": format, "points": table.points.len(), "reinterpolation": v});
+        if a.output == "-" {
+            // The table went to stdout: keep it clean, the report goes to stderr.
+            eprintln!("{}", serde_json::to_string_pretty(&report)?);
+            return Ok(());
+        }
+        return util::print_json(&report);
     }
-    println!(
-        "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated:",
+    let mut report = format!(
+        "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated:\n",
         table.points.len(),
         table.step_deg()
     );
-    println!(
-        "{:>16} {:>14} {:>18} {:>20} {:>10} {:>10} {:>10}",
+    report += &format!(
+        "{:>16} {:>14} {:>18} {:>20} {:>10} {:>10} {:>10}\n",
         "interpolation", "position m", "velocity m/deg", "accel m/deg²", "pos/H", "vel/max", "acc/max"
     );
     for e in &errs {
-        println!(
-            "{:>16} {:>14.3e} {:>18.3e} {:>20.3e} {:>10.2e} {:>10.2e} {:>10.2e}",
+        report += &format!(
+            "{:>16} {:>14.3e} {:>18.3e} {:>20.3e} {:>10.2e} {:>10.2e} {:>10.2e}\n",
             e.mode.name(),
             e.max_position_error_m,
             e.max_velocity_error_m_per_deg,
@@ -472,9 +478,14 @@ fn export(a: ExportArgs) -> Result<()> {
             e.rel_accel_error
         );
     }
-    println!(
-        "(xyva points are meant for quintic-Hermite interpolation; csv positions alone give the linear or cubic rows)"
-    );
+    report +=
+        "(xyva points are meant for quintic-Hermite interpolation; csv positions alone give the linear or cubic rows)";
+    // With `-o -` the table is on stdout: the report goes to stderr.
+    if a.output == "-" {
+        eprintln!("{report}");
+    } else {
+        println!("{report}");
+    }
     Ok(())
 }
 

@@ -181,8 +181,8 @@ fn bad_input_is_a_one_line_usage_error() {
 #[test]
 fn a_workbench_design_file_serves_as_drive_file() {
     use loomkin_web::{DesignFormat, ServoDesign};
-    let mut design = ServoDesign::default();
-    design.drive = loomkin_servo::Drive::pure_inertia(0.06, 140.0, 0.8, 0.03);
+    let design =
+        ServoDesign { drive: loomkin_servo::Drive::pure_inertia(0.06, 140.0, 0.8, 0.03), ..ServoDesign::default() };
     let ca = stdout_json(&["servo", "law", "--json"])["ca"].as_f64().unwrap();
     let t = (140.0 / 360.0) * 60.0 / 700.0;
     let expected = 0.03 * 0.8 * ca * 0.06 / (t * t);
@@ -254,4 +254,21 @@ fn extreme_points_are_refused_with_readable_messages() {
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.matches("No such file").count(), 1, "{err}");
+}
+
+/// `-o -` puts the table alone on stdout (every line parses as numbers); the report goes to stderr.
+#[test]
+fn export_to_stdout_keeps_the_table_clean() {
+    for extra in [&[][..], &["--json"][..]] {
+        let mut args = vec!["servo", "export", "--format", "csv", "--step-deg", "10", "-o", "-"];
+        args.extend_from_slice(extra);
+        let out = loomkin().args(&args).output().unwrap();
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2"));
+        let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|c| c.parse().unwrap()).collect()).collect();
+        assert_eq!(rows.len(), 37);
+        assert!(String::from_utf8_lossy(&out.stderr).contains("quintic-hermite"));
+    }
 }
