@@ -48,10 +48,14 @@ impl Cam {
     }
 }
 
+/// Largest coordinate of a point table (m), the same bound as the link lengths.
+const MAX_COORD_M: f64 = 100.0;
+
 /// Reads a point table: one point per line, at least two numeric columns, separated by commas,
 /// semicolons or blanks; `#` starts a comment. A first non-numeric line is a header: the columns
 /// named `x_m`/`y_m` (or `x`/`y`, or `b_x_m`/`b_y_m` as written by `dobby synthesize --csv`) are
-/// used, else the first two. Values are metres.
+/// used, else the first two. Values are metres, each within ±100 m (the range of the link lengths);
+/// a table in millimetres is refused with that hint rather than read as a cam a thousand times too big.
 pub fn parse_point_table(text: &str) -> Result<Vec<Vec2>> {
     let split = |l: &str| -> Vec<String> {
         l.split(|c: char| c == ',' || c == ';' || c.is_whitespace())
@@ -92,6 +96,16 @@ pub fn parse_point_table(text: &str) -> Result<Vec<Vec2>> {
                     reason: "not a finite number".into(),
                 });
             }
+            if v.abs() > MAX_COORD_M {
+                return Err(MechError::PointTable {
+                    location: format!("line {}", ln + 1),
+                    reason: format!(
+                        "coordinate {v} in column {} is out of range: allowed −{MAX_COORD_M} … {MAX_COORD_M} m \
+                         (the table is read in metres)",
+                        i + 1
+                    ),
+                });
+            }
             Ok(v)
         };
         pts.push(Vec2::new(get(cols.0)?, get(cols.1)?));
@@ -111,5 +125,7 @@ mod tests {
         assert_eq!(parse_point_table(t).unwrap(), vec![Vec2::new(1.0, 2.0), Vec2::new(3.0, 4.0)]);
         let e = parse_point_table("x_m,y_m\n1,2\n3,zz\n").unwrap_err().to_string();
         assert!(e.contains("line 3"), "{e}");
+        let e = parse_point_table("x_m,y_m\n366,0\n").unwrap_err().to_string();
+        assert!(e.contains("line 2") && e.contains("366") && e.contains("metres"), "{e}");
     }
 }
