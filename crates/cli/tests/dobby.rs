@@ -22,6 +22,7 @@ fn usage_error(args: &[&str], needles: &[&str]) {
         assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
     }
     assert!(!err.contains("panicked") && !err.contains("NaN"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line: {err}");
     assert!(out.stdout.is_empty());
 }
 
@@ -61,6 +62,18 @@ fn input_rpm_scales_the_rates() {
     assert!((num(r1, "omega6_rad_s") - w2 * num(r0, "omega6_rad_s")).abs() < 1e-9);
     assert!((num(r1, "eps6_rad_s2") - w2 * w2 * num(r0, "eps6_rad_s2")).abs() < 1e-8);
     assert_eq!(num(r1, "phi6_deg"), num(r0, "phi6_deg"));
+    // Synthesis: the same law at 200 rpm, every row, ω ∝ n and ε ∝ n².
+    let base = stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5", "--law", "poly345"]);
+    let fast =
+        stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5", "--law", "poly345", "--input-rpm", "200"]);
+    let w2 = 200.0 * std::f64::consts::TAU / 60.0;
+    let (r0, r1) = (base["rows"].as_array().unwrap(), fast["rows"].as_array().unwrap());
+    for (a, b) in r0.iter().zip(r1) {
+        assert_eq!(num(a, "phi6_deg"), num(b, "phi6_deg"));
+        for (k, p) in [("omega6_rad_s", 1), ("omega3_rad_s", 1), ("eps6_rad_s2", 2)] {
+            assert!((num(b, k) - w2.powi(p) * num(a, k)).abs() <= 1e-12 * w2.powi(p) * (1.0 + num(a, k).abs()), "{k}");
+        }
+    }
 }
 
 #[test]
@@ -107,6 +120,31 @@ fn dxf_and_point_files_are_written() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let d = std::fs::read_to_string(&dxf).unwrap();
     assert_eq!(d.matches("LWPOLYLINE").count(), 6);
+    // Read as group-code/value pairs: every polyline is closed (flag 70 bit 1) with 360 vertices
+    // (code 90), units mm ($INSUNITS 4) in a metric drawing ($MEASUREMENT 1).
+    let lines: Vec<&str> = d.lines().map(str::trim).collect();
+    let pairs: Vec<(&str, &str)> = lines.chunks(2).map(|c| (c[0], c.get(1).copied().unwrap_or(""))).collect();
+    let header = |name: &str| pairs.iter().position(|p| p == &("9", name)).map(|i| pairs[i + 1].1);
+    assert_eq!(header("$INSUNITS"), Some("4"));
+    assert_eq!(header("$MEASUREMENT"), Some("1"));
+    let mut polys = 0;
+    for (i, p) in pairs.iter().enumerate() {
+        if *p == ("0", "LWPOLYLINE") {
+            polys += 1;
+            let body = pairs[i + 1..].iter().take_while(|q| q.0 != "0");
+            let (mut flag, mut n) = (None, None);
+            for q in body {
+                match q.0 {
+                    "70" if flag.is_none() => flag = q.1.parse::<u32>().ok(),
+                    "90" => n = q.1.parse::<usize>().ok(),
+                    _ => {}
+                }
+            }
+            assert_eq!(flag.map(|f| f & 1), Some(1), "polyline {polys} not closed");
+            assert_eq!(n, Some(360));
+        }
+    }
+    assert_eq!(polys, 6);
     for layer in ["CAM_CENTRE", "CAM_WALL_LEFT", "COUNTER_CAM_WALL_RIGHT"] {
         assert!(d.contains(layer), "{layer}");
     }
@@ -153,6 +191,35 @@ fn bad_input_is_one_line_with_exit_code_2() {
     let bad = tmp("bad.csv");
     std::fs::write(&bad, "x_m,y_m\n0,0\n1,zz\n").unwrap();
     usage_error(&["dobby", "analyze", "--cam-file", bad.to_str().unwrap()], &["line 3"]);
+    // Malformed or hostile point tables: each exit 2 with the reason.
+    for (name, text, needle) in [
+        ("empty.csv", "", "at least 8 distinct points"),
+        ("few.csv", "0.3,0\n0,0.5\n-0.3,0\n", "at least 8 distinct points"),
+        ("nan.csv", "x_m,y_m\n0.3,nan\n", "not a finite number"),
+        ("onecol.csv", "0.1\n0.2\n", "column 2"),
+        ("mm.csv", "x_m,y_m\n366,0\n0,577\n", "metres"),
+    ] {
+        let f = tmp(name);
+        std::fs::write(&f, text).unwrap();
+        usage_error(&["dobby", "analyze", "--cam-file", f.to_str().unwrap()], &[needle]);
+    }
+    // A slot turned away from O is named as such, with the admissible α.
+    usage_error(&["dobby", "analyze", "--alpha-deg", "170"], &["points away from O", "admissible α ∈ [23.4"]);
+    for v in ["nan", "inf", "-1", "0"] {
+        usage_error(&["dobby", "analyze", "--alpha-deg", v], &["alpha_deg"]);
+        usage_error(&["dobby", "synthesize", "--dwell-deg", if v == "0" { "-0.5" } else { v }], &["dwell_deg"]);
+        if v != "0" {
+            usage_error(&["dobby", "synthesize", "--roller-m", v], &["roller_m"]);
+        }
+    }
+}
+
+#[test]
+fn an_unwritable_output_file_is_exit_code_1() {
+    let out = loomkin().args(["dobby", "synthesize", "--dxf", "/nonexistent/dir/cams.dxf"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("/nonexistent/dir/cams.dxf") && !err.contains("panicked"), "{err}");
 }
 
 #[test]
