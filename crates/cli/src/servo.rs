@@ -503,20 +503,28 @@ fn plot(a: PlotArgs) -> Result<()> {
     let mut unit = Panel::new("unit law u°(x) [-]", Vec::new()).with_legend(Legend::UpperLeft);
     unit.x_label = Some("x = fraction of the motion angle [-]".into());
     let mut torque = Panel::new("motor torque M [N·m]", Vec::new()).with_legend(Legend::LowerRight);
-    for (name, sl) in &laws {
+    // As the paper's Fig. 3: the given law solid, the compared one dashed; the points in the colour
+    // of their curve; one colour per speed in the torque panel.
+    const PALETTE: [[u8; 3]; 6] =
+        [[0, 114, 178], [213, 94, 0], [0, 158, 115], [204, 121, 167], [86, 180, 233], [0, 0, 0]];
+    for (i, (name, sl)) in laws.iter().enumerate() {
+        let style = |s: Series, colour: [u8; 3]| {
+            let s = s.with_color(colour);
+            if i == 0 { s } else { s.with_dashes() }
+        };
         let f: Vec<(f64, f64)> = (0..n).map(|i| i as f64 / (n - 1) as f64).map(|x| (x, sl.accel_image(x))).collect();
-        image.series.push(Series::line(format!("{name}: f(x)"), f));
-        image.series.push(Series::markers(
-            format!("{name}: definition points"),
-            sl.points().iter().map(|p| (p[0], p[1])).collect(),
-        ));
-        unit.series.push(Series::line(*name, sl.law().sample(n).into_iter().map(|(x, k)| (x, k.s)).collect()));
-        for &rpm in &a.speed_rpm {
+        image.series.push(style(Series::line(format!("{name}: f(x)"), f), PALETTE[i]));
+        image.series.push(
+            Series::markers(format!("{name}: definition points"), sl.points().iter().map(|p| (p[0], p[1])).collect())
+                .with_color(PALETTE[i]),
+        );
+        let s: Vec<(f64, f64)> = sl.law().sample(n).into_iter().map(|(x, k)| (x, k.s)).collect();
+        unit.series.push(style(Series::line(*name, s), PALETTE[i]));
+        for (k, &rpm) in a.speed_rpm.iter().enumerate() {
             let c = torque_curve(sl.law(), &d, rpm, 1441)?;
-            torque.series.push(Series::line(
-                format!("{name}, {rpm} 1/min"),
-                c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect(),
-            ));
+            let line =
+                Series::line(format!("{name}, {rpm} 1/min"), c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect());
+            torque.series.push(style(line, PALETTE[k % PALETTE.len()]));
         }
     }
     let fig = Figure::new(
