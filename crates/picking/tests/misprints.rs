@@ -1,7 +1,7 @@
 //! Each correction of the printed eqs. 33–47 is justified here: the printed form disagrees with
 //! the numerical integration of eq. 28, the corrected form agrees to 1e-7.
 
-use loomkin_picking::{Mechanism, Method, PaperConstants, Settings, closed_form_constants, simulate};
+use loomkin_picking::{Mechanism, Method, PaperConstants, Settings, closed_form_constants, history, simulate};
 use std::f64::consts::PI;
 
 /// Stage-2 displacement (eq. 42) with given homogeneous constants.
@@ -51,6 +51,31 @@ fn eq34_needs_q_in_the_sine() {
     };
     assert!(x1(0.0, pc.q).abs() < 1e-15);
     assert!(x1(0.0, 1.0).abs() > 1e-4, "printed form starts at x(0) = {} m", x1(0.0, 1.0));
+    // Against the integration inside the first stage: the corrected form agrees, the printed not.
+    let h = history(&m, &st, Method::Ode, 41).unwrap();
+    let mut checked = 0;
+    for s in h.samples.iter().filter(|s| s.t_s > 0.0 && s.t_s < pc.t1) {
+        let x = s.actual.x_m;
+        assert!((x1(s.t_s, pc.q) - x).abs() < 1e-7 * x.abs().max(1e-3), "t = {}", s.t_s);
+        assert!((x1(s.t_s, 1.0) - x).abs() > 1e-4, "t = {}", s.t_s);
+        checked += 1;
+    }
+    assert!(checked >= 5, "{checked} samples in the first stage");
+}
+
+/// Fig. 3's caption "s₀ = 15.5 mm" is the strap-loop play s'₀ (§2.2 says "a play of s'₀ = 15.5
+/// mm"): only that reading gives the printed ΔV = 3.88 m/s; 15.5 mm at the picker (s'₀ = 15.5·k/l)
+/// gives about 2.4 m/s.
+#[test]
+fn fig3_caption_is_the_strap_play() {
+    let m = Mechanism::paper_default();
+    let base = simulate(&m, &Settings::designed(&m), Method::Ode).unwrap().velocity_m_s;
+    let strap = simulate(&m, &Settings::designed(&m).with_play_mm(15.5), Method::Ode).unwrap();
+    let k_over_l = m.params().k_m / m.params().l_m;
+    let picker = simulate(&m, &Settings::designed(&m).with_play_mm(15.5 * k_over_l), Method::Ode).unwrap();
+    assert!((picker.play_picker_m - 0.0155).abs() < 1e-12);
+    assert!((strap.velocity_m_s - base - 3.88).abs() < 0.03);
+    assert!((picker.velocity_m_s - base - 3.88).abs() > 1.0);
 }
 
 /// The stage switch is where the cam's design time reaches τ: t₁ = τ/q − t₀, not the printed
