@@ -66,6 +66,14 @@ fn law_from_a_spec_file() {
     std::fs::write(&bad_motion, "motion_deg = 400\npositive = \"1:constant:1\"\n").unwrap();
     fails_with_2(&["shed", "law", "--spec", bad_motion.to_str().unwrap()], "motion_deg");
     fails_with_2(&["shed", "law", "--spec", dir.join("missing.toml").to_str().unwrap()], "cannot read");
+    // Inside (0, 360] but so small that the physical peaks overflow: exit 2, never inf in the output.
+    let tiny = dir.join("tiny.toml");
+    std::fs::write(&tiny, "motion_deg = 1e-300\npositive = \"1:constant:1\"\n").unwrap();
+    fails_with_2(&["shed", "law", "--spec", tiny.to_str().unwrap(), "--json"], "motion_deg = 1e-300");
+    fails_with_2(&["shed", "table", "--design", "grid", "--motion-deg", "1e-300", "--csv"], "motion_deg = 1e-300");
+    let bad_table = dir.join("bad_table.toml");
+    std::fs::write(&bad_table, "motion_deg = 300\npositive = [ { length = 1.0, shape = \"linear\" } ]\n").unwrap();
+    fails_with_2(&["shed", "law", "--spec", bad_table.to_str().unwrap()], "positive[0]: missing field `from`");
     std::fs::remove_dir_all(&dir).ok();
 }
 

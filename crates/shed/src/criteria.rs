@@ -187,8 +187,22 @@ impl Criteria {
     }
 }
 
+/// Checks that the physical factors `h·(ω/Φ)^k` (k = 1, 2, 3) and the power factor are finite for a
+/// motion angle (a tiny `Φ` overflows them).
+pub(crate) fn check_scales(motion_deg: f64, conditions: &Conditions) -> Result<()> {
+    let (s1, s2, s3) =
+        (conditions.scale(motion_deg, 1), conditions.scale(motion_deg, 2), conditions.scale(motion_deg, 3));
+    // Leave room for the dimensionless peaks (Ca, Cj up to ~1e6 for the shortest parts).
+    if [s1, s2, s3, s1 * s2].iter().all(|v| v.is_finite() && *v < 1e290) {
+        Ok(())
+    } else {
+        Err(ShedError::NotFinite { field: "motion_deg".into(), value: motion_deg })
+    }
+}
+
 /// Every criterion of a law at the given conditions, through the law core (the generic path).
 pub fn evaluate(law: &ShedLaw, conditions: &Conditions) -> Result<Criteria> {
+    check_scales(law.motion_deg(), conditions)?;
     let built = law.build()?;
     let d = Dimensionless::of_law(&built, conditions.threshold())?;
     Ok(Criteria::new(law.motion_deg(), &d, conditions))

@@ -21,6 +21,7 @@ pub struct CurvePoint {
 /// dwell up to 720°. `points ≥ 2` evenly spaced angles, both ends included.
 pub fn cycle_curve(law: &ShedLaw, conditions: &Conditions, points: usize) -> Result<Vec<CurvePoint>> {
     ShedError::check_range("points", points as f64, 2.0, 1e6, "")?;
+    crate::criteria::check_scales(law.motion_deg(), conditions)?;
     let built = law.build()?;
     let phi = law.motion_deg();
     let (h, sv, sa) = (conditions.stroke_m(), conditions.scale(phi, 1), conditions.scale(phi, 2));

@@ -54,6 +54,18 @@ pub enum ShedError {
         /// Why.
         reason: String,
     },
+    /// A value inside its range for which the physical peaks overflow the range of numbers (a
+    /// motion angle far too small for the stroke and speed).
+    #[error(
+        "{field} = {} makes the peak velocity, acceleration or jerk overflow at this stroke and speed: use a larger {field}",
+        num(.value)
+    )]
+    NotFinite {
+        /// Name of the field.
+        field: String,
+        /// Offending value.
+        value: f64,
+    },
     /// An error of the law core.
     #[error(transparent)]
     Law(#[from] LawError),

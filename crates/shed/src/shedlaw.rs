@@ -43,19 +43,29 @@ pub struct ShedLaw {
 
 /// A list of segments in a TOML file: either the text form `LEN:SHAPE[:LEVEL…],…` or an array of
 /// tables `{ length = …, shape = "…", from = …, to = … }`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
-enum SegmentsField {
-    Text(String),
-    List(Vec<ShapeSegment>),
-}
-
-impl SegmentsField {
-    fn read(self, field: &str) -> Result<Vec<ShapeSegment>> {
-        match self {
-            SegmentsField::Text(t) => Ok(parse_segments(&t, field)?),
-            SegmentsField::List(l) => Ok(l),
-        }
+fn read_segments(value: toml::Value, field: &str) -> Result<Vec<ShapeSegment>> {
+    match value {
+        toml::Value::String(t) => Ok(parse_segments(&t, field)?),
+        toml::Value::Array(items) => items
+            .into_iter()
+            .enumerate()
+            .map(|(i, item)| {
+                ShapeSegment::deserialize(item).map_err(|e| ShedError::Parse {
+                    field: format!("{field}[{i}]"),
+                    reason: format!(
+                        "{} (expected a table {{ length = …, shape = \"…\", from = …, to = … }})",
+                        e.message()
+                    ),
+                })
+            })
+            .collect(),
+        other => Err(ShedError::Parse {
+            field: field.into(),
+            reason: format!(
+                "found {}, expected a text \"LEN:SHAPE[:LEVEL…],…\" or an array of tables {{ length, shape, … }}",
+                other.type_str()
+            ),
+        }),
     }
 }
 
@@ -63,8 +73,8 @@ impl SegmentsField {
 #[serde(deny_unknown_fields)]
 struct SpecFile {
     motion_deg: f64,
-    positive: SegmentsField,
-    negative: Option<SegmentsField>,
+    positive: toml::Value,
+    negative: Option<toml::Value>,
     positive_fraction: Option<f64>,
 }
 
@@ -157,14 +167,16 @@ impl ShedLaw {
     pub fn from_toml(text: &str) -> Result<Self> {
         let spec: SpecFile = toml::from_str(text)
             .map_err(|e| ShedError::Parse { field: "spec".into(), reason: e.message().to_string() })?;
-        let positive = spec.positive.read("positive")?;
+        let positive = read_segments(spec.positive, "positive")?;
         match (spec.negative, spec.positive_fraction) {
             (None, None) => Self::symmetric(spec.motion_deg, positive),
             (None, Some(_)) => Err(ShedError::Parse {
                 field: "positive_fraction".into(),
                 reason: "only allowed together with a negative phase".into(),
             }),
-            (Some(n), f) => Self::asymmetric(spec.motion_deg, positive, n.read("negative")?, f.unwrap_or(0.5)),
+            (Some(n), f) => {
+                Self::asymmetric(spec.motion_deg, positive, read_segments(n, "negative")?, f.unwrap_or(0.5))
+            }
         }
     }
 
@@ -285,6 +297,22 @@ mod tests {
                 assert!((ka.s - kb.s).abs() < 1e-13 && (ka.a - kb.a).abs() < 1e-11, "kr {kr} x {x}");
             }
         }
+    }
+
+    #[test]
+    fn spec_errors_name_the_segment() {
+        let e = ShedLaw::from_toml("motion_deg = 300\npositive = [ { length = 1.0, shape = \"sine-ramp\" } ]")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("positive[0]: missing field `from`"), "{e}");
+        let e = ShedLaw::from_toml("motion_deg = 300\npositive = 5").unwrap_err().to_string();
+        assert!(e.starts_with("positive: found integer"), "{e}");
+        let ok = ShedLaw::from_toml(
+            "motion_deg = 300\npositive = [ { length = 0.5, shape = \"constant\", level = 1.0 }, \
+             { length = 0.5, shape = \"zero\" } ]",
+        )
+        .unwrap();
+        assert_eq!(ok.positive_text(), "0.5:constant:1,0.5:zero");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! Experiment tables of shedding laws: the paper's designs, full grids over `k_T1 … k_Tn`, the
 //! Pareto front (largest window, least peak acceleration) and the constrained optimum.
 
+use crate::criteria::check_scales;
 use crate::{Conditions, Criteria, Dimensionless, Result, ShedError, Template, check_motion_deg};
 use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
 use serde::Serialize;
@@ -70,6 +71,12 @@ fn check_motions(motions: &[f64]) -> Result<()> {
     motions.iter().try_for_each(|&m| check_motion_deg(m).map(|_| ()))
 }
 
+/// [`check_motions`] and finite physical values at every angle.
+fn check_motions_at(motions: &[f64], conditions: &Conditions) -> Result<()> {
+    check_motions(motions)?;
+    motions.iter().try_for_each(|&m| check_scales(m, conditions))
+}
+
 /// Every row at every motion angle (rows that make no law are left out).
 pub fn table(
     design: &Design,
@@ -77,7 +84,7 @@ pub fn table(
     motions: &[f64],
     conditions: &Conditions,
 ) -> Result<Vec<Candidate>> {
-    check_motions(motions)?;
+    check_motions_at(motions, conditions)?;
     let mut out = Vec::new();
     for (i, d) in rows.iter().enumerate() {
         if let Some(d) = d {
@@ -96,7 +103,7 @@ pub fn pareto(
     motions: &[f64],
     conditions: &Conditions,
 ) -> Result<Vec<Candidate>> {
-    check_motions(motions)?;
+    check_motions_at(motions, conditions)?;
     let senses = [Sense::Maximize, Sense::Minimize];
     let ok: Vec<usize> = (0..rows.len()).filter(|&i| rows[i].is_some()).collect();
     let mut pool: Vec<(usize, f64)> = Vec::new();
@@ -191,7 +198,7 @@ pub fn best(
             }))
         }
         Some(ms) => {
-            check_motions(ms)?;
+            check_motions_at(ms, conditions)?;
             let pairs: Vec<(usize, f64)> =
                 (0..rows.len()).filter(|&i| rows[i].is_some()).flat_map(|i| ms.iter().map(move |&m| (i, m))).collect();
             let d = |i: usize| rows[i].as_ref().expect("filtered");
