@@ -67,6 +67,7 @@ impl GeometryArgs {
         match self.input_rpm {
             None => Ok(1.0),
             Some(n) if n.is_finite() && n > 0.0 && n <= 1e5 => Ok(n * std::f64::consts::TAU / 60.0),
+            Some(n) if !n.is_finite() => bail!("--input-rpm is not a finite number: allowed 0 < n ≤ 100000 rev/min"),
             Some(n) => bail!("--input-rpm {n} is out of range: allowed 0 < n ≤ 100000 rev/min"),
         }
     }
@@ -636,6 +637,12 @@ fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, s
 }
 
 fn plot_cmd(a: PlotArgs) -> Result<()> {
+    if !a.at_deg.is_finite() {
+        bail!("--at-deg is not a finite number: allowed −360 ≤ at_deg ≤ 360 °");
+    }
+    if a.at_deg.abs() > 360.0 {
+        bail!("--at-deg {} is out of range: allowed −360 ≤ at_deg ≤ 360 °", a.at_deg);
+    }
     let g = a.geometry.geometry()?;
     let w2 = a.geometry.speed_rad_s()?;
     let (states, gamma, gamma_p, title) = match a.task {
@@ -683,7 +690,12 @@ fn walls_of(path: &[[f64; 2]], states: &[ModulatorState], roller_m: f64) -> CamP
 }
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
-    if !(a.by > 0.0 && a.by.is_finite() && a.from.is_finite() && a.to.is_finite() && a.to >= a.from) {
+    for (flag, v) in [("--from", a.from), ("--to", a.to), ("--by", a.by)] {
+        if !v.is_finite() {
+            bail!("{flag} is not a finite number: α values are in (0, 180) °");
+        }
+    }
+    if !(a.by > 0.0 && a.to >= a.from) {
         bail!("--from {} --to {} --by {}: need from ≤ to and by > 0", a.from, a.to, a.by);
     }
     let n = ((a.to - a.from) / a.by + 1e-9).floor() as usize + 1;

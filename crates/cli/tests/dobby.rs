@@ -203,6 +203,11 @@ fn bad_input_is_one_line_with_exit_code_2() {
         std::fs::write(&f, text).unwrap();
         usage_error(&["dobby", "analyze", "--cam-file", f.to_str().unwrap()], &[needle]);
     }
+    usage_error(&["dobby", "analyze", "--input-rpm", "nan"], &["--input-rpm is not a finite number"]);
+    usage_error(&["dobby", "sweep", "--by", "nan"], &["--by is not a finite number"]);
+    for v in ["nan", "inf", "1e300"] {
+        usage_error(&["dobby", "plot", "--what", "cams", "--at-deg", v, "-o", "never.svg"], &["--at-deg"]);
+    }
     // A slot turned away from O is named as such, with the admissible α.
     usage_error(&["dobby", "analyze", "--alpha-deg", "170"], &["points away from O", "admissible α ∈ [23.4"]);
     for v in ["nan", "inf", "-1", "0"] {

@@ -36,8 +36,12 @@ impl ModulatorState {
     }
 }
 
-/// The state whose input angle is nearest to `phi2_deg` modulo 360°, if any.
+/// The state whose input angle is nearest to `phi2_deg` modulo 360°; `None` if there is none or
+/// `phi2_deg` is not finite.
 pub fn nearest_state(states: &[ModulatorState], phi2_deg: f64) -> Option<&ModulatorState> {
+    if !phi2_deg.is_finite() {
+        return None;
+    }
     let target = phi2_deg.to_radians();
     states.iter().min_by(|a, b| {
         let da = crate::planar::wrap_pi(a.phi2 - target).abs();
