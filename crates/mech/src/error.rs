@@ -11,7 +11,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum MechError {
     /// A numeric parameter outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}")]
+    #[error("{field} = {} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}", short_number(*value))]
     OutOfRange {
         /// Name of the field.
         field: String,
@@ -99,6 +99,12 @@ pub enum MechError {
     Law(#[from] LawError),
 }
 
+/// A number as a user typed it: plain for ordinary magnitudes, in exponent form outside
+/// 1e-4…1e9 (so that `1e308` does not print as 309 digits).
+fn short_number(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
+}
+
 impl MechError {
     /// Shorthand for [`MechError::OutOfRange`].
     pub fn out_of_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
@@ -120,3 +126,16 @@ impl MechError {
 
 /// Result alias of the mechanisms crate.
 pub type Result<T, E = MechError> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn huge_values_print_short() {
+        let e = MechError::check_range("alpha_deg", 1e308, 0.0, 180.0, "°").unwrap_err().to_string();
+        assert!(e.starts_with("alpha_deg = 1e308 is out of range"), "{e}");
+        let e = MechError::check_range("l2_m", -0.5, 0.0, 100.0, "m").unwrap_err().to_string();
+        assert!(e.starts_with("l2_m = -0.5 is out"), "{e}");
+    }
+}
