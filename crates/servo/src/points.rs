@@ -69,6 +69,11 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
     }
     out[0] = [0.0, 0.0];
     out[n - 1] = [0.5, 0.0];
+    for j in 1..n - 1 {
+        if !(out[j][0] > 0.0 && out[j][0] < 0.5) {
+            return Err(bad(j, "X must lie inside (0, 0.5) (the first half of the motion)".into()));
+        }
+    }
     for j in 1..n {
         let (prev, x) = (out[j - 1][0], out[j][0]);
         if x < prev + MIN_GAP {
@@ -151,6 +156,11 @@ mod tests {
         p[6][0] = 0.6;
         assert!(matches!(check_points(&p), Err(ServoError::Point { index: 7, .. })));
         assert!(matches!(check_points(&p[..3]), Err(ServoError::TooFewPoints { count: 3, .. })));
+        // An X outside the half is named as such, not as the next point's order.
+        let mut p = default_points();
+        p[1][0] = 0.6;
+        let e = check_points(&p).unwrap_err();
+        assert!(matches!(e, ServoError::Point { index: 2, .. }) && e.to_string().contains("(0, 0.5)"), "{e}");
         assert!(matches!(parse_points("0:0,0.2"), Err(ServoError::Parse { .. })));
         let zero = [[0.0, 0.0], [0.1, 0.0], [0.3, 0.0], [0.5, 0.0]];
         assert!(matches!(check_points(&zero), Err(ServoError::NoRise { .. })));
