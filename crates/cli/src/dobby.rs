@@ -79,8 +79,11 @@ pub struct CamArgs {
     /// The cam's roller-centre curve, `ellipse:a=A,b=B` (m); default the paper's a=0.366, b=0.577.
     #[arg(long, value_name = "ellipse:a=…,b=…")]
     cam: Option<String>,
-    /// The cam as a point table (CSV or blanks; columns x_m,y_m or b_x_m,b_y_m, else the first two),
-    /// fitted by a periodic cubic spline.
+    /// The cam as a point table of roller-centre points in metres, in order around the curve (≥ 8
+    /// distinct points, a repeated closing point is dropped): one point per line, separated by
+    /// commas, semicolons or blanks, `#` comments; a header picks the columns x_m,y_m (or x,y or
+    /// b_x_m,b_y_m as written by `synthesize --csv`), else the first two. Fitted by a periodic
+    /// cubic spline in chord length.
     #[arg(long, value_name = "FILE", conflicts_with = "cam")]
     cam_file: Option<PathBuf>,
 }

@@ -53,7 +53,8 @@ pub struct AnalysisRow {
     pub phi2_deg: f64,
     /// Time since the start (s).
     pub t_s: f64,
-    /// Parameter p of the cam curve at B.
+    /// Parameter p of the cam curve at B: the angle p (rad) of `x = a cos p, y = b sin p` for an
+    /// ellipse, the chord length (m) from the first point for a point table.
     pub cam_param: f64,
     /// Slot angle φ3 (deg), continuous.
     pub phi3_deg: f64,
