@@ -240,11 +240,15 @@ fn evaluate(
     let half_phase = (0.5 * sc.psi() * h_max).min(std::f64::consts::PI);
     let slack = (1.0 - half_phase.cos()) * (a_max - a_min) + 1e-12 * best.1.abs();
     let grid_best = best.1;
+    // A plateau (the designed constant-acceleration stage) is not a peak: a candidate must stand
+    // above a neighbour by more than rounding noise, or be the best scan point itself.
+    let noise = 1e-9 * a_max.abs().max(a_min.abs());
     let a_at = |i: usize| if i < n_used { states[i].a_m_s2 } else { last.a_m_s2 };
     for i in 0..n_used {
         let a = states[i].a_m_s2;
-        let local_max = (i == 0 || a >= states[i - 1].a_m_s2) && a >= a_at(i + 1);
-        if !local_max || a < grid_best - slack {
+        let before = if i == 0 { f64::NEG_INFINITY } else { states[i - 1].a_m_s2 };
+        let local_max = a >= before && a >= a_at(i + 1) && a - before.min(a_at(i + 1)) > noise;
+        if !(local_max && a >= grid_best - slack || ts[i] == best.0) {
             continue;
         }
         let lo = ts[i.saturating_sub(1)];
