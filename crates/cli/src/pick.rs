@@ -238,8 +238,8 @@ fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
     } else {
         mech
     };
-    if m.law.is_none() && !m.params.is_empty() {
-        bail!("--param needs --law: parameters belong to a catalogue law");
+    if m.law.as_deref().is_none_or(|l| l == "compound") && !m.params.is_empty() {
+        bail!("--param needs a catalogue --law: the compound law has no parameters (it is designed from V, X, X1)");
     }
     match &m.law {
         Some(name) if name != "compound" => Ok(mech.with_law(LawSpec::parse(name, &m.params)?).map_err(lib_err)?),

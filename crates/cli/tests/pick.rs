@@ -91,6 +91,8 @@ fn bad_settings_exit_2_with_a_clear_line() {
     usage_error(&["pick", "sweep", "play", "--from", "0", "--to", "100", "--steps", "3"], &["beyond the cam's reach"]);
     usage_error(&["pick", "sweep", "play", "--from", "0", "--to", "1", "--steps", "0"], &["--steps"]);
     usage_error(&["pick", "simulate", "--law", "no-such-law"], &["no-such-law"]);
+    usage_error(&["pick", "simulate", "--law", "compound", "--param", "ramp=0.1"], &["--param"]);
+    usage_error(&["pick", "simulate", "--param", "ramp=0.1"], &["--param"]);
     usage_error(&["pick", "simulate", "--mechanism", "/nonexistent/m.toml"], &["/nonexistent/m.toml"]);
 }
 
