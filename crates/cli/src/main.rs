@@ -61,9 +61,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            // One line: clap's first line (the error itself), without its usage block and tips.
+            let text = e.render().to_string();
+            let message: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .take_while(|l| {
+                    !l.starts_with("Usage:") && !l.starts_with("For more information") && !l.starts_with("tip:")
+                })
+                .filter(|l| !l.is_empty())
+                .collect();
+            let line = message.join(" ");
+            eprintln!("loomkin: error: {} (see --help)", line.trim_start_matches("error: "));
+            return ExitCode::from(2);
+        }
         Err(e) => {
+            // --help and --version.
             let _ = e.print();
-            return if e.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+            return ExitCode::SUCCESS;
         }
     };
     match run(cli) {

@@ -4,19 +4,19 @@ use anyhow::{Context, anyhow};
 use clap::Args;
 use std::io::Write;
 
-/// Marks an error as a failure of the run (exit 1), not of the user's input (exit 2).
+/// An error that is a failure of the run (exit 1), not of the user's input (exit 2).
 #[derive(Debug)]
-pub struct Failure;
+pub struct Failure(String);
 
 impl std::fmt::Display for Failure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("failure")
+        f.write_str(&self.0)
     }
 }
 
 impl std::error::Error for Failure {}
 
-/// Exit code for an error: 1 if marked as a [`Failure`], else 2 (bad input or usage).
+/// Exit code for an error: 1 if it is a [`Failure`], else 2 (bad input or usage).
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.chain().any(|c| c.is::<Failure>()) { 1 } else { 2 }
 }
@@ -24,8 +24,7 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
 /// Wraps an output error (writing a file or stdout) as a run failure, exit code 1.
 pub fn failure(e: impl Into<anyhow::Error>) -> anyhow::Error {
     let e: anyhow::Error = e.into();
-    let msg = format!("{e:#}");
-    anyhow::Error::new(Failure).context(msg)
+    anyhow::Error::new(Failure(format!("{e:#}")))
 }
 
 /// `--json` / `--csv` choice shared by the subcommands.

@@ -149,7 +149,7 @@ pub fn write_dxf(polylines: &[DxfPolyline], unit: DxfUnit, w: &mut dyn Write) ->
 pub fn save_dxf(polylines: &[DxfPolyline], unit: DxfUnit, path: &Path) -> Result<(), IoError> {
     let mut f = crate::create_file(path)?;
     write_dxf(polylines, unit, &mut f)?;
-    f.flush().map_err(|source| IoError::File { path: path.display().to_string(), source })
+    f.flush().map_err(|cause| IoError::File { path: path.display().to_string(), cause })
 }
 
 #[cfg(test)]

@@ -7,12 +7,12 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum IoError {
     /// A file could not be created or written.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}: {cause}")]
     File {
         /// The path.
         path: String,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause (printed in the message, not chained, so it is said once).
+        cause: std::io::Error,
     },
     /// Writing to a stream failed.
     #[error("write failed: {0}")]

@@ -16,5 +16,5 @@ pub fn open_output(path: &str) -> Result<Box<dyn Write>, IoError> {
 pub fn create_file(path: &Path) -> Result<BufWriter<std::fs::File>, IoError> {
     std::fs::File::create(path)
         .map(BufWriter::new)
-        .map_err(|source| IoError::File { path: path.display().to_string(), source })
+        .map_err(|cause| IoError::File { path: path.display().to_string(), cause })
 }

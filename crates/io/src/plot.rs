@@ -140,6 +140,10 @@ impl Figure {
         }
         let size = self.size.unwrap_or((1000, 260 * self.panels.len() as u32 + 60));
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        if matches!(ext.as_deref(), Some("svg" | "png")) {
+            // Fail early, with the OS's words, if the file cannot be written at all.
+            std::fs::File::create(path).map_err(|cause| IoError::File { path: path.display().to_string(), cause })?;
+        }
         match ext.as_deref() {
             Some("svg") => self.draw(SVGBackend::new(path, size).into_drawing_area()),
             Some("png") => self.draw(BitMapBackend::new(path, size).into_drawing_area()),
@@ -186,6 +190,20 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - 0.05 * span, hi + 0.05 * span)
 }
 
+/// A tick label with as many decimals as the axis span needs, no `-0`, no trailing zeros.
+fn tick_label(v: f64, span: f64) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    if span > 0.0 && v.abs() < 1e-9 * span {
+        return "0".into();
+    }
+    let decimals = if span > 0.0 { (3.0 - span.log10().floor()).clamp(0.0, 15.0) as usize } else { 3 };
+    let text = format!("{v:.decimals$}");
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text };
+    if text == "-0" { "0".into() } else { text }
+}
+
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
@@ -211,8 +229,13 @@ fn draw_panel<DB: DrawingBackend>(
         .x_label_area_size(42)
         .y_label_area_size(78)
         .build_cartesian_2d(x0..x1, y0..y1)?;
+    let (xspan, yspan) = (x1 - x0, y1 - y0);
+    let fx = move |v: &f64| tick_label(*v, xspan);
+    let fy = move |v: &f64| tick_label(*v, yspan);
     chart
         .configure_mesh()
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .x_desc(panel.x_label.as_deref().unwrap_or(fig_x_label))
         .y_desc(&panel.y_label)
         .label_style(("sans-serif", 15))
@@ -277,6 +300,15 @@ mod tests {
         for text in ["x [-]", "s [-]", "one", "two", "test"] {
             assert!(svg.contains(text), "{text} missing");
         }
+    }
+
+    #[test]
+    fn tick_labels_are_compact() {
+        assert_eq!(tick_label(-1e-17, 2.0), "0");
+        assert_eq!(tick_label(250.0, 400.0), "250");
+        assert_eq!(tick_label(0.1, 1.0), "0.1");
+        assert_eq!(tick_label(-0.0005, 0.004), "-0.0005");
+        assert_eq!(tick_label(-0.00001, 1.0), "0");
     }
 
     #[test]
