@@ -51,6 +51,17 @@ async fn guard(req: Request, next: Next) -> Response {
             return ApiError::Forbidden { field: "host".into(), message }.into_response();
         }
     }
+    // A page elsewhere may still send a request here (a form or a text/plain POST needs no
+    // preflight); browsers name its origin, so refuse any origin but the loopback names.
+    if let Some(origin) = req.headers().get(header::ORIGIN) {
+        let origin = origin.to_str().unwrap_or("");
+        let host = origin.strip_prefix("http://").unwrap_or("");
+        let name = host.rsplit_once(':').map_or(host, |(h, _)| h);
+        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+            let message = format!("the workbench answers only its own page, not a page from '{origin}'");
+            return ApiError::Forbidden { field: "origin".into(), message }.into_response();
+        }
+    }
     let (method, path) = (req.method().clone(), req.uri().path().to_string());
     let mut res = next.run(req).await;
     // The router answers a wrong method (405) and an unknown page (404) with an empty body: say

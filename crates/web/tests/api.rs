@@ -95,6 +95,34 @@ async fn unknown_endpoints_and_methods_are_refused() {
 }
 
 #[tokio::test]
+async fn requests_from_other_pages_are_refused() {
+    let body = json!({"laws": [{"name": "cycloidal"}], "samples": 3}).to_string();
+    for (origin, status) in [
+        ("http://127.0.0.1:8765", StatusCode::OK),
+        ("http://localhost:8765", StatusCode::OK),
+        ("https://evil.example", StatusCode::FORBIDDEN),
+        ("http://127.0.0.1.evil.example", StatusCode::FORBIDDEN),
+        ("null", StatusCode::FORBIDDEN),
+    ] {
+        let req = Request::builder()
+            .method("POST")
+            .uri("/api/laws/compare")
+            .header(header::ORIGIN, origin)
+            .header(header::CONTENT_TYPE, "text/plain")
+            .body(Body::from(body.clone()))
+            .expect("request");
+        let res = router().oneshot(req).await.expect("infallible");
+        let code = res.status();
+        let bytes = to_bytes(res.into_body(), usize::MAX).await.expect("body");
+        let v: Value = serde_json::from_slice(&bytes).expect("JSON");
+        assert_eq!(code, status, "{origin}: {v}");
+        if status == StatusCode::FORBIDDEN {
+            assert_eq!(v["field"], "origin", "{v}");
+        }
+    }
+}
+
+#[tokio::test]
 async fn catalogue_lists_every_law() {
     let (s, v) = get("/api/laws").await;
     assert_eq!(s, StatusCode::OK);
