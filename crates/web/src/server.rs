@@ -14,8 +14,10 @@ use tokio::net::TcpListener;
 
 /// The whole application: page, assets and JSON API.
 ///
-/// Bodies are limited to [`MAX_BODY_BYTES`]; requests whose `Host` is not a loopback name are
-/// refused (a web page elsewhere cannot reach the workbench by DNS rebinding).
+/// Bodies are limited to [`MAX_BODY_BYTES`]; requests whose `Host` is not a loopback name (DNS
+/// rebinding) or whose `Origin` is not the workbench's own page are refused with 403, and wrong
+/// methods (405) and unknown paths (404) answer the same JSON `{"error", "field"}` as every
+/// other refusal.
 pub fn router() -> Router {
     let api = Router::new()
         .route("/info", get(info))
