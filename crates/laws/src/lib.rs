@@ -40,5 +40,6 @@ pub use error::{LawError, Result};
 pub use kinematics::{Kinematics, MotionLaw};
 pub use law::{AccelPiece, EndCondition, Law};
 pub use metrics::Metrics;
+pub use quadrature::gauss_legendre;
 pub use segment::{MAX_DEGREE, Segment, Sine};
 pub use shape::{Shape, ShapeSegment, format_segments, parse_segments};

@@ -5,17 +5,16 @@ use std::sync::OnceLock;
 /// Number of Gauss–Legendre nodes per panel.
 pub(crate) const ORDER: usize = 16;
 
-/// Nodes on `[-1, 1]` and their weights.
-pub(crate) fn gauss_legendre() -> &'static [(f64, f64); ORDER] {
-    static RULE: OnceLock<[(f64, f64); ORDER]> = OnceLock::new();
-    RULE.get_or_init(|| {
-        let n = ORDER;
-        let mut out = [(0.0, 0.0); ORDER];
-        for i in 0..n {
-            // Chebyshev-like first guess, then Newton on P_n.
+/// Nodes and weights of the `n`-point Gauss–Legendre rule on `[−1, 1]`, exact for polynomials of
+/// degree up to `2n − 1`; found by Newton's method on the Legendre polynomial `P_n` from a
+/// Chebyshev-like first guess.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
             let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
             let mut dp = 1.0;
             for _ in 0..100 {
+                // Legendre recurrence for P_n(x) and P_{n−1}(x).
                 let (mut p0, mut p1) = (1.0, x);
                 for k in 2..=n {
                     let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
@@ -29,20 +28,25 @@ pub(crate) fn gauss_legendre() -> &'static [(f64, f64); ORDER] {
                     break;
                 }
             }
-            out[i] = (x, 2.0 / ((1.0 - x * x) * dp * dp));
-        }
-        out
-    })
+            (x, 2.0 / ((1.0 - x * x) * dp * dp))
+        })
+        .collect()
+}
+
+/// The 16-point rule used by the metrics, computed once.
+pub(crate) fn rule16() -> &'static [(f64, f64)] {
+    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(ORDER))
 }
 
 /// ∫ f over `[a, b]`, split into `panels` equal panels.
 pub(crate) fn integrate(a: f64, b: f64, panels: usize, f: impl Fn(f64) -> f64) -> f64 {
-    let rule = gauss_legendre();
+    let rule = rule16();
     let h = (b - a) / panels as f64;
     let mut sum = 0.0;
     for p in 0..panels {
         let mid = a + (p as f64 + 0.5) * h;
-        for &(x, w) in rule {
+        for &(x, w) in rule.iter() {
             sum += w * f(mid + 0.5 * h * x);
         }
     }

@@ -141,32 +141,6 @@ fn root_illinois(mut a: f64, mut b: f64, mut da: f64, mut db: f64, d: impl Fn(f6
     0.5 * (a + b)
 }
 
-/// Nodes and weights of the `n`-point Gauss–Legendre rule on `[−1, 1]` (Newton on `P_n`).
-pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (0..n)
-        .map(|i| {
-            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                // Legendre recurrence for P_n(x) and P_{n−1}(x).
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -202,7 +176,7 @@ mod tests {
 
     #[test]
     fn gauss_legendre_is_exact_to_degree_2n_minus_1() {
-        let rule = gauss_legendre(8);
+        let rule = loomkin_laws::gauss_legendre(8);
         for k in 0..16 {
             let q: f64 = rule.iter().map(|(x, w)| w * x.powi(k)).sum();
             let exact = if k % 2 == 0 { 2.0 / (k + 1) as f64 } else { 0.0 };

@@ -189,7 +189,7 @@ fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool
 
 fn gl8() -> &'static [(f64, f64)] {
     static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
-    RULE.get_or_init(|| poly::gauss_legendre(8))
+    RULE.get_or_init(|| loomkin_laws::gauss_legendre(8))
 }
 
 /// Peak and RMS torque and peak power of `drive` moved through `law` at `speed_rpm` (1/min).
