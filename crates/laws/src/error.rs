@@ -9,7 +9,10 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum LawError {
     /// A numeric parameter outside its allowed range.
-    #[error("{field} = {value} is out of range: allowed {min} {} {field} ≤ {max}{unit}", if *.min_exclusive { "<" } else { "≤" })]
+    #[error(
+        "{field} = {} is out of range: allowed {} {} {field} ≤ {}{unit}",
+        compact(*.value), compact(*.min), if *.min_exclusive { "<" } else { "≤" }, compact(*.max)
+    )]
     OutOfRange {
         /// Name of the field.
         field: String,
@@ -31,7 +34,7 @@ pub enum LawError {
         field: String,
     },
     /// Relative lengths that do not sum to one.
-    #[error("{field}: relative lengths sum to {sum}, they must sum to 1 (±1e-9)")]
+    #[error("{field}: relative lengths sum to {}, they must sum to 1 (±1e-9)", compact(*.sum))]
     LengthsDoNotSumToOne {
         /// Name of the field.
         field: String,
@@ -113,5 +116,40 @@ impl LawError {
     }
 }
 
+/// A number for a message: plain for ordinary magnitudes, in exponent form for huge or tiny ones, so
+/// that `1e308` is not written out in 309 digits.
+pub fn compact(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || (1e-4..1e9).contains(&a) || !v.is_finite() {
+        // Shortest round-trip form, trimmed of representation noise beyond 12 significant digits.
+        let s = format!("{v}");
+        if s.len() > 16 {
+            format!("{:.1$}", v, (11 - a.log10().floor() as i32).max(0) as usize)
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// Result alias of the law core.
 pub type Result<T, E = LawError> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_keep_numbers_short() {
+        assert_eq!(compact(1e308), "1e308");
+        assert_eq!(compact(0.25), "0.25");
+        assert_eq!(compact(0.1 + 0.2), "0.3");
+        assert_eq!(compact(-2.5e-7), "-2.5e-7");
+        let e = LawError::out_of_range("ramp", 1e300, 0.0, 0.25, "").to_string();
+        assert_eq!(e, "ramp = 1e300 is out of range: allowed 0 ≤ ramp ≤ 0.25");
+    }
+}

@@ -36,7 +36,7 @@ mod shape;
 pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec};
 pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
-pub use error::{LawError, Result};
+pub use error::{LawError, Result, compact};
 pub use kinematics::{Kinematics, MotionLaw};
 pub use law::{AccelPiece, EndCondition, Law};
 pub use metrics::Metrics;
