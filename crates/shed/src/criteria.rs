@@ -1,7 +1,7 @@
 //! The criteria a designer weighs: dwells and the weft-insertion window (degrees), characteristic
 //! values of the law (dimensionless) and their physical values for a stroke and a speed.
 
-use crate::dwell::{down_crossings, lead, tail, up_crossings};
+use crate::dwell::{band_crossings, lead, tail};
 use crate::{Conditions, Result, ShedError, ShedLaw, check_threshold};
 use loomkin_laws::Law;
 use serde::Serialize;
@@ -52,18 +52,8 @@ impl Dimensionless {
     pub fn of_law(law: &Law, threshold: f64) -> Result<Self> {
         check_threshold(threshold)?;
         let m = law.metrics();
-        let band = 1.0 - threshold;
         // Last entry into |s − 1| ≤ 1 − T, first exit from |s| ≤ 1 − T.
-        let last = |v: Vec<f64>| v.last().copied();
-        let first = |v: Vec<f64>| v.first().copied();
-        let arrive = match (last(up_crossings(law, threshold)), last(down_crossings(law, 1.0 + band))) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
-        let depart = match (first(up_crossings(law, band)), first(down_crossings(law, -band))) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        };
+        let (arrive, depart) = band_crossings(law, 1.0 - threshold);
         let (Some(x_arrive), Some(x_depart)) = (arrive, depart) else {
             return Err(ShedError::NotARise {
                 field: "law".into(),

@@ -58,34 +58,41 @@ fn monotone_cuts(seg: &Segment) -> Vec<f64> {
     cuts
 }
 
-/// Every upward crossing of `s = level` (global `x`, ascending): points where `s` passes from below
-/// the level to at or above it.
-pub(crate) fn up_crossings(law: &Law, level: f64) -> Vec<f64> {
-    crossings(law, level, 1.0)
-}
-
-/// Every downward crossing of `s = level` (global `x`, ascending): points where `s` passes from
-/// above the level to at or below it.
-pub(crate) fn down_crossings(law: &Law, level: f64) -> Vec<f64> {
-    crossings(law, level, -1.0)
-}
-
-/// Crossings of `s = level` where `sign·(s − level)` passes from negative to zero or positive.
-fn crossings(law: &Law, level: f64, sign: f64) -> Vec<f64> {
-    let mut out = Vec::new();
+/// Where the law enters the band `|s − 1| ≤ band` for the last time (`x_arrive`) and leaves the
+/// band `|s| ≤ band` for the first time (`x_depart`), in one pass over the monotone pieces.
+///
+/// Arrival is an upward crossing of `s = 1 − band` or a downward crossing of `s = 1 + band` (a law
+/// that overshoots its end); departure an upward crossing of `s = band` or a downward crossing of
+/// `s = −band` (a law that first undershoots). A monotone piece holds at most one crossing of each
+/// kind, so the last piece with an arrival and the first with a departure decide, and only those
+/// two roots are refined.
+pub(crate) fn band_crossings(law: &Law, band: f64) -> (Option<f64>, Option<f64>) {
+    // (segment, local bracket, level) of the last arrival and the first departure.
+    let mut arrive: Option<(&Segment, f64, f64, f64)> = None;
+    let mut depart: Option<(&Segment, f64, f64, f64)> = None;
+    let crossed = |sa: f64, sb: f64, level: f64| (sa < level && sb >= level) || (sa > level && sb <= level);
     for seg in law.segments() {
         let cuts = monotone_cuts(seg);
-        let g = |t: f64| sign * (seg.deriv_local(0, t) - level);
+        let mut sa = seg.deriv_local(0, cuts[0]);
         for c in cuts.windows(2) {
-            let (a, b) = (c[0], c[1]);
-            let (ga, gb) = (g(a), g(b));
-            if ga < 0.0 && gb >= 0.0 {
-                let t = if gb == 0.0 { b } else { refine(a, b, g, |t| sign * seg.deriv_local(1, t)) };
-                out.push(seg.x0() + t);
+            let sb = seg.deriv_local(0, c[1]);
+            let up = sb > sa;
+            let (arrive_level, depart_level) = if up { (1.0 - band, band) } else { (1.0 + band, -band) };
+            if crossed(sa, sb, arrive_level) {
+                arrive = Some((seg, c[0], c[1], arrive_level));
             }
+            if depart.is_none() && crossed(sa, sb, depart_level) {
+                depart = Some((seg, c[0], c[1], depart_level));
+            }
+            sa = sb;
         }
     }
-    out
+    let root = |(seg, a, b, level): (&Segment, f64, f64, f64)| {
+        let g = |t: f64| seg.deriv_local(0, t) - level;
+        let t = if g(b) == 0.0 { b } else { refine(a, b, g, |t| seg.deriv_local(1, t)) };
+        seg.x0() + t
+    };
+    (arrive.map(root), depart.map(root))
 }
 
 /// End of the leading stretch over which the law stands exactly still at `s = 0` (segments of zero
