@@ -33,7 +33,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", a.file.display()))?;
     let rpm = a.speed_rpm.or(cycle.speed_rpm).unwrap_or(300.0);
     if !(rpm.is_finite() && rpm > 0.0 && rpm <= 1e5) {
-        bail!("--speed-rpm {rpm} out of range: allowed 0 < speed ≤ 100000 rpm");
+        bail!("--speed-rpm {} out of range: allowed 0 < speed ≤ 100000 rpm", loomkin_laws::compact(rpm));
     }
     if a.points < 2 || a.points > 10_000_000 {
         bail!("--points {} out of range: allowed 2 ≤ N ≤ 10000000", a.points);

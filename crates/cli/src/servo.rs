@@ -184,7 +184,7 @@ fn check_speeds(speeds: &[f64]) -> Result<()> {
     }
     for &n in speeds {
         if !(n.is_finite() && n > 0.0 && n <= 1e5) {
-            bail!("--speed-rpm {n} out of range: allowed 0 < speed ≤ 100000 1/min");
+            bail!("--speed-rpm {} out of range: allowed 0 < speed ≤ 100000 1/min", loomkin_laws::compact(n));
         }
     }
     Ok(())

@@ -119,6 +119,12 @@ impl LawError {
 /// A number for a message: plain for ordinary magnitudes, in exponent form for huge or tiny ones, so
 /// that `1e308` is not written out in 309 digits.
 pub fn compact(v: f64) -> String {
+    if v.is_nan() {
+        return "not-a-number".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "∞".into() } else { "-∞".into() };
+    }
     let a = v.abs();
     if v == 0.0 || (1e-4..1e9).contains(&a) || !v.is_finite() {
         // Shortest round-trip form, trimmed of representation noise beyond 12 significant digits.
@@ -149,6 +155,8 @@ mod tests {
         assert_eq!(compact(0.25), "0.25");
         assert_eq!(compact(0.1 + 0.2), "0.3");
         assert_eq!(compact(-2.5e-7), "-2.5e-7");
+        assert_eq!(compact(f64::NAN), "not-a-number");
+        assert_eq!(compact(f64::NEG_INFINITY), "-∞");
         let e = LawError::out_of_range("ramp", 1e300, 0.0, 0.25, "").to_string();
         assert_eq!(e, "ramp = 1e300 is out of range: allowed 0 ≤ ramp ≤ 0.25");
     }

@@ -1,11 +1,8 @@
 //! `loomkin shed …`: exit codes, stderr lines and the JSON keys of the contract.
 
-use assert_cmd::Command;
-use serde_json::Value;
+use crate::common::*;
 
-fn loomkin() -> Command {
-    Command::cargo_bin("loomkin").expect("binary built")
-}
+use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
     let out = loomkin().args(args).output().expect("runs");

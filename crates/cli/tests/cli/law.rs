@@ -1,28 +1,6 @@
 //! `loomkin law …` and `loomkin cycle …` run as a user runs them.
 
-use assert_cmd::Command;
-use serde_json::Value;
-
-fn loomkin() -> Command {
-    Command::cargo_bin("loomkin").unwrap()
-}
-
-fn stdout_json(args: &[&str]) -> Value {
-    let out = loomkin().args(args).output().unwrap();
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-/// Runs, expects exit code 2 and a one-line message containing every `needle`.
-fn usage_error(args: &[&str], needles: &[&str]) {
-    let out = loomkin().args(args).output().unwrap();
-    assert_eq!(out.status.code(), Some(2), "{args:?}");
-    let err = String::from_utf8_lossy(&out.stderr);
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-}
+use crate::common::*;
 
 #[test]
 fn info_json_has_the_contract_keys() {

@@ -1,30 +1,8 @@
 //! `loomkin dobby …` run as a user runs it: contract keys, exit codes, error lines, files.
 
-use assert_cmd::Command;
+use crate::common::*;
+
 use serde_json::Value;
-
-fn loomkin() -> Command {
-    Command::cargo_bin("loomkin").unwrap()
-}
-
-fn stdout_json(args: &[&str]) -> Value {
-    let out = loomkin().args(args).output().unwrap();
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-/// Runs, expects exit code 2 and one line on stderr containing every `needle`.
-fn usage_error(args: &[&str], needles: &[&str]) {
-    let out = loomkin().args(args).output().unwrap();
-    assert_eq!(out.status.code(), Some(2), "{args:?}");
-    let err = String::from_utf8_lossy(&out.stderr);
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked") && !err.contains("NaN"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line: {err}");
-    assert!(out.stdout.is_empty());
-}
 
 fn num(v: &Value, k: &str) -> f64 {
     v[k].as_f64().unwrap_or_else(|| panic!("key {k} missing or not a number in {v}"))

@@ -1,29 +1,8 @@
 //! `loomkin servo …` run as a user runs it: contract keys, exit codes, files.
 
-use assert_cmd::Command;
+use crate::common::*;
+
 use serde_json::Value;
-
-fn loomkin() -> Command {
-    Command::cargo_bin("loomkin").unwrap()
-}
-
-fn stdout_json(args: &[&str]) -> Value {
-    let out = loomkin().args(args).output().unwrap();
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-/// Runs, expects exit code 2 and a one-line message containing every `needle`.
-fn usage_error(args: &[&str], needles: &[&str]) {
-    let out = loomkin().args(args).output().unwrap();
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    let err = String::from_utf8_lossy(&out.stderr);
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "one line expected: {err}");
-}
 
 fn tmp(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("loomkin-servo-cli-{}", std::process::id()));

@@ -1,0 +1,9 @@
+//! The `loomkin` binary run as a user runs it: one test binary, a module per topic.
+
+mod common;
+mod dobby;
+mod law;
+mod pick;
+mod serve;
+mod servo;
+mod shed;
