@@ -122,24 +122,16 @@ pub fn compact(v: f64) -> String {
     if v.is_nan() {
         return "not-a-number".into();
     }
-    if v.is_infinite() {
-        return if v > 0.0 { "∞".into() } else { "-∞".into() };
+    // The largest finite values stand for open bounds.
+    if v >= f64::MAX {
+        return "∞".into();
     }
-    let a = v.abs();
-    if v == 0.0 || (1e-4..1e9).contains(&a) || !v.is_finite() {
-        // Shortest round-trip form, trimmed of representation noise beyond 12 significant digits.
-        let s = format!("{v}");
-        if s.len() > 16 {
-            format!("{:.1$}", v, (11 - a.log10().floor() as i32).max(0) as usize)
-                .trim_end_matches('0')
-                .trim_end_matches('.')
-                .to_string()
-        } else {
-            s
-        }
-    } else {
-        format!("{v:e}")
+    if v <= f64::MIN {
+        return "-∞".into();
     }
+    // At most 12 significant digits, so representation noise (0.1 + 0.2) does not show.
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
 }
 
 /// Result alias of the law core.

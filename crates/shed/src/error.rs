@@ -103,22 +103,9 @@ impl ShedError {
     }
 }
 
-/// A number for an error line: `∞` for the largest finite value (an open upper bound), plain
-/// text for ordinary magnitudes, the exponent form for very large or small ones, at most 12
-/// significant digits (so that `f64::MAX` or `1e300` do not print as hundreds of digits).
+/// A number for an error line, in the core's compact form ([`loomkin_laws::compact`]).
 pub(crate) fn num(v: &f64) -> String {
-    let v = *v;
-    if v.is_nan() {
-        return "NaN".into();
-    }
-    if v >= f64::MAX {
-        return "∞".into();
-    }
-    if v <= f64::MIN {
-        return "−∞".into();
-    }
-    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
-    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
+    loomkin_laws::compact(*v)
 }
 
 /// Result alias of the shedding study.

@@ -94,7 +94,7 @@ fn hostile_numbers_name_the_flag_in_one_line() {
     fails_with_2(&["shed", "law", "dobby", "--motion-deg", "-5"], "motion_deg = -5");
     fails_with_2(&["shed", "law", "dobby", "--stroke-mm", "-1"], "stroke_mm = -1");
     fails_with_2(&["shed", "law", "dobby", "--speed-rpm", "-300"], "speed_rpm = -300");
-    fails_with_2(&["shed", "law", "dobby", "--threshold", "NaN"], "threshold = NaN");
+    fails_with_2(&["shed", "law", "dobby", "--threshold", "NaN"], "threshold = not-a-number");
     fails_with_2(&["shed", "law", "dobby", "--speed-rpm", "inf"], "speed_rpm = ∞");
     fails_with_2(&["shed", "best", "--window-deg", "-5"], "window_deg = -5");
     fails_with_2(&["shed", "table", "--design", "grid", "--step", "-0.1"], "k.step = -0.1");
