@@ -30,13 +30,10 @@ pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), mut found:
         } else if g0.signum() != g1.signum() && g1 != 0.0 {
             found(refine(t0, t1, g0, &gd));
         } else if g1 != 0.0 && d0.signum() != d1.signum() && d0 != 0.0 && d1 != 0.0 {
-            let tm = bisect(t0, t1, d0, &|t| gd(t).1);
-            let gm = g(tm);
-            if gm == 0.0 {
-                found(tm);
-            } else if gm.signum() != g0.signum() {
+            // g has an extremum inside; if g changes sign there, two roots hide in this bracket.
+            if let Some(tm) = sign_flip_at_extremum(t0, t1, g0, d0, d1, &gd) {
                 found(refine(t0, tm, g0, &gd));
-                found(refine(tm, t1, gm, &gd));
+                found(refine(tm, t1, gd(tm).0, &gd));
             }
         }
         (t0, g0, d0) = (t1, g1, d1);
@@ -46,21 +43,44 @@ pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), mut found:
     }
 }
 
-/// Plain bisection for a sign change of `f` in `[lo, hi]` (`flo = f(lo)`).
-fn bisect(mut lo: f64, mut hi: f64, flo: f64, f: &impl Fn(f64) -> f64) -> f64 {
-    let neg_lo = flo < 0.0;
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
+/// Looks for a point of `[lo, hi]` where `g` has the opposite sign of `glo`, walking towards the
+/// extremum of `g` (the sign change of `g'`, from `dlo` to `dhi`) by Illinois regula falsi on `g'`.
+/// Stops as soon as such a point is found, or when the extremum is located without one.
+fn sign_flip_at_extremum(
+    mut lo: f64,
+    mut hi: f64,
+    glo: f64,
+    mut dlo: f64,
+    mut dhi: f64,
+    gd: &impl Fn(f64) -> (f64, f64),
+) -> Option<f64> {
+    let width = hi - lo;
+    let mut side = 0;
+    for _ in 0..100 {
+        let t = if dhi != dlo { (lo * dhi - hi * dlo) / (dhi - dlo) } else { 0.5 * (lo + hi) };
+        let t = if t > lo && t < hi { t } else { 0.5 * (lo + hi) };
+        let (g, d) = gd(t);
+        if g == 0.0 || g.signum() != glo.signum() {
+            return (g != 0.0).then_some(t);
         }
-        if (f(mid) < 0.0) == neg_lo {
-            lo = mid;
+        if hi - lo <= 1e-14 * width.max(f64::MIN_POSITIVE) || d == 0.0 {
+            return None;
+        }
+        if d.signum() == dlo.signum() {
+            (lo, dlo) = (t, d);
+            if side == -1 {
+                dhi *= 0.5;
+            }
+            side = -1;
         } else {
-            hi = mid;
+            (hi, dhi) = (t, d);
+            if side == 1 {
+                dlo *= 0.5;
+            }
+            side = 1;
         }
     }
-    0.5 * (lo + hi)
+    None
 }
 
 /// Newton iteration kept inside a shrinking bracket `[lo, hi]` where `g` changes sign.

@@ -37,6 +37,8 @@ pub struct Segment {
     /// Displacement polynomial in `t`, lowest power first.
     p: [f64; NC],
     sine: Option<Sine>,
+    /// Index of the highest non-zero coefficient of `p` (0 for a zero polynomial).
+    deg: usize,
 }
 
 impl Segment {
@@ -71,7 +73,7 @@ impl Segment {
             p[0] += sn.amp / (sn.omega * sn.omega) * sn.phase.sin();
             p[1] += sn.amp / sn.omega * sn.phase.cos();
         }
-        Some(Self { x0, x1, p, sine })
+        Some(Self { x0, x1, p, sine, deg: degree_of(&p) })
     }
 
     /// Start of the segment.
@@ -101,7 +103,7 @@ impl Segment {
 
     /// Degree of the displacement polynomial (0 for a zero polynomial).
     pub fn degree(&self) -> usize {
-        self.p.iter().rposition(|&c| c != 0.0).unwrap_or(0)
+        self.deg
     }
 
     /// The same segment with every quantity multiplied by `k` (displacement scale).
@@ -113,6 +115,7 @@ impl Segment {
         if let Some(sn) = &mut out.sine {
             sn.amp *= k;
         }
+        out.deg = degree_of(&out.p);
         out
     }
 
@@ -120,6 +123,7 @@ impl Segment {
     pub fn offset(&self, ds: f64) -> Self {
         let mut out = *self;
         out.p[0] += ds;
+        out.deg = degree_of(&out.p);
         out
     }
 
@@ -218,6 +222,11 @@ impl Segment {
             sin = ns;
         }
     }
+}
+
+/// Index of the highest non-zero coefficient (0 for a zero polynomial).
+fn degree_of(p: &[f64; NC]) -> usize {
+    p.iter().rposition(|&c| c != 0.0).unwrap_or(0)
 }
 
 /// `FALLING[n][k] = k!/(k − n)!`, the factor of `t^(k−n)` in the n-th derivative of `t^k`.
