@@ -18,7 +18,6 @@ pub(crate) fn brackets(seg: &Segment, deg: usize) -> usize {
 /// changes sign inside it, the extremum of `g` there is located (bisection on `dg`) and, if `g`
 /// changes sign at it, both roots are refined on either side.
 pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), mut found: impl FnMut(f64)) {
-    let g = |t: f64| gd(t).0;
     let h = w / n as f64;
     let mut t0 = 0.0;
     let (mut g0, mut d0) = gd(t0);
