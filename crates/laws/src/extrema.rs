@@ -83,15 +83,21 @@ fn sign_flip_at_extremum(
 }
 
 /// Newton iteration kept inside a shrinking bracket `[lo, hi]` where `g` changes sign.
-fn refine(mut lo: f64, mut hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
-    let neg_lo = glo < 0.0;
+fn refine(lo: f64, hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
+    refine_root(lo, hi, glo < 0.0, gd)
+}
+
+/// The root of `g` in a bracket `[lo, hi]` where `g` changes sign (`lo_negative`: `g(lo) < 0`),
+/// by Newton's method kept inside the shrinking bracket (a step that would leave it is replaced by
+/// bisection). `gd(t)` returns `(g(t), g'(t))`.
+pub fn refine_root(mut lo: f64, mut hi: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64, f64)) -> f64 {
     let mut t = 0.5 * (lo + hi);
-    for _ in 0..60 {
+    for _ in 0..100 {
         let (gt, d) = gd(t);
         if gt == 0.0 {
             return t;
         }
-        if (gt < 0.0) == neg_lo {
+        if (gt < 0.0) == lo_negative {
             lo = t;
         } else {
             hi = t;

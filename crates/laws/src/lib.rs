@@ -37,6 +37,7 @@ pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec};
 pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
 pub use error::{LawError, Result, compact};
+pub use extrema::refine_root;
 pub use kinematics::{Kinematics, MotionLaw};
 pub use law::{AccelPiece, EndCondition, Law};
 pub use metrics::Metrics;

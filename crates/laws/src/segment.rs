@@ -181,6 +181,29 @@ impl Segment {
         out
     }
 
+    /// The roots in `[0, width]` (local coordinate, ascending) of the derivative of order `order`
+    /// (0 = s, 1 = v, 2 = a, 3 = j, 4 = snap), found as the metrics find them: sign changes bracketed
+    /// on a grid sized to the degree and frequency, hidden close pairs included, refined by Newton.
+    /// A root at an end of the segment is reported only where the value there is exactly zero.
+    ///
+    /// # Panics
+    /// Never; orders above 4 are treated as 4.
+    pub fn derivative_roots(&self, order: usize) -> Vec<f64> {
+        let k = order.min(4);
+        let n = crate::extrema::brackets(self, self.deg.saturating_sub(k));
+        let mut out = Vec::new();
+        crate::extrema::roots(
+            self.width(),
+            n,
+            |t| {
+                let d = self.derivs_local(t);
+                (d[k], d[k + 1])
+            },
+            |t| out.push(t),
+        );
+        out
+    }
+
     /// Kinematics at global `x` (not clamped).
     #[inline]
     pub fn eval(&self, x: f64) -> Kinematics {

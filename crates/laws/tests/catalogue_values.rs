@@ -122,3 +122,17 @@ fn bad_parameters_name_the_field() {
         .to_string();
     assert!(e.contains("velocity does not return to zero"), "{e}");
 }
+
+#[test]
+fn derivative_roots_of_the_cycloid() {
+    let law = LawSpec::Cycloidal.build().unwrap();
+    let seg = &law.segments()[0];
+    // a = 2π sin 2πx vanishes at ½ inside (and at the ends, where rounding decides whether the value
+    // is exactly zero); j = 4π² cos 2πx at ¼, ¾.
+    let a: Vec<f64> = seg.derivative_roots(2).into_iter().filter(|&t| t > 1e-9 && t < 1.0 - 1e-9).collect();
+    assert_eq!(a.len(), 1, "{a:?}");
+    assert!((a[0] - 0.5).abs() < 1e-14, "{a:?}");
+    let j = seg.derivative_roots(3);
+    assert_eq!(j.len(), 2, "{j:?}");
+    assert!((j[0] - 0.25).abs() < 1e-14 && (j[1] - 0.75).abs() < 1e-14, "{j:?}");
+}

@@ -2,59 +2,20 @@
 //! is cut at the roots of its velocity (so `s` is monotone between the cuts), and a crossing inside
 //! a monotone piece is refined by safeguarded Newton iteration (`s' = v` is known exactly).
 
-use loomkin_laws::{Law, Segment};
-use std::f64::consts::PI;
+use loomkin_laws::{Law, Segment, refine_root};
 
 /// Root of `g` in `[lo, hi]` where `g(lo)` and `g(hi)` have opposite signs; `dg` is its
-/// derivative. Newton steps that leave the shrinking bracket are replaced by bisection.
+/// derivative (the core's safeguarded Newton, [`loomkin_laws::refine_root`]).
 pub(crate) fn refine(lo: f64, hi: f64, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64) -> f64 {
-    refine_with(lo, hi, g(lo) < 0.0, |t| (g(t), dg(t)))
-}
-
-/// [`refine`] with `f(t) = (g(t), g'(t))` computed together; `neg_lo` is the sign of `g(lo) < 0`.
-pub(crate) fn refine_with(mut lo: f64, mut hi: f64, neg_lo: bool, f: impl Fn(f64) -> (f64, f64)) -> f64 {
-    let mut t = 0.5 * (lo + hi);
-    for _ in 0..100 {
-        let (gt, d) = f(t);
-        if gt == 0.0 {
-            return t;
-        }
-        if (gt < 0.0) == neg_lo {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let newton = t - gt / d;
-        let next = if d != 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
-        if (next - t).abs() <= 2.0 * f64::EPSILON * (1.0 + t.abs()) || hi - lo <= 4.0 * f64::EPSILON * (1.0 + hi.abs())
-        {
-            return next;
-        }
-        t = next;
-    }
-    t
+    refine_root(lo, hi, g(lo) < 0.0, |t| (g(t), dg(t)))
 }
 
 /// Cut points of a segment (local coordinate) between which `s` is monotone: the ends and the
-/// roots of `v`, bracketed on a grid sized to the polynomial degree and the sine frequency.
+/// roots of `v` (the core's root finder on the closed form).
 fn monotone_cuts(seg: &Segment) -> Vec<f64> {
-    let w = seg.width();
-    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * w / PI).ceil());
-    let n = 2 * (seg.degree() + 1) + 3 * osc as usize;
-    let v = |t: f64| seg.deriv_local(1, t);
     let mut cuts = vec![0.0];
-    let h = w / n as f64;
-    let mut t0 = 0.0;
-    let mut v0 = v(0.0);
-    for i in 1..=n {
-        let t1 = if i == n { w } else { i as f64 * h };
-        let v1 = v(t1);
-        if v0 != 0.0 && v1 != 0.0 && (v0 < 0.0) != (v1 < 0.0) {
-            cuts.push(refine(t0, t1, v, |t| seg.deriv_local(2, t)));
-        }
-        (t0, v0) = (t1, v1);
-    }
-    cuts.push(w);
+    cuts.extend(seg.derivative_roots(1).into_iter().filter(|&t| t > 0.0 && t < seg.width()));
+    cuts.push(seg.width());
     cuts
 }
 

@@ -2,10 +2,10 @@
 //! acceleration. Each segment is kept as its displacement polynomial and one sinusoid, and every
 //! evaluation costs one `sin_cos`; no allocation.
 
-use crate::dwell::refine_with;
 use crate::template::MAX_PARTS;
 use crate::{Dimensionless, Result, ShedError};
 use loomkin_laws::Shape;
+use loomkin_laws::refine_root;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The two levels a shape spans (`[0, peak]` for a sine arc).
@@ -201,7 +201,7 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
             let t1 = if m == N { w } else { w * m as f64 / N as f64 };
             let (g1, _, _) = gd(t1);
             if g0 > 0.0 && g1 < 0.0 {
-                let r = refine_with(t0, t1, false, |t| {
+                let r = refine_root(t0, t1, false, |t| {
                     let (g, dg, _) = gd(t);
                     (g, dg)
                 });
@@ -217,7 +217,7 @@ pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Res
     for (seg, _) in segs {
         let e = seg.at(seg.w);
         if e[0] >= target {
-            let t = refine_with(0.0, seg.w, s_start < target, |t| {
+            let t = refine_root(0.0, seg.w, s_start < target, |t| {
                 let d = seg.at(t);
                 (d[0] - target, d[1])
             });
