@@ -1,0 +1,32 @@
+//! # loomkin-units — the words every loomkin crate shares
+//!
+//! One range error with one number format, one shaft-speed type, unit conversions named once and one
+//! syntax for stepped sweeps. Every library error embeds a [`RangeError`] for an out-of-range number,
+//! so one quantity has one bound in the library, the CLI and the workbench, and a front end finds the
+//! offending field from data ([`FieldError::field`]), never from message text.
+//!
+//! ```
+//! use loomkin_units::{Range, ShaftSpeed};
+//!
+//! let speed = ShaftSpeed::from_rpm(600.0)?;
+//! assert!((speed.rad_per_s() - 20.0 * std::f64::consts::PI).abs() < 1e-12);
+//! assert!((speed.cycle_time_s() - 0.1).abs() < 1e-15);
+//!
+//! let ramp = Range::open_closed(0.0, 0.25, "");
+//! let err = ramp.check("ramp", 0.0).unwrap_err();
+//! assert_eq!(err.to_string(), "ramp = 0 is out of range: allowed 0 < ramp ≤ 0.25");
+//! # Ok::<(), loomkin_units::RangeError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod convert;
+mod format;
+mod range;
+mod speed;
+mod sweep;
+
+pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg};
+pub use format::compact;
+pub use range::{Bound, FieldError, Range, RangeError};
+pub use speed::ShaftSpeed;
+pub use sweep::{Shard, Span, SweepError};
