@@ -18,6 +18,17 @@ fn sample_grid_10k(bencher: divan::Bencher, name: &str) {
     });
 }
 
+/// 10⁷ evaluations on a uniform grid into one large buffer (the issue-15 workload: memory traffic
+/// counts here, 320 MB of output).
+#[divan::bench(args = ["cycloidal", "poly345"], sample_count = 10)]
+fn sample_grid_10m(bencher: divan::Bencher, name: &str) {
+    let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
+    let mut out = vec![Kinematics::default(); 10_000_000];
+    bencher.counter(divan::counter::ItemsCount::new(10_000_000usize)).bench_local(|| {
+        law.sample_into(divan::black_box(&mut out));
+    });
+}
+
 /// 10 000 pointwise evaluations through `Law::eval`.
 #[divan::bench(args = LAWS)]
 fn eval_pointwise_10k(bencher: divan::Bencher, name: &str) {

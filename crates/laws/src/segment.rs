@@ -220,31 +220,121 @@ impl Segment {
         self.eval_local(self.width())
     }
 
-    /// Evaluates `n` points `t = t0 + i·h` in this segment into `out`, using an exact
-    /// angle-addition recurrence for the sinusoid (re-seeded every 64 points).
+    /// Evaluates `n` points `t = t0 + i·h` in this segment into `out`.
+    ///
+    /// The polynomial is evaluated by Horner at its true degree (the kernel is chosen once per run,
+    /// so a cycloidal segment costs a degree-1 pass, not degree 7); the results are bit-identical to
+    /// [`Segment::eval_local`]'s polynomial part because the skipped leading terms are exact zeros.
+    /// The sinusoid follows an exact angle-addition recurrence in four interleaved lanes (each lane
+    /// rotates by 4h, so the four rotation chains run in parallel instead of one serial chain),
+    /// re-seeded from `sin_cos` every [`RUN_CHUNK`] points so rounding cannot accumulate.
     pub(crate) fn eval_run(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
+        let c = DerivCoeffs::new(&self.p);
+        match self.deg {
+            0 | 1 => self.run::<1>(&c, t0, h, out),
+            2 | 3 => self.run::<3>(&c, t0, h, out),
+            4 | 5 => self.run::<5>(&c, t0, h, out),
+            _ => self.run::<7>(&c, t0, h, out),
+        }
+    }
+
+    #[inline(always)]
+    fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, out: &mut [Kinematics]) {
         let Some(sn) = self.sine else {
             for (i, k) in out.iter_mut().enumerate() {
-                *k = poly_kin(&self.p, t0 + i as f64 * h);
+                *k = c.kin::<D>(t0 + i as f64 * h);
             }
             return;
         };
-        let (sh, ch) = (sn.omega * h).sin_cos();
-        let mut sin = 0.0;
-        let mut cos = 1.0;
-        for (i, k) in out.iter_mut().enumerate() {
-            let t = t0 + i as f64 * h;
-            if i % 64 == 0 {
-                (sin, cos) = (sn.omega * t + sn.phase).sin_cos();
+        // One rotation by h, 2h, 3h seeds the lanes; each lane then rotates by 4h.
+        let rot = |m: f64| (sn.omega * h * m).sin_cos();
+        let (r1, r2, r3, (s4, c4)) = (rot(1.0), rot(2.0), rot(3.0), rot(4.0));
+        for (ci, chunk) in out.chunks_mut(RUN_CHUNK).enumerate() {
+            let i0 = ci * RUN_CHUNK;
+            let (s0, c0) = (sn.omega * (t0 + i0 as f64 * h) + sn.phase).sin_cos();
+            let mut sin = [s0, s0 * r1.1 + c0 * r1.0, s0 * r2.1 + c0 * r2.0, s0 * r3.1 + c0 * r3.0];
+            let mut cos = [c0, c0 * r1.1 - s0 * r1.0, c0 * r2.1 - s0 * r2.0, c0 * r3.1 - s0 * r3.0];
+            let mut quads = chunk.chunks_exact_mut(4);
+            let mut i = i0;
+            for quad in &mut quads {
+                for l in 0..4 {
+                    let mut kin = c.kin::<D>(t0 + (i + l) as f64 * h);
+                    add_sine(&mut kin, sn, sin[l], cos[l]);
+                    quad[l] = kin;
+                    let ns = sin[l] * c4 + cos[l] * s4;
+                    cos[l] = cos[l] * c4 - sin[l] * s4;
+                    sin[l] = ns;
+                }
+                i += 4;
             }
-            let mut kin = poly_kin(&self.p, t);
-            add_sine(&mut kin, sn, sin, cos);
-            *k = kin;
-            let ns = sin * ch + cos * sh;
-            cos = cos * ch - sin * sh;
-            sin = ns;
+            for (l, k) in quads.into_remainder().iter_mut().enumerate() {
+                let mut kin = c.kin::<D>(t0 + (i + l) as f64 * h);
+                add_sine(&mut kin, sn, sin[l], cos[l]);
+                *k = kin;
+            }
         }
     }
+}
+
+/// Points per re-seed of the sinusoid recurrence in [`Segment::eval_run`] (32 rotations per lane).
+const RUN_CHUNK: usize = 128;
+
+/// The coefficients of s, v, a and j of a displacement polynomial, lowest power first.
+struct DerivCoeffs {
+    s: [f64; NC],
+    v: [f64; NC],
+    a: [f64; NC],
+    j: [f64; NC],
+}
+
+impl DerivCoeffs {
+    fn new(p: &[f64; NC]) -> Self {
+        let mut c = Self { s: *p, v: [0.0; NC], a: [0.0; NC], j: [0.0; NC] };
+        for k in 0..NC {
+            c.v[k] = if k + 1 < NC { FALLING[1][k + 1] * p[k + 1] } else { 0.0 };
+            c.a[k] = if k + 2 < NC { FALLING[2][k + 2] * p[k + 2] } else { 0.0 };
+            c.j[k] = if k + 3 < NC { FALLING[3][k + 3] * p[k + 3] } else { 0.0 };
+        }
+        c
+    }
+
+    /// s, v, a, j at `t` for a polynomial of degree at most `D`.
+    #[inline(always)]
+    fn kin<const D: usize>(&self, t: f64) -> Kinematics {
+        Kinematics {
+            s: horner::<D>(&self.s, t),
+            v: horner_below::<D, 1>(&self.v, t),
+            a: horner_below::<D, 2>(&self.a, t),
+            j: horner_below::<D, 3>(&self.j, t),
+        }
+    }
+}
+
+/// `Σ c_k t^k` for `k ≤ D`.
+#[inline(always)]
+fn horner<const D: usize>(c: &[f64; NC], t: f64) -> f64 {
+    let mut acc = c[D];
+    let mut k = D;
+    while k > 0 {
+        k -= 1;
+        acc = acc * t + c[k];
+    }
+    acc
+}
+
+/// `Σ c_k t^k` for `k ≤ D − N` (zero when `N > D`).
+#[inline(always)]
+fn horner_below<const D: usize, const N: usize>(c: &[f64; NC], t: f64) -> f64 {
+    if N > D {
+        return 0.0;
+    }
+    let mut acc = c[D - N];
+    let mut k = D - N;
+    while k > 0 {
+        k -= 1;
+        acc = acc * t + c[k];
+    }
+    acc
 }
 
 /// Index of the highest non-zero coefficient (0 for a zero polynomial).
@@ -353,6 +443,38 @@ mod tests {
             let e = seg.eval_local(i as f64 * 0.002);
             assert!((k.j - e.j).abs() < 1e-11 * 40.0, "{i}");
             assert!((k.s - e.s).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn run_kernels_of_every_degree_match_pointwise() {
+        // Polynomial part: bit-identical to `eval_local` at every true degree (skipped leading terms
+        // are exact zeros). Sinusoid: the lane recurrence within a few ulps of `sin_cos`, over runs that
+        // are not multiples of the lane count or the re-seed chunk.
+        for accel_len in 0..=6 {
+            let poly: Vec<f64> = (0..accel_len).map(|k| 0.7 - 0.3 * k as f64).collect();
+            for sine in [None, Some(Sine { amp: 3.0, omega: 17.0, phase: -0.4 })] {
+                let seg = Segment::from_accel(0.1, 0.9, &poly, sine, 0.2, 0.05).unwrap();
+                for n in [1, 3, 4, 5, 127, 128, 129, 1001] {
+                    let h = 0.8 / n as f64;
+                    let mut out = vec![Kinematics::default(); n];
+                    seg.eval_run(0.0, h, &mut out);
+                    for (i, k) in out.iter().enumerate() {
+                        let e = seg.eval_local(i as f64 * h);
+                        if sine.is_none() {
+                            assert_eq!(*k, e, "degree {} n {n} i {i}", seg.degree());
+                        } else {
+                            for order in 0..4 {
+                                let scale = 3.0 * 17f64.powi(order as i32 - 2) + e.order(order).abs();
+                                assert!(
+                                    (k.order(order) - e.order(order)).abs() < 1e-14 * scale,
+                                    "n {n} i {i} order {order}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 
