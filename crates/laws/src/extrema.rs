@@ -17,28 +17,41 @@ pub(crate) fn brackets(seg: &Segment, deg: usize) -> usize {
 /// A sub-interval whose ends have the same sign can still hide a pair of close roots; where `dg`
 /// changes sign inside it, the extremum of `g` there is located (bisection on `dg`) and, if `g`
 /// changes sign at it, both roots are refined on either side.
-pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), mut found: impl FnMut(f64)) {
+pub(crate) fn roots(w: f64, n: usize, gd: impl Fn(f64) -> (f64, f64), found: impl FnMut(f64)) {
     let h = w / n as f64;
-    let mut t0 = 0.0;
-    let (mut g0, mut d0) = gd(t0);
-    for i in 1..=n {
-        let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = gd(t1);
+    let grid = (0..=n).map(|i| {
+        let t = if i == n { w } else { i as f64 * h };
+        let (g, d) = gd(t);
+        (t, g, d)
+    });
+    scan(grid, &gd, found);
+}
+
+/// The scan of [`roots`] over grid points `(t, g(t), g'(t))` that the caller has already evaluated
+/// (ascending `t`, first at 0, last at the segment width), so one evaluation of all derivatives per
+/// grid point serves several root searches.
+pub(crate) fn scan(
+    mut grid: impl Iterator<Item = (f64, f64, f64)>,
+    gd: &impl Fn(f64) -> (f64, f64),
+    mut found: impl FnMut(f64),
+) {
+    let Some((mut t0, mut g0, mut d0)) = grid.next() else { return };
+    for (t1, g1, d1) in grid {
         if g0 == 0.0 {
             found(t0);
         } else if g0.signum() != g1.signum() && g1 != 0.0 {
-            found(refine(t0, t1, g0, &gd));
+            found(refine(t0, t1, g0, gd));
         } else if g1 != 0.0 && d0.signum() != d1.signum() && d0 != 0.0 && d1 != 0.0 {
             // g has an extremum inside; if g changes sign there, two roots hide in this bracket.
-            if let Some(tm) = sign_flip_at_extremum(t0, t1, g0, d0, d1, &gd) {
-                found(refine(t0, tm, g0, &gd));
-                found(refine(tm, t1, gd(tm).0, &gd));
+            if let Some(tm) = sign_flip_at_extremum(t0, t1, g0, d0, d1, gd) {
+                found(refine(t0, tm, g0, gd));
+                found(refine(tm, t1, gd(tm).0, gd));
             }
         }
         (t0, g0, d0) = (t1, g1, d1);
     }
     if g0 == 0.0 {
-        found(w);
+        found(t0);
     }
 }
 
@@ -57,6 +70,13 @@ fn sign_flip_at_extremum(
     let mut side = 0;
     for _ in 0..100 {
         let t = if dhi != dlo { (lo * dhi - hi * dlo) / (dhi - dlo) } else { 0.5 * (lo + hi) };
+        // The extremum sits on an end of the bracket (g' there is rounding noise beside the other
+        // end's, and the secant lands on it): g there is already known, of the sign of `glo`, so no
+        // pair hides here. Without this, the search would creep to the end by halving.
+        let at_end = |d_end: f64, d_far: f64, gap: f64| d_end.abs() <= 1e-9 * d_far.abs() && gap <= 1e-12 * width;
+        if at_end(dhi, dlo, hi - t) || at_end(dlo, dhi, t - lo) {
+            return None;
+        }
         let t = if t > lo && t < hi { t } else { 0.5 * (lo + hi) };
         let (g, d) = gd(t);
         if g == 0.0 || g.signum() != glo.signum() {
@@ -88,9 +108,12 @@ fn refine(lo: f64, hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
 }
 
 /// The root of `g` in a bracket `[lo, hi]` where `g` changes sign (`lo_negative`: `g(lo) < 0`),
-/// by Newton's method kept inside the shrinking bracket (a step that would leave it is replaced by
-/// bisection). `gd(t)` returns `(g(t), g'(t))`.
+/// by Newton's method kept inside the shrinking bracket. A Newton step that would leave the bracket
+/// is replaced by a secant step between the bracket's ends (their values fetched once when not yet
+/// known), and by bisection only when that fails too, so a root sitting on an end of the first
+/// bracket is reached in a few steps rather than by halving. `gd(t)` returns `(g(t), g'(t))`.
 pub fn refine_root(mut lo: f64, mut hi: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64, f64)) -> f64 {
+    let (mut g_lo, mut g_hi): (Option<f64>, Option<f64>) = (None, None);
     let mut t = 0.5 * (lo + hi);
     for _ in 0..100 {
         let (gt, d) = gd(t);
@@ -98,12 +121,22 @@ pub fn refine_root(mut lo: f64, mut hi: f64, lo_negative: bool, gd: impl Fn(f64)
             return t;
         }
         if (gt < 0.0) == lo_negative {
-            lo = t;
+            (lo, g_lo) = (t, Some(gt));
         } else {
-            hi = t;
+            (hi, g_hi) = (t, Some(gt));
         }
         let newton = t - gt / d;
-        let next = if d != 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let next = if d != 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            let gl = *g_lo.get_or_insert_with(|| gd(lo).0);
+            let gh = *g_hi.get_or_insert_with(|| gd(hi).0);
+            if gl == 0.0 || gh == 0.0 {
+                return if gl == 0.0 { lo } else { hi };
+            }
+            let secant = (lo * gh - hi * gl) / (gh - gl);
+            if secant > lo && secant < hi { secant } else { 0.5 * (lo + hi) }
+        };
         if (next - t).abs() <= 1e-15 * (1.0 + t.abs()) || hi - lo <= 4.0 * f64::EPSILON * (1.0 + hi.abs()) {
             return next;
         }
@@ -132,5 +165,20 @@ mod tests {
         assert_eq!(got.len(), 2, "{got:?}");
         assert_eq!(got[0], 0.0);
         assert!((got[1] - std::f64::consts::PI).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_root_on_the_end_of_its_bracket_takes_few_steps() {
+        // sin(2π(t − 0.5)) on [0.5, 0.625]: the root is the bracket's end (up to rounding), where
+        // Newton from the right overshoots out of the bracket at every step.
+        let calls = std::cell::Cell::new(0);
+        let gd = |t: f64| {
+            calls.set(calls.get() + 1);
+            let w = 2.0 * std::f64::consts::PI;
+            ((w * (t - 0.5)).sin(), w * (w * (t - 0.5)).cos())
+        };
+        let r = refine_root(0.5, 0.625, true, gd);
+        assert!((r - 0.5).abs() < 1e-15, "{r}");
+        assert!(calls.get() <= 10, "{} evaluations", calls.get());
     }
 }

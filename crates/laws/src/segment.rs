@@ -163,7 +163,8 @@ impl Segment {
         for (order, o) in out.iter_mut().enumerate() {
             let f = &FALLING[order];
             let mut acc = 0.0;
-            for k in (order..NC).rev() {
+            // From the true degree down: the skipped leading terms are exact zeros.
+            for k in (order..=self.deg).rev() {
                 acc = acc * t + self.p[k] * f[k];
             }
             *o = acc;
