@@ -62,12 +62,28 @@ fn costs<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> Result<Vec<f64>> {
 /// point is then compared with the front found so far. Two objectives take an `O(n log n)` sweep.
 /// Equal points do not dominate each other: duplicates on the front are all kept.
 pub fn pareto_front<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> Result<Vec<usize>> {
+    if let [s1, s2] = *senses {
+        // Straight to contiguous keys, without a cost matrix.
+        let mut keys = Vec::with_capacity(points.len());
+        for (i, p) in points.iter().enumerate() {
+            match *p.as_ref() {
+                [a, b] => keys.push((s1.cost(a), s2.cost(b), i)),
+                ref other => {
+                    return Err(StudyError::Shape { field: format!("points[{i}]"), expected: 2, found: other.len() });
+                }
+            }
+        }
+        return Ok(front_of_keys(keys));
+    }
     let all: Vec<usize> = (0..points.len()).collect();
     let c = costs(points, senses)?;
     Ok(front_of(&c, senses.len(), &all))
 }
 
 fn front_of(c: &[f64], m: usize, idx: &[usize]) -> Vec<usize> {
+    if m == 2 {
+        return front_of_two(c, idx);
+    }
     let row = |i: usize| &c[i * m..(i + 1) * m];
     let mut order: Vec<usize> = idx.iter().copied().filter(|&i| row(i).iter().all(|v| v.is_finite())).collect();
     order.sort_by(|&a, &b| {
@@ -79,27 +95,61 @@ fn front_of(c: &[f64], m: usize, idx: &[usize]) -> Vec<usize> {
             .unwrap_or(Ordering::Equal)
     });
     let mut front: Vec<usize> = Vec::new();
-    if m == 2 {
-        // After the sort, p is dominated iff an earlier point has a smaller second cost, or the
-        // same second cost with a smaller first cost.
-        let (mut best2, mut best1) = (f64::INFINITY, f64::INFINITY);
-        for i in order {
-            let (c1, c2) = (c[2 * i], c[2 * i + 1]);
-            if c2 < best2 {
-                front.push(i);
-                (best2, best1) = (c2, c1);
-            } else if c2 == best2 && c1 == best1 {
-                front.push(i);
-            }
-        }
-        return front;
-    }
     for i in order {
         let dominated = front.iter().any(|&f| {
             let (a, b) = (row(f), row(i));
             a.iter().zip(b).all(|(x, y)| x <= y) && a.iter().zip(b).any(|(x, y)| x < y)
         });
         if !dominated {
+            front.push(i);
+        }
+    }
+    front
+}
+
+/// The front of two-objective costs `c` (pairs) over the points `idx`, in the order of
+/// [`pareto_front`].
+///
+/// A bucket pre-filter drops most dominated points in two linear passes: the finite points are
+/// bucketed by their first cost (a monotone map, so a lower bucket means a strictly smaller first
+/// cost), and a point whose second cost is not below the least second cost of all lower buckets is
+/// dominated. Only the survivors, kept as contiguous `(c1, c2, index)` keys, are sorted
+/// lexicographically (index last, so the order is that of a stable sort) and swept: after the sort
+/// a point is dominated iff an earlier one has a smaller second cost, or the same second cost with a
+/// smaller first cost; equal points are all kept.
+fn front_of_two(c: &[f64], idx: &[usize]) -> Vec<usize> {
+    front_of_keys(idx.iter().map(|&i| (c[2 * i], c[2 * i + 1], i)).collect())
+}
+
+/// [`front_of_two`] on `(c1, c2, index)` keys.
+fn front_of_keys(mut keys: Vec<(f64, f64, usize)>) -> Vec<usize> {
+    keys.retain(|(a, b, _)| a.is_finite() && b.is_finite());
+    if keys.len() > 256 {
+        let (lo, hi) = keys.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), k| (l.min(k.0), h.max(k.0)));
+        let buckets = (keys.len() / 16).clamp(1, 1 << 16);
+        let scale = buckets as f64 / (hi - lo);
+        let scale = if scale.is_finite() { scale } else { 0.0 };
+        let bucket = |a: f64| (((a - lo) * scale) as usize).min(buckets - 1);
+        let mut least2 = vec![f64::INFINITY; buckets];
+        for k in &keys {
+            let b = bucket(k.0);
+            least2[b] = least2[b].min(k.1);
+        }
+        // least2[b] becomes the least second cost over the buckets strictly below b.
+        let mut running = f64::INFINITY;
+        for v in &mut least2 {
+            (running, *v) = (running.min(*v), running);
+        }
+        keys.retain(|k| k.1 < least2[bucket(k.0)]);
+    }
+    keys.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)).then(x.2.cmp(&y.2)));
+    let mut front = Vec::new();
+    let (mut best2, mut best1) = (f64::INFINITY, f64::INFINITY);
+    for (c1, c2, i) in keys {
+        if c2 < best2 {
+            front.push(i);
+            (best2, best1) = (c2, c1);
+        } else if c2 == best2 && c1 == best1 {
             front.push(i);
         }
     }
@@ -157,5 +207,34 @@ mod tests {
         assert_eq!(f, vec![0, 1, 3]);
         assert_eq!(non_dominated_ranks(&p, &[Minimize, Minimize]).unwrap()[2], 1);
         assert!(pareto_front(&[vec![1.0]], &[Minimize, Minimize]).is_err());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// The pre-filtered sweep against the definition of dominance, pair by pair, on clouds with
+        /// ties, duplicates and non-finite values (large enough to take the bucket filter).
+        #[test]
+        fn two_objective_front_matches_brute_force(
+            pts in proptest::collection::vec((0u8..40, 0u8..40, 0u8..50), 257..700),
+            max1 in proptest::bool::ANY,
+        ) {
+            let p: Vec<[f64; 2]> = pts
+                .iter()
+                .map(|&(a, b, z)| [if z == 0 { f64::NAN } else { a as f64 * 0.5 }, if z == 1 { f64::INFINITY } else { b as f64 }])
+                .collect();
+            let senses = [if max1 { Maximize } else { Minimize }, Minimize];
+            let front = pareto_front(&p, &senses).unwrap();
+            let finite = |q: &[f64; 2]| q.iter().all(|v| v.is_finite());
+            let mut brute: Vec<usize> = (0..p.len())
+                .filter(|&i| finite(&p[i]) && !(0..p.len()).any(|j| finite(&p[j]) && dominates(&p[j], &p[i], &senses)))
+                .collect();
+            let mut got = front.clone();
+            got.sort_unstable();
+            brute.sort_unstable();
+            proptest::prop_assert_eq!(got, brute);
+            // Order: increasing first cost, then second, then index.
+            let key = |i: usize| (senses[0].cost(p[i][0]), p[i][1], i);
+            proptest::prop_assert!(front.windows(2).all(|w| key(w[0]) < key(w[1])));
+        }
     }
 }
