@@ -3,6 +3,7 @@
 use crate::drive::CYCLE_DEG;
 use crate::torque::{PhaseModel, models, stats};
 use crate::{Drive, Result, ServoError, SplineLaw, TorqueSummary, summaries};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// What the optimiser minimises; with several speeds, the worst (largest) value over the speeds.
@@ -185,22 +186,36 @@ pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Res
         base,
     };
     let end = start.end();
-    let mut evals = 0usize;
-    let mut f = |z: &[f64]| {
-        evals += 1;
-        match SplineLaw::new(&map.points(z), end) {
-            Ok(l) => objective_value(&l, &ms, opts.objective),
-            Err(_) => f64::INFINITY,
-        }
+    let f = |z: &[f64]| match SplineLaw::new(&map.points(z), end) {
+        Ok(l) => objective_value(&l, &ms, opts.objective),
+        Err(_) => f64::INFINITY,
     };
     let z0 = map.start();
     let f0 = f(&z0);
-    let mut best = (z0.clone(), f0);
-    let mut rng = opts.seed | 1;
-    for s in 0..opts.starts.max(1) {
-        let zs: Vec<f64> = if s == 0 { z0.clone() } else { (0..map.dim()).map(|_| next_unit(&mut rng)).collect() };
-        let (z1, _) = nelder_mead(&mut f, &zs, 0.2, opts.max_evals_per_start / 2);
-        let (z2, f2) = nelder_mead(&mut f, &z1, 0.05, opts.max_evals_per_start / 2);
+    // The starts are independent: they run in parallel, each with its own evaluation count, and
+    // are reduced in start order afterwards, so the result is the same as a serial run's.
+    let starts: Vec<Vec<f64>> = {
+        let mut rng = opts.seed | 1;
+        (0..opts.starts.max(1))
+            .map(|s| if s == 0 { z0.clone() } else { (0..map.dim()).map(|_| next_unit(&mut rng)).collect() })
+            .collect()
+    };
+    let runs: Vec<(Vec<f64>, f64, usize)> = starts
+        .par_iter()
+        .map(|zs| {
+            let mut evals = 0usize;
+            let mut counted = |z: &[f64]| {
+                evals += 1;
+                f(z)
+            };
+            let (z1, _) = nelder_mead(&mut counted, zs, 0.2, opts.max_evals_per_start / 2);
+            let (z2, f2) = nelder_mead(&mut counted, &z1, 0.05, opts.max_evals_per_start / 2);
+            (z2, f2, evals)
+        })
+        .collect();
+    let evals = 1 + runs.iter().map(|r| r.2).sum::<usize>();
+    let mut best = (z0, f0);
+    for (z2, f2, _) in runs {
         if f2 < best.1 {
             best = (z2, f2);
         }

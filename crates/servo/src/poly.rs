@@ -3,7 +3,8 @@
 /// `p(t)` by Horner's rule.
 #[inline]
 pub(crate) fn eval(p: &[f64], t: f64) -> f64 {
-    p.iter().rev().fold(0.0, |acc, &c| acc.mul_add(t, c))
+    // Plain `*` and `+`: without the `fma` target feature `mul_add` is a slow library call.
+    p.iter().rev().fold(0.0, |acc, &c| acc * t + c)
 }
 
 /// The derivative `p'`.
@@ -63,18 +64,31 @@ pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
 
 /// Largest `|p(t)|` on `[0, w]` and where it occurs (see [`abs_max_by`]).
 pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
-    let mut buf = [0.0; 24];
-    let dp: Vec<f64>;
-    let dp: &[f64] = if p.len() <= 25 {
-        for k in 1..p.len() {
-            buf[k - 1] = k as f64 * p[k];
+    let dp = deriv(p);
+    let ddp = deriv(&dp);
+    let (g0, mut d0) = (eval(p, 0.0), eval(&dp, 0.0));
+    let mut best = (g0.abs(), 0.0);
+    let mut take = |v: f64, t: f64| {
+        if v.abs() > best.0 {
+            best = (v.abs(), t);
         }
-        &buf[..p.len().saturating_sub(1)]
-    } else {
-        dp = deriv(p);
-        &dp
     };
-    abs_max_by(w, n, |t| (eval(p, t), eval(dp, t)))
+    let n = n.max(1);
+    let h = w / n as f64;
+    let mut t0 = 0.0;
+    for i in 1..=n {
+        let t1 = if i == n { w } else { i as f64 * h };
+        let (g1, d1) = (eval(p, t1), eval(&dp, t1));
+        take(g1, t1);
+        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
+            // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
+            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t)));
+            take(eval(p, t), t);
+        }
+        t0 = t1;
+        d0 = d1;
+    }
+    best
 }
 
 /// Largest `|g(t)|` on `[0, w]` and where it occurs, for `f(t) = (g(t), g'(t))`.
