@@ -246,11 +246,34 @@ fn a_fold_of_the_cam_loop_is_named() {
         .collect();
     let err = analyze(&ModulatorGeometry::PAPER, &Cam::from_points(&pts).unwrap(), &opts(1.0)).unwrap_err();
     let msg = err.to_string();
-    assert!(msg.contains("fold between φ2 = 61.000° and 62.000°") && msg.contains("normal to cam Γ"), "{msg}");
-    // With 0.01° steps the fold is located within the same degree.
-    let before = AnalysisOptions { step_deg: 0.01, ..opts(1.0) };
-    let err = analyze(&ModulatorGeometry::PAPER, &Cam::from_points(&pts).unwrap(), &before).unwrap_err();
-    assert!(matches!(err, MechError::CannotBuild { phi2_deg, .. } if (61.0..62.0).contains(&phi2_deg)), "{err}");
+    assert!(msg.contains("fold at φ2 = 61.") && msg.contains("normal to cam Γ"), "{msg}");
+    // The fold is located between grid points: the same angle at every step.
+    let at = |step: f64| match analyze(&ModulatorGeometry::PAPER, &Cam::from_points(&pts).unwrap(), &opts(step)) {
+        Err(MechError::CannotBuild { phi2_deg, .. }) => phi2_deg,
+        other => panic!("{other:?}"),
+    };
+    let x = at(1.0);
+    assert!((61.0..62.0).contains(&x), "{x}");
+    for step in [0.01, 10.0, 30.0] {
+        assert!((at(step) - x).abs() < 1e-9, "step {step}: {} vs {x}", at(step));
+    }
+    // Independent route: at the fold the arm AB is normal to Γ, so the circle of radius l3 about A
+    // is tangent to Γ: a local extremum of the distance p ↦ |A − r(p)| equals l3 there. Dense
+    // sampling (2·10⁵ points) finds the extrema to ~1e-9 m.
+    let g = ModulatorGeometry::PAPER;
+    let a = g.l2_m * e(x.to_radians());
+    let sp = Cam::from_points(&pts).unwrap();
+    let c = sp.curve();
+    let n = 200_000;
+    let d: Vec<f64> = (0..n).map(|i| (c.eval(c.period() * i as f64 / n as f64).r - a).norm()).collect();
+    let nearest = (0..n)
+        .filter(|&i| {
+            let (p, q) = (d[(i + n - 1) % n], d[(i + 1) % n]);
+            (d[i] <= p && d[i] <= q) || (d[i] >= p && d[i] >= q)
+        })
+        .map(|i| (d[i] - g.l3_m).abs())
+        .fold(f64::INFINITY, f64::min);
+    assert!(nearest < 1e-8, "no distance extremum at l3: nearest off by {nearest:e} m");
 }
 
 #[test]

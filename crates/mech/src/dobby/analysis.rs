@@ -8,8 +8,9 @@ use super::cam::Cam;
 use super::checks::{Warning, counter_cam_fold};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ModulatorState, state_from_phi3};
+use super::refine::{Extreme, Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, undercut};
-use crate::newton::NewtonOptions;
+use crate::newton::{LoopState, NewtonOptions};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::vloop::{LoopSystem, Scalar, VectorLoop};
 use crate::{MechError, Result};
@@ -306,32 +307,44 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     check_common(opts.step_deg, opts.input_speed_rad_s, opts.roller_m, opts.pressure_limit_deg)?;
     MechError::check_range("start_deg", opts.start_deg, -360.0, 360.0, "°")?;
     let (xs, step) = input_grid(opts.start_deg, opts.step_deg);
-    let q0 = assemble(g, cam, xs[0])?;
+    // The cam loop is traced on the check grid, whatever the output step, and solved between its
+    // points by continuation from the nearest traced state.
+    let cx = check_grid(opts.start_deg);
+    let q0 = assemble(g, cam, cx[0])?;
     let sys = cam_loop(g, cam)?;
-    let traced = sys.trace(&xs, SVector::<f64, 2>::new(q0[0], q0[1]), &opts.newton).map_err(|err| match err {
-        MechError::BranchLost { from, to, .. } => diagnose_cam(g, cam, from, to),
+    let newton = &opts.newton;
+    let fail = |err: MechError| match err {
         MechError::Singular { input, .. } | MechError::NoConvergence { input, .. } => {
             diagnose_cam(g, cam, input, input)
         }
         other => other,
-    })?;
-
-    // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
-    let sigma = (g.l6_m / g.l2_m).asin();
-    let (mut eta_min, mut eta_max, mut worst) = (f64::INFINITY, f64::NEG_INFINITY, (0.0f64, 0usize));
-    for (k, st) in traced.iter().enumerate() {
-        let d = wrap_pi(st.q[1] - st.input);
-        eta_min = eta_min.min(d + g.alpha_rad());
-        eta_max = eta_max.max(d + g.alpha_rad());
-        if d.abs() > worst.0 {
-            worst = (d.abs(), k);
+    };
+    let p0 = sys.solve_position(cx[0], SVector::<f64, 2>::new(q0[0], q0[1]), newton).map_err(fail)?;
+    let mut traced = vec![sys.rates(cx[0], p0.q).map_err(fail)?];
+    for &x in &cx[1..] {
+        let last = traced[traced.len() - 1];
+        match sys.advance(&last, x, newton) {
+            Ok(st) => traced.push(st),
+            Err(_) => return Err(locate_fold(g, cam, &sys, &last, x, newton)),
         }
     }
+    let loop_at = |x: f64| sys.advance(&traced[Revolution::nearest(&cx, x)], x, &opts.newton).ok();
+
+    // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
+    // The extremes of δ = φ3 − φ2 are refined between the points of the check grid.
+    let sigma = (g.l6_m / g.l2_m).asin();
+    let dev_of = |st: &LoopState<2>| wrap_pi(st.q[1] - st.input);
+    let dvals: Vec<f64> = traced.iter().map(dev_of).collect();
+    let neg: Vec<f64> = dvals.iter().map(|d| -d).collect();
+    let dmax = refined_max(&cx, &dvals, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| dev_of(&st)));
+    let dmin = refined_max(&cx, &neg, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| -dev_of(&st)));
+    let dev = [Extreme { value: -dmin.value, at: dmin.at }, dmax];
+    let worst = if dmax.value.abs() >= dmin.value.abs() { dev[1] } else { dev[0] };
+    let (eta_min, eta_max) = (dev[0].value + g.alpha_rad(), dev[1].value + g.alpha_rad());
     // |φ3 − φ2| ≤ σ for every φ2 ⇔ α ∈ [max η − σ, min η + σ], within the valid (0°, 180°).
     let alpha_range = [(eta_max - sigma).to_degrees().max(0.0), (eta_min + sigma).to_degrees().min(180.0)];
-    if worst.0 > sigma {
-        let st = &traced[worst.1];
-        let d = wrap_pi(st.q[1] - st.input);
+    if worst.value.abs() > sigma {
+        let d = worst.value;
         let admissible = if alpha_range[0] < alpha_range[1] {
             // α = 0° and 180° themselves are not valid levers: the bound is open there.
             let open = |v: f64| v <= 0.0 || v >= 180.0;
@@ -366,37 +379,44 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
                 sigma.to_degrees()
             )
         };
-        return Err(MechError::CannotBuild {
-            phi2_deg: st.input.to_degrees(),
-            condition,
-            admissible: Some(admissible),
-        });
+        return Err(MechError::CannotBuild { phi2_deg: worst.at_deg(), condition, admissible: Some(admissible) });
     }
 
-    let w2 = opts.input_speed_rad_s;
-    let mut states = Vec::with_capacity(traced.len());
-    let mut rows = Vec::with_capacity(traced.len());
+    let close3 = |st: &LoopState<2>, phi6_ref: f64| {
+        state_from_phi3(g, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| MechError::CannotBuild {
+            phi2_deg: st.input.to_degrees(),
+            condition: format!("loop (3) cannot close: {e}"),
+            admissible: None,
+        })
+    };
+    let mut fine = Vec::with_capacity(traced.len());
     let mut phi6_ref = traced[0].input;
     for st in &traced {
-        let s = state_from_phi3(g, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
-            MechError::CannotBuild {
-                phi2_deg: st.input.to_degrees(),
-                condition: format!("loop (3) cannot close: {e}"),
-                admissible: None,
-            }
-        })?;
+        let s = close3(st, phi6_ref)?;
         phi6_ref = s.phi6[0];
-        rows.push(AnalysisRow::new(g, &s, st.q[0], (st.input - xs[0]) / w2, w2));
+        fine.push(s);
+    }
+    let refs: Vec<f64> = fine.iter().map(|s| s.phi6[0]).collect();
+
+    let w2 = opts.input_speed_rad_s;
+    let mut states = Vec::with_capacity(xs.len());
+    let mut rows = Vec::with_capacity(xs.len());
+    for &x in &xs {
+        let j = Revolution::nearest(&cx, x);
+        let st = sys.advance(&traced[j], x, &opts.newton)?;
+        let s = close3(&st, refs[j])?;
+        rows.push(AnalysisRow::new(g, &s, st.q[0], (x - xs[0]) / w2, w2));
         states.push(s);
     }
+    let rev = Revolution {
+        xs: cx.clone(),
+        states: fine,
+        eval: Box::new(|x| close3(&loop_at(x)?, refs[Revolution::nearest(&cx, x)]).ok()),
+    };
     let mut warnings = Vec::new();
-    let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
-    let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
-    let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let theta_range = [dmax.to_degrees().max(0.0), (180.0 + dmin.to_degrees()).min(180.0)];
-    let xs_done: Vec<f64> = states.iter().map(|s| s.phi2).collect();
-    counter_cam_fold(g, &xs_done, &deltas, theta_range, &mut warnings);
-    let checks = check_states(g, &states, w2, opts.pressure_limit_deg, &mut warnings);
+    let theta_range = [dev[1].value.to_degrees().max(0.0), (180.0 + dev[0].value.to_degrees()).min(180.0)];
+    counter_cam_fold(g, &rev, dev, theta_range, &mut warnings);
+    let checks = check_states(g, &rev, w2, opts.pressure_limit_deg, &mut warnings);
     let (ub, uc) = match opts.roller_m {
         Some(r) => undercut(&checks, r, &mut warnings),
         None => (false, false),
@@ -408,7 +428,7 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
         geometry: *g,
         input_speed_rad_s: w2,
         step_deg: step,
-        slot_deviation_max_deg: worst.0.to_degrees(),
+        slot_deviation_max_deg: worst.value.abs().to_degrees(),
         slot_deviation_limit_deg: sigma.to_degrees(),
         admissible_alpha_deg: alpha_range,
         admissible_theta_deg: theta_range,
@@ -417,6 +437,39 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
         checks,
     };
     Ok(Analysis { rows, summary, warnings, counter_cam, states })
+}
+
+/// Names the reason the cam loop could not be followed from the state `from` to input `to` (rad):
+/// the roller out of reach, or a fold located by bisection on the input angle (the largest angle
+/// the branch can still be followed to, within 1e-12 rad).
+fn locate_fold(
+    g: &ModulatorGeometry,
+    cam: &Cam,
+    sys: &LoopSystem<2>,
+    from: &LoopState<2>,
+    to: f64,
+    newton: &NewtonOptions,
+) -> MechError {
+    let (mut lo, mut hi) = (from.input, to);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if (hi - lo).abs() <= 1e-12 {
+            break;
+        }
+        if sys.advance(from, mid, newton).is_ok() { lo = mid } else { hi = mid }
+    }
+    match diagnose_cam(g, cam, from.input, hi) {
+        MechError::CannotBuild { condition, .. } if condition.starts_with("fold") => MechError::CannotBuild {
+            phi2_deg: lo.to_degrees(),
+            condition: format!(
+                "fold at φ2 = {:.3}°: the arm AB becomes normal to cam Γ (pressure angle at roller B reaches 90°), so \
+                 the cam cannot drive the lever past it",
+                lo.to_degrees()
+            ),
+            admissible: Some("the fold does not depend on α; change the cam, l2 or l3".into()),
+        },
+        other => other,
+    }
 }
 
 /// Names the reason the cam loop could not be followed between `from` and `to` (rad).

@@ -1,7 +1,10 @@
 //! Checks shared by analysis and synthesis: pressure angles, curvature, closure, self-intersection.
 
-use crate::planar::{Vec2, cross};
+use super::kinematics::ModulatorState;
+use super::refine::{Extreme, Revolution, first_failure};
+use crate::planar::{Vec2, cross, wrap_pi};
 use serde::Serialize;
+use std::f64::consts::PI;
 
 /// What a [`Warning`] is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -52,56 +55,56 @@ pub fn output_pressure_angle_deg(phi3: f64, phi6: f64) -> f64 {
     (phi3 - phi6).cos().abs().min(1.0).acos().to_degrees()
 }
 
+/// The slot deviation `δ = φ3 − φ2` (rad, wrapped to (−π, π]) of a state.
+pub(crate) fn slot_deviation(s: &ModulatorState) -> f64 {
+    wrap_pi(s.phi3[0] - s.phi2)
+}
+
+/// The refined extremes `[min δ, max δ]` of the slot deviation over a revolution.
+pub(crate) fn deviation_range(rev: &Revolution<'_>) -> [Extreme; 2] {
+    [rev.min(&slot_deviation), rev.max(&slot_deviation)]
+}
+
+/// Where an arm at angle `arm_rad` from the slot (`+α` for AB, `−θ` for AC, as `arm + sign·δ`) first
+/// becomes normal to its cam: the first input angle (deg) at which `sign·δ + arm` leaves (0, π),
+/// refined between grid points; `None` if it never does. `dev` are the refined extremes of δ.
+pub(crate) fn fold_at(rev: &Revolution<'_>, arm_rad: f64, sign: f64, dev: [Extreme; 2]) -> Option<f64> {
+    let margin = |d: f64| {
+        let v = arm_rad + sign * d;
+        v.min(PI - v)
+    };
+    let worst = dev.into_iter().min_by(|a, b| margin(a.value).total_cmp(&margin(b.value)))?;
+    if margin(worst.value) > 0.0 {
+        return None;
+    }
+    let ok = |x: f64| (rev.eval)(x).map_or(-1.0, |s| margin(slot_deviation(&s)));
+    Some(first_failure(&rev.xs, &ok).unwrap_or(worst.at).to_degrees())
+}
+
 /// Warns where the counter-cam arm AC becomes normal to Γ′: `C′·(C − A) = l2 sin(θ − δ)` vanishes,
-/// `δ = φ3 − φ2`; `xs` are the input angles (rad) parallel to `deltas`.
+/// `δ = φ3 − φ2`; `dev` are the refined extremes of δ.
 pub(crate) fn counter_cam_fold(
     g: &super::geometry::ModulatorGeometry,
-    xs: &[f64],
-    deltas: &[f64],
+    rev: &Revolution<'_>,
+    dev: [Extreme; 2],
     theta_range: [f64; 2],
     warnings: &mut Vec<Warning>,
 ) {
-    if let Some(k) = deltas.iter().position(|d| {
-        let v = g.theta_rad() - d;
-        v <= 0.0 || v >= std::f64::consts::PI
-    }) {
+    if let Some(at) = fold_at(rev, g.theta_rad(), -1.0, dev) {
+        let d = (rev.eval)(at.to_radians()).map_or(dev[1].value.to_degrees(), |s| slot_deviation(&s).to_degrees());
         warnings.push(Warning {
             code: WarningCode::CounterCamFold,
-            phi2_deg: Some(xs[k].to_degrees()),
+            phi2_deg: Some(at),
             message: format!(
                 "fold at roller C at φ2 = {:.3}°: the arm AC is normal to counter-cam Γ′ (φ3 − φ2 = {:.3}°, θ = {:.3}°), \
                  Γ′ cannot hold the lever there; admissible θ ∈ ({:.3}, {:.3})°",
-                xs[k].to_degrees(),
-                deltas[k].to_degrees(),
+                at,
+                d,
                 g.theta_deg,
                 theta_range[0],
                 theta_range[1]
             ),
         });
-    }
-}
-
-/// A running maximum with the input angle where it occurs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Peak {
-    pub value: f64,
-    pub at_deg: f64,
-}
-
-impl Default for Peak {
-    fn default() -> Self {
-        Self { value: f64::NEG_INFINITY, at_deg: 0.0 }
-    }
-}
-
-impl Peak {
-    pub fn push(&mut self, value: f64, at_deg: f64) {
-        if value.is_finite() && value > self.value {
-            *self = Self { value, at_deg };
-        }
-    }
-    pub fn value_or(&self, d: f64) -> f64 {
-        if self.value.is_finite() { self.value } else { d }
     }
 }
 

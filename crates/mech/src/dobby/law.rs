@@ -105,18 +105,14 @@ impl OutputLaw {
         }
     }
 
-    /// Largest `|φ6 − φ2|` (deg) over one revolution on a 0.1° grid, and the input angle (deg) where it
-    /// occurs.
+    /// Largest `|φ6 − φ2|` (deg) over one revolution, refined between the points of a 0.25° grid,
+    /// and the input angle (deg) where it occurs.
     pub fn max_lag_deg(&self) -> (f64, f64) {
-        let mut worst = (0.0f64, 0.0f64);
-        for i in 0..3600 {
-            let phi2 = (i as f64 * 0.1).to_radians();
-            let lag = crate::planar::wrap_pi(self.eval(phi2).phi6 - phi2).to_degrees().abs();
-            if lag > worst.0 {
-                worst = (lag, i as f64 * 0.1);
-            }
-        }
-        worst
+        let xs = super::refine::check_grid(0.0);
+        let lag = |x: f64| crate::planar::wrap_pi(self.eval(x).phi6 - x).abs();
+        let vals: Vec<f64> = xs.iter().map(|&x| lag(x)).collect();
+        let e = super::refine::refined_max(&xs, &vals, &lag);
+        (e.value.to_degrees(), e.at_deg().rem_euclid(360.0))
     }
 }
 

@@ -8,6 +8,7 @@ pub(crate) mod geometry;
 pub(crate) mod kinematics;
 pub(crate) mod law;
 pub(crate) mod pose;
+pub(crate) mod refine;
 pub(crate) mod report;
 pub(crate) mod sweep;
 pub(crate) mod synthesis;

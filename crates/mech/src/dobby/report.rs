@@ -1,9 +1,10 @@
 //! Checks over a traced revolution: extremes of rates, pressure angles, curvature, closure,
 //! self-intersection, undercut; shared by analysis and synthesis.
 
-use super::checks::{Peak, Warning, WarningCode, self_intersections};
+use super::checks::{Warning, WarningCode, self_intersections};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::ModulatorState;
+use super::refine::{Extreme, Revolution};
 use crate::planar::{Vec2, perp};
 use serde::Serialize;
 
@@ -98,36 +99,30 @@ pub(crate) fn crossings(p: &[[f64; 2]]) -> usize {
     self_intersections(&to_vec2(p), true, 1000).len()
 }
 
-/// Runs every check over the states of one revolution (the last state closes the revolution).
+/// Runs every check over one revolution: each extreme is refined between the points of the check
+/// grid ([`Revolution::max`]), so that none depends on the output step.
 pub(crate) fn check_states(
     g: &ModulatorGeometry,
-    states: &[ModulatorState],
+    rev: &Revolution<'_>,
     w2: f64,
     pressure_limit_deg: f64,
     warnings: &mut Vec<Warning>,
 ) -> CamChecks {
-    let (mut w6max, mut w6min, mut e6max, mut e6min) =
-        (Peak::default(), Peak::default(), Peak::default(), Peak::default());
-    let (mut mo, mut mb, mut mc, mut kb, mut kc) =
-        (Peak::default(), Peak::default(), Peak::default(), Peak::default(), Peak::default());
-    let mut cusp_c: Option<f64> = None;
-    for s in states {
-        let deg = s.phi2.to_degrees();
-        w6max.push(s.phi6[1] * w2, deg);
-        w6min.push(-s.phi6[1] * w2, deg);
-        e6max.push(s.phi6[2] * w2 * w2, deg);
-        e6min.push(-s.phi6[2] * w2 * w2, deg);
-        mo.push(s.mu_out_deg(), deg);
-        mb.push(s.mu_b_deg(g), deg);
-        mc.push(s.mu_c_deg(g), deg);
-        kb.push(s.kappa_b().abs(), deg);
-        kc.push(s.kappa_c().abs(), deg);
-        if s.c[1].norm() < 1e-9 * g.l2_m && cusp_c.is_none() {
-            cusp_c = Some(deg);
-        }
-    }
+    let states = &rev.states;
+    let w6max = rev.max(&|s| s.phi6[1] * w2);
+    let w6min = rev.min(&|s| s.phi6[1] * w2);
+    let e6max = rev.max(&|s| s.phi6[2] * w2 * w2);
+    let e6min = rev.min(&|s| s.phi6[2] * w2 * w2);
+    let mo = rev.max(&|s| s.mu_out_deg());
+    let mb = rev.max(&|s| s.mu_b_deg(g));
+    let mc = rev.max(&|s| s.mu_c_deg(g));
+    let kb = rev.max(&|s| s.kappa_b().abs());
+    let kc = rev.max(&|s| s.kappa_c().abs());
+    // A stationary point of C (|C′| = 0) is a cusp of Γ′.
+    let c_speed = rev.min(&|s| s.c[1].norm());
+    let cusp_c = (c_speed.value < 1e-9 * g.l2_m).then(|| c_speed.at_deg());
     let (first, last) = (states[0], states[states.len() - 1]);
-    let rho = |k: &Peak| (k.value.is_finite() && k.value > 0.0).then(|| 1.0 / k.value);
+    let rho = |k: &Extreme| (k.value.is_finite() && k.value > 0.0).then(|| 1.0 / k.value);
     let (rho_b, rho_c) = (rho(&kb), rho(&kc));
     let pts = |f: &dyn Fn(&ModulatorState) -> Vec2| -> Vec<Vec2> {
         states[..states.len() - 1].iter().map(f).collect::<Vec<_>>()
@@ -141,10 +136,11 @@ pub(crate) fn check_states(
         if peak.value > pressure_limit_deg {
             warnings.push(Warning {
                 code: WarningCode::PressureAngle,
-                phi2_deg: Some(peak.at_deg),
+                phi2_deg: Some(peak.at_deg()),
                 message: format!(
                     "pressure angle at {name} reaches {:.2}° at φ2 = {:.2}°, above the limit {pressure_limit_deg}°",
-                    peak.value, peak.at_deg
+                    peak.value,
+                    peak.at_deg()
                 ),
             });
         }
@@ -171,21 +167,21 @@ pub(crate) fn check_states(
         }
     }
     CamChecks {
-        omega6_min_rad_s: -w6min.value_or(0.0),
+        omega6_min_rad_s: w6min.value_or(0.0),
         omega6_max_rad_s: w6max.value_or(0.0),
-        eps6_min_rad_s2: -e6min.value_or(0.0),
+        eps6_min_rad_s2: e6min.value_or(0.0),
         eps6_max_rad_s2: e6max.value_or(0.0),
         phi6_turn_deg: (last.phi6[0] - first.phi6[0]).to_degrees(),
         mu_out_max_deg: mo.value_or(0.0),
-        mu_out_max_at_phi2_deg: mo.at_deg,
+        mu_out_max_at_phi2_deg: mo.at_deg(),
         mu_b_max_deg: mb.value_or(0.0),
-        mu_b_max_at_phi2_deg: mb.at_deg,
+        mu_b_max_at_phi2_deg: mb.at_deg(),
         mu_c_max_deg: mc.value_or(0.0),
-        mu_c_max_at_phi2_deg: mc.at_deg,
+        mu_c_max_at_phi2_deg: mc.at_deg(),
         rho_b_min_m: rho_b,
-        rho_b_min_at_phi2_deg: kb.at_deg,
+        rho_b_min_at_phi2_deg: kb.at_deg(),
         rho_c_min_m: rho_c,
-        rho_c_min_at_phi2_deg: kc.at_deg,
+        rho_c_min_at_phi2_deg: kc.at_deg(),
         roller_max_m: match (rho_b, rho_c) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),

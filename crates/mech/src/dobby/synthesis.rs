@@ -5,10 +5,11 @@
 //! `B = A − l3·e(φ3 + α)` and `C = A + l3′·e(φ3 + π − θ)` (eqs. (2), (8), (9)).
 
 use super::analysis::{check_common, input_grid};
-use super::checks::{Warning, WarningCode, counter_cam_fold};
+use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fold_at, slot_deviation};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ModulatorState, state_from_phi6};
 use super::law::{OutputLawSpec, max_dwell_deg};
+use super::refine::{Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
 use crate::planar::{Vec2, wrap_pi};
 use crate::{MechError, Result};
@@ -172,22 +173,14 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
     let (xs, step) = input_grid(0.0, opts.step_deg);
     let w2 = opts.input_speed_rad_s;
 
-    // The law must keep the output pressure angle below 90°: |φ6 − φ2| < arccos(l6/l2).
+    // The law must keep the output pressure angle below 90°: |φ6 − φ2| < arccos(l6/l2), checked
+    // with the largest lag refined between the points of the check grid.
     let lag_limit = (g.l6_m / g.l2_m).acos();
-    let mut worst_lag = (0.0f64, 0.0f64);
-    let mut states = Vec::with_capacity(xs.len());
-    let mut phi3_ref = xs[0];
-    for &x in &xs {
-        let o = out.eval(x);
-        let lag = wrap_pi(o.phi6 - x);
-        if lag.abs() > worst_lag.0 {
-            worst_lag = (lag.abs(), x);
-        }
-        let s = state_from_phi6(g, x, [o.phi6, o.d1, o.d2], phi3_ref);
-        phi3_ref = s.phi3[0];
-        states.push(s);
-    }
-    if worst_lag.0 >= lag_limit {
+    let cx = check_grid(0.0);
+    let lag = |x: f64| wrap_pi(out.eval(x).phi6 - x).abs();
+    let lag_vals: Vec<f64> = cx.iter().map(|&x| lag(x)).collect();
+    let worst_lag = refined_max(&cx, &lag_vals, &lag);
+    if worst_lag.value >= lag_limit {
         let dmax = max_dwell_deg(law, lag_limit.to_degrees())?;
         let admissible = match dmax {
             Some(d) => format!(
@@ -198,35 +191,49 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
             None => format!("admissible |φ6 − φ2| < {:.3}°; no dwell works with this rise law", lag_limit.to_degrees()),
         };
         return Err(MechError::CannotBuild {
-            phi2_deg: worst_lag.1.to_degrees(),
+            phi2_deg: worst_lag.at_deg(),
             condition: format!(
                 "the output law leaves the admissible range: |φ6 − φ2| = {:.3}° ≥ arccos(l6/l2) = {:.3}° (the slot \
                  is normal to OD, output pressure angle 90°)",
-                worst_lag.0.to_degrees(),
+                worst_lag.value.to_degrees(),
                 lag_limit.to_degrees()
             ),
             admissible: Some(admissible),
         });
     }
 
+    // The revolution on the check grid (φ3 kept continuous) and in closed form between its points.
+    let mut fine = Vec::with_capacity(cx.len());
+    let mut phi3_ref = cx[0];
+    for &x in &cx {
+        let o = out.eval(x);
+        let s = state_from_phi6(g, x, [o.phi6, o.d1, o.d2], phi3_ref);
+        phi3_ref = s.phi3[0];
+        fine.push(s);
+    }
+    let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
+    let at = |x: f64| {
+        let o = out.eval(x);
+        state_from_phi6(g, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(&cx, x)])
+    };
+    let states: Vec<ModulatorState> = xs.iter().map(|&x| at(x)).collect();
+    let rev = Revolution { xs: cx.clone(), states: fine, eval: Box::new(|x| Some(at(x))) };
+
     // Folds: B′·(B − A) ∝ sin(α + δ), C′·(C − A) ∝ sin(θ − δ) with δ = φ3 − φ2.
-    let deltas: Vec<f64> = states.iter().map(|s| wrap_pi(s.phi3[0] - s.phi2)).collect();
-    let dmin = deltas.iter().copied().fold(f64::INFINITY, f64::min);
-    let dmax = deltas.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let dev = deviation_range(&rev);
+    let (dmin, dmax) = (dev[0].value, dev[1].value);
     // sin(α + δ) ≠ 0 for every φ2 ⇔ α ∈ (−min δ, 180° − max δ); likewise θ − δ ∈ (0°, 180°).
     // Both within the valid (0°, 180°); an empty range (lower ≥ upper) means no angle works.
     let alpha_range = [(-dmin).to_degrees().max(0.0), (180.0 - dmax.to_degrees()).min(180.0)];
     let theta_range = [dmax.to_degrees().max(0.0), (180.0 + dmin.to_degrees()).min(180.0)];
-    if let Some(k) = deltas.iter().position(|d| {
-        let v = g.alpha_rad() + d;
-        v <= 0.0 || v >= std::f64::consts::PI
-    }) {
+    if let Some(fold) = fold_at(&rev, g.alpha_rad(), 1.0, dev) {
+        let d = slot_deviation(&at(fold.to_radians()));
         return Err(MechError::CannotBuild {
-            phi2_deg: xs[k].to_degrees(),
+            phi2_deg: fold,
             condition: format!(
                 "fold at roller B: the arm AB is normal to cam Γ (φ3 − φ2 = {:.3}°, α = {:.3}°), the cam cannot \
                  drive the lever past it",
-                deltas[k].to_degrees(),
+                d.to_degrees(),
                 g.alpha_deg
             ),
             admissible: Some(if alpha_range[0] < alpha_range[1] {
@@ -237,16 +244,22 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
         });
     }
     let mut warnings = Vec::new();
-    counter_cam_fold(g, &xs, &deltas, theta_range, &mut warnings);
-    let checks = check_states(g, &states, w2, opts.pressure_limit_deg, &mut warnings);
+    counter_cam_fold(g, &rev, dev, theta_range, &mut warnings);
+    let checks = check_states(g, &rev, w2, opts.pressure_limit_deg, &mut warnings);
     let (ub, uc) = undercut(&checks, opts.roller_m, &mut warnings);
     let path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
         states[..states.len() - 1].iter().map(f).collect()
     };
     let cam = CamProfile::from_path(&path(&|s| (s.b[0], s.b[1])), opts.roller_m);
     let counter_cam = CamProfile::from_path(&path(&|s| (s.c[0], s.c[1])), opts.roller_m);
-    let wb = crossings(&cam.wall_left) + crossings(&cam.wall_right);
-    let wc = crossings(&counter_cam.wall_left) + crossings(&counter_cam.wall_right);
+    // Wall crossings are counted on the check grid, independent of the output step.
+    let fine_path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
+        rev.states[..rev.states.len() - 1].iter().map(f).collect()
+    };
+    let fine_cam = CamProfile::from_path(&fine_path(&|s| (s.b[0], s.b[1])), opts.roller_m);
+    let fine_counter = CamProfile::from_path(&fine_path(&|s| (s.c[0], s.c[1])), opts.roller_m);
+    let wb = crossings(&fine_cam.wall_left) + crossings(&fine_cam.wall_right);
+    let wc = crossings(&fine_counter.wall_left) + crossings(&fine_counter.wall_right);
     for (name, n) in [("cam Γ", wb), ("counter-cam Γ′", wc)] {
         if n > 0 {
             warnings.push(Warning {
@@ -266,7 +279,7 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
         roller_m: opts.roller_m,
         input_speed_rad_s: w2,
         step_deg: step,
-        lag_max_deg: worst_lag.0.to_degrees(),
+        lag_max_deg: worst_lag.value.to_degrees(),
         lag_limit_deg: lag_limit.to_degrees(),
         admissible_alpha_deg: alpha_range,
         admissible_theta_deg: theta_range,
