@@ -1,5 +1,6 @@
 //! `loomkin cycle FILE.toml`: a machine cycle in physical units.
 
+use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::Args;
@@ -52,7 +53,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
         for p in &samples {
             t.push(vec![p.angle_deg, p.time_s, p.kin.s, p.kin.v, p.kin.a, p.kin.j])?;
         }
-        return util::print_csv(&t);
+        return output::csv(&t);
     }
     let summary = summarise(&cycle, rpm);
     if a.format.json {
@@ -63,7 +64,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
                        format!("a_{au}"): p.kin.a, format!("j_{ju}"): p.kin.j})
             })
             .collect();
-        return util::print_json(&json!({
+        return output::json(&json!({
             "speed_rpm": rpm,
             "period_deg": cycle.period_rad.to_degrees(),
             "cycle_time_s": cycle.period_rad / (rpm * std::f64::consts::TAU / 60.0),
@@ -84,15 +85,15 @@ pub fn run(a: CycleArgs) -> Result<()> {
             Panel::new(format!("jerk [{js}]"), vec![Series::line("", col(|k| k.j))]),
         ];
         let title = format!("{} at {rpm} rpm", a.file.display());
-        return util::save_figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out);
+        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out);
     }
     let [su, vs, as_, _] = cycle.unit.si_units();
-    println!(
+    outln!(
         "cycle {} at {rpm} rpm (one cycle {:.6} s)",
         a.file.display(),
         cycle.period_rad / (rpm * std::f64::consts::TAU / 60.0)
-    );
-    println!(
+    )?;
+    outln!(
         "{:>3} {:<7} {:>9} {:>9} {:<36} {:>12} {:>14} {:>14}",
         "#",
         "kind",
@@ -102,10 +103,10 @@ pub fn run(a: CycleArgs) -> Result<()> {
         format!("stroke[{su}]"),
         format!("max|v|[{vs}]"),
         format!("max|a|[{as_}]")
-    );
+    )?;
     let [pk, vk, ak, _] = cycle.unit.key_units();
     for (i, s) in summary.iter().enumerate() {
-        println!(
+        outln!(
             "{:>3} {:<7} {:>9.3} {:>9.3} {:<36} {:>12.6} {:>14.6} {:>14.4}",
             i,
             s["kind"].as_str().unwrap_or(""),
@@ -115,7 +116,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
             s[format!("stroke_{pk}")].as_f64().unwrap_or(0.0),
             s[format!("peak_velocity_{vk}")].as_f64().unwrap_or(0.0),
             s[format!("peak_acceleration_{ak}")].as_f64().unwrap_or(0.0),
-        );
+        )?;
     }
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! `loomkin dobby …`: the modulator of a Stäubli-type rotary dobby (series 2600): analysis of a
 //! given cam (task 1), synthesis of the conjugate cams for an output law (task 2), plots, α sweep.
 
+use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -290,7 +291,7 @@ pub fn run(cmd: DobbyCommand) -> Result<()> {
 
 fn warn(ws: &[Warning]) {
     for w in ws {
-        eprintln!("loomkin: warning: {}", w.message);
+        output::warning(&w.message);
     }
 }
 
@@ -417,10 +418,10 @@ fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
     let res = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
     warn(&res.warnings);
     if a.format.csv {
-        return util::print_csv(&analysis_table(&res)?);
+        return output::csv(&analysis_table(&res)?);
     }
     if a.format.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "summary": serde_json::to_value(&res.summary)?,
             "warnings": serde_json::to_value(&res.warnings)?,
             "rows": serde_json::to_value(&res.rows)?,
@@ -428,49 +429,60 @@ fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
     }
     let s = &res.summary;
     let c = &s.checks;
-    println!("rotary-dobby modulator, task 1 (analysis): cam {}", s.cam);
-    print_geometry(&g, s.input_speed_rad_s, s.step_deg);
-    println!(
+    outln!("rotary-dobby modulator, task 1 (analysis): cam {}", s.cam)?;
+    print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
+    outln!(
         "  output speed ω6      {:.5} … {:.5} rad/s ({:.4} … {:.4} × ω2)",
         c.omega6_min_rad_s,
         c.omega6_max_rad_s,
         c.omega6_min_rad_s / s.input_speed_rad_s,
         c.omega6_max_rad_s / s.input_speed_rad_s
-    );
-    println!("  output accel. ε6     {:.5} … {:.5} rad/s²", c.eps6_min_rad_s2, c.eps6_max_rad_s2);
-    print_checks(c);
-    println!(
+    )?;
+    outln!("  output accel. ε6     {:.5} … {:.5} rad/s²", c.eps6_min_rad_s2, c.eps6_max_rad_s2)?;
+    print_checks(c)?;
+    outln!(
         "  |φ3 − φ2| max        {:.3}° (limit arcsin(l6/l2) = {:.3}°); admissible α for this cam: {:.3}° … {:.3}°",
-        s.slot_deviation_max_deg, s.slot_deviation_limit_deg, s.admissible_alpha_deg[0], s.admissible_alpha_deg[1]
-    );
+        s.slot_deviation_max_deg,
+        s.slot_deviation_limit_deg,
+        s.admissible_alpha_deg[0],
+        s.admissible_alpha_deg[1]
+    )?;
     Ok(())
 }
 
-fn print_geometry(g: &ModulatorGeometry, w2: f64, step: f64) {
-    println!(
+fn print_geometry(g: &ModulatorGeometry, w2: f64, step: f64) -> Result<()> {
+    outln!(
         "  l2 = {} m, l3 = {} m, l3′ = {} m, l6 = {} m, α = {}°, θ = {}°, ω2 = {:.6} rad/s, step {:.4}°",
-        g.l2_m, g.l3_m, g.l3p_m, g.l6_m, g.alpha_deg, g.theta_deg, w2, step
-    );
+        g.l2_m,
+        g.l3_m,
+        g.l3p_m,
+        g.l6_m,
+        g.alpha_deg,
+        g.theta_deg,
+        w2,
+        step
+    )
 }
 
-fn print_checks(c: &loomkin_mech::CamChecks) {
+fn print_checks(c: &loomkin_mech::CamChecks) -> Result<()> {
     let rho = |v: Option<f64>| v.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "straight".into());
-    println!("  output turn          {:.6}° per input turn", c.phi6_turn_deg);
-    println!("  pressure angle μ6    max {:.2}° at φ2 = {:.2}° (output)", c.mu_out_max_deg, c.mu_out_max_at_phi2_deg);
-    println!(
-        "  pressure angle μB    max {:.2}° at φ2 = {:.2}° (roller B on Γ)",
-        c.mu_b_max_deg, c.mu_b_max_at_phi2_deg
-    );
-    println!(
+    outln!("  output turn          {:.6}° per input turn", c.phi6_turn_deg)?;
+    outln!("  pressure angle μ6    max {:.2}° at φ2 = {:.2}° (output)", c.mu_out_max_deg, c.mu_out_max_at_phi2_deg)?;
+    outln!("  pressure angle μB    max {:.2}° at φ2 = {:.2}° (roller B on Γ)", c.mu_b_max_deg, c.mu_b_max_at_phi2_deg)?;
+    outln!(
         "  pressure angle μC    max {:.2}° at φ2 = {:.2}° (roller C on Γ′)",
-        c.mu_c_max_deg, c.mu_c_max_at_phi2_deg
-    );
-    println!("  min radius of curv.  Γ {} at φ2 = {:.2}°", rho(c.rho_b_min_m), c.rho_b_min_at_phi2_deg);
-    println!("                       Γ′ {} at φ2 = {:.2}°", rho(c.rho_c_min_m), c.rho_c_min_at_phi2_deg);
-    println!(
+        c.mu_c_max_deg,
+        c.mu_c_max_at_phi2_deg
+    )?;
+    outln!("  min radius of curv.  Γ {} at φ2 = {:.2}°", rho(c.rho_b_min_m), c.rho_b_min_at_phi2_deg)?;
+    outln!("                       Γ′ {} at φ2 = {:.2}°", rho(c.rho_c_min_m), c.rho_c_min_at_phi2_deg)?;
+    outln!(
         "  closure              Γ {:.3e} m, Γ′ {:.3e} m; self-crossings Γ {}, Γ′ {}",
-        c.closure_gap_b_m, c.closure_gap_c_m, c.self_intersections_b, c.self_intersections_c
-    );
+        c.closure_gap_b_m,
+        c.closure_gap_c_m,
+        c.self_intersections_b,
+        c.self_intersections_c
+    )
 }
 
 fn profile_polylines(prefix: &str, p: &CamProfile) -> Vec<DxfPolyline> {
@@ -533,18 +545,18 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
             UnitArg::M => DxfUnit::Metre,
         };
         save_dxf(&polys, unit, path).map_err(util::failure)?;
-        eprintln!("wrote {}", path.display());
+        output::note(format_args!("wrote {}", path.display()));
     }
     if let Some(path) = &a.points_csv {
         let mut f = loomkin_io::create_file(path).map_err(util::failure)?;
         points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
-        eprintln!("wrote {}", path.display());
+        output::note(format_args!("wrote {}", path.display()));
     }
     if a.format.csv {
-        return util::print_csv(&synthesis_table(&res)?);
+        return output::csv(&synthesis_table(&res)?);
     }
     if a.format.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "summary": serde_json::to_value(&res.summary)?,
             "warnings": serde_json::to_value(&res.warnings)?,
             "rows": serde_json::to_value(&res.rows)?,
@@ -554,25 +566,28 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
         return Ok(());
     }
     let s = &res.summary;
-    println!("rotary-dobby modulator, task 2 (synthesis): {}", s.law);
-    print_geometry(&g, s.input_speed_rad_s, s.step_deg);
-    println!("  roller radius        {} m", s.roller_m);
-    println!(
+    outln!("rotary-dobby modulator, task 2 (synthesis): {}", s.law)?;
+    print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
+    outln!("  roller radius        {} m", s.roller_m)?;
+    outln!(
         "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
-        s.checks.omega6_max_rad_s, s.checks.eps6_min_rad_s2, s.checks.eps6_max_rad_s2
-    );
-    println!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg);
-    print_checks(&s.checks);
-    println!(
+        s.checks.omega6_max_rad_s,
+        s.checks.eps6_min_rad_s2,
+        s.checks.eps6_max_rad_s2
+    )?;
+    outln!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg)?;
+    print_checks(&s.checks)?;
+    outln!(
         "  undercut             Γ {}, Γ′ {}; largest roller without undercut {}",
         yes_no(s.undercut_b),
         yes_no(s.undercut_c),
         s.checks.roller_max_m.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "any".into())
-    );
-    println!(
+    )?;
+    outln!(
         "  admissible α         ({:.3}°, {:.3}°) for this law (no fold at roller B)",
-        s.admissible_alpha_deg[0], s.admissible_alpha_deg[1]
-    );
+        s.admissible_alpha_deg[0],
+        s.admissible_alpha_deg[1]
+    )?;
     Ok(())
 }
 
@@ -674,7 +689,7 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
             f
         }
     };
-    util::save_figure(&fig, &a.output)
+    output::figure(&fig, &a.output)
 }
 
 /// Cam Γ of an analysis as a profile (walls from the path's tangents).
@@ -717,7 +732,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     )
     .map_err(|e: MechError| anyhow::Error::from(e))?;
     if a.format.json {
-        return util::print_json(&json!({ "rows": rows.iter().map(row_json).collect::<Vec<Value>>() }));
+        return output::json(&json!({ "rows": rows.iter().map(row_json).collect::<Vec<Value>>() }));
     }
     let cols = [
         "alpha_deg",
@@ -755,10 +770,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         ])?;
     }
     if a.format.csv {
-        return util::print_csv(&t);
+        return output::csv(&t);
     }
-    println!("α sweep (θ = α): analysis of the cam | synthesis of the law");
-    println!(
+    outln!("α sweep (θ = α): analysis of the cam | synthesis of the law")?;
+    outln!(
         "{:>8} {:>12} {:>12} {:>10} {:>10} {:>10} | {:>10} {:>10} {:>12}",
         "α_deg",
         "ω6_min_rad_s",
@@ -769,11 +784,11 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         "μB_max_deg",
         "μC_max_deg",
         "ρ_min_m"
-    );
+    )?;
     let f =
         |v: Option<f64>, w: usize, p: usize| v.map(|x| format!("{x:>w$.p$}")).unwrap_or_else(|| format!("{:>w$}", "—"));
     for r in &rows {
-        println!(
+        outln!(
             "{:>8.2} {} {} {} {} {} | {} {} {}",
             r.alpha_deg,
             f(r.an_omega6_min_rad_s, 12, 5),
@@ -784,9 +799,9 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             f(r.syn_mu_b_max_deg, 10, 2),
             f(r.syn_mu_c_max_deg, 10, 2),
             f(r.syn_rho_b_min_m.zip(r.syn_rho_c_min_m).map(|(a, b)| a.min(b)), 12, 5),
-        );
+        )?;
         for e in [&r.an_error, &r.syn_error].into_iter().flatten() {
-            println!("{:>8}   {e}", "");
+            outln!("{:>8}   {e}", "")?;
         }
     }
     Ok(())

@@ -1,5 +1,6 @@
 //! `loomkin law …`: the catalogue of normalised laws.
 
+use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -116,13 +117,13 @@ fn list(a: ListArgs) -> Result<()> {
                 v
             })
             .collect();
-        return util::print_json(&json!({ "laws": laws }));
+        return output::json(&json!({ "laws": laws }));
     }
-    println!("Normalised rise laws (x: fraction of the motion angle, s: fraction of the stroke; values dimensionless)");
-    println!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  description", "law", "Cv", "Ca", "Cj", "Cm", "Ca_rms", "C^k");
+    outln!("Normalised rise laws (x: fraction of the motion angle, s: fraction of the stroke; values dimensionless)")?;
+    outln!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  description", "law", "Cv", "Ca", "Cj", "Cm", "Ca_rms", "C^k")?;
     for (e, m, c) in &rows {
         let params = if e.params.is_empty() { String::new() } else { format!(" [{}]", e.params) };
-        println!(
+        outln!(
             "{:<22} {:>8.4} {:>8.4} {:>9.3} {:>8.4} {:>8.4} {:>5}  {}{}",
             e.name,
             m.cv,
@@ -133,13 +134,19 @@ fn list(a: ListArgs) -> Result<()> {
             class_text(*c),
             e.description,
             params
-        );
+        )?;
     }
-    println!(
+    outln!(
         "{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  general piecewise acceleration [segments=LEN:SHAPE[:LEVEL…],…]",
-        "piecewise", "-", "-", "-", "-", "-", "-"
-    );
-    println!("C^k: continuity in a dwell-rise-dwell cycle (C1: s, v continuous; C2: also a; C3: also j).");
+        "piecewise",
+        "-",
+        "-",
+        "-",
+        "-",
+        "-",
+        "-"
+    )?;
+    outln!("C^k: continuity in a dwell-rise-dwell cycle (C1: s, v continuous; C2: also a; C3: also j).")?;
     Ok(())
 }
 
@@ -184,26 +191,26 @@ fn info(a: InfoArgs) -> Result<()> {
         v["params"] = json!(spec.params().into_iter().collect::<std::collections::BTreeMap<_, _>>());
         v["segments"] = json!(law.segments().len());
         v["continuity"] = continuity_json(&c);
-        return util::print_json(&v);
+        return output::json(&v);
     }
-    println!("law {}", spec.label());
-    println!("  values per unit stroke and unit motion angle (dimensionless)");
-    println!("  Cv   = max v       = {:.10}   at x = {:.6}", m.cv, m.x_cv);
-    println!("  Ca   = max |a|     = {:.10}", m.ca);
-    println!("  Ca+  = max a       = {:.10}   at x = {:.6}", m.ca_pos, m.x_ca_pos);
-    println!("  Ca-  = min a       = {:.10}   at x = {:.6}", m.ca_neg, m.x_ca_neg);
-    println!("  Cj   = max |j|     = {:.10}   at x = {:.6}  (inside segments)", m.cj, m.x_cj);
-    println!("  Cm   = max v·a     = {:.10}   at x = {:.6}", m.cm, m.x_cm);
-    println!("  Ca_rms = √∫a²dx    = {:.10}", m.ca_rms);
-    println!(
+    outln!("law {}", spec.label())?;
+    outln!("  values per unit stroke and unit motion angle (dimensionless)")?;
+    outln!("  Cv   = max v       = {:.10}   at x = {:.6}", m.cv, m.x_cv)?;
+    outln!("  Ca   = max |a|     = {:.10}", m.ca)?;
+    outln!("  Ca+  = max a       = {:.10}   at x = {:.6}", m.ca_pos, m.x_ca_pos)?;
+    outln!("  Ca-  = min a       = {:.10}   at x = {:.6}", m.ca_neg, m.x_ca_neg)?;
+    outln!("  Cj   = max |j|     = {:.10}   at x = {:.6}  (inside segments)", m.cj, m.x_cj)?;
+    outln!("  Cm   = max v·a     = {:.10}   at x = {:.6}", m.cm, m.x_cm)?;
+    outln!("  Ca_rms = √∫a²dx    = {:.10}", m.ca_rms)?;
+    outln!(
         "continuity ({} segments; jumps right − left; dwells at s = 0 before and s = 1 after):",
         law.segments().len()
-    );
-    println!("  {:>10} {:>12} {:>12} {:>12} {:>12}  continuous", "x", "Δs", "Δv", "Δa", "Δj");
+    )?;
+    outln!("  {:>10} {:>12} {:>12} {:>12} {:>12}  continuous", "x", "Δs", "Δv", "Δa", "Δj")?;
     for j in std::iter::once(&c.start).chain(&c.joints).chain(std::iter::once(&c.end)) {
         let f = j.flags();
         let names: Vec<&str> = ["s", "v", "a", "j"].iter().zip(f).filter(|(_, ok)| *ok).map(|(n, _)| *n).collect();
-        println!(
+        outln!(
             "  {:>10.6} {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e}  {}",
             j.x,
             j.ds,
@@ -211,9 +218,9 @@ fn info(a: InfoArgs) -> Result<()> {
             j.da,
             j.dj,
             if names.is_empty() { "none".into() } else { names.join(", ") }
-        );
+        )?;
     }
-    println!("  class in a dwell-rise-dwell cycle: {}", class_text(c.class));
+    outln!("  class in a dwell-rise-dwell cycle: {}", class_text(c.class))?;
     Ok(())
 }
 
@@ -229,7 +236,7 @@ fn sample(a: SampleArgs) -> Result<()> {
     if a.format.json {
         let pts: Vec<Value> =
             samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
-        return util::print_json(
+        return output::json(
             &json!({ "law": spec.name(), "units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts }),
         );
     }
@@ -237,7 +244,7 @@ fn sample(a: SampleArgs) -> Result<()> {
     for (x, k) in samples {
         t.push(vec![x, k.s, k.v, k.a, k.j])?;
     }
-    util::print_csv(&t)
+    output::csv(&t)
 }
 
 fn plot(a: PlotArgs) -> Result<()> {
@@ -273,5 +280,5 @@ fn plot(a: PlotArgs) -> Result<()> {
         p.legend = if i == 0 { Legend::UpperLeft } else { Legend::Hidden };
     }
     let fig = Figure::new("Normalised motion laws", "x = fraction of the motion angle [-]", panels);
-    util::save_figure(&fig, &a.output)
+    output::figure(&fig, &a.output)
 }

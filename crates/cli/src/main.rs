@@ -6,6 +6,7 @@
 mod cycle;
 mod dobby;
 mod law;
+mod output;
 mod pick;
 mod serve;
 mod servo;
@@ -73,7 +74,7 @@ fn main() -> ExitCode {
                 .filter(|l| !l.is_empty())
                 .collect();
             let line = message.join(" ");
-            eprintln!("loomkin: error: {} (see --help)", line.trim_start_matches("error: "));
+            output::note(format_args!("loomkin: error: {} (see --help)", line.trim_start_matches("error: ")));
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -82,11 +83,13 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
     };
-    match run(cli) {
+    match run(cli).and_then(|()| output::finish()) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of our output went away (`loomkin law list | head -1`): stop quietly.
+        Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             // One line: the error and its causes joined by ": ".
-            eprintln!("loomkin: error: {}", format!("{e:#}").replace('\n', " "));
+            output::note(format_args!("loomkin: error: {}", format!("{e:#}").replace('\n', " ")));
             ExitCode::from(util::exit_code(&e))
         }
     }

@@ -1,5 +1,6 @@
 //! `loomkin pick …`: shuttle picking dynamics of an elastic under-pick mechanism (Jederán 1959).
 
+use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -269,7 +270,7 @@ fn settings(mech: &Mechanism, a: &SettingsArgs) -> Settings {
 
 fn note(o: &Outcome) {
     if let Some(n) = &o.note {
-        eprintln!("loomkin: note: {n}");
+        output::note(format_args!("loomkin: note: {n}"));
     }
 }
 
@@ -279,7 +280,7 @@ fn design(a: DesignArgs) -> Result<()> {
     let k = d.constants;
     let spec = d.spec;
     if a.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
             "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
             "psi_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
@@ -289,21 +290,24 @@ fn design(a: DesignArgs) -> Result<()> {
             "cam": mech.cam().label(),
         }));
     }
-    println!("compound picking law (sine, then constant acceleration), eqs. 18–20");
-    println!(
+    outln!("compound picking law (sine, then constant acceleration), eqs. 18–20")?;
+    outln!(
         "  for V = {} m/s, X = {} m, X1 = {} m at n = {} rev/min",
-        spec.velocity_m_s, spec.distance_m, spec.first_stage_m, spec.speed_rpm
-    );
-    println!("  A   = {:.4} m/s²   peak shuttle acceleration (eq. 20)", d.a_m_s2);
-    println!("  μ   = {:.4} 1/s    sine-stage frequency (eq. 19)", d.mu_1_s);
-    println!("  τ   = {:.6} s    end of the sine stage, π/(2μ)", d.tau_s);
-    println!("  T'  = {:.6} s    end of the pick (eq. 18)", d.t_end_s);
-    println!("  nominal stroke s(T') − D = {:.6} m", d.stroke_m());
-    println!("mechanism constants (eq. 4): B·ẍ + (C+1)·x = s − D");
-    println!("  B   = {:.6e} s²", k.b_s2);
-    println!("  C   = {:.6e}", k.c);
-    println!("  D   = {:.6e} m", k.d_m);
-    println!("  ψ   = √((C+1)/B) = {:.4} 1/s (natural frequency)", k.natural_1_s());
+        spec.velocity_m_s,
+        spec.distance_m,
+        spec.first_stage_m,
+        spec.speed_rpm
+    )?;
+    outln!("  A   = {:.4} m/s²   peak shuttle acceleration (eq. 20)", d.a_m_s2)?;
+    outln!("  μ   = {:.4} 1/s    sine-stage frequency (eq. 19)", d.mu_1_s)?;
+    outln!("  τ   = {:.6} s    end of the sine stage, π/(2μ)", d.tau_s)?;
+    outln!("  T'  = {:.6} s    end of the pick (eq. 18)", d.t_end_s)?;
+    outln!("  nominal stroke s(T') − D = {:.6} m", d.stroke_m())?;
+    outln!("mechanism constants (eq. 4): B·ẍ + (C+1)·x = s − D")?;
+    outln!("  B   = {:.6e} s²", k.b_s2)?;
+    outln!("  C   = {:.6e}", k.c)?;
+    outln!("  D   = {:.6e} m", k.d_m)?;
+    outln!("  ψ   = √((C+1)/B) = {:.4} 1/s (natural frequency)", k.natural_1_s())?;
     Ok(())
 }
 
@@ -341,36 +345,38 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
         }
         let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
         note(&h.outcome);
-        return util::print_csv(&history_table(&h)?);
+        return output::csv(&history_table(&h)?);
     }
     let o = simulate(&mech, &st, method).map_err(lib_err)?;
     note(&o);
     if a.format.json {
-        return util::print_json(&outcome_json(&o));
+        return output::json(&outcome_json(&o));
     }
-    println!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name());
-    println!(
+    outln!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name())?;
+    outln!(
         "  speed {} rev/min, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
         fmt(st.speed_rpm),
         fmt(st.play_m * 1e3),
         fmt(st.strap_m * 1e2),
         fmt(st.shuttle_kg * 1e3),
         fmt(st.checking_n / loomkin_picking::units::N_PER_KGF)
-    );
-    println!("  t0           = {:.6} s   (delay taking up the play)", o.t0_s);
-    println!(
+    )?;
+    outln!("  t0           = {:.6} s   (delay taking up the play)", o.t0_s)?;
+    outln!(
         "  t_end        = {:.6} s   ({})",
         o.t_end_s,
         if o.end == loomkin_picking::PickEnd::CamEnd { "end of the cam's rise" } else { "the shuttle left the picker" }
-    );
-    println!("  distance     = {:.6} m", o.distance_m);
-    println!(
+    )?;
+    outln!("  distance     = {:.6} m", o.distance_m)?;
+    outln!(
         "  velocity     = {:.4} m/s  (required {:.4} m/s, {:+.2} %)",
-        o.velocity_m_s, o.required_velocity_m_s, o.velocity_vs_required_pct
-    );
-    println!("  accel at end = {:.3} m/s²", o.accel_end_m_s2);
-    println!("  accel peak   = {:.3} m/s² at t = {:.6} s", o.accel_peak_m_s2, o.t_peak_s);
-    println!("  B' = {:.6e} s², C' = {:.6e}, D' = {:.6e} m, ψ = {:.3} 1/s", o.b_s2, o.c, o.d_m, o.natural_1_s);
+        o.velocity_m_s,
+        o.required_velocity_m_s,
+        o.velocity_vs_required_pct
+    )?;
+    outln!("  accel at end = {:.3} m/s²", o.accel_end_m_s2)?;
+    outln!("  accel peak   = {:.3} m/s² at t = {:.6} s", o.accel_peak_m_s2, o.t_peak_s)?;
+    outln!("  B' = {:.6e} s², C' = {:.6e}, D' = {:.6e} m, ψ = {:.3} 1/s", o.b_s2, o.c, o.d_m, o.natural_1_s)?;
     Ok(())
 }
 
@@ -425,7 +431,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let s = sweep(&mech, &st, setting, a.from, a.to, a.steps, a.method.into()).map_err(lib_err)?;
     let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
     if let Some(first) = s.fallbacks().next() {
-        eprintln!(
+        output::note(format_args!(
             "loomkin: note: at {} of {} points (first at {} = {} {}) {}",
             fallbacks.len(),
             s.rows.len(),
@@ -433,13 +439,13 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             first.value,
             setting.unit(),
             first.outcome.note.as_deref().unwrap_or("")
-        );
+        ));
     }
     if let Some(path) = &a.output {
-        return util::save_figure(&sweep_figure(&s), path);
+        return output::figure(&sweep_figure(&s), path);
     }
     if a.format.csv {
-        return util::print_csv(&sweep_table(&s)?);
+        return output::csv(&sweep_table(&s)?);
     }
     if a.format.json {
         let rows: Vec<Value> = s
@@ -451,12 +457,12 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
                 v
             })
             .collect();
-        return util::print_json(&json!({
+        return output::json(&json!({
             "setting": setting.name(), "unit": setting.unit(), "method": Method::from(a.method).name(),
             "fallback_values": fallbacks, "rows": rows,
         }));
     }
-    println!(
+    outln!(
         "{:>14} {:>10} {:>10} {:>12} {:>14} {:>15} {:>13} {:>9}",
         setting.key(),
         "t_end_s",
@@ -466,10 +472,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         "accel_peak_m_s2",
         "V_r_m_s",
         "V/V_r-1_%"
-    );
+    )?;
     for r in &s.rows {
         let o = &r.outcome;
-        println!(
+        outln!(
             "{:>14.4} {:>10.6} {:>10.6} {:>12.4} {:>14.3} {:>15.3} {:>13.4} {:>9.2}",
             r.value,
             o.t_end_s,
@@ -479,7 +485,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             o.accel_peak_m_s2,
             o.required_velocity_m_s,
             o.velocity_vs_required_pct
-        );
+        )?;
     }
     Ok(())
 }
@@ -566,5 +572,5 @@ fn plot(a: PlotArgs) -> Result<()> {
         fmt(st.play_m * 1e3),
         fmt(st.strap_m * 1e2)
     );
-    util::save_figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output)
+    output::figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output)
 }

@@ -1,9 +1,9 @@
 //! `loomkin serve`: the workbench — a local web page with live plots and draggable points.
 
+use crate::output::{self, outln};
 use crate::util;
 use anyhow::{Result, anyhow};
 use clap::Args;
-use std::io::Write;
 
 /// `loomkin serve`.
 #[derive(Debug, Args)]
@@ -19,12 +19,12 @@ pub struct ServeArgs {
 /// Runs `loomkin serve` until Ctrl-C.
 pub fn run(a: ServeArgs) -> Result<()> {
     loomkin_web::serve_blocking(a.port, |url| {
-        println!("loomkin workbench: {url}  (listening on 127.0.0.1 only; Ctrl-C stops it)");
-        let _ = std::io::stdout().flush();
+        // The server runs on: a closed standard output is no reason to stop it.
+        let _ = outln!("loomkin workbench: {url}  (listening on 127.0.0.1 only; Ctrl-C stops it)");
         if a.open
             && let Err(msg) = loomkin_web::open_browser(url)
         {
-            eprintln!("loomkin: warning: {msg}");
+            output::warning(msg);
         }
     })
     .map_err(|e| util::failure(anyhow!("cannot serve on 127.0.0.1:{}: {e}", a.port)))

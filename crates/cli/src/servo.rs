@@ -1,6 +1,7 @@
 //! `loomkin servo …`: servo motion laws from definition points (Sivčák 2017), drive torque,
 //! controller export, optimisation.
 
+use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -11,7 +12,6 @@ use loomkin_servo::{
     export_coeffs_text, export_json, format_points, parse_points, poly5_csv, poly5_segments, summaries, torque_curve,
 };
 use serde_json::{Value, json};
-use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -205,7 +205,7 @@ fn law(a: LawArgs) -> Result<()> {
         if a.format.json {
             let pts: Vec<Value> =
                 samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
-            return util::print_json(
+            return output::json(
                 &json!({"units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts}),
             );
         }
@@ -213,7 +213,7 @@ fn law(a: LawArgs) -> Result<()> {
         for (x, k) in samples {
             t.push(vec![x, k.s, k.v, k.a, k.j])?;
         }
-        return util::print_csv(&t);
+        return output::csv(&t);
     }
     let m = law.metrics();
     let c = law.continuity();
@@ -221,7 +221,7 @@ fn law(a: LawArgs) -> Result<()> {
         bail!("--csv needs --sample N (the metrics are printed as text or --json)");
     }
     if a.format.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "def_points": points_json(sl.points()),
             "end": sl.end().name(),
             "units": "d: slope of the acceleration image f (through the points) at x = 0.5; \
@@ -238,25 +238,29 @@ fn law(a: LawArgs) -> Result<()> {
             "spline_b": sl.spline_coefficients(),
         }));
     }
-    println!(
+    outln!(
         "servo law through {} definition points ({} start), unit stroke on x = 0…1",
         sl.points().len(),
         sl.end().name()
-    );
-    println!("  def = {}", format_points(sl.points()));
-    println!("  D = f'(0.5) = {:.10}   (slope of the acceleration image at the middle)", sl.d());
-    println!("  scale 1/F(1) = {:.10}  (unit-law acceleration = scale · f)", sl.scale());
-    println!("  values per unit stroke and unit motion angle (dimensionless)");
-    println!("  Cv   = max v     = {:.10}   at x = {:.6}", m.cv, m.x_cv);
-    println!(
+    )?;
+    outln!("  def = {}", format_points(sl.points()))?;
+    outln!("  D = f'(0.5) = {:.10}   (slope of the acceleration image at the middle)", sl.d())?;
+    outln!("  scale 1/F(1) = {:.10}  (unit-law acceleration = scale · f)", sl.scale())?;
+    outln!("  values per unit stroke and unit motion angle (dimensionless)")?;
+    outln!("  Cv   = max v     = {:.10}   at x = {:.6}", m.cv, m.x_cv)?;
+    outln!(
         "  Ca   = max |a|   = {:.10}   (a+ {:.6} at x = {:.6}, a- {:.6} at x = {:.6})",
-        m.ca, m.ca_pos, m.x_ca_pos, m.ca_neg, m.x_ca_neg
-    );
-    println!("  Cj   = max |j|   = {:.10}   at x = {:.6}", m.cj, m.x_cj);
-    println!("  Cm   = max v·a   = {:.10}   at x = {:.6}", m.cm, m.x_cm);
-    println!("  Ca_rms = √∫a²dx  = {:.10}", m.ca_rms);
+        m.ca,
+        m.ca_pos,
+        m.x_ca_pos,
+        m.ca_neg,
+        m.x_ca_neg
+    )?;
+    outln!("  Cj   = max |j|   = {:.10}   at x = {:.6}", m.cj, m.x_cj)?;
+    outln!("  Cm   = max v·a   = {:.10}   at x = {:.6}", m.cm, m.x_cm)?;
+    outln!("  Ca_rms = √∫a²dx  = {:.10}", m.ca_rms)?;
     let ck = if c.class < 0 { "none".to_string() } else { format!("C{}", c.class) };
-    println!("  continuity in a dwell-rise-dwell cycle: {ck}");
+    outln!("  continuity in a dwell-rise-dwell cycle: {ck}")?;
     Ok(())
 }
 
@@ -287,7 +291,7 @@ fn drive_json(d: &Drive) -> Result<Value> {
 
 fn print_drive(d: &Drive) -> Result<()> {
     let lay = d.layout()?;
-    println!(
+    outln!(
         "drive: stroke {} mm over {}°, mass {} kg, pinion r {} mm, i {}, J_m {:e} kg·m², k {} N/m, F_pre {} N, c {} N·s/m, F_c {} N, η {}",
         d.stroke_m * 1e3,
         d.motion_angle_deg,
@@ -300,11 +304,14 @@ fn print_drive(d: &Drive) -> Result<()> {
         d.damping_n_s_m,
         d.constant_force_n,
         d.efficiency
-    );
-    println!(
+    )?;
+    outln!(
         "cycle (deg of the main shaft): rise {} | dwell {} | return {} | dwell {}",
-        lay.rise_deg, lay.dwell_after_rise_deg, lay.return_deg, lay.dwell_after_return_deg
-    );
+        lay.rise_deg,
+        lay.dwell_after_rise_deg,
+        lay.return_deg,
+        lay.dwell_after_return_deg
+    )?;
     Ok(())
 }
 
@@ -314,19 +321,24 @@ fn torque(a: TorqueArgs) -> Result<()> {
     let d = a.drive.load()?;
     let res = summaries(sl.law(), &d, &a.speed_rpm)?;
     if a.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "def_points": points_json(sl.points()),
             "drive": drive_json(&d)?,
             "results": res.iter().map(summary_json).collect::<Vec<_>>(),
         }));
     }
     print_drive(&d)?;
-    println!(
+    outln!(
         "{:>12} {:>16} {:>14} {:>14} {:>14} {:>16}",
-        "speed 1/min", "peak torque N·m", "at angle deg", "RMS torque N·m", "peak power W", "motor max 1/min"
-    );
+        "speed 1/min",
+        "peak torque N·m",
+        "at angle deg",
+        "RMS torque N·m",
+        "peak power W",
+        "motor max 1/min"
+    )?;
     for s in &res {
-        println!(
+        outln!(
             "{:>12.1} {:>16.4} {:>14.2} {:>14.4} {:>14.1} {:>16.0}",
             s.speed_rpm,
             s.peak_torque_nm,
@@ -334,7 +346,7 @@ fn torque(a: TorqueArgs) -> Result<()> {
             s.rms_torque_nm,
             s.peak_power_w,
             s.peak_motor_speed_rpm
-        );
+        )?;
     }
     Ok(())
 }
@@ -364,7 +376,7 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     let elapsed = t0.elapsed().as_secs_f64();
     let pts = r.law.points();
     if a.json {
-        return util::print_json(&json!({
+        return output::json(&json!({
             "objective": opts.objective.name(),
             "speeds_rpm": a.speed_rpm,
             "before": worst(&r.before),
@@ -377,19 +389,24 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
         }));
     }
     print_drive(&d)?;
-    println!(
+    outln!(
         "minimised the {} motor torque (worst over {} speed(s)) in {:.3} s, {} evaluations",
         opts.objective.name(),
         a.speed_rpm.len(),
         elapsed,
         r.evaluations
-    );
-    println!(
+    )?;
+    outln!(
         "{:>12} {:>18} {:>18} {:>16} {:>16} {:>9}",
-        "speed 1/min", "peak before N·m", "peak after N·m", "RMS before N·m", "RMS after N·m", "peak Δ %"
-    );
+        "speed 1/min",
+        "peak before N·m",
+        "peak after N·m",
+        "RMS before N·m",
+        "RMS after N·m",
+        "peak Δ %"
+    )?;
     for (b, f) in r.before.iter().zip(&r.after) {
-        println!(
+        outln!(
             "{:>12.1} {:>18.4} {:>18.4} {:>16.4} {:>16.4} {:>9.1}",
             b.speed_rpm,
             b.peak_torque_nm,
@@ -397,10 +414,10 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
             b.rms_torque_nm,
             f.rms_torque_nm,
             100.0 * (f.peak_torque_nm / b.peak_torque_nm - 1.0)
-        );
+        )?;
     }
-    println!("optimised definition points (use with --def):");
-    println!("  {}", format_points(pts));
+    outln!("optimised definition points (use with --def):")?;
+    outln!("  {}", format_points(pts))?;
     Ok(())
 }
 
@@ -416,16 +433,7 @@ fn export(a: ExportArgs) -> Result<()> {
         "poly5" => poly5_csv(&poly5_segments(sl.law(), &d)?),
         other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5"),
     };
-    {
-        // The io error already names the file and its cause: pass its text on, once.
-        let fail = |e: &dyn std::fmt::Display| util::failure(anyhow::anyhow!("{e}"));
-        let mut w = loomkin_io::open_output(&a.output).map_err(|e| fail(&e))?;
-        w.write_all(text.as_bytes()).map_err(|e| fail(&format!("cannot write {}: {e}", a.output)))?;
-        w.flush().map_err(|e| fail(&format!("cannot write {}: {e}", a.output)))?;
-    }
-    if a.output != "-" {
-        eprintln!("wrote {}", a.output);
-    }
+    output::text_to(&a.output, &text)?;
     if !matches!(format.as_str(), "csv" | "xyva") {
         return Ok(());
     }
@@ -452,10 +460,10 @@ fn export(a: ExportArgs) -> Result<()> {
         let report = json!({"format": format, "points": table.points.len(), "reinterpolation": v});
         if a.output == "-" {
             // The table went to stdout: keep it clean, the report goes to stderr.
-            eprintln!("{}", serde_json::to_string_pretty(&report)?);
+            output::note(format_args!("{}", serde_json::to_string_pretty(&report)?));
             return Ok(());
         }
-        return util::print_json(&report);
+        return output::json(&report);
     }
     let mut report = format!(
         "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated:\n",
@@ -482,9 +490,9 @@ fn export(a: ExportArgs) -> Result<()> {
         "(xyva points are meant for quintic-Hermite interpolation; csv positions alone give the linear or cubic rows)";
     // With `-o -` the table is on stdout: the report goes to stderr.
     if a.output == "-" {
-        eprintln!("{report}");
+        output::note(format_args!("{report}"));
     } else {
-        println!("{report}");
+        outln!("{report}")?;
     }
     Ok(())
 }
@@ -532,5 +540,5 @@ fn plot(a: PlotArgs) -> Result<()> {
         "main-shaft angle [deg]",
         vec![image, unit, torque],
     );
-    util::save_figure(&fig, &a.output)
+    output::figure(&fig, &a.output)
 }

@@ -1,5 +1,6 @@
 //! `loomkin shed …`: heald-frame laws, dwell criteria, experiment tables, Pareto choice.
 
+use crate::output::{self, outln};
 use crate::util::{self, failure};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -8,7 +9,7 @@ use loomkin_shed::{
     Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedError, ShedLaw, Template, evaluate, preset,
 };
 use serde_json::{Value, json};
-use std::io::Write;
+use std::fmt::Write;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin shed`.
@@ -312,14 +313,17 @@ fn list(a: ListArgs) -> Result<()> {
                        "table_shape": p.table_shape, "positive": p.positive})
             })
             .collect();
-        return util::print_json(&json!({ "laws": v }));
+        return output::json(&json!({ "laws": v }));
     }
-    println!(
+    outln!(
         "{:<12} {:<13} {:>10} {:>9}  positive phase of the acceleration",
-        "law", "paper", "motion_deg", "dwell_deg"
-    );
+        "law",
+        "paper",
+        "motion_deg",
+        "dwell_deg"
+    )?;
     for p in PRESETS {
-        println!(
+        outln!(
             "{:<12} {:<13} {:>10} {:>9}  {} = {}",
             p.name,
             p.name_ru,
@@ -327,7 +331,7 @@ fn list(a: ListArgs) -> Result<()> {
             360.0 - p.motion_deg,
             p.table_shape,
             p.positive
-        );
+        )?;
     }
     Ok(())
 }
@@ -344,38 +348,43 @@ fn law(a: LawArgs) -> Result<()> {
         v["law"] = json!(name);
         v["definition"] = definition_json(&law);
         v["segments"] = json!(law.positive_text());
-        return util::print_json(&v);
+        return output::json(&v);
     }
-    println!("law {name}: motion {} deg, positive phase {}", law.motion_deg(), law.positive_text());
-    print_criteria(&c, &cond);
+    outln!("law {name}: motion {} deg, positive phase {}", law.motion_deg(), law.positive_text())?;
+    print_criteria(&c, &cond)?;
     Ok(())
 }
 
-fn print_criteria(c: &Criteria, cond: &Conditions) {
-    println!(
+fn print_criteria(c: &Criteria, cond: &Conditions) -> Result<()> {
+    outln!(
         "  at T = {} (frame within {:.1} % of its stroke), stroke {} mm, {} rpm",
         c.threshold,
         100.0 * (1.0 - c.threshold),
         cond.stroke_m() * 1000.0,
         cond.speed_rpm()
-    );
-    println!("  motion φ_дв              = {:>10.3} deg", c.motion_deg);
-    println!("  absolute dwell φ_вр      = {:>10.3} deg", c.dwell_deg);
-    println!("  conditional dwell φ_ув   = {:>10.3} deg", c.conditional_dwell_deg);
-    println!("  window φ_пп* = φ_вр+φ_ув = {:>10.3} deg", c.window_deg);
-    println!(
+    )?;
+    outln!("  motion φ_дв              = {:>10.3} deg", c.motion_deg)?;
+    outln!("  absolute dwell φ_вр      = {:>10.3} deg", c.dwell_deg)?;
+    outln!("  conditional dwell φ_ув   = {:>10.3} deg", c.conditional_dwell_deg)?;
+    outln!("  window φ_пп* = φ_вр+φ_ув = {:>10.3} deg", c.window_deg)?;
+    outln!(
         "  Cv = {:.6}  Ca = {:.6}  Cj = {:.4}  Cm = {:.6}  Ca_rms = {:.6}  (dimensionless)",
-        c.cv, c.ca, c.cj, c.cm, c.ca_rms
-    );
-    println!("  Ca·(360/φ_дв)²           = {:>10.4} (peak acceleration on the scale of a turn)", c.ca_turn);
-    println!("  peak velocity            = {:>10.4} m/s", c.peak_velocity_m_s);
-    println!("  peak acceleration        = {:>10.4} m/s²", c.peak_accel_m_s2);
-    println!("  RMS acceleration         = {:>10.4} m/s² (over the motion)", c.rms_accel_m_s2);
-    println!("  peak jerk                = {:>10.2} m/s³", c.peak_jerk_m_s3);
-    println!("  peak v·a                 = {:>10.4} W/kg", c.peak_power_w_kg);
+        c.cv,
+        c.ca,
+        c.cj,
+        c.cm,
+        c.ca_rms
+    )?;
+    outln!("  Ca·(360/φ_дв)²           = {:>10.4} (peak acceleration on the scale of a turn)", c.ca_turn)?;
+    outln!("  peak velocity            = {:>10.4} m/s", c.peak_velocity_m_s)?;
+    outln!("  peak acceleration        = {:>10.4} m/s²", c.peak_accel_m_s2)?;
+    outln!("  RMS acceleration         = {:>10.4} m/s² (over the motion)", c.rms_accel_m_s2)?;
+    outln!("  peak jerk                = {:>10.2} m/s³", c.peak_jerk_m_s3)?;
+    outln!("  peak v·a                 = {:>10.4} W/kg", c.peak_power_w_kg)?;
     if c.accel_jump_m_s2 > 0.0 {
-        println!("  acceleration jump        = {:>10.4} m/s² (unbounded jerk there)", c.accel_jump_m_s2);
+        outln!("  acceleration jump        = {:>10.4} m/s² (unbounded jerk there)", c.accel_jump_m_s2)?;
     }
+    Ok(())
 }
 
 /// The rows of a table: an optional law name, the lengths and the criteria.
@@ -508,9 +517,9 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
                 v
             })
             .collect();
-        return util::print_json(&json!({ "rows": v }));
+        return output::json(&json!({ "rows": v }));
     }
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut out = String::new();
     if format.csv {
         let mut header: Vec<String> = Vec::new();
         if named {
@@ -534,7 +543,7 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
             }
             writeln!(out, "{line}").map_err(failure)?;
         }
-        return out.flush().map_err(failure);
+        return output::text_to("-", &out);
     }
     writeln!(
         out,
@@ -562,7 +571,7 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
         )
         .map_err(failure)?;
     }
-    out.flush().map_err(failure)
+    output::text_to("-", &out)
 }
 
 fn table(a: TableArgs) -> Result<()> {
@@ -605,7 +614,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             "weft-insertion window φ_пп* [deg]",
             vec![panel],
         );
-        return util::save_figure(&fig, path);
+        return output::figure(&fig, path);
     }
     emit(&front, a.format, &cond, "Pareto front: largest window, least peak acceleration")
 }
@@ -647,16 +656,16 @@ fn best(a: BestArgs) -> Result<()> {
         if let Some(r) = &req {
             v["loom"] = serde_json::to_value(r).unwrap_or(Value::Null);
         }
-        return util::print_json(&v);
+        return output::json(&v);
     }
-    println!(
+    outln!(
         "least peak acceleration with a window ≥ {w:.3} deg ({} laws of the family '{}' searched{})",
         design.len(),
         tpl.name(),
         if motions.is_some() { "" } else { ", motion angle free" }
-    );
-    println!("  motion {:.3} deg, positive phase {}", b.criteria.motion_deg, law.positive_text());
-    print_criteria(&b.criteria, &cond);
+    )?;
+    outln!("  motion {:.3} deg, positive phase {}", b.criteria.motion_deg, law.positive_text())?;
+    print_criteria(&b.criteria, &cond)?;
     Ok(())
 }
 
@@ -671,12 +680,12 @@ fn window(a: WindowArgs) -> Result<()> {
         v["required_window_deg"] = json!(w);
         v["threshold"] = json!(r.threshold());
         v["threshold_both_sheets"] = json!(r.threshold_both_sheets());
-        return util::print_json(&v);
+        return output::json(&v);
     }
-    println!("flight in the warp   φ_flight = 6n(L_cloth + l_carrier)/v = {:.3} deg", r.flight_deg());
-    println!("required window      φ_req = φ_flight + D_crossing      = {w:.3} deg");
-    println!("dwell threshold      T = 1/(1 + ΔA_S)                    = {:.4}", r.threshold());
-    println!("  (both sheets moving: T = 1 − ΔA_S/(2(1 + ΔA_S))         = {:.4})", r.threshold_both_sheets());
+    outln!("flight in the warp   φ_flight = 6n(L_cloth + l_carrier)/v = {:.3} deg", r.flight_deg())?;
+    outln!("required window      φ_req = φ_flight + D_crossing      = {w:.3} deg")?;
+    outln!("dwell threshold      T = 1/(1 + ΔA_S)                    = {:.4}", r.threshold())?;
+    outln!("  (both sheets moving: T = 1 − ΔA_S/(2(1 + ΔA_S))         = {:.4})", r.threshold_both_sheets())?;
     Ok(())
 }
 
@@ -711,5 +720,5 @@ fn plot(a: PlotArgs) -> Result<()> {
             Panel::new("frame acceleration [m/s²]", a_series).with_legend(Legend::Hidden),
         ],
     );
-    util::save_figure(&fig, &a.output)
+    output::figure(&fig, &a.output)
 }

@@ -3,6 +3,7 @@
 mod common;
 mod dobby;
 mod law;
+mod output;
 mod pick;
 mod serve;
 mod servo;

@@ -1,0 +1,136 @@
+//! The one output path of the binary: everything a command prints goes through these functions.
+//!
+//! Standard output is written with checked writes: a closed pipe (`loomkin law list | head -1`)
+//! ends the program quietly with exit code 0, as ripgrep does; any other failure (a full disk,
+//! `> /dev/full`) is one line naming the file or "standard output", exit code 1. Messages for the
+//! user (`wrote FILE`, warnings, notes) go to standard error; a failure to write them is ignored,
+//! since there is nowhere left to report it.
+
+use anyhow::anyhow;
+use serde::Serialize;
+use std::fmt;
+use std::io::{self, Write};
+use std::path::Path;
+
+/// Writes one line to standard output through [`fn@line`]; evaluates to `anyhow::Result<()>`.
+macro_rules! outln {
+    () => {
+        $crate::output::line(format_args!(""))
+    };
+    ($($arg:tt)*) => {
+        $crate::output::line(format_args!($($arg)*))
+    };
+}
+pub(crate) use outln;
+
+/// Writing the output (standard output or a file) failed: a run failure, exit code 1.
+#[derive(Debug)]
+pub struct WriteError {
+    /// The file, or "standard output".
+    target: String,
+    /// The cause, printed in the message (not chained, so it is said once).
+    cause: io::Error,
+}
+
+impl WriteError {
+    /// A failure to write standard output.
+    pub fn stdout(cause: io::Error) -> Self {
+        Self { target: "standard output".into(), cause }
+    }
+
+    /// A failure to create or write a file.
+    pub fn file(path: &str, cause: io::Error) -> Self {
+        Self { target: path.into(), cause }
+    }
+
+    /// The reader went away (EPIPE): not an error for a command-line filter.
+    pub fn is_broken_pipe(&self) -> bool {
+        self.cause.kind() == io::ErrorKind::BrokenPipe
+    }
+}
+
+impl fmt::Display for WriteError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "cannot write {}: {}", self.target, self.cause)
+    }
+}
+
+impl std::error::Error for WriteError {}
+
+/// True if the error is a closed pipe on the output, which ends the program quietly.
+pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| c.downcast_ref::<WriteError>().is_some_and(WriteError::is_broken_pipe))
+}
+
+/// Writes one line (the formatted text and a newline) to standard output.
+pub fn line(args: fmt::Arguments<'_>) -> anyhow::Result<()> {
+    let mut out = io::stdout().lock();
+    out.write_fmt(args).and_then(|()| out.write_all(b"\n")).map_err(|e| WriteError::stdout(e).into())
+}
+
+/// Writes text as it is to `path`, `-` meaning standard output.
+pub fn text_to(path: &str, text: &str) -> anyhow::Result<()> {
+    if path == "-" {
+        let mut out = io::stdout().lock();
+        return out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(|e| WriteError::stdout(e).into());
+    }
+    std::fs::write(path, text).map_err(|e| WriteError::file(path, e))?;
+    note(format_args!("wrote {path}"));
+    Ok(())
+}
+
+/// Prints a value as pretty JSON on standard output; refuses non-finite numbers anywhere in it.
+pub fn json(value: &impl Serialize) -> anyhow::Result<()> {
+    let value = serde_json::to_value(value).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
+    check_finite(&value, "")?;
+    let mut text = serde_json::to_string_pretty(&value).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
+    text.push('\n');
+    text_to("-", &text)
+}
+
+fn check_finite(v: &serde_json::Value, path: &str) -> anyhow::Result<()> {
+    match v {
+        serde_json::Value::Null => Err(crate::util::failure(anyhow!("internal: '{path}' is not a finite number"))),
+        serde_json::Value::Array(a) => {
+            a.iter().enumerate().try_for_each(|(i, x)| check_finite(x, &format!("{path}[{i}]")))
+        }
+        serde_json::Value::Object(o) => o.iter().try_for_each(|(k, x)| check_finite(x, &format!("{path}.{k}"))),
+        _ => Ok(()),
+    }
+}
+
+/// Prints a table as CSV on standard output.
+pub fn csv(table: &loomkin_io::Table) -> anyhow::Result<()> {
+    let mut text = Vec::new();
+    table.write_csv(&mut text).map_err(crate::util::failure)?;
+    text_to("-", &String::from_utf8_lossy(&text))
+}
+
+/// Saves a figure, naming the file in the error.
+pub fn figure(fig: &loomkin_io::plot::Figure, path: &Path) -> anyhow::Result<()> {
+    match fig.save(path) {
+        Ok(()) => {
+            note(format_args!("wrote {}", path.display()));
+            Ok(())
+        }
+        // A wrong extension is the user's mistake; a drawing or file error is a failure.
+        Err(e @ loomkin_io::IoError::PlotFormat { .. }) => Err(e.into()),
+        Err(e) => Err(crate::util::failure(e)),
+    }
+}
+
+/// A message for the user on standard error (`wrote FILE`, a report beside a table on stdout).
+pub fn note(args: fmt::Arguments<'_>) {
+    let mut err = io::stderr().lock();
+    let _ = err.write_fmt(args).and_then(|()| err.write_all(b"\n"));
+}
+
+/// A warning on standard error, prefixed `loomkin: warning:`.
+pub fn warning(message: impl fmt::Display) {
+    note(format_args!("loomkin: warning: {message}"));
+}
+
+/// Ends the output: flushes standard output, so a late write failure is reported too.
+pub fn finish() -> anyhow::Result<()> {
+    io::stdout().flush().map_err(|e| WriteError::stdout(e).into())
+}
