@@ -1,0 +1,141 @@
+//! A cam table: the points, their decimals, and the written file with its exact error.
+
+use super::decimals::Decimals;
+use super::format::Format;
+use super::points::{CamPoint, Spacing, place};
+use super::reinterpolation::{ReinterpolationError, reinterpolation_error};
+use super::{Interval, Motion};
+use crate::Result;
+use loomkin_laws::StrokeUnit;
+use loomkin_units::compact;
+use serde::Serialize;
+
+/// The interpolation a controller runs between two points of every point format.
+pub const INTERPOLATION: &str = "quintic Hermite from (Y, V, A) at both ends of each interval (XYVA; \
+TwinCAT MOTIONFUNCTYPE_POLYNOM5_MM; CODESYS SMC_CAM_TYPE.XYVA)";
+
+/// A cam table of a motion: points with fixed decimals (see [`Decimals`]).
+///
+/// ```
+/// use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
+/// use loomkin_laws::{LawSpec, StrokeUnit};
+///
+/// let law = LawSpec::Cycloidal.build()?;
+/// let motion = Motion::rise(&law, 40.0, 120.0, StrokeUnit::Mm)?;   // 40 mm over 120°
+/// let table = CamTable::new(motion, Spacing::StepDeg(5.0))?;
+/// let out = table.export(Format::Csv)?;
+/// assert!(out.text.starts_with("master_deg,slave_mm,slave_v_mm_per_deg,"));
+/// assert!(out.error.max_position_error < 1e-3);                    // mm, exact
+/// # Ok::<(), loomkin_cams::CamError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CamTable {
+    motion: Motion,
+    spacing: Spacing,
+    points: Vec<CamPoint>,
+    decimals: Decimals,
+}
+
+/// A written table: the text, and the exact re-interpolation error of what it holds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Export {
+    /// The file's text.
+    pub text: String,
+    /// The exact error of the table as written, re-read and re-interpolated as the controller does.
+    pub error: ReinterpolationError,
+    /// Number of points (poly5: segments + 1).
+    pub points: usize,
+}
+
+impl CamTable {
+    /// Places the points of `motion` for `spacing` and rounds them to their decimals.
+    pub fn new(motion: Motion, spacing: Spacing) -> Result<Self> {
+        let (points, decimals) = place(&motion, spacing)?;
+        Ok(Self { motion, spacing, points, decimals })
+    }
+
+    /// The points.
+    pub fn points(&self) -> &[CamPoint] {
+        &self.points
+    }
+
+    /// The decimals of each column.
+    pub fn decimals(&self) -> Decimals {
+        self.decimals
+    }
+
+    /// The motion the table was made from.
+    pub fn motion(&self) -> &Motion {
+        &self.motion
+    }
+
+    /// The spacing of the points.
+    pub fn spacing(&self) -> Spacing {
+        self.spacing
+    }
+
+    /// The slave unit's name, `mm` or `deg`.
+    pub fn unit_name(&self) -> &'static str {
+        match self.motion.unit() {
+            StrokeUnit::Mm => "mm",
+            StrokeUnit::Deg => "deg",
+        }
+    }
+
+    /// Writes the table in a format and reports the exact re-interpolation error of what was
+    /// written: the text is read back ([`Format::read`]), re-interpolated as the controller does,
+    /// and compared with the motion ([`super::reinterpolation_error`]).
+    pub fn export(&self, format: Format) -> Result<Export> {
+        let body = format.write(self, &[]);
+        let intervals: Vec<Interval> = format.read(&body)?;
+        let error = reinterpolation_error(&self.motion, &intervals);
+        let text = format.write(self, &self.header(format, &error));
+        Ok(Export { text, error, points: intervals.len() + 1 })
+    }
+
+    /// The comment lines that head a file (without comment markers).
+    fn header(&self, format: Format, e: &ReinterpolationError) -> Vec<String> {
+        let u = self.unit_name();
+        let d = self.decimals;
+        let spacing = match self.spacing {
+            Spacing::StepDeg(s) => format!(
+                "points on every joint of the law and every {} deg from each joint (shorter last step before a joint)",
+                compact(s)
+            ),
+            Spacing::Tolerance(t) => {
+                format!(
+                    "points on every joint of the law, between them as few as keep the error within {} {u}",
+                    compact(t)
+                )
+            }
+        };
+        let interp = if format == Format::Poly5 {
+            format!("slave Y = b0 + b1*u + ... + b5*u^5 ({u}), u = (X - start)/(end - start) in [0, 1]")
+        } else {
+            format!("interpolation between points: {INTERPOLATION}")
+        };
+        vec![
+            format!(
+                "loomkin cam table: master X in deg, slave Y in {u}, V = dY/dX in {u}/deg, A in {u}/deg^2, J in {u}/deg^3"
+            ),
+            spacing,
+            interp,
+            format!(
+                "re-interpolation error (exact, of the values as written): position {} {u} at X = {} deg, velocity {} {u}/deg, acceleration {} {u}/deg^2",
+                compact(e.max_position_error),
+                compact(e.max_position_error_at_deg),
+                compact(e.max_velocity_error),
+                compact(e.max_accel_error)
+            ),
+            format!(
+                "decimals: X {}, Y {}, V {}, A {}, J {}{} (last digit at most 1e-6 of the column's peak)",
+                d.master,
+                d.y,
+                d.v,
+                d.a,
+                d.j,
+                if format == Format::Poly5 { format!(", b {}", d.coeffs()) } else { String::new() }
+            ),
+        ]
+    }
+}

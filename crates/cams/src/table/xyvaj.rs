@@ -1,0 +1,43 @@
+//! XYVA points with an added jerk column: `X,Y,V,A,J` after `#` comment lines.
+//!
+//! ```text
+//! # loomkin cam table: master X in deg, slave Y in mm, …
+//! X,Y,V,A,J
+//! 0,0.0000,0.000000,0.00000000,0.004112
+//! ```
+
+use super::decimals::fixed;
+use super::format::{numbers, points_from_rows};
+use super::{CamPoint, CamTable};
+use crate::Result;
+
+/// Writes the points.
+pub fn write(table: &CamTable, header: &[String]) -> String {
+    let d = table.decimals();
+    let mut s: String = header.iter().map(|l| format!("# {l}\n")).collect();
+    s.push_str("X,Y,V,A,J\n");
+    for p in table.points() {
+        s.push_str(&format!(
+            "{},{},{},{},{}\n",
+            fixed(p.master_deg, d.master),
+            fixed(p.y, d.y),
+            fixed(p.v, d.v),
+            fixed(p.a, d.a),
+            fixed(p.j, d.j)
+        ));
+    }
+    s
+}
+
+/// Reads the points back (comment lines and the header skipped).
+pub fn read(text: &str) -> Result<Vec<CamPoint>> {
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let l = line.trim();
+        if l.is_empty() || l.starts_with('#') || l.starts_with("X,") {
+            continue;
+        }
+        rows.push(numbers(l, 5, i, 0)?);
+    }
+    points_from_rows(rows)
+}

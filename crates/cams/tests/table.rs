@@ -1,0 +1,214 @@
+//! Cam tables: every format re-read from its text and checked against the motion at dense points
+//! (an independent route to the reported error), the placement of points, and snapshots.
+
+use loomkin_cams::table::{CamTable, Format, Interval, Motion, Spacing, reinterpolation_error};
+use loomkin_laws::{Cycle, LawSpec, StrokeUnit};
+use proptest::prelude::*;
+
+const CYCLE_MM: &str = r#"
+unit = "mm"
+stroke = 100
+[[segment]]
+kind = "dwell"
+to_deg = 60
+[[segment]]
+kind = "rise"
+to_deg = 180
+law = "modified-sine"
+[[segment]]
+kind = "dwell"
+to_deg = 240
+[[segment]]
+kind = "return"
+to_deg = 360
+law = "modified-trapezoid"
+params = { ramp = 0.125 }
+"#;
+
+const CYCLE_DEG: &str = r#"
+unit = "deg"
+stroke = 22.5
+[[segment]]
+kind = "rise"
+length_deg = 100
+law = "harmonic"
+[[segment]]
+kind = "dwell"
+length_deg = 80
+[[segment]]
+kind = "return"
+length_deg = 130
+law = "piecewise"
+params = { segments = "0.25:constant:1,0.25:zero,0.5:half-cosine:-0.5:-0.5" }
+[[segment]]
+kind = "dwell"
+length_deg = 50
+"#;
+
+fn cycle(text: &str) -> Motion {
+    Motion::from_cycle(&Cycle::from_toml(text).unwrap())
+}
+
+/// Largest |Y_interval − Y_motion| over `per` evenly spaced points of every interval, plus the
+/// value at `at` (the reported location).
+fn dense_error(m: &Motion, ivs: &[Interval], per: usize) -> f64 {
+    let mut worst = 0.0f64;
+    for iv in ivs {
+        for i in 0..=per {
+            let x = iv.start_deg + iv.width() * i as f64 / per as f64;
+            // The motion's formula on the side of the interval (a joint belongs to both sides).
+            let piece = &m.pieces()[m.piece_index(x.clamp(iv.start_deg, iv.end_deg - 1e-12 * iv.width()))];
+            let e = (iv.eval(x)[0] - piece.eval(x)[0]).abs();
+            worst = worst.max(e);
+        }
+    }
+    worst
+}
+
+fn check_route(m: &Motion, spacing: Spacing) {
+    let table = CamTable::new(m.clone(), spacing).unwrap();
+    for f in Format::ALL {
+        let out = table.export(f).unwrap();
+        for line in out.text.lines().filter(|l| !l.starts_with('#') && !l.starts_with("(*")) {
+            let noise = line.contains("e-") || line.contains("e1") || line.contains("NaN") || line.contains("inf");
+            let negative_zero = line.split([',', ' ', '(', ')']).any(|t| {
+                t.starts_with("-0") && t.trim_start_matches("-0").trim_start_matches('.').chars().all(|c| c == '0')
+            });
+            assert!(!noise && !negative_zero, "{f:?}: {line}");
+        }
+        // Re-read the text as written, independently of the table.
+        let ivs = f.read(&out.text).unwrap();
+        let again = reinterpolation_error(m, &ivs);
+        assert_eq!(again, out.error, "{f:?}: the header's error is the error of the file");
+        let dense = dense_error(m, &ivs, 400);
+        let rep = out.error.max_position_error;
+        assert!(dense <= rep * (1.0 + 1e-9) + 1e-15, "{f:?}: dense {dense:e} above reported {rep:e}");
+        assert!(dense >= rep * (1.0 - 2e-3), "{f:?}: dense {dense:e} far below reported {rep:e}");
+        // Where it is attained, the reported error is the difference there.
+        let at = out.error.max_position_error_at_deg;
+        let iv = ivs.iter().find(|iv| at >= iv.start_deg && at <= iv.end_deg).unwrap();
+        let piece = &m.pieces()[m.piece_index(at.clamp(iv.start_deg, iv.end_deg - 1e-12 * iv.width()))];
+        let there = (iv.eval(at)[0] - piece.eval(at)[0]).abs();
+        assert!((there - rep).abs() <= 1e-9 * rep.max(1e-300), "{f:?}: {there:e} vs {rep:e}");
+    }
+}
+
+#[test]
+fn every_format_reread_bounds_and_attains_its_reported_error() {
+    let law = LawSpec::ModifiedTrapezoid { ramp: 0.125 }.build().unwrap();
+    check_route(&Motion::rise(&law, 40.0, 120.0, StrokeUnit::Mm).unwrap(), Spacing::StepDeg(7.0));
+    check_route(&cycle(CYCLE_MM), Spacing::StepDeg(2.5));
+    check_route(&cycle(CYCLE_DEG), Spacing::StepDeg(3.0));
+    check_route(&cycle(CYCLE_MM), Spacing::Tolerance(0.01));
+    check_route(&cycle(CYCLE_DEG), Spacing::Tolerance(0.002));
+}
+
+#[test]
+fn points_fall_on_joints_plus_an_exact_step_with_a_shorter_last_step() {
+    let law = LawSpec::ModifiedTrapezoid { ramp: 0.125 }.build().unwrap();
+    let m = Motion::rise(&law, 40.0, 120.0, StrokeUnit::Mm).unwrap();
+    let t = CamTable::new(m.clone(), Spacing::StepDeg(7.0)).unwrap();
+    let xs: Vec<f64> = t.points().iter().map(|p| p.master_deg).collect();
+    // The joints of the modified trapezoid at 120°: 1/8, 3/8, 5/8, 7/8 of the motion.
+    let joints = [0.0, 15.0, 45.0, 75.0, 105.0, 120.0];
+    for j in joints {
+        assert!(xs.contains(&j), "joint {j} missing in {xs:?}");
+    }
+    for w in joints.windows(2) {
+        let inside: Vec<f64> = xs.iter().copied().filter(|&x| x >= w[0] && x <= w[1]).collect();
+        for p in inside.windows(2) {
+            let step = p[1] - p[0];
+            let last = p[1] == w[1];
+            assert!((step - 7.0).abs() < 1e-9 || (last && step < 7.0), "{w:?}: step {step} in {inside:?}");
+        }
+    }
+    assert_eq!(&xs[..4], &[0.0, 7.0, 14.0, 15.0]);
+}
+
+#[test]
+fn a_cycle_in_degrees_writes_degree_headers() {
+    let t = CamTable::new(cycle(CYCLE_DEG), Spacing::StepDeg(10.0)).unwrap();
+    let csv = t.export(Format::Csv).unwrap().text;
+    assert!(csv.starts_with("master_deg,slave_deg,slave_v_deg_per_deg,slave_a_deg_per_deg2,slave_j_deg_per_deg3\n"));
+    let t = CamTable::new(cycle(CYCLE_MM), Spacing::StepDeg(10.0)).unwrap();
+    let csv = t.export(Format::Csv).unwrap().text;
+    assert!(csv.starts_with("master_deg,slave_mm,slave_v_mm_per_deg,slave_a_mm_per_deg2,slave_j_mm_per_deg3\n"));
+}
+
+#[test]
+fn tolerance_placement_keeps_every_interval_within_and_is_locally_fewest() {
+    let m = cycle(CYCLE_MM);
+    let tol = 0.005;
+    let t = CamTable::new(m.clone(), Spacing::Tolerance(tol)).unwrap();
+    let pts = t.points();
+    let joints = m.joints();
+    for w in pts.windows(2) {
+        let iv = Interval::hermite(w[0].master_deg, w[1].master_deg, w[0].yva(), w[1].yva());
+        let e = reinterpolation_error(&m, &[iv]).max_position_error;
+        assert!(e <= tol, "interval {:?}: {e}", (w[0].master_deg, w[1].master_deg));
+    }
+    // Any interval that does not end on a joint would break the tolerance one grid step longer.
+    for w in pts.windows(2) {
+        if joints.iter().any(|&j| (j - w[1].master_deg).abs() < 1e-9) {
+            continue;
+        }
+        let x = w[1].master_deg + 0.001;
+        let y = m.eval(x);
+        let iv = Interval::hermite(w[0].master_deg, x, w[0].yva(), [y[0], y[1], y[2]]);
+        assert!(reinterpolation_error(&m, &[iv]).max_position_error > 0.99 * tol);
+    }
+    // Far fewer points than a 1° table, whose error is also within the tolerance.
+    let fine = CamTable::new(m, Spacing::StepDeg(1.0)).unwrap();
+    assert!(pts.len() * 4 < fine.points().len(), "{} vs {}", pts.len(), fine.points().len());
+}
+
+#[test]
+fn bad_spacings_name_the_field() {
+    let law = LawSpec::Cycloidal.build().unwrap();
+    let m = Motion::rise(&law, 40.0, 120.0, StrokeUnit::Mm).unwrap();
+    let e = CamTable::new(m.clone(), Spacing::StepDeg(0.0)).unwrap_err().to_string();
+    assert!(e.starts_with("step_deg = 0 is out of range"), "{e}");
+    let e = CamTable::new(m.clone(), Spacing::Tolerance(-1.0)).unwrap_err().to_string();
+    assert!(e.starts_with("tolerance = -1 is out of range"), "{e}");
+    let e = Motion::rise(&law, 0.0, 120.0, StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.starts_with("stroke_mm = 0"), "{e}");
+    let e = Format::parse("xyva").unwrap_err().to_string();
+    assert!(e.starts_with("format: unknown format 'xyva'"), "{e}");
+}
+
+#[test]
+fn snapshots_of_every_format_on_a_small_law() {
+    let law = LawSpec::Poly345.build().unwrap();
+    let m = Motion::rise(&law, 20.0, 90.0, StrokeUnit::Mm).unwrap();
+    let t = CamTable::new(m, Spacing::StepDeg(15.0)).unwrap();
+    for f in Format::ALL {
+        insta::assert_snapshot!(format!("poly345_{}", f.name()), t.export(f).unwrap().text);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    #[test]
+    fn reported_error_bounds_the_dense_error(
+        which in 0usize..6,
+        stroke in 1.0f64..200.0,
+        motion in 20.0f64..300.0,
+        step in 0.7f64..20.0,
+    ) {
+        let spec = [
+            LawSpec::Cycloidal,
+            LawSpec::Harmonic,
+            LawSpec::ConstantAcceleration,
+            LawSpec::Poly4567,
+            LawSpec::ModifiedSine,
+            LawSpec::ModifiedTrapezoid { ramp: 0.1 },
+        ][which].clone();
+        let law = spec.build().unwrap();
+        let m = Motion::rise(&law, stroke, motion, StrokeUnit::Mm).unwrap();
+        let t = CamTable::new(m.clone(), Spacing::StepDeg(step)).unwrap();
+        let out = t.export(Format::Xyvaj).unwrap();
+        let ivs = Format::Xyvaj.read(&out.text).unwrap();
+        let dense = dense_error(&m, &ivs, 200);
+        prop_assert!(dense <= out.error.max_position_error * (1.0 + 1e-9) + 1e-15);
+    }
+}
