@@ -1,5 +1,6 @@
 //! The catalogue of named laws.
 
+use crate::polynomial::{PolySegment, format_poly_segments, parse_poly_segments};
 use crate::shape::{format_segments, parse_segments};
 use crate::{AccelPiece, EndCondition, Law, LawError, Result, Shape, ShapeSegment, Sine};
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,13 @@ pub enum LawSpec {
         /// The segments (lengths sum to 1).
         segments: Vec<ShapeSegment>,
     },
+    /// A polynomial-acceleration law: segments of relative length with the acceleration a
+    /// polynomial of degree ≤ 5 in each segment's relative coordinate (any polynomial law, e.g. a
+    /// servo spline law, in a cycle file).
+    Polynomial {
+        /// The segments (lengths sum to 1).
+        segments: Vec<PolySegment>,
+    },
 }
 
 /// One line of the catalogue.
@@ -63,6 +71,11 @@ pub const CATALOGUE: &[CatalogueEntry] = &[
         description: "general piecewise acceleration",
         params: "segments=LEN:SHAPE[:LEVEL…],… (lengths sum to 1)",
     },
+    CatalogueEntry {
+        name: "polynomial",
+        description: "polynomial acceleration per segment (e.g. a servo spline law)",
+        params: "segments=LEN:c0[:c1…],… (a = c0 + c1·u + … in each segment, degree ≤ 5, lengths sum to 1)",
+    },
 ];
 
 fn names() -> String {
@@ -81,6 +94,7 @@ impl LawSpec {
             LawSpec::ModifiedTrapezoid { .. } => "modified-trapezoid",
             LawSpec::ModifiedSine => "modified-sine",
             LawSpec::Piecewise { .. } => "piecewise",
+            LawSpec::Polynomial { .. } => "polynomial",
         }
     }
 
@@ -89,6 +103,7 @@ impl LawSpec {
         match self {
             LawSpec::ModifiedTrapezoid { ramp } => vec![("ramp".into(), ramp.to_string())],
             LawSpec::Piecewise { segments } => vec![("segments".into(), format_segments(segments))],
+            LawSpec::Polynomial { segments } => vec![("segments".into(), format_poly_segments(segments))],
             _ => Vec::new(),
         }
     }
@@ -115,6 +130,7 @@ impl LawSpec {
             "modified-trapezoid" => LawSpec::ModifiedTrapezoid { ramp: 0.125 },
             "modified-sine" => LawSpec::ModifiedSine,
             "piecewise" => LawSpec::Piecewise { segments: Vec::new() },
+            "polynomial" => LawSpec::Polynomial { segments: Vec::new() },
             other => {
                 return Err(LawError::UnknownLaw { name: other.into(), known: names() });
             }
@@ -130,6 +146,7 @@ impl LawSpec {
                     })?;
                 }
                 (LawSpec::Piecewise { segments }, "segments") => *segments = parse_segments(v, "segments")?,
+                (LawSpec::Polynomial { segments }, "segments") => *segments = parse_poly_segments(v, "segments")?,
                 (s, _) => {
                     let allowed = CATALOGUE.iter().find(|e| e.name == s.name()).map(|e| e.params).unwrap_or("");
                     return Err(LawError::UnknownParam {
@@ -158,24 +175,23 @@ impl LawSpec {
                 text: String::new(),
                 expected: "segments=LEN:SHAPE[:LEVEL…],… e.g. 0.5:constant:1,0.5:constant:-1".into(),
             }),
-            LawSpec::Piecewise { segments } => {
+            LawSpec::Piecewise { segments } => check_lengths(segments.iter().map(|s| s.length)),
+            LawSpec::Polynomial { segments } if segments.is_empty() => Err(LawError::Parse {
+                field: "segments".into(),
+                text: String::new(),
+                expected: "segments=LEN:c0[:c1…],… e.g. 0.5:1,0.5:-1".into(),
+            }),
+            LawSpec::Polynomial { segments } => {
                 for (i, seg) in segments.iter().enumerate() {
-                    LawError::check_range(&format!("segments[{i}].length"), seg.length, 0.0, 1.0, "")?;
-                    if seg.length <= 0.0 {
-                        return Err(LawError::out_of_open_range(
-                            format!("segments[{i}].length"),
-                            seg.length,
-                            0.0,
-                            1.0,
-                            "",
-                        ));
+                    if seg.accel.is_empty() || seg.accel.len() > crate::polynomial::MAX_ACCEL_DEGREE + 1 {
+                        return Err(LawError::Parse {
+                            field: format!("segments[{i}]"),
+                            text: format!("{} coefficients", seg.accel.len()),
+                            expected: "1 to 6 acceleration coefficients".into(),
+                        });
                     }
                 }
-                let sum: f64 = segments.iter().map(|s| s.length).sum();
-                if (sum - 1.0).abs() > 1e-9 {
-                    return Err(LawError::LengthsDoNotSumToOne { field: "segments".into(), sum });
-                }
-                Ok(())
+                check_lengths(segments.iter().map(|s| s.length))
             }
             _ => Ok(()),
         }
@@ -183,7 +199,7 @@ impl LawSpec {
 
     /// Whether the law is odd-symmetric about its middle, `s(1 − x) = 1 − s(x)`, by construction.
     pub fn is_symmetric(&self) -> bool {
-        !matches!(self, LawSpec::Piecewise { .. })
+        !matches!(self, LawSpec::Piecewise { .. } | LawSpec::Polynomial { .. })
     }
 
     /// Builds the law in closed form, normalised to `s(1) = 1` and at rest at both ends.
@@ -239,6 +255,26 @@ impl LawSpec {
                 let pieces: Vec<AccelPiece> = segments.iter().map(|s| s.shape.to_piece(s.length)).collect();
                 Law::from_accel_pieces(&pieces, rest, "segments")
             }
+            LawSpec::Polynomial { segments } => {
+                let pieces: Vec<AccelPiece> = segments.iter().map(|s| s.to_piece(s.length)).collect();
+                Law::from_accel_pieces(&pieces, rest, "segments")
+            }
         }
     }
+}
+
+/// Each relative length in (0, 1], and their sum 1 (±1e-9).
+fn check_lengths(lengths: impl Iterator<Item = f64>) -> Result<()> {
+    let mut sum = 0.0;
+    for (i, l) in lengths.enumerate() {
+        LawError::check_range(&format!("segments[{i}].length"), l, 0.0, 1.0, "")?;
+        if l <= 0.0 {
+            return Err(LawError::out_of_open_range(format!("segments[{i}].length"), l, 0.0, 1.0, ""));
+        }
+        sum += l;
+    }
+    if (sum - 1.0).abs() > 1e-9 {
+        return Err(LawError::LengthsDoNotSumToOne { field: "segments".into(), sum });
+    }
+    Ok(())
 }

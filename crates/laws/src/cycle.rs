@@ -60,22 +60,22 @@ pub struct SegmentSpec {
     /// dwell, rise or return.
     pub kind: SegmentKind,
     /// Start angle of the main shaft in degrees (defaults to the end of the previous segment, or 0).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub from_deg: Option<f64>,
     /// End angle in degrees (give this or `length_deg`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub to_deg: Option<f64>,
     /// Angular length in degrees (give this or `to_deg`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub length_deg: Option<f64>,
     /// Law name (rise and return; defaults to `cycloidal`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub law: Option<String>,
     /// Law parameters, e.g. `{ ramp = 0.1 }`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub params: BTreeMap<String, toml::Value>,
     /// Stroke in the cycle's unit (defaults to the cycle's `stroke`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke: Option<f64>,
 }
 
@@ -90,10 +90,10 @@ pub struct CycleSpec {
     #[serde(default)]
     pub unit: StrokeUnit,
     /// Default stroke of rises and returns in `unit`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke: Option<f64>,
     /// Main-shaft speed in rpm (default 300; the CLI's `--speed-rpm` overrides it).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speed_rpm: Option<f64>,
     /// The segments, in order.
     pub segment: Vec<SegmentSpec>,
@@ -101,6 +101,53 @@ pub struct CycleSpec {
 
 fn default_period() -> f64 {
     360.0
+}
+
+impl SegmentSpec {
+    /// A dwell of `length_deg` degrees.
+    pub fn dwell(length_deg: f64) -> Self {
+        Self {
+            kind: SegmentKind::Dwell,
+            from_deg: None,
+            to_deg: None,
+            length_deg: Some(length_deg),
+            law: None,
+            params: BTreeMap::new(),
+            stroke: None,
+        }
+    }
+
+    /// A rise or return of `length_deg` degrees by a catalogue law (its name and parameters are
+    /// written as the file holds them; the stroke is the cycle's).
+    pub fn moving(kind: SegmentKind, length_deg: f64, law: &LawSpec) -> Self {
+        let params = law.params().into_iter().map(|(k, v)| (k, param_value(&v))).collect();
+        Self { law: Some(law.name().to_string()), params, ..Self::dwell(length_deg) }.with_kind(kind)
+    }
+
+    fn with_kind(mut self, kind: SegmentKind) -> Self {
+        self.kind = kind;
+        self
+    }
+}
+
+/// A parameter as a TOML value: a number where the text is one, else the text.
+fn param_value(text: &str) -> toml::Value {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() => toml::Value::Float(x),
+        _ => toml::Value::String(text.to_string()),
+    }
+}
+
+impl CycleSpec {
+    /// The cycle file as TOML text, which [`Cycle::from_toml`] reads back to the same spec
+    /// (numbers in their shortest round-trip form, so a written law reads back bit for bit).
+    pub fn to_toml(&self) -> Result<String> {
+        toml::to_string(self).map_err(|e| LawError::Parse {
+            field: "cycle file".into(),
+            text: e.to_string(),
+            expected: "a cycle that TOML can hold".into(),
+        })
+    }
 }
 
 /// One segment of a checked cycle.
