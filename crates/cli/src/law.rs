@@ -146,6 +146,16 @@ fn list(a: ListArgs) -> Result<()> {
         "-",
         "-"
     )?;
+    outln!(
+        "{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  polynomial acceleration per segment [segments=LEN:c0[:c1…],…]",
+        "polynomial",
+        "-",
+        "-",
+        "-",
+        "-",
+        "-",
+        "-"
+    )?;
     outln!("C^k: continuity in a dwell-rise-dwell cycle (C1: s, v continuous; C2: also a; C3: also j).")?;
     Ok(())
 }
