@@ -84,6 +84,9 @@ pub struct LawArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Also write the frame's full cycle (rise, dwell, return, dwell over two picks) as a cycle file.
+    #[arg(long, value_name = "FILE.toml")]
+    emit_cycle: Option<PathBuf>,
 }
 
 /// Which experiment table.
@@ -229,6 +232,10 @@ pub struct BestArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Also write the chosen law's full frame cycle (rise, dwell, return, dwell over two picks) as a
+    /// cycle file.
+    #[arg(long, value_name = "FILE.toml")]
+    emit_cycle: Option<PathBuf>,
 }
 
 /// `shed window`.
@@ -343,6 +350,9 @@ fn law(a: LawArgs) -> Result<()> {
     }
     let cond = conditions(&a.physical, a.threshold.threshold)?;
     let c = evaluate(&law, &cond)?;
+    if let Some(path) = &a.emit_cycle {
+        emit_cycle(&law, &a.physical, path, &format!("loomkin shed law {name}"))?;
+    }
     if a.json {
         let mut v = criteria_json(&c, &cond);
         v["law"] = json!(name);
@@ -642,6 +652,9 @@ fn best(a: BestArgs) -> Result<()> {
         bail!("no law of the family '{}' gives a window of {w} deg at T = {t}", tpl.name());
     };
     let law = tpl.law(b.criteria.motion_deg, &b.lengths)?;
+    if let Some(path) = &a.emit_cycle {
+        emit_cycle(&law, &a.physical, path, &format!("loomkin shed best --window-deg {w} (family {})", tpl.name()))?;
+    }
     if a.json {
         let mut v = criteria_json(&b.criteria, &cond);
         v["required_window_deg"] = json!(w);
@@ -666,6 +679,14 @@ fn best(a: BestArgs) -> Result<()> {
     )?;
     outln!("  motion {:.3} deg, positive phase {}", b.criteria.motion_deg, law.positive_text())?;
     print_criteria(&b.criteria, &cond)?;
+    Ok(())
+}
+
+/// Writes the frame's full cycle to `path` (a write error is a run failure).
+fn emit_cycle(law: &ShedLaw, p: &Physical, path: &std::path::Path, source: &str) -> Result<()> {
+    let text = loomkin_shed::frame_cycle_toml(law, p.stroke_mm, Some(p.speed_rpm), source)?;
+    std::fs::write(path, text).map_err(|e| failure(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
+    eprintln!("wrote {}", path.display());
     Ok(())
 }
 

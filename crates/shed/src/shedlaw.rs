@@ -232,11 +232,19 @@ impl ShedLaw {
         }
     }
 
-    /// The acceleration pieces of the whole motion on `x ∈ [0, 1]` (zero-length segments dropped).
-    pub fn pieces(&self) -> Result<Vec<AccelPiece>> {
+    /// The segments of the whole motion on `x ∈ [0, 1]`: the positive phase with its lengths scaled
+    /// by `φ_пу/φ_дв`, then the negative phase (the mirror, or the given one with its levels scaled so
+    /// that the frame comes to rest) scaled by the rest; zero-length segments dropped. As a
+    /// `piecewise` law of the core these make exactly the law [`ShedLaw::build`] makes.
+    pub fn motion_segments(&self) -> Result<Vec<ShapeSegment>> {
         let p = self.positive_fraction();
-        let mut out: Vec<AccelPiece> =
-            self.positive.iter().filter(|s| s.length > 0.0).map(|s| s.shape.to_piece(s.length * p)).collect();
+        let scaled = |segs: &[ShapeSegment], f: f64| -> Vec<ShapeSegment> {
+            segs.iter()
+                .filter(|s| s.length > 0.0)
+                .map(|s| ShapeSegment { length: s.length * f, shape: s.shape })
+                .collect()
+        };
+        let mut out = scaled(&self.positive, p);
         let negative = match &self.negative {
             NegativePhase::Mirrored => mirror(&self.positive),
             NegativePhase::Given { segments, .. } => {
@@ -260,9 +268,13 @@ impl ShedLaw {
                 segments.iter().map(|s| ShapeSegment { length: s.length, shape: s.shape.scaled(k) }).collect()
             }
         };
-        let q = 1.0 - p;
-        out.extend(negative.iter().filter(|s| s.length > 0.0).map(|s| s.shape.to_piece(s.length * q)));
+        out.extend(scaled(&negative, 1.0 - p));
         Ok(out)
+    }
+
+    /// The acceleration pieces of the whole motion on `x ∈ [0, 1]` (zero-length segments dropped).
+    pub fn pieces(&self) -> Result<Vec<AccelPiece>> {
+        Ok(self.motion_segments()?.iter().map(|s| s.shape.to_piece(s.length)).collect())
     }
 
     /// Integrates the acceleration twice in closed form into a normalised rise (`s(0) = 0`,
