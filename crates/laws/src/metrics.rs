@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 /// Extrema are located per segment from the closed form: the derivative's sign changes are
 /// bracketed on a grid sized to the segment's degree and frequency and refined by Newton's method,
 /// and both one-sided limits at every joint are included. `ca_rms` is integrated in closed form
-/// per segment (see [`accel_square_integral`]).
+/// per segment (see `accel_square_integral`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Metrics {
     /// Cv = max v.

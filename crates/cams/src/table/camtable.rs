@@ -14,6 +14,12 @@ use serde::Serialize;
 pub const INTERPOLATION: &str = "quintic Hermite from (Y, V, A) at both ends of each interval (XYVA; \
 TwinCAT MOTIONFUNCTYPE_POLYNOM5_MM; CODESYS SMC_CAM_TYPE.XYVA)";
 
+/// A number with six significant digits (`3.46994e-6`), for the comment lines: stable against
+/// rounding-level changes of the root finder.
+fn sig6(x: f64) -> String {
+    if x == 0.0 { "0".into() } else { format!("{x:.5e}") }
+}
+
 /// A cam table of a motion: points with fixed decimals (see [`Decimals`]).
 ///
 /// ```
@@ -122,10 +128,10 @@ impl CamTable {
             interp,
             format!(
                 "re-interpolation error (exact, of the values as written): position {} {u} at X = {} deg, velocity {} {u}/deg, acceleration {} {u}/deg^2",
-                compact(e.max_position_error),
-                compact(e.max_position_error_at_deg),
-                compact(e.max_velocity_error),
-                compact(e.max_accel_error)
+                sig6(e.max_position_error),
+                super::decimals::fixed(e.max_position_error_at_deg, 4),
+                sig6(e.max_velocity_error),
+                sig6(e.max_accel_error)
             ),
             format!(
                 "decimals: X {}, Y {}, V {}, A {}, J {}{} (last digit at most 1e-6 of the column's peak)",
