@@ -682,12 +682,10 @@ fn best(a: BestArgs) -> Result<()> {
     Ok(())
 }
 
-/// Writes the frame's full cycle to `path` (a write error is a run failure).
+/// Writes the frame's full cycle to `path` (`-`: standard output).
 fn emit_cycle(law: &ShedLaw, p: &Physical, path: &std::path::Path, source: &str) -> Result<()> {
     let text = loomkin_shed::frame_cycle_toml(law, p.stroke_mm, Some(p.speed_rpm), source)?;
-    std::fs::write(path, text).map_err(|e| failure(anyhow::anyhow!("cannot write {}: {e}", path.display())))?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
+    crate::output::text_to(&path.display().to_string(), &text)
 }
 
 fn window(a: WindowArgs) -> Result<()> {
