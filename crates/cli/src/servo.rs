@@ -374,6 +374,8 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     let t0 = Instant::now();
     let r = loomkin_servo::optimize(&sl, &d, &opts)?;
     let elapsed = t0.elapsed().as_secs_f64();
+    // The elapsed time goes to stderr only: identical input gives byte-identical output.
+    eprintln!("loomkin: optimised in {elapsed:.3} s");
     let pts = r.law.points();
     if a.json {
         return output::json(&json!({
@@ -385,15 +387,13 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
             "def": format_points(pts),
             "end": r.law.end().name(),
             "evaluations": r.evaluations,
-            "elapsed_s": elapsed,
         }));
     }
     print_drive(&d)?;
     outln!(
-        "minimised the {} motor torque (worst over {} speed(s)) in {:.3} s, {} evaluations",
+        "minimised the {} motor torque (worst over {} speed(s)), {} evaluations",
         opts.objective.name(),
         a.speed_rpm.len(),
-        elapsed,
         r.evaluations
     )?;
     outln!(
