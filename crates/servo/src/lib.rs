@@ -47,7 +47,7 @@ pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
     read_json,
 };
-pub use optimize::{Objective, OptimizeOptions, OptimizeReport, optimize};
+pub use optimize::{Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
 pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
 pub use spline::{SplineEnd, SplineLaw, slope_at_middle};
 pub use torque::{DrivePoint, Phase, TorqueSummary, summaries, summary, torque_curve};

@@ -57,6 +57,34 @@ pub struct OptimizeOptions {
     pub max_gap_factor: f64,
     /// Seed of the pseudo-random starts (the result is deterministic).
     pub seed: u64,
+    /// Set from another thread to stop early (a client gone, a time budget spent): every later
+    /// evaluation counts as +∞, so each start ends at once. The caller checks
+    /// [`StopFlag::is_set`] to know that the result is not a finished optimisation.
+    #[serde(skip)]
+    pub stop: StopFlag,
+}
+
+/// A flag shared between an optimisation and whoever may stop it.
+#[derive(Debug, Clone, Default)]
+pub struct StopFlag(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl StopFlag {
+    /// Asks the optimisation to stop.
+    pub fn stop(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Whether a stop was asked for.
+    pub fn is_set(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl PartialEq for StopFlag {
+    /// Two flags are equal when they are the same flag.
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 impl Default for OptimizeOptions {
@@ -70,6 +98,7 @@ impl Default for OptimizeOptions {
             y_bounds: [0.0, 1.0],
             max_gap_factor: 3.0,
             seed: 0x5eed_1e55,
+            stop: StopFlag::default(),
         }
     }
 }
@@ -186,12 +215,13 @@ pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Res
         base,
     };
     let end = start.end();
-    let f = |z: &[f64]| match SplineLaw::new(&map.points(z), end) {
+    let value = |z: &[f64]| match SplineLaw::new(&map.points(z), end) {
         Ok(l) => objective_value(&l, &ms, opts.objective),
         Err(_) => f64::INFINITY,
     };
+    let f = |z: &[f64]| if opts.stop.is_set() { f64::INFINITY } else { value(z) };
     let z0 = map.start();
-    let f0 = f(&z0);
+    let f0 = value(&z0);
     // The starts are independent: they run in parallel, each with its own evaluation count, and
     // are reduced in start order afterwards, so the result is the same as a serial run's.
     let starts: Vec<Vec<f64>> = {

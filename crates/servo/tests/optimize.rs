@@ -55,3 +55,19 @@ fn bad_options_are_errors() {
     let neg = OptimizeOptions { speeds_rpm: vec![-5.0], ..OptimizeOptions::default() };
     assert!(optimize(&start, &d, &neg).unwrap_err().to_string().contains("speed_rpm"));
 }
+
+/// A stop flag set from another thread ends every start at once: the result is the starting law
+/// (nothing better was found) and far fewer evaluations ran than a full optimisation needs.
+#[test]
+fn a_stop_flag_ends_the_optimisation_early() {
+    let start = SplineLaw::default_law();
+    let d = Drive::needle_rack_default();
+    let opts = OptimizeOptions { speeds_rpm: vec![600.0], ..OptimizeOptions::default() };
+    let full = optimize(&start, &d, &opts).unwrap();
+    opts.stop.stop();
+    assert!(opts.stop.is_set() && opts.stop == opts.clone().stop);
+    let r = optimize(&start, &d, &opts).unwrap();
+    assert_eq!(r.objective_after_nm, r.objective_before_nm);
+    assert!((r.objective_before_nm - full.objective_before_nm).abs() < 1e-12);
+    assert!(full.objective_after_nm < r.objective_after_nm);
+}

@@ -79,6 +79,12 @@ pub enum ApiError {
         /// Explanation.
         message: String,
     },
+    /// Every slot for heavy computations is taken (503, with a `Retry-After` header).
+    #[error("body: the server is busy with other heavy computations; try again in {retry_after_s} s")]
+    Busy {
+        /// Seconds to wait before trying again.
+        retry_after_s: u64,
+    },
     /// The computation failed unexpectedly (500); the server keeps serving.
     #[error("internal error: {0}")]
     Internal(String),
@@ -131,6 +137,7 @@ impl ApiError {
             ApiError::NotFound { .. } => StatusCode::NOT_FOUND,
             ApiError::MethodNotAllowed { .. } => StatusCode::METHOD_NOT_ALLOWED,
             ApiError::Forbidden { .. } => StatusCode::FORBIDDEN,
+            ApiError::Busy { .. } => StatusCode::SERVICE_UNAVAILABLE,
             ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
@@ -144,7 +151,7 @@ impl ApiError {
             | ApiError::NotFound { field, .. }
             | ApiError::MethodNotAllowed { field, .. }
             | ApiError::Forbidden { field, .. } => field,
-            ApiError::TooLarge { .. } => "body",
+            ApiError::TooLarge { .. } | ApiError::Busy { .. } => "body",
             ApiError::Internal(_) => "",
         }
     }
@@ -159,7 +166,11 @@ struct ErrorBody<'a> {
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
         let body = ErrorBody { error: self.to_string(), field: self.field() };
-        (self.status(), Json(body)).into_response()
+        let mut res = (self.status(), Json(body)).into_response();
+        if let ApiError::Busy { retry_after_s } = self {
+            res.headers_mut().insert(axum::http::header::RETRY_AFTER, axum::http::HeaderValue::from(retry_after_s));
+        }
+        res
     }
 }
 

@@ -31,13 +31,36 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
 }
 
 /// Decodes JSON text, naming the path of the first bad value in the error.
+///
+/// The text must be one JSON object (`[]` or a bare number is not a request), with nothing but
+/// white space after it, and every key must be known at every depth (a misspelt key is refused
+/// with its path rather than silently ignored).
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
-    let de = &mut serde_json::Deserializer::from_slice(bytes);
-    serde_path_to_error::deserialize(de).map_err(|e| {
-        let path = e.path().to_string();
-        let field = if path.is_empty() || path == "." || path == "?" { "body".to_string() } else { path };
-        ApiError::BadJson { field, message: e.into_inner().to_string() }
-    })
+    let bad = |field: String, message: String| ApiError::BadJson { field, message };
+    if bytes.iter().find(|b| !b.is_ascii_whitespace()) != Some(&b'{') {
+        return Err(bad("body".into(), "the request body must be one JSON object {…}".into()));
+    }
+    let mut de = serde_json::Deserializer::from_slice(bytes);
+    let mut unknown: Option<String> = None;
+    let value = {
+        let mut note = |path: serde_ignored::Path<'_>| {
+            if unknown.is_none() {
+                unknown = Some(path.to_string());
+            }
+        };
+        let ignoring = serde_ignored::Deserializer::new(&mut de, &mut note);
+        serde_path_to_error::deserialize(ignoring).map_err(|e| {
+            let path = e.path().to_string();
+            let field = if path.is_empty() || path == "." || path == "?" { "body".to_string() } else { path };
+            bad(field, e.into_inner().to_string())
+        })?
+    };
+    de.end().map_err(|e| bad("body".into(), format!("data after the JSON object ({e})")))?;
+    if let Some(path) = unknown {
+        let key = path.rsplit('.').next().unwrap_or(&path).to_string();
+        return Err(bad(path, format!("unknown field `{key}`")));
+    }
+    Ok(value)
 }
 
 /// Decodes TOML text, naming the path of the first bad value in the error.
@@ -97,6 +120,13 @@ mod tests {
         assert_eq!(e.field(), "drive.stroke_m");
         let e = parse_json::<Outer>(b"{not json").unwrap_err();
         assert_eq!(e.field(), "body");
+        // Trailing data, a non-object body and unknown keys at any depth are refused.
+        let e = parse_json::<Outer>(br#"{"drive": {"stroke_m": 1}} this is not json"#).unwrap_err();
+        assert!(e.field() == "body" && e.to_string().contains("after the JSON object"), "{e}");
+        assert!(parse_json::<Outer>(b"  {\"drive\": {\"stroke_m\": 1}}\n ").is_ok());
+        assert_eq!(parse_json::<Outer>(b"[]").unwrap_err().field(), "body");
+        let e = parse_json::<Outer>(br#"{"drive": {"stroke_m": 1}, "extra": 2}"#).unwrap_err();
+        assert_eq!((e.field(), e.to_string().as_str()), ("extra", "extra: unknown field `extra`"));
     }
 
     #[test]

@@ -39,6 +39,7 @@ mod error;
 mod json;
 mod limits;
 mod picking_api;
+mod pool;
 mod series;
 mod server;
 mod servo_api;
@@ -59,8 +60,9 @@ pub use limits::{
 pub use picking_api::{
     PickingCurves, PickingRequest, PickingResponse, SettingInfo, SettingsInfo, settings_info, simulate as simulate_pick,
 };
+pub use pool::{HEAVY_BUDGET, RETRY_AFTER_S, heavy_slots};
 pub use series::{LawSamples, finite};
-pub use server::{Bound, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
+pub use server::{Bound, HEADER_READ_TIMEOUT, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
 pub use servo_api::{
     DesignResponse, EvaluateRequest, EvaluateResponse, ExportFormat, ExportRequest, ExportResponse, LawReport,
     LoadRequest, OptimizeRequest, OptimizeResponse, SaveRequest, SpeedReport, SplineSamples, TorquePair, evaluate,

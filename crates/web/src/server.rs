@@ -101,12 +101,11 @@ async fn guard(req: Request, next: Next) -> Response {
     res
 }
 
-/// Runs a computation on the blocking pool: CPU work does not stall the listener, and a panic
-/// (a bug, never expected) becomes a 500 answer instead of a dropped connection.
+/// Runs a short computation in the light pool ([`crate::pool`]).
 pub(crate) async fn blocking<T: Send + 'static>(
     f: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
-    tokio::task::spawn_blocking(f).await.map_err(|e| ApiError::Internal(format!("the computation failed: {e}")))?
+    crate::pool::light(f).await
 }
 
 /// `GET /api/info`: version, the views this build offers and the request limits.
@@ -157,18 +156,22 @@ async fn info() -> ApiJson<Info> {
     ApiJson(info_value())
 }
 
+/// Longest time a client may take to send a request head (request line and headers).
+pub const HEADER_READ_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// A listener bound to 127.0.0.1, not yet serving.
 #[derive(Debug)]
 pub struct Bound {
     listener: TcpListener,
     addr: SocketAddr,
+    header_timeout: std::time::Duration,
 }
 
 /// Binds 127.0.0.1:`port` (0 picks a free port). Never binds another interface.
 pub async fn bind(port: u16) -> std::io::Result<Bound> {
     let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).await?;
     let addr = listener.local_addr()?;
-    Ok(Bound { listener, addr })
+    Ok(Bound { listener, addr, header_timeout: HEADER_READ_TIMEOUT })
 }
 
 impl Bound {
@@ -177,14 +180,44 @@ impl Bound {
         self.addr
     }
 
+    /// The same listener with another header read timeout (default [`HEADER_READ_TIMEOUT`]).
+    pub fn with_header_timeout(mut self, timeout: std::time::Duration) -> Self {
+        self.header_timeout = timeout;
+        self
+    }
+
     /// The page's URL, `http://127.0.0.1:PORT/`.
     pub fn url(&self) -> String {
         format!("http://{}/", self.addr)
     }
 
-    /// Serves until `shutdown` completes.
+    /// Serves until `shutdown` completes. Each connection is HTTP/1.1 with a header read timeout
+    /// (default [`HEADER_READ_TIMEOUT`]): a client that does not finish sending its request head in that
+    /// time is disconnected, so half-sent requests are not held open.
     pub async fn run_until(self, shutdown: impl Future<Output = ()> + Send + 'static) -> std::io::Result<()> {
-        axum::serve(self.listener, router()).with_graceful_shutdown(shutdown).await
+        let (app, header_timeout) = (router(), self.header_timeout);
+        let mut shutdown = std::pin::pin!(shutdown);
+        loop {
+            let (stream, _) = tokio::select! {
+                accepted = self.listener.accept() => match accepted {
+                    Ok(pair) => pair,
+                    // A failed accept (out of file descriptors, a reset) ends that connection only.
+                    Err(_) => {
+                        tokio::time::sleep(std::time::Duration::from_millis(10)).await;
+                        continue;
+                    }
+                },
+                () = &mut shutdown => return Ok(()),
+            };
+            let service = hyper_util::service::TowerToHyperService::new(app.clone());
+            tokio::spawn(async move {
+                let _ = hyper::server::conn::http1::Builder::new()
+                    .timer(hyper_util::rt::TokioTimer::new())
+                    .header_read_timeout(header_timeout)
+                    .serve_connection(hyper_util::rt::TokioIo::new(stream), service)
+                    .await;
+            });
+        }
     }
 
     /// Serves until Ctrl-C.

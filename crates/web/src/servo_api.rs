@@ -200,12 +200,21 @@ pub struct OptimizeResponse {
 
 /// Moves the free points to lower the worst peak (or RMS) torque over the design's speeds.
 pub fn optimize_design(req: &OptimizeRequest) -> Result<OptimizeResponse, ApiError> {
+    optimize_until(req, &loomkin_servo::StopFlag::default())
+}
+
+/// [`optimize_design`] that stops early when `stop` is set (the caller then discards the result).
+pub(crate) fn optimize_until(
+    req: &OptimizeRequest,
+    stop: &loomkin_servo::StopFlag,
+) -> Result<OptimizeResponse, ApiError> {
     let t0 = Instant::now();
     let spline = req.design.spline().map_err(|e| e.within("design"))?;
     let opts = OptimizeOptions {
         objective: req.objective,
         speeds_rpm: req.design.speeds_rpm.clone(),
         move_x: req.move_x,
+        stop: stop.clone(),
         ..OptimizeOptions::default()
     };
     let r = optimize(&spline, &req.design.drive, &opts).map_err(|e| servo_error(e).within("design"))?;
@@ -360,11 +369,11 @@ async fn post_evaluate(ApiJson(req): ApiJson<EvaluateRequest>) -> Result<ApiJson
 }
 
 async fn post_optimize(ApiJson(req): ApiJson<OptimizeRequest>) -> Result<ApiJson<OptimizeResponse>, ApiError> {
-    crate::server::blocking(move || optimize_design(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| optimize_until(&req, stop)).await.map(ApiJson)
 }
 
 async fn post_export(ApiJson(req): ApiJson<ExportRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {
-    crate::server::blocking(move || export(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |_| export(&req)).await.map(ApiJson)
 }
 
 async fn post_save(ApiJson(req): ApiJson<SaveRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {

@@ -244,7 +244,7 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
 }
 
 async fn post_pareto(ApiJson(req): ApiJson<ParetoRequest>) -> Result<ApiJson<ParetoResponse>, ApiError> {
-    crate::server::blocking(move || shed_pareto(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |_| shed_pareto(&req)).await.map(ApiJson)
 }
 
 async fn post_law(ApiJson(req): ApiJson<ShedLawRequest>) -> Result<ApiJson<ShedLawResponse>, ApiError> {
