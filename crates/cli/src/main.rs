@@ -59,6 +59,21 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     }
 }
 
+/// Longest error message printed (characters): a message that quotes a huge input (a TOML key of
+/// a megabyte, an argument of the same size) is cut in the middle, so the line stays readable.
+const MAX_MESSAGE_CHARS: usize = 600;
+
+/// `text` cut to [`MAX_MESSAGE_CHARS`], keeping its start and end around `…`.
+fn cut(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= MAX_MESSAGE_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_MESSAGE_CHARS / 2).collect();
+    let tail: String = text.chars().skip(n - MAX_MESSAGE_CHARS / 2 + 40).collect();
+    format!("{head} … ({} characters cut) … {tail}", n - MAX_MESSAGE_CHARS + 40)
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -74,7 +89,7 @@ fn main() -> ExitCode {
                 .filter(|l| !l.is_empty())
                 .collect();
             let line = message.join(" ");
-            output::note(format_args!("loomkin: error: {} (see --help)", line.trim_start_matches("error: ")));
+            output::note(format_args!("loomkin: error: {} (see --help)", cut(line.trim_start_matches("error: "))));
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -89,7 +104,7 @@ fn main() -> ExitCode {
         Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             // One line: the error and its causes joined by ": ".
-            output::note(format_args!("loomkin: error: {}", format!("{e:#}").replace('\n', " ")));
+            output::note(format_args!("loomkin: error: {}", cut(&format!("{e:#}").replace('\n', " "))));
             ExitCode::from(util::exit_code(&e))
         }
     }

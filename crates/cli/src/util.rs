@@ -43,7 +43,22 @@ pub fn parse_key_value(s: &str) -> Result<(String, String), String> {
     Ok((k.trim().to_string(), v.trim().to_string()))
 }
 
-/// Reads a whole input file, naming it in the error (a missing input is a usage error: exit 2).
+/// Largest input file read (16 MiB): every input of loomkin (a cycle, a drive, a mechanism, a
+/// point table, a shedding spec) is a few KiB; a larger one (or `/dev/zero`) is refused before it
+/// fills the memory.
+pub const MAX_INPUT_BYTES: u64 = 16 * 1024 * 1024;
+
+/// Reads a whole input file of at most [`MAX_INPUT_BYTES`], naming it in the error (a missing,
+/// unreadable, oversized or non-UTF-8 input is a usage error: exit 2).
 pub fn read_input(path: &std::path::Path) -> anyhow::Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+    use std::io::Read;
+    let name = path.display();
+    let file = std::fs::File::open(path).with_context(|| format!("cannot read {name}"))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes).with_context(|| format!("cannot read {name}"))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        anyhow::bail!("cannot read {name}: larger than the input limit of 16 MiB");
+    }
+    String::from_utf8(bytes)
+        .map_err(|e| anyhow::anyhow!("cannot read {name}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
 }
