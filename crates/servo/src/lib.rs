@@ -27,7 +27,10 @@
 //! ```
 #![deny(missing_docs)]
 
+mod axis;
+mod axis_check;
 mod camtable;
+mod cycle_file;
 mod drive;
 mod error;
 mod export;
@@ -37,10 +40,13 @@ mod poly;
 mod spline;
 mod torque;
 
+pub use axis::{Axis, Limits, Load, Motor};
+pub use axis_check::{AxisReport, Check, OperatingPoint, check_axis, envelope_lines, operating_points};
 pub use camtable::{
     CamPoint, CamTable, Interpolation, InterpolationError, Poly5Segment, poly5_csv, poly5_segments, quintic_hermite,
     slave_at,
 };
+pub use cycle_file::spline_cycle;
 pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, DRIVE_KEYS, Drive};
 pub use error::{Result, ServoError};
 pub use export::{

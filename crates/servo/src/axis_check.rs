@@ -1,0 +1,344 @@
+//! The check of a servo axis moving a cycle: peak and RMS torque, peak speed, the torque–speed
+//! operating points against the motor envelope, the inertia ratio, pass or fail with margins.
+
+use crate::{Axis, Result, ServoError};
+use loomkin_laws::{Cycle, Segment};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// One check: a value against its limit; the margin is `(limit − value)/limit` (negative: fails).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Check {
+    /// `peak_torque`, `rms_torque`, `peak_speed`, `torque_speed_envelope` or `inertia_ratio`.
+    pub name: &'static str,
+    /// The value over the cycle.
+    pub value: f64,
+    /// The limit.
+    pub limit: f64,
+    /// Unit of value and limit (`N·m`, `rpm`, or empty).
+    pub unit: &'static str,
+    /// `(limit − value)/limit`.
+    pub margin: f64,
+    /// `value ≤ limit`.
+    pub pass: bool,
+}
+
+impl Check {
+    fn new(name: &'static str, value: f64, limit: f64, unit: &'static str) -> Self {
+        Self { name, value, limit, unit, margin: (limit - value) / limit, pass: value <= limit }
+    }
+}
+
+/// The result of [`check_axis`]. Extremes are located exactly on the closed form (roots of the
+/// derivative bracketed per law segment and refined), not sampled.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AxisReport {
+    /// Main-shaft speed (rpm).
+    pub speed_rpm: f64,
+    /// Duration of one cycle (s).
+    pub cycle_time_s: f64,
+    /// Largest |motor torque| (N·m).
+    pub peak_torque_nm: f64,
+    /// Main-shaft angle of the peak torque (deg).
+    pub peak_torque_at_deg: f64,
+    /// RMS motor torque over the cycle (N·m).
+    pub rms_torque_nm: f64,
+    /// Largest |motor speed| (rpm).
+    pub peak_motor_speed_rpm: f64,
+    /// Main-shaft angle of the peak motor speed (deg).
+    pub peak_motor_speed_at_deg: f64,
+    /// Largest ratio |T| / peak-torque line at the speed of that instant.
+    pub envelope_ratio: f64,
+    /// Main-shaft angle where it occurs (deg).
+    pub envelope_ratio_at_deg: f64,
+    /// Load inertia reflected to the motor over the rotor inertia.
+    pub inertia_ratio: f64,
+    /// The checks.
+    pub checks: Vec<Check>,
+    /// Every check passes.
+    pub pass: bool,
+}
+
+/// One operating point of the motor over the cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OperatingPoint {
+    /// Main-shaft angle (deg).
+    pub angle_deg: f64,
+    /// Motor speed (rpm).
+    pub motor_speed_rpm: f64,
+    /// Motor torque (N·m).
+    pub torque_nm: f64,
+}
+
+/// `T = α s'' + β s' + γ s + ε + μ sgn(h s')` and `n = κ s'` on one moving cycle segment, with the
+/// law's `s(x)`, `x` the fraction of the segment.
+#[derive(Debug, Clone, Copy)]
+struct Model {
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    eps: f64,
+    mu: f64,
+    /// Sign of the stroke.
+    sign: f64,
+    kappa: f64,
+}
+
+impl Model {
+    fn dwell(axis: &Axis, y: f64) -> Self {
+        let k = axis.motor_rad_per_unit();
+        let ke = k * axis.load.efficiency;
+        Self {
+            alpha: 0.0,
+            beta: 0.0,
+            gamma: 0.0,
+            eps: (axis.load.spring_n_m * y + axis.load.constant_force_n) / ke,
+            mu: 0.0,
+            sign: 0.0,
+            kappa: 0.0,
+        }
+    }
+
+    fn moving(axis: &Axis, base: f64, h: f64, len_rad: f64, omega: f64) -> Self {
+        let k = axis.motor_rad_per_unit();
+        let ke = k * axis.load.efficiency;
+        let r = omega / len_rad; // dx/dt
+        let a_eff = (axis.motor.rotor_inertia_kg_m2 + axis.load.extra_inertia_kg_m2) * k + axis.load_mass() / ke;
+        let l = &axis.load;
+        Self {
+            alpha: a_eff * h * r * r,
+            beta: l.viscous_n_s_m * h * r / ke,
+            gamma: l.spring_n_m * h / ke,
+            eps: (l.spring_n_m * base + l.constant_force_n) / ke,
+            mu: l.friction_n / ke,
+            sign: h.signum(),
+            kappa: k * h * r * 60.0 / (2.0 * PI),
+        }
+    }
+
+    /// (T, T', T'') and (n, n', n'') from the law's derivatives `d` (orders 0…5) and the sign of
+    /// the velocity on the piece.
+    fn eval(&self, d: &[f64; 6], vsign: f64) -> ([f64; 3], [f64; 3]) {
+        let t = [
+            self.alpha * d[2] + self.beta * d[1] + self.gamma * d[0] + self.eps + self.mu * vsign,
+            self.alpha * d[3] + self.beta * d[2] + self.gamma * d[1],
+            self.alpha * d[4] + self.beta * d[3] + self.gamma * d[2],
+        ];
+        let n = [self.kappa * d[1], self.kappa * d[2], self.kappa * d[3]];
+        (t, n)
+    }
+}
+
+/// Checks `axis` moving `cycle` at `speed_rpm` (main shaft).
+pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
+    axis.validate(cycle.unit)?;
+    let speed_rpm = ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "rpm")?;
+    let omega = speed_rpm * 2.0 * PI / 60.0;
+    let cycle_time_s = cycle.period_rad / omega;
+    let mut pk_t = (0.0f64, 0.0f64);
+    let mut pk_n = (0.0f64, 0.0f64);
+    let mut env = (0.0f64, 0.0f64);
+    let mut int_t2 = 0.0;
+    let ratio = |t: f64, n: f64| {
+        let e = axis.peak_envelope(n).map_or_else(|| line_beyond(axis, n), |(e, _)| e);
+        t.abs() / e.max(1e-12 * axis.motor.peak_torque_nm)
+    };
+    for seg in &cycle.segments {
+        let start_deg = seg.start_rad.to_degrees();
+        let len_deg = seg.length_rad.to_degrees();
+        let Some((_, law)) = &seg.law else {
+            let m = Model::dwell(axis, seg.base_si);
+            let t = m.eps;
+            take(&mut pk_t, t.abs(), start_deg);
+            take(&mut env, ratio(t, 0.0), start_deg);
+            int_t2 += t * t * seg.length_rad / omega;
+            continue;
+        };
+        let m = Model::moving(axis, seg.base_si, seg.stroke_si, seg.length_rad, omega);
+        for lseg in law.segments() {
+            // Split the segment where the velocity changes sign (the Coulomb friction flips there).
+            let mut cuts = vec![0.0];
+            cuts.extend(lseg.derivative_roots(1).into_iter().filter(|&t| t > 0.0 && t < lseg.width()));
+            cuts.push(lseg.width());
+            for w in cuts.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                if b <= a {
+                    continue;
+                }
+                let v_mid = lseg.deriv_local(1, 0.5 * (a + b));
+                let vsign = if v_mid == 0.0 { 0.0 } else { m.sign * v_mid.signum() };
+                let f = |t: f64| m.eval(&lseg.derivs_local(t), vsign);
+                let deg = |t: f64| start_deg + len_deg * (lseg.x0() + t);
+                let n_br = brackets(lseg, a, b);
+                let (v, at) = abs_max(a, b, n_br, |t| {
+                    let (tq, _) = f(t);
+                    (tq[0], tq[1], tq[2])
+                });
+                take(&mut pk_t, v, deg(at));
+                let (v, at) = abs_max(a, b, n_br, |t| {
+                    let (_, n) = f(t);
+                    (n[0], n[1], n[2])
+                });
+                take(&mut pk_n, v, deg(at));
+                let (v, at) = max_by(a, b, n_br, |t| {
+                    let (tq, n) = f(t);
+                    let (e, de) = axis.peak_envelope(n[0]).unwrap_or((line_beyond(axis, n[0]), 0.0));
+                    let e = e.max(1e-12 * axis.motor.peak_torque_nm);
+                    let q = tq[0].abs() / e;
+                    let dq = (tq[0].signum() * tq[1] * e - tq[0].abs() * de * n[0].signum() * n[1]) / (e * e);
+                    (q, dq)
+                });
+                take(&mut env, v, deg(at));
+                int_t2 += integral_t2(lseg, a, b, |t| f(t).0[0]) * seg.length_rad / omega;
+            }
+        }
+    }
+    let rms = (int_t2 / cycle_time_s).sqrt();
+    let mo = &axis.motor;
+    let inertia_ratio = axis.inertia_ratio();
+    let checks = vec![
+        Check::new("peak_torque", pk_t.0, mo.peak_torque_nm, "N·m"),
+        Check::new("rms_torque", rms, mo.rated_torque_nm, "N·m"),
+        Check::new("peak_speed", pk_n.0, mo.max_speed_rpm, "rpm"),
+        Check::new("torque_speed_envelope", env.0, 1.0, ""),
+        Check::new("inertia_ratio", inertia_ratio, axis.limits.max_inertia_ratio, ""),
+    ];
+    let pass = checks.iter().all(|c| c.pass);
+    Ok(AxisReport {
+        speed_rpm,
+        cycle_time_s,
+        peak_torque_nm: pk_t.0,
+        peak_torque_at_deg: pk_t.1,
+        rms_torque_nm: rms,
+        peak_motor_speed_rpm: pk_n.0,
+        peak_motor_speed_at_deg: pk_n.1,
+        envelope_ratio: env.0,
+        envelope_ratio_at_deg: env.1,
+        inertia_ratio,
+        checks,
+        pass,
+    })
+}
+
+/// `n ≥ 2` operating points over the cycle, both ends included (the end as the left limit).
+pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) -> Result<Vec<OperatingPoint>> {
+    axis.validate(cycle.unit)?;
+    let speed_rpm = ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "rpm")?;
+    let k = axis.motor_rad_per_unit();
+    let ke = k * axis.load.efficiency;
+    let l = &axis.load;
+    let a_eff = (axis.motor.rotor_inertia_kg_m2 + l.extra_inertia_kg_m2) * k + axis.load_mass() / ke;
+    Ok(cycle
+        .sample(n.max(2), speed_rpm)
+        .into_iter()
+        .map(|p| {
+            let q = p.kin;
+            let fric = if q.v == 0.0 { 0.0 } else { l.friction_n * q.v.signum() };
+            let t = a_eff * q.a + (l.viscous_n_s_m * q.v + fric + l.spring_n_m * q.s + l.constant_force_n) / ke;
+            OperatingPoint { angle_deg: p.angle_deg, motor_speed_rpm: k * q.v * 60.0 / (2.0 * PI), torque_nm: t }
+        })
+        .collect())
+}
+
+/// The motor's envelope for a plot: the continuous (S1) corner `[(0, T_r), (n_r, T_r)]` and the
+/// peak line `[(0, T_p), (n_r, T_p), (n_max, T_max)]`, speeds in rpm, torques in N·m.
+pub fn envelope_lines(axis: &Axis) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let m = &axis.motor;
+    let t_max = m.torque_at_max_speed_nm.unwrap_or(m.rated_torque_nm);
+    (
+        vec![(0.0, m.rated_torque_nm), (m.rated_speed_rpm, m.rated_torque_nm)],
+        vec![(0.0, m.peak_torque_nm), (m.rated_speed_rpm, m.peak_torque_nm), (m.max_speed_rpm, t_max)],
+    )
+}
+
+/// The peak line continued beyond the maximum speed (for the ratio only; the speed check fails
+/// there anyway), never below 1e-12 of the peak torque.
+fn line_beyond(axis: &Axis, n: f64) -> f64 {
+    let m = &axis.motor;
+    let t_max = m.torque_at_max_speed_nm.unwrap_or(m.rated_torque_nm);
+    let span = (m.max_speed_rpm - m.rated_speed_rpm).max(1e-12);
+    let slope = (t_max - m.peak_torque_nm) / span;
+    (t_max + slope * (n.abs() - m.max_speed_rpm)).max(1e-12 * m.peak_torque_nm)
+}
+
+fn take(best: &mut (f64, f64), v: f64, at: f64) {
+    if v > best.0 {
+        *best = (v, at);
+    }
+}
+
+/// Brackets for a function of a law segment's derivatives on `[a, b]`: twice the degree plus
+/// three per half-period of its sine, plus 4.
+fn brackets(seg: &Segment, a: f64, b: f64) -> usize {
+    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * (b - a) / PI).ceil());
+    2 * (seg.degree() + 1) + 3 * osc as usize + 4
+}
+
+/// `∫ₐᵇ g(t)² dt` by 8-point Gauss–Legendre on `1 + 2·(half-periods)` panels (exact for the
+/// polynomial segments, whose torque² has degree ≤ 14).
+fn integral_t2(seg: &Segment, a: f64, b: f64, g: impl Fn(f64) -> f64) -> f64 {
+    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * (b - a) / PI).ceil()) as usize;
+    let panels = 1 + 2 * osc;
+    let h = (b - a) / panels as f64;
+    let rule = loomkin_laws::gauss_legendre(8);
+    let mut acc = 0.0;
+    for i in 0..panels {
+        let mid = a + (i as f64 + 0.5) * h;
+        for &(x, w) in &rule {
+            let v = g(mid + 0.5 * h * x);
+            acc += 0.5 * h * w * v * v;
+        }
+    }
+    acc
+}
+
+/// Largest `|g|` on `[a, b]` and where, for `f(t) = (g, g', g'')`: the ends and every root of `g'`
+/// bracketed on `n` sub-intervals and refined by safeguarded Newton.
+fn abs_max(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64, f64) {
+    let (g0, mut d0, _) = f(a);
+    let mut best = (g0.abs(), a);
+    let h = (b - a) / n as f64;
+    let mut x0 = a;
+    for i in 1..=n {
+        let x1 = if i == n { b } else { a + i as f64 * h };
+        let (g1, d1, _) = f(x1);
+        take(&mut best, g1.abs(), x1);
+        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
+            let r = loomkin_laws::refine_root(x0, x1, d0 < 0.0, |x| {
+                let (_, d, dd) = f(x);
+                (d, dd)
+            });
+            take(&mut best, f(r).0.abs(), r);
+        }
+        (x0, d0) = (x1, d1);
+    }
+    best
+}
+
+/// Largest `q` on `[a, b]` and where, for `f(t) = (q, q')` (q' may jump): the ends and every sign
+/// change of `q'` bracketed on `n` sub-intervals and located by bisection to rounding.
+fn max_by(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
+    let (q0, mut d0) = f(a);
+    let mut best = (q0, a);
+    let h = (b - a) / n as f64;
+    let mut x0 = a;
+    for i in 1..=n {
+        let x1 = if i == n { b } else { a + i as f64 * h };
+        let (q1, d1) = f(x1);
+        take(&mut best, q1, x1);
+        if d0 > 0.0 && d1 < 0.0 {
+            let (mut lo, mut hi) = (x0, x1);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if f(mid).1 > 0.0 { lo = mid } else { hi = mid }
+            }
+            let r = 0.5 * (lo + hi);
+            take(&mut best, f(r).0, r);
+        }
+        (x0, d0) = (x1, d1);
+    }
+    best
+}

@@ -1,0 +1,114 @@
+//! The servo-axis check against independent routes: the needle-rack drive's torque summary, dense
+//! sampling of the operating points, and a trapezoid RMS.
+
+use loomkin_laws::{Cycle, StrokeUnit};
+use loomkin_servo::{Axis, Drive, Motor, SplineLaw, check_axis, operating_points, spline_cycle, summary};
+
+const AXIS: &str = include_str!("../../../examples/servo-axis.toml");
+const CYCLE: &str = include_str!("../../../examples/needle-rack-cycle.toml");
+
+fn motor() -> Motor {
+    Motor {
+        rated_torque_nm: 3.2,
+        peak_torque_nm: 9.6,
+        rated_speed_rpm: 3000.0,
+        max_speed_rpm: 4500.0,
+        rotor_inertia_kg_m2: 1e-4,
+        torque_at_max_speed_nm: None,
+    }
+}
+
+/// Peak and RMS of the axis check agree with the drive's own torque summary (a separate closed
+/// form) when the axis is the drive and the cycle is the spline law on the drive's turn.
+#[test]
+fn the_needle_rack_drive_as_an_axis_gives_the_drive_torques() {
+    let law = SplineLaw::default_law();
+    let drive = Drive::needle_rack_default();
+    let axis = Axis::from_drive(&drive, motor());
+    let text = spline_cycle(&law, &drive, None).unwrap().to_toml().unwrap();
+    let cycle = Cycle::from_toml(&text).unwrap();
+    for rpm in [300.0, 600.0, 750.0] {
+        let r = check_axis(&axis, &cycle, rpm).unwrap();
+        let s = summary(law.law(), &drive, rpm).unwrap();
+        assert!((r.peak_torque_nm - s.peak_torque_nm).abs() < 1e-9 * s.peak_torque_nm, "{r:?} {s:?}");
+        assert!((r.rms_torque_nm - s.rms_torque_nm).abs() < 1e-9 * s.rms_torque_nm, "{r:?} {s:?}");
+        assert!((r.peak_motor_speed_rpm - s.peak_motor_speed_rpm).abs() < 1e-9 * s.peak_motor_speed_rpm);
+    }
+}
+
+/// The located peaks bound dense samples and are attained; the RMS matches a fine trapezoid rule.
+#[test]
+fn extremes_bound_dense_samples_and_rms_matches_quadrature() {
+    let cycle = Cycle::from_toml(CYCLE).unwrap();
+    let axis = Axis::from_toml(AXIS, StrokeUnit::Mm).unwrap();
+    let r = check_axis(&axis, &cycle, 600.0).unwrap();
+    let pts = operating_points(&axis, &cycle, 600.0, 200_001).unwrap();
+    let pk_t = pts.iter().map(|p| p.torque_nm.abs()).fold(0.0, f64::max);
+    let pk_n = pts.iter().map(|p| p.motor_speed_rpm.abs()).fold(0.0, f64::max);
+    assert!(pk_t <= r.peak_torque_nm * (1.0 + 1e-9) && pk_t >= r.peak_torque_nm * (1.0 - 1e-6), "{pk_t} {r:?}");
+    assert!(pk_n <= r.peak_motor_speed_rpm * (1.0 + 1e-9) && pk_n >= r.peak_motor_speed_rpm * (1.0 - 1e-6));
+    // Trapezoid rule on the samples (the friction jumps only at velocity zeros, where it is bounded).
+    let dt = r.cycle_time_s / (pts.len() - 1) as f64;
+    let int: f64 = pts.windows(2).map(|w| 0.5 * (w[0].torque_nm.powi(2) + w[1].torque_nm.powi(2)) * dt).sum();
+    let rms = (int / r.cycle_time_s).sqrt();
+    assert!((rms - r.rms_torque_nm).abs() < 1e-6 * r.rms_torque_nm, "{rms} vs {}", r.rms_torque_nm);
+    // The envelope ratio bounds the samples' ratio.
+    let env = pts
+        .iter()
+        .map(|p| p.torque_nm.abs() / axis.peak_envelope(p.motor_speed_rpm).map_or(f64::INFINITY, |e| e.0))
+        .fold(0.0, f64::max);
+    assert!(env <= r.envelope_ratio * (1.0 + 1e-9) && env >= r.envelope_ratio * (1.0 - 1e-6), "{env} {r:?}");
+}
+
+#[test]
+fn checks_name_their_margins_and_fail_where_they_should() {
+    let cycle = Cycle::from_toml(CYCLE).unwrap();
+    let axis = Axis::from_toml(AXIS, StrokeUnit::Mm).unwrap();
+    let r = check_axis(&axis, &cycle, 600.0).unwrap();
+    let names: Vec<&str> = r.checks.iter().map(|c| c.name).collect();
+    assert_eq!(names, ["peak_torque", "rms_torque", "peak_speed", "torque_speed_envelope", "inertia_ratio"]);
+    for c in &r.checks {
+        assert!((c.margin - (c.limit - c.value) / c.limit).abs() < 1e-15 && c.pass == (c.value <= c.limit));
+    }
+    // Inertia ratio: 0.45 kg at 157.08 mm/rev over 0.9e-4 kg·m².
+    let k = 2.0 * std::f64::consts::PI / 0.15708;
+    assert!((r.inertia_ratio - 0.45 / (k * k) / 0.9e-4).abs() < 1e-12);
+    // Twice the speed needs four times the inertia torque: the peak torque fails.
+    let fast = check_axis(&axis, &cycle, 1200.0).unwrap();
+    assert!(!fast.pass && !fast.checks[0].pass && fast.checks[0].margin < 0.0, "{fast:?}");
+}
+
+#[test]
+fn a_swinging_axis_reads_inertia_and_gear_ratio() {
+    let text = "[motor]\nrated_torque_nm = 2\npeak_torque_nm = 6\nrated_speed_rpm = 3000\nmax_speed_rpm = 3000\n\
+                rotor_inertia_kg_m2 = 2e-4\n[load]\nload_inertia_kg_m2 = 0.05\ngear_ratio = 20\n";
+    let axis = Axis::from_toml(text, StrokeUnit::Deg).unwrap();
+    assert!((axis.inertia_ratio() - 0.05 / 400.0 / 2e-4).abs() < 1e-12);
+    let cycle = Cycle::from_toml(
+        "unit = \"deg\"\nstroke = 30\n[[segment]]\nkind = \"rise\"\nlength_deg = 120\nlaw = \"cycloidal\"\n\
+         [[segment]]\nkind = \"dwell\"\nlength_deg = 60\n[[segment]]\nkind = \"return\"\nlength_deg = 120\n\
+         law = \"cycloidal\"\n[[segment]]\nkind = \"dwell\"\nlength_deg = 60\n",
+    )
+    .unwrap();
+    let r = check_axis(&axis, &cycle, 100.0).unwrap();
+    // Pure inertia: T = (J_m k + J_L/k)·φ̈, φ̈ peak = H·2π·(ω/φ_m)² for the cycloid.
+    let omega = 100.0 * 2.0 * std::f64::consts::PI / 60.0;
+    let h = 30f64.to_radians();
+    let acc = h * 2.0 * std::f64::consts::PI * (omega / 120f64.to_radians()).powi(2);
+    let want = (2e-4 * 20.0 + 0.05 / 20.0) * acc;
+    assert!((r.peak_torque_nm - want).abs() < 1e-9 * want, "{} vs {want}", r.peak_torque_nm);
+    // A swinging axis file with a translating load is refused, naming the key.
+    let e = Axis::from_toml(text, StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.starts_with("load.load_inertia_kg_m2"), "{e}");
+}
+
+#[test]
+fn bad_axis_files_name_the_field() {
+    let e = Axis::from_toml("[motor]\nrated_torque_nm = 1\n", StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.contains("axis file") && e.contains("missing field"), "{e}");
+    let bad = AXIS.replace("peak_torque_nm = 9.6", "peak_torque_nm = 1.0");
+    let e = Axis::from_toml(&bad, StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.starts_with("motor.peak_torque_nm = 1"), "{e}");
+    let bad = AXIS.replace("efficiency = 0.9", "efficiency = 1.5");
+    assert!(Axis::from_toml(&bad, StrokeUnit::Mm).unwrap_err().to_string().starts_with("load.efficiency"));
+}
