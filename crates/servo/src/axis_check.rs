@@ -240,9 +240,12 @@ pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) ->
         .collect())
 }
 
+/// A polyline of (speed in rpm, torque in N·m).
+pub type Polyline = Vec<(f64, f64)>;
+
 /// The motor's envelope for a plot: the continuous (S1) corner `[(0, T_r), (n_r, T_r)]` and the
-/// peak line `[(0, T_p), (n_r, T_p), (n_max, T_max)]`, speeds in rpm, torques in N·m.
-pub fn envelope_lines(axis: &Axis) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+/// peak line `[(0, T_p), (n_r, T_p), (n_max, T_max)]`.
+pub fn envelope_lines(axis: &Axis) -> (Polyline, Polyline) {
     let m = &axis.motor;
     let t_max = m.torque_at_max_speed_nm.unwrap_or(m.rated_torque_nm);
     (
