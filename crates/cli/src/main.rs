@@ -3,6 +3,7 @@
 //! The binary only parses arguments, calls the libraries and prints. Bad input and usage errors
 //! exit with code 2 and one line on stderr; other failures (an unwritable file) exit with 1.
 
+mod cam;
 mod cycle;
 mod dobby;
 mod law;
@@ -10,6 +11,7 @@ mod output;
 mod pick;
 mod serve;
 mod servo;
+mod servo_check;
 mod shed;
 mod util;
 
@@ -43,6 +45,9 @@ enum Command {
     /// Rotary-dobby modulator: cam analysis, conjugate-cam synthesis, plots, α sweep.
     #[command(subcommand)]
     Dobby(dobby::DobbyCommand),
+    /// From a law to a part: controller cam tables.
+    #[command(subcommand)]
+    Cam(cam::CamCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -55,6 +60,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Servo(cmd) => servo::run(cmd),
         Command::Shed(cmd) => shed::run(cmd),
         Command::Dobby(cmd) => dobby::run(cmd),
+        Command::Cam(cmd) => cam::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

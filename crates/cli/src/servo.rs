@@ -33,6 +33,9 @@ pub enum ServoCommand {
     Export(ExportArgs),
     /// Acceleration image with its definition points, and the motor torque over the turn (Fig. 3).
     Plot(PlotArgs),
+    /// Check a servo axis (motor and load from a TOML file) moving a cycle: peak and RMS torque,
+    /// speed, torque–speed envelope, inertia ratio, pass or fail with margins.
+    Check(crate::servo_check::CheckArgs),
 }
 
 /// The definition points and the spline's start condition.
@@ -135,8 +138,9 @@ pub struct ExportArgs {
     #[command(flatten)]
     drive: DriveArgs,
     /// coeffs (documented text), json (intervals), csv (cam table), xyva (PLCopen-style
-    /// points), poly5 (exact fifth-degree segments in master degrees).
-    #[arg(long, value_name = "coeffs|json|csv|xyva|poly5")]
+    /// points), poly5 (exact fifth-degree segments in master degrees), cycle (the drive's turn as
+    /// a cycle file, for `loomkin cam table` and `servo check`).
+    #[arg(long, value_name = "coeffs|json|csv|xyva|poly5|cycle")]
     format: String,
     /// Output file (`-` for standard output).
     #[arg(short, long)]
@@ -175,6 +179,7 @@ pub fn run(cmd: ServoCommand) -> Result<()> {
         ServoCommand::Optimize(a) => optimize(a),
         ServoCommand::Export(a) => export(a),
         ServoCommand::Plot(a) => plot(a),
+        ServoCommand::Check(a) => crate::servo_check::run(a),
     }
 }
 
@@ -431,7 +436,13 @@ fn export(a: ExportArgs) -> Result<()> {
         "csv" => CamTable::new(sl.law(), &d, a.step_deg)?.to_csv(),
         "xyva" => CamTable::new(sl.law(), &d, a.step_deg)?.to_xyva(),
         "poly5" => poly5_csv(&poly5_segments(sl.law(), &d)?),
-        other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5"),
+        "cycle" => format!(
+            "# The spline law on the drive's turn (rise, dwell, return, dwell): a cycle file for loomkin cycle,\n\
+             # cam profile, cam table and servo check. Definition points: {}\n{}",
+            format_points(sl.points()),
+            loomkin_servo::spline_cycle(&sl, &d, None)?.to_toml()?
+        ),
+        other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5, cycle"),
     };
     output::text_to(&a.output, &text)?;
     if !matches!(format.as_str(), "csv" | "xyva") {

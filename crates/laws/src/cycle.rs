@@ -139,6 +139,25 @@ fn param_value(text: &str) -> toml::Value {
 }
 
 impl CycleSpec {
+    /// One turn (360°) of a rise by `law` over `motion_deg`, a dwell, the return by the same law
+    /// over `motion_deg` and a dwell of the same length (dwells of zero length left out): the
+    /// machine cycle of a single law. Fails when the two motions do not fit in the turn.
+    pub fn rise_return(law: &LawSpec, unit: StrokeUnit, stroke: f64, motion_deg: f64) -> Result<Self> {
+        LawError::check_range("motion_deg", motion_deg, 1e-6, 180.0, "deg")?;
+        let dwell = 180.0 - motion_deg;
+        let mut segment = vec![SegmentSpec::moving(SegmentKind::Rise, motion_deg, law)];
+        if dwell > 0.0 {
+            segment.push(SegmentSpec::dwell(dwell));
+        }
+        segment.push(SegmentSpec::moving(SegmentKind::Return, motion_deg, law));
+        if dwell > 0.0 {
+            segment.push(SegmentSpec::dwell(dwell));
+        }
+        let spec = Self { period_deg: 360.0, unit, stroke: Some(stroke), speed_rpm: None, segment };
+        Cycle::new(&spec)?;
+        Ok(spec)
+    }
+
     /// The cycle file as TOML text, which [`Cycle::from_toml`] reads back to the same spec
     /// (numbers in their shortest round-trip form, so a written law reads back bit for bit).
     pub fn to_toml(&self) -> Result<String> {

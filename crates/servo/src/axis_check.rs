@@ -244,13 +244,18 @@ pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) ->
 pub type Polyline = Vec<(f64, f64)>;
 
 /// The motor's envelope for a plot: the continuous (S1) corner `[(0, T_r), (n_r, T_r)]` and the
-/// peak line `[(0, T_p), (n_r, T_p), (n_max, T_max)]`.
+/// peak line `[(0, T_p), (n_r, T_p), (n_max, T_max), (n_max, 0)]` (closed at the maximum speed).
 pub fn envelope_lines(axis: &Axis) -> (Polyline, Polyline) {
     let m = &axis.motor;
     let t_max = m.torque_at_max_speed_nm.unwrap_or(m.rated_torque_nm);
     (
         vec![(0.0, m.rated_torque_nm), (m.rated_speed_rpm, m.rated_torque_nm)],
-        vec![(0.0, m.peak_torque_nm), (m.rated_speed_rpm, m.peak_torque_nm), (m.max_speed_rpm, t_max)],
+        vec![
+            (0.0, m.peak_torque_nm),
+            (m.rated_speed_rpm, m.peak_torque_nm),
+            (m.max_speed_rpm, t_max),
+            (m.max_speed_rpm, 0.0),
+        ],
     )
 }
 

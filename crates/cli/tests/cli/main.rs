@@ -1,5 +1,6 @@
 //! The `loomkin` binary run as a user runs it: one test binary, a module per topic.
 
+mod cam;
 mod common;
 mod dobby;
 mod law;
