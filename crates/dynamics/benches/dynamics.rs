@@ -1,0 +1,4 @@
+//! Benchmarks of the dynamics crate.
+fn main() {
+    divan::main();
+}

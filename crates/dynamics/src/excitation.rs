@@ -1,0 +1,155 @@
+//! The base excitation `s(t)`: a cycle (or one law) at a shaft speed, written as time pieces.
+
+use crate::oscillator::{Harmonic, NCOEF, poly_derivs};
+use loomkin_laws::{Cycle, Law, SegmentKind};
+use loomkin_units::ShaftSpeed;
+
+/// One piece of the excitation in time: `s(t) = Σ p_k t^k − (A/Ω²)·sin(Ωt + φ)` for
+/// `t ∈ [0, duration]` (s), so that `s''(t) = (poly)'' + A·sin(Ωt + φ)`.
+///
+/// A law segment of local coordinate `u` (fraction of the motion) becomes a time piece through
+/// `u = r·t`, `r = ω_shaft/Δθ` (1/s): `p_k ← h·p_k·r^k`, `A ← h·A·r²`, `Ω ← Ω·r`, with `h` the
+/// signed stroke (m or rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimePiece {
+    /// Start time from the start of the cycle (s).
+    pub t0: f64,
+    /// Duration (s).
+    pub duration: f64,
+    /// Displacement polynomial in local time, lowest power first (SI).
+    pub poly: [f64; NCOEF],
+    /// The sinusoidal acceleration term `A·sin(Ωt + φ)` (SI/s², Ω in rad/s).
+    pub accel_sine: Option<Harmonic>,
+    /// True when the follower stands still (a dwell of the cycle).
+    pub dwell: bool,
+    /// Index of the cycle segment it belongs to.
+    pub segment: usize,
+}
+
+impl TimePiece {
+    /// `s, s', s'', s''', s''''` at local time `t`.
+    #[inline]
+    pub fn derivs(&self, t: f64) -> [f64; 5] {
+        let mut out = poly_derivs::<5>(&self.poly, t);
+        if let Some(h) = self.accel_sine {
+            let (s, c) = (h.omega * t + h.phase).sin_cos();
+            let w = h.omega;
+            out[0] -= h.amp / (w * w) * s;
+            out[1] -= h.amp / w * c;
+            out[2] += h.amp * s;
+            out[3] += h.amp * w * c;
+            out[4] -= h.amp * w * w * s;
+        }
+        out
+    }
+}
+
+/// The whole excitation over one cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Excitation {
+    /// The pieces in time order, covering `[0, period_s]`.
+    pub pieces: Vec<TimePiece>,
+    /// Duration of one cycle (s).
+    pub period_s: f64,
+    /// Main-shaft angle at the start of the cycle (deg).
+    pub start_deg: f64,
+    /// Angle of one cycle (deg).
+    pub period_deg: f64,
+    /// The largest stroke of the cycle (SI, > 0), the reference of "% of stroke".
+    pub stroke_si: f64,
+    /// Shaft speed (rpm): one cycle per revolution of `period_deg`.
+    pub speed_rpm: f64,
+}
+
+/// Pieces of one law of duration `time_s`, stroke `h` (signed), starting at `t0` and height `base`.
+fn law_pieces(law: &Law, time_s: f64, h: f64, base: f64, t0: f64, segment: usize, out: &mut Vec<TimePiece>) {
+    let r = 1.0 / time_s;
+    for seg in law.segments() {
+        let p = seg.displacement_poly();
+        let mut poly = [0.0; NCOEF];
+        let mut rk = 1.0;
+        for k in 0..NCOEF {
+            poly[k] = h * p[k] * rk;
+            rk *= r;
+        }
+        poly[0] += base;
+        let accel_sine =
+            seg.sine().map(|sn| Harmonic { amp: h * sn.amp * r * r, omega: sn.omega * r, phase: sn.phase }.positive());
+        out.push(TimePiece {
+            t0: t0 + seg.x0() * time_s,
+            duration: seg.width() * time_s,
+            poly,
+            accel_sine,
+            dwell: false,
+            segment,
+        });
+    }
+}
+
+impl Excitation {
+    /// The cycle at a shaft speed: `t = (θ − θ_start)/ω_shaft`.
+    pub fn from_cycle(cycle: &Cycle, speed: ShaftSpeed) -> Self {
+        let w = speed.rad_per_s();
+        let start = cycle.segments.first().map_or(0.0, |s| s.start_rad);
+        let mut pieces = Vec::new();
+        for (i, seg) in cycle.segments.iter().enumerate() {
+            let t0 = (seg.start_rad - start) / w;
+            let dur = seg.length_rad / w;
+            match (&seg.law, seg.kind) {
+                (Some((_, law)), SegmentKind::Rise | SegmentKind::Return) => {
+                    law_pieces(law, dur, seg.stroke_si, seg.base_si, t0, i, &mut pieces)
+                }
+                _ => {
+                    let mut poly = [0.0; NCOEF];
+                    poly[0] = seg.base_si;
+                    pieces.push(TimePiece { t0, duration: dur, poly, accel_sine: None, dwell: true, segment: i });
+                }
+            }
+        }
+        let stroke_si = cycle.segments.iter().map(|s| s.stroke_si.abs()).fold(0.0, f64::max);
+        Self {
+            pieces,
+            period_s: cycle.period_rad / w,
+            start_deg: start.to_degrees(),
+            period_deg: cycle.period_rad.to_degrees(),
+            stroke_si: if stroke_si > 0.0 { stroke_si } else { 1.0 },
+            speed_rpm: speed.rpm(),
+        }
+    }
+
+    /// One normalised law as a rise of stroke 1 over `motion_time_s`, followed by a dwell of the same
+    /// length (the setting of a residual-vibration spectrum). The "speed" is one rise per two motion times.
+    pub fn rise_then_dwell(law: &Law, motion_time_s: f64) -> Self {
+        let mut pieces = Vec::new();
+        law_pieces(law, motion_time_s, 1.0, 0.0, 0.0, 0, &mut pieces);
+        let mut poly = [0.0; NCOEF];
+        poly[0] = 1.0;
+        pieces.push(TimePiece {
+            t0: motion_time_s,
+            duration: motion_time_s,
+            poly,
+            accel_sine: None,
+            dwell: true,
+            segment: 1,
+        });
+        Self {
+            pieces,
+            period_s: 2.0 * motion_time_s,
+            start_deg: 0.0,
+            period_deg: 360.0,
+            stroke_si: 1.0,
+            speed_rpm: 60.0 / (2.0 * motion_time_s),
+        }
+    }
+
+    /// The main-shaft angle (deg) at time `t` from the start of the cycle.
+    pub fn angle_deg(&self, t: f64) -> f64 {
+        self.start_deg + t / self.period_s * self.period_deg
+    }
+
+    /// The piece containing time `t` of the cycle (`t` wrapped into one cycle).
+    pub fn piece_at(&self, t: f64) -> usize {
+        let t = t.rem_euclid(self.period_s);
+        self.pieces.partition_point(|p| p.t0 <= t).saturating_sub(1)
+    }
+}

@@ -1,0 +1,197 @@
+//! The response of a single-mass follower to a cycle, and what a designer reads from it.
+
+use crate::excitation::Excitation;
+use crate::follower::Follower;
+use crate::peaks::{Extremes, extremes, grid_size};
+use crate::trajectory::{Channel, Solved, Start, trajectory};
+use crate::Result;
+use loomkin_laws::Cycle;
+use loomkin_units::ShaftSpeed;
+use serde::Serialize;
+
+/// VDI 2149 Blatt 1: a rigid-body model is acceptable only when `f_n ≥ 10·f_shaft`.
+pub const VDI_2149_MIN_RATIO: f64 = 10.0;
+
+/// The exact response of a follower to a cycle at a speed.
+#[derive(Debug, Clone)]
+pub struct Response {
+    /// The excitation (the cycle in time).
+    pub exc: Excitation,
+    /// The follower.
+    pub follower: Follower,
+    /// The channel of the error `y = x − s`.
+    pub channel: Channel,
+    /// The solved pieces, in time order.
+    pub pieces: Vec<Solved>,
+}
+
+/// A place and a value: `value` at main-shaft angle `angle_deg` (counted from the cycle's start, across cycles).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Located {
+    /// The value (SI unless named otherwise).
+    pub value: f64,
+    /// Where (deg of main-shaft rotation from the start of the computation, plus the cycle's start angle).
+    pub angle_deg: f64,
+}
+
+/// Residual vibration at the start of one dwell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DwellResidual {
+    /// Index of the cycle segment.
+    pub segment: usize,
+    /// Cycle number (0-based).
+    pub cycle: usize,
+    /// Angle at the start of the dwell (deg).
+    pub angle_deg: f64,
+    /// `A = √(δ² + ((δ' + ζω_nδ)/ω_d)²)` (m or rad), δ measured from the dwell's static equilibrium.
+    pub amplitude_si: f64,
+}
+
+/// The figures a designer reads.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Residual vibration of every dwell, in time order.
+    pub dwells: Vec<DwellResidual>,
+    /// The largest residual amplitude over the dwells (SI; 0 when the cycle has no dwell).
+    pub residual_amplitude_si: f64,
+    /// The same in % of the largest stroke.
+    pub residual_pct_of_stroke: f64,
+    /// Largest |x − s| (SI) and where.
+    pub peak_dynamic_error: Located,
+    /// Largest |x''| (SI/s²) and where.
+    pub peak_acceleration: Located,
+    /// Largest |s''| of the input, for comparison (SI/s²).
+    pub peak_input_acceleration: Located,
+    /// Largest train force |F| = |k(s − x) + c(s' − x')| (N), when a mass is given.
+    pub peak_force_n: Option<Located>,
+    /// Smallest train (contact) force (N), when a mass is given.
+    pub min_contact_force_n: Option<Located>,
+    /// True when a force-closed follower would lose contact (min contact force < 0).
+    pub loses_contact: bool,
+    /// VDI 2149 rigidity ratio `f_n / f_shaft`.
+    pub rigidity_ratio: f64,
+    /// True when the rigidity ratio is below [`VDI_2149_MIN_RATIO`].
+    pub rigidity_warning: bool,
+}
+
+impl Response {
+    /// The response of `follower` to `cycle` at `speed` over `cycles` cycles (from rest or steady).
+    pub fn new(cycle: &Cycle, speed: ShaftSpeed, follower: &Follower, start: Start, cycles: usize) -> Result<Self> {
+        Self::from_excitation(Excitation::from_cycle(cycle, speed), follower, start, cycles)
+    }
+
+    /// The response to a prepared excitation.
+    pub fn from_excitation(exc: Excitation, follower: &Follower, start: Start, cycles: usize) -> Result<Self> {
+        let channel = follower.channel();
+        let pieces = trajectory(&exc, &channel, start, cycles)?;
+        Ok(Self { exc, follower: *follower, channel, pieces })
+    }
+
+    /// Angle (deg) of a global time `t` (s) from the start of the computation.
+    pub fn angle_deg(&self, t: f64) -> f64 {
+        self.exc.angle_deg(t)
+    }
+
+    /// Total computed time (s).
+    pub fn duration_s(&self) -> f64 {
+        self.pieces.last().map_or(0.0, |p| p.t0 + p.sol.duration())
+    }
+
+    /// `(s, s', s'', y, y', y'')` at global time `t` (clamped into the computed span).
+    pub fn state(&self, t: f64) -> [f64; 6] {
+        let t = t.clamp(0.0, self.duration_s());
+        let i = self.pieces.partition_point(|p| p.t0 <= t).saturating_sub(1);
+        let p = &self.pieces[i];
+        let tl = (t - p.t0).clamp(0.0, p.sol.duration());
+        let s = self.exc.pieces[p.piece].derivs(tl);
+        let y = p.sol.derivs(tl);
+        [s[0], s[1], s[2], y[0], y[1], y[2]]
+    }
+
+    /// `n ≥ 2` samples per cycle (both ends of the computation included):
+    /// `(angle_deg, s, x, x − s, x'')` in SI.
+    pub fn samples(&self, n_per_cycle: usize) -> Vec<[f64; 5]> {
+        let cycles = self.pieces.last().map_or(1, |p| p.cycle + 1);
+        let n = (n_per_cycle.max(2) - 1) * cycles + 1;
+        let total = self.duration_s();
+        (0..n)
+            .map(|i| {
+                let t = if i + 1 == n { total } else { total * i as f64 / (n - 1) as f64 };
+                let st = self.state(t);
+                [self.angle_deg(t), st[0], st[0] + st[3], st[3], st[2] + st[5]]
+            })
+            .collect()
+    }
+
+    /// Residual amplitude at the start of every dwell piece.
+    pub fn dwell_residuals(&self) -> Vec<DwellResidual> {
+        let osc = &self.channel.osc;
+        let mut out = Vec::new();
+        for (k, p) in self.pieces.iter().enumerate() {
+            let ep = &self.exc.pieces[p.piece];
+            // A dwell made of one piece; a dwell continuing the previous piece's dwell is the same dwell.
+            let continues = k > 0 && self.exc.pieces[self.pieces[k - 1].piece].dwell;
+            if !ep.dwell || continues {
+                continue;
+            }
+            let (y, v) = p.sol.state(0.0);
+            let d = y - self.channel.rest(ep.poly[0]);
+            out.push(DwellResidual {
+                segment: ep.segment,
+                cycle: p.cycle,
+                angle_deg: self.angle_deg(p.t0),
+                amplitude_si: osc.amplitude(d, v),
+            });
+        }
+        out
+    }
+
+    /// Every figure of the [`Summary`], peaks located exactly (roots of the derivative on the closed form).
+    pub fn summary(&self) -> Summary {
+        let dwells = self.dwell_residuals();
+        let residual = dwells.iter().map(|d| d.amplitude_si).fold(0.0, f64::max);
+        let osc = self.channel.osc;
+        let (mut err, mut acc, mut inp, mut force) = (Extremes::EMPTY, Extremes::EMPTY, Extremes::EMPTY, Extremes::EMPTY);
+        let train = self.follower.train();
+        for p in &self.pieces {
+            let ep = &self.exc.pieces[p.piece];
+            let w_sine = ep.accel_sine.map_or(0.0, |h| h.omega);
+            let n = grid_size(p.sol.duration(), osc.omega_d() + w_sine);
+            let dur = p.sol.duration();
+            err.merge(&extremes(dur, n, |t| { let y = p.sol.derivs(t); [y[0], y[1], y[2]] }), p.t0);
+            acc.merge(
+                &extremes(dur, n, |t| {
+                    let (y, s) = (p.sol.derivs(t), ep.derivs(t));
+                    [y[2] + s[2], y[3] + s[3], y[4] + s[4]]
+                }),
+                p.t0,
+            );
+            inp.merge(&extremes(dur, grid_size(dur, w_sine), |t| { let s = ep.derivs(t); [s[2], s[3], s[4]] }), p.t0);
+            if let Some((k, c)) = train {
+                force.merge(
+                    &extremes(dur, n, |t| {
+                        let y = p.sol.derivs(t);
+                        [-k * y[0] - c * y[1], -k * y[1] - c * y[2], -k * y[2] - c * y[3]]
+                    }),
+                    p.t0,
+                );
+            }
+        }
+        let loc = |(v, t): (f64, f64)| Located { value: v, angle_deg: self.angle_deg(t) };
+        let ratio = self.follower.natural_hz() / (self.exc.speed_rpm / 60.0);
+        let min_force = train.map(|_| loc(force.min));
+        Summary {
+            dwells,
+            residual_amplitude_si: residual,
+            residual_pct_of_stroke: 100.0 * residual / self.exc.stroke_si,
+            peak_dynamic_error: loc(err.peak_abs()),
+            peak_acceleration: loc(acc.peak_abs()),
+            peak_input_acceleration: loc(inp.peak_abs()),
+            peak_force_n: train.map(|_| loc(force.peak_abs())),
+            loses_contact: min_force.is_some_and(|f| f.value < 0.0),
+            min_contact_force_n: min_force,
+            rigidity_ratio: ratio,
+            rigidity_warning: ratio < VDI_2149_MIN_RATIO,
+        }
+    }
+}

@@ -1,0 +1,141 @@
+//! The closed-form response against DOP853 (differential-equations) at tight tolerance, compared at
+//! the integrator's own steps (its dense output is ~100× less accurate, see /work/shared/CRATES.md).
+//! The forcing of the integrated equation is taken from `Cycle::eval` of the laws crate — not from
+//! the time pieces the closed form uses — so the excitation is checked too.
+
+use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
+use loomkin_dynamics::{Follower, Response, Start};
+use loomkin_laws::Cycle;
+use loomkin_units::ShaftSpeed;
+use proptest::prelude::*;
+
+struct Eq<'a> {
+    cycle: &'a Cycle,
+    rpm: f64,
+    w: f64,
+    z: f64,
+    eps: f64,
+    f0: f64,
+    start_rad: f64,
+    omega_shaft: f64,
+}
+
+impl ODE<f64, [f64; 2]> for Eq<'_> {
+    fn diff(&self, t: f64, y: &[f64; 2], d: &mut [f64; 2]) {
+        let k = self.cycle.eval(self.start_rad + self.omega_shaft * t, self.rpm);
+        d[0] = y[1];
+        d[1] = -k.a - self.eps * k.s - self.f0 - 2.0 * self.z * self.w * y[1] - self.w * self.w * y[0];
+    }
+}
+
+/// Integrates the error equation piece by piece over `cycles` cycles from `y0`; returns the steps.
+fn integrate(r: &Response, cycle: &Cycle, eps: f64, f0: f64, y0: [f64; 2]) -> Vec<(f64, [f64; 2])> {
+    let osc = r.channel.osc;
+    let eq = Eq {
+        cycle,
+        rpm: r.exc.speed_rpm,
+        w: osc.omega_n(),
+        z: osc.zeta(),
+        eps,
+        f0,
+        start_rad: cycle.segments[0].start_rad,
+        omega_shaft: r.exc.speed_rpm * std::f64::consts::TAU / 60.0,
+    };
+    let mut out = vec![(0.0, y0)];
+    let mut y = y0;
+    for p in &r.pieces {
+        // Integrate inside the piece; nudge the ends inwards by nothing: Cycle::eval picks the right
+        // segment at a joint, and the forcing is smooth inside.
+        let (a, b) = (p.t0, p.t0 + p.sol.duration());
+        let method = ExplicitRungeKutta::dop853().rtol(1e-13).atol(1e-16).max_steps(1_000_000);
+        let sol = IVP::ode(&eq, a, b, y).method(method).solve().expect("DOP853 ran");
+        let (t, ys) = sol.into_tuple();
+        for (ti, yi) in t.into_iter().zip(ys).skip(1) {
+            out.push((ti, yi));
+        }
+        y = out.last().map(|p| p.1).unwrap_or(y);
+    }
+    out
+}
+
+fn check(text: &str, rpm: f64, fn_hz: f64, zeta: f64, start: Start, cycles: usize) {
+    let cycle = Cycle::from_toml(text).unwrap();
+    let follower = Follower::new(fn_hz, zeta).unwrap();
+    let r = Response::new(&cycle, ShaftSpeed::from_rpm(rpm).unwrap(), &follower, start, cycles).unwrap();
+    let y0 = r.pieces[0].sol.state(0.0);
+    let steps = integrate(&r, &cycle, 0.0, 0.0, [y0.0, y0.1]);
+    let scale = steps.iter().map(|s| s.1[0].abs()).fold(0.0, f64::max);
+    let vscale = steps.iter().map(|s| s.1[1].abs()).fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    for (t, y) in &steps {
+        let st = r.state(*t);
+        let e = ((st[3] - y[0]).abs() / scale).max((st[4] - y[1]).abs() / vscale);
+        worst = worst.max(e);
+    }
+    assert!(worst < 1e-9, "relative deviation {worst:e} at {rpm} rpm, f_n {fn_hz} Hz, ζ {zeta}");
+}
+
+const HEALD: &str = r#"
+unit = "mm"
+stroke = 100
+[[segment]]
+kind = "dwell"
+to_deg = 60
+[[segment]]
+kind = "rise"
+to_deg = 180
+law = "modified-sine"
+[[segment]]
+kind = "dwell"
+to_deg = 240
+[[segment]]
+kind = "return"
+to_deg = 360
+law = "modified-trapezoid"
+params = { ramp = 0.125 }
+"#;
+
+#[test]
+fn heald_cycle_from_rest_matches_dop853() {
+    check(HEALD, 600.0, 54.0, 0.05, Start::Rest, 2);
+    check(HEALD, 300.0, 20.0, 0.0, Start::Rest, 1);
+}
+
+#[test]
+fn steady_state_matches_dop853_and_repeats() {
+    check(HEALD, 800.0, 48.0, 0.03, Start::Steady, 1);
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    let f = Follower::new(48.0, 0.03).unwrap();
+    let r = Response::new(&cycle, ShaftSpeed::from_rpm(800.0).unwrap(), &f, Start::Steady, 3).unwrap();
+    let (a, b) = (r.pieces[0].sol.state(0.0), r.pieces.last().unwrap().sol.end());
+    assert!((a.0 - b.0).abs() < 1e-12 * a.0.abs().max(1e-6) && (a.1 - b.1).abs() < 1e-9 * a.1.abs().max(1e-3));
+}
+
+fn law_name() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![
+        "cycloidal",
+        "harmonic",
+        "poly345",
+        "poly4567",
+        "modified-sine",
+        "modified-trapezoid",
+        "constant-acceleration",
+    ])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #[test]
+    fn random_cycles_match_dop853(
+        rise in law_name(), ret in law_name(), a in 20.0f64..100.0, b in 20.0f64..100.0, c in 20.0f64..100.0,
+        rpm in 60.0f64..1200.0, fn_hz in 5.0f64..200.0, zeta in prop_oneof![Just(0.0), 0.0f64..0.5], steady in any::<bool>()
+    ) {
+        let text = format!(
+            "unit = \"mm\"\nstroke = 80\n[[segment]]\nkind = \"rise\"\nlength_deg = {a}\nlaw = \"{rise}\"\n\
+             [[segment]]\nkind = \"dwell\"\nlength_deg = {b}\n[[segment]]\nkind = \"return\"\nlength_deg = {c}\n\
+             law = \"{ret}\"\n[[segment]]\nkind = \"dwell\"\nlength_deg = {}\n", 360.0 - a - b - c
+        );
+        let start = if steady && zeta > 0.0 { Start::Steady } else { Start::Rest };
+        check(&text, rpm, fn_hz, zeta, start, 1);
+    }
+}

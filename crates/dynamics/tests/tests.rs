@@ -1,0 +1,5 @@
+//! Integration tests of loomkin-dynamics: the closed form against numerical integration and
+//! against known closed forms.
+
+#[path = "cases/ode.rs"]
+mod ode;
