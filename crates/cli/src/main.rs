@@ -6,6 +6,7 @@
 mod cam;
 mod cycle;
 mod dobby;
+mod dynamics;
 mod law;
 mod output;
 mod pick;
@@ -48,6 +49,9 @@ enum Command {
     /// From a law to a part: controller cam tables.
     #[command(subcommand)]
     Cam(cam::CamCommand),
+    /// Elastic follower dynamics: response at speed, residual vibration, sweeps, spectra, quiet laws.
+    #[command(subcommand, name = "dyn")]
+    Dyn(dynamics::DynCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -61,6 +65,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Shed(cmd) => shed::run(cmd),
         Command::Dobby(cmd) => dobby::run(cmd),
         Command::Cam(cmd) => cam::run(cmd),
+        Command::Dyn(cmd) => dynamics::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

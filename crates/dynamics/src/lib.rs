@@ -50,12 +50,14 @@ mod follower;
 mod oscillator;
 mod peaks;
 mod response;
+mod sweep;
 mod trajectory;
 
 pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
-pub use oscillator::{Forcing, Harmonic, NCOEF, Oscillator, PieceSolution};
+pub use oscillator::{Forcing, Harmonic, NCOEF, Oscillator, PieceSolution, free_roots};
 pub use peaks::{Extremes, extremes, grid_size};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
+pub use sweep::{SweepPoint, sweep, sweep_point};
 pub use trajectory::{Channel, Solved, Start, steady_state, trajectory};

@@ -9,7 +9,7 @@
 //! * the polynomial particular solution, by undetermined coefficients from the top power down:
 //!   `ω²·y_k = q_k − 2ζω·(k+1)·y_{k+1} − (k+2)(k+1)·y_{k+2}`;
 //! * the sinusoidal part: away from resonance the steady state `Im(b·e^{iφ}·H(Ω)·e^{iΩt})` with the
-//!   transfer function `H(Ω) = 1/(ω² − Ω² + 2iζωΩ)`; where `|iΩ − λ₁|·T < 2` (λ₁ = −ζω + iω_d, the
+//!   transfer function `H(Ω) = 1/(ω² − Ω² + 2iζωΩ)`; where `|iΩ − λ₁|·T < 0.01` (λ₁ = −ζω + iω_d, the
 //!   forcing close to a free mode) the zero-state response `Im(b·e^{iφ}·e[iΩ, λ₁, λ₂](t))`, the second
 //!   divided difference of `z ↦ e^{zt}` at the forcing exponent and the two roots, computed with
 //!   `φ₁(z) = (e^z − 1)/z` so that it stays exact through exact resonance (ζ = 0, Ω = ω_n, where it
@@ -18,6 +18,11 @@
 //!   `y_h = e^{−ζωt}·[a·cos ω_d t + (b + ζω a)·sin(ω_d t)/ω_d]`, `ω_d = ω_n·√(1 − ζ²)`.
 
 use crate::complex::{C, phi1};
+
+/// The sinusoid's zero-state route is taken where `|iΩ − λ₁|·T` is below this: the steady-state route
+/// then would cancel the particular and free parts, losing about `log₁₀(1/(|iΩ − λ₁|·T))` digits (≤ 2
+/// above the switch, so ≥ 13 remain).
+pub const ZERO_STATE_BELOW: f64 = 0.01;
 
 /// Number of polynomial coefficients of a forcing (degree ≤ 7).
 pub const NCOEF: usize = 8;
@@ -63,22 +68,52 @@ impl Forcing {
     }
 }
 
-/// `p(t)` and its derivatives of order `0..N` by one Horner pass per order.
+/// `FALLING[n][k] = k!/(k − n)!`, the factor of `t^(k−n)` in the n-th derivative of `t^k`.
+const FALLING: [[f64; NCOEF]; 5] = {
+    let mut table = [[0.0; NCOEF]; 5];
+    let mut n = 0;
+    while n < 5 {
+        let mut k = n;
+        while k < NCOEF {
+            let mut f = 1.0;
+            let mut m = 0;
+            while m < n {
+                f *= (k - m) as f64;
+                m += 1;
+            }
+            table[n][k] = f;
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+};
+
+/// `p(t)` and its derivatives of order `0..N` (N ≤ 5) by one Horner pass per order.
 #[inline]
 pub(crate) fn poly_derivs<const N: usize>(p: &[f64; NCOEF], t: f64) -> [f64; N] {
     let mut out = [0.0; N];
     for (order, o) in out.iter_mut().enumerate() {
+        let f = &FALLING[order];
         let mut acc = 0.0;
         for k in (order..NCOEF).rev() {
-            let mut f = 1.0;
-            for m in 0..order {
-                f *= (k - m) as f64;
-            }
-            acc = acc * t + p[k] * f;
+            acc = acc * t + p[k] * f[k];
         }
         *o = acc;
     }
     out
+}
+
+/// The roots in `[0, t_max]` of the free vibration `e^{−ζω_n t}·(A cos ω_d t + B sin ω_d t)` that starts
+/// from `(u, u')`, at most `max` of them, ascending: `ω_d t = α + π/2 + kπ`, `α = atan2(B, A)`.
+pub fn free_roots(osc: &Oscillator, u: f64, du: f64, t_max: f64, max: usize) -> impl Iterator<Item = f64> {
+    let a = u;
+    let b = (du + osc.zeta * osc.omega_n * u) / osc.omega_d;
+    let alpha = b.atan2(a);
+    let first = (alpha + std::f64::consts::FRAC_PI_2).rem_euclid(std::f64::consts::PI);
+    let wd = osc.omega_d;
+    let live = a != 0.0 || b != 0.0;
+    (0..max).map(move |k| (first + k as f64 * std::f64::consts::PI) / wd).filter(move |&t| live && t <= t_max)
 }
 
 /// A damped linear oscillator `y'' + 2ζω_n·y' + ω_n²·y = q(t)`.
@@ -147,7 +182,7 @@ impl Oscillator {
                 let bc = C::new(h.phase.cos(), h.phase.sin()).scale(h.amp);
                 let mu = C::new(0.0, h.omega);
                 let l1 = C::new(-z * w, self.omega_d);
-                if (mu - l1).norm() * duration < 2.0 {
+                if (mu - l1).norm() * duration < ZERO_STATE_BELOW {
                     SinePart::ZeroState { bc, omega: h.omega }
                 } else {
                     let den = C::new(w2 - h.omega * h.omega, 2.0 * z * w * h.omega);
@@ -169,9 +204,15 @@ impl Oscillator {
 enum SinePart {
     None,
     /// Steady state `Im(p·e^{iΩt})`.
-    Steady { p: C, omega: f64 },
+    Steady {
+        p: C,
+        omega: f64,
+    },
     /// Zero-state response `Im(bc·e[iΩ, λ₁, λ₂](t))` (near a free mode).
-    ZeroState { bc: C, omega: f64 },
+    ZeroState {
+        bc: C,
+        omega: f64,
+    },
 }
 
 /// The exact response on one piece; see the module docs.
@@ -240,18 +281,58 @@ impl PieceSolution {
     }
 
     /// `y, y', y'', y''', y''''` at local time `t` (s).
+    ///
+    /// Away from resonance each part is differentiated in closed form (polynomial, `Im(p·(iΩ)^k·e^{iΩt})`,
+    /// and the free part's coefficients mapped `(A, B) → (−ζωA + ω_dB, −ω_dA − ζωB)`): one `sin_cos` for
+    /// the sinusoid and one `exp` plus `sin_cos` for the free vibration. On the zero-state route the
+    /// higher derivatives follow from the equation itself.
     #[inline]
     pub fn derivs(&self, t: f64) -> [f64; 5] {
-        let p = poly_derivs::<2>(&self.poly, t);
-        let (s0, s1) = self.sine_part(t);
-        let (h0, h1) = self.osc.free(self.a, self.b, t);
-        let (y, v) = (p[0] + s0 + h0, p[1] + s1 + h1);
-        let q = self.forcing.derivs(t);
-        let (z2, w2) = (2.0 * self.osc.zeta * self.osc.omega_n, self.osc.omega_n * self.osc.omega_n);
-        let a = q[0] - z2 * v - w2 * y;
-        let j = q[1] - z2 * a - w2 * v;
-        let snap = q[2] - z2 * j - w2 * a;
-        [y, v, a, j, snap]
+        self.derivs_n::<5>(t)
+    }
+
+    /// The derivatives of orders `0..N` (N ≤ 5) at local time `t` (s); see [`PieceSolution::derivs`].
+    #[inline]
+    pub fn derivs_n<const N: usize>(&self, t: f64) -> [f64; N] {
+        let mut out = poly_derivs::<N>(&self.poly, t);
+        let o = &self.osc;
+        // The free part e^{−ζωt}(A cos ω_d t + B sin ω_d t).
+        let (zw, wd) = (o.zeta * o.omega_n, o.omega_d);
+        let (mut ca, mut cb) = (self.a, (self.b + zw * self.a) / wd);
+        let e = (-zw * t).exp();
+        let (sn, cs) = (wd * t).sin_cos();
+        for d in out.iter_mut() {
+            *d += e * (ca * cs + cb * sn);
+            (ca, cb) = (-zw * ca + wd * cb, -wd * ca - zw * cb);
+        }
+        match self.sine {
+            SinePart::None => {}
+            SinePart::Steady { p, omega } => {
+                let (sn, cs) = (omega * t).sin_cos();
+                let mut v = p * C::new(cs, sn);
+                for d in out.iter_mut() {
+                    *d += v.im;
+                    v = C::new(-v.im * omega, v.re * omega);
+                }
+            }
+            SinePart::ZeroState { bc, omega } => {
+                let (dd0, dd1) = self.divided_differences(omega, t);
+                let (y, v) = ((bc * dd0).im, (bc * dd1).im);
+                // The zero-state part solves the equation with the sinusoid alone as forcing.
+                let (s, c) = (omega * t).sin_cos();
+                let q = C::new(c, s) * bc;
+                let (q0, q1, q2) = (q.im, omega * q.re, -omega * omega * q.im);
+                let w2 = o.omega_n * o.omega_n;
+                let a = q0 - 2.0 * zw * v - w2 * y;
+                let j = q1 - 2.0 * zw * a - w2 * v;
+                let snap = q2 - 2.0 * zw * j - w2 * a;
+                for (d, x) in out.iter_mut().zip([y, v, a, j, snap]) {
+                    // (zip stops at N)
+                    *d += x;
+                }
+            }
+        }
+        out
     }
 
     /// `(y, y')` at local time `t` (s).
@@ -261,6 +342,13 @@ impl PieceSolution {
         let (s0, s1) = self.sine_part(t);
         let (h0, h1) = self.osc.free(self.a, self.b, t);
         (p[0] + s0 + h0, p[1] + s1 + h1)
+    }
+
+    /// When the forcing is constant (a dwell), `(y_eq, a, b)`: the solution is `y_eq` plus the free
+    /// vibration from `(a, b)`.
+    pub fn constant_plus_free(&self) -> Option<(f64, f64, f64)> {
+        let constant = self.forcing.poly[1..].iter().all(|&c| c == 0.0) && matches!(self.sine, SinePart::None);
+        constant.then_some((self.poly[0], self.a, self.b))
     }
 
     /// `(y, y')` at the end of the piece.
@@ -293,13 +381,16 @@ mod tests {
     #[test]
     fn the_two_sine_routes_agree() {
         let osc = Oscillator::new(10.0, 0.05);
-        let f = Forcing { poly: [0.3, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], sine: Some(Harmonic { amp: 2.0, omega: 13.0, phase: 0.4 }) };
+        let f = Forcing {
+            poly: [0.3, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            sine: Some(Harmonic { amp: 2.0, omega: 13.0, phase: 0.4 }),
+        };
         // A short piece takes the zero-state route, a long one the steady route; compare at equal t.
-        let short = osc.solve(&f, 0.05, 0.1, -0.2);
+        let short = osc.solve(&f, 0.002, 0.1, -0.2);
         let long = osc.solve(&f, 5.0, 0.1, -0.2);
         assert!(matches!(short.sine, SinePart::ZeroState { .. }));
         assert!(matches!(long.sine, SinePart::Steady { .. }));
-        for &t in &[0.0, 0.01, 0.03, 0.05] {
+        for &t in &[0.0, 0.0005, 0.0013, 0.002] {
             let (a, b) = (short.state(t), long.state(t));
             assert!((a.0 - b.0).abs() < 1e-15 && (a.1 - b.1).abs() < 1e-14, "{t}: {a:?} {b:?}");
         }
@@ -321,6 +412,32 @@ mod tests {
             let (yp, ym) = (sol.state(t + 0.05 + h), sol.state(t + 0.05 - h));
             assert!(((yp.0 - ym.0) / (2.0 * h) - d[1]).abs() < 1e-8);
             assert!(((yp.1 - ym.1) / (2.0 * h) - d[2]).abs() < 1e-7);
+        }
+    }
+
+    /// The closed-form derivatives satisfy the equation and its two time derivatives, on both routes.
+    #[test]
+    fn derivatives_satisfy_the_equation() {
+        let osc = Oscillator::new(40.0, 0.1);
+        let f = Forcing {
+            poly: [1.0, -2.0, 3.0, 0.5, -0.25, 0.125, 0.0, 0.0],
+            sine: Some(Harmonic { amp: 50.0, omega: 25.0, phase: 0.3 }),
+        };
+        for dur in [1e-4, 2.0] {
+            let sol = osc.solve(&f, dur, 0.02, -0.3);
+            for k in 0..5 {
+                let t = dur * k as f64 / 4.0;
+                let d = sol.derivs(t);
+                let q = f.derivs(t);
+                for m in 0..3 {
+                    let lhs = d[m + 2] + 2.0 * 0.1 * 40.0 * d[m + 1] + 1600.0 * d[m];
+                    assert!(
+                        (lhs - q[m]).abs() < 1e-11 * (1.0 + q[m].abs()),
+                        "T {dur} t {t} order {m}: {lhs} vs {}",
+                        q[m]
+                    );
+                }
+            }
         }
     }
 }

@@ -32,7 +32,11 @@ impl Extremes {
 
     /// The largest magnitude `max(|min|, |max|)` and its location.
     pub fn peak_abs(&self) -> (f64, f64) {
-        if self.max.0.abs() >= self.min.0.abs() { (self.max.0.abs(), self.max.1) } else { (self.min.0.abs(), self.min.1) }
+        if self.max.0.abs() >= self.min.0.abs() {
+            (self.max.0.abs(), self.max.1)
+        } else {
+            (self.min.0.abs(), self.min.1)
+        }
     }
 
     /// True when nothing was taken.
@@ -42,33 +46,42 @@ impl Extremes {
 }
 
 /// Number of grid intervals for a function on `[0, duration]` whose fastest oscillation is
-/// `omega` (rad/s) and whose polynomial part has degree ≤ 7: four per half period plus sixteen, at most 10⁵.
+/// `omega` (rad/s) and whose polynomial part has degree ≤ 7: three per half period plus six, at most 10⁵.
 pub fn grid_size(duration: f64, omega: f64) -> usize {
-    let n = 16.0 + 4.0 * omega * duration / std::f64::consts::PI;
+    let n = 6.0 + 3.0 * omega * duration / std::f64::consts::PI;
     if n.is_finite() { n.min(1e5) as usize } else { 100_000 }
 }
 
 /// The extremes of `f` on `[0, duration]`; `f(t)` returns `[f, f', f'']`. Candidates: both ends and
 /// every root of `f'` bracketed on an `n`-interval grid and refined by Newton.
 pub fn extremes(duration: f64, n: usize, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
-    let mut e = Extremes::EMPTY;
+    let [e] = extremes_of(duration, n, |t| [f(t)]);
+    e
+}
+
+/// The extremes of `K` functions at once on one grid (each evaluation of `f` gives all of them):
+/// `f(t)[i] = [f_i, f_i', f_i'']`.
+pub fn extremes_of<const K: usize>(duration: f64, n: usize, f: impl Fn(f64) -> [[f64; 3]; K]) -> [Extremes; K] {
+    let mut e = [Extremes::EMPTY; K];
     let n = n.max(1);
     let h = duration / n as f64;
     let mut prev = f(0.0);
-    e.take(prev[0], 0.0);
-    for i in 1..=n {
-        let t = if i == n { duration } else { i as f64 * h };
+    for i in 0..K {
+        e[i].take(prev[i][0], 0.0);
+    }
+    for step in 1..=n {
+        let t = if step == n { duration } else { step as f64 * h };
         let cur = f(t);
-        e.take(cur[0], t);
-        if prev[1] == 0.0 {
-            // Already taken as a grid value.
-        } else if prev[1] * cur[1] < 0.0 {
-            let lo = t - h;
-            let r = loomkin_laws::refine_root(lo.max(0.0), t, prev[1] < 0.0, |x| {
-                let d = f(x);
-                (d[1], d[2])
-            });
-            e.take(f(r)[0], r);
+        for i in 0..K {
+            e[i].take(cur[i][0], t);
+            if prev[i][1] * cur[i][1] < 0.0 {
+                let lo = (t - h).max(0.0);
+                let r = loomkin_laws::refine_root(lo, t, prev[i][1] < 0.0, |x| {
+                    let d = f(x)[i];
+                    (d[1], d[2])
+                });
+                e[i].take(f(r)[i][0], r);
+            }
         }
         prev = cur;
     }

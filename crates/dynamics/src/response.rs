@@ -1,10 +1,11 @@
 //! The response of a single-mass follower to a cycle, and what a designer reads from it.
 
+use crate::Result;
 use crate::excitation::Excitation;
 use crate::follower::Follower;
-use crate::peaks::{Extremes, extremes, grid_size};
+use crate::oscillator::free_roots;
+use crate::peaks::{Extremes, extremes, extremes_of, grid_size};
 use crate::trajectory::{Channel, Solved, Start, trajectory};
-use crate::Result;
 use loomkin_laws::Cycle;
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
@@ -123,7 +124,8 @@ impl Response {
             .collect()
     }
 
-    /// Residual amplitude at the start of every dwell piece.
+    /// Residual amplitude at the start of every dwell, including the dwell at the start of the next cycle
+    /// that the last motion runs into (when the cycle starts with a dwell).
     pub fn dwell_residuals(&self) -> Vec<DwellResidual> {
         let osc = &self.channel.osc;
         let mut out = Vec::new();
@@ -143,40 +145,97 @@ impl Response {
                 amplitude_si: osc.amplitude(d, v),
             });
         }
+        // The dwell the last motion runs into: the first piece of the next cycle.
+        if let (Some(first), Some(last)) = (self.exc.pieces.first(), self.pieces.last())
+            && first.dwell
+            && !self.exc.pieces[last.piece].dwell
+        {
+            let (y, v) = last.sol.end();
+            let d = y - self.channel.rest(first.poly[0]);
+            let t = last.t0 + last.sol.duration();
+            out.push(DwellResidual {
+                segment: first.segment,
+                cycle: last.cycle + 1,
+                angle_deg: self.angle_deg(t),
+                amplitude_si: osc.amplitude(d, v),
+            });
+        }
         out
     }
 
     /// Every figure of the [`Summary`], peaks located exactly (roots of the derivative on the closed form).
     pub fn summary(&self) -> Summary {
-        let dwells = self.dwell_residuals();
-        let residual = dwells.iter().map(|d| d.amplitude_si).fold(0.0, f64::max);
+        self.summary_of(true)
+    }
+
+    /// Extremes of error, acceleration (when `accel`), input acceleration (when `accel`) and train force.
+    fn extremes(&self, accel: bool) -> [Extremes; 4] {
         let osc = self.channel.osc;
-        let (mut err, mut acc, mut inp, mut force) = (Extremes::EMPTY, Extremes::EMPTY, Extremes::EMPTY, Extremes::EMPTY);
+        let (zw, w2) = (2.0 * osc.zeta() * osc.omega_n(), osc.omega_n() * osc.omega_n());
+        let mut out = [Extremes::EMPTY; 4];
         let train = self.follower.train();
         for p in &self.pieces {
             let ep = &self.exc.pieces[p.piece];
-            let w_sine = ep.accel_sine.map_or(0.0, |h| h.omega);
-            let n = grid_size(p.sol.duration(), osc.omega_d() + w_sine);
             let dur = p.sol.duration();
-            err.merge(&extremes(dur, n, |t| { let y = p.sol.derivs(t); [y[0], y[1], y[2]] }), p.t0);
-            acc.merge(
-                &extremes(dur, n, |t| {
-                    let (y, s) = (p.sol.derivs(t), ep.derivs(t));
-                    [y[2] + s[2], y[3] + s[3], y[4] + s[4]]
-                }),
-                p.t0,
-            );
-            inp.merge(&extremes(dur, grid_size(dur, w_sine), |t| { let s = ep.derivs(t); [s[2], s[3], s[4]] }), p.t0);
-            if let Some((k, c)) = train {
-                force.merge(
+            if let Some((y_eq, a, b)) = p.sol.constant_plus_free() {
+                // A dwell: a constant plus a free vibration, whose extremes are at the ends and at the
+                // first two roots of its derivative (the envelope only decays), in closed form.
+                let z2 = -zw * b - w2 * a;
+                let z3 = -zw * z2 - w2 * b;
+                let mut take = |k: usize, c: f64, u0: f64, u1: f64| {
+                    let mut e = Extremes::EMPTY;
+                    for t in [0.0, dur].into_iter().chain(free_roots(&osc, u1, -zw * u1 - w2 * u0, dur, 2)) {
+                        e.take(c + osc.free(u0, u1, t).0, t);
+                    }
+                    out[k].merge(&e, p.t0);
+                };
+                take(0, y_eq, a, b);
+                if accel {
+                    take(1, 0.0, z2, z3);
+                    take(2, 0.0, 0.0, 0.0);
+                }
+                if let Some((k, c)) = train {
+                    take(3, -k * y_eq, -(k * a + c * b), -(k * b + c * z2));
+                }
+                continue;
+            }
+            let w_sine = ep.accel_sine.map_or(0.0, |h| h.omega);
+            let n = grid_size(dur, osc.omega_d().max(w_sine));
+            let (k, c) = train.unwrap_or((0.0, 0.0));
+            let [e_err, e_force] = extremes_of(dur, n, |t| {
+                let y = p.sol.derivs_n::<4>(t);
+                [[y[0], y[1], y[2]], [-k * y[0] - c * y[1], -k * y[1] - c * y[2], -k * y[2] - c * y[3]]]
+            });
+            out[0].merge(&e_err, p.t0);
+            if train.is_some() {
+                out[3].merge(&e_force, p.t0);
+            }
+            if accel {
+                out[1].merge(
                     &extremes(dur, n, |t| {
-                        let y = p.sol.derivs(t);
-                        [-k * y[0] - c * y[1], -k * y[1] - c * y[2], -k * y[2] - c * y[3]]
+                        let (y, s) = (p.sol.derivs(t), ep.derivs(t));
+                        [y[2] + s[2], y[3] + s[3], y[4] + s[4]]
+                    }),
+                    p.t0,
+                );
+                out[2].merge(
+                    &extremes(dur, grid_size(dur, w_sine), |t| {
+                        let s = ep.derivs(t);
+                        [s[2], s[3], s[4]]
                     }),
                     p.t0,
                 );
             }
         }
+        out
+    }
+
+    /// The summary; acceleration peaks only when `accel` (a sweep skips them).
+    pub(crate) fn summary_of(&self, accel: bool) -> Summary {
+        let dwells = self.dwell_residuals();
+        let residual = dwells.iter().map(|d| d.amplitude_si).fold(0.0, f64::max);
+        let train = self.follower.train();
+        let [err, acc, inp, force] = self.extremes(accel);
         let loc = |(v, t): (f64, f64)| Located { value: v, angle_deg: self.angle_deg(t) };
         let ratio = self.follower.natural_hz() / (self.exc.speed_rpm / 60.0);
         let min_force = train.map(|_| loc(force.min));
@@ -185,8 +244,8 @@ impl Response {
             residual_amplitude_si: residual,
             residual_pct_of_stroke: 100.0 * residual / self.exc.stroke_si,
             peak_dynamic_error: loc(err.peak_abs()),
-            peak_acceleration: loc(acc.peak_abs()),
-            peak_input_acceleration: loc(inp.peak_abs()),
+            peak_acceleration: loc(if acc.is_empty() { (0.0, 0.0) } else { acc.peak_abs() }),
+            peak_input_acceleration: loc(if inp.is_empty() { (0.0, 0.0) } else { inp.peak_abs() }),
             peak_force_n: train.map(|_| loc(force.peak_abs())),
             loses_contact: min_force.is_some_and(|f| f.value < 0.0),
             min_contact_force_n: min_force,

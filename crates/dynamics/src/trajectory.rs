@@ -88,7 +88,7 @@ pub fn steady_state(exc: &Excitation, ch: &Channel, forcings: &[Forcing]) -> Res
     let b = one_cycle(exc, ch, forcings, 0, (0.0, 0.0), None);
     let (m00, m01, m10, m11) = (1.0 - p00, -p01, -p10, 1.0 - p11);
     let det = m00 * m11 - m01 * m10;
-    if !(det.abs() > 1e-12) {
+    if det.is_nan() || det.abs() <= 1e-12 {
         let ratio = ch.osc.omega_d() / std::f64::consts::TAU * t;
         return Err(DynError::NoSteadyState { speed_rpm: compact(exc.speed_rpm), ratio: compact(ratio) });
     }

@@ -139,3 +139,54 @@ proptest! {
         check(&text, rpm, fn_hz, zeta, start, 1);
     }
 }
+
+/// y'' + 2ζωy' + ω²y = b·sin(Ωt + φ) + c₀ + c₁t from (y₀, v₀), integrated by DOP853.
+struct Sine {
+    w: f64,
+    z: f64,
+    b: f64,
+    om: f64,
+    ph: f64,
+    c: [f64; 2],
+}
+
+impl ODE<f64, [f64; 2]> for Sine {
+    fn diff(&self, t: f64, y: &[f64; 2], d: &mut [f64; 2]) {
+        d[0] = y[1];
+        d[1] = self.b * (self.om * t + self.ph).sin() + self.c[0] + self.c[1] * t
+            - 2.0 * self.z * self.w * y[1]
+            - self.w * self.w * y[0];
+    }
+}
+
+/// Through and around resonance of the sinusoidal term (both routes and the switch between them).
+#[test]
+fn near_resonance_matches_dop853() {
+    use loomkin_dynamics::{Forcing, Harmonic, Oscillator};
+    let w = 2.0 * std::f64::consts::PI * 50.0;
+    for &zeta in &[0.0, 1e-7, 0.02] {
+        for &gap in &[0.0, 1e-12, 1e-6, 2e-5, 1e-4, 1e-3, 0.1] {
+            for &dur in &[0.01, 0.2] {
+                let om = w * (1.0 + gap);
+                let osc = Oscillator::new(w, zeta);
+                let mut poly = [0.0; 8];
+                poly[0] = 3.0;
+                poly[1] = -40.0;
+                let f = Forcing { poly, sine: Some(Harmonic { amp: 1e3, omega: om, phase: 0.7 }) };
+                let sol = osc.solve(&f, dur, 1e-3, -0.2);
+                let eq = Sine { w, z: osc.zeta(), b: 1e3, om, ph: 0.7, c: [3.0, -40.0] };
+                let method = ExplicitRungeKutta::dop853().rtol(1e-13).atol(1e-16).max_steps(1_000_000);
+                let res = IVP::ode(&eq, 0.0, dur, [1e-3, -0.2]).method(method).solve().expect("DOP853 ran");
+                let (ts, ys) = res.into_tuple();
+                let scale = ys.iter().map(|y| y[0].abs()).fold(0.0, f64::max);
+                let vscale = ys.iter().map(|y| y[1].abs()).fold(0.0, f64::max);
+                for (t, y) in ts.iter().zip(&ys) {
+                    let (cy, cv) = sol.state(*t);
+                    assert!(cy.is_finite() && cv.is_finite());
+                    let e = ((cy - y[0]).abs() / scale).max((cv - y[1]).abs() / vscale);
+                    assert!(e < 1e-9, "ζ {zeta} gap {gap} T {dur}: {e:e} at t = {t}");
+                }
+            }
+        }
+    }
+}

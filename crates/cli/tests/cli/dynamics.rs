@@ -1,0 +1,81 @@
+//! `loomkin dyn …` run as a user runs it.
+
+use crate::common::*;
+
+const HEALD: &str = "../../examples/heald-frame-cycle.toml";
+
+#[test]
+fn response_json_has_the_contract_keys() {
+    let v = stdout_json(&[
+        "dyn",
+        "response",
+        HEALD,
+        "--speed-rpm",
+        "600",
+        "--natural-hz",
+        "54",
+        "--damping-ratio",
+        "0.05",
+        "--json",
+    ]);
+    for k in ["residual_amplitude_mm", "peak_dynamic_error_mm", "peak_acceleration_m_s2", "rigidity_ratio"] {
+        assert!(v[k].as_f64().is_some_and(f64::is_finite), "key {k} missing in {v}");
+    }
+    assert!((v["rigidity_ratio"].as_f64().unwrap() - 5.4).abs() < 1e-12);
+    assert_eq!(v["rigidity_warning"], true);
+    let steady = stdout_json(&[
+        "dyn",
+        "response",
+        HEALD,
+        "--speed-rpm",
+        "600",
+        "--natural-hz",
+        "54",
+        "--damping-ratio",
+        "0.05",
+        "--steady",
+        "--json",
+    ]);
+    assert_eq!(steady["start"], "steady");
+}
+
+#[test]
+fn response_csv_and_sweep_csv_headers() {
+    let out = loomkin()
+        .args(["dyn", "response", HEALD, "--speed-rpm", "300", "--natural-hz", "60", "--points", "5", "--csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("angle_deg,s_mm,x_mm,error_mm,a_m_s2\n"), "{text}");
+    assert_eq!(text.lines().count(), 6);
+    let out = loomkin()
+        .args([
+            "dyn",
+            "sweep",
+            HEALD,
+            "--speed-rpm",
+            "300:400:50",
+            "--natural-hz",
+            "60",
+            "--damping-ratio",
+            "0.1",
+            "--csv",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("speed_rpm,residual_amplitude_mm"), "{text}");
+    assert_eq!(text.lines().count(), 4);
+}
+
+#[test]
+fn bad_input_is_one_line_exit_2() {
+    let base = ["dyn", "response", HEALD, "--speed-rpm", "600"];
+    let with = |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<&str>>();
+    usage_error(&with(&["--natural-hz", "0"]), &["natural_hz", "0 < natural_hz"]);
+    usage_error(&with(&["--natural-hz", "50", "--damping-ratio", "1"]), &["damping_ratio", "< 1"]);
+    usage_error(&with(&["--natural-hz", "50", "--steady"]), &["no periodic steady state", "5 ×"]);
+    usage_error(&["dyn", "sweep", HEALD, "--speed-rpm", "300:200:10", "--natural-hz", "50"], &["speed_rpm"]);
+}

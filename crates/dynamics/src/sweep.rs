@@ -1,0 +1,49 @@
+//! Speed sweeps: the figures of the response against the shaft speed.
+
+use crate::Result;
+use crate::follower::Follower;
+use crate::response::Response;
+use crate::trajectory::Start;
+use loomkin_laws::Cycle;
+use loomkin_units::ShaftSpeed;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// The response's figures at one speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SweepPoint {
+    /// Shaft speed (rpm).
+    pub speed_rpm: f64,
+    /// Largest residual amplitude over the dwells (SI).
+    pub residual_amplitude_si: f64,
+    /// The same in % of the largest stroke.
+    pub residual_pct_of_stroke: f64,
+    /// Largest |x − s| (SI).
+    pub peak_dynamic_error_si: f64,
+    /// Largest |train force| (N), when a mass is given.
+    pub peak_force_n: Option<f64>,
+    /// Smallest contact force (N), when a mass is given.
+    pub min_contact_force_n: Option<f64>,
+    /// f_n / f_shaft.
+    pub rigidity_ratio: f64,
+}
+
+/// The figures at one speed.
+pub fn sweep_point(cycle: &Cycle, follower: &Follower, speed: ShaftSpeed, start: Start) -> Result<SweepPoint> {
+    let r = Response::new(cycle, speed, follower, start, 1)?;
+    let s = r.summary_of(false);
+    Ok(SweepPoint {
+        speed_rpm: speed.rpm(),
+        residual_amplitude_si: s.residual_amplitude_si,
+        residual_pct_of_stroke: s.residual_pct_of_stroke,
+        peak_dynamic_error_si: s.peak_dynamic_error.value,
+        peak_force_n: s.peak_force_n.map(|f| f.value),
+        min_contact_force_n: s.min_contact_force_n.map(|f| f.value),
+        rigidity_ratio: s.rigidity_ratio,
+    })
+}
+
+/// The figures at every speed (rpm), in parallel; the first failing speed's error is returned.
+pub fn sweep(cycle: &Cycle, follower: &Follower, speeds_rpm: &[f64], start: Start) -> Result<Vec<SweepPoint>> {
+    speeds_rpm.par_iter().map(|&rpm| sweep_point(cycle, follower, ShaftSpeed::from_rpm(rpm)?, start)).collect()
+}
