@@ -21,6 +21,51 @@ pub enum DynCommand {
     Response(ResponseArgs),
     /// Residual amplitude, peak error and peak force against shaft speed (FROM:TO:STEP rpm).
     Sweep(SweepArgs),
+    /// Residual-vibration spectrum of laws: residual amplitude (% of stroke) against motion time / natural
+    /// period, for catalogue laws (NAME or NAME:KEY=VALUE) and the rises and returns of cycle files (.toml).
+    Spectrum(SpectrumArgs),
+    /// Compensation (polydyne): the input law that makes the follower follow the cycle exactly, written
+    /// as CSV samples (.csv) or exact pieces (.toml); refuses a cycle whose input would jump.
+    Compensate(CompensateArgs),
+}
+
+/// `loomkin dyn compensate`.
+#[derive(Debug, Args)]
+pub struct CompensateArgs {
+    /// The designed cycle (TOML): the motion the follower must make.
+    file: PathBuf,
+    /// Main-shaft speed in rpm (default: the file's `speed_rpm`, else 300).
+    #[arg(long)]
+    speed_rpm: Option<f64>,
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Samples per cycle in the CSV.
+    #[arg(long, default_value_t = 721)]
+    points: usize,
+    /// Output file: OUT.csv (samples) or OUT.toml (exact pieces); `-` prints the CSV.
+    #[arg(short, long)]
+    output: String,
+}
+
+/// `loomkin dyn spectrum`.
+#[derive(Debug, Args)]
+pub struct SpectrumArgs {
+    /// Laws: a catalogue NAME, NAME:KEY=VALUE (e.g. modified-trapezoid:ramp=0.2,
+    /// piecewise:segments=…), or a cycle file FILE.toml (each of its rises and returns).
+    #[arg(required = true)]
+    laws: Vec<String>,
+    /// Damping ratios, comma-separated (each 0 ≤ ζ < 1).
+    #[arg(long, default_value = "0")]
+    damping_ratio: String,
+    /// Ratios of motion time to natural period, FROM:TO:STEP.
+    #[arg(long, default_value = "0.5:10:0.01")]
+    ratio: String,
+    /// Print CSV (one column per law and damping ratio).
+    #[arg(long)]
+    csv: bool,
+    /// Plot to this file (.svg or .png).
+    #[arg(short, long, conflicts_with = "csv")]
+    output: Option<PathBuf>,
 }
 
 /// The follower model shared by the subcommands.
@@ -113,6 +158,8 @@ pub fn run(cmd: DynCommand) -> Result<()> {
     match cmd {
         DynCommand::Response(a) => response(a),
         DynCommand::Sweep(a) => sweep_cmd(a),
+        DynCommand::Spectrum(a) => spectrum_cmd(a),
+        DynCommand::Compensate(a) => compensate_cmd(a),
     }
 }
 
@@ -400,4 +447,179 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     }
     outln!("(--csv, --json or -o PLOT for the whole sweep)")?;
     Ok(())
+}
+
+/// The laws named on the command line: `(label, column key, law)`.
+fn spectrum_laws(tokens: &[String]) -> Result<Vec<(String, String, loomkin_laws::Law)>> {
+    let mut out = Vec::new();
+    for tok in tokens {
+        if tok.ends_with(".toml") {
+            let cycle = read_cycle(Path::new(tok))?;
+            for (i, seg) in cycle.segments.iter().enumerate() {
+                if let Some((spec, law)) = &seg.law {
+                    out.push((format!("{tok} #{i}: {}", spec.label()), format!("{}_seg{i}", spec.name()), law.clone()));
+                }
+            }
+            continue;
+        }
+        let (name, params) = match tok.split_once(':') {
+            Some((n, kv)) => (n, vec![util::parse_key_value(kv).map_err(anyhow::Error::msg)?]),
+            None => (tok.as_str(), Vec::new()),
+        };
+        let (spec, law) = crate::law::build(name, &params)?;
+        out.push((spec.label(), spec.name().to_string(), law));
+    }
+    Ok(out)
+}
+
+fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
+    let laws = spectrum_laws(&a.laws)?;
+    let mut zetas = Vec::new();
+    for z in a.damping_ratio.split(',') {
+        let v: f64 = z.trim().parse().map_err(|_| anyhow::anyhow!("damping_ratio: '{z}' is not a number"))?;
+        zetas.push(Follower::DAMPING_RATIO.check("damping_ratio", v)?);
+    }
+    let span = Span::parse("ratio", &a.ratio, loomkin_units::Range::open(0.0, 1e4, ""))?;
+    if span.count() > 1_000_000 {
+        anyhow::bail!("ratio: {} points is too many: allowed at most 1000000", span.count());
+    }
+    let ratios: Vec<f64> = span.values().collect();
+    let mut series = Vec::new();
+    for (label, key, law) in &laws {
+        for &z in &zetas {
+            let pct: Vec<f64> = loomkin_dynamics::spectrum(law, z, &ratios).into_iter().map(|v| 100.0 * v).collect();
+            series.push((label.clone(), key.clone(), z, pct));
+        }
+    }
+    if a.csv {
+        let mut cols = vec!["motion_time_over_natural_period".to_string()];
+        for (_, key, z, _) in &series {
+            cols.push(format!("residual_pct_of_stroke_{key}_zeta_{}", loomkin_units::compact(*z)));
+        }
+        let mut t = Table::new(cols);
+        for (i, r) in ratios.iter().enumerate() {
+            let mut row = vec![*r];
+            row.extend(series.iter().map(|s| s.3[i]));
+            t.push(row)?;
+        }
+        return output::csv(&t);
+    }
+    if let Some(out) = a.output {
+        let lines = series
+            .iter()
+            .map(|(label, _, z, pct)| {
+                let name =
+                    if zetas.len() > 1 { format!("{label}, ζ {}", loomkin_units::compact(*z)) } else { label.clone() };
+                Series::line(name, ratios.iter().copied().zip(pct.iter().copied()).collect())
+            })
+            .collect();
+        let title = if zetas.len() == 1 {
+            format!("residual vibration after a rise, ζ = {}", loomkin_units::compact(zetas[0]))
+        } else {
+            "residual vibration after a rise".to_string()
+        };
+        let logs = series
+            .iter()
+            .map(|(label, _, z, pct)| {
+                let name =
+                    if zetas.len() > 1 { format!("{label}, ζ {}", loomkin_units::compact(*z)) } else { label.clone() };
+                let pts = ratios.iter().zip(pct).map(|(&r, &p)| (r, (p / 100.0).max(1e-8).log10())).collect();
+                Series::line(name, pts)
+            })
+            .collect();
+        let panels = vec![
+            Panel::new("residual amplitude [% of stroke]", lines),
+            Panel::new("log₁₀(residual amplitude / stroke) [-]", logs),
+        ];
+        return output::figure(&Figure::new(title, "motion time / natural period  T·f_n [-]", panels), &out);
+    }
+    outln!("{:<44} {:>8} {:>14} {:>8}", "law", "ζ", "max [%]", "at r")?;
+    for (label, _, z, pct) in &series {
+        let (i, m) = pct.iter().enumerate().fold((0, 0.0), |acc, (i, &v)| if v > acc.1 { (i, v) } else { acc });
+        outln!("{:<44} {:>8} {:>14.6} {:>8.3}", label, loomkin_units::compact(*z), m, ratios[i])?;
+    }
+    outln!("(--csv or -o PLOT for the whole spectrum)")?;
+    Ok(())
+}
+
+fn compensate_cmd(a: CompensateArgs) -> Result<()> {
+    let cycle = read_cycle(&a.file)?;
+    let speed = speed_of(a.speed_rpm, &cycle)?;
+    let follower = a.model.follower()?;
+    if !(2..=1_000_000).contains(&a.points) {
+        anyhow::bail!("points = {} is out of range: allowed 2 ≤ points ≤ 1000000", a.points);
+    }
+    if !(a.output.ends_with(".csv") || a.output.ends_with(".toml") || a.output == "-") {
+        anyhow::bail!("output = {}: give OUT.csv, OUT.toml or - (CSV on standard output)", a.output);
+    }
+    let exc = loomkin_dynamics::Excitation::from_cycle(&cycle, speed);
+    let comp = loomkin_dynamics::compensate(&exc, &follower)?;
+    let u = units(&cycle);
+    let p = u.pos;
+    let (vel, acc) = if p == "mm" { ("m_s", "m_s2") } else { ("rad_s", "rad_s2") };
+    let smooth = match comp.input_class {
+        0 => "continuous, but its velocity jumps (a cam needs a smoother designed law: x''' continuous)",
+        1 => "continuous velocity, its acceleration jumps",
+        _ => "continuous acceleration",
+    };
+    output::note(format_args!(
+        "designed motion C{}, compensated input C{}: {smooth}{}",
+        comp.designed_class,
+        comp.input_class,
+        if follower.damping_ratio() > 0.0 {
+            " (damped: the periodic solution of the first-order input equation)"
+        } else {
+            ""
+        }
+    ));
+    if a.output.ends_with(".toml") {
+        let mut text = format!(
+            "# The compensated input of {} (loomkin dyn compensate).\n\
+             # Per piece, SI units, t in s from the piece's start:\n\
+             # s(t) = sum(poly[k]·t^k) + sin_cos[0]·sin(Ωt) + sin_cos[1]·cos(Ωt) + exp[0]·e^(−exp[1]·t), Ω = omega_rad_s.\n\
+             unit = \"{}\"\nspeed_rpm = {}\nnatural_hz = {}\ndamping_ratio = {}\ndesigned_class = {}\ninput_class = {}\n",
+            a.file.display(),
+            if p == "mm" { "m" } else { "rad" },
+            speed.rpm(),
+            follower.natural_hz(),
+            follower.damping_ratio(),
+            comp.designed_class,
+            comp.input_class,
+        );
+        let fmt = |v: &[f64]| v.iter().map(|c| format!("{c:e}")).collect::<Vec<_>>().join(", ");
+        for piece in &comp.pieces {
+            text.push_str(&format!(
+                "\n[[piece]]\nfrom_deg = {}\nto_deg = {}\npoly = [{}]\n",
+                exc.angle_deg(piece.t0),
+                exc.angle_deg(piece.t0 + piece.duration),
+                fmt(&piece.poly)
+            ));
+            if let Some((bs, bc, w)) = piece.sine {
+                text.push_str(&format!("sin_cos = [{}]\nomega_rad_s = {w:e}\n", fmt(&[bs, bc])));
+            }
+            if let Some((c, r)) = piece.exp {
+                text.push_str(&format!("exp = [{}]\n", fmt(&[c, r])));
+            }
+        }
+        return output::text_to(&a.output, &text);
+    }
+    let mut t = Table::new([
+        "angle_deg".to_string(),
+        format!("x_{p}"),
+        format!("s_{p}"),
+        format!("s_velocity_{vel}"),
+        format!("s_acceleration_{acc}"),
+    ]);
+    let n = a.points;
+    for i in 0..n {
+        let time = exc.period_s * i as f64 / (n - 1) as f64;
+        let k = exc.piece_at(time.min(exc.period_s * (1.0 - 1e-15)));
+        let piece = &exc.pieces[k];
+        let x = piece.derivs((time - piece.t0).clamp(0.0, piece.duration))[0];
+        let s = comp.eval(time);
+        t.push(vec![exc.angle_deg(time), x * u.scale, s[0] * u.scale, s[1], s[2]])?;
+    }
+    let mut text = Vec::new();
+    t.write_csv(&mut text).map_err(util::failure)?;
+    output::text_to(&a.output, &String::from_utf8_lossy(&text))
 }

@@ -43,6 +43,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod compensate;
 mod complex;
 mod error;
 mod excitation;
@@ -50,14 +51,17 @@ mod follower;
 mod oscillator;
 mod peaks;
 mod response;
+mod spectrum;
 mod sweep;
 mod trajectory;
 
+pub use compensate::{Compensation, InputPiece, JUMP_TOL, compensate, first_jump, input_excitation};
 pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
 pub use oscillator::{Forcing, Harmonic, NCOEF, Oscillator, PieceSolution, free_roots};
 pub use peaks::{Extremes, extremes, grid_size};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
+pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};
 pub use sweep::{SweepPoint, sweep, sweep_point};
 pub use trajectory::{Channel, Solved, Start, steady_state, trajectory};

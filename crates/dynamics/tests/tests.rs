@@ -1,5 +1,7 @@
 //! Integration tests of loomkin-dynamics: the closed form against numerical integration and
 //! against known closed forms.
 
+#[path = "cases/compensate.rs"]
+mod compensate;
 #[path = "cases/ode.rs"]
 mod ode;

@@ -79,3 +79,34 @@ fn bad_input_is_one_line_exit_2() {
     usage_error(&with(&["--natural-hz", "50", "--steady"]), &["no periodic steady state", "5 ×"]);
     usage_error(&["dyn", "sweep", HEALD, "--speed-rpm", "300:200:10", "--natural-hz", "50"], &["speed_rpm"]);
 }
+
+#[test]
+fn spectrum_and_compensate() {
+    let out = loomkin()
+        .args(["dyn", "spectrum", "cycloidal", "modified-trapezoid:ramp=0.2", "--ratio", "1:3:1", "--csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 3);
+    assert!((rows[0][1] - 50.0).abs() < 1e-9, "cycloid at r = 1: half the stroke");
+    assert!(rows[1][1].abs() < 1e-9 && rows[2][1].abs() < 1e-9, "cycloid: zero at r = 2, 3");
+    let out = loomkin()
+        .args(["dyn", "compensate", HEALD, "--speed-rpm", "600", "--natural-hz", "54", "-o", "-", "--points", "3"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(String::from_utf8(out.stdout).unwrap().starts_with("angle_deg,x_mm,s_mm,"));
+    let harmonic = std::env::temp_dir().join("loomkin-dyn-harmonic.toml");
+    std::fs::write(
+        &harmonic,
+        std::fs::read_to_string(HEALD).unwrap().replace("law = \"modified-sine\"", "law = \"harmonic\""),
+    )
+    .unwrap();
+    usage_error(
+        &["dyn", "compensate", harmonic.to_str().unwrap(), "--speed-rpm", "600", "--natural-hz", "54", "-o", "-"],
+        &["no compensating input", "x'' jumps", "60.0000°"],
+    );
+}
