@@ -84,11 +84,61 @@ impl Design {
     /// Designs the compound law for `spec` on a mechanism with constants `constants` (eqs. 18–20).
     pub fn new(spec: DesignSpec, constants: Constants) -> Result<Self> {
         spec.validate()?;
+        let d = Self::compute(spec, constants);
+        if let Some(quantity) = d.non_finite() {
+            // Blame the input whose paper value, put back alone, makes every quantity finite.
+            let paper = DesignSpec::paper();
+            let with = |k: usize| {
+                let mut t = spec;
+                match k {
+                    0 => t.velocity_m_s = paper.velocity_m_s,
+                    1 => t.distance_m = paper.distance_m,
+                    2 => t.first_stage_m = paper.first_stage_m,
+                    _ => t.speed_rpm = paper.speed_rpm,
+                }
+                t
+            };
+            let fields = [
+                ("velocity_m_s", spec.velocity_m_s),
+                ("distance_m", spec.distance_m),
+                ("first_stage_m", spec.first_stage_m),
+                ("speed_rpm", spec.speed_rpm),
+            ];
+            let blame = (0..fields.len()).find(|&k| {
+                let trial = with(k);
+                trial.validate().is_ok() && Self::compute(trial, constants).non_finite().is_none()
+            });
+            let (field, value) = fields[blame.unwrap_or(0)];
+            return Err(PickError::NonFiniteResult { field: field.into(), value, quantity: quantity.into() });
+        }
+        Ok(d)
+    }
+
+    fn compute(spec: DesignSpec, constants: Constants) -> Self {
         let a = spec.velocity_m_s * spec.velocity_m_s / (2.0 * spec.distance_m - SHAPE * spec.first_stage_m);
         let mu = (a / spec.first_stage_m * (FRAC_PI_2 - 1.0)).sqrt();
         let tau = FRAC_PI_2 / mu;
         let t_end = spec.velocity_m_s / a - 1.0 / mu + tau;
-        Ok(Self { a_m_s2: a, mu_1_s: mu, tau_s: tau, t_end_s: t_end, constants, spec })
+        Self { a_m_s2: a, mu_1_s: mu, tau_s: tau, t_end_s: t_end, constants, spec }
+    }
+
+    /// The first derived quantity (A, μ, τ, T′, B, C, D) that is not a finite positive (B, C, D:
+    /// non-negative) number, if any.
+    fn non_finite(&self) -> Option<&'static str> {
+        let normal = |v: f64| v.is_finite() && v >= f64::MIN_POSITIVE;
+        let c = &self.constants;
+        [
+            ("A (eq. 20)", normal(self.a_m_s2)),
+            ("μ (eq. 19)", normal(self.mu_1_s)),
+            ("τ = π/(2μ)", normal(self.tau_s)),
+            ("T′ (eq. 18)", normal(self.t_end_s) && self.t_end_s > self.tau_s),
+            ("B (eq. 4)", c.b_s2.is_finite() && c.b_s2 >= 0.0),
+            ("C (eq. 4)", c.c.is_finite() && c.c >= 0.0),
+            ("D (eq. 4)", c.d_m.is_finite() && c.d_m >= 0.0),
+        ]
+        .into_iter()
+        .find(|(_, ok)| !ok)
+        .map(|(name, _)| name)
     }
 
     /// The second form of eq. 19, μ = A·√((π − 3)/(2AX − V²)); equal to `mu_1_s` by construction.

@@ -32,6 +32,21 @@ pub enum PickError {
         /// Name of the field.
         field: String,
     },
+    /// An input inside its range that makes a derived quantity overflow or underflow (found by
+    /// putting the paper's value back in its place, one input at a time).
+    #[error(
+        "{field} = {} makes {quantity} not a finite positive number (an overflow or underflow): choose a less \
+         extreme {field}",
+        num(*value)
+    )]
+    NonFiniteResult {
+        /// The input to blame.
+        field: String,
+        /// Its value.
+        value: f64,
+        /// The derived quantity that is not finite.
+        quantity: String,
+    },
     /// The strap-loop play is larger than the cam can take up before the end of its rise.
     #[error(
         "play_mm = {} is beyond the cam's reach: the play at the picker ({play_picker_mm:.2} mm = play·l/k) \

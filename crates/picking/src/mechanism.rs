@@ -29,6 +29,7 @@ impl Mechanism {
     /// Builds and validates a mechanism with the compound cam designed for `spec`.
     pub fn new(params: Params, spec: DesignSpec) -> Result<Self> {
         params.validate()?;
+        check_constants(&params)?;
         let design = Design::new(spec, params.constants())?;
         Ok(Self { params, spec, required: RequiredVelocity::default(), cam: Cam::Compound, design })
     }
@@ -39,10 +40,11 @@ impl Mechanism {
         Self::new(Params::paper(), DesignSpec::paper()).expect("the paper's mechanism is valid")
     }
 
-    /// Reads a mechanism from TOML: tables `[mechanism]` (the fields of [`Params`]), `[design]`
+    /// Reads a mechanism from TOML (an error is one line, `line L, column C: what`, without the
+    /// source line, which may be huge): tables `[mechanism]` (the fields of [`Params`]), `[design]`
     /// (the fields of [`DesignSpec`]) and optionally `[required]` ([`RequiredVelocity`]).
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: MechanismFile = toml::from_str(text).map_err(|e| PickError::Toml { reason: e.to_string() })?;
+        let f: MechanismFile = toml::from_str(text).map_err(|e| PickError::Toml { reason: toml_reason(text, &e) })?;
         let m = Self::new(f.mechanism, f.design)?;
         match f.required {
             Some(r) => m.with_required(r),
@@ -98,6 +100,53 @@ impl Mechanism {
 
     pub(crate) fn built_cam(&self) -> Result<BuiltCam> {
         BuiltCam::new(&self.cam, &self.design)
+    }
+}
+
+/// B, C, D (eq. 4) must be finite: an input inside its range may still overflow them (a return
+/// spring compliance of 1e-320 m/N). The input to blame is the one whose paper value, put back
+/// alone, makes them finite.
+fn check_constants(params: &Params) -> Result<()> {
+    let finite = |p: &Params| {
+        let c = p.constants();
+        [c.b_s2, c.c, c.d_m].iter().all(|v| v.is_finite())
+    };
+    if finite(params) {
+        return Ok(());
+    }
+    let paper = Params::paper();
+    type Field = (&'static str, fn(&Params) -> f64, fn(&mut Params, f64));
+    let fields: [Field; 9] = [
+        ("c1_m_per_n", |p| p.c1_m_per_n, |p, v| p.c1_m_per_n = v),
+        ("c23_m_per_n", |p| p.c23_m_per_n, |p, v| p.c23_m_per_n = v),
+        ("c4_m_per_n", |p| p.c4_m_per_n, |p, v| p.c4_m_per_n = v),
+        ("theta_kg_m2", |p| p.theta_kg_m2, |p, v| p.theta_kg_m2 = v),
+        ("shuttle_kg", |p| p.shuttle_kg, |p, v| p.shuttle_kg = v),
+        ("k_m", |p| p.k_m, |p, v| p.k_m = v),
+        ("r_m", |p| p.r_m, |p, v| p.r_m = v),
+        ("checking_n", |p| p.checking_n, |p, v| p.checking_n = v),
+        ("l_m", |p| p.l_m, |p, v| p.l_m = v),
+    ];
+    let blame = fields.iter().find(|(_, get, set)| {
+        let mut trial = *params;
+        set(&mut trial, get(&paper));
+        trial.validate().is_ok() && finite(&trial)
+    });
+    let (field, get, _) = blame.unwrap_or(&fields[2]);
+    Err(PickError::NonFiniteResult { field: (*field).into(), value: get(params), quantity: "B, C, D (eq. 4)".into() })
+}
+
+/// `line L, column C: message` of a TOML error, on one line and without quoting the source.
+fn toml_reason(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+    match e.span() {
+        Some(span) => {
+            let before = text.get(..span.start.min(text.len())).unwrap_or(text);
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+            format!("line {line}, column {column}: {message}")
+        }
+        None => message,
     }
 }
 

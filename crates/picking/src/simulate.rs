@@ -261,6 +261,17 @@ fn evaluate(
         }
     }
     let vr = m.required().at(st.speed_rpm);
+    // The required velocity is the divisor of the percentage: a path so short that it underflows
+    // (path_m = 5e-324) leaves no finite comparison.
+    let pct = (last.v_m_s / vr - 1.0) * 100.0;
+    if !(vr >= f64::MIN_POSITIVE && pct.is_finite()) {
+        let r = m.required();
+        return Err(PickError::NonFiniteResult {
+            field: "path_m".into(),
+            value: r.path_m,
+            quantity: "the required velocity (path over the free-shed time) and the comparison with it".into(),
+        });
+    }
     let values = [t_end, last.x_m, last.v_m_s, last.a_m_s2, best.0, best.1, vr];
     if values.iter().any(|v| !v.is_finite()) {
         return Err(PickError::Solver { reason: "the end-of-pick values are not finite numbers".into() });
@@ -275,7 +286,7 @@ fn evaluate(
         t_peak_s: best.0,
         end,
         required_velocity_m_s: vr,
-        velocity_vs_required_pct: (last.v_m_s / vr - 1.0) * 100.0,
+        velocity_vs_required_pct: pct,
         method,
         note,
         b_s2: sc.k.b_s2,

@@ -30,13 +30,27 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
     }
 }
 
+/// Longest message of a JSON error (characters): serde quotes the bad value, which may be a
+/// string of 100 000 characters; the middle is cut.
+const MAX_MESSAGE_CHARS: usize = 600;
+
+fn cut(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= MAX_MESSAGE_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_MESSAGE_CHARS / 2).collect();
+    let tail: String = text.chars().skip(n - MAX_MESSAGE_CHARS / 2 + 40).collect();
+    format!("{head} … ({} characters cut) … {tail}", n - MAX_MESSAGE_CHARS + 40)
+}
+
 /// Decodes JSON text, naming the path of the first bad value in the error.
 ///
 /// The text must be one JSON object (`[]` or a bare number is not a request), with nothing but
 /// white space after it, and every key must be known at every depth (a misspelt key is refused
 /// with its path rather than silently ignored).
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
-    let bad = |field: String, message: String| ApiError::BadJson { field, message };
+    let bad = |field: String, message: String| ApiError::BadJson { field, message: cut(&message) };
     if bytes.iter().find(|b| !b.is_ascii_whitespace()) != Some(&b'{') {
         return Err(bad("body".into(), "the request body must be one JSON object {…}".into()));
     }
@@ -127,6 +141,10 @@ mod tests {
         assert_eq!(parse_json::<Outer>(b"[]").unwrap_err().field(), "body");
         let e = parse_json::<Outer>(br#"{"drive": {"stroke_m": 1}, "extra": 2}"#).unwrap_err();
         assert_eq!((e.field(), e.to_string().as_str()), ("extra", "extra: unknown field `extra`"));
+        // A huge bad value is not echoed in full.
+        let e = parse_json::<Outer>(format!(r#"{{"drive": {{"stroke_m": "{}"}}}}"#, "x".repeat(100_000)).as_bytes());
+        let text = e.unwrap_err().to_string();
+        assert!(text.chars().count() < 700 && text.contains("characters cut"), "{}", text.len());
     }
 
     #[test]
