@@ -64,6 +64,14 @@ const SEEDS: &[&str] = &[
     "dobby synthesize --step-deg 10 --json --roller-m 0.02",
     "dobby plot -o {out}.svg",
     "dobby sweep --step-deg 10 --json",
+    "dyn response --natural-hz 80 --speed-rpm 300 {cycle} --json",
+    "dyn response --natural-hz 80 --speed-rpm 300 --damping-ratio 0.05 {cycle}",
+    "dyn sweep --speed-rpm 200:400:100 --natural-hz 80 {cycle} --json",
+    "dyn spectrum cycloidal modified-trapezoid:ramp=0.1",
+    "dyn compensate --natural-hz 80 -o {out}.csv {cycle}",
+    "cam table --format csv -o {out}.csv {cycle}",
+    "cam table --format xyvaj -o - --law cycloidal --stroke-mm 100 --motion-deg 120",
+    "cam table --format st -o {out}.txt --law poly345 --stroke-mm 50 --motion-deg 90 --json",
 ];
 
 const NUMBERS: &[&str] = &[

@@ -32,6 +32,20 @@ pub struct SweepPoint {
 pub fn sweep_point(cycle: &Cycle, follower: &Follower, speed: ShaftSpeed, start: Start) -> Result<SweepPoint> {
     let r = Response::new(cycle, speed, follower, start, 1)?;
     let s = r.summary_of(false);
+    // An extreme follower (natural_hz = 8e-174) inside its range may overflow the figures: refuse
+    // it naming the input rather than hand on a non-finite number.
+    let figures = [s.residual_amplitude_si, s.residual_pct_of_stroke, s.peak_dynamic_error.value, s.rigidity_ratio];
+    if figures.iter().any(|v| !v.is_finite()) {
+        return Err(crate::DynError::Input {
+            field: "natural_hz".into(),
+            reason: format!(
+                "natural_hz = {} gives non-finite figures at {} rpm (an overflow): the follower is too soft for this \
+                 model",
+                loomkin_units::compact(follower.natural_hz()),
+                loomkin_units::compact(speed.rpm())
+            ),
+        });
+    }
     Ok(SweepPoint {
         speed_rpm: speed.rpm(),
         residual_amplitude_si: s.residual_amplitude_si,
@@ -46,4 +60,23 @@ pub fn sweep_point(cycle: &Cycle, follower: &Follower, speed: ShaftSpeed, start:
 /// The figures at every speed (rpm), in parallel; the first failing speed's error is returned.
 pub fn sweep(cycle: &Cycle, follower: &Follower, speeds_rpm: &[f64], start: Start) -> Result<Vec<SweepPoint>> {
     speeds_rpm.par_iter().map(|&rpm| sweep_point(cycle, follower, ShaftSpeed::from_rpm(rpm)?, start)).collect()
+}
+
+#[cfg(test)]
+mod finite_tests {
+    use super::*;
+
+    /// A follower so soft that the figures overflow is refused naming `natural_hz`, not handed on.
+    #[test]
+    fn an_overflowing_follower_is_refused_by_name() {
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml"))
+                .unwrap();
+        let cycle = Cycle::from_toml(&text).unwrap();
+        let f = Follower::new(8e-174, 0.0).unwrap();
+        let e = sweep(&cycle, &f, &[200.0], Start::Rest).unwrap_err().to_string();
+        assert!(e.starts_with("natural_hz:") && !e.contains("inf"), "{e}");
+        let ok = sweep(&cycle, &Follower::new(80.0, 0.05).unwrap(), &[200.0], Start::Rest).unwrap();
+        assert!(ok[0].residual_amplitude_si.is_finite());
+    }
 }
