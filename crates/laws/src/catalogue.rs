@@ -3,6 +3,7 @@
 use crate::polynomial::{PolySegment, format_poly_segments, parse_poly_segments};
 use crate::shape::{format_segments, parse_segments};
 use crate::{AccelPiece, EndCondition, Law, LawError, Result, Shape, ShapeSegment, Sine};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -165,9 +166,7 @@ impl LawSpec {
     pub fn validate(&self) -> Result<()> {
         match self {
             LawSpec::ModifiedTrapezoid { ramp } => {
-                if !(ramp.is_finite() && *ramp > 0.0 && *ramp <= 0.25) {
-                    return Err(LawError::out_of_open_range("ramp", *ramp, 0.0, 0.25, ""));
-                }
+                Range::open_closed(0.0, 0.25, "").check("ramp", *ramp)?;
                 Ok(())
             }
             LawSpec::Piecewise { segments } if segments.is_empty() => Err(LawError::Parse {
@@ -267,10 +266,7 @@ impl LawSpec {
 fn check_lengths(lengths: impl Iterator<Item = f64>) -> Result<()> {
     let mut sum = 0.0;
     for (i, l) in lengths.enumerate() {
-        LawError::check_range(&format!("segments[{i}].length"), l, 0.0, 1.0, "")?;
-        if l <= 0.0 {
-            return Err(LawError::out_of_open_range(format!("segments[{i}].length"), l, 0.0, 1.0, ""));
-        }
+        Range::open_closed(0.0, 1.0, "").check(&format!("segments[{i}].length"), l)?;
         sum += l;
     }
     if (sum - 1.0).abs() > 1e-9 {

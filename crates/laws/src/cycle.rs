@@ -1,6 +1,7 @@
 //! Machine cycles: dwell / rise / dwell / return segments over one turn of the main shaft.
 
 use crate::{Kinematics, Law, LawError, LawSpec, Result};
+use loomkin_units::{Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -226,9 +227,9 @@ impl Cycle {
     /// Checks a cycle: the angles must follow one another without gap or overlap and close the
     /// cycle, every rise and return needs a positive stroke, and the follower must end where it began.
     pub fn new(spec: &CycleSpec) -> Result<Self> {
-        let period = LawError::check_range("period_deg", spec.period_deg, 1e-6, 36_000.0, "deg")?;
+        let period = Range::closed(1e-6, 36_000.0, "deg").check("period_deg", spec.period_deg)?;
         if let Some(n) = spec.speed_rpm {
-            LawError::check_range("speed_rpm", n, 1e-6, 1e6, "rpm")?;
+            ShaftSpeed::from_rpm(n)?;
         }
         if spec.segment.is_empty() {
             return Err(LawError::Cycle {
@@ -243,7 +244,7 @@ impl Cycle {
         for (i, s) in spec.segment.iter().enumerate() {
             let f = |name: &str| format!("segment[{i}].{name}");
             if let Some(from) = s.from_deg {
-                LawError::check_range(&f("from_deg"), from, -36_000.0, 36_000.0, "deg")?;
+                Range::closed(-36_000.0, 36_000.0, "deg").check(&f("from_deg"), from)?;
                 if (from - at).abs() > 1e-9 {
                     return Err(LawError::Cycle {
                         field: f("from_deg"),
@@ -301,13 +302,8 @@ impl Cycle {
                         field: f("stroke"),
                         reason: "a rise or return needs a stroke (here or as the cycle's `stroke`)".into(),
                     })?;
-                    LawError::check_range(
-                        &f("stroke"),
-                        h,
-                        1e-12,
-                        1e6,
-                        if spec.unit == StrokeUnit::Mm { "mm" } else { "deg" },
-                    )?;
+                    let unit = if spec.unit == StrokeUnit::Mm { "mm" } else { "deg" };
+                    Range::closed(1e-12, 1e6, unit).check(&f("stroke"), h)?;
                     let si = h * spec.unit.to_si();
                     if kind == SegmentKind::Rise { si } else { -si }
                 }

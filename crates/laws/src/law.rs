@@ -1,6 +1,7 @@
 //! A law: a sequence of closed-form segments covering `[0, 1]`.
 
 use crate::{Kinematics, LawError, MotionLaw, Result, Segment, Sine};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// One piece of acceleration handed to [`Law::from_accel_pieces`]: a width on the `x` axis and the
@@ -90,7 +91,7 @@ impl Law {
         }
         let mut sum = 0.0;
         for (i, p) in pieces.iter().enumerate() {
-            LawError::check_range(&format!("{field}[{i}].length"), p.width, f64::MIN_POSITIVE, 1.0, "")?;
+            Range::open_closed(0.0, 1.0, "").check(&format!("{field}[{i}].length"), p.width)?;
             sum += p.width;
         }
         if (sum - 1.0).abs() > 1e-9 {

@@ -1,7 +1,8 @@
 //! Closed parametric plane curves: the cam profiles a vector loop can run on.
 
+use crate::Result;
 use crate::planar::{Vec2, curvature};
-use crate::{MechError, Result};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -67,13 +68,10 @@ impl Ellipse {
     /// An ellipse with semi-axes `a_m`, `b_m` centred at `(cx_m, cy_m)`.
     pub fn with_centre(a_m: f64, b_m: f64, cx_m: f64, cy_m: f64) -> Result<Self> {
         for (f, v) in [("a_m", a_m), ("b_m", b_m)] {
-            MechError::check_range(f, v, 0.0, 100.0, "m")?;
-            if v <= 0.0 {
-                return Err(MechError::out_of_range(f, v, 0.0, 100.0, "m (exclusive of 0)"));
-            }
+            Range::open_closed(0.0, 100.0, "m").check(f, v)?;
         }
-        MechError::check_range("cx_m", cx_m, -100.0, 100.0, "m")?;
-        MechError::check_range("cy_m", cy_m, -100.0, 100.0, "m")?;
+        Range::closed(-100.0, 100.0, "m").check("cx_m", cx_m)?;
+        Range::closed(-100.0, 100.0, "m").check("cy_m", cy_m)?;
         Ok(Self { a_m, b_m, cx_m, cy_m })
     }
 }
@@ -97,6 +95,7 @@ impl PlaneCurve for Ellipse {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::MechError;
 
     #[test]
     fn ellipse_derivatives_match_finite_differences() {
@@ -118,7 +117,7 @@ mod tests {
 
     #[test]
     fn ellipse_rejects_bad_axes() {
-        assert!(matches!(Ellipse::new(0.0, 1.0), Err(MechError::OutOfRange { .. })));
-        assert!(matches!(Ellipse::new(f64::NAN, 1.0), Err(MechError::NotFinite { .. })));
+        assert!(matches!(Ellipse::new(0.0, 1.0), Err(MechError::Range(_))));
+        assert!(matches!(Ellipse::new(f64::NAN, 1.0), Err(MechError::Range(_))));
     }
 }

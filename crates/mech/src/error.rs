@@ -1,6 +1,7 @@
 //! Errors of the mechanisms crate.
 
 use loomkin_laws::LawError;
+use loomkin_units::{FieldError, RangeError};
 use thiserror::Error;
 
 /// Everything that can go wrong when a mechanism is defined, assembled or traced.
@@ -10,26 +11,9 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum MechError {
-    /// A numeric parameter outside its allowed range.
-    #[error("{field} = {} is out of range: allowed {min} ≤ {field} ≤ {max}{unit}", short_number(*value))]
-    OutOfRange {
-        /// Name of the field.
-        field: String,
-        /// Offending value.
-        value: f64,
-        /// Lowest allowed value.
-        min: f64,
-        /// Highest allowed value.
-        max: f64,
-        /// Unit suffix (with a leading space) or empty.
-        unit: String,
-    },
-    /// A value that is not a finite number.
-    #[error("{field} is not a finite number")]
-    NotFinite {
-        /// Name of the field.
-        field: String,
-    },
+    /// A number outside its allowed range, or not a finite number.
+    #[error(transparent)]
+    Range(#[from] RangeError),
     /// A structurally invalid definition (wrong number of equations, bad index, …).
     #[error("{field}: {reason}")]
     Invalid {
@@ -99,28 +83,15 @@ pub enum MechError {
     Law(#[from] LawError),
 }
 
-/// A number as a user typed it: plain for ordinary magnitudes, in exponent form outside
-/// 1e-4…1e9 (so that `1e308` does not print as 309 digits).
-fn short_number(v: f64) -> String {
-    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
-}
-
-impl MechError {
-    /// Shorthand for [`MechError::OutOfRange`].
-    pub fn out_of_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
-        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-        Self::OutOfRange { field: field.into(), value, min, max, unit }
-    }
-
-    /// Checks `min ≤ value ≤ max` and finiteness; returns the value.
-    pub fn check_range(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        if !value.is_finite() {
-            return Err(Self::NotFinite { field: field.into() });
+impl FieldError for MechError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            Self::Range(e) => Some(&e.field),
+            Self::Invalid { field, .. } => Some(field),
+            Self::PointTable { .. } => Some("cam"),
+            Self::Law(e) => e.field(),
+            _ => None,
         }
-        if value < min || value > max {
-            return Err(Self::out_of_range(field, value, min, max, unit));
-        }
-        Ok(value)
     }
 }
 
@@ -130,12 +101,12 @@ pub type Result<T, E = MechError> = std::result::Result<T, E>;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use loomkin_units::Range;
 
     #[test]
     fn huge_values_print_short() {
-        let e = MechError::check_range("alpha_deg", 1e308, 0.0, 180.0, "°").unwrap_err().to_string();
-        assert!(e.starts_with("alpha_deg = 1e308 is out of range"), "{e}");
-        let e = MechError::check_range("l2_m", -0.5, 0.0, 100.0, "m").unwrap_err().to_string();
-        assert!(e.starts_with("l2_m = -0.5 is out"), "{e}");
+        let e: MechError = Range::closed(0.0, 180.0, "°").check("alpha_deg", 1e308).unwrap_err().into();
+        assert!(e.to_string().starts_with("alpha_deg = 1e308 is out of range"), "{e}");
+        assert_eq!(e.field(), Some("alpha_deg"));
     }
 }

@@ -19,6 +19,7 @@
 use crate::curve::PlaneCurve;
 use crate::planar::{Vec2, e, e_perp};
 use crate::{MechError, Result};
+use loomkin_units::Range;
 use nalgebra::{SMatrix, SVector};
 use std::sync::Arc;
 
@@ -166,9 +167,8 @@ pub struct LoopSystem<const N: usize> {
 }
 
 fn check_scalar<const N: usize>(s: &Scalar, field: &str) -> Result<()> {
-    if !(s.gain.is_finite() && s.offset.is_finite()) {
-        return Err(MechError::NotFinite { field: field.into() });
-    }
+    Range::finite("").check(&format!("{field}.gain"), s.gain)?;
+    Range::finite("").check(&format!("{field}.offset"), s.offset)?;
     if let Var::Unknown(i) = s.var
         && i >= N
     {
@@ -193,15 +193,13 @@ impl<const N: usize> LoopSystem<N> {
                     Term::Polar { sign, length, angle } => {
                         check_scalar::<N>(length, &f)?;
                         check_scalar::<N>(angle, &f)?;
-                        if !sign.is_finite() {
-                            return Err(MechError::NotFinite { field: f });
-                        }
+                        Range::finite("").check(&format!("{f}.sign"), *sign)?;
                     }
                     Term::Curve { param, .. } => check_scalar::<N>(param, &f)?,
-                    Term::Fixed(v) if !(v.x.is_finite() && v.y.is_finite()) => {
-                        return Err(MechError::NotFinite { field: f });
+                    Term::Fixed(v) => {
+                        Range::finite("m").check(&format!("{f}.x"), v.x)?;
+                        Range::finite("m").check(&format!("{f}.y"), v.y)?;
                     }
-                    Term::Fixed(_) => {}
                 }
             }
         }

@@ -1,7 +1,8 @@
 //! The cam: which nominal picker motion s(u) drives the mechanism.
 
-use crate::{Design, Nominal, PickError, Result};
+use crate::{Design, Nominal, Result};
 use loomkin_laws::{Law, LawSpec};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// The nominal law the picking cam gives the picker, as a function of design time u.
@@ -45,8 +46,8 @@ impl BuiltCam {
         Ok(match cam {
             Cam::Compound => BuiltCam::Compound(*design),
             Cam::Law { spec, stroke_m, rise_s } => {
-                PickError::check_positive("stroke_m", *stroke_m, 10.0, "m")?;
-                PickError::check_positive("rise_s", *rise_s, 10.0, "s")?;
+                Range::open_closed(0.0, 10.0, "m").check("stroke_m", *stroke_m)?;
+                Range::open_closed(0.0, 10.0, "s").check("rise_s", *rise_s)?;
                 BuiltCam::Law {
                     law: spec.build()?,
                     label: spec.label(),

@@ -1,6 +1,7 @@
 //! Design of the compound picking law (sine, then constant acceleration), eqs. 6–20.
 
-use crate::{Constants, PickError, Result};
+use crate::{Constants, Result};
+use loomkin_units::{Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -29,10 +30,10 @@ impl DesignSpec {
     /// X₁ < X is exactly the condition T' > τ (the sine stage ends below the final velocity,
     /// V·μ > A); it also keeps eq. 20's denominator 2X − X₁·(π−3)/(π/2−1) positive.
     pub fn validate(&self) -> Result<()> {
-        PickError::check_positive("velocity_m_s", self.velocity_m_s, 1e3, "m/s")?;
-        PickError::check_positive("distance_m", self.distance_m, 100.0, "m")?;
-        PickError::check_open("first_stage_m", self.first_stage_m, 0.0, self.distance_m, "m")?;
-        PickError::check_positive("speed_rpm", self.speed_rpm, 1e5, "rpm")?;
+        Range::open_closed(0.0, 1e3, "m/s").check("velocity_m_s", self.velocity_m_s)?;
+        Range::open_closed(0.0, 100.0, "m").check("distance_m", self.distance_m)?;
+        Range::open(0.0, self.distance_m, "m").check("first_stage_m", self.first_stage_m)?;
+        ShaftSpeed::from_rpm(self.speed_rpm)?;
         Ok(())
     }
 }

@@ -1,5 +1,6 @@
 //! Errors of the picking study.
 
+use loomkin_units::{FieldError, RangeError, compact};
 use thiserror::Error;
 
 /// Everything that can go wrong when describing or simulating a picking mechanism.
@@ -8,36 +9,15 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum PickError {
-    /// A numeric input outside its allowed range.
-    #[error("{field} = {} is out of range: allowed {} {lo} {field} {hi} {}{unit}", num(*value), num(*min), num(*max))]
-    OutOfRange {
-        /// Name of the field (with its unit suffix, e.g. `play_mm`).
-        field: String,
-        /// Offending value.
-        value: f64,
-        /// Lower bound.
-        min: f64,
-        /// Upper bound.
-        max: f64,
-        /// `"<"` or `"≤"` for the lower bound.
-        lo: &'static str,
-        /// `"<"` or `"≤"` for the upper bound.
-        hi: &'static str,
-        /// Unit suffix with a leading space, or empty.
-        unit: String,
-    },
-    /// An input that is not a finite number.
-    #[error("{field} is not a finite number")]
-    NotFinite {
-        /// Name of the field.
-        field: String,
-    },
+    /// A number outside its allowed range, or not a finite number.
+    #[error(transparent)]
+    Range(#[from] RangeError),
     /// An input inside its range that makes a derived quantity overflow or underflow (found by
     /// putting the paper's value back in its place, one input at a time).
     #[error(
         "{field} = {} makes {quantity} not a finite positive number (an overflow or underflow): choose a less \
          extreme {field}",
-        num(*value)
+        compact(*value)
     )]
     NonFiniteResult {
         /// The input to blame.
@@ -51,7 +31,7 @@ pub enum PickError {
     #[error(
         "play_mm = {} is beyond the cam's reach: the play at the picker ({play_picker_mm:.2} mm = play·l/k) \
          must be less than the cam's remaining travel {reach_mm:.2} mm",
-        num(*play_mm)
+        compact(*play_mm)
     )]
     PlayBeyondReach {
         /// Play of the strap loop s'₀ in mm.
@@ -68,7 +48,7 @@ pub enum PickError {
         "checking_kgf = {} with the equilibrium start is beyond the cam's reach: the play at the \
          picker ({play_picker_mm:.2} mm) plus the extra static deflection D' − D = {extra_mm:.2} mm under the \
          checking force must be less than the cam's travel {reach_mm:.2} mm",
-        num(*checking_kgf)
+        compact(*checking_kgf)
     )]
     CheckingBeyondReach {
         /// Checking force F₀ in kgf.
@@ -84,8 +64,8 @@ pub enum PickError {
     #[error(
         "strap_cm = {} is out of range: the constants B', C', D' of eq. 4 (∝ 1/k²) are not finite; \
          allowed 0 < strap_cm < {} cm with finite constants",
-        num(*strap_cm),
-        num(*l_cm)
+        compact(*strap_cm),
+        compact(*l_cm)
     )]
     StrapTooLow {
         /// Strap-loop height k in cm.
@@ -156,52 +136,19 @@ pub enum PickError {
     Law(#[from] loomkin_laws::LawError),
 }
 
-impl PickError {
-    /// Checks `min ≤ value ≤ max` (closed) and finiteness.
-    pub fn check_closed(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        Self::check(field, value, min, max, unit, false, false)
-    }
-
-    /// Checks `min < value < max` (open) and finiteness.
-    pub fn check_open(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        Self::check(field, value, min, max, unit, true, true)
-    }
-
-    /// Checks `min < value ≤ max` and finiteness.
-    pub fn check_positive(field: &str, value: f64, max: f64, unit: &str) -> Result<f64> {
-        Self::check(field, value, 0.0, max, unit, true, false)
-    }
-
-    /// Checks `min ≤ value < max` and finiteness.
-    pub fn check_below(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        Self::check(field, value, min, max, unit, false, true)
-    }
-
-    fn check(field: &str, value: f64, min: f64, max: f64, unit: &str, open_lo: bool, open_hi: bool) -> Result<f64> {
-        if !value.is_finite() {
-            return Err(Self::NotFinite { field: field.into() });
+impl FieldError for PickError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            Self::Range(e) => Some(&e.field),
+            Self::NonFiniteResult { field, .. } => Some(field),
+            Self::PlayBeyondReach { .. } => Some("play_mm"),
+            Self::CheckingBeyondReach { .. } => Some("checking_kgf"),
+            Self::StrapTooLow { .. } => Some("strap_cm"),
+            Self::UnknownSetting { .. } => Some("setting"),
+            Self::Law(e) => e.field(),
+            _ => None,
         }
-        let bad_lo = if open_lo { value <= min } else { value < min };
-        let bad_hi = if open_hi { value >= max } else { value > max };
-        if bad_lo || bad_hi {
-            return Err(Self::OutOfRange {
-                field: field.into(),
-                value,
-                min,
-                max,
-                lo: if open_lo { "<" } else { "≤" },
-                hi: if open_hi { "<" } else { "≤" },
-                unit: if unit.is_empty() { String::new() } else { format!(" {unit}") },
-            });
-        }
-        Ok(value)
     }
-}
-
-/// A number for an error line: plain when of ordinary size, in exponent form when very large
-/// or very small (so that 1e308 does not print as 309 digits).
-fn num(v: f64) -> String {
-    if v == 0.0 || (1e-4..1e7).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
 }
 
 /// Result alias of the picking study.

@@ -1,7 +1,8 @@
 //! The elastic picking mechanism (the paper's Fig. 1) and its derived constants B, C, D (eq. 4).
 
+use crate::Result;
 use crate::units::{KG_M2_PER_KGF_CM_S2, KG_PER_KGF_S2_PER_CM, M_PER_CM, M_PER_N_PER_CM_PER_KGF, N_PER_KGF};
-use crate::{PickError, Result};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// Dimensions, compliances and masses of an under-pick picking mechanism, in SI.
@@ -70,15 +71,15 @@ impl Params {
 
     /// Checks every field: compliances, Θ, m, l, r positive; 0 < k < l; F₀ ≥ 0.
     pub fn validate(&self) -> Result<()> {
-        PickError::check_positive("c1_m_per_n", self.c1_m_per_n, 1.0, "m/N")?;
-        PickError::check_positive("c23_m_per_n", self.c23_m_per_n, 1.0, "m/N")?;
-        PickError::check_positive("c4_m_per_n", self.c4_m_per_n, 1.0, "m/N")?;
-        PickError::check_positive("theta_kg_m2", self.theta_kg_m2, 1e3, "kg·m²")?;
-        PickError::check_positive("shuttle_kg", self.shuttle_kg, 100.0, "kg")?;
-        PickError::check_positive("l_m", self.l_m, 10.0, "m")?;
-        PickError::check_open("k_m", self.k_m, 0.0, self.l_m, "m")?;
-        PickError::check_positive("r_m", self.r_m, 10.0, "m")?;
-        PickError::check_closed("checking_n", self.checking_n, 0.0, 1e5, "N")?;
+        Range::open_closed(0.0, 1.0, "m/N").check("c1_m_per_n", self.c1_m_per_n)?;
+        Range::open_closed(0.0, 1.0, "m/N").check("c23_m_per_n", self.c23_m_per_n)?;
+        Range::open_closed(0.0, 1.0, "m/N").check("c4_m_per_n", self.c4_m_per_n)?;
+        Range::open_closed(0.0, 1e3, "kg·m²").check("theta_kg_m2", self.theta_kg_m2)?;
+        Range::open_closed(0.0, 100.0, "kg").check("shuttle_kg", self.shuttle_kg)?;
+        Range::open_closed(0.0, 10.0, "m").check("l_m", self.l_m)?;
+        Range::open(0.0, self.l_m, "m").check("k_m", self.k_m)?;
+        Range::open_closed(0.0, 10.0, "m").check("r_m", self.r_m)?;
+        Range::closed(0.0, 1e5, "N").check("checking_n", self.checking_n)?;
         Ok(())
     }
 

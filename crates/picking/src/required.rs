@@ -1,6 +1,7 @@
 //! The required shuttle velocity from the free shed opening (Jederán's V_r formula, §3.1).
 
-use crate::{PickError, Result};
+use crate::Result;
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// Inputs of the required-velocity formula
@@ -34,9 +35,9 @@ impl Default for RequiredVelocity {
 impl RequiredVelocity {
     /// Checks 0 ≤ p < 100, s > 0, 0 < φ_s ≤ 360.
     pub fn validate(&self) -> Result<()> {
-        PickError::check_below("retardation_pct", self.retardation_pct, 0.0, 100.0, "%")?;
-        PickError::check_positive("path_m", self.path_m, 100.0, "m")?;
-        PickError::check_positive("free_shed_deg", self.free_shed_deg, 360.0, "°")?;
+        Range::closed_open(0.0, 100.0, "%").check("retardation_pct", self.retardation_pct)?;
+        Range::open_closed(0.0, 100.0, "m").check("path_m", self.path_m)?;
+        Range::open_closed(0.0, 360.0, "°").check("free_shed_deg", self.free_shed_deg)?;
         Ok(())
     }
 

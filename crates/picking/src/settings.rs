@@ -2,6 +2,7 @@
 
 use crate::units::{KG_PER_G, M_PER_CM, M_PER_MM, N_PER_KGF};
 use crate::{Mechanism, PickError, Result};
+use loomkin_units::{Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 
 /// How the instant the shuttle starts (t = 0) is found on the nominal motion.
@@ -53,12 +54,12 @@ impl Settings {
     /// m > 0, F₀ ≥ 0. (Play beyond the cam's reach is found when the scenario is resolved.)
     pub fn validate(&self, mechanism: &Mechanism) -> Result<()> {
         // Below 1 rev/min the pick lasts minutes and the integrator would follow ~10⁵ oscillations.
-        PickError::check_closed("speed_rpm", self.speed_rpm, 1.0, 1e4, "rpm")?;
+        ShaftSpeed::from_rpm(self.speed_rpm)?;
         let l_m = mechanism.params().l_m;
-        PickError::check_closed("play_mm", self.play_m / M_PER_MM, 0.0, l_m / M_PER_MM, "mm")?;
-        PickError::check_open("strap_cm", self.strap_m / M_PER_CM, 0.0, l_m / M_PER_CM, "cm (0 < k < l)")?;
-        PickError::check_positive("shuttle_g", self.shuttle_kg / KG_PER_G, 1e5, "g")?;
-        PickError::check_closed("checking_kgf", self.checking_n / N_PER_KGF, 0.0, 1e3, "kgf")?;
+        Range::closed(0.0, l_m / M_PER_MM, "mm").check("play_mm", self.play_m / M_PER_MM)?;
+        Range::open(0.0, l_m / M_PER_CM, "cm (0 < k < l)").check("strap_cm", self.strap_m / M_PER_CM)?;
+        Range::open_closed(0.0, 1e5, "g").check("shuttle_g", self.shuttle_kg / KG_PER_G)?;
+        Range::closed(0.0, 1e3, "kgf").check("checking_kgf", self.checking_n / N_PER_KGF)?;
         Ok(())
     }
 

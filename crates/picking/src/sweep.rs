@@ -1,6 +1,7 @@
 //! Sweeps of one setting over a range, evaluated in parallel (the paper's Figs. 5–8 and 10).
 
-use crate::{Mechanism, Method, Outcome, PickError, Result, Setting, Settings, simulate};
+use crate::{Mechanism, Method, Outcome, Result, Setting, Settings, simulate};
+use loomkin_units::Range;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -40,9 +41,9 @@ pub fn sweep(
     steps: usize,
     method: Method,
 ) -> Result<Sweep> {
-    PickError::check_closed("from", from, f64::MIN, f64::MAX, setting.unit())?;
-    PickError::check_closed("to", to, f64::MIN, f64::MAX, setting.unit())?;
-    PickError::check_closed("steps", steps as f64, 1.0, 1e6, "")?;
+    Range::finite(setting.unit()).check("from", from)?;
+    Range::finite(setting.unit()).check("to", to)?;
+    Range::closed(1.0, 1e6, "").check("steps", steps as f64)?;
     let value = |i: usize| if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
     let rows = (0..steps)
         .into_par_iter()

@@ -5,6 +5,7 @@ use crate::drive::CYCLE_DEG;
 use crate::spline::solve_tridiagonal;
 use crate::{Drive, Result, ServoError, poly};
 use loomkin_laws::{Law, Segment};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// One point of a cam table: master angle, slave position and its derivatives with respect to
@@ -103,7 +104,7 @@ impl CamTable {
     /// that a whole number `n = round(360/step)` of steps fits one turn (4 ≤ n ≤ 1 000 000).
     pub fn new(law: &Law, drive: &Drive, step_deg: f64) -> Result<Self> {
         drive.validate()?;
-        let step = ServoError::check_range("step_deg", step_deg, CYCLE_DEG / 1e6, CYCLE_DEG / 4.0, "deg")?;
+        let step = Range::closed(CYCLE_DEG / 1e6, CYCLE_DEG / 4.0, "deg").check("step_deg", step_deg)?;
         let lay = drive.layout()?;
         let n = (CYCLE_DEG / step).round() as usize;
         let points = (0..=n)

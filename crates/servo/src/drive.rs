@@ -28,6 +28,7 @@
 //! `k·u + F_pre + F_c`. The RMS torque is taken over this whole turn.
 
 use crate::{Result, ServoError};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the drive (SI units). See the module documentation for the model.
@@ -338,7 +339,7 @@ impl Drive {
 
     /// Checks every field's range (finite, positive where it must be, angles fit in one turn).
     pub fn validate(&self) -> Result<()> {
-        let c = ServoError::check_range;
+        let c = |field: &str, v: f64, lo: f64, hi: f64, unit: &'static str| Range::closed(lo, hi, unit).check(field, v);
         c("drive.stroke_m", self.stroke_m, 1e-9, 100.0, "m")?;
         c("drive.pinion_radius_m", self.pinion_radius_m, 1e-9, 100.0, "m")?;
         c("drive.gear_ratio", self.gear_ratio, 1e-6, 1e6, "")?;
@@ -354,9 +355,9 @@ impl Drive {
 
     /// The phases of one main-shaft turn (see the module documentation).
     pub fn layout(&self) -> Result<CycleLayout> {
-        let rise = ServoError::check_range("drive.motion_angle_deg", self.motion_angle_deg, 1e-6, 359.0, "deg")?;
+        let rise = Range::closed(1e-6, 359.0, "deg").check("drive.motion_angle_deg", self.motion_angle_deg)?;
         let ret = match self.return_angle_deg {
-            Some(r) => ServoError::check_range("drive.return_angle_deg", r, 1e-6, 359.0, "deg")?,
+            Some(r) => Range::closed(1e-6, 359.0, "deg").check("drive.return_angle_deg", r)?,
             None => rise,
         };
         let rest = CYCLE_DEG - rise - ret;
@@ -369,7 +370,7 @@ impl Drive {
             });
         }
         let d1 = match self.dwell_after_rise_deg {
-            Some(d) => ServoError::check_range("drive.dwell_after_rise_deg", d, 0.0, rest, "deg")?,
+            Some(d) => Range::closed(0.0, rest, "deg").check("drive.dwell_after_rise_deg", d)?,
             None => rest / 2.0,
         };
         Ok(CycleLayout { rise_deg: rise, dwell_after_rise_deg: d1, return_deg: ret, dwell_after_return_deg: rest - d1 })

@@ -1,6 +1,7 @@
 //! Errors of the servo crate.
 
 use loomkin_laws::LawError;
+use loomkin_units::{FieldError, RangeError, compact};
 use thiserror::Error;
 
 /// Everything that can be wrong with definition points, a drive or an export request.
@@ -11,7 +12,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum ServoError {
     /// A definition point that breaks a rule (order, range, end values, finiteness).
-    #[error("definition point {index} [{}, {}]: {reason}", num(*x), num(*y))]
+    #[error("definition point {index} [{}, {}]: {reason}", compact(*x), compact(*y))]
     Point {
         /// Number of the point, 1-based (the paper's `j`).
         index: usize,
@@ -36,26 +37,9 @@ pub enum ServoError {
         /// Why.
         reason: String,
     },
-    /// A numeric value outside its allowed range.
-    #[error("{field} = {} is out of range: allowed {} ≤ {field} ≤ {}{unit}", num(*value), num(*min), num(*max))]
-    OutOfRange {
-        /// Name of the field.
-        field: String,
-        /// Offending value.
-        value: f64,
-        /// Lowest allowed value.
-        min: f64,
-        /// Highest allowed value.
-        max: f64,
-        /// Unit suffix with a leading space, or empty.
-        unit: String,
-    },
-    /// A value that is not a finite number.
-    #[error("{field} is not a finite number")]
-    NotFinite {
-        /// Name of the field.
-        field: String,
-    },
+    /// A number outside its allowed range, or not a finite number.
+    #[error(transparent)]
+    Range(#[from] RangeError),
     /// Text that could not be read.
     #[error("{field}: cannot read '{text}': expected {expected}")]
     Parse {
@@ -79,32 +63,15 @@ pub enum ServoError {
     Law(#[from] LawError),
 }
 
-impl ServoError {
-    /// Checks `min ≤ value ≤ max` and finiteness; `unit` is appended to the message.
-    pub fn check_range(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        if !value.is_finite() {
-            return Err(Self::NotFinite { field: field.into() });
+impl FieldError for ServoError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            Self::Point { .. } | Self::TooFewPoints { .. } | Self::NoRise { .. } => Some("def_points"),
+            Self::Range(e) => Some(&e.field),
+            Self::Parse { field, .. } | Self::Cycle { field, .. } => Some(field),
+            Self::Law(e) => e.field(),
         }
-        if value < min || value > max {
-            let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-            return Err(Self::OutOfRange { field: field.into(), value, min, max, unit });
-        }
-        Ok(value)
     }
-}
-
-/// A number for a message: shortest round-trip form for ordinary magnitudes, scientific notation
-/// for very large or small ones, and at most 12 significant digits (so `0.1 + 1e-4` reads
-/// `0.1001`, not `0.10010000000000001`).
-pub(crate) fn num(v: f64) -> String {
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    let a = v.abs();
-    // Round to 12 significant digits through the exponent form, then print the shorter of the
-    // plain and the scientific form.
-    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
-    if a == 0.0 || (1e-4..1e9).contains(&a) { format!("{rounded}") } else { format!("{rounded:e}") }
 }
 
 /// Result alias of the servo crate.

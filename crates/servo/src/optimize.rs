@@ -3,6 +3,7 @@
 use crate::drive::CYCLE_DEG;
 use crate::torque::{PhaseModel, models, stats};
 use crate::{Drive, Result, ServoError, SplineLaw, TorqueSummary, summaries};
+use loomkin_units::Range;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -201,9 +202,9 @@ pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Res
     }
     let ms: Vec<([PhaseModel; 4], f64)> =
         opts.speeds_rpm.iter().map(|&n| Ok((models(drive, n)?, CYCLE_DEG / (n * 6.0)))).collect::<Result<_>>()?;
-    ServoError::check_range("y_bounds[0]", opts.y_bounds[0], -1.0, 1.0, "")?;
-    ServoError::check_range("y_bounds[1]", opts.y_bounds[1], opts.y_bounds[0], 1.0, "")?;
-    ServoError::check_range("max_gap_factor", opts.max_gap_factor, 1.0, 100.0, "")?;
+    Range::closed(-1.0, 1.0, "").check("y_bounds[0]", opts.y_bounds[0])?;
+    Range::closed(opts.y_bounds[0], 1.0, "").check("y_bounds[1]", opts.y_bounds[1])?;
+    Range::closed(1.0, 100.0, "").check("max_gap_factor", opts.max_gap_factor)?;
     let base = start.points().to_vec();
     let free_y = base[1..base.len() - 1].iter().map(|p| p[1]);
     let map = Mapping {

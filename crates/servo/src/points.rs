@@ -1,7 +1,7 @@
 //! Definition points: validation, parsing and the built-in default set.
 
-use crate::error::num;
 use crate::{Result, ServoError};
+use loomkin_units::compact;
 
 /// Fewest definition points the spline accepts (the paper uses N = 7).
 pub const MIN_POINTS: usize = 4;
@@ -79,7 +79,7 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
         if x < prev + MIN_GAP {
             return Err(bad(
                 j,
-                format!("X must increase: it must be at least X{} + {MIN_GAP} = {}", j, num(prev + MIN_GAP)),
+                format!("X must increase: it must be at least X{} + {MIN_GAP} = {}", j, compact(prev + MIN_GAP)),
             ));
         }
     }
@@ -95,7 +95,7 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
             reason: format!(
                 "the largest |Y| is {}: the acceleration is (almost) zero, there is no motion \
                  (Y are relative accelerations: give at least one |Y| ≥ {MIN_Y_MAX}, e.g. in [0, 1] as the paper)",
-                num(y_max)
+                compact(y_max)
             ),
         });
     }

@@ -1,8 +1,9 @@
 //! Motor torque, RMS torque and power of a drive moved through a law over one main-shaft turn.
 
 use crate::drive::CYCLE_DEG;
-use crate::{Drive, Result, ServoError, poly};
+use crate::{Drive, Result, poly};
 use loomkin_laws::{Law, Segment};
+use loomkin_units::ShaftSpeed;
 use serde::Serialize;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -86,9 +87,9 @@ pub(crate) struct PhaseModel {
     moving: bool,
 }
 
-/// Checks the speed (1/min).
+/// Checks the speed against the one main-shaft speed range ([`ShaftSpeed::RANGE`]).
 fn check_speed(speed_rpm: f64) -> Result<f64> {
-    ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "1/min")
+    Ok(ShaftSpeed::from_rpm(speed_rpm)?.rpm())
 }
 
 pub(crate) fn models(drive: &Drive, speed_rpm: f64) -> Result<[PhaseModel; 4]> {

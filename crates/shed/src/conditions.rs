@@ -1,7 +1,8 @@
 //! The conditions a law is judged under: the dwell threshold, the frame's stroke and the
 //! main-shaft speed.
 
-use crate::{Result, ShedError};
+use crate::Result;
+use loomkin_units::{Range, ShaftSpeed};
 use serde::Serialize;
 
 /// Allowed range of the dwell threshold `T` (the paper's 0.75 … 0.99 of the stroke).
@@ -35,8 +36,8 @@ impl Conditions {
     /// Validating constructor.
     pub fn new(threshold: f64, stroke_m: f64, speed_rpm: f64) -> Result<Self> {
         check_threshold(threshold)?;
-        ShedError::check_open_closed("stroke_m", stroke_m, 0.0, 1.0, "m")?;
-        ShedError::check_open_closed("speed_rpm", speed_rpm, 0.0, 5000.0, "rpm")?;
+        Range::open_closed(0.0, 1.0, "m").check("stroke_m", stroke_m)?;
+        ShaftSpeed::from_rpm(speed_rpm)?;
         Ok(Self { threshold, stroke_m, speed_rpm })
     }
 
@@ -71,7 +72,7 @@ impl Conditions {
 
 /// Checks a dwell threshold: `0.75 ≤ T ≤ 0.99`.
 pub fn check_threshold(threshold: f64) -> Result<f64> {
-    ShedError::check_range("threshold", threshold, THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)")
+    Ok(Range::closed(THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)").check("threshold", threshold)?)
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! The frame's motion over its full cycle, for plots: up over one pick, down over the next.
 
-use crate::{Conditions, Result, ShedError, ShedLaw};
+use crate::{Conditions, Result, ShedLaw};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// One point of the cycle.
@@ -20,7 +21,7 @@ pub struct CurvePoint {
 /// rise over `[0, φ_дв]`, the dwell up to 360°, the return `1 − s` over `[360°, 360° + φ_дв]`, the
 /// dwell up to 720°. `points ≥ 2` evenly spaced angles, both ends included.
 pub fn cycle_curve(law: &ShedLaw, conditions: &Conditions, points: usize) -> Result<Vec<CurvePoint>> {
-    ShedError::check_range("points", points as f64, 2.0, 1e6, "")?;
+    Range::closed(2.0, 1e6, "").check("points", points as f64)?;
     crate::criteria::check_scales(law.motion_deg(), conditions)?;
     let built = law.build()?;
     let phi = law.motion_deg();

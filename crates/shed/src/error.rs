@@ -2,26 +2,16 @@
 
 use loomkin_laws::LawError;
 use loomkin_study::StudyError;
+use loomkin_units::{FieldError, RangeError, compact};
 use thiserror::Error;
 
 /// Everything that can be wrong with a shedding law, its evaluation conditions or a study.
 #[derive(Debug, Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum ShedError {
-    /// A numeric parameter outside its allowed range.
-    #[error("{field} = {} is out of range: allowed {} ≤ {field} ≤ {}{unit}", num(.value), num(.min), num(.max))]
-    OutOfRange {
-        /// Name of the field.
-        field: String,
-        /// Offending value.
-        value: f64,
-        /// Lowest allowed value.
-        min: f64,
-        /// Highest allowed value.
-        max: f64,
-        /// Unit suffix (with a leading space), or a note on open bounds, or empty.
-        unit: String,
-    },
+    /// A number outside its allowed range, or not a finite number.
+    #[error(transparent)]
+    Range(#[from] RangeError),
     /// Relative lengths `k_Ti` that do not sum to one.
     #[error("{field}: relative lengths k_Ti sum to {sum}, they must sum to 1 (±1e-9)")]
     LengthsDoNotSumToOne {
@@ -58,7 +48,7 @@ pub enum ShedError {
     /// motion angle far too small for the stroke and speed).
     #[error(
         "{field} = {} makes the peak velocity, acceleration or jerk overflow at this stroke and speed: use a larger {field}",
-        num(.value)
+        compact(*.value)
     )]
     NotFinite {
         /// Name of the field.
@@ -74,38 +64,19 @@ pub enum ShedError {
     Study(#[from] StudyError),
 }
 
-impl ShedError {
-    /// Checks `min ≤ value ≤ max` and finiteness (a non-finite value is reported as out of range).
-    pub fn check_range(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        if value.is_finite() && value >= min && value <= max {
-            return Ok(value);
+impl FieldError for ShedError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            Self::Range(e) => Some(&e.field),
+            Self::LengthsDoNotSumToOne { field, .. }
+            | Self::Parse { field, .. }
+            | Self::NotARise { field, .. }
+            | Self::NotFinite { field, .. } => Some(field),
+            Self::UnknownPreset { .. } => Some("law"),
+            Self::Law(e) => e.field(),
+            Self::Study(e) => e.field(),
         }
-        Err(Self::out_of_range(field, value, min, max, unit))
     }
-
-    /// Checks `min < value ≤ max` (open at the bottom) and finiteness.
-    pub fn check_open_closed(field: &str, value: f64, min: f64, max: f64, unit: &str) -> Result<f64> {
-        if value.is_finite() && value > min && value <= max {
-            return Ok(value);
-        }
-        let note = if unit.is_empty() {
-            "(exclusive of the minimum)".to_string()
-        } else {
-            format!("{unit}, exclusive of the minimum")
-        };
-        Err(Self::out_of_range(field, value, min, max, &note))
-    }
-
-    /// Shorthand for [`ShedError::OutOfRange`].
-    pub fn out_of_range(field: impl Into<String>, value: f64, min: f64, max: f64, unit: &str) -> Self {
-        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-        Self::OutOfRange { field: field.into(), value, min, max, unit }
-    }
-}
-
-/// A number for an error line, in the core's compact form ([`loomkin_laws::compact`]).
-pub(crate) fn num(v: &f64) -> String {
-    loomkin_laws::compact(*v)
 }
 
 /// Result alias of the shedding study.

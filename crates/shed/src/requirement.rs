@@ -1,7 +1,8 @@
 //! The loom's requirement: the window the weft carrier needs, and the threshold that the shed's
 //! height reserve allows.
 
-use crate::{Result, ShedError, THRESHOLD_RANGE};
+use crate::{Result, THRESHOLD_RANGE};
+use loomkin_units::{Range, ShaftSpeed};
 use serde::Serialize;
 
 /// Loom data that fix the weft-insertion window a law must give.
@@ -48,15 +49,15 @@ pub struct LoomRequirement {
 impl LoomRequirement {
     /// Checks every field's range.
     pub fn validate(&self) -> Result<()> {
-        ShedError::check_open_closed("carrier_speed_m_s", self.carrier_speed_m_s, 0.0, 200.0, "m/s")?;
-        ShedError::check_open_closed("reed_width_m", self.reed_width_m, 0.0, 20.0, "m")?;
-        ShedError::check_open_closed("cloth_width_m", self.cloth_width_m, 0.0, self.reed_width_m, "m")?;
-        ShedError::check_range("carrier_length_m", self.carrier_length_m, 0.0, 2.0, "m")?;
-        ShedError::check_range("crossing_range_deg", self.crossing_range_deg, 0.0, 359.0, "deg")?;
-        ShedError::check_open_closed("speed_rpm", self.speed_rpm, 0.0, 5000.0, "rpm")?;
+        Range::open_closed(0.0, 200.0, "m/s").check("carrier_speed_m_s", self.carrier_speed_m_s)?;
+        Range::open_closed(0.0, 20.0, "m").check("reed_width_m", self.reed_width_m)?;
+        Range::open_closed(0.0, self.reed_width_m, "m").check("cloth_width_m", self.cloth_width_m)?;
+        Range::closed(0.0, 2.0, "m").check("carrier_length_m", self.carrier_length_m)?;
+        Range::closed(0.0, 359.0, "deg").check("crossing_range_deg", self.crossing_range_deg)?;
+        ShaftSpeed::from_rpm(self.speed_rpm)?;
         // T = 1/(1 + e) must lie in the threshold range.
         let (lo, hi) = (1.0 / THRESHOLD_RANGE.1 - 1.0, 1.0 / THRESHOLD_RANGE.0 - 1.0);
-        ShedError::check_range("shed_excess", self.shed_excess, lo, hi, "(fraction)")?;
+        Range::closed(lo, hi, "(fraction)").check("shed_excess", self.shed_excess)?;
         Ok(())
     }
 
@@ -69,7 +70,7 @@ impl LoomRequirement {
     pub fn required_window_deg(&self) -> Result<f64> {
         self.validate()?;
         let w = self.flight_deg() + self.crossing_range_deg;
-        ShedError::check_open_closed("required_window_deg", w, 0.0, 359.0, "deg (the carrier cannot cross in time)")
+        Ok(Range::open_closed(0.0, 359.0, "deg (the carrier cannot cross in time)").check("required_window_deg", w)?)
     }
 
     /// Threshold `T = 1/(1 + ΔA_S)` (opening proportional to the frame's displacement).

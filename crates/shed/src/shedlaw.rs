@@ -4,6 +4,7 @@
 
 use crate::{Result, ShedError};
 use loomkin_laws::{AccelPiece, EndCondition, Law, Segment, Shape, ShapeSegment, format_segments, parse_segments};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// Tolerance on the sum of the relative lengths.
@@ -83,7 +84,7 @@ fn check_lengths(field: &str, segs: &[ShapeSegment]) -> Result<()> {
         return Err(ShedError::NotARise { field: field.into(), reason: "no segments given".into() });
     }
     for (i, s) in segs.iter().enumerate() {
-        ShedError::check_range(&format!("{field}[{i}].length"), s.length, 0.0, 1.0, "")?;
+        Range::closed(0.0, 1.0, "").check(&format!("{field}[{i}].length"), s.length)?;
     }
     let sum: f64 = segs.iter().map(|s| s.length).sum();
     if (sum - 1.0).abs() > SUM_TOL {
@@ -94,7 +95,7 @@ fn check_lengths(field: &str, segs: &[ShapeSegment]) -> Result<()> {
 
 /// Checks a motion angle: `0 < φ_дв ≤ 360°`.
 pub fn check_motion_deg(motion_deg: f64) -> Result<f64> {
-    ShedError::check_open_closed("motion_deg", motion_deg, 0.0, 360.0, "deg")
+    Ok(Range::open_closed(0.0, 360.0, "deg").check("motion_deg", motion_deg)?)
 }
 
 /// The mirror image of positive-phase segments: reversed order, each shape reversed in time and
@@ -148,7 +149,7 @@ impl ShedLaw {
         check_motion_deg(motion_deg)?;
         check_lengths("positive", &positive)?;
         check_lengths("negative", &negative)?;
-        ShedError::check_range("positive_fraction", positive_fraction, 0.01, 0.99, "")?;
+        Range::closed(0.01, 0.99, "").check("positive_fraction", positive_fraction)?;
         let law =
             Self { motion_deg, positive, negative: NegativePhase::Given { segments: negative, positive_fraction } };
         law.build()?;
@@ -329,8 +330,8 @@ mod tests {
 
     #[test]
     fn rejects_bad_definitions() {
-        assert!(matches!(ShedLaw::symmetric(0.0, trapezoid(0.25)), Err(ShedError::OutOfRange { .. })));
-        assert!(matches!(ShedLaw::symmetric(361.0, trapezoid(0.25)), Err(ShedError::OutOfRange { .. })));
+        assert!(matches!(ShedLaw::symmetric(0.0, trapezoid(0.25)), Err(ShedError::Range(_))));
+        assert!(matches!(ShedLaw::symmetric(361.0, trapezoid(0.25)), Err(ShedError::Range(_))));
         let bad = parse_segments("0.3:sine-ramp:0:1,0.3:cosine-ramp:1:0", "t").unwrap();
         assert!(matches!(ShedLaw::symmetric(300.0, bad), Err(ShedError::LengthsDoNotSumToOne { .. })));
         let zero = parse_segments("1:zero", "t").unwrap();

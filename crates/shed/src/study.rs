@@ -4,6 +4,7 @@
 use crate::criteria::check_scales;
 use crate::{Conditions, Criteria, Dimensionless, Result, ShedError, Template, check_motion_deg};
 use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// The paper's Table 1: eight three-part laws, `k1` (rise) and `k2` (plateau) as printed, and
@@ -142,7 +143,7 @@ pub fn pareto_indices(points: &[[f64; 2]]) -> Result<Vec<usize>> {
 
 /// Checks a required window: `0 < W < 360°`.
 pub fn check_window_deg(window_deg: f64) -> Result<f64> {
-    ShedError::check_range("window_deg", window_deg, 1e-9, 359.999, "deg")
+    Ok(Range::closed(1e-9, 359.999, "deg").check("window_deg", window_deg)?)
 }
 
 /// The law of least peak acceleration whose window is at least `window_deg`.
@@ -167,7 +168,7 @@ pub fn best(
 ) -> Result<Option<Candidate>> {
     check_window_deg(window_deg)?;
     if let Some(j) = max_jerk_m_s3 {
-        ShedError::check_open_closed("max_jerk_m_s3", j, 0.0, f64::MAX, "m/s³")?;
+        Range::open_closed(0.0, f64::MAX, "m/s³").check("max_jerk_m_s3", j)?;
     }
     let jmax = max_jerk_m_s3.unwrap_or(f64::INFINITY);
     let jerk_ok = |d: &Dimensionless, m: f64| {

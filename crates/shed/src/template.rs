@@ -4,6 +4,7 @@
 use crate::fast::{self, levels};
 use crate::{Dimensionless, Result, ShedError, ShedLaw, check_threshold};
 use loomkin_laws::{Shape, ShapeSegment};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// Most parts a template may have.
@@ -22,7 +23,7 @@ pub struct Template {
 impl Template {
     /// A template from the shapes of the positive phase (1 … 12 of them).
     pub fn new(name: impl Into<String>, shapes: Vec<Shape>) -> Result<Self> {
-        ShedError::check_range("parts", shapes.len() as f64, 1.0, MAX_PARTS as f64, "")?;
+        Range::closed(1.0, MAX_PARTS as f64, "").check("parts", shapes.len() as f64)?;
         let fast = shapes.iter().all(|s| levels(s).iter().all(|&l| l >= 0.0));
         Ok(Self { name: name.into(), shapes, fast })
     }

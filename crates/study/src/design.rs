@@ -2,6 +2,7 @@
 //! (relative lengths `k_T1 … k_Tn` that sum to one).
 
 use crate::{Result, StudyError};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// Largest number of points a generated design may hold (guards against typing a tiny step).
@@ -23,17 +24,9 @@ pub struct Design {
 /// Errors when `step ≤ 0`, `max < min`, a bound is not finite, or the axis would exceed
 /// [`MAX_POINTS`].
 pub fn stepped_axis(field: &str, min: f64, max: f64, step: f64) -> Result<Vec<f64>> {
-    StudyError::check_range(&format!("{field}.min"), min, f64::MIN, f64::MAX, "")?;
-    StudyError::check_range(&format!("{field}.max"), max, min, f64::MAX, "")?;
-    if !(step.is_finite() && step > 0.0) {
-        return Err(StudyError::OutOfRange {
-            field: format!("{field}.step"),
-            value: step,
-            min: 0.0,
-            max: f64::MAX,
-            unit: " (exclusive of the minimum)".into(),
-        });
-    }
+    Range::finite("").check(&format!("{field}.min"), min)?;
+    Range::at_least(min, "").check(&format!("{field}.max"), max)?;
+    Range::above(0.0, "").check(&format!("{field}.step"), step)?;
     let n = ((max - min) / step + TOL).floor();
     if n + 1.0 > MAX_POINTS as f64 {
         return Err(StudyError::TooLarge { field: field.into(), points: (n + 1.0) as u128, limit: MAX_POINTS });
@@ -108,9 +101,9 @@ impl Design {
     /// `parts ≥ 1`; `0 ≤ min ≤ max ≤ 1`; `step > 0`. One part gives the single row `k1 = 1`
     /// when `1` lies in `[min, max]`.
     pub fn simplex(parts: usize, min: f64, max: f64, step: f64) -> Result<Self> {
-        StudyError::check_range("parts", parts as f64, 1.0, 16.0, "")?;
-        StudyError::check_range("k.min", min, 0.0, 1.0, "")?;
-        StudyError::check_range("k.max", max, min, 1.0, "")?;
+        Range::closed(1.0, 16.0, "").check("parts", parts as f64)?;
+        Range::closed(0.0, 1.0, "").check("k.min", min)?;
+        Range::closed(min, 1.0, "").check("k.max", max)?;
         let axis = stepped_axis("k", min, max, step)?;
         let cube = (axis.len() as u128).saturating_pow(parts as u32 - 1);
         if cube > 4 * MAX_POINTS as u128 {

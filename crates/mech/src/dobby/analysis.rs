@@ -14,6 +14,7 @@ use crate::newton::{LoopState, NewtonOptions};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::vloop::{LoopSystem, Scalar, VectorLoop};
 use crate::{MechError, Result};
+use loomkin_units::Range;
 use nalgebra::SVector;
 use serde::Serialize;
 
@@ -288,11 +289,11 @@ pub(crate) fn input_grid(start_deg: f64, step_deg: f64) -> (Vec<f64>, f64) {
 }
 
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
-    MechError::check_range("step_deg", step_deg, 0.01, 30.0, "°")?;
-    MechError::check_range("input_speed_rad_s", speed, 1e-6, 1e4, "rad/s")?;
-    MechError::check_range("pressure_limit_deg", limit, 0.0, 90.0, "°")?;
+    Range::closed(0.01, 30.0, "°").check("step_deg", step_deg)?;
+    Range::closed(1e-6, 1e4, "rad/s").check("input_speed_rad_s", speed)?;
+    Range::closed(0.0, 90.0, "°").check("pressure_limit_deg", limit)?;
     if let Some(r) = roller {
-        MechError::check_range("roller_m", r, 0.0, 10.0, "m")?;
+        Range::closed(0.0, 10.0, "m").check("roller_m", r)?;
     }
     Ok(())
 }
@@ -305,7 +306,7 @@ pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit
 pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Result<Analysis> {
     g.validate()?;
     check_common(opts.step_deg, opts.input_speed_rad_s, opts.roller_m, opts.pressure_limit_deg)?;
-    MechError::check_range("start_deg", opts.start_deg, -360.0, 360.0, "°")?;
+    Range::closed(-360.0, 360.0, "°").check("start_deg", opts.start_deg)?;
     let (xs, step) = input_grid(opts.start_deg, opts.step_deg);
     // The cam loop is traced on the check grid, whatever the output step, and solved between its
     // points by continuation from the nearest traced state.

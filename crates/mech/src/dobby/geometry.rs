@@ -1,6 +1,7 @@
 //! The modulator's link lengths and lever angles.
 
-use crate::{MechError, Result};
+use crate::Result;
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// Geometry of the modulator of a Stäubli-type rotary dobby (series 2600).
@@ -58,19 +59,11 @@ impl ModulatorGeometry {
     /// Checks every field: lengths in (0, 100] m, `l6 < l2`, α and θ in (0°, 180°).
     pub fn validate(&self) -> Result<()> {
         for (f, v) in [("l2_m", self.l2_m), ("l3_m", self.l3_m), ("l3p_m", self.l3p_m), ("l6_m", self.l6_m)] {
-            MechError::check_range(f, v, 0.0, 100.0, "m")?;
-            if v <= 0.0 {
-                return Err(MechError::out_of_range(f, v, 0.0, 100.0, "m (exclusive of 0)"));
-            }
+            Range::open_closed(0.0, 100.0, "m").check(f, v)?;
         }
-        if self.l6_m >= self.l2_m {
-            return Err(MechError::out_of_range("l6_m", self.l6_m, 0.0, self.l2_m, "m (exclusive; l6 < l2)"));
-        }
+        Range::open(0.0, self.l2_m, "m (l6 < l2)").check("l6_m", self.l6_m)?;
         for (f, v) in [("alpha_deg", self.alpha_deg), ("theta_deg", self.theta_deg)] {
-            MechError::check_range(f, v, 0.0, 180.0, "°")?;
-            if v <= 0.0 || v >= 180.0 {
-                return Err(MechError::out_of_range(f, v, 0.0, 180.0, "° (exclusive)"));
-            }
+            Range::open(0.0, 180.0, "°").check(f, v)?;
         }
         Ok(())
     }

@@ -1,7 +1,8 @@
 //! The output law φ6(φ2) of task 2: dwells and rises built from a law of the core.
 
-use crate::{MechError, Result};
+use crate::Result;
 use loomkin_laws::{Law, LawSpec};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -58,10 +59,10 @@ pub struct OutputLaw {
 impl OutputLawSpec {
     /// Checks the fields: cycles in 1…6, dwell in [0, 360/cycles − 1]°, centre in [−360, 360]°.
     pub fn validate(&self) -> Result<()> {
-        MechError::check_range("cycles", f64::from(self.cycles), 1.0, 6.0, "")?;
+        Range::closed(1.0, 6.0, "").check("cycles", f64::from(self.cycles))?;
         let max_dwell = 360.0 / f64::from(self.cycles) - 1.0;
-        MechError::check_range("dwell_deg", self.dwell_deg, 0.0, max_dwell, "°")?;
-        MechError::check_range("dwell_centre_deg", self.dwell_centre_deg, -360.0, 360.0, "°")?;
+        Range::closed(0.0, max_dwell, "°").check("dwell_deg", self.dwell_deg)?;
+        Range::closed(-360.0, 360.0, "°").check("dwell_centre_deg", self.dwell_centre_deg)?;
         self.rise.validate()?;
         Ok(())
     }
