@@ -7,6 +7,7 @@ use clap::Args;
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Panel, Series};
 use loomkin_laws::{Cycle, SegmentKind, StrokeUnit};
+use loomkin_units::ShaftSpeed;
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -33,9 +34,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     let text = util::read_input(&a.file)?;
     let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", a.file.display()))?;
     let rpm = a.speed_rpm.or(cycle.speed_rpm).unwrap_or(300.0);
-    if !(rpm.is_finite() && rpm > 0.0 && rpm <= 1e5) {
-        bail!("--speed-rpm {} out of range: allowed 0 < speed ≤ 100000 rpm", loomkin_laws::compact(rpm));
-    }
+    ShaftSpeed::from_rpm_field("--speed-rpm", rpm)?;
     if a.points < 2 || a.points > 10_000_000 {
         bail!("--points {} out of range: allowed 2 ≤ N ≤ 10000000", a.points);
     }

@@ -188,9 +188,7 @@ fn check_speeds(speeds: &[f64]) -> Result<()> {
         bail!("--speed-rpm: give at least one speed");
     }
     for &n in speeds {
-        if !(n.is_finite() && n > 0.0 && n <= 1e5) {
-            bail!("--speed-rpm {} out of range: allowed 0 < speed ≤ 100000 1/min", loomkin_laws::compact(n));
-        }
+        loomkin_units::ShaftSpeed::from_rpm_field("--speed-rpm", n)?;
     }
     Ok(())
 }

@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedError, ShedLaw, Template, evaluate, preset,
+    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedLaw, Template, evaluate, preset,
 };
 use serde_json::{Value, json};
 use std::fmt::Write;
@@ -53,7 +53,7 @@ pub struct Threshold {
 
 fn conditions(p: &Physical, t: f64) -> Result<Conditions> {
     // Checked here in the unit of the flag; the library checks the same range in metres.
-    ShedError::check_open_closed("stroke_mm", p.stroke_mm, 0.0, 1000.0, "mm")?;
+    loomkin_units::Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", p.stroke_mm)?;
     Ok(Conditions::new(t, p.stroke_mm / 1000.0, p.speed_rpm)?)
 }
 

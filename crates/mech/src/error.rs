@@ -69,6 +69,9 @@ pub enum MechError {
         condition: String,
         /// The admissible range of a design parameter, where it can be given.
         admissible: Option<String>,
+        /// The design parameter that range is about (`alpha_deg`, `l3_m`, `dwell_deg`), as the input
+        /// field a front end should point at; `None` when no single parameter is at fault.
+        parameter: Option<&'static str>,
     },
     /// A point table that cannot be read or fitted.
     #[error("point table, {location}: {reason}")]
@@ -88,6 +91,7 @@ impl FieldError for MechError {
         match self {
             Self::Range(e) => Some(&e.field),
             Self::Invalid { field, .. } => Some(field),
+            Self::CannotBuild { parameter, .. } => *parameter,
             Self::PointTable { .. } => Some("cam"),
             Self::Law(e) => e.field(),
             _ => None,

@@ -3,6 +3,7 @@
 
 use crate::{Result, ShedError, ShedLaw};
 use loomkin_laws::{CycleSpec, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
+use loomkin_units::{Range, ShaftSpeed};
 
 /// The frame's period in degrees of the main shaft: up over one pick, down over the next (plain
 /// weave, two picks).
@@ -17,9 +18,9 @@ pub const FRAME_PERIOD_DEG: f64 = 720.0;
 /// builds exactly the law of [`ShedLaw::build`]. `stroke_mm` is the frame's stroke, `speed_rpm`
 /// the main-shaft speed stored in the file (if given).
 pub fn frame_cycle(law: &ShedLaw, stroke_mm: f64, speed_rpm: Option<f64>) -> Result<CycleSpec> {
-    ShedError::check_open_closed("stroke_mm", stroke_mm, 0.0, 1000.0, "mm")?;
+    Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", stroke_mm)?;
     if let Some(n) = speed_rpm {
-        ShedError::check_range("speed_rpm", n, 1e-3, 1e5, "rpm")?;
+        ShaftSpeed::from_rpm(n)?;
     }
     let spec = LawSpec::Piecewise { segments: law.motion_segments()? };
     let phi = law.motion_deg();

@@ -2,7 +2,6 @@
 //! the mechanism's joints at every input angle (the page draws it at the angle of a slider).
 
 use crate::catalogue::LawChoice;
-use crate::error::check_range;
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
@@ -11,6 +10,7 @@ use loomkin_mech::{
     CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, SynthesisOptions, SynthesisSummary,
     Warning, synthesize,
 };
+use loomkin_units::{FieldError, Range};
 use serde::{Deserialize, Serialize};
 
 pub(crate) fn routes() -> Router {
@@ -107,22 +107,13 @@ fn mech_error(e: MechError) -> ApiError {
     const GEOMETRY: [&str; 6] = ["l2_m", "l3_m", "l3p_m", "l6_m", "alpha_deg", "theta_deg"];
     const LAW: [&str; 3] = ["cycles", "dwell_deg", "dwell_centre_deg"];
     let (field, prefix) = match &e {
-        MechError::OutOfRange { field, .. } | MechError::NotFinite { field } | MechError::Invalid { field, .. } => {
-            let prefix = if GEOMETRY.contains(&field.as_str()) {
-                Some("geometry")
-            } else if LAW.contains(&field.as_str()) {
-                Some("law")
-            } else {
-                None
-            };
-            (field.clone(), prefix)
-        }
-        // A fold of the lever for which the library names the admissible range of α.
-        MechError::CannotBuild { admissible: Some(a), .. } if a.contains('α') => {
-            ("alpha_deg".into(), Some("geometry"))
-        }
-        MechError::Law(_) => ("rise".into(), Some("law")),
-        _ => ("law".into(), None),
+        MechError::Law(_) => ("rise".to_string(), Some("law")),
+        e => match e.field() {
+            Some(f) if GEOMETRY.contains(&f) => (f.to_string(), Some("geometry")),
+            Some(f) if LAW.contains(&f) => (f.to_string(), Some("law")),
+            Some(f) => (f.to_string(), None),
+            None => ("law".to_string(), None),
+        },
     };
     let err = ApiError::invalid(field, e);
     match prefix {
@@ -133,9 +124,9 @@ fn mech_error(e: MechError) -> ApiError {
 
 /// Synthesises the cams and samples the mechanism.
 pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
-    let step = check_range("step_deg", req.step_deg, 0.25, 10.0, "deg")?;
-    let roller = check_range("roller_m", req.roller_m, 0.0, 0.2, "m")?;
-    check_range("law.cycles", f64::from(req.law.cycles), 1.0, 6.0, "")?;
+    let step = Range::closed(0.25, 10.0, "deg").check("step_deg", req.step_deg)?;
+    let roller = Range::closed(0.0, 0.2, "m").check("roller_m", req.roller_m)?;
+    Range::closed(1.0, 6.0, "").check("law.cycles", f64::from(req.law.cycles))?;
     let rise = req.law.rise.spec().map_err(|e| ApiError::invalid("law.rise", e))?;
     let spec = OutputLawSpec {
         cycles: req.law.cycles,

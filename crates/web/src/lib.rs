@@ -52,7 +52,7 @@ pub use catalogue::{
     compare,
 };
 pub use dobby_api::{DobbyCurves, DobbyLaw, DobbyRequest, DobbyResponse, dobby_synthesize};
-pub use error::{ApiError, check_count, check_range};
+pub use error::{ApiError, check_count};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
     DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS, MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES,

@@ -1,12 +1,13 @@
 //! The picking view: the paper's under-pick mechanism run under loom settings set with sliders.
 
-use crate::error::{check_count, check_range};
+use crate::error::check_count;
 use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_picking::{Mechanism, Method, Outcome, PickError, Setting, Settings, history};
+use loomkin_units::{FieldError, Range};
 use serde::{Deserialize, Serialize};
 
 pub(crate) fn routes() -> Router {
@@ -116,11 +117,11 @@ pub struct PickingResponse {
 }
 
 fn pick_error(e: PickError) -> ApiError {
-    let text = e.to_string();
-    let field =
-        Setting::ALL.iter().map(|s| s.key()).find(|k| text.contains(k.as_str())).unwrap_or_else(|| "settings".into());
-    let field = if field == "settings" { field } else { format!("settings.{field}") };
-    ApiError::invalid(field, text)
+    let field = match e.field() {
+        Some(f) if Setting::ALL.iter().any(|s| s.key() == f) => format!("settings.{f}"),
+        _ => "settings".into(),
+    };
+    ApiError::invalid(field, e)
 }
 
 /// Runs the pick under the requested settings.
@@ -136,7 +137,8 @@ pub fn simulate(req: &PickingRequest) -> Result<PickingResponse, ApiError> {
         // Generous bounds around the paper's ranges; the library checks the physical limits.
         let (lo, hi) = setting.paper_range();
         let span = hi - lo;
-        check_range(&format!("settings.{key}"), value, (lo - 2.0 * span).max(0.0), hi + 2.0 * span, setting.unit())?;
+        Range::closed((lo - 2.0 * span).max(0.0), hi + 2.0 * span, setting.unit())
+            .check(&format!("settings.{key}"), value)?;
         st = setting.apply(st, value);
     }
     let h = history(&mech, &st, req.method, n).map_err(pick_error)?;

@@ -1,6 +1,6 @@
 //! The servo law editor's endpoints: evaluate (one drag update), optimise, export, save, load.
 
-use crate::error::{check_count, check_range};
+use crate::error::check_count;
 use crate::limits::{DEFAULT_SAMPLES, MAX_CAM_ROWS, MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::{LawSamples, finite};
 use crate::servo_design::{DesignFormat, ServoDesign, servo_error};
@@ -12,6 +12,7 @@ use loomkin_servo::{
     CamTable, Interpolation, InterpolationError, Objective, OptimizeOptions, TorqueSummary, export_coeffs_text,
     export_json, optimize, poly5_csv, poly5_segments, summary, torque_curve,
 };
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -290,7 +291,7 @@ pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
         }
         ExportFormat::Csv | ExportFormat::Xyva => {
             let rows = check_count("rows", req.rows, 5, MAX_CAM_ROWS)?;
-            let step = check_range("rows", 360.0 / (rows - 1) as f64, 0.0, 90.0, "deg")?;
+            let step = Range::closed(0.0, 90.0, "deg").check("rows", 360.0 / (rows - 1) as f64)?;
             let table = CamTable::new(spline.law(), drive, step).map_err(servo_error)?;
             let interpolation = Interpolation::ALL
                 .iter()

@@ -1,10 +1,11 @@
 //! A servo design as the editor holds it, and its file form (JSON or TOML) without loss.
 
 use crate::ApiError;
-use crate::error::{check_count, check_range};
+use crate::error::check_count;
 use crate::json::{parse_json, parse_toml};
 use crate::limits::{MAX_DEF_POINTS, MAX_SPEEDS};
 use loomkin_servo::{Drive, ServoError, SplineEnd, SplineLaw, default_points};
+use loomkin_units::{FieldError, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 
 /// Everything the servo law editor edits: definition points, spline start condition, drive and
@@ -59,11 +60,11 @@ impl ServoDesign {
         check_count("points", self.points.len(), loomkin_servo::MIN_POINTS, MAX_DEF_POINTS)?;
         check_count("speeds_rpm", self.speeds_rpm.len(), 1, MAX_SPEEDS)?;
         for (i, &n) in self.speeds_rpm.iter().enumerate() {
-            check_range(&format!("speeds_rpm[{i}]"), n, 1.0, 10_000.0, "1/min")?;
+            ShaftSpeed::from_rpm_field(&format!("speeds_rpm[{i}]"), n)?;
         }
         for (i, p) in self.points.iter().enumerate() {
-            check_range(&format!("points[{i}][0]"), p[0], 0.0, 0.5, "")?;
-            check_range(&format!("points[{i}][1]"), p[1], -1.0, 1.0, "")?;
+            Range::closed(0.0, 0.5, "").check(&format!("points[{i}][0]"), p[0])?;
+            Range::closed(-1.0, 1.0, "").check(&format!("points[{i}][1]"), p[1])?;
         }
         self.drive.validate().map_err(servo_error)?;
         Ok(())
@@ -117,11 +118,7 @@ pub fn servo_error(e: ServoError) -> ApiError {
     let field = match &e {
         ServoError::Point { index, .. } => format!("points[{}]", index.saturating_sub(1)),
         ServoError::TooFewPoints { .. } | ServoError::NoRise { .. } | ServoError::Law(_) => "points".into(),
-        ServoError::OutOfRange { field, .. }
-        | ServoError::NotFinite { field }
-        | ServoError::Parse { field, .. }
-        | ServoError::Cycle { field, .. } => field.clone(),
-        _ => "design".into(),
+        e => e.field().unwrap_or("design").to_string(),
     };
     ApiError::invalid(field, e)
 }

@@ -1,16 +1,17 @@
 //! The shedding view: a family of heald-frame laws on a grid of relative lengths, its Pareto front
 //! (largest weft-crossing window, least peak acceleration), and one chosen law over the cycle.
 
-use crate::error::{check_count, check_range};
+use crate::error::check_count;
 use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::post;
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, Progress, ShedError, THRESHOLD_RANGE, Template, cycle_curve, evaluate,
-    evaluate_rows, grid_design, pareto, table,
+    Candidate, Conditions, Criteria, Progress, ShedError, Template, cycle_curve, evaluate, evaluate_rows, grid_design,
+    pareto, table,
 };
+use loomkin_units::{FieldError, Range};
 use serde::{Deserialize, Serialize};
 
 /// Most laws (grid rows) one Pareto request may evaluate.
@@ -57,23 +58,16 @@ impl Default for ShedConditions {
 
 impl ShedConditions {
     fn build(&self) -> Result<Conditions, ApiError> {
-        check_range("conditions.threshold", self.threshold, THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "")?;
-        check_range("conditions.stroke_m", self.stroke_m, 1e-4, 1.0, "m")?;
-        check_range("conditions.speed_rpm", self.speed_rpm, 1.0, 5000.0, "1/min")?;
-        Conditions::new(self.threshold, self.stroke_m, self.speed_rpm).map_err(|e| shed_error("conditions", e))
+        // The library checks each value against its one range; the field goes under `conditions.`.
+        Conditions::new(self.threshold, self.stroke_m, self.speed_rpm)
+            .map_err(|e| ApiError::from_library(&e, "threshold").within("conditions"))
     }
 }
 
 /// Maps an error of the shedding crate to the request field: the library's `positive` /
 /// `negative` phase is built from the request's `lengths`.
 fn shed_error(default_field: &str, e: ShedError) -> ApiError {
-    let field = match &e {
-        ShedError::OutOfRange { field, .. }
-        | ShedError::LengthsDoNotSumToOne { field, .. }
-        | ShedError::Parse { field, .. }
-        | ShedError::NotARise { field, .. } => field.clone(),
-        _ => default_field.to_string(),
-    };
+    let field = e.field().unwrap_or(default_field).to_string();
     if field.starts_with("positive") || field.starts_with("negative") {
         let text = e.to_string();
         let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text);
@@ -133,10 +127,10 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
     let cond = req.conditions.build()?;
     check_count("motions_deg", req.motions_deg.len(), 1, MAX_MOTIONS)?;
     for (i, &m) in req.motions_deg.iter().enumerate() {
-        check_range(&format!("motions_deg[{i}]"), m, 1.0, 360.0, "deg")?;
+        Range::closed(1.0, 360.0, "deg").check(&format!("motions_deg[{i}]"), m)?;
     }
-    let min = check_range("min_length", req.min_length, 0.0, 0.3, "")?;
-    let step = check_range("step", req.step, 0.005, 0.5, "")?;
+    let min = Range::closed(0.0, 0.3, "").check("min_length", req.min_length)?;
+    let step = Range::closed(0.005, 0.5, "").check("step", req.step)?;
     // Bound the work before building the grid: the generator walks the cube of the free lengths.
     let axis = ((1.0 - min) / step).floor() + 1.0;
     let cube = axis.powi(template.parts() as i32 - 1);
@@ -228,9 +222,9 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
     let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
     check_count("lengths", req.lengths.len(), template.parts(), template.parts())?;
     for (i, &k) in req.lengths.iter().enumerate() {
-        check_range(&format!("lengths[{i}]"), k, 0.0, 1.0, "")?;
+        Range::closed(0.0, 1.0, "").check(&format!("lengths[{i}]"), k)?;
     }
-    check_range("motion_deg", req.motion_deg, 1.0, 360.0, "deg")?;
+    Range::closed(1.0, 360.0, "deg").check("motion_deg", req.motion_deg)?;
     let law = template.law(req.motion_deg, &req.lengths).map_err(|e| shed_error("lengths", e))?;
     let criteria = evaluate(&law, &cond).map_err(|e| shed_error("lengths", e))?;
     let curve = cycle_curve(&law, &cond, n).map_err(|e| shed_error("lengths", e))?;

@@ -222,7 +222,7 @@ fn unfollowable_inputs_exit_2() {
         &["pick", "simulate", "--start", "equilibrium", "--checking-kgf", "1000"],
         &["checking_kgf = 1000", "beyond the cam's reach"],
     );
-    usage_error(&["pick", "simulate", "--speed-rpm", "1e308"], &["speed_rpm = 1e308", "10000 rpm"]);
+    usage_error(&["pick", "simulate", "--speed-rpm", "1e308"], &["speed_rpm = 1e308", "100000 rpm"]);
     let out = loomkin().args(["pick", "simulate", "--velocity-m-s", "1e-6", "--json"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("oscillations"));

@@ -234,7 +234,12 @@ fn no_reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64, lo: f64, hi: f64) -> Me
         Some((a, b)) => format!("the roller reaches this cam over the whole turn for l3 ∈ ({a:.6}, {b:.6}) m"),
         None => "no l3 reaches this cam over the whole turn; change the cam or l2 (point tables are in metres)".into(),
     };
-    MechError::CannotBuild { phi2_deg: phi2.to_degrees(), condition, admissible: Some(admissible) }
+    MechError::CannotBuild {
+        phi2_deg: phi2.to_degrees(),
+        condition,
+        admissible: Some(admissible),
+        parameter: Some("l3_m"),
+    }
 }
 
 /// The assembly `(p, φ3)` at input angle `phi2` (rad): among the points of Γ at distance l3 from A,
@@ -380,7 +385,12 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
                 sigma.to_degrees()
             )
         };
-        return Err(MechError::CannotBuild { phi2_deg: worst.at_deg(), condition, admissible: Some(admissible) });
+        return Err(MechError::CannotBuild {
+            phi2_deg: worst.at_deg(),
+            condition,
+            admissible: Some(admissible),
+            parameter: Some("alpha_deg"),
+        });
     }
 
     let close3 = |st: &LoopState<2>, phi6_ref: f64| {
@@ -388,6 +398,7 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
             phi2_deg: st.input.to_degrees(),
             condition: format!("loop (3) cannot close: {e}"),
             admissible: None,
+            parameter: None,
         })
     };
     let mut fine = Vec::with_capacity(traced.len());
@@ -468,6 +479,7 @@ fn locate_fold(
                 lo.to_degrees()
             ),
             admissible: Some("the fold does not depend on α; change the cam, l2 or l3".into()),
+            parameter: None,
         },
         other => other,
     }
@@ -491,5 +503,6 @@ fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechErr
             to.to_degrees()
         ),
         admissible: Some("the fold does not depend on α; change the cam, l2 or l3".into()),
+        parameter: None,
     }
 }

@@ -199,6 +199,7 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
                 lag_limit.to_degrees()
             ),
             admissible: Some(admissible),
+            parameter: Some("dwell_deg"),
         });
     }
 
@@ -241,6 +242,7 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
             } else {
                 format!("no α works for this law: φ3 − φ2 spans {:.3}°, not less than 180°", (dmax - dmin).to_degrees())
             }),
+            parameter: Some("alpha_deg"),
         });
     }
     let mut warnings = Vec::new();
