@@ -144,7 +144,7 @@ impl CycleSpec {
     /// over `motion_deg` and a dwell of the same length (dwells of zero length left out): the
     /// machine cycle of a single law. Fails when the two motions do not fit in the turn.
     pub fn rise_return(law: &LawSpec, unit: StrokeUnit, stroke: f64, motion_deg: f64) -> Result<Self> {
-        LawError::check_range("motion_deg", motion_deg, 1e-6, 180.0, "deg")?;
+        Range::closed(1e-6, 180.0, "deg").check("motion_deg", motion_deg)?;
         let dwell = 180.0 - motion_deg;
         let mut segment = vec![SegmentSpec::moving(SegmentKind::Rise, motion_deg, law)];
         if dwell > 0.0 {

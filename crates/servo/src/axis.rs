@@ -32,6 +32,7 @@
 
 use crate::{Drive, Result, ServoError};
 use loomkin_laws::StrokeUnit;
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -169,7 +170,7 @@ impl Axis {
     /// Checks every field, and that the load is given in the terms of `unit` (mass and travel per
     /// revolution for `mm`, inertia and gear ratio for `deg`).
     pub fn validate(&self, unit: StrokeUnit) -> Result<()> {
-        let c = ServoError::check_range;
+        let c = |field: &str, v: f64, lo: f64, hi: f64, unit: &'static str| Range::closed(lo, hi, unit).check(field, v);
         let m = &self.motor;
         c("motor.rated_torque_nm", m.rated_torque_nm, 1e-9, 1e9, "N·m")?;
         c("motor.peak_torque_nm", m.peak_torque_nm, m.rated_torque_nm, 1e9, "N·m")?;

@@ -1,7 +1,7 @@
 //! The check of a servo axis moving a cycle: peak and RMS torque, peak speed, the torque–speed
 //! operating points against the motor envelope, the inertia ratio, pass or fail with margins.
 
-use crate::{Axis, Result, ServoError};
+use crate::{Axis, Result};
 use loomkin_laws::{Cycle, Segment};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -132,7 +132,7 @@ impl Model {
 /// Checks `axis` moving `cycle` at `speed_rpm` (main shaft).
 pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
     axis.validate(cycle.unit)?;
-    let speed_rpm = ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "rpm")?;
+    let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
     let omega = speed_rpm * 2.0 * PI / 60.0;
     let cycle_time_s = cycle.period_rad / omega;
     let mut pk_t = (0.0f64, 0.0f64);
@@ -223,7 +223,7 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
 /// `n ≥ 2` operating points over the cycle, both ends included (the end as the left limit).
 pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) -> Result<Vec<OperatingPoint>> {
     axis.validate(cycle.unit)?;
-    let speed_rpm = ServoError::check_range("speed_rpm", speed_rpm, 1e-3, 1e5, "rpm")?;
+    let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
     let k = axis.motor_rad_per_unit();
     let ke = k * axis.load.efficiency;
     let l = &axis.load;
