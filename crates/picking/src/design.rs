@@ -1,6 +1,6 @@
 //! Design of the compound picking law (sine, then constant acceleration), eqs. 6–20.
 
-use crate::{Constants, Result};
+use crate::{Constants, PickError, Result};
 use loomkin_units::{Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
