@@ -16,7 +16,7 @@ mod servo_check;
 mod shed;
 mod util;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// loomkin — motion design for weaving machines (laws, servo drives, picking, dobby, shedding).
@@ -85,8 +85,15 @@ fn cut(text: &str) -> String {
     format!("{head} … ({} characters cut) … {tail}", n - MAX_MESSAGE_CHARS + 40)
 }
 
+/// Every subcommand takes `--speed-rpm -5` as a value (and refuses it with its range) rather than
+/// as an unknown flag `-5`.
+fn negatives_allowed(cmd: clap::Command) -> clap::Command {
+    let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    names.into_iter().fold(cmd.allow_negative_numbers(true), |c, n| c.mut_subcommand(n, negatives_allowed))
+}
+
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match negatives_allowed(Cli::command()).try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // One line: clap's first line (the error itself), without its usage block and tips.

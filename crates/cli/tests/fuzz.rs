@@ -520,3 +520,50 @@ fn every_hostile_file_in_every_file_argument() {
     let _ = std::fs::remove_dir_all(&f.dir);
     assert!(findings.is_empty(), "{}", findings.join("\n"));
 }
+
+/// What the fuzzer found, kept fixed: inputs inside their ranges whose results would overflow are
+/// usage errors naming the input, in text and JSON alike.
+#[test]
+fn fuzz_findings_stay_fixed() {
+    let bin = PathBuf::from(env!("CARGO_BIN_EXE_loomkin"));
+    let cycle = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/heald-frame-cycle.toml");
+    let cycle = cycle.to_str().unwrap();
+    let dir = std::env::temp_dir().join(format!("loomkin-fuzz-fixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("x.csv");
+    let out = out.to_str().unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["pick", "design", "--velocity-m-s", "1e-300"], "velocity_m_s"),
+        (vec!["pick", "design", "--velocity-m-s", "1e-300", "--json"], "velocity_m_s"),
+        (vec!["pick", "design", "--first-stage-cm", "1e-320"], "first_stage_m"),
+        (
+            vec![
+                "cam",
+                "table",
+                "--format",
+                "xyvaj",
+                "-o",
+                "-",
+                "--law",
+                "cycloidal",
+                "--stroke-mm",
+                "100",
+                "--motion-deg",
+                "1e-300",
+            ],
+            "motion_deg",
+        ),
+        (vec!["dyn", "compensate", "--natural-hz", "1e-320", "-o", out, cycle], "natural_hz"),
+        (vec!["dyn", "sweep", "--speed-rpm", "200:400:100", "--natural-hz", "8e-174", cycle, "--json"], "natural_hz"),
+        (vec!["cycle", "/dev/zero"], "16 MiB"),
+    ];
+    for (args, field) in cases {
+        let o = Command::new(&bin).args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("loomkin: error")).collect();
+        assert!(lines.len() == 1 && lines[0].contains(field), "{args:?}: {err}");
+        assert!(non_finite_word(&err).is_none(), "{args:?}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -203,6 +203,22 @@ pub fn compensate(exc: &Excitation, follower: &Follower) -> Result<Compensation>
         let s0 = b / (1.0 - decay);
         run(&mut pieces, s0);
     }
+    let finite = |p: &InputPiece| {
+        p.poly.iter().all(|c| c.is_finite())
+            && p.sine.is_none_or(|(a, b, c)| a.is_finite() && b.is_finite() && c.is_finite())
+            && p.exp.is_none_or(|(a, b)| a.is_finite() && b.is_finite())
+    };
+    if !pieces.iter().all(finite) {
+        // ω² and 1/κ over- or underflow for a follower inside its range but extreme (5e-324 Hz).
+        return Err(DynError::Input {
+            field: "natural_hz".into(),
+            reason: format!(
+                "natural_hz = {} gives a compensated input that is not finite (an overflow): the follower is too \
+                 extreme for this model",
+                loomkin_units::compact(follower.natural_hz())
+            ),
+        });
+    }
     Ok(Compensation { pieces, designed_class, input_class, period_s: exc.period_s })
 }
 

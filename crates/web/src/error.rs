@@ -150,7 +150,8 @@ struct ErrorBody<'a> {
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        let body = ErrorBody { error: self.to_string(), field: self.field() };
+        // A library's message may quote a huge value sent in the request: keep it one short line.
+        let body = ErrorBody { error: crate::json::cut(&self.to_string()), field: self.field() };
         let mut res = (self.status(), Json(body)).into_response();
         if let ApiError::Busy { retry_after_s } = self {
             res.headers_mut().insert(axum::http::header::RETRY_AFTER, axum::http::HeaderValue::from(retry_after_s));

@@ -34,7 +34,7 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
 /// string of 100 000 characters; the middle is cut.
 const MAX_MESSAGE_CHARS: usize = 600;
 
-fn cut(text: &str) -> String {
+pub(crate) fn cut(text: &str) -> String {
     let n = text.chars().count();
     if n <= MAX_MESSAGE_CHARS {
         return text.to_string();

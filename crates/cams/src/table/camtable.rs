@@ -57,6 +57,16 @@ impl CamTable {
     /// Places the points of `motion` for `spacing` and rounds them to their decimals.
     pub fn new(motion: Motion, spacing: Spacing) -> Result<Self> {
         let (points, decimals) = place(&motion, spacing)?;
+        // Rates per degree grow as the motion angle shrinks: a motion of 1e-300° inside its range
+        // overflows them. Refuse it naming the input instead of writing NaN.
+        if points.iter().any(|p| ![p.master_deg, p.y, p.v, p.a, p.j].iter().all(|v| v.is_finite())) {
+            return Err(crate::CamError::Law {
+                field: "motion_deg".into(),
+                reason: "the table's slave position or its rates per degree are not finite numbers (an overflow): \
+                         the motion angle is too small for its stroke"
+                    .into(),
+            });
+        }
         Ok(Self { motion, spacing, points, decimals })
     }
 
