@@ -330,9 +330,10 @@ fn non_finite_word(text: &str) -> Option<String> {
 }
 
 /// Runs one case and returns what is wrong with it, if anything.
-fn run(bin: &Path, case: &Case, out_files: &[PathBuf]) -> Option<String> {
+fn run(bin: &Path, case: &Case, out_files: &[PathBuf], cwd: &Path) -> Option<String> {
     let mut cmd = Command::new(bin);
-    cmd.args(&case.args).stdin(Stdio::null()).stderr(Stdio::piped()).env("RUST_BACKTRACE", "0");
+    // A mutated `-o` may name any relative path: run inside the fuzzer's temporary directory.
+    cmd.current_dir(cwd).args(&case.args).stdin(Stdio::null()).stderr(Stdio::piped()).env("RUST_BACKTRACE", "0");
     match case.sink {
         Sink::Pipe | Sink::Closed => cmd.stdout(Stdio::piped()),
         Sink::Full => cmd.stdout(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap()),
@@ -425,7 +426,7 @@ fn every_seed_invocation_works() {
     for (k, seed) in SEEDS.iter().enumerate() {
         let out = f.dir.join(format!("seed{k}"));
         let args = substitute(seed, &f, &out);
-        let o = Command::new(&bin).args(&args).output().unwrap();
+        let o = Command::new(&bin).current_dir(&f.dir).args(&args).output().unwrap();
         if !o.status.success() {
             failures.push(format!("{seed}: {}", String::from_utf8_lossy(&o.stderr).trim()));
         }
@@ -464,7 +465,7 @@ fn the_cli_survives_hostile_input() {
                     };
                     let outs: Vec<PathBuf> =
                         ["svg", "json", "csv", "png", "txt"].iter().map(|e| out.with_extension(e)).collect();
-                    if let Some(what) = run(&bin, &Case { args: args.clone(), sink }, &outs) {
+                    if let Some(what) = run(&bin, &Case { args: args.clone(), sink }, &outs, &f.dir) {
                         findings
                             .lock()
                             .unwrap()
@@ -512,7 +513,7 @@ fn every_hostile_file_in_every_file_argument() {
                     *a = h.to_str().unwrap().to_string();
                 }
             }
-            if let Some(what) = run(&bin, &Case { args: args.clone(), sink: Sink::Pipe }, &[]) {
+            if let Some(what) = run(&bin, &Case { args: args.clone(), sink: Sink::Pipe }, &[], &f.dir) {
                 findings.push(format!("{what}\n    loomkin {}", args.join(" ")));
             }
         }
@@ -558,7 +559,7 @@ fn fuzz_findings_stay_fixed() {
         (vec!["cycle", "/dev/zero"], "16 MiB"),
     ];
     for (args, field) in cases {
-        let o = Command::new(&bin).args(&args).output().unwrap();
+        let o = Command::new(&bin).current_dir(&dir).args(&args).output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("loomkin: error")).collect();
