@@ -32,9 +32,9 @@ pub enum DobbyCommand {
 /// Link lengths and lever angles; defaults are the paper's (eq. 10, α = 47°).
 #[derive(Debug, Args, Clone)]
 pub struct GeometryArgs {
-    /// Angle α between the slot and the arm AB, deg (the paper: 30…60, figures at 47).
-    #[arg(long, default_value_t = 47.0, allow_hyphen_values = true)]
-    alpha_deg: f64,
+    /// Angle α between the slot and the arm AB, deg (the paper: 30…60, figures at 47; default 47).
+    #[arg(long, allow_hyphen_values = true)]
+    alpha_deg: Option<f64>,
     /// Angle θ between the slot and the arm AC, deg (default: θ = α, a symmetric lever).
     #[arg(long, allow_hyphen_values = true)]
     theta_deg: Option<f64>,
@@ -60,8 +60,9 @@ pub struct GeometryArgs {
 
 impl GeometryArgs {
     fn geometry(&self) -> Result<ModulatorGeometry> {
-        let theta = self.theta_deg.unwrap_or(self.alpha_deg);
-        Ok(ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, self.alpha_deg, theta)?)
+        let alpha = self.alpha_deg.unwrap_or(47.0);
+        let theta = self.theta_deg.unwrap_or(alpha);
+        Ok(ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, alpha, theta)?)
     }
 
     fn speed_rad_s(&self) -> Result<f64> {
@@ -708,6 +709,10 @@ fn walls_of(path: &[[f64; 2]], states: &[ModulatorState], roller_m: f64) -> CamP
 }
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    // The sweep sets α = θ itself: a lever angle given as well would be silently ignored.
+    if a.geometry.alpha_deg.is_some() || a.geometry.theta_deg.is_some() {
+        bail!("--alpha-deg and --theta-deg do not apply to dobby sweep: it sweeps α = θ over --from … --to by --by");
+    }
     for (flag, v) in [("--from", a.from), ("--to", a.to), ("--by", a.by)] {
         if !v.is_finite() {
             bail!("{flag} is not a finite number: α values are in (0, 180) °");

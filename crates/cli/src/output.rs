@@ -74,6 +74,10 @@ pub fn text_to(path: &str, text: &str) -> anyhow::Result<()> {
         let mut out = io::stdout().lock();
         return out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(|e| WriteError::stdout(e).into());
     }
+    if path.trim().is_empty() {
+        // An empty name is the user's mistake (exit 2), not a failed write.
+        anyhow::bail!("--output is empty: give a file name, or - for standard output");
+    }
     std::fs::write(path, text).map_err(|e| WriteError::file(path, e))?;
     note(format_args!("wrote {path}"));
     Ok(())
