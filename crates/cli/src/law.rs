@@ -244,11 +244,30 @@ fn sample(a: SampleArgs) -> Result<()> {
     let (spec, law) = build(&a.law, &a.params.params)?;
     let samples = law.sample(a.points);
     if a.format.json {
-        let pts: Vec<Value> =
-            samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
-        return output::json(
-            &json!({ "law": spec.name(), "units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts }),
-        );
+        // Serialised straight from the samples (keys in the same order as before): no JSON tree of
+        // 10⁷ points in memory.
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            law: String,
+            points: Points<'a>,
+            units: &'static str,
+        }
+        struct Points<'a>(&'a [(f64, loomkin_laws::Kinematics)]);
+        impl serde::Serialize for Points<'_> {
+            fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+                #[derive(serde::Serialize)]
+                struct P {
+                    a: f64,
+                    j: f64,
+                    s: f64,
+                    v: f64,
+                    x: f64,
+                }
+                ser.collect_seq(self.0.iter().map(|(x, k)| P { a: k.a, j: k.j, s: k.s, v: k.v, x: *x }))
+            }
+        }
+        let units = "dimensionless (per unit stroke, per unit motion angle)";
+        return output::json(&Out { law: spec.name().to_string(), points: Points(&samples), units });
     }
     let mut t = Table::new(["x", "s", "v", "a", "j"]);
     for (x, k) in samples {
