@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// Working invocations, one per line of use; `{cycle}`, `{drive}`, `{mechanism}`, `{cam}`,
+/// Working invocations, one per line of use; `{cycle}`, `{axis}`, `{drive}`, `{mechanism}`, `{cam}`,
 /// `{spec}` are valid input files and `{out}` a fresh output path without extension.
 const SEEDS: &[&str] = &[
     "law list",
@@ -72,6 +72,13 @@ const SEEDS: &[&str] = &[
     "cam table --format csv -o {out}.csv {cycle}",
     "cam table --format xyvaj -o - --law cycloidal --stroke-mm 100 --motion-deg 120",
     "cam table --format st -o {out}.txt --law poly345 --stroke-mm 50 --motion-deg 90 --json",
+    "cam table {cycle} --format st --tolerance 0.01 -o -",
+    "cam table --law harmonic --stroke-deg 20 --motion-deg 90 --format twincat --tolerance 0.001 -o {out}.txt",
+    "servo check {axis} --cycle {cycle} --json",
+    "servo check {axis} --law cycloidal --stroke-mm 80 --motion-deg 150 --speed-rpm 600 -o {out}.svg",
+    "servo export --format cycle -o {out}.toml",
+    "shed law dobby --emit-cycle {out}.toml",
+    "shed best --window-deg 120 --emit-cycle {out}.toml",
 ];
 
 const NUMBERS: &[&str] = &[
@@ -155,8 +162,11 @@ fn files() -> Files {
     let cycle =
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/heald-frame-cycle.toml"))
             .unwrap();
+    let axis =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/servo-axis.toml")).unwrap();
     let texts: Vec<(&str, String)> = vec![
         ("cycle", cycle),
+        ("axis", axis),
         (
             "drive",
             "[drive]\nstroke_m = 0.1\nmotion_angle_deg = 180\nmoving_mass_kg = 1\npinion_radius_m = 0.02\n".into(),
@@ -498,6 +508,7 @@ fn every_hostile_file_in_every_file_argument() {
         .filter(|s| {
             s.contains("{cycle}")
                 || s.contains("{drive}")
+                || s.contains("{axis}")
                 || s.contains("{mechanism}")
                 || s.contains("{cam}")
                 || s.contains("{spec}")
