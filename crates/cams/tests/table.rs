@@ -82,7 +82,8 @@ fn check_route(m: &Motion, spacing: Spacing) {
         assert_eq!(again, out.error, "{f:?}: the header's error is the error of the file");
         let dense = dense_error(m, &ivs, 400);
         let rep = out.error.max_position_error;
-        assert!(dense <= rep * (1.0 + 1e-9) + 1e-15, "{f:?}: dense {dense:e} above reported {rep:e}");
+        // (1e-13 of the stroke: the rounding of evaluating positions of that size in doubles.)
+        assert!(dense <= rep * (1.0 + 1e-9) + 1e-13 * m.stroke(), "{f:?}: dense {dense:e} above reported {rep:e}");
         assert!(dense >= rep * (1.0 - 2e-3), "{f:?}: dense {dense:e} far below reported {rep:e}");
         // Where it is attained, the reported error is the difference there.
         let at = out.error.max_position_error_at_deg;
@@ -209,6 +210,8 @@ proptest! {
         let out = t.export(Format::Xyvaj).unwrap();
         let ivs = Format::Xyvaj.read(&out.text).unwrap();
         let dense = dense_error(&m, &ivs, 200);
-        prop_assert!(dense <= out.error.max_position_error * (1.0 + 1e-9) + 1e-15);
+        // Positions of magnitude H carry a rounding of a few 1e-16·H in any double evaluation (the
+        // law's and the quintic's), so the bound holds to that: 1e-13·H.
+        prop_assert!(dense <= out.error.max_position_error * (1.0 + 1e-9) + 1e-13 * stroke);
     }
 }

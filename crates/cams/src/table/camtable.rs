@@ -144,13 +144,18 @@ impl CamTable {
                 sig6(e.max_accel_error)
             ),
             format!(
-                "decimals: X {}, Y {}, V {}, A {}, J {}{} (last digit at most 1e-6 of the column's peak)",
+                "decimals: X {}, Y {}, V {}, A {}, J {}{} (chosen from the resolution each column needs)",
                 d.master,
                 d.y,
                 d.v,
                 d.a,
                 d.j,
-                if format == Format::Poly5 { format!(", b {}", d.coeffs()) } else { String::new() }
+                if format == Format::Poly5 {
+                    let dc = super::poly5::coeff_decimals(self, &super::points::hermite_intervals(&self.points));
+                    format!(", b0..b5 {}", dc.map(|n| n.to_string()).join(" "))
+                } else {
+                    String::new()
+                }
             ),
         ]
     }

@@ -13,12 +13,14 @@ use serde::Serialize;
 /// * master angle `X`: the fewest decimals (0 to 9) that write every planned master angle exactly
 ///   (to 1e-9°); with a tolerance at least 3 (points on a 0.001° grid);
 /// * slave position `Y`: the fewest decimals whose last digit is at most `10⁻⁶` of the largest
-///   slave position (the stroke), and with a tolerance `T` at most `T/100`;
+///   slave position (the stroke); with a tolerance `T` at most `T/100`; with a step at most
+///   `r_v·h` and `r_a·h²` (`h` the shortest interval, `r_v`, `r_a` the last digits of V and A);
 /// * `V`, `A`, `J`: the fewest decimals whose last digit is at most `10⁻⁶` of the column's largest
-///   magnitude over the motion;
-/// * poly5 coefficients: two decimals more than `Y`.
+///   magnitude over the motion; with a step, V's also at most `r_a·h`;
+/// * poly5 coefficients: per column, from the resolutions of Y, V, A and the shortest interval
+///   (see [`super::poly5::coeff_decimals`]).
 ///
-/// Each count is clamped to 0…12.
+/// Each count of X, Y, V, A, J is clamped to 0…12.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Decimals {
     /// Master angle (deg).
@@ -67,26 +69,33 @@ pub fn fixed(x: f64, d: usize) -> String {
 impl Decimals {
     /// Chooses the decimals (see the type's documentation): `masters` the planned master angles,
     /// `stroke` the largest |slave position|, `peaks` the largest |V|, |A|, |J|, `tolerance` the
-    /// position tolerance when points are placed for one.
+    /// position tolerance when points are placed for one. With a step, the planned masters' shortest
+    /// interval `h` also bounds Y's last digit by `r_v·h` and `r_a·h²` and V's by `r_a·h` (`r_v`, `r_a`
+    /// the last digits of V and A), so that the rounding of one column does not move the interpolated
+    /// derivatives by more than their own resolution.
     pub fn choose(masters: &[f64], stroke: f64, peaks: [f64; 3], tolerance: Option<f64>) -> Self {
         let mut master = decimals_exact(masters.iter().copied());
+        let a = decimals_for(RELATIVE_RESOLUTION * peaks[1]);
+        let mut rv = RELATIVE_RESOLUTION * peaks[0];
         let mut ry = RELATIVE_RESOLUTION * stroke;
-        if let Some(t) = tolerance {
-            master = master.max(3);
-            ry = ry.min(t / 100.0);
+        match tolerance {
+            Some(t) => {
+                master = master.max(3);
+                ry = ry.min(t / 100.0);
+            }
+            None => {
+                let h = masters.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
+                if h.is_finite() && peaks[1] > 0.0 {
+                    let ra = 10f64.powi(-(a as i32));
+                    rv = rv.min(ra * h);
+                    ry = ry.min(ra * h * h);
+                }
+                if h.is_finite() && peaks[0] > 0.0 {
+                    ry = ry.min(10f64.powi(-(decimals_for(rv) as i32)) * h);
+                }
+            }
         }
-        Self {
-            master,
-            y: decimals_for(ry),
-            v: decimals_for(RELATIVE_RESOLUTION * peaks[0]),
-            a: decimals_for(RELATIVE_RESOLUTION * peaks[1]),
-            j: decimals_for(RELATIVE_RESOLUTION * peaks[2]),
-        }
-    }
-
-    /// Decimals of the poly5 coefficients.
-    pub fn coeffs(&self) -> usize {
-        (self.y + 2).min(12)
+        Self { master, y: decimals_for(ry), v: decimals_for(rv), a, j: decimals_for(RELATIVE_RESOLUTION * peaks[2]) }
     }
 }
 
@@ -117,6 +126,9 @@ mod tests {
         assert_eq!(decimals_exact([1.0 / 3.0]), 9);
         let d = Decimals::choose(&[0.0, 150.0], 100.0, [1.3, 0.05, 0.003], None);
         assert_eq!((d.master, d.y, d.v, d.a, d.j), (0, 4, 6, 8, 9));
+        // A 0.1° step: V's last digit at most 1e-8·0.1, Y's at most 1e-9·0.1 and 1e-8·0.01.
+        let d = Decimals::choose(&[0.0, 0.1, 0.2], 100.0, [1.3, 0.05, 0.003], None);
+        assert_eq!((d.v, d.y), (9, 10));
         let d = Decimals::choose(&[0.0, 150.0], 100.0, [1.3, 0.05, 0.003], Some(1e-5));
         assert_eq!((d.master, d.y), (3, 7));
     }

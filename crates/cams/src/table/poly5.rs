@@ -22,21 +22,56 @@ pub fn header(unit: &str) -> String {
     format!("master_start_deg,master_end_deg,{}", b.join(","))
 }
 
+/// The decimals of the columns `b₀…b₅`, from the resolutions of Y, V and A (`r_y`, `r_v`, `r_a`:
+/// one unit of their last digit) and the shortest interval `h`: since `dᵏY/dXᵏ = Y⁽ᵏ⁾(u)/hᵏ`, a
+/// coefficient's rounding moves V by `k·δb/h` and A by `k(k−1)·δb/h²`, so
+/// `δb₀ ≤ r_y/10`, `δb₁ ≤ min(r_y/10, r_v·h/10)`, `δb₂ ≤ min(r_y/10, r_v·h/10, r_a·h²/20)`,
+/// `δb₃…₅ ≤ min(r_y/30, r_v·h/120, r_a·h²/380)` (a tenth of a last digit of each column, summed
+/// over the three high coefficients). Each is also held to 15 significant digits of the column's
+/// largest magnitude, the precision of a double.
+pub fn coeff_decimals(table: &CamTable, intervals: &[Interval]) -> [usize; 6] {
+    let d = table.decimals();
+    let r = |n: usize| 10f64.powi(-(n as i32));
+    let (ry, rv, ra) = (r(d.y), r(d.v), r(d.a));
+    let h = intervals.iter().map(Interval::width).fold(f64::INFINITY, f64::min);
+    let bounds = [
+        ry / 10.0,
+        (ry / 10.0).min(rv * h / 10.0),
+        (ry / 10.0).min(rv * h / 10.0).min(ra * h * h / 20.0),
+        (ry / 30.0).min(rv * h / 120.0).min(ra * h * h / 380.0),
+    ];
+    std::array::from_fn(|k| {
+        let want = decimals_up_to(bounds[k.min(3)], 20);
+        let peak = intervals.iter().map(|iv| iv.b[k].abs()).fold(0.0, f64::max);
+        let digits = if peak > 0.0 { (15.0 - peak.log10().floor() - 1.0).max(0.0) as usize } else { 20 };
+        want.min(digits)
+    })
+}
+
+/// The fewest decimals `d ≤ max` with `10⁻ᵈ ≤ resolution`.
+fn decimals_up_to(resolution: f64, max: usize) -> usize {
+    if !(resolution.is_finite() && resolution > 0.0) {
+        return max;
+    }
+    ((-resolution.log10() - 1e-9).ceil().max(0.0) as usize).min(max)
+}
+
 /// The segments as written: the Hermite intervals of the points, coefficients rounded.
 pub fn segments(table: &CamTable) -> Vec<Interval> {
-    let dc = table.decimals().coeffs();
-    hermite_intervals(table.points()).into_iter().map(|iv| Interval { b: iv.b.map(|c| round(c, dc)), ..iv }).collect()
+    let ivs = hermite_intervals(table.points());
+    let dc = coeff_decimals(table, &ivs);
+    ivs.into_iter().map(|iv| Interval { b: std::array::from_fn(|k| round(iv.b[k], dc[k])), ..iv }).collect()
 }
 
 /// Writes the segments.
 pub fn write(table: &CamTable, head: &[String]) -> String {
     let d = table.decimals();
-    let dc = d.coeffs();
+    let dc = coeff_decimals(table, &hermite_intervals(table.points()));
     let mut s: String = head.iter().map(|l| format!("# {l}\n")).collect();
     s.push_str(&header(table.unit_name()));
     s.push('\n');
     for iv in segments(table) {
-        let b: Vec<String> = iv.b.iter().map(|&c| fixed(c, dc)).collect();
+        let b: Vec<String> = iv.b.iter().zip(dc).map(|(&c, n)| fixed(c, n)).collect();
         s.push_str(&format!("{},{},{}\n", fixed(iv.start_deg, d.master), fixed(iv.end_deg, d.master), b.join(",")));
     }
     s
