@@ -94,7 +94,7 @@ fn snap_deg(x: f64) -> f64 {
 /// The allowed stroke of a single rise (in the slave unit).
 pub const STROKE_RANGE: Range = Range::open_closed(0.0, 1e6, "");
 /// The allowed motion angle of a single rise (deg).
-pub const MOTION_DEG_RANGE: Range = Range::open_closed(0.0, 36_000.0, "deg");
+pub const MOTION_DEG_RANGE: Range = Range::closed(1e-6, 36_000.0, "deg");
 
 impl Motion {
     /// The motion of a checked cycle file, from its first segment's start over one period.
