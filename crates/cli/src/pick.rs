@@ -290,7 +290,14 @@ fn design(a: DesignArgs) -> Result<()> {
             "cam": mech.cam().label(),
         }));
     }
-    outln!("compound picking law (sine, then constant acceleration), eqs. 18–20")?;
+    if matches!(mech.cam(), loomkin_picking::Cam::Compound) {
+        outln!("compound picking law (sine, then constant acceleration), eqs. 18–20")?;
+    } else {
+        outln!(
+            "cam law {} (the stroke and rise time of the compound law designed by eqs. 18–20 below)",
+            mech.cam().label()
+        )?;
+    }
     outln!(
         "  for V = {} m/s, X = {} m, X1 = {} m at n = {} rev/min",
         spec.velocity_m_s,

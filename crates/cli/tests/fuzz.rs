@@ -571,6 +571,8 @@ fn fuzz_findings_stay_fixed() {
         (vec!["servo", "export", "--format", "csv", "-o", ""], "--output is empty"),
         (vec!["dobby", "sweep", "--alpha-deg", "50"], "--alpha-deg"),
         (vec!["pick", "simulate", "--speed-rpm", "-5"], "speed"),
+        (vec!["law", "info", "modified-trapezoid", "--param", "ramp=0.1", "--param", "ramp=0.2"], "given twice"),
+        (vec!["cycle", cycle, "--speed-rpm", "5e-324"], "speed-rpm"),
     ];
     for (args, field) in cases {
         let o = Command::new(&bin).current_dir(&dir).args(&args).output().unwrap();

@@ -136,6 +136,18 @@ impl LawSpec {
                 return Err(LawError::UnknownLaw { name: other.into(), known: names() });
             }
         };
+        // A parameter given twice is refused rather than the last one silently kept: two variants
+        // of one law are compared by running the command once per variant.
+        for (i, (k, _)) in params.iter().enumerate() {
+            let k = k.as_ref().trim();
+            if params[..i].iter().any(|(earlier, _)| earlier.as_ref().trim() == k) {
+                return Err(LawError::Parse {
+                    field: k.into(),
+                    text: format!("{k} given twice"),
+                    expected: "each parameter once (compare two variants of a law with one run each)".into(),
+                });
+            }
+        }
         for (k, v) in params {
             let (k, v) = (k.as_ref().trim(), v.as_ref().trim());
             match (&mut spec, k) {
@@ -273,4 +285,16 @@ fn check_lengths(lengths: impl Iterator<Item = f64>) -> Result<()> {
         return Err(LawError::LengthsDoNotSumToOne { field: "segments".into(), sum });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod duplicate_tests {
+    use super::*;
+
+    #[test]
+    fn a_parameter_given_twice_is_refused() {
+        let e = LawSpec::parse("modified-trapezoid", &[("ramp", "0.1"), ("ramp", "0.2")]).unwrap_err().to_string();
+        assert!(e.contains("ramp given twice"), "{e}");
+        assert!(LawSpec::parse("modified-trapezoid", &[("ramp", "0.1")]).is_ok());
+    }
 }
