@@ -48,6 +48,7 @@ mod complex;
 mod error;
 mod excitation;
 mod follower;
+mod optimize;
 mod oscillator;
 mod peaks;
 mod response;
@@ -59,6 +60,7 @@ pub use compensate::{Compensation, InputPiece, JUMP_TOL, compensate, first_jump,
 pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
+pub use optimize::{Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, quiet_law};
 pub use oscillator::{Forcing, Harmonic, NCOEF, Oscillator, PieceSolution, free_roots};
 pub use peaks::{Extremes, extremes, grid_size};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};

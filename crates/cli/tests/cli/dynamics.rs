@@ -110,3 +110,24 @@ fn spectrum_and_compensate() {
         &["no compensating input", "x'' jumps", "60.0000°"],
     );
 }
+
+#[test]
+fn optimize_meets_the_goal_at_300_rpm() {
+    let v = stdout_json(&[
+        "dyn",
+        "optimize",
+        HEALD,
+        "--speed-rpm",
+        "300",
+        "--band-pct",
+        "10",
+        "--natural-hz",
+        "54",
+        "--damping-ratio",
+        "0.05",
+        "--json",
+    ]);
+    assert!(v["improvement_factor"].as_f64().unwrap() >= 10.0, "{v}");
+    assert!(v["peak_acceleration_ratio"].as_f64().unwrap() <= 1.1, "{v}");
+    assert!(v["residual_amplitude_mm"].as_f64().is_some());
+}

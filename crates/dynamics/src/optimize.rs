@@ -1,0 +1,404 @@
+//! Quiet laws: a rise shaped for least residual vibration over a speed band, under a peak-acceleration limit.
+//!
+//! The law is a piecewise-linear acceleration on `N` equal pieces of the motion, `a(u) = Σ aᵢ·φᵢ(u)`
+//! with hat functions φᵢ at the interior knots `uᵢ = i/N` (`a = 0` at both ends: the acceleration is
+//! continuous into the dwells, so the law is C² and its polydyne input continuous). Two linear
+//! constraints make it a rise: `∫₀¹ a du = 0` (rest at the end) and `∫₀¹ (1 − u)·a du = 1` (unit stroke).
+//!
+//! The residual state after a rise from rest is linear in the knot values: with `(δᵢ, δᵢ')` the exact
+//! response to `−φᵢ` (closed form, [`Oscillator::solve`]), the residual amplitude at ratio `r = f_n·T` is
+//! `A = |M(r)·a|`, `M = [δᵢ ; (δᵢ' + ζωδᵢ)/ω_d]`. The optimiser minimises `Σⱼ |M(rⱼ)·a|²` over ratios
+//! `rⱼ` covering the speed band, with `|aᵢ| ≤ a_max` (the peak of a piecewise-linear acceleration is at a
+//! knot, so this bound is exact), plus a small jerk regulariser: the constraints are eliminated exactly,
+//! the bound enforced by an increasing quadratic penalty whose piecewise-quadratic minimum is found
+//! exactly by active-set steps (bounded; see [`PIECES`], [`SMOOTHING`]). (argmin's L-BFGS with the
+//! More–Thuente line search was tried first and did not return on one case; a convex quadratic with
+//! bounds needs no general-purpose optimiser.)
+
+use crate::oscillator::{Forcing, NCOEF, Oscillator};
+use crate::{DynError, Result};
+use loomkin_laws::{AccelPiece, EndCondition, Law, LawSpec, Shape, ShapeSegment};
+
+/// Number of equal pieces of the optimised acceleration.
+pub const PIECES: usize = 16;
+
+/// Weight of the jerk regulariser relative to the normalised residual objective: keeps the shaped
+/// acceleration from zig-zagging (which would excite higher modes the model does not hold).
+pub const SMOOTHING: f64 = 1e-6;
+
+/// Rounds of Lawson's reweighting (least squares → minimax over the band).
+const LAWSON_ROUNDS: usize = 12;
+
+/// Band samples (ratios) used in the objective.
+const BAND_SAMPLES: usize = 25;
+
+/// The residual rows `M(r)` (2 × (N−1)) of the hat functions at ratio `r` (motion time 1 s, f_n = r Hz).
+fn rows(r: f64, zeta: f64) -> [Vec<f64>; 2] {
+    let osc = Oscillator::new(std::f64::consts::TAU * r, zeta);
+    let w = 1.0 / PIECES as f64;
+    let mut out = [vec![0.0; PIECES - 1], vec![0.0; PIECES - 1]];
+    for i in 1..PIECES {
+        let mut y = (0.0, 0.0);
+        for k in 0..PIECES {
+            // −φᵢ on piece k (local t ∈ [0, w]).
+            let mut poly = [0.0; NCOEF];
+            if k + 1 == i {
+                poly[1] = -1.0 / w;
+            } else if k == i {
+                poly[0] = -1.0;
+                poly[1] = 1.0 / w;
+            }
+            y = osc.solve(&Forcing { poly, sine: None }, w, y.0, y.1).end();
+        }
+        out[0][i - 1] = y.0;
+        out[1][i - 1] = (y.1 + osc.zeta() * osc.omega_n() * y.0) / osc.omega_d();
+    }
+    out
+}
+
+/// Solves `M·x = b` (small, dense) by Gaussian elimination with partial pivoting; `None` if singular.
+fn solve_dense(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    for c in 0..n {
+        let piv = (c..n).max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))?;
+        if m[piv][c].abs() < 1e-300 {
+            return None;
+        }
+        m.swap(c, piv);
+        b.swap(c, piv);
+        for r in c + 1..n {
+            let f = m[r][c] / m[c][c];
+            for k in c..n {
+                m[r][k] -= f * m[c][k];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| m[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / m[r][r];
+    }
+    Some(x)
+}
+
+/// Minimises `F(a) = aᵀQa + μ·Σ max(0, |aᵢ| − L)²` over `a = a₀ + B·z` for increasing μ. `F` is a convex,
+/// continuously differentiable, piecewise quadratic function: each μ is solved by Newton's method with
+/// the Hessian of the current piece (the exceeded bounds) and an Armijo backtracking line search —
+/// globally convergent, and bounded (at most 100 steps per μ, 60 halvings per step), so it always ends.
+fn penalised_qp(q: &[Vec<f64>], a0: &[f64], basis: &[Vec<f64>], limit: f64) -> Option<Vec<f64>> {
+    let n = a0.len();
+    let m = basis.len();
+    let knots = |z: &[f64]| -> Vec<f64> {
+        let mut a = a0.to_vec();
+        for (zj, col) in z.iter().zip(basis) {
+            for (ai, bi) in a.iter_mut().zip(col) {
+                *ai += zj * bi;
+            }
+        }
+        a
+    };
+    // F, ∇_a F and the exceeded set at a.
+    let eval = |a: &[f64], mu: f64| -> (f64, Vec<f64>, Vec<bool>) {
+        let mut f = 0.0;
+        let mut g = vec![0.0; n];
+        let mut act = vec![false; n];
+        for i in 0..n {
+            let qa: f64 = (0..n).map(|k| q[i][k] * a[k]).sum();
+            f += a[i] * qa;
+            g[i] = 2.0 * qa;
+            let ex = a[i].abs() - limit;
+            if ex > 0.0 {
+                f += mu * ex * ex;
+                g[i] += 2.0 * mu * ex * a[i].signum();
+                act[i] = true;
+            }
+        }
+        (f, g, act)
+    };
+    let to_z =
+        |v: &[f64]| -> Vec<f64> { basis.iter().map(|col| col.iter().zip(v).map(|(b, x)| b * x).sum()).collect() };
+    let mut z = vec![0.0; m];
+    for mu in [1e0, 1e2, 1e4, 1e6, 1e8] {
+        for _ in 0..100 {
+            let a = knots(&z);
+            let (f, ga, act) = eval(&a, mu);
+            let gz = to_z(&ga);
+            let gnorm = gz.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if gnorm < 1e-15 * (1.0 + f.abs()) {
+                break;
+            }
+            let h: Vec<Vec<f64>> = (0..m)
+                .map(|r| {
+                    (0..m)
+                        .map(|c| {
+                            (0..n)
+                                .map(|i| {
+                                    let qb: f64 = (0..n).map(|k| q[i][k] * basis[c][k]).sum::<f64>()
+                                        + if act[i] { mu * basis[c][i] } else { 0.0 };
+                                    2.0 * basis[r][i] * qb
+                                })
+                                .sum()
+                        })
+                        .collect()
+                })
+                .collect();
+            let d = solve_dense(h, gz.iter().map(|v| -v).collect())?;
+            let slope: f64 = d.iter().zip(&gz).map(|(a, b)| a * b).sum();
+            if slope >= 0.0 {
+                break;
+            }
+            let mut t = 1.0;
+            let mut moved = false;
+            for _ in 0..60 {
+                let trial: Vec<f64> = z.iter().zip(&d).map(|(zi, di)| zi + t * di).collect();
+                if eval(&knots(&trial), mu).0 <= f + 1e-4 * t * slope {
+                    z = trial;
+                    moved = true;
+                    break;
+                }
+                t *= 0.5;
+            }
+            if !moved {
+                break;
+            }
+        }
+    }
+    Some(knots(&z))
+}
+
+/// One shaping step: normalise the residual term, add the jerk regulariser Σ (a_{i+1} − a_i)²
+/// (a₀ = a_N = 0), minimise under the bound.
+fn shaped(gram: &[Vec<f64>], a0: &[f64], basis: &[Vec<f64>], ca_max: f64) -> Result<Vec<f64>> {
+    let n = a0.len();
+    let scale = 1.0 / gram.iter().enumerate().map(|(i, r)| r[i]).sum::<f64>().max(1e-300);
+    let mut q = gram.to_vec();
+    for i in 0..n {
+        for k in 0..n {
+            q[i][k] *= scale;
+        }
+        q[i][i] += 2.0 * SMOOTHING;
+        if i + 1 < n {
+            q[i][i + 1] -= SMOOTHING;
+            q[i + 1][i] -= SMOOTHING;
+        }
+    }
+    penalised_qp(&q, a0, basis, ca_max * 0.999)
+        .ok_or_else(|| DynError::Optimizer { reason: "singular system in the shaping step".into() })
+}
+
+/// A law optimised for the ratio band `[r_lo, r_hi]` (motion time / natural period) with damping ratio
+/// `zeta`, its peak acceleration coefficient at most `ca_max` (acceleration per stroke/T²).
+pub fn quiet_law(r_lo: f64, r_hi: f64, zeta: f64, ca_max: f64) -> Result<(LawSpec, Law)> {
+    let n = PIECES - 1;
+    let w = 1.0 / PIECES as f64;
+    let band: Vec<[Vec<f64>; 2]> =
+        (0..BAND_SAMPLES).map(|j| rows(r_lo + (r_hi - r_lo) * j as f64 / (BAND_SAMPLES - 1) as f64, zeta)).collect();
+    let gram_of = |weights: &[f64]| {
+        let mut gram = vec![vec![0.0; n]; n];
+        for (m, wt) in band.iter().zip(weights) {
+            for row in m {
+                for i in 0..n {
+                    for k in 0..n {
+                        gram[i][k] += wt * row[i] * row[k];
+                    }
+                }
+            }
+        }
+        gram
+    };
+    // Constraints: Σ aᵢ = 0, Σ aᵢ·w·(1 − uᵢ) = 1; eliminate the last two knots.
+    let c1 = vec![1.0; n];
+    let c2: Vec<f64> = (1..PIECES).map(|i| w * (1.0 - i as f64 * w)).collect();
+    let (p, q) = (n - 2, n - 1);
+    let det = c1[p] * c2[q] - c1[q] * c2[p];
+    let solve = |rhs1: f64, rhs2: f64| ((rhs1 * c2[q] - c1[q] * rhs2) / det, (c1[p] * rhs2 - rhs1 * c2[p]) / det);
+    let mut a0 = vec![0.0; n];
+    (a0[p], a0[q]) = solve(0.0, 1.0);
+    let basis: Vec<Vec<f64>> = (0..n - 2)
+        .map(|j| {
+            let mut col = vec![0.0; n];
+            col[j] = 1.0;
+            (col[p], col[q]) = solve(-c1[j], -c2[j]);
+            col
+        })
+        .collect();
+    // Least squares over the band, then Lawson's reweighting towards the smallest largest residual:
+    // wⱼ ← wⱼ·Aⱼ (normalised), a few rounds, keeping the best knots by their largest residual.
+    let mut weights = vec![1.0; BAND_SAMPLES];
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    for _ in 0..LAWSON_ROUNDS {
+        let gram = gram_of(&weights);
+        let a = shaped(&gram, &a0, &basis, ca_max)?;
+        let amps: Vec<f64> = band
+            .iter()
+            .map(|m| {
+                let d: f64 = m[0].iter().zip(&a).map(|(x, y)| x * y).sum();
+                let dv: f64 = m[1].iter().zip(&a).map(|(x, y)| x * y).sum();
+                d.hypot(dv)
+            })
+            .collect();
+        let worst = amps.iter().copied().fold(0.0, f64::max);
+        if best.as_ref().is_none_or(|b| worst < b.0) {
+            best = Some((worst, a));
+        }
+        let total: f64 = weights.iter().zip(&amps).map(|(w, a)| w * a).sum();
+        if total.is_nan() || total <= 0.0 {
+            break;
+        }
+        weights = weights.iter().zip(&amps).map(|(w, a)| w * a / total * BAND_SAMPLES as f64).collect();
+    }
+    let a = best.map(|b| b.1).ok_or_else(|| DynError::Optimizer { reason: "no shaping step succeeded".into() })?;
+    let mut knots = vec![0.0];
+    knots.extend(a);
+    knots.push(0.0);
+    let pieces: Vec<AccelPiece> = knots.windows(2).map(|k| AccelPiece::poly(w, &[k[0], (k[1] - k[0]) / w])).collect();
+    let law = Law::from_accel_pieces(&pieces, EndCondition::Rest, "optimised law")?;
+    // The same law as a catalogue `piecewise` spec (linear shapes), for cycle files.
+    let segments =
+        knots.windows(2).map(|k| ShapeSegment { length: w, shape: Shape::Linear { from: k[0], to: k[1] } }).collect();
+    Ok((LawSpec::Piecewise { segments }, law))
+}
+
+/// The result of shaping a cycle's laws for quiet dwells.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Optimized {
+    /// The optimised cycle as a TOML cycle file (its rises and returns replaced by `piecewise` laws).
+    pub cycle_toml: String,
+    /// Per moving segment: `(segment index, band residual of the optimised law, of the modified sine
+    /// (both A/h, rise from rest, largest over the band), peak acceleration ratio optimised / modified sine)`.
+    pub segments: Vec<SegmentFigures>,
+    /// Largest residual amplitude over the dwells of the whole cycle (one cycle from rest) across the
+    /// band: optimised (SI).
+    pub cycle_residual_si: f64,
+    /// The same for the cycle with modified-sine laws (SI).
+    pub cycle_residual_modified_sine_si: f64,
+    /// Largest input acceleration of the optimised cycle over that of the modified-sine cycle, at the design speed.
+    pub peak_acceleration_ratio: f64,
+}
+
+/// The figures of one optimised segment.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct SegmentFigures {
+    /// Index of the cycle segment.
+    pub segment: usize,
+    /// Ratio band `[r_lo, r_hi]` (motion time / natural period).
+    pub ratio_band: [f64; 2],
+    /// Largest A/h over the band, optimised law.
+    pub residual: f64,
+    /// Largest A/h over the band, modified sine.
+    pub residual_modified_sine: f64,
+    /// Ca(optimised) / Ca(modified sine).
+    pub ca_ratio: f64,
+}
+
+/// Shapes every rise and return of the cycle in `text` for least residual vibration across
+/// `speed_rpm·(1 ± band_pct/100)`, peak acceleration at most 110 % of the modified sine's.
+pub fn optimize_cycle(
+    text: &str,
+    speed: loomkin_units::ShaftSpeed,
+    band_pct: f64,
+    follower: &crate::Follower,
+) -> Result<Optimized> {
+    let band = loomkin_units::Range::open(0.0, 90.0, "%").check("band_pct", band_pct)? / 100.0;
+    let mut spec: loomkin_laws::CycleSpec =
+        toml::from_str(text).map_err(|e| DynError::Input { field: "cycle file".into(), reason: e.message().into() })?;
+    let original = loomkin_laws::Cycle::new(&spec)?;
+    let ms = LawSpec::ModifiedSine.build()?;
+    let ca_ms = ms.metrics().ca;
+    let mut ms_spec = spec.clone();
+    let (fn_hz, zeta) = (follower.natural_hz(), follower.damping_ratio());
+    let mut segments = Vec::new();
+    let ratios = |lo: f64, hi: f64| (0..41).map(move |j| lo + (hi - lo) * j as f64 / 40.0);
+    for (i, seg) in original.segments.iter().enumerate() {
+        if seg.law.is_none() {
+            continue;
+        }
+        let t0 = seg.length_rad / speed.rad_per_s();
+        let (r_lo, r_hi) = (fn_hz * t0 / (1.0 + band), fn_hz * t0 / (1.0 - band));
+        let (law_spec, law) = quiet_law(r_lo, r_hi, zeta, 1.1 * ca_ms)?;
+        let worst = |l: &Law| ratios(r_lo, r_hi).map(|r| crate::residual_ratio(l, r, zeta)).fold(0.0, f64::max);
+        segments.push(SegmentFigures {
+            segment: i,
+            ratio_band: [r_lo, r_hi],
+            residual: worst(&law),
+            residual_modified_sine: worst(&ms),
+            ca_ratio: law.metrics().ca / ca_ms,
+        });
+        let mut params = std::collections::BTreeMap::new();
+        if let LawSpec::Piecewise { segments } = &law_spec {
+            params.insert("segments".to_string(), toml::Value::String(loomkin_laws::format_segments(segments)));
+        }
+        spec.segment[i].law = Some("piecewise".into());
+        spec.segment[i].params = params;
+        ms_spec.segment[i].law = Some("modified-sine".into());
+        ms_spec.segment[i].params = Default::default();
+    }
+    let quiet = loomkin_laws::Cycle::new(&spec)?;
+    let reference = loomkin_laws::Cycle::new(&ms_spec)?;
+    let band_residual = |c: &loomkin_laws::Cycle| -> Result<f64> {
+        let mut worst: f64 = 0.0;
+        for j in 0..41 {
+            let rpm = speed.rpm() * (1.0 - band + 2.0 * band * j as f64 / 40.0);
+            let r =
+                crate::Response::new(c, loomkin_units::ShaftSpeed::from_rpm(rpm)?, follower, crate::Start::Rest, 1)?;
+            worst = worst.max(r.dwell_residuals().iter().map(|d| d.amplitude_si).fold(0.0, f64::max));
+        }
+        Ok(worst)
+    };
+    let peak = |c: &loomkin_laws::Cycle| -> Result<f64> {
+        let r = crate::Response::new(c, speed, follower, crate::Start::Rest, 1)?;
+        Ok(r.summary().peak_input_acceleration.value)
+    };
+    let cycle_toml = toml::to_string(&spec).map_err(|e| DynError::Optimizer { reason: e.to_string() })?;
+    Ok(Optimized {
+        cycle_toml,
+        segments,
+        cycle_residual_si: band_residual(&quiet)?,
+        cycle_residual_modified_sine_si: band_residual(&reference)?,
+        peak_acceleration_ratio: peak(&quiet)? / peak(&reference)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hat-function rows reproduce the residual of a law built from the same knots.
+    #[test]
+    fn rows_match_the_closed_form_response() {
+        let w = 1.0 / PIECES as f64;
+        let knots: Vec<f64> = (0..=PIECES).map(|i| (std::f64::consts::TAU * i as f64 * w).sin()).collect();
+        let pieces: Vec<AccelPiece> =
+            knots.windows(2).map(|k| AccelPiece::poly(w, &[k[0], (k[1] - k[0]) / w])).collect();
+        let law = Law::from_accel_pieces(&pieces, EndCondition::Free, "t").unwrap();
+        // from_accel_pieces scales to unit stroke s(1) = Σ aᵢ·w·(1 − uᵢ): divide the rows' result by it.
+        let s1: f64 = (1..PIECES).map(|i| knots[i] * w * (1.0 - i as f64 * w)).sum();
+        for &(r, z) in &[(1.7, 0.0), (3.2, 0.05)] {
+            let m = rows(r, z);
+            let (d, dv): (f64, f64) = (
+                (0..PIECES - 1).map(|i| m[0][i] * knots[i + 1]).sum(),
+                (0..PIECES - 1).map(|i| m[1][i] * knots[i + 1]).sum(),
+            );
+            let a = d.hypot(dv) / s1;
+            let closed = crate::residual_ratio(&law, r, z);
+            assert!((a - closed).abs() < 1e-12, "r {r}: {a} vs {closed}");
+        }
+    }
+
+    /// The goal of issue 13 where a band is reachable: ≥ 10× below the modified sine across the band,
+    /// peak acceleration within 10 % of it.
+    #[test]
+    fn quiet_law_beats_the_modified_sine_tenfold() {
+        let ms = LawSpec::ModifiedSine.build().unwrap();
+        let ca_ms = ms.metrics().ca;
+        let (r_lo, r_hi) = (3.6 / 1.1, 3.6 / 0.9);
+        let (_, law) = quiet_law(r_lo, r_hi, 0.05, 1.1 * ca_ms).unwrap();
+        assert!(law.metrics().ca <= 1.1 * ca_ms);
+        let worst = |l: &Law| {
+            (0..=60).map(|j| crate::residual_ratio(l, r_lo + (r_hi - r_lo) * j as f64 / 60.0, 0.05)).fold(0.0, f64::max)
+        };
+        let (q, m) = (worst(&law), worst(&ms));
+        assert!(q * 10.0 <= m, "optimised {q:e}, modified sine {m:e}");
+    }
+}
