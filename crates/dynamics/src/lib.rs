@@ -55,6 +55,7 @@ mod response;
 mod spectrum;
 mod sweep;
 mod trajectory;
+mod twomass;
 
 pub use compensate::{Compensation, InputPiece, JUMP_TOL, compensate, first_jump, input_excitation};
 pub use error::{DynError, Result};
@@ -67,3 +68,4 @@ pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO
 pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};
 pub use sweep::{SweepPoint, sweep, sweep_point};
 pub use trajectory::{Channel, Solved, Start, steady_state, trajectory};
+pub use twomass::TwoMass;

@@ -190,3 +190,98 @@ fn near_resonance_matches_dop853() {
         }
     }
 }
+
+/// With a return spring and a closing force the model is the picking study's `B·x'' + (C+1)·x = s − D`
+/// (mass-normalised: ω² = (C+1)/B, k_r/m = C/B, F₀/m = D/B): checked against DOP853 of that equation.
+#[test]
+fn picking_form_with_loads_matches_dop853() {
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    // B = 1/κ with κ = k/m; C = k_r/k; D = F₀/k.
+    let (b, c, d) = (1.0 / (2.0 * std::f64::consts::PI * 45.0f64).powi(2) / 1.3, 0.3, 2e-4);
+    let w2 = (c + 1.0) / b;
+    let m = 10.0;
+    let fn_hz = w2.sqrt() / std::f64::consts::TAU;
+    let f = Follower::new(fn_hz, 0.0).unwrap().with_loads(m, m * c / b, m * d / b).unwrap();
+    let r = Response::new(&cycle, ShaftSpeed::from_rpm(500.0).unwrap(), &f, Start::Rest, 2).unwrap();
+    let y0 = r.pieces[0].sol.state(0.0);
+    // Rest: x = (s₀ − D)/(C+1) = −D/(C+1), so y₀ = −D/(C+1).
+    assert!((y0.0 + d / (c + 1.0)).abs() < 1e-18);
+    let steps = integrate(&r, &cycle, c / b, d / b, [y0.0, y0.1]);
+    let scale = steps.iter().map(|s| s.1[0].abs()).fold(0.0, f64::max);
+    for (t, y) in &steps {
+        let st = r.state(*t);
+        assert!((st[3] - y[0]).abs() < 1e-9 * scale, "t {t}: {} vs {}", st[3], y[0]);
+    }
+}
+
+struct Two<'a> {
+    cycle: &'a Cycle,
+    rpm: f64,
+    omega_shaft: f64,
+    m: [f64; 2],
+    k: [[f64; 2]; 2],
+    c: [[f64; 2]; 2],
+}
+
+impl ODE<f64, [f64; 4]> for Two<'_> {
+    fn diff(&self, t: f64, y: &[f64; 4], d: &mut [f64; 4]) {
+        let a = self.cycle.eval(self.omega_shaft * t, self.rpm).a;
+        let (q, v) = ([y[0], y[1]], [y[2], y[3]]);
+        d[0] = v[0];
+        d[1] = v[1];
+        for i in 0..2 {
+            let f = -self.m[i] * a
+                - (self.k[i][0] * q[0] + self.k[i][1] * q[1])
+                - (self.c[i][0] * v[0] + self.c[i][1] * v[1]);
+            d[2 + i] = f / self.m[i];
+        }
+    }
+}
+
+/// The two-mass modal closed form against DOP853 of the physical 4-state system (C built from the modal ζ).
+#[test]
+fn two_mass_matches_dop853() {
+    use loomkin_dynamics::{Excitation, TwoMass};
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    let (m1, k1, m2, k2, zeta) = (8.0, 3.0e6, 20.0, 2.2e6, 0.04);
+    let tm = TwoMass::new(m1, k1, m2, k2, zeta).unwrap();
+    let speed = ShaftSpeed::from_rpm(500.0).unwrap();
+    let exc = Excitation::from_cycle(&cycle, speed);
+    let modes = tm.respond(&exc, Start::Rest, 1).unwrap();
+    // C = MΦ diag(2ζωᵢ/μᵢ) ΦᵀM.
+    let mut c = [[0.0; 2]; 2];
+    for i in 0..2 {
+        let phi = [1.0, tm.phi2[i]];
+        let mu = m1 + m2 * phi[1] * phi[1];
+        let mphi = [m1 * phi[0], m2 * phi[1]];
+        for r in 0..2 {
+            for s in 0..2 {
+                c[r][s] += 2.0 * zeta * tm.omega[i] / mu * mphi[r] * mphi[s];
+            }
+        }
+    }
+    let eq = Two {
+        cycle: &cycle,
+        rpm: 500.0,
+        omega_shaft: speed.rad_per_s(),
+        m: [m1, m2],
+        k: [[k1 + k2, -k2], [-k2, k2]],
+        c,
+    };
+    let mut y = [0.0; 4];
+    let mut worst: f64 = 0.0;
+    let mut scale: f64 = 0.0;
+    for p in &exc.pieces {
+        let method = ExplicitRungeKutta::dop853().rtol(1e-13).atol(1e-16).max_steps(1_000_000);
+        let sol = IVP::ode(&eq, p.t0, p.t0 + p.duration, y).method(method).solve().expect("DOP853 ran");
+        let (ts, ys) = sol.into_tuple();
+        for (t, yy) in ts.iter().zip(&ys) {
+            let e = tm.errors(&modes, *t);
+            worst = worst.max((e[0] - yy[0]).abs()).max((e[2] - yy[1]).abs());
+            scale = scale.max(yy[1].abs());
+        }
+        y = *ys.last().unwrap();
+    }
+    assert!(worst < 1e-9 * scale, "two-mass: {worst:e} of {scale:e}");
+    assert!(tm.frame_residual_bound(&exc, &modes) > 0.0);
+}
