@@ -62,7 +62,7 @@ pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
 pub use optimize::{Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, quiet_law};
-pub use oscillator::{Forcing, Harmonic, NCOEF, Oscillator, PieceSolution, free_roots};
+pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, SERIES_BELOW, free_roots};
 pub use peaks::{Extremes, extremes, grid_size};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
 pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};

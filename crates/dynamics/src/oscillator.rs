@@ -190,9 +190,22 @@ impl Oscillator {
                 }
             }
         };
-        let mut sol = PieceSolution { osc: *self, forcing: *f, poly, sine, a: 0.0, b: 0.0, duration };
-        let p0 = poly_derivs::<2>(&sol.poly, 0.0);
+        let mut sol = PieceSolution { osc: *self, forcing: *f, poly, sine, a: 0.0, b: 0.0, duration, series: None };
         let (s0, s1) = sol.sine_part(0.0);
+        if w * duration < SERIES_BELOW {
+            // c_{n+2} = (q_n − 2ζω(n+1)c_{n+1} − ω²c_n)/((n+2)(n+1)), c₀, c₁ from the initial state.
+            let mut c = [0.0; NSERIES];
+            c[0] = y0 - s0;
+            c[1] = v0 - s1;
+            for n in 0..NSERIES - 2 {
+                let q = if n < NCOEF { f.poly[n] } else { 0.0 };
+                c[n + 2] = (q - 2.0 * z * w * (n + 1) as f64 * c[n + 1] - w2 * c[n]) / ((n + 2) * (n + 1)) as f64;
+            }
+            sol.poly = [0.0; NCOEF];
+            sol.series = Some(c);
+            return sol;
+        }
+        let p0 = poly_derivs::<2>(&sol.poly, 0.0);
         sol.a = y0 - p0[0] - s0;
         sol.b = v0 - p0[1] - s1;
         sol
@@ -227,6 +240,33 @@ pub struct PieceSolution {
     /// Initial rate of the free-vibration part.
     b: f64,
     duration: f64,
+    /// Short pieces (`ω_n·T` below [`SERIES_BELOW`]): the polynomial-forced part with its initial state as
+    /// one power series in `t` (replaces `poly`, `a`, `b`).
+    series: Option<[f64; NSERIES]>,
+}
+
+/// Below this `ω_n·T` the polynomial part is solved as a power series: the particular polynomial's
+/// coefficients grow like `(ω_nT)^{−2j}` and would cancel against the free vibration, losing digits.
+pub const SERIES_BELOW: f64 = 0.5;
+
+/// Number of power-series coefficients: the tail beyond is below `0.5^NSERIES/NSERIES!`.
+pub const NSERIES: usize = 32;
+
+/// `Σ c_n t^n` and its derivatives of orders `0..N`.
+fn series_derivs<const N: usize>(c: &[f64; NSERIES], t: f64) -> [f64; N] {
+    let mut out = [0.0; N];
+    for (order, o) in out.iter_mut().enumerate() {
+        let mut acc = 0.0;
+        for n in (order..NSERIES).rev() {
+            let mut f = 1.0;
+            for m in 0..order {
+                f *= (n - m) as f64;
+            }
+            acc = acc * t + c[n] * f;
+        }
+        *o = acc;
+    }
+    out
 }
 
 impl PieceSolution {
@@ -294,7 +334,10 @@ impl PieceSolution {
     /// The derivatives of orders `0..N` (N ≤ 5) at local time `t` (s); see [`PieceSolution::derivs`].
     #[inline]
     pub fn derivs_n<const N: usize>(&self, t: f64) -> [f64; N] {
-        let mut out = poly_derivs::<N>(&self.poly, t);
+        let mut out = match &self.series {
+            Some(c) => series_derivs::<N>(c, t),
+            None => poly_derivs::<N>(&self.poly, t),
+        };
         let o = &self.osc;
         // The free part e^{−ζωt}(A cos ω_d t + B sin ω_d t).
         let (zw, wd) = (o.zeta * o.omega_n, o.omega_d);
@@ -338,7 +381,10 @@ impl PieceSolution {
     /// `(y, y')` at local time `t` (s).
     #[inline]
     pub fn state(&self, t: f64) -> (f64, f64) {
-        let p = poly_derivs::<2>(&self.poly, t);
+        let p = match &self.series {
+            Some(c) => series_derivs::<2>(c, t),
+            None => poly_derivs::<2>(&self.poly, t),
+        };
         let (s0, s1) = self.sine_part(t);
         let (h0, h1) = self.osc.free(self.a, self.b, t);
         (p[0] + s0 + h0, p[1] + s1 + h1)
@@ -347,7 +393,9 @@ impl PieceSolution {
     /// When the forcing is constant (a dwell), `(y_eq, a, b)`: the solution is `y_eq` plus the free
     /// vibration from `(a, b)`.
     pub fn constant_plus_free(&self) -> Option<(f64, f64, f64)> {
-        let constant = self.forcing.poly[1..].iter().all(|&c| c == 0.0) && matches!(self.sine, SinePart::None);
+        let constant = self.series.is_none()
+            && self.forcing.poly[1..].iter().all(|&c| c == 0.0)
+            && matches!(self.sine, SinePart::None);
         constant.then_some((self.poly[0], self.a, self.b))
     }
 
