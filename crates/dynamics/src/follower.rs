@@ -38,8 +38,8 @@ pub struct Follower {
 }
 
 impl Follower {
-    /// Allowed natural frequencies.
-    pub const NATURAL_HZ: Range = Range::open(0.0, 1e6, "Hz");
+    /// Allowed natural frequencies (a bound below keeps ω_n² representable: no overflow of 1/ω_n²).
+    pub const NATURAL_HZ: Range = Range::closed(1e-3, 1e6, "Hz");
     /// Allowed damping ratios.
     pub const DAMPING_RATIO: Range = Range::closed_open(0.0, 1.0, "");
     /// Allowed masses.
@@ -49,7 +49,7 @@ impl Follower {
     /// Allowed closing forces.
     pub const CLOSING_FORCE_N: Range = Range::closed(-1e9, 1e9, "N");
 
-    /// A follower of natural frequency `natural_hz` (Hz, > 0) and damping ratio `damping_ratio`
+    /// A follower of natural frequency `natural_hz` (Hz, 10⁻³…10⁶) and damping ratio `damping_ratio`
     /// (0 ≤ ζ < 1), without loads.
     pub fn new(natural_hz: f64, damping_ratio: f64) -> Result<Self> {
         Ok(Self {

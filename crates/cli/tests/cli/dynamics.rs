@@ -74,7 +74,7 @@ fn response_csv_and_sweep_csv_headers() {
 fn bad_input_is_one_line_exit_2() {
     let base = ["dyn", "response", HEALD, "--speed-rpm", "600"];
     let with = |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<&str>>();
-    usage_error(&with(&["--natural-hz", "0"]), &["natural_hz", "0 < natural_hz"]);
+    usage_error(&with(&["--natural-hz", "0"]), &["natural_hz", "natural_hz ≤"]);
     usage_error(&with(&["--natural-hz", "50", "--damping-ratio", "1"]), &["damping_ratio", "< 1"]);
     usage_error(&with(&["--natural-hz", "50", "--steady"]), &["no periodic steady state", "5 ×"]);
     usage_error(&["dyn", "sweep", HEALD, "--speed-rpm", "300:200:10", "--natural-hz", "50"], &["speed_rpm"]);
