@@ -50,9 +50,9 @@ pub struct GeometryArgs {
     /// Output crank OD, m (< l2).
     #[arg(long, default_value_t = 0.40, allow_hyphen_values = true)]
     l6_m: f64,
-    /// Input speed, rev/min (default: ω2 = 1 rad/s as in the paper, so rates read as ratios).
-    #[arg(long, allow_hyphen_values = true)]
-    input_rpm: Option<f64>,
+    /// Input (main-shaft) speed, rpm (default: ω2 = 1 rad/s as in the paper, so rates read as ratios).
+    #[arg(long, alias = "input-rpm", allow_hyphen_values = true)]
+    speed_rpm: Option<f64>,
     /// Pressure angles above this raise a warning, deg.
     #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
     pressure_limit_deg: f64,
@@ -66,11 +66,9 @@ impl GeometryArgs {
     }
 
     fn speed_rad_s(&self) -> Result<f64> {
-        match self.input_rpm {
+        match self.speed_rpm {
             None => Ok(1.0),
-            Some(n) if n.is_finite() && n > 0.0 && n <= 1e5 => Ok(n * std::f64::consts::TAU / 60.0),
-            Some(n) if !n.is_finite() => bail!("--input-rpm is not a finite number: allowed 0 < n ≤ 100000 rev/min"),
-            Some(n) => bail!("--input-rpm {n} is out of range: allowed 0 < n ≤ 100000 rev/min"),
+            Some(n) => Ok(loomkin_units::ShaftSpeed::from_rpm_field("--speed-rpm", n)?.rad_per_s()),
         }
     }
 }

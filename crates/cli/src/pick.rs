@@ -56,7 +56,7 @@ pub struct ModelArgs {
     /// Design: distance X1 of the first stage, m (the same as --first-stage-cm, in metres).
     #[arg(long, allow_hyphen_values = true)]
     first_stage_m: Option<f64>,
-    /// Design: loom speed n1 the cam is designed for, rev/min (paper: 200).
+    /// Design: loom speed n1 the cam is designed for, rpm (paper: 200).
     #[arg(long, allow_hyphen_values = true)]
     design_speed_rpm: Option<f64>,
     /// Required velocity V_r: retardation p of the shuttle in the shed, % (default 10).
@@ -73,7 +73,7 @@ pub struct ModelArgs {
 /// Loom settings in the paper's practical units; without them the designed setting applies.
 #[derive(Debug, Args, Clone, Default)]
 pub struct SettingsArgs {
-    /// Loom speed, rev/min (designed: 200).
+    /// Loom speed, rpm (designed: 200).
     #[arg(long, allow_hyphen_values = true)]
     speed_rpm: Option<f64>,
     /// Play of the picking-strap loop s'₀, mm (designed: 0).
@@ -161,8 +161,8 @@ pub struct SweepArgs {
     #[arg(long, allow_hyphen_values = true)]
     to: f64,
     /// Number of points, both ends included.
-    #[arg(long)]
-    steps: usize,
+    #[arg(long, alias = "steps")]
+    points: usize,
     #[command(flatten)]
     model: ModelArgs,
     #[command(flatten)]
@@ -299,7 +299,7 @@ fn design(a: DesignArgs) -> Result<()> {
         )?;
     }
     outln!(
-        "  for V = {} m/s, X = {} m, X1 = {} m at n = {} rev/min",
+        "  for V = {} m/s, X = {} m, X1 = {} m at n = {} rpm",
         spec.velocity_m_s,
         spec.distance_m,
         spec.first_stage_m,
@@ -361,7 +361,7 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     }
     outln!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name())?;
     outln!(
-        "  speed {} rev/min, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
+        "  speed {} rpm, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
         fmt(st.speed_rpm),
         fmt(st.play_m * 1e3),
         fmt(st.strap_m * 1e2),
@@ -430,12 +430,12 @@ fn sweep_table(s: &Sweep) -> Result<Table> {
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let setting = Setting::parse(&a.setting)?;
-    if !(1..=1_000_000).contains(&a.steps) {
-        bail!("--steps {} is out of range: allowed 1 ≤ N ≤ 1000000", a.steps);
+    if !(1..=1_000_000).contains(&a.points) {
+        bail!("--points {} is out of range: allowed 1 ≤ N ≤ 1000000", a.points);
     }
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
-    let s = sweep(&mech, &st, setting, a.from, a.to, a.steps, a.method.into()).map_err(lib_err)?;
+    let s = sweep(&mech, &st, setting, a.from, a.to, a.points, a.method.into()).map_err(lib_err)?;
     let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
     if let Some(first) = s.fallbacks().next() {
         output::note(format_args!(
@@ -573,7 +573,7 @@ fn plot(a: PlotArgs) -> Result<()> {
         panels[2].series.push(Series::line("actual a, designed setting", curve(r, &|s| s.actual.a_m_s2)));
     }
     let title = format!(
-        "Picking: nominal and actual motion (cam {}, {} rev/min, play {} mm, k = {} cm)",
+        "Picking: nominal and actual motion (cam {}, {} rpm, play {} mm, k = {} cm)",
         mech.cam().label(),
         fmt(st.speed_rpm),
         fmt(st.play_m * 1e3),

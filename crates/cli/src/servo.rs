@@ -85,8 +85,8 @@ pub struct LawArgs {
     #[command(flatten)]
     def: DefArgs,
     /// Print N samples of x, s, v, a, j instead of the metrics (with --csv or --json).
-    #[arg(long, value_name = "N")]
-    sample: Option<usize>,
+    #[arg(long, alias = "sample", value_name = "N")]
+    points: Option<usize>,
     #[command(flatten)]
     format: Format,
 }
@@ -200,7 +200,7 @@ fn points_json(pts: &[[f64; 2]]) -> Value {
 fn law(a: LawArgs) -> Result<()> {
     let sl = a.def.build()?;
     let law = sl.law();
-    if let Some(n) = a.sample {
+    if let Some(n) = a.points {
         if !(2..=10_000_000).contains(&n) {
             bail!("--sample {n} out of range: allowed 2 ≤ N ≤ 10000000");
         }
@@ -333,12 +333,12 @@ fn torque(a: TorqueArgs) -> Result<()> {
     print_drive(&d)?;
     outln!(
         "{:>12} {:>16} {:>14} {:>14} {:>14} {:>16}",
-        "speed 1/min",
+        "speed rpm",
         "peak torque N·m",
         "at angle deg",
         "RMS torque N·m",
         "peak power W",
-        "motor max 1/min"
+        "motor max rpm"
     )?;
     for s in &res {
         outln!(
@@ -401,7 +401,7 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     )?;
     outln!(
         "{:>12} {:>18} {:>18} {:>16} {:>16} {:>9}",
-        "speed 1/min",
+        "speed rpm",
         "peak before N·m",
         "peak after N·m",
         "RMS before N·m",
@@ -540,7 +540,7 @@ fn plot(a: PlotArgs) -> Result<()> {
         for (k, &rpm) in a.speed_rpm.iter().enumerate() {
             let c = torque_curve(sl.law(), &d, rpm, 1441)?;
             let line =
-                Series::line(format!("{name}, {rpm} 1/min"), c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect());
+                Series::line(format!("{name}, {rpm} rpm"), c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect());
             torque.series.push(style(line, PALETTE[k % PALETTE.len()]));
         }
     }

@@ -323,17 +323,15 @@ fn list(a: ListArgs) -> Result<()> {
         return output::json(&json!({ "laws": v }));
     }
     outln!(
-        "{:<12} {:<13} {:>10} {:>9}  positive phase of the acceleration",
+        "{:<12} {:>10} {:>9}  positive phase of the acceleration",
         "law",
-        "paper",
         "motion_deg",
         "dwell_deg"
     )?;
     for p in PRESETS {
         outln!(
-            "{:<12} {:<13} {:>10} {:>9}  {} = {}",
+            "{:<12} {:>10} {:>9}  {} = {}",
             p.name,
-            p.name_ru,
             p.motion_deg,
             360.0 - p.motion_deg,
             p.table_shape,
@@ -373,10 +371,10 @@ fn print_criteria(c: &Criteria, cond: &Conditions) -> Result<()> {
         cond.stroke_m() * 1000.0,
         cond.speed_rpm()
     )?;
-    outln!("  motion φ_дв              = {:>10.3} deg", c.motion_deg)?;
-    outln!("  absolute dwell φ_вр      = {:>10.3} deg", c.dwell_deg)?;
-    outln!("  conditional dwell φ_ув   = {:>10.3} deg", c.conditional_dwell_deg)?;
-    outln!("  window φ_пп* = φ_вр+φ_ув = {:>10.3} deg", c.window_deg)?;
+    outln!("  motion angle             = {:>10.3} deg", c.motion_deg)?;
+    outln!("  absolute dwell           = {:>10.3} deg", c.dwell_deg)?;
+    outln!("  conditional dwell        = {:>10.3} deg", c.conditional_dwell_deg)?;
+    outln!("  window = dwell + cond.    = {:>10.3} deg", c.window_deg)?;
     outln!(
         "  Cv = {:.6}  Ca = {:.6}  Cj = {:.4}  Cm = {:.6}  Ca_rms = {:.6}  (dimensionless)",
         c.cv,
@@ -385,7 +383,7 @@ fn print_criteria(c: &Criteria, cond: &Conditions) -> Result<()> {
         c.cm,
         c.ca_rms
     )?;
-    outln!("  Ca·(360/φ_дв)²           = {:>10.4} (peak acceleration on the scale of a turn)", c.ca_turn)?;
+    outln!("  Ca·(360/motion)²         = {:>10.4} (peak acceleration on the scale of a turn)", c.ca_turn)?;
     outln!("  peak velocity            = {:>10.4} m/s", c.peak_velocity_m_s)?;
     outln!("  peak acceleration        = {:>10.4} m/s²", c.peak_accel_m_s2)?;
     outln!("  RMS acceleration         = {:>10.4} m/s² (over the motion)", c.rms_accel_m_s2)?;
@@ -621,7 +619,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
                 cond.stroke_m() * 1000.0,
                 cond.speed_rpm()
             ),
-            "weft-insertion window φ_пп* [deg]",
+            "weft-insertion window [deg]",
             vec![panel],
         );
         return output::figure(&fig, path);

@@ -57,21 +57,21 @@ pub const PRESETS: &[Preset] = &[
         name_ru: "Кареточный",
         motion_deg: 300.0,
         positive: MTRAP_QUARTER,
-        table_shape: "МТРАП k_r = 0.25",
+        table_shape: "modified trapezoid (MTRAP) k_r = 0.25",
     },
     Preset {
         name: "semi-smooth",
         name_ru: "Полуплавный",
         motion_deg: 330.0,
         positive: MTRAP_THIRD,
-        table_shape: "МТРАП k_r = 1/3",
+        table_shape: "modified trapezoid (MTRAP) k_r = 1/3",
     },
     Preset {
         name: "smooth",
         name_ru: "Плавный",
         motion_deg: 360.0,
         positive: MTRAP_THIRD,
-        table_shape: "МТРАП k_r = 1/3",
+        table_shape: "modified trapezoid (MTRAP) k_r = 1/3",
     },
 ];
 

@@ -258,8 +258,8 @@ function renderServo(r) {
   ch.editor.setSeries([
     { label: "spline f(x) through the points", x: r.spline.x, y: r.spline.f, color: PALETTE[0] },
   ]);
-  ch.torque.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.torque_nm, color: PALETTE[k + 1] })));
-  ch.power.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} 1/min`, x: s.angle_deg, y: s.power_w, color: PALETTE[k + 1] })));
+  ch.torque.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} rpm`, x: s.angle_deg, y: s.torque_nm, color: PALETTE[k + 1] })));
+  ch.power.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} rpm`, x: s.angle_deg, y: s.power_w, color: PALETTE[k + 1] })));
   if (r.speeds.length) ch.rack.setSeries([{ label: "", x: r.speeds[0].angle_deg, y: r.speeds[0].u_m.map((u) => u * 1000) }]);
   const L = r.law.samples;
   for (const k of ["s", "v", "a", "j"]) ch.kin[k].setSeries([{ label: "", x: L.x, y: L[k], color: PALETTE[0] }]);
@@ -296,7 +296,7 @@ async function optimise() {
         el("td", { textContent: `${num(b.rms_torque_nm, 2)} → ${num(a.rms_torque_nm, 2)}` }));
     });
     $("#optimise-report").replaceChildren(el("table", { className: "data" },
-      el("thead", {}, el("tr", {}, el("th", { textContent: "1/min" }), el("th", { textContent: "peak (N·m)" }), el("th", { textContent: "RMS (N·m)" }))),
+      el("thead", {}, el("tr", {}, el("th", { textContent: "rpm" }), el("th", { textContent: "peak (N·m)" }), el("th", { textContent: "RMS (N·m)" }))),
       el("tbody", {}, ...rows)));
     status(`optimised in ${num(r.elapsed_ms, 0)} ms`);
   } catch (e) { status("optimise: " + e.message, true); }
@@ -468,7 +468,7 @@ function initShed() {
     el("p", { className: "hint", textContent: "Heald-frame laws (Makarov et al. 2004): every law of the family on a grid of relative lengths k_Ti, at each motion angle. Click a point of the Pareto front to see that law." }),
     el("div", { className: "grid2" }, field("law family", family), field("grid step of k_Ti (–)", inputs.step),
       field("motion angles φ (°)", inputs.motions), field("dwell threshold T (–)", inputs.threshold),
-      field("stroke h (m)", inputs.stroke), field("main-shaft speed n (1/min)", inputs.speed)));
+      field("stroke h (m)", inputs.stroke), field("main-shaft speed n (rpm)", inputs.speed)));
   const table = el("table", { className: "data", id: "shed-chosen" }, el("caption", { textContent: "Chosen law" }), el("tbody"));
   const charts = el("div", { className: "charts" });
   root.append(el("div", { className: "results" }, form, table), charts);

@@ -22,7 +22,7 @@ pub struct ServoDesign {
     /// Spline condition at x = 0: `natural` (f″ = 0) or `clamped` (f′ = 0).
     #[serde(default)]
     pub end: SplineEnd,
-    /// Main-shaft speeds (1/min), 1 … [`MAX_SPEEDS`] of them.
+    /// Main-shaft speeds (rpm), 1 … [`MAX_SPEEDS`] of them.
     pub speeds_rpm: Vec<f64>,
     /// The drive (SI units; see `loomkin_servo::Drive`).
     pub drive: Drive,
@@ -84,7 +84,7 @@ impl ServoDesign {
                 .map_err(|e| ApiError::Internal(format!("cannot write JSON: {e}"))),
             DesignFormat::Toml => {
                 let header = "# loomkin servo design: definition points [X, Y], spline start condition, \
-                              speeds (1/min), drive (SI units)\n";
+                              speeds (rpm), drive (SI units)\n";
                 toml::to_string(self)
                     .map(|s| format!("{header}{s}"))
                     .map_err(|e| ApiError::Internal(format!("cannot write TOML: {e}")))

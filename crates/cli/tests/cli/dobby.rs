@@ -164,7 +164,7 @@ fn bad_input_is_one_line_with_exit_code_2() {
     usage_error(&["dobby", "synthesize", "--alpha-deg", "30"], &["fold at roller B", "admissible α ∈ (35.8"]);
     usage_error(&["dobby", "synthesize", "--step-deg", "0"], &["step_deg"]);
     usage_error(&["dobby", "synthesize", "--law", "nope"], &["unknown law"]);
-    usage_error(&["dobby", "analyze", "--input-rpm", "-5"], &["--input-rpm"]);
+    usage_error(&["dobby", "analyze", "--input-rpm", "-5"], &["--speed-rpm"]);
     usage_error(&["dobby", "analyze", "--cam-file", "/nonexistent/cam.csv"], &["cannot read"]);
     let bad = tmp("bad.csv");
     std::fs::write(&bad, "x_m,y_m\n0,0\n1,zz\n").unwrap();
@@ -181,7 +181,7 @@ fn bad_input_is_one_line_with_exit_code_2() {
         std::fs::write(&f, text).unwrap();
         usage_error(&["dobby", "analyze", "--cam-file", f.to_str().unwrap()], &[needle]);
     }
-    usage_error(&["dobby", "analyze", "--input-rpm", "nan"], &["--input-rpm is not a finite number"]);
+    usage_error(&["dobby", "analyze", "--input-rpm", "nan"], &["--speed-rpm is not a finite number"]);
     usage_error(&["dobby", "sweep", "--by", "nan"], &["--by is not a finite number"]);
     for v in ["nan", "inf", "1e300"] {
         usage_error(&["dobby", "plot", "--what", "cams", "--at-deg", v, "-o", "never.svg"], &["--at-deg"]);

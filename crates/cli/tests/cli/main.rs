@@ -3,6 +3,7 @@
 mod cam;
 mod common;
 mod dobby;
+mod docs;
 mod dynamics;
 mod law;
 mod output;

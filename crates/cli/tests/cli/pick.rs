@@ -68,7 +68,7 @@ fn bad_settings_exit_2_with_a_clear_line() {
         &["unknown setting 'weight'"],
     );
     usage_error(&["pick", "sweep", "play", "--from", "0", "--to", "100", "--steps", "3"], &["beyond the cam's reach"]);
-    usage_error(&["pick", "sweep", "play", "--from", "0", "--to", "1", "--steps", "0"], &["--steps"]);
+    usage_error(&["pick", "sweep", "play", "--from", "0", "--to", "1", "--steps", "0"], &["--points"]);
     usage_error(&["pick", "simulate", "--law", "no-such-law"], &["no-such-law"]);
     usage_error(&["pick", "simulate", "--law", "compound", "--param", "ramp=0.1"], &["--param"]);
     usage_error(&["pick", "simulate", "--param", "ramp=0.1"], &["--param"]);
