@@ -322,21 +322,9 @@ fn list(a: ListArgs) -> Result<()> {
             .collect();
         return output::json(&json!({ "laws": v }));
     }
-    outln!(
-        "{:<12} {:>10} {:>9}  positive phase of the acceleration",
-        "law",
-        "motion_deg",
-        "dwell_deg"
-    )?;
+    outln!("{:<12} {:>10} {:>9}  positive phase of the acceleration", "law", "motion_deg", "dwell_deg")?;
     for p in PRESETS {
-        outln!(
-            "{:<12} {:>10} {:>9}  {} = {}",
-            p.name,
-            p.motion_deg,
-            360.0 - p.motion_deg,
-            p.table_shape,
-            p.positive
-        )?;
+        outln!("{:<12} {:>10} {:>9}  {} = {}", p.name, p.motion_deg, 360.0 - p.motion_deg, p.table_shape, p.positive)?;
     }
     Ok(())
 }

@@ -94,7 +94,8 @@ fn every_documented_command_works_as_printed() {
         copy_dir(&root.join("examples"), &scratch.join("examples"));
         for q in quoted_commands(page) {
             count += 1;
-            let out = Command::new("sh").arg("-c").arg(&q.line).current_dir(&scratch).env("PATH", &path).output().unwrap();
+            let out =
+                Command::new("sh").arg("-c").arg(&q.line).current_dir(&scratch).env("PATH", &path).output().unwrap();
             let code = out.status.code();
             let want_ok = !q.fails;
             let ok = if want_ok { code == Some(0) } else { code == Some(2) };
