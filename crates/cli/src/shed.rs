@@ -635,6 +635,16 @@ fn best(a: BestArgs) -> Result<()> {
     };
     let dims = loomkin_shed::evaluate_rows(&tpl, &design, t, Progress::Auto)?;
     let Some(b) = loomkin_shed::best(&design, &dims, motions.as_deref(), w, a.max_jerk_m_s3, &cond)? else {
+        // Blame the constraint that fails: the window alone, or the jerk limit on top of it.
+        if let Some(j) = a.max_jerk_m_s3
+            && loomkin_shed::best(&design, &dims, motions.as_deref(), w, None, &cond)?.is_some()
+        {
+            bail!(
+                "no law of the family '{}' with a window of {w} deg at T = {t} keeps the peak jerk within \
+                 --max-jerk-m-s3 {j} (laws with that window exist without the jerk limit)",
+                tpl.name()
+            );
+        }
         bail!("no law of the family '{}' gives a window of {w} deg at T = {t}", tpl.name());
     };
     let law = tpl.law(b.criteria.motion_deg, &b.lengths)?;

@@ -573,6 +573,7 @@ fn fuzz_findings_stay_fixed() {
         (vec!["pick", "simulate", "--speed-rpm", "-5"], "speed"),
         (vec!["law", "info", "modified-trapezoid", "--param", "ramp=0.1", "--param", "ramp=0.2"], "given twice"),
         (vec!["cycle", cycle, "--speed-rpm", "5e-324"], "speed-rpm"),
+        (vec!["shed", "best", "--window-deg", "175", "--max-jerk-m-s3", "1"], "--max-jerk-m-s3"),
     ];
     for (args, field) in cases {
         let o = Command::new(&bin).current_dir(&dir).args(&args).output().unwrap();
