@@ -160,7 +160,8 @@ impl Oscillator {
     }
 
     /// The amplitude of the free vibration that starts from `(δ, δ')`:
-    /// `A = √(δ² + ((δ' + ζω_nδ)/ω_d)²)` (the envelope value at the start).
+    /// `A = √(δ² + ((δ' + ζω_nδ)/ω_d)²)` (the envelope value at the start). As ζ → 1 it grows like 1/ω_d
+    /// while the motion becomes aperiodic.
     pub fn amplitude(&self, d: f64, dv: f64) -> f64 {
         d.hypot((dv + self.zeta * self.omega_n * d) / self.omega_d)
     }
