@@ -1,0 +1,24 @@
+//! Disc cam profiles from any closed motion: translating (radial or offset) and oscillating roller
+//! followers, the flat-faced translating follower, the conjugate pair and the groove cam — pitch
+//! curves, working profiles, pressure angle, curvature, undercut, every extreme located exactly,
+//! and sizing (least prime circle for a largest pressure angle, largest roller without undercut).
+//!
+//! Conventions (see `docs/cams.md`): the cam turns counter-clockwise, once per cycle period, at
+//! the main-shaft angle of the cycle; the prime circle radius `R_p` is the least radius of the
+//! pitch curve (base circle + roller); the pressure angle of a translating roller follower with
+//! offset ε is `atan((ds/dψ − ε) / (s + √(R_p² − ε²)))`, `ds/dψ` in mm per radian of cam.
+
+mod cam;
+mod design;
+mod extremes;
+mod jet;
+mod lift;
+mod sizing;
+mod track;
+
+pub use cam::{CamPoint, CamProfile, Curve, FlatExtremes, TrackExtremes, Wall};
+pub use design::{CamDesign, Closure, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE, Size};
+pub use extremes::Extremes;
+pub use jet::Jet;
+pub use lift::Lift;
+pub use track::{Track, TrackJets, curvature, offset};

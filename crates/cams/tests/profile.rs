@@ -1,0 +1,477 @@
+//! Cam profiles checked by independent routes: the follower motion re-derived from the working
+//! profile alone (roller–profile contact solved numerically), pressure angle and curvature against
+//! finite differences of the pitch curve, textbook formulas, sizing against its definition, and
+//! proptests over laws and geometries.
+
+use loomkin_cams::profile::{CamDesign, CamProfile, Closure, Curve, Follower, Size};
+use loomkin_cams::table::Motion;
+use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
+use proptest::prelude::*;
+
+const HEALD: &str = include_str!("../../../examples/heald-frame-cycle.toml");
+
+fn heald() -> Motion {
+    Motion::from_cycle(&Cycle::from_toml(HEALD).unwrap())
+}
+
+fn rise_return(law: &str, unit: StrokeUnit, stroke: f64, motion_deg: f64) -> Motion {
+    let spec =
+        CycleSpec::rise_return(&LawSpec::parse::<&str, &str>(law, &[]).unwrap(), unit, stroke, motion_deg).unwrap();
+    Motion::from_cycle(&Cycle::new(&spec).unwrap())
+}
+
+fn design(follower: Follower, closure: Closure, r: f64, size: Size) -> CamDesign {
+    CamDesign { follower, closure, roller_radius_mm: r, size }
+}
+
+fn rot(psi: f64, p: [f64; 2]) -> [f64; 2] {
+    let (s, c) = psi.sin_cos();
+    [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+}
+
+/// Maximum of a unimodal function near `x0` by golden sections on `[x0 − w, x0 + w]`.
+fn golden_max(f: impl Fn(f64) -> f64, x0: f64, w: f64) -> (f64, f64) {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (x0 - w, x0 + w);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if fc > fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    let x = 0.5 * (a + b);
+    (x, f(x))
+}
+
+/// A profile wall sampled once (in the cam frame), with its parameter (main-shaft deg).
+struct Sampled {
+    u: Vec<f64>,
+    pts: Vec<[f64; 2]>,
+    step: f64,
+}
+
+fn sample_wall(cam: &CamProfile, wall: usize, n: usize) -> Sampled {
+    let (a, b) = cam.range_deg();
+    let step = (b - a) / n as f64;
+    let u: Vec<f64> = (0..n).map(|i| a + i as f64 * step).collect();
+    let pts = u.iter().map(|&x| cam.point(Curve::Wall(wall), x)).collect();
+    Sampled { u, pts, step }
+}
+
+/// The translating roller's centre height on the line `x = ε` when the cam has turned by `psi`,
+/// from the profile alone: the lowest centre whose circle of radius `r` does not cut the profile,
+/// `y = max_u [Y(u) + √(r² − (X(u) − ε)²)]` over the rotated profile points `(X, Y)`.
+fn roller_height(cam: &CamProfile, wall: usize, sm: &Sampled, psi: f64, eps: f64, r: f64, below: bool) -> f64 {
+    let sign = if below { -1.0 } else { 1.0 };
+    let f = |p: [f64; 2]| {
+        let q = rot(psi, p);
+        let dx = q[0] - eps;
+        if dx.abs() >= r { f64::NEG_INFINITY } else { sign * q[1] + (r * r - dx * dx).sqrt() }
+    };
+    let (i, _) = sm
+        .pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (i, f(*p)))
+        .fold((0, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+    let (_, v) = golden_max(|u| f(cam.point(Curve::Wall(wall), u)), sm.u[i], 1.5 * sm.step);
+    sign * v
+}
+
+/// Re-derives the lift of a translating roller follower from the profile and compares it with the law.
+fn check_translating_contact(cam: &CamProfile, eps: f64, r: f64) -> f64 {
+    let rp = cam.prime_radius_mm();
+    let d0 = (rp * rp - eps * eps).sqrt();
+    let h = cam.stroke();
+    let (a, b) = cam.range_deg();
+    let sm = sample_wall(cam, 0, 4000);
+    let sm2 = (cam.track_count() == 2).then(|| sample_wall(cam, 1, 4000));
+    let mut worst: f64 = 0.0;
+    for k in 0..73 {
+        let deg = a + (b - a) * (k as f64 + 0.37) / 73.0;
+        let psi = (deg * 360.0 / (b - a)).to_radians();
+        let s_law = cam.lift_at(deg);
+        let s = roller_height(cam, 0, &sm, psi, eps, r, false) - d0;
+        worst = worst.max((s - s_law).abs() / h);
+        if let Some(sm2) = &sm2 {
+            // The counter-roller hangs below the centre at y = d0 + s − (2 d0 + H).
+            let s2 = roller_height(cam, 1, sm2, psi, eps, r, true) + d0 + h;
+            worst = worst.max((s2 - s_law).abs() / h);
+        }
+    }
+    worst
+}
+
+#[test]
+fn translating_motion_rederived_from_the_profile() {
+    for (eps, closure) in [(0.0, Closure::Single), (12.0, Closure::Single), (-7.5, Closure::Conjugate)] {
+        let d = design(Follower::Translating { offset_mm: eps }, closure, 10.0, Size::PrimeRadiusMm(80.0));
+        let cam = CamProfile::new(&heald(), &d).unwrap();
+        let worst = check_translating_contact(&cam, eps, 10.0);
+        assert!(worst < 1e-9, "ε = {eps}: lift from the profile off by {worst:e} of the stroke");
+    }
+}
+
+#[test]
+fn oscillating_motion_rederived_from_the_profile() {
+    // Swing 20° (cycloidal rise and return over 120° each), arm 100 mm, pivot 120 mm.
+    let m = rise_return("cycloidal", StrokeUnit::Deg, 20.0, 120.0);
+    let (l, dp, r) = (100.0, 120.0, 8.0);
+    for closure in [Closure::Single, Closure::Conjugate] {
+        let d = design(Follower::Oscillating { arm_mm: l, pivot_mm: dp }, closure, r, Size::PrimeRadiusMm(45.0));
+        let cam = CamProfile::new(&m, &d).unwrap();
+        let rp = cam.prime_radius_mm();
+        let g0 = ((dp * dp + l * l - rp * rp) / (2.0 * dp * l)).acos();
+        let h = 20f64.to_radians();
+        let mut worst: f64 = 0.0;
+        for wall in 0..cam.walls().len() {
+            let sm = sample_wall(&cam, wall, 4000);
+            let sigma = if wall == 0 { 1.0 } else { -1.0 };
+            for k in 0..37 {
+                let deg = 360.0 * (k as f64 + 0.29) / 37.0;
+                let psi = deg.to_radians();
+                // Roller centre for arm angle γ; its least distance to the rotated profile minus r.
+                let gap = |g: f64| {
+                    let c = [dp - l * g.cos(), sigma * l * g.sin()];
+                    let dist = |p: [f64; 2]| {
+                        let q = rot(psi, p);
+                        -((q[0] - c[0]).powi(2) + (q[1] - c[1]).powi(2)).sqrt()
+                    };
+                    let (i, _) = sm
+                        .pts
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| (i, dist(*p)))
+                        .fold((0, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+                    let (_, v) = golden_max(|u| dist(cam.point(Curve::Wall(wall), u)), sm.u[i], 1.5 * sm.step);
+                    -v - r
+                };
+                // Bracket around the expected arm angle (of the arm carrying this roller); which γ touches is decided by the contact alone.
+                let s_law = cam.lift_at(deg).to_degrees().to_radians();
+                let g_law = if wall == 0 { g0 + s_law } else { g0 + h - s_law };
+                let (mut lo, mut hi) = (g_law - 0.02, g_law + 0.02);
+                // g is the angle of the arm that carries this roller: a larger g moves it away from the centre.
+                let inward = gap;
+                assert!(
+                    inward(lo) < 0.0 && inward(hi) > 0.0,
+                    "no contact bracket at {deg}°: {} {} {}",
+                    inward(lo),
+                    inward(g_law),
+                    inward(hi)
+                );
+                for _ in 0..60 {
+                    let m = 0.5 * (lo + hi);
+                    if inward(m) < 0.0 { lo = m } else { hi = m }
+                }
+                let g = 0.5 * (lo + hi);
+                let s = if wall == 0 { g - g0 } else { g0 + h - g };
+                worst = worst.max((s - s_law).abs() / h);
+            }
+        }
+        assert!(worst < 1e-9, "{closure:?}: swing from the profile off by {worst:e} of the stroke");
+    }
+}
+
+#[test]
+fn flat_face_motion_rederived_from_the_profile() {
+    let d = design(Follower::Flat, Closure::Single, 0.0, Size::PrimeRadiusMm(120.0));
+    let cam = CamProfile::new(&heald(), &d).unwrap();
+    let sm = sample_wall(&cam, 0, 4000);
+    let mut worst: f64 = 0.0;
+    for k in 0..73 {
+        let deg = 360.0 * (k as f64 + 0.37) / 73.0;
+        let psi = deg.to_radians();
+        let f = |p: [f64; 2]| rot(psi, p)[1];
+        let (i, _) = sm
+            .pts
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i, f(*p)))
+            .fold((0, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+        let (_, y) = golden_max(|u| f(cam.point(Curve::Wall(0), u)), sm.u[i], 1.5 * sm.step);
+        worst = worst.max((y - 120.0 - cam.lift_at(deg)).abs() / cam.stroke());
+    }
+    assert!(worst < 1e-9, "face height from the profile off by {worst:e} of the stroke");
+}
+
+/// Pressure angle and curvature against finite differences of the pitch curve (points only), and
+/// the translating formula of the convention, `atan((s′ − ε)/(s + √(R_p² − ε²)))`, with s′ by
+/// finite differences of the lift.
+#[test]
+fn pressure_angle_and_curvature_against_finite_differences() {
+    let cases = [
+        (heald(), Follower::Translating { offset_mm: 9.0 }, Closure::Conjugate, 6.0, 70.0),
+        (
+            rise_return("modified-sine", StrokeUnit::Deg, 25.0, 100.0),
+            Follower::Oscillating { arm_mm: 90.0, pivot_mm: 110.0 },
+            Closure::Conjugate,
+            6.0,
+            40.0,
+        ),
+        (heald(), Follower::Flat, Closure::Single, 0.0, 90.0),
+    ];
+    for (m, f, c, r, rp) in cases {
+        let cam = CamProfile::new(&m, &design(f, c, r, Size::PrimeRadiusMm(rp))).unwrap();
+        let h = 1e-3; // deg
+        for t in 0..cam.track_count() {
+            for k in 0..90 {
+                let deg = 4.0 * k as f64 + 1.3;
+                let e = cam.eval(t, deg);
+                let pt = |x: f64| cam.point(Curve::Pitch(t), x);
+                let (pm, p0, pp) = (pt(deg - h), pt(deg), pt(deg + h));
+                let hr = h.to_radians();
+                let d1 = [(pp[0] - pm[0]) / (2.0 * hr), (pp[1] - pm[1]) / (2.0 * hr)];
+                let d2 = [(pp[0] - 2.0 * p0[0] + pm[0]) / (hr * hr), (pp[1] - 2.0 * p0[1] + pm[1]) / (hr * hr)];
+                let kappa = -(d1[0] * d2[1] - d1[1] * d2[0]) / (d1[0].hypot(d1[1])).powi(3);
+                assert!(
+                    (kappa - e.curvature_pitch_per_mm).abs() < 1e-6 * (1.0 + kappa.abs()) * 10.0,
+                    "{f:?} track {t} at {deg}°: κ {kappa} vs {}",
+                    e.curvature_pitch_per_mm
+                );
+                // the profile's curvature from its own points
+                let pr = |x: f64| cam.point(Curve::Wall(cam.walls().iter().position(|w| w.track == t).unwrap()), x);
+                let (qm, q0, qp) = (pr(deg - h), pr(deg), pr(deg + h));
+                let e1 = [(qp[0] - qm[0]) / (2.0 * hr), (qp[1] - qm[1]) / (2.0 * hr)];
+                let e2 = [(qp[0] - 2.0 * q0[0] + qm[0]) / (hr * hr), (qp[1] - 2.0 * q0[1] + qm[1]) / (hr * hr)];
+                let kq = -(e1[0] * e2[1] - e1[1] * e2[0]) / (e1[0].hypot(e1[1])).powi(3);
+                assert!(
+                    (kq - e.curvature_profile_per_mm).abs() < 1e-5 * (1.0 + kq.abs()),
+                    "{f:?} at {deg}°: profile κ {kq} vs {}",
+                    e.curvature_profile_per_mm
+                );
+                // the pressure angle from the finite-difference tangent, rotated into the fixed frame
+                let psi = deg.to_radians();
+                let tf = rot(psi, d1);
+                let q = rot(psi, p0);
+                let (ev, av) = match f {
+                    Follower::Oscillating { arm_mm: l, pivot_mm: d } => {
+                        // the direction of the roller's motion: perpendicular to the arm from the pivot (d, 0)
+                        let arm = [(q[0] - d) / l, q[1] / l];
+                        let sign = if t == 0 { 1.0 } else { -1.0 };
+                        let ev = [-arm[1] * -sign, arm[0] * -sign];
+                        (ev, [ev[1], -ev[0]])
+                    }
+                    _ => ([0.0, 1.0], [1.0, 0.0]),
+                };
+                if f != Follower::Flat {
+                    let phi = ((tf[0] * ev[0] + tf[1] * ev[1]) / (tf[0] * av[0] + tf[1] * av[1])).atan().to_degrees();
+                    assert!(
+                        (phi - e.pressure_angle_deg).abs() < 1e-6,
+                        "{f:?} track {t} at {deg}°: φ {phi} vs {}",
+                        e.pressure_angle_deg
+                    );
+                }
+                if let Follower::Translating { offset_mm: eps } = f {
+                    let ds = (cam.lift_at(deg + h) - cam.lift_at(deg - h)) / (2.0 * hr);
+                    let y = (rp * rp - eps * eps).sqrt();
+                    let den = if t == 0 { cam.lift_at(deg) + y } else { cam.lift_at(deg) - y - cam.stroke() };
+                    let phi = ((ds - eps) / den).atan().to_degrees();
+                    assert!(
+                        (phi - e.pressure_angle_deg).abs() < 1e-6,
+                        "at {deg}°: convention {phi} vs {}",
+                        e.pressure_angle_deg
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The located extremes are never beaten by a dense sample, and a dense sample comes close to them.
+#[test]
+fn extremes_bound_a_dense_sample() {
+    let d = design(Follower::Translating { offset_mm: 5.0 }, Closure::Single, 10.0, Size::PrimeRadiusMm(60.0));
+    let cam = CamProfile::new(&heald(), &d).unwrap();
+    let (pmax, pat, _) = cam.max_pressure_angle();
+    let (rmin, rat) = cam.min_convex_radius_pitch();
+    let pts = cam.sample(0, 0.01);
+    let smax = pts.iter().map(|p| p.pressure_angle_deg.abs()).fold(0.0, f64::max);
+    let kmax = pts.iter().map(|p| p.curvature_pitch_per_mm).fold(0.0, f64::max);
+    assert!(smax <= pmax + 1e-12 && pmax - smax < 1e-6, "{pmax} vs {smax}");
+    assert!(kmax <= 1.0 / rmin + 1e-15 && 1.0 / rmin - kmax < 1e-8, "{rmin} vs {}", 1.0 / kmax);
+    assert!((cam.eval(0, pat).pressure_angle_deg.abs() - pmax).abs() < 1e-12);
+    assert!((1.0 / cam.eval(0, rat).curvature_pitch_per_mm - rmin).abs() < 1e-9);
+}
+
+/// Textbook formulas, evaluated independently from the law: radial roller follower
+/// `ρ = (R² + s′²)^{3/2} / (R² + 2s′² − R s″)`, `R = R_p + s` (Shigley & Uicker, Theory of Machines
+/// and Mechanisms, ch. 6; Norton, Design of Machinery, ch. 8); flat-faced follower
+/// `ρ = R_b + s + s″` (same sources).
+#[test]
+fn textbook_curvature_formulas() {
+    let m = heald();
+    let radial = CamProfile::new(
+        &m,
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, 0.0, Size::PrimeRadiusMm(50.0)),
+    )
+    .unwrap();
+    let flat = CamProfile::new(&m, &design(Follower::Flat, Closure::Single, 0.0, Size::PrimeRadiusMm(150.0))).unwrap();
+    let h = 1e-3f64;
+    for k in 0..120 {
+        let deg = 3.0 * k as f64 + 0.7;
+        let hr = h.to_radians();
+        let (sm, s, sp) = (radial.lift_at(deg - h), radial.lift_at(deg), radial.lift_at(deg + h));
+        let (d1, d2) = ((sp - sm) / (2.0 * hr), (sp - 2.0 * s + sm) / (hr * hr));
+        let r = 50.0 + s;
+        let rho = (r * r + d1 * d1).powf(1.5) / (r * r + 2.0 * d1 * d1 - r * d2);
+        let k_lib = radial.eval(0, deg).curvature_pitch_per_mm;
+        assert!((1.0 / rho - k_lib).abs() < 1e-6 / 50.0, "radial at {deg}°: {rho} vs {}", 1.0 / k_lib);
+        let k_flat = flat.eval(0, deg).curvature_profile_per_mm;
+        // s″ by central differences over ±0.01° (rounding ~3e-7 mm, truncation ~3e-5 mm): radii to 1e-4 mm.
+        let hf = 0.01f64.to_radians();
+        let d2 = (flat.lift_at(deg + 0.01) - 2.0 * s + flat.lift_at(deg - 0.01)) / (hf * hf);
+        assert!((150.0 + s + d2 - 1.0 / k_flat).abs() < 1e-4, "flat at {deg}°: {} vs {}", 150.0 + s + d2, 1.0 / k_flat);
+    }
+}
+
+/// Sizing against its definition: at the least prime radius the largest pressure angle is A, and a
+/// hair less radius exceeds it.
+#[test]
+fn least_prime_radius_meets_the_pressure_angle() {
+    let cases = [
+        (heald(), Follower::Translating { offset_mm: 0.0 }, Closure::Single, 30.0),
+        (heald(), Follower::Translating { offset_mm: 15.0 }, Closure::Conjugate, 25.0),
+        (
+            rise_return("cycloidal", StrokeUnit::Deg, 20.0, 120.0),
+            Follower::Oscillating { arm_mm: 100.0, pivot_mm: 120.0 },
+            Closure::Single,
+            30.0,
+        ),
+    ];
+    for (m, f, c, a) in cases {
+        let cam = CamProfile::new(&m, &design(f, c, 5.0, Size::MaxPressureDeg(a))).unwrap();
+        let rp = cam.prime_radius_mm();
+        let (pmax, _, _) = cam.max_pressure_angle();
+        assert!((pmax - a).abs() < 1e-9, "{f:?}: {pmax}° at R_p {rp}");
+        let smaller = CamProfile::new(&m, &design(f, c, 5.0, Size::PrimeRadiusMm(rp * (1.0 - 1e-6)))).unwrap();
+        assert!(smaller.max_pressure_angle().0 > a, "{f:?}");
+    }
+}
+
+#[test]
+fn undercut_and_the_largest_roller() {
+    // A steep rise (50 mm in 60°) on a small cam: the pitch curve is sharper than the prime circle.
+    let m = rise_return("cycloidal", StrokeUnit::Mm, 50.0, 60.0);
+    let base = CamProfile::new(
+        &m,
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, 1.0, Size::PrimeRadiusMm(40.0)),
+    )
+    .unwrap();
+    let rmax = base.roller_max_mm().unwrap();
+    let (rmin, at) = base.min_convex_radius_pitch();
+    assert!(rmax == rmin && rmax < 40.0, "{rmax} {rmin}");
+    let ok = CamProfile::new(
+        &m,
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, rmax * 0.999, Size::PrimeRadiusMm(40.0)),
+    )
+    .unwrap();
+    assert_eq!(ok.undercut_at_deg(), None);
+    {
+        let bad = CamProfile::new(
+            &m,
+            &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, rmax * 1.001, Size::PrimeRadiusMm(40.0)),
+        )
+        .unwrap();
+        assert_eq!(bad.undercut_at_deg(), Some(at));
+        // Independently: beyond the largest roller the working profile folds back on itself —
+        // its tangent reverses where the pitch curve is most curved.
+        let t = |x: f64| {
+            let (a, b) = (bad.point(Curve::Wall(0), x - 1e-4), bad.point(Curve::Wall(0), x + 1e-4));
+            let p = (bad.point(Curve::Pitch(0), x + 1e-4), bad.point(Curve::Pitch(0), x - 1e-4));
+            (b[0] - a[0]) * (p.0[0] - p.1[0]) + (b[1] - a[1]) * (p.0[1] - p.1[1])
+        };
+        assert!(t(at) < 0.0, "the profile should run backwards at the undercut");
+    }
+}
+
+#[test]
+fn groove_walls_are_a_roller_diameter_apart() {
+    let cam = CamProfile::new(
+        &heald(),
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Groove, 8.0, Size::PrimeRadiusMm(70.0)),
+    )
+    .unwrap();
+    let outer: Vec<[f64; 2]> = (0..36000).map(|i| cam.point(Curve::Wall(1), i as f64 * 0.01)).collect();
+    for k in 0..60 {
+        let p = cam.point(Curve::Wall(0), 6.0 * k as f64 + 0.5);
+        let d = outer.iter().map(|q| (q[0] - p[0]).hypot(q[1] - p[1])).fold(f64::INFINITY, f64::min);
+        assert!((d - 16.0).abs() < 1e-4, "{d}");
+    }
+}
+
+#[test]
+fn bad_input_names_the_field() {
+    use loomkin_units::FieldError;
+    let m = heald();
+    let e = |f, c, r, s| CamProfile::new(&m, &design(f, c, r, s)).unwrap_err();
+    assert_eq!(
+        e(Follower::Translating { offset_mm: 50.0 }, Closure::Single, 5.0, Size::PrimeRadiusMm(40.0)).field(),
+        Some("prime_radius_mm")
+    );
+    assert_eq!(
+        e(Follower::Translating { offset_mm: 0.0 }, Closure::Single, 45.0, Size::PrimeRadiusMm(40.0)).field(),
+        Some("roller_radius_mm")
+    );
+    assert_eq!(
+        e(Follower::Oscillating { arm_mm: 100.0, pivot_mm: 120.0 }, Closure::Single, 5.0, Size::PrimeRadiusMm(40.0))
+            .field(),
+        Some("unit")
+    );
+    assert_eq!(e(Follower::Flat, Closure::Single, 0.0, Size::MaxPressureDeg(30.0)).field(), Some("max_pressure_deg"));
+    assert_eq!(
+        e(Follower::Translating { offset_mm: 0.0 }, Closure::Single, -1.0, Size::PrimeRadiusMm(40.0)).field(),
+        Some("roller_radius_mm")
+    );
+    let swing = rise_return("cycloidal", StrokeUnit::Deg, 60.0, 120.0);
+    let err = CamProfile::new(
+        &swing,
+        &design(
+            Follower::Oscillating { arm_mm: 50.0, pivot_mm: 60.0 },
+            Closure::Single,
+            2.0,
+            Size::PrimeRadiusMm(100.0),
+        ),
+    )
+    .unwrap_err();
+    assert_eq!(err.field(), Some("prime_radius_mm"), "{err}");
+    let open = Motion::rise(
+        &LawSpec::parse::<&str, &str>("cycloidal", &[]).unwrap().build().unwrap(),
+        10.0,
+        90.0,
+        StrokeUnit::Mm,
+    )
+    .unwrap();
+    let err =
+        CamProfile::new(&open, &design(Follower::Flat, Closure::Single, 0.0, Size::PrimeRadiusMm(40.0))).unwrap_err();
+    assert_eq!(err.field(), Some("segment"), "{err}");
+}
+
+const LAWS: [&str; 6] = ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"];
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    /// Any catalogue law, stroke, motion angle, offset and roller: the lift re-derived from the
+    /// profile is the law's, and the sized prime circle meets its pressure angle.
+    #[test]
+    fn any_law_any_geometry(law in 0usize..6, stroke in 5.0f64..60.0, motion in 60.0f64..180.0,
+                           eps_frac in -0.3f64..0.3, a in 20.0f64..40.0, r_frac in 0.05f64..0.5) {
+        let m = rise_return(LAWS[law], StrokeUnit::Mm, stroke, motion);
+        let sized = CamProfile::new(&m, &design(Follower::Translating { offset_mm: eps_frac * stroke }, Closure::Single, 0.0, Size::MaxPressureDeg(a))).unwrap();
+        prop_assert!((sized.max_pressure_angle().0 - a).abs() < 1e-9);
+        let rp = sized.prime_radius_mm();
+        let r = r_frac * sized.roller_max_mm().unwrap();
+        let eps = eps_frac * stroke;
+        let cam = CamProfile::new(&m, &design(Follower::Translating { offset_mm: eps }, Closure::Conjugate, r, Size::PrimeRadiusMm(rp))).unwrap();
+        prop_assert!(cam.undercut_at_deg().is_none());
+        let worst = check_translating_contact(&cam, eps, r);
+        prop_assert!(worst < 1e-9, "lift off by {:e} of the stroke", worst);
+    }
+}
