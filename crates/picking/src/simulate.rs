@@ -110,6 +110,14 @@ impl Route<'_> {
             Route::Ode(o) => o.state(t),
         }
     }
+
+    /// ȧ and ä at `t`.
+    fn jerk(&self, t: f64) -> Result<[f64; 2]> {
+        match self {
+            Route::Closed(p) => Ok(p.jerk(t)),
+            Route::Ode(o) => o.jerk(t),
+        }
+    }
 }
 
 /// Least number of uniform scan intervals for the closed form's extrema and events.
@@ -134,21 +142,63 @@ fn prepare<'a>(sc: &'a Scenario, method: Method) -> Result<(Route<'a>, Method, O
     Ok((Route::Ode(OdeTrajectory::new(sc)?), Method::Ode, None))
 }
 
-fn knots(sc: &Scenario, route: &Route<'_>) -> Vec<f64> {
+/// The scan: times and states at which events and peaks are bracketed. The closed form uses a
+/// uniform grid of at least [`SCAN`] intervals ([`SCAN_PER_CYCLE`] per natural oscillation) plus
+/// the cam's joints, its states by angle recurrences; the numerical route its own steps (with the
+/// uniform grid added when it took few).
+fn scan(sc: &Scenario, route: &Route<'_>) -> Result<(Vec<f64>, Vec<State>)> {
+    let cycles = sc.psi() * sc.t_cam_end / (2.0 * std::f64::consts::PI);
+    // cycles ≤ MAX_CYCLES (checked when the scenario is built), so n stays ≤ 32 000.
+    let n = SCAN.max((SCAN_PER_CYCLE * cycles).ceil() as usize);
+    let uniform = |i: usize| sc.t_cam_end * i as f64 / n as f64;
     match route {
-        Route::Ode(o) if o.len() >= SCAN / 4 => o.knots(),
-        _ => {
-            let cycles = sc.psi() * sc.t_cam_end / (2.0 * std::f64::consts::PI);
-            // cycles ≤ MAX_CYCLES (checked when the scenario is built), so n stays ≤ 32 000.
-            let n = SCAN.max((SCAN_PER_CYCLE * cycles).ceil() as usize);
-            let mut k: Vec<f64> = (0..=n).map(|i| sc.t_cam_end * i as f64 / n as f64).collect();
-            k.extend(sc.joints.iter().copied());
-            if let Route::Ode(o) = route {
-                k.extend(o.knots());
+        Route::Closed(p) => {
+            let mut grid = Vec::with_capacity(n + 1);
+            p.scan_uniform(sc.t_cam_end, n, &mut grid);
+            let mut joints = sc.joints.clone();
+            joints.sort_by(f64::total_cmp);
+            // Merge the joints into the (increasing) uniform grid, dropping exact repeats.
+            let mut ts = Vec::with_capacity(n + 1 + joints.len());
+            let mut states = Vec::with_capacity(n + 1 + joints.len());
+            let mut jn = joints.iter().peekable();
+            for (i, g) in grid.into_iter().enumerate() {
+                let t = uniform(i);
+                while let Some(&&tj) = jn.peek() {
+                    if tj >= t {
+                        break;
+                    }
+                    if ts.last() != Some(&tj) {
+                        ts.push(tj);
+                        states.push(p.state(tj));
+                    }
+                    jn.next();
+                }
+                if ts.last() != Some(&t) {
+                    ts.push(t);
+                    states.push(g);
+                }
             }
-            k.sort_by(f64::total_cmp);
-            k.dedup();
-            k
+            for &tj in jn {
+                if ts.last() != Some(&tj) {
+                    ts.push(tj);
+                    states.push(p.state(tj));
+                }
+            }
+            Ok((ts, states))
+        }
+        Route::Ode(o) => {
+            let ts: Vec<f64> = if o.len() >= SCAN / 4 {
+                o.knots().to_vec()
+            } else {
+                let mut k: Vec<f64> = (0..=n).map(uniform).collect();
+                k.extend(sc.joints.iter().copied());
+                k.extend(o.knots());
+                k.sort_by(f64::total_cmp);
+                k.dedup();
+                k
+            };
+            let states = ts.iter().map(|&t| o.state(t)).collect::<Result<Vec<_>>>()?;
+            Ok((ts, states))
         }
     }
 }
@@ -170,8 +220,9 @@ fn bisect_contact(sc: &Scenario, route: &Route<'_>, mut lo: f64, mut hi: f64) ->
     Ok(hi)
 }
 
-/// Golden-section search for the largest acceleration in [lo, hi].
-fn refine_peak(route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<(f64, f64)> {
+/// Golden-section search for the largest acceleration in [lo, hi] (when the jerk does not change
+/// sign across the bracket).
+fn golden_peak(route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<(f64, f64)> {
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let mut c = hi - r * (hi - lo);
     let mut d = lo + r * (hi - lo);
@@ -193,6 +244,37 @@ fn refine_peak(route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<(f64, f64)
     Ok(if fc > fd { (c, fc) } else { (d, fd) })
 }
 
+/// The largest acceleration in [lo, hi]: the zero of the jerk ȧ where it falls through zero across
+/// the bracket, by Newton's method on ȧ with ä, kept inside the shrinking bracket (bisection when
+/// a step would leave it), to the last bits of t; golden-section search otherwise.
+fn refine_peak(route: &Route<'_>, lo: f64, hi: f64) -> Result<(f64, f64)> {
+    let (j_lo, j_hi) = (route.jerk(lo)?[0], route.jerk(hi)?[0]);
+    if !(j_lo > 0.0 && j_hi < 0.0) {
+        return golden_peak(route, lo, hi);
+    }
+    let (mut a, mut b) = (lo, hi);
+    let tol = 1e-15 * hi.abs().max(1e-3);
+    let mut t = 0.5 * (a + b);
+    for _ in 0..200 {
+        let [j, dj] = route.jerk(t)?;
+        if j > 0.0 {
+            a = t;
+        } else if j < 0.0 {
+            b = t;
+        } else {
+            break;
+        }
+        let newton = t - j / dj;
+        let next = if newton > a && newton < b { newton } else { 0.5 * (a + b) };
+        let done = (next - t).abs() <= tol || b - a <= tol;
+        t = next;
+        if done {
+            break;
+        }
+    }
+    Ok((t, route.state(t)?.a_m_s2))
+}
+
 fn evaluate(
     m: &Mechanism,
     st: &Settings,
@@ -201,11 +283,7 @@ fn evaluate(
     method: Method,
     note: Option<String>,
 ) -> Result<Outcome> {
-    let ts = knots(sc, route);
-    let mut states = Vec::with_capacity(ts.len());
-    for &t in &ts {
-        states.push(route.state(t)?);
-    }
+    let (ts, states) = scan(sc, route)?;
     // End of the pick: the cam's end, or the first downward crossing of the contact force.
     let contact = |s: &State| sc.shuttle_kg * s.a_m_s2 + sc.checking_n;
     let (mut t_end, mut end, mut n_used) = (sc.t_cam_end, PickEnd::CamEnd, ts.len());
