@@ -1,0 +1,5 @@
+//! Benchmarks of the loom model.
+
+fn main() {
+    divan::main();
+}

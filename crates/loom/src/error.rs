@@ -1,0 +1,78 @@
+//! Errors of the loom model.
+
+use loomkin_laws::LawError;
+use loomkin_picking::PickError;
+use loomkin_shed::ShedError;
+use loomkin_units::{FieldError, RangeError};
+use thiserror::Error;
+
+/// Everything that can be wrong with a loom file, a weave pattern or a study of them.
+///
+/// Each variant names the field of the loom file (`geometry.back_rest_mm`) or the section of a
+/// pattern file (`[TIEUP]`) at fault.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum LoomError {
+    /// A number outside its allowed range, or not a finite number.
+    #[error(transparent)]
+    Range(#[from] RangeError),
+    /// A loom file that cannot be read, or a field that is missing, unknown or contradicts another.
+    #[error("{field}: {reason}")]
+    Field {
+        /// The field (`section.key`).
+        field: String,
+        /// Why.
+        reason: String,
+    },
+    /// A weave pattern (WIF or lift plan) that cannot be read or whose sections disagree.
+    #[error("{section}: {reason}")]
+    Pattern {
+        /// The section (`[TIEUP]`) or line (`line 3`).
+        section: String,
+        /// Why.
+        reason: String,
+    },
+    /// A requirement no setting can meet (a window no stagger can give, a carrier taller than the shed).
+    #[error("{field}: {reason}")]
+    Infeasible {
+        /// The field whose requirement cannot be met.
+        field: String,
+        /// Why, with the best that can be had.
+        reason: String,
+    },
+    /// An error of the law core (a law or cycle in the loom file).
+    #[error("shedding: {0}")]
+    Law(#[from] LawError),
+    /// An error of the shedding laws (a preset or piecewise law in the loom file).
+    #[error("shedding: {0}")]
+    Shed(#[from] ShedError),
+    /// An error of the picking study (the shuttle of the loom file).
+    #[error("insertion.shuttle: {0}")]
+    Pick(#[from] PickError),
+}
+
+impl LoomError {
+    pub(crate) fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::Field { field: field.into(), reason: reason.into() }
+    }
+
+    pub(crate) fn pattern(section: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::Pattern { section: section.into(), reason: reason.into() }
+    }
+}
+
+impl FieldError for LoomError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            Self::Range(e) => Some(&e.field),
+            Self::Field { field, .. } | Self::Infeasible { field, .. } => Some(field),
+            Self::Pattern { section, .. } => Some(section),
+            Self::Law(e) => e.field(),
+            Self::Shed(e) => e.field(),
+            Self::Pick(e) => e.field(),
+        }
+    }
+}
+
+/// Result alias of the loom model.
+pub type Result<T, E = LoomError> = std::result::Result<T, E>;

@@ -1,0 +1,254 @@
+//! Shed geometry: straight warp lines from the fell through each heald eye to the back rest.
+//!
+//! With the fell at the origin, `x` back along the warp and the back rest at `(l, h_b)`, frame
+//! `i`'s eye sits at distance `d_i` on the warp line at mid-stroke, height `h_b·d_i/l`, and at
+//! `e_i = h_b·d_i/l + y_i` when the frame is `y_i` above mid-stroke. One end of that frame runs
+//!
+//! $$ L(y) = \sqrt{d^2 + e^2} + \sqrt{(l - d)^2 + (h_b - e)^2}, \qquad L_0 = \sqrt{l^2 + h_b^2}, $$
+//!
+//! and its strain is `ε = L/L₀ − 1`. For a level warp line and a small lift this is the
+//! textbook `ΔL ≈ (y²/2)·(1/d + 1/(l − d))`, i.e. `ΔL ≈ (H²/8)·(1/d + 1/(l − d))` at a full
+//! shed of height `H` (docs/loom.md derives both).
+
+use crate::Geometry;
+use serde::Serialize;
+
+/// The length of one end through an eye `y` above mid-stroke at distance `d` and its first two
+/// derivatives with respect to `y`: `(L, dL/dy, d²L/dy²)`, m, –, 1/m.
+pub fn thread_length(d: f64, back_rest: f64, warp_line: f64, y: f64) -> (f64, f64, f64) {
+    let e = warp_line * d / back_rest + y;
+    let (a, b) = (d, back_rest - d);
+    let (r1, r2) = ((a * a + e * e).sqrt(), (b * b + (warp_line - e) * (warp_line - e)).sqrt());
+    let dl = e / r1 - (warp_line - e) / r2;
+    let d2l = a * a / (r1 * r1 * r1) + b * b / (r2 * r2 * r2);
+    (r1 + r2, dl, d2l)
+}
+
+/// The straight length fell → back rest, m.
+pub fn straight_length(back_rest: f64, warp_line: f64) -> f64 {
+    back_rest.hypot(warp_line)
+}
+
+/// Warp strain of an end through an eye `y` above mid-stroke at distance `d` (exact).
+pub fn strain(d: f64, back_rest: f64, warp_line: f64, y: f64) -> f64 {
+    let l0 = straight_length(back_rest, warp_line);
+    // L − L₀ written without cancellation: each square root minus its share of the straight line.
+    let e = warp_line * d / back_rest + y;
+    let s = d / back_rest;
+    let (a, b) = (d, back_rest - d);
+    let part = |run: f64, rise: f64, share: f64| {
+        let r = run.hypot(rise);
+        let straight = share * l0;
+        // r − straight = (r² − straight²)/(r + straight)
+        (r * r - straight * straight) / (r + straight)
+    };
+    (part(a, e, s) + part(b, warp_line - e, 1.0 - s)) / l0
+}
+
+/// The small-lift strain of the textbooks for a level warp line: `ε ≈ y²/(2·d·(l − d))`.
+pub fn strain_small_lift(d: f64, back_rest: f64, y: f64) -> f64 {
+    y * y / (2.0 * d * (back_rest - d))
+}
+
+/// Clean-shed strokes: every stroke proportional to the frame's distance from the fell, so every
+/// sheet lies in one plane in front of the frames (`H_i = H_1·d_i/d_1`).
+pub fn clean_strokes(frame_m: &[f64], front_stroke_m: f64) -> Vec<f64> {
+    frame_m.iter().map(|d| front_stroke_m * d / frame_m[0]).collect()
+}
+
+/// The larger strain of a frame at the top and at the bottom of a stroke `h` (centred on the warp line).
+pub fn full_shed_strain(d: f64, back_rest: f64, warp_line: f64, h: f64) -> f64 {
+    strain(d, back_rest, warp_line, h / 2.0).max(strain(d, back_rest, warp_line, -h / 2.0))
+}
+
+/// Strokes that give every frame the largest strain of the front frame at `front_stroke_m`
+/// (bisection on each stroke: the full-shed strain grows with the stroke).
+pub fn equal_strain_strokes(frame_m: &[f64], back_rest: f64, warp_line: f64, front_stroke_m: f64) -> Vec<f64> {
+    let target = full_shed_strain(frame_m[0], back_rest, warp_line, front_stroke_m);
+    frame_m
+        .iter()
+        .enumerate()
+        .map(|(i, &d)| {
+            if i == 0 {
+                return front_stroke_m;
+            }
+            let f = |h: f64| full_shed_strain(d, back_rest, warp_line, h) - target;
+            let (mut lo, mut hi) = (0.0, front_stroke_m);
+            let mut n = 0;
+            while f(hi) < 0.0 && n < 60 {
+                (lo, hi) = (hi, 2.0 * hi);
+                n += 1;
+            }
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) < 0.0 {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+                if hi - lo <= 1e-15 * hi {
+                    break;
+                }
+            }
+            0.5 * (lo + hi)
+        })
+        .collect()
+}
+
+/// The shed of one frame at full lift.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrameShed {
+    /// Distance of the heald eyes from the fell (the front shed depth), mm.
+    pub distance_mm: f64,
+    /// Full stroke, bottom to top, mm.
+    pub stroke_mm: f64,
+    /// Front shed depth (fell to heald eye), mm.
+    pub front_depth_mm: f64,
+    /// Back shed depth (heald eye to back rest), mm.
+    pub back_depth_mm: f64,
+    /// Angle at the fell between this frame's upper and lower sheets, deg.
+    pub shed_angle_deg: f64,
+    /// Angle at the back rest between the sheets, deg.
+    pub back_shed_angle_deg: f64,
+    /// Strain of an end with the frame at the top of its stroke.
+    pub strain_top: f64,
+    /// Strain of an end with the frame at the bottom.
+    pub strain_bottom: f64,
+}
+
+impl Geometry {
+    /// Height of the warp line over the fell at distance `x`, m.
+    pub fn warp_line_at(&self, x: f64) -> f64 {
+        self.warp_line_m * x / self.back_rest_m
+    }
+
+    /// The full-lift shed of frame `i`.
+    pub fn frame_shed(&self, i: usize) -> FrameShed {
+        let (d, h, l, hb) = (self.frame_m[i], self.stroke_m[i], self.back_rest_m, self.warp_line_m);
+        let w = self.warp_line_at(d);
+        let front = ((w + h / 2.0) / d).atan() - ((w - h / 2.0) / d).atan();
+        let back = ((hb - w + h / 2.0) / (l - d)).atan() - ((hb - w - h / 2.0) / (l - d)).atan();
+        FrameShed {
+            distance_mm: d * 1e3,
+            stroke_mm: h * 1e3,
+            front_depth_mm: d * 1e3,
+            back_depth_mm: (l - d) * 1e3,
+            shed_angle_deg: front.to_degrees(),
+            back_shed_angle_deg: back.to_degrees(),
+            strain_top: strain(d, l, hb, h / 2.0),
+            strain_bottom: strain(d, l, hb, -h / 2.0),
+        }
+    }
+
+    /// Strain of an end of frame `i` with its eye `y` above mid-stroke.
+    pub fn strain_at(&self, i: usize, y: f64) -> f64 {
+        strain(self.frame_m[i], self.back_rest_m, self.warp_line_m, y)
+    }
+
+    /// The clear opening of a shed at distance `x` in front of the front frame (`x ≤ d₁`), given
+    /// each frame's height `y_i` over mid-stroke and whether it belongs to the upper sheet: from
+    /// the lowest raised end down to the highest lowered end, `x·(min_up y_i/d_i − max_down y_j/d_j)`.
+    /// `None` when one side has no frame.
+    pub fn clear_height(&self, x: f64, y: &[f64], upper: &[bool]) -> Option<f64> {
+        let (mut lo_up, mut hi_down) = (f64::INFINITY, f64::NEG_INFINITY);
+        for ((yi, d), up) in y.iter().zip(&self.frame_m).zip(upper) {
+            let slope = yi / d;
+            if *up { lo_up = lo_up.min(slope) } else { hi_down = hi_down.max(slope) }
+        }
+        (lo_up.is_finite() && hi_down.is_finite()).then_some(x * (lo_up - hi_down))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Strain against a direct length computation (coordinates of the three points).
+    #[test]
+    fn strain_is_the_length_change_of_the_polyline() {
+        for &(d, l, hb, y) in &[(0.2, 0.9, 0.0, 0.04), (0.35, 1.1, 0.05, -0.06), (0.15, 0.8, -0.03, 0.02)] {
+            let p0 = (0.0f64, 0.0f64);
+            let eye = (d, hb * d / l + y);
+            let rest = (l, hb);
+            let len = |a: (f64, f64), b: (f64, f64)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+            let direct = (len(p0, eye) + len(eye, rest)) / len(p0, rest) - 1.0;
+            let ours = strain(d, l, hb, y);
+            assert!((ours - direct).abs() < 1e-15 + 1e-12 * direct.abs(), "{ours} vs {direct}");
+            let (ll, _, _) = thread_length(d, l, hb, y);
+            assert!((ll / straight_length(l, hb) - 1.0 - direct).abs() < 1e-14);
+        }
+    }
+
+    /// The textbook small-lift formula: relative error O(y²/d²).
+    #[test]
+    fn small_lifts_follow_the_textbook_formula() {
+        let (d, l) = (0.25, 0.9);
+        for y in [1e-4, 1e-3, 1e-2] {
+            let exact = strain(d, l, 0.0, y);
+            let approx = strain_small_lift(d, l, y);
+            assert!((exact / approx - 1.0).abs() < (y / d).powi(2), "y {y}: {exact} vs {approx}");
+        }
+        // ΔL = H²/8·(1/d + 1/(l − d)) at a full shed H = 2y.
+        let h = 0.002;
+        let dl = strain(d, l, 0.0, h / 2.0) * l;
+        assert!((dl / (h * h / 8.0 * (1.0 / d + 1.0 / (l - d))) - 1.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn length_derivatives_match_finite_differences() {
+        let (d, l, hb) = (0.3, 1.0, 0.04);
+        for y in [-0.05, 0.0, 0.03] {
+            let h = 1e-5;
+            let (_, d1, d2) = thread_length(d, l, hb, y);
+            let f = |y| thread_length(d, l, hb, y).0;
+            let fd1 = (f(y + h) - f(y - h)) / (2.0 * h);
+            let fd2 = (thread_length(d, l, hb, y + h).1 - thread_length(d, l, hb, y - h).1) / (2.0 * h);
+            assert!((d1 - fd1).abs() < 1e-9 && (d2 - fd2).abs() < 1e-6 * d2.abs(), "{d1} {fd1} {d2} {fd2}");
+        }
+    }
+
+    /// Clean shed: the lines from the fell through every raised eye coincide (one plane in front
+    /// of the frames), checked by constructing the sheet of each frame.
+    #[test]
+    fn clean_shed_puts_every_sheet_in_one_plane() {
+        let frames = [0.18, 0.2, 0.23, 0.27];
+        let h = clean_strokes(&frames, 0.08);
+        let slope0 = (h[0] / 2.0) / frames[0];
+        for (d, hi) in frames.iter().zip(&h) {
+            // The raised eye (d, h/2): the line from the fell to it has the front frame's slope.
+            assert!(((hi / 2.0) / d - slope0).abs() < 1e-15);
+        }
+        let g = Geometry {
+            frame_m: frames.to_vec(),
+            reed_m: 0.1,
+            back_rest_m: 0.9,
+            warp_line_m: 0.0,
+            stroke_m: h.clone(),
+            lifts: crate::Lifts::Clean,
+        };
+        let y: Vec<f64> = h.iter().enumerate().map(|(i, hi)| if i % 2 == 0 { hi / 2.0 } else { -hi / 2.0 }).collect();
+        let up: Vec<bool> = (0..4).map(|i| i % 2 == 0).collect();
+        let clear = g.clear_height(0.1, &y, &up).unwrap();
+        assert!((clear - 0.1 * 0.08 / 0.18).abs() < 1e-15);
+        let a0 = g.frame_shed(0).shed_angle_deg;
+        for i in 1..4 {
+            assert!((g.frame_shed(i).shed_angle_deg - a0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn equal_strain_strokes_equalise_the_strain() {
+        let frames = [0.18, 0.22, 0.3, 0.4];
+        for hb in [0.0, 0.05] {
+            let h = equal_strain_strokes(&frames, 1.0, hb, 0.09);
+            let e0 = full_shed_strain(frames[0], 1.0, hb, h[0]);
+            for (d, hi) in frames.iter().zip(&h) {
+                assert!((full_shed_strain(*d, 1.0, hb, *hi) / e0 - 1.0).abs() < 1e-12);
+            }
+            // Back frames lift more than the front one for equal strain at a level line… but less
+            // than the clean shed asks (their strain there would be larger).
+            let clean = clean_strokes(&frames, 0.09);
+            assert!(h[3] < clean[3]);
+        }
+    }
+}

@@ -1,0 +1,41 @@
+//! # loomkin-loom — the whole loom
+//!
+//! A loom designer never sets one heald frame alone: the frames sit at different distances behind
+//! the cloth fell and must lift different heights for a clean shed, the weave pattern decides at
+//! every pick which frames rise, fall or stay, the shedding drive carries all of them at once, and
+//! the weft carrier must pass a shed that is open enough while it flies.
+//!
+//! * [`Loom`] — a loom file (TOML): geometry, frames, warp, shedding law with crossing angle and
+//!   stagger, weft insertion, beat-up, speed; every field range-checked.
+//! * [`Pattern`] — the weave: a WIF 1.1 file or a plain lift plan.
+//! * [`Motion`] — every frame's motion over the repeat, in closed form (a machine cycle of the law
+//!   core per frame, [`Motion::cycle_spec`]).
+//! * [`geometry`] — clean-shed lifts, shed angles and depths, warp strain.
+//!
+//! ```
+//! use loomkin_loom::{Loom, Pattern, Motion};
+//!
+//! let loom = Loom::from_toml(include_str!("../../../examples/rapier-loom.toml"))?;
+//! let pattern = Pattern::from_wif(include_str!("../../../examples/twill-2-2.wif"))?;
+//! let motion = Motion::new(&loom, &pattern)?;
+//! assert_eq!(motion.picks(), 4);
+//! // Frame 2 stays up from the first pick to the second: it dwells at the top of its stroke.
+//! let top = motion.stroke_m(1) / 2.0;
+//! assert_eq!(motion.frame(1, 360.0 + 180.0).y_m, top);
+//! assert_eq!(motion.frame(1, 360.0 - 10.0).dy, 0.0);
+//! # Ok::<(), loomkin_loom::LoomError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod error;
+mod file;
+pub mod geometry;
+mod law;
+mod motion;
+mod pattern;
+
+pub use error::{LoomError, Result};
+pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
+pub use law::FrameLaw;
+pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
+pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern};
