@@ -27,15 +27,19 @@
 //! ```
 #![deny(missing_docs)]
 
+mod drive;
 mod error;
 mod file;
 pub mod geometry;
 mod law;
 mod motion;
 mod pattern;
+mod timing;
 
+pub use drive::{Drive, FrameForce, Peak};
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern};
+pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};

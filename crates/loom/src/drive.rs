@@ -1,0 +1,255 @@
+//! The shedding drive: the force on every frame and the torque the main shaft delivers.
+//!
+//! Frame `i` at height `y` over mid-stroke (θ the main-shaft angle, ω its speed) needs
+//!
+//! $$ F_i = m_i(\omega^2 y'' + g) + F_{0,i} + k_i\,(y + H_i/2) + N_i\,T(\varepsilon_i)\,\frac{\partial L_i}{\partial y}, \qquad T(\varepsilon) = T_0 + K\varepsilon, $$
+//!
+//! (inertia and weight, the return spring from its preload at the bottom of the stroke, and the
+//! `N_i` warp ends through the frame's eyes, whose tension grows with the strain `ε_i` and whose
+//! length `L_i` the lift stretches). By power balance `T·ω = Σ F_i·v_i / η` with `v_i = ω·y'_i`,
+//!
+//! $$ T(\theta) = \frac{1}{\eta} \sum_i F_i\, y'_i(\theta) \quad [\mathrm{N\,m}], $$
+//!
+//! and the same torque is `dE/dθ / η` of the energy stored in the frames, springs and warp
+//! ([`Drive::energy_j`]) — the independent route the tests take.
+
+use crate::geometry::{straight_length, thread_length};
+use crate::{FrameKin, G_M_S2, Loom, Motion, Pattern};
+use loomkin_laws::gauss_legendre;
+use serde::Serialize;
+
+/// The forces on one frame at one angle, N (positive up: what the drive must push with).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrameForce {
+    /// `m·a`.
+    pub inertia_n: f64,
+    /// `m·g`.
+    pub weight_n: f64,
+    /// The return spring.
+    pub spring_n: f64,
+    /// The warp ends pulling the eyes back to the straight line.
+    pub warp_n: f64,
+    /// The sum.
+    pub total_n: f64,
+}
+
+/// The largest torque over the repeat.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Peak {
+    /// The torque there (signed), N·m.
+    pub torque_n_m: f64,
+    /// The main-shaft angle, deg (within the repeat).
+    pub angle_deg: f64,
+}
+
+/// The shedding drive of a loom weaving a pattern.
+#[derive(Debug, Clone)]
+pub struct Drive<'a> {
+    loom: &'a Loom,
+    motion: &'a Motion,
+    /// Warp ends through each frame.
+    ends: Vec<f64>,
+    omega: f64,
+    l0: f64,
+}
+
+impl<'a> Drive<'a> {
+    /// The drive of `loom` moving `motion` (the frames weaving `pattern`). The loom's warp ends
+    /// are shared among the frames by the pattern's threading if it has one, else equally.
+    pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Self {
+        let n = loom.frame_count();
+        let ends = match pattern.ends_per_shaft() {
+            Some(e) if e.iter().sum::<usize>() > 0 => {
+                let total: usize = e.iter().sum();
+                (0..n).map(|i| loom.warp.ends * e.get(i).copied().unwrap_or(0) as f64 / total as f64).collect()
+            }
+            _ => vec![loom.warp.ends / n as f64; n],
+        };
+        let g = &loom.geometry;
+        Self { loom, motion, ends, omega: loom.speed.rad_per_s(), l0: straight_length(g.back_rest_m, g.warp_line_m) }
+    }
+
+    /// Warp ends through each frame.
+    pub fn ends(&self) -> &[f64] {
+        &self.ends
+    }
+
+    /// The motion driven.
+    pub fn motion(&self) -> &Motion {
+        self.motion
+    }
+
+    /// The forces on frame `i` in state `k`.
+    pub fn force(&self, i: usize, k: &FrameKin) -> FrameForce {
+        let f = &self.loom.frames[i];
+        let g = &self.loom.geometry;
+        let w = &self.loom.warp;
+        let inertia_n = f.mass_kg * self.omega * self.omega * k.d2y;
+        let weight_n = f.mass_kg * G_M_S2;
+        let spring_n = f.preload_n + f.spring_n_m * (k.y_m + g.stroke_m[i] / 2.0);
+        let warp_n = if self.ends[i] > 0.0 {
+            let (l, dl, _) = thread_length(g.frame_m[i], g.back_rest_m, g.warp_line_m, k.y_m);
+            let strain = l / self.l0 - 1.0;
+            self.ends[i] * (w.tension_per_end_n + w.stiffness_per_end_n * strain) * dl
+        } else {
+            0.0
+        };
+        FrameForce { inertia_n, weight_n, spring_n, warp_n, total_n: inertia_n + weight_n + spring_n + warp_n }
+    }
+
+    /// The main-shaft shedding torque at `theta_deg`, N·m.
+    pub fn torque_at(&self, theta_deg: f64) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..self.loom.frame_count() {
+            let k = self.motion.frame(i, theta_deg);
+            if k.dy != 0.0 {
+                sum += self.force(i, &k).total_n * k.dy;
+            }
+        }
+        sum / self.loom.efficiency
+    }
+
+    /// The energy stored at `theta_deg`, J: kinetic `½mω²y'²`, potential `m·g·y`, the springs
+    /// `F₀(y + H/2) + ½k(y + H/2)²` and the warp `N(T₀ΔL + K·ΔL²/(2L₀))`. At η = 1 the torque
+    /// is its derivative `dE/dθ`.
+    pub fn energy_j(&self, theta_deg: f64) -> f64 {
+        let g = &self.loom.geometry;
+        let w = &self.loom.warp;
+        (0..self.loom.frame_count())
+            .map(|i| {
+                let k = self.motion.frame(i, theta_deg);
+                let f = &self.loom.frames[i];
+                let ext = k.y_m + g.stroke_m[i] / 2.0;
+                let (l, _, _) = thread_length(g.frame_m[i], g.back_rest_m, g.warp_line_m, k.y_m);
+                let dl = l - self.l0;
+                0.5 * f.mass_kg * (self.omega * k.dy).powi(2)
+                    + f.mass_kg * G_M_S2 * k.y_m
+                    + f.preload_n * ext
+                    + 0.5 * f.spring_n_m * ext * ext
+                    + self.ends[i] * (w.tension_per_end_n * dl + w.stiffness_per_end_n * dl * dl / (2.0 * self.l0))
+            })
+            .sum()
+    }
+
+    /// The torque at every `step_deg` over the repeat, from 0 (inclusive) to the repeat's end
+    /// (exclusive), as `(angle_deg, torque_n_m)`.
+    ///
+    /// When `step_deg` divides 360°, every move of a frame in one direction meets the grid at the
+    /// same fractions of its motion, so each frame's power over a rise and over a fall is
+    /// computed once and added at every move (exact, and independent of the number of picks);
+    /// otherwise every point is evaluated directly.
+    pub fn torque_curve(&self, step_deg: f64) -> Vec<(f64, f64)> {
+        let period = self.motion.repeat_deg();
+        let n = (period / step_deg).round().max(1.0) as usize;
+        let h = period / n as f64;
+        let per_turn = 360.0 / h;
+        if (per_turn - per_turn.round()).abs() > 1e-9 * per_turn {
+            return (0..n).map(|k| (k as f64 * h, self.torque_at(k as f64 * h))).collect();
+        }
+        let per_turn = per_turn.round() as i64;
+        let phi = self.motion.motion_deg();
+        let mut t = vec![0.0; n];
+        for i in 0..self.loom.frame_count() {
+            let moves = self.motion.moves(i);
+            let Some(first) = moves.first() else { continue };
+            // Grid index of the first point at or after the start of the move into pick 0.
+            let w0 = first.start_deg - 360.0 * first.pick as f64;
+            let k0 = (w0 / h - 1e-12).ceil() as i64;
+            let x0 = (k0 as f64 * h - w0) / phi;
+            let dx = h / phi;
+            let count = ((1.0 - x0) / dx).ceil().max(0.0) as usize;
+            let table = |rising: bool| -> Vec<f64> {
+                (0..count)
+                    .map(|j| {
+                        let k = self.motion.moving(i, rising, x0 + j as f64 * dx);
+                        self.force(i, &k).total_n * k.dy / self.loom.efficiency
+                    })
+                    .collect()
+            };
+            let (up, down) = (table(true), table(false));
+            for m in &moves {
+                let tab = if m.rising { &up } else { &down };
+                let start = k0 + per_turn * m.pick as i64;
+                for (j, p) in tab.iter().enumerate() {
+                    t[(start + j as i64).rem_euclid(n as i64) as usize] += p;
+                }
+            }
+        }
+        t.into_iter().enumerate().map(|(k, v)| (k as f64 * h, v)).collect()
+    }
+
+    /// The largest |torque| over the repeat: the grid's largest local maxima of |T| (at
+    /// `step_deg`) refined by golden-section search between their neighbours.
+    pub fn peak(&self, step_deg: f64) -> Peak {
+        let curve = self.torque_curve(step_deg);
+        self.peak_of(&curve)
+    }
+
+    /// [`Drive::peak`] from a torque curve already computed.
+    pub fn peak_of(&self, curve: &[(f64, f64)]) -> Peak {
+        let n = curve.len();
+        if n == 0 {
+            return Peak { torque_n_m: 0.0, angle_deg: 0.0 };
+        }
+        let h = if n > 1 { curve[1].0 - curve[0].0 } else { self.motion.repeat_deg() };
+        let mut idx: Vec<usize> = (0..n)
+            .filter(|&k| {
+                let a = curve[k].1.abs();
+                a >= curve[(k + n - 1) % n].1.abs() && a >= curve[(k + 1) % n].1.abs()
+            })
+            .collect();
+        idx.sort_by(|a, b| curve[*b].1.abs().total_cmp(&curve[*a].1.abs()));
+        let mut best = Peak {
+            torque_n_m: curve[idx.first().copied().unwrap_or(0)].1,
+            angle_deg: curve[idx.first().copied().unwrap_or(0)].0,
+        };
+        for &k in idx.iter().take(6) {
+            let (th, t) = golden_max(|x| self.torque_at(x).abs(), curve[k].0 - h, curve[k].0 + h);
+            if t > best.torque_n_m.abs() {
+                best = Peak { torque_n_m: self.torque_at(th), angle_deg: th.rem_euclid(self.motion.repeat_deg()) };
+            }
+        }
+        best
+    }
+
+    /// The RMS torque over the repeat, N·m: `√(∫T²dθ / repeat)` by 16-point Gauss–Legendre on
+    /// panels between the joints of every frame's motion (where T is smooth), each at most 5° wide.
+    pub fn rms(&self) -> f64 {
+        let joints = self.motion.joints();
+        let rule = gauss_legendre(16);
+        let mut sum = 0.0;
+        for w in joints.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let parts = ((b - a) / 5.0).ceil().max(1.0) as usize;
+            let hp = (b - a) / parts as f64;
+            for p in 0..parts {
+                let mid = a + (p as f64 + 0.5) * hp;
+                for &(x, wt) in &rule {
+                    let t = self.torque_at(mid + 0.5 * hp * x);
+                    sum += 0.5 * hp * wt * t * t;
+                }
+            }
+        }
+        (sum / self.motion.repeat_deg()).sqrt()
+    }
+}
+
+/// The maximum of `f` on `[a, b]` by golden-section search (to 1e-10°), as `(x, f(x))`.
+pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> (f64, f64) {
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    while b - a > 1e-10 {
+        if fc >= fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    let x = 0.5 * (a + b);
+    (x, f(x))
+}

@@ -1,0 +1,239 @@
+//! The timing of the shed and the weft carrier: clear shed height, clearance, the window in which
+//! the carrier passes, and the highest loom speed.
+//!
+//! At main-shaft angle θ in the turn of pick `p`, the clear shed at distance `x` from the fell is
+//! the gap from the lowest end of the upper sheet (the frames up at pick `p`) down to the highest
+//! end of the lower sheet, `x·(min_up y_i/d_i − max_down y_j/d_j)`. The carrier (height `h_c`,
+//! width `w_c` along the warp, pressed against the reed at `x_r`) sees the narrowest gap at its
+//! front edge `x_c = x_r − w_c`; its clearance is the gap there less `h_c`.
+//!
+//! The carrier flies the reed space `W` plus its own length `L_s` at a mean speed `v̄` while the
+//! main shaft turns through the window `θ_w` in which the shed clears it, so the highest speed is
+//!
+//! $$ n_{max} = \frac{\bar v\,\theta_w}{6\,(W + L_s)} \quad [\mathrm{rpm}], $$
+//!
+//! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
+
+use crate::drive::golden_max;
+use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
+use serde::Serialize;
+
+/// The highest loom speed at which a carrier of mean speed `mean_speed_m_s` crosses a reed space
+/// `reed_width_m` plus its length `carrier_length_m` within `window_deg` of the main shaft, rpm.
+pub fn max_speed_rpm(mean_speed_m_s: f64, window_deg: f64, reed_width_m: f64, carrier_length_m: f64) -> f64 {
+    mean_speed_m_s * window_deg / (6.0 * (reed_width_m + carrier_length_m))
+}
+
+/// The window of one pick in which the shed clears the carrier.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PickWindow {
+    /// The pick (1 = first).
+    pub pick: usize,
+    /// Angle in the pick's turn at which the clearance becomes positive, deg.
+    pub open_deg: f64,
+    /// Angle at which it ends, deg.
+    pub close_deg: f64,
+    /// The least clearance over the required insertion (entry to exit), mm (negative: the carrier touches).
+    pub min_clearance_mm: f64,
+}
+
+/// The timing of a loom weaving a pattern.
+#[derive(Debug, Clone, Serialize)]
+pub struct TimingReport {
+    /// Per pick.
+    pub picks: Vec<PickWindow>,
+    /// The window common to every pick: from the latest opening to the earliest closing, deg.
+    pub open_deg: f64,
+    /// See `open_deg`.
+    pub close_deg: f64,
+    /// Its length, deg.
+    pub window_deg: f64,
+    /// The least clearance over the required insertion of every pick, mm.
+    pub min_clearance_mm: f64,
+    /// The carrier's mean speed across the shed, m/s.
+    pub mean_speed_m_s: f64,
+    /// The highest loom speed at which the carrier passes in the common window, rpm.
+    pub max_speed_rpm: f64,
+    /// Largest clear height at the carrier's front edge over the repeat, mm.
+    pub max_clear_mm: f64,
+}
+
+/// The shed seen by the carrier of a loom weaving a pattern.
+#[derive(Debug, Clone)]
+pub struct Timing<'a> {
+    loom: &'a Loom,
+    motion: &'a Motion,
+    /// `upper[p][i]`: frame `i` in the upper sheet at pick `p`.
+    upper: Vec<Vec<bool>>,
+    delta: f64,
+    x_c: f64,
+}
+
+impl<'a> Timing<'a> {
+    /// The timing of `loom` moving `motion` (weaving `pattern`). Every pick needs warp above and
+    /// below the carrier: a pick that raises no frame or every frame is refused, naming it.
+    pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Result<Self> {
+        let n = loom.frame_count();
+        let upper: Vec<Vec<bool>> =
+            (0..pattern.picks()).map(|p| (0..n).map(|i| pattern.is_up(p, i)).collect()).collect();
+        for (p, row) in upper.iter().enumerate() {
+            let ups = row.iter().filter(|u| **u).count();
+            if ups == 0 || ups == n {
+                return Err(LoomError::pattern(
+                    format!("pattern pick {}", p + 1),
+                    format!(
+                        "{} of the loom's {n} frames: a shed needs warp above and below the carrier",
+                        if ups == 0 { "raises none" } else { "raises all" }
+                    ),
+                ));
+            }
+        }
+        let x_c = loom.geometry.reed_m - loom.insertion.carrier_width_m;
+        Ok(Self { loom, motion, upper, delta: crossing_offset_deg(loom.shedding.crossing_deg), x_c })
+    }
+
+    /// Distance of the carrier's front edge from the fell, m.
+    pub fn carrier_edge_m(&self) -> f64 {
+        self.x_c
+    }
+
+    /// The clear shed height at distance `x` from the fell at absolute angle `theta_deg`, for pick
+    /// `pick`'s sheets, m.
+    pub fn clear_m(&self, pick: usize, x: f64, theta_deg: f64) -> f64 {
+        let n = self.loom.frame_count();
+        let y: Vec<f64> = (0..n).map(|i| self.motion.frame(i, theta_deg).y_m).collect();
+        self.loom.geometry.clear_height(x, &y, &self.upper[pick % self.upper.len()]).unwrap_or(0.0)
+    }
+
+    /// The clearance to the carrier at angle `angle_deg` of pick `pick`'s turn, m.
+    pub fn clearance_m(&self, pick: usize, angle_deg: f64) -> f64 {
+        self.clear_m(pick, self.x_c, 360.0 * pick as f64 + angle_deg) - self.loom.insertion.carrier_height_m
+    }
+
+    /// The turn of pick `p`, in angles of its own turn: from its crossing to the next.
+    fn turn(&self) -> (f64, f64) {
+        (self.delta, self.delta + 360.0)
+    }
+
+    /// Pick `p`'s window (angles in its turn), the least clearance over the required insertion.
+    pub fn pick_window(&self, p: usize) -> PickWindow {
+        let (a, b) = self.turn();
+        let c = |t: f64| self.clearance_m(p, t);
+        let step = 1.0;
+        let n = ((b - a) / step).ceil() as usize;
+        let grid: Vec<(f64, f64)> =
+            (0..=n).map(|k| (a + k as f64 * (b - a) / n as f64, 0.0)).map(|(t, _)| (t, c(t))).collect();
+        // The longest run of positive clearance.
+        let (mut best, mut run_start) = (None::<(usize, usize)>, None::<usize>);
+        for k in 0..grid.len() {
+            if grid[k].1 >= 0.0 {
+                run_start.get_or_insert(k);
+            }
+            if (grid[k].1 < 0.0 || k + 1 == grid.len())
+                && let Some(s) = run_start.take()
+            {
+                let e = if grid[k].1 < 0.0 { k - 1 } else { k };
+                if best.is_none_or(|(bs, be)| e - s > be - bs) {
+                    best = Some((s, e));
+                }
+            }
+        }
+        let (open_deg, close_deg) = match best {
+            None => (f64::NAN, f64::NAN),
+            Some((s, e)) => {
+                let open = if s == 0 { grid[0].0 } else { bisect(&c, grid[s - 1].0, grid[s].0) };
+                let close = if e + 1 == grid.len() { grid[e].0 } else { bisect(&c, grid[e].0, grid[e + 1].0) };
+                (open, close)
+            }
+        };
+        let ins = &self.loom.insertion;
+        PickWindow {
+            pick: p + 1,
+            open_deg,
+            close_deg,
+            min_clearance_mm: 1e3 * self.min_over(p, ins.entry_deg, ins.exit_deg),
+        }
+    }
+
+    /// The least clearance of pick `p` over `[from, to]` (angles of its turn), m: the grid's
+    /// smallest values (1° apart) refined by golden-section search, and both ends.
+    pub fn min_over(&self, p: usize, from: f64, to: f64) -> f64 {
+        let c = |t: f64| self.clearance_m(p, t);
+        let n = ((to - from) / 1.0).ceil().max(1.0) as usize;
+        let h = (to - from) / n as f64;
+        let vals: Vec<f64> = (0..=n).map(|k| c(from + k as f64 * h)).collect();
+        let mut best = vals.iter().copied().fold(f64::INFINITY, f64::min);
+        for k in 1..n {
+            if vals[k] <= vals[k - 1] && vals[k] <= vals[k + 1] {
+                let (_, m) = golden_max(|t| -c(t), from + (k - 1) as f64 * h, from + (k + 1) as f64 * h);
+                best = best.min(-m);
+            }
+        }
+        best
+    }
+
+    /// The least clearance over the required insertion of every pick, m (a cheap form for the
+    /// stagger search: on a grid of `step_deg` and the ends, not refined).
+    pub fn min_clearance_coarse(&self, step_deg: f64) -> f64 {
+        let ins = &self.loom.insertion;
+        let n = ((ins.exit_deg - ins.entry_deg) / step_deg).ceil().max(1.0) as usize;
+        let h = (ins.exit_deg - ins.entry_deg) / n as f64;
+        (0..self.upper.len())
+            .flat_map(|p| (0..=n).map(move |k| (p, ins.entry_deg + k as f64 * h)))
+            .map(|(p, t)| self.clearance_m(p, t))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The report: every pick's window, the common window and its length, the least clearance,
+    /// and the highest speed. Fails when the carrier is taller than the shed ever opens.
+    pub fn report(&self) -> Result<TimingReport> {
+        let picks: Vec<PickWindow> = (0..self.upper.len()).map(|p| self.pick_window(p)).collect();
+        let ins = &self.loom.insertion;
+        if picks.iter().any(|w| w.open_deg.is_nan()) {
+            let max_clear = self.max_clear_m();
+            return Err(LoomError::Infeasible {
+                field: "insertion.carrier_height_mm".into(),
+                reason: format!(
+                    "the carrier ({:.1} mm) is taller than the shed: it opens at most {:.1} mm at the carrier's front edge, {:.1} mm from the fell",
+                    ins.carrier_height_m * 1e3,
+                    max_clear * 1e3,
+                    self.x_c * 1e3
+                ),
+            });
+        }
+        let open_deg = picks.iter().map(|w| w.open_deg).fold(f64::NEG_INFINITY, f64::max);
+        let close_deg = picks.iter().map(|w| w.close_deg).fold(f64::INFINITY, f64::min);
+        let window_deg = (close_deg - open_deg).max(0.0);
+        let min_clearance_mm = picks.iter().map(|w| w.min_clearance_mm).fold(f64::INFINITY, f64::min);
+        let v = ins.mean_speed_m_s(self.loom.speed.rpm());
+        Ok(TimingReport {
+            picks,
+            open_deg,
+            close_deg,
+            window_deg,
+            min_clearance_mm,
+            mean_speed_m_s: v,
+            max_speed_rpm: max_speed_rpm(v, window_deg, ins.reed_width_m, ins.carrier_length_m),
+            max_clear_mm: self.max_clear_m() * 1e3,
+        })
+    }
+
+    /// The largest clear height at the carrier's front edge over the repeat, m.
+    pub fn max_clear_m(&self) -> f64 {
+        let (a, b) = self.turn();
+        (0..self.upper.len())
+            .flat_map(|p| (0..=72).map(move |k| (p, a + (b - a) * k as f64 / 72.0)))
+            .map(|(p, t)| self.clear_m(p, self.x_c, 360.0 * p as f64 + t))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// The root of `f` between `a` (one sign) and `b` (the other) by bisection to 1e-11°.
+fn bisect(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let fa_neg = f(a) < 0.0;
+    while b - a > 1e-11 {
+        let m = 0.5 * (a + b);
+        if (f(m) < 0.0) == fa_neg { a = m } else { b = m }
+    }
+    0.5 * (a + b)
+}

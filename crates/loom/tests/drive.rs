@@ -1,0 +1,99 @@
+//! The shedding torque: power balance against the energy's derivative, the fast curve against
+//! direct evaluation, the refined peak against a dense grid, the quadrature RMS against a dense sum.
+
+mod common;
+use common::*;
+use loomkin_loom::{Drive, Loom, Motion, Pattern};
+
+fn setups() -> Vec<(Loom, Pattern)> {
+    vec![(rapier(), wif("point-24.wif")), (rapier(), wif("satin-8.wif")), (shuttle(), wif("twill-2-2.wif"))]
+}
+
+/// Power balance `T = Σ F·y′ / η` against virtual work `T = dE/dθ / η` (central differences of
+/// the stored energy), away from the joints where the acceleration may jump.
+#[test]
+fn torque_is_the_derivative_of_the_stored_energy() {
+    for (loom, pat) in setups() {
+        let m = Motion::new(&loom, &pat).unwrap();
+        let d = Drive::new(&loom, &m, &pat);
+        let joints = m.joints();
+        let h = 1e-3;
+        let scale = d.peak(1.0).torque_n_m.abs();
+        let mut checked = 0;
+        for k in 0..400 {
+            let th = m.repeat_deg() * (k as f64 + 0.31) / 400.0;
+            if joints.iter().any(|j| (j - th).abs() < 2.0 * h) {
+                continue;
+            }
+            let fd = (d.energy_j(th + h) - d.energy_j(th - h)) / (2.0 * h.to_radians()) / loom.efficiency;
+            let t = d.torque_at(th);
+            assert!((t - fd).abs() < 1e-6 * scale, "{th}: {t} vs {fd}");
+            checked += 1;
+        }
+        assert!(checked > 300);
+    }
+}
+
+#[test]
+fn the_fast_curve_is_the_direct_evaluation() {
+    for (loom, pat) in setups() {
+        let m = Motion::new(&loom, &pat).unwrap();
+        let d = Drive::new(&loom, &m, &pat);
+        let scale = d.peak(1.0).torque_n_m.abs();
+        for step in [0.5, 1.0, 0.7] {
+            let c = d.torque_curve(step);
+            assert_eq!(c.len(), (m.repeat_deg() / step).round() as usize);
+            for (th, t) in c.iter().step_by(7) {
+                let direct = d.torque_at(*th);
+                assert!((t - direct).abs() < 1e-9 * scale, "step {step} at {th}: {t} vs {direct}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_peak_is_refined_and_the_rms_exact() {
+    for (loom, pat) in setups() {
+        let m = Motion::new(&loom, &pat).unwrap();
+        let d = Drive::new(&loom, &m, &pat);
+        let p = d.peak(0.5);
+        let dense = d.torque_curve(0.01);
+        let dense_max = dense.iter().map(|(_, t)| t.abs()).fold(0.0, f64::max);
+        // The refined peak is at least the dense grid's and exceeds it by no more than the
+        // curvature allows over half a step of 0.01°.
+        assert!(p.torque_n_m.abs() >= dense_max * (1.0 - 1e-12), "{} < {dense_max}", p.torque_n_m);
+        assert!(p.torque_n_m.abs() <= dense_max * (1.0 + 1e-5), "{} vs {dense_max}", p.torque_n_m);
+        assert!((d.torque_at(p.angle_deg) - p.torque_n_m).abs() < 1e-9 * dense_max);
+        let rms = d.rms();
+        let sum: f64 = dense.iter().map(|(_, t)| t * t).sum::<f64>() / dense.len() as f64;
+        // A rectangle sum of a periodic piecewise-smooth function: error O(h²) at the kinks.
+        assert!((rms / sum.sqrt() - 1.0).abs() < 1e-6, "{rms} vs {}", sum.sqrt());
+        eprintln!(
+            "{} × {} picks: peak {:.3} N·m at {:.3}°, rms {:.3} N·m",
+            loom.frame_count(),
+            pat.picks(),
+            p.torque_n_m,
+            p.angle_deg,
+            rms
+        );
+    }
+}
+
+#[test]
+fn forces_have_the_expected_parts() {
+    let loom = rapier();
+    let pat = wif("twill-2-2.wif");
+    let m = Motion::new(&loom, &pat).unwrap();
+    let d = Drive::new(&loom, &m, &pat);
+    // The threading puts the warp on the draft's 4 shafts only.
+    assert!((d.ends()[..4].iter().sum::<f64>() - 7600.0).abs() < 1e-9 && d.ends()[4] == 0.0);
+    // A frame at rest at the bottom: its weight and the spring preload; at mid-stroke no warp force.
+    let k = m.frame(10, 100.0);
+    let f = d.force(10, &k);
+    assert_eq!(f.inertia_n, 0.0);
+    assert!((f.total_n - (5.5 * 9.80665 + 120.0)).abs() < 1e-9);
+    let mid = loomkin_loom::FrameKin { y_m: 0.0, ..Default::default() };
+    assert!(d.force(0, &mid).warp_n.abs() < 1e-12);
+    let up = loomkin_loom::FrameKin { y_m: 0.04, ..Default::default() };
+    assert!(d.force(0, &up).warp_n > 0.0);
+}
