@@ -276,6 +276,8 @@ pub struct SweepArgs {
     step_deg: f64,
     #[command(flatten)]
     format: Format,
+    #[command(flatten)]
+    shard: crate::shard::ShardArgs,
 }
 
 /// Runs a `dobby` subcommand.
@@ -723,7 +725,8 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     if n > 1000 {
         bail!("--by {} gives {n} values of α: allowed at most 1000", a.by);
     }
-    let alphas: Vec<f64> = (0..n).map(|i| a.from + i as f64 * a.by).collect();
+    a.shard.check(a.format)?;
+    let alphas: Vec<f64> = a.shard.get().items(n).map(|i| a.from + i as f64 * a.by).collect();
     let g = a.geometry.geometry()?;
     let rows = alpha_sweep(
         &g,
@@ -734,6 +737,9 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?,
     )
     .map_err(|e: MechError| anyhow::Error::from(e))?;
+    if a.format.json && a.shard.given() {
+        return output::json_lines(rows.iter().map(row_json));
+    }
     if a.format.json {
         return output::json(&json!({ "rows": rows.iter().map(row_json).collect::<Vec<Value>>() }));
     }
@@ -773,7 +779,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         ])?;
     }
     if a.format.csv {
-        return output::csv(&t);
+        return output::csv_shard(&t, a.shard.get());
     }
     outln!("α sweep (θ = α): analysis of the cam | synthesis of the law")?;
     outln!(

@@ -172,8 +172,10 @@ pub struct SweepArgs {
     steady: bool,
     #[command(flatten)]
     format: Format,
+    #[command(flatten)]
+    shard: crate::shard::ShardArgs,
     /// Plot to this file (.svg or .png).
-    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
 }
 
@@ -376,7 +378,8 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     if span.count() > 10_000_000 {
         anyhow::bail!("speed_rpm: {} speeds is too many: allowed at most 10000000", span.count());
     }
-    let speeds: Vec<f64> = span.values().collect();
+    a.shard.check(a.format)?;
+    let speeds: Vec<f64> = a.shard.get().items(span.count()).map(|i| span.value(i)).collect();
     let start = if a.steady { Start::Steady } else { Start::Rest };
     let pts = sweep(&cycle, &follower, &speeds, start)?;
     let u = units(&cycle);
@@ -412,7 +415,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         t.push(row(q))?;
     }
     if a.format.csv {
-        return output::csv(&t);
+        return output::csv_shard(&t, a.shard.get());
+    }
+    if a.format.json && a.shard.given() {
+        return output::json_lines(t.to_json_rows().as_array().into_iter().flatten());
     }
     if a.format.json {
         return output::json(&json!({

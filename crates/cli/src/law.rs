@@ -63,6 +63,8 @@ pub struct SampleArgs {
     params: Params,
     #[command(flatten)]
     format: Format,
+    #[command(flatten)]
+    shard: crate::shard::ShardArgs,
 }
 
 /// `law plot`.
@@ -241,8 +243,23 @@ fn sample(a: SampleArgs) -> Result<()> {
     if a.points > 10_000_000 {
         bail!("--points {} is too many: allowed 2 ≤ N ≤ 10000000", a.points);
     }
+    a.shard.check(a.format)?;
     let (spec, law) = build(&a.law, &a.params.params)?;
-    let samples = law.sample(a.points);
+    let all = law.sample(a.points);
+    // The whole run's samples, then this shard's share of them: the values are those of the
+    // whole run whatever the sampling scheme.
+    let samples = &all[a.shard.get().items(all.len())];
+    if a.format.json && a.shard.given() {
+        #[derive(serde::Serialize)]
+        struct P {
+            a: f64,
+            j: f64,
+            s: f64,
+            v: f64,
+            x: f64,
+        }
+        return output::json_lines(samples.iter().map(|(x, k)| P { a: k.a, j: k.j, s: k.s, v: k.v, x: *x }));
+    }
     if a.format.json {
         // Serialised straight from the samples (keys in the same order as before): no JSON tree of
         // 10⁷ points in memory.
@@ -267,13 +284,13 @@ fn sample(a: SampleArgs) -> Result<()> {
             }
         }
         let units = "dimensionless (per unit stroke, per unit motion angle)";
-        return output::json(&Out { law: spec.name().to_string(), points: Points(&samples), units });
+        return output::json(&Out { law: spec.name().to_string(), points: Points(samples), units });
     }
     let mut t = Table::new(["x", "s", "v", "a", "j"]);
-    for (x, k) in samples {
+    for &(x, k) in samples {
         t.push(vec![x, k.s, k.v, k.a, k.j])?;
     }
-    output::csv(&t)
+    output::csv_shard(&t, a.shard.get())
 }
 
 fn plot(a: PlotArgs) -> Result<()> {

@@ -10,9 +10,11 @@ mod dynamics;
 mod law;
 mod output;
 mod pick;
+mod pick_montecarlo;
 mod serve;
 mod servo;
 mod servo_check;
+mod shard;
 mod shed;
 mod util;
 

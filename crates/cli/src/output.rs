@@ -157,6 +157,47 @@ pub fn csv(table: &loomkin_io::Table) -> anyhow::Result<()> {
     text_to("-", &String::from_utf8_lossy(&text))
 }
 
+/// Prints shard `shard` of a table as CSV: the header only in the first shard, then the rows the
+/// table holds (the caller computed only this shard's rows), so the shards' outputs concatenated in
+/// order are the whole table's CSV byte for byte.
+pub fn csv_shard(table: &loomkin_io::Table, shard: loomkin_units::Shard) -> anyhow::Result<()> {
+    let mut text = Vec::new();
+    table.write_csv(&mut text).map_err(crate::util::failure)?;
+    let body = if shard.is_first() {
+        &text[..]
+    } else {
+        let header_end = text.iter().position(|&b| b == b'\n').map_or(text.len(), |i| i + 1);
+        &text[header_end..]
+    };
+    let mut out = io::stdout().lock();
+    out.write_all(body).and_then(|()| out.flush()).map_err(|e| WriteError::stdout(e).into())
+}
+
+/// Prints JSON Lines: each value on one line of compact JSON. This is the form of sharded JSON
+/// output (`--shard I/N --json`): lines concatenate where JSON documents do not. Refuses a
+/// non-finite number (a `null`) anywhere, naming its line.
+pub fn json_lines<I>(values: I) -> anyhow::Result<()>
+where
+    I: IntoIterator,
+    I::Item: Serialize,
+{
+    let mut out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    let mut line = Vec::new();
+    for (i, v) in values.into_iter().enumerate() {
+        line.clear();
+        serde_json::to_writer(&mut line, &v).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
+        let mut scan = NullScan::default();
+        scan.write_all(&line).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
+        if scan.found {
+            let value = serde_json::to_value(&v).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
+            check_finite(&value, &format!("line {}", i + 1))?;
+        }
+        line.push(b'\n');
+        out.write_all(&line).map_err(WriteError::stdout)?;
+    }
+    out.flush().map_err(|e| WriteError::stdout(e).into())
+}
+
 /// Saves a figure, naming the file in the error.
 pub fn figure(fig: &loomkin_io::plot::Figure, path: &Path) -> anyhow::Result<()> {
     match fig.save(path) {

@@ -1,6 +1,7 @@
 //! `loomkin pick …`: shuttle picking dynamics of an elastic under-pick mechanism (Jederán 1959).
 
 use crate::output::{self, outln};
+use crate::shard::ShardArgs;
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -9,7 +10,7 @@ use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
-    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate, sweep,
+    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate, sweep_items,
 };
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -23,6 +24,9 @@ pub enum PickCommand {
     Simulate(SimulateArgs),
     /// One setting over a range (the paper's Figs. 5–8, 10), evaluated in parallel.
     Sweep(SweepArgs),
+    /// Tolerance study: loom settings drawn from stated distributions (TOML), the results' percentiles,
+    /// histograms and share failing a limit; seeded, reproducible, shardable.
+    Montecarlo(crate::pick_montecarlo::MonteCarloArgs),
     /// Nominal and actual motion over the pick, like the paper's Fig. 2.
     Plot(PlotArgs),
 }
@@ -172,8 +176,10 @@ pub struct SweepArgs {
     method: MethodArg,
     #[command(flatten)]
     format: Format,
+    #[command(flatten)]
+    shard: ShardArgs,
     /// Plot velocity, distance and accelerations against the setting to this file (.svg or .png).
-    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
 }
 
@@ -201,19 +207,20 @@ pub fn run(cmd: PickCommand) -> Result<()> {
         PickCommand::Design(a) => design(a),
         PickCommand::Simulate(a) => simulate_cmd(a),
         PickCommand::Sweep(a) => sweep_cmd(a),
+        PickCommand::Montecarlo(a) => crate::pick_montecarlo::run(a),
         PickCommand::Plot(a) => plot(a),
     }
 }
 
 /// A library error: solver failures are run failures (exit 1), everything else is bad input (exit 2).
-fn lib_err(e: PickError) -> anyhow::Error {
+pub(crate) fn lib_err(e: PickError) -> anyhow::Error {
     match e {
         PickError::Solver { .. } => util::failure(e),
         e => e.into(),
     }
 }
 
-fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
+pub(crate) fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
     let mech = match &m.mechanism {
         Some(path) => Mechanism::from_toml(&util::read_input(path)?).map_err(lib_err)?,
         None => Mechanism::paper_default(),
@@ -433,9 +440,11 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     if !(1..=1_000_000).contains(&a.points) {
         bail!("--points {} is out of range: allowed 1 ≤ N ≤ 1000000", a.points);
     }
+    a.shard.check(a.format)?;
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
-    let s = sweep(&mech, &st, setting, a.from, a.to, a.points, a.method.into()).map_err(lib_err)?;
+    let items = a.shard.get().items(a.points);
+    let s = sweep_items(&mech, &st, setting, a.from, a.to, a.points, a.method.into(), items).map_err(lib_err)?;
     let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
     if let Some(first) = s.fallbacks().next() {
         output::note(format_args!(
@@ -452,18 +461,18 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         return output::figure(&sweep_figure(&s), path);
     }
     if a.format.csv {
-        return output::csv(&sweep_table(&s)?);
+        return output::csv_shard(&sweep_table(&s)?, a.shard.get());
     }
     if a.format.json {
-        let rows: Vec<Value> = s
-            .rows
-            .iter()
-            .map(|r| {
-                let mut v = outcome_json(&r.outcome);
-                v[setting.key()] = json!(r.value);
-                v
-            })
-            .collect();
+        let row_json = |r: &loomkin_picking::SweepRow| {
+            let mut v = outcome_json(&r.outcome);
+            v[setting.key()] = json!(r.value);
+            v
+        };
+        if a.shard.given() {
+            return output::json_lines(s.rows.iter().map(row_json));
+        }
+        let rows: Vec<Value> = s.rows.iter().map(row_json).collect();
         return output::json(&json!({
             "setting": setting.name(), "unit": setting.unit(), "method": Method::from(a.method).name(),
             "fallback_values": fallbacks, "rows": rows,

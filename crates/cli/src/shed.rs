@@ -140,6 +140,8 @@ pub struct TableArgs {
     physical: Physical,
     #[command(flatten)]
     format: util::Format,
+    #[command(flatten)]
+    shard: crate::shard::ShardArgs,
 }
 
 /// `shed pareto`.
@@ -402,23 +404,33 @@ type GridDefaults = (f64, f64, f64);
 const TABLE_GRID: GridDefaults = (0.05, 0.05, 0.9);
 const BEST_GRID: GridDefaults = (0.01, 0.01, 0.98);
 
-fn design_rows(kind: DesignKind, d: &DesignArgs, default_motion: &str, cond: &Conditions) -> Result<Rows> {
+/// The rows of an experiment table; only the laws `shard` takes are evaluated and listed (each with
+/// its rows at every motion angle).
+fn design_rows(
+    kind: DesignKind,
+    d: &DesignArgs,
+    default_motion: &str,
+    cond: &Conditions,
+    shard: loomkin_units::Shard,
+) -> Result<Rows> {
     if kind == DesignKind::Presets {
         if d.family.is_some() || d.shapes.is_some() || d.motion_deg.is_some() || d.step.is_some() {
             bail!("--design presets takes no --family, --shapes, --step or --motion-deg");
         }
         let mut rows = Vec::new();
-        for p in PRESETS {
+        for p in &PRESETS[shard.items(PRESETS.len())] {
             let law = p.law()?;
             let c = evaluate(&law, cond)?;
             let lengths = law.positive().iter().map(|s| s.length).collect();
-            rows.push((Some(p.name.to_string()), Candidate { row: rows.len(), lengths, criteria: c }));
+            let row = PRESETS.iter().position(|q| q.name == p.name).unwrap_or(rows.len());
+            rows.push((Some(p.name.to_string()), Candidate { row, lengths, criteria: c }));
         }
         return Ok(Rows { k_names: Vec::new(), rows });
     }
     let (t, design) = study_design(kind, d, TABLE_GRID)?;
     let motions = loomkin_shed::parse_motion_angles(d.motion_deg.as_deref().unwrap_or(default_motion))?;
-    let dims = loomkin_shed::evaluate_rows(&t, &design, cond.threshold(), Progress::Auto)?;
+    let items = shard.items(design.len());
+    let dims = loomkin_shed::evaluate_rows_in(&t, &design, cond.threshold(), Progress::Auto, items)?;
     let rows = loomkin_shed::table(&design, &dims, &motions, cond)?;
     Ok(Rows { k_names: design.names().to_vec(), rows: rows.into_iter().map(|c| (None, c)).collect() })
 }
@@ -496,27 +508,22 @@ fn values(c: &Criteria) -> [f64; 18] {
     ]
 }
 
-fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
-    let named = rows.rows.iter().any(|(n, _)| n.is_some());
-    if format.json {
-        let v: Vec<Value> = rows
-            .rows
-            .iter()
-            .map(|(n, c)| {
-                let mut v = criteria_json(&c.criteria, cond);
-                if let Some(n) = n {
-                    v["law"] = json!(n);
-                } else {
-                    v["row"] = json!(c.row);
-                }
-                v["lengths"] = json!(c.lengths);
-                v
-            })
-            .collect();
-        return output::json(&json!({ "rows": v }));
+/// One row of a table as JSON (named presets carry `law`, design rows `row`).
+fn row_json(n: &Option<String>, c: &Candidate, cond: &Conditions) -> Value {
+    let mut v = criteria_json(&c.criteria, cond);
+    if let Some(n) = n {
+        v["law"] = json!(n);
+    } else {
+        v["row"] = json!(c.row);
     }
+    v["lengths"] = json!(c.lengths);
+    v
+}
+
+/// The table as CSV, with or without its header line.
+fn csv_text(rows: &Rows, named: bool, header_line: bool) -> Result<String> {
     let mut out = String::new();
-    if format.csv {
+    if header_line {
         let mut header: Vec<String> = Vec::new();
         if named {
             header.push("law".into());
@@ -526,20 +533,42 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
         header.extend(rows.k_names.iter().cloned());
         header.extend(COLUMNS.iter().map(|s| s.to_string()));
         writeln!(out, "{}", header.join(",")).map_err(failure)?;
-        for (n, c) in &rows.rows {
-            let vals = values(&c.criteria);
-            if let Some(bad) = c.lengths.iter().chain(&vals).find(|v| !v.is_finite()) {
-                return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {}", c.row)));
-            }
-            let mut line = n.clone().unwrap_or_else(|| c.row.to_string());
-            let ks = if named { &[][..] } else { &c.lengths[..] };
-            for v in ks.iter().chain(&vals) {
-                line.push(',');
-                line.push_str(&format!("{v}"));
-            }
-            writeln!(out, "{line}").map_err(failure)?;
+    }
+    for (n, c) in &rows.rows {
+        let vals = values(&c.criteria);
+        if let Some(bad) = c.lengths.iter().chain(&vals).find(|v| !v.is_finite()) {
+            return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {}", c.row)));
         }
-        return output::text_to("-", &out);
+        let mut line = n.clone().unwrap_or_else(|| c.row.to_string());
+        let ks = if named { &[][..] } else { &c.lengths[..] };
+        for v in ks.iter().chain(&vals) {
+            line.push(',');
+            line.push_str(&format!("{v}"));
+        }
+        writeln!(out, "{line}").map_err(failure)?;
+    }
+    Ok(out)
+}
+
+/// A shard of a table: CSV with the header in shard 1 only, or JSON Lines.
+fn emit_shard(rows: &Rows, format: util::Format, cond: &Conditions, shard: loomkin_units::Shard) -> Result<()> {
+    if format.json {
+        return output::json_lines(rows.rows.iter().map(|(n, c)| row_json(n, c, cond)));
+    }
+    // Whether the table names presets is a property of the design, not of the shard's rows.
+    let named = rows.k_names.is_empty();
+    output::text_to("-", &csv_text(rows, named, shard.is_first())?)
+}
+
+fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
+    let named = rows.rows.iter().any(|(n, _)| n.is_some());
+    if format.json {
+        let v: Vec<Value> = rows.rows.iter().map(|(n, c)| row_json(n, c, cond)).collect();
+        return output::json(&json!({ "rows": v }));
+    }
+    let mut out = String::new();
+    if format.csv {
+        return output::text_to("-", &csv_text(rows, named, true)?);
     }
     writeln!(
         out,
@@ -571,15 +600,19 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
 }
 
 fn table(a: TableArgs) -> Result<()> {
+    a.shard.check(a.format)?;
     let cond = conditions(&a.physical, a.threshold.threshold)?;
-    let rows = design_rows(a.design, &a.d, "300", &cond)?;
+    let rows = design_rows(a.design, &a.d, "300", &cond, a.shard.get())?;
+    if a.shard.given() {
+        return emit_shard(&rows, a.format, &cond, a.shard.get());
+    }
     emit(&rows, a.format, &cond, "experiment table")
 }
 
 fn pareto(a: ParetoArgs) -> Result<()> {
     let cond = conditions(&a.physical, a.threshold.threshold)?;
     let front = if a.design == DesignKind::Presets {
-        let all = design_rows(a.design, &a.d, "180:360:10", &cond)?;
+        let all = design_rows(a.design, &a.d, "180:360:10", &cond, loomkin_units::Shard::WHOLE)?;
         let pts: Vec<[f64; 2]> =
             all.rows.iter().map(|(_, c)| [c.criteria.window_deg, c.criteria.peak_accel_m_s2]).collect();
         let idx = loomkin_shed::pareto_indices(&pts)?;

@@ -18,7 +18,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Working invocations, one per line of use; `{cycle}`, `{axis}`, `{drive}`, `{mechanism}`, `{cam}`,
-/// `{spec}` are valid input files and `{out}` a fresh output path without extension.
+/// `{spec}`, `{mc}` are valid input files and `{out}` a fresh output path without extension.
 const SEEDS: &[&str] = &[
     "law list",
     "law list --json",
@@ -79,6 +79,15 @@ const SEEDS: &[&str] = &[
     "servo export --format cycle -o {out}.toml",
     "shed law dobby --emit-cycle {out}.toml",
     "shed best --window-deg 120 --emit-cycle {out}.toml",
+    "pick montecarlo {mc}",
+    "pick montecarlo {mc} --json",
+    "pick montecarlo {mc} --csv --shard 2/3",
+    "pick montecarlo {mc} --json --shard 1/2",
+    "pick sweep speed --from 160 --to 240 --steps 5 --csv --shard 2/3",
+    "law sample cycloidal --points 11 --json --shard 3/4",
+    "shed table --csv --shard 1/2",
+    "dyn sweep --speed-rpm 200:400:100 --natural-hz 80 {cycle} --csv --shard 2/2",
+    "dobby sweep --step-deg 10 --json --shard 2/7",
 ];
 
 const NUMBERS: &[&str] = &[
@@ -189,6 +198,13 @@ fn files() -> Files {
                 .collect::<String>(),
         ),
         ("spec", "motion_deg = 180\npositive = \"0.5:sine-ramp:0:1,0.5:cosine-ramp:1:0\"\n".into()),
+        // The draw count in hexadecimal: the number mutations below would otherwise make it 10⁶.
+        (
+            "mc",
+            "draws = 0x5\nseed = 3\n[settings]\nspeed_rpm = { dist = \"normal\", mean = 200, sd = 4 }\n\
+             play_mm = { dist = \"uniform\", min = 0, max = 10 }\n[limits]\nvelocity_m_s = { max = 19 }\n"
+                .into(),
+        ),
     ];
     let mut valid = Vec::new();
     let mut hostile =
@@ -512,6 +528,7 @@ fn every_hostile_file_in_every_file_argument() {
                 || s.contains("{mechanism}")
                 || s.contains("{cam}")
                 || s.contains("{spec}")
+                || s.contains("{mc}")
         })
         .collect();
     let mut findings = Vec::new();

@@ -125,6 +125,12 @@ pub enum PickError {
         /// What is wrong.
         reason: String,
     },
+    /// A Monte-Carlo study file that cannot be run (the message names the key).
+    #[error("Monte-Carlo study: {reason}")]
+    Study {
+        /// What is wrong.
+        reason: String,
+    },
     /// The numerical integrator failed.
     #[error("numerical integration failed: {reason}")]
     Solver {

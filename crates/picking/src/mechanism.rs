@@ -137,7 +137,7 @@ fn check_constants(params: &Params) -> Result<()> {
 }
 
 /// `line L, column C: message` of a TOML error, on one line and without quoting the source.
-fn toml_reason(text: &str, e: &toml::de::Error) -> String {
+pub(crate) fn toml_reason(text: &str, e: &toml::de::Error) -> String {
     let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
     match e.span() {
         Some(span) => {

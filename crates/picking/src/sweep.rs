@@ -41,11 +41,27 @@ pub fn sweep(
     steps: usize,
     method: Method,
 ) -> Result<Sweep> {
+    sweep_items(mechanism, base, setting, from, to, steps, method, 0..steps)
+}
+
+/// The points `items` (indices into `0..steps`, e.g. one shard's share,
+/// [`loomkin_units::Shard::items`]) of the sweep [`sweep`] would run: each point's value and
+/// outcome are those of the whole sweep, bit for bit. Indices past `steps` are left out.
+pub fn sweep_items(
+    mechanism: &Mechanism,
+    base: &Settings,
+    setting: Setting,
+    from: f64,
+    to: f64,
+    steps: usize,
+    method: Method,
+    items: std::ops::Range<usize>,
+) -> Result<Sweep> {
     Range::finite(setting.unit()).check("from", from)?;
     Range::finite(setting.unit()).check("to", to)?;
     Range::closed(1.0, 1e6, "").check("steps", steps as f64)?;
     let value = |i: usize| if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
-    let rows = (0..steps)
+    let rows = (items.start.min(steps)..items.end.min(steps))
         .into_par_iter()
         .map(|i| {
             let v = value(i);

@@ -51,8 +51,8 @@ pub use presets::{PRESETS, Preset, preset, preset_names};
 pub use requirement::LoomRequirement;
 pub use shedlaw::{NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
-    Candidate, best, check_window_deg, dominates_in, evaluate_rows, fig1_design, grid_design, pareto, pareto_indices,
-    parse_motion_angles, table, table1_design,
+    Candidate, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design, grid_design, pareto,
+    pareto_indices, parse_motion_angles, table, table1_design,
 };
 pub use template::{MAX_PARTS, Template};
 

@@ -50,6 +50,33 @@ pub fn evaluate_rows(
     Ok(evaluate_design(design, progress, "laws", |k| template.evaluate(k, threshold).ok()))
 }
 
+/// [`evaluate_rows`] for the rows `items` of the design only (one shard's share,
+/// [`loomkin_units::Shard::items`]): the result is as long as the design, `None` outside `items`,
+/// and inside it equal to [`evaluate_rows`]' rows bit for bit.
+pub fn evaluate_rows_in(
+    template: &Template,
+    design: &Design,
+    threshold: f64,
+    progress: Progress,
+    items: std::ops::Range<usize>,
+) -> Result<Vec<Option<Dimensionless>>> {
+    crate::check_threshold(threshold)?;
+    if design.dim() != template.parts() {
+        return Err(ShedError::Parse {
+            field: "design".into(),
+            reason: format!("the family has {} parts, the design {} columns", template.parts(), design.dim()),
+        });
+    }
+    let (lo, hi) = (items.start.min(design.len()), items.end.min(design.len()));
+    let part = loomkin_study::evaluate_indexed(hi.saturating_sub(lo), progress, "laws", |i| {
+        template.evaluate(design.row(lo + i), threshold).ok()
+    });
+    let mut out: Vec<Option<Dimensionless>> = vec![None; lo];
+    out.extend(part);
+    out.resize(design.len(), None);
+    Ok(out)
+}
+
 /// One evaluated law of a table: its row in the design, its lengths and its criteria.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Candidate {

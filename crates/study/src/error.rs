@@ -20,6 +20,14 @@ pub enum StudyError {
         /// The limit.
         limit: usize,
     },
+    /// A distribution or limit of a Monte-Carlo study that cannot be drawn from.
+    #[error("{field}: {reason}")]
+    Distribution {
+        /// The input (or result) it was given for.
+        field: String,
+        /// What is wrong, with the allowed values.
+        reason: String,
+    },
     /// Rows or objective vectors of inconsistent length.
     #[error("{field}: expected {expected} values per row, found {found}")]
     Shape {
@@ -36,7 +44,7 @@ impl FieldError for StudyError {
     fn field(&self) -> Option<&str> {
         match self {
             Self::Range(e) => Some(&e.field),
-            Self::TooLarge { field, .. } | Self::Shape { field, .. } => Some(field),
+            Self::TooLarge { field, .. } | Self::Shape { field, .. } | Self::Distribution { field, .. } => Some(field),
         }
     }
 }

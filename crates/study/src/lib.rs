@@ -3,7 +3,9 @@
 //! Generic tools for studies of many variants: experiment [`Design`]s (explicit tables, stepped
 //! axes, Cartesian grids and simplex grids of relative lengths `k_T1 … k_Tn` with `Σ k = 1`),
 //! parallel evaluation with a progress bar that appears only on a terminal, non-dominated sorting
-//! and the Pareto front, and the constrained optimum.
+//! and the Pareto front, the constrained optimum, and for Monte-Carlo studies reproducible draws
+//! from stated [`Distribution`]s ([`uniform`]: any draw computed alone) and the [`Summary`] of a
+//! result (percentiles, histogram, share failing a [`Limit`]).
 //!
 //! ```
 //! use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
@@ -27,9 +29,13 @@ mod error;
 mod eval;
 mod optimum;
 mod pareto;
+mod random;
+mod stats;
 
 pub use design::{Design, MAX_POINTS, stepped_axis};
 pub use error::{Result, StudyError};
 pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed};
 pub use optimum::argmin_subject_to;
 pub use pareto::{Sense, dominates, non_dominated_ranks, pareto_front};
+pub use random::{DistSpec, DistTable, Distribution, MAX_VARIABLES, normal_cdf, normal_pdf, normal_quantile, uniform};
+pub use stats::{DEFAULT_PERCENTILES, Histogram, Limit, Percentile, Summary, percentile};

@@ -1,5 +1,5 @@
 //! Property tests for every file parser of loomkin (cycle, drive, mechanism, cam point table,
-//! shedding spec): arbitrary text and mutated valid files never panic; a refusal is one line
+//! shedding spec, Monte-Carlo study): arbitrary text and mutated valid files never panic; a refusal is one line
 //! without `NaN`; an accepted file holds only finite numbers.
 //!
 //! They live here because the workbench crate depends on every library crate. Cases per
@@ -16,6 +16,9 @@ const MECHANISM: &str = "[mechanism]\nc1_m_per_n = 3.6098e-5\nc23_m_per_n = 2.90
 theta_kg_m2 = 0.181835\nshuttle_kg = 0.419725\nl_m = 0.74\nk_m = 0.23\nr_m = 0.083\nchecking_n = 49.0332\n\n[design]\n\
 velocity_m_s = 17.0\ndistance_m = 0.22\nfirst_stage_m = 0.086\nspeed_rpm = 200.0\n\n[required]\nretardation_pct = 10.0\n\
 path_m = 1.53\nfree_shed_deg = 120.0\n";
+const MONTECARLO: &str = "draws = 5\nseed = 3\nbins = 4\npercentiles = [5, 50, 95]\n[settings]\n\
+speed_rpm = { dist = \"normal\", mean = 200, sd = 4, min = 190, max = 210 }\nplay_mm = { dist = \"uniform\", min = 0, \
+max = 10 }\nshuttle_g = 420\n[limits]\nvelocity_m_s = { min = 15, max = 19 }\n";
 const SPEC: &str = "motion_deg = 180\npositive = \"0.5:sine-ramp:0:1,0.5:cosine-ramp:1:0\"\n";
 
 fn cam_table() -> String {
@@ -51,6 +54,9 @@ fn parsers() -> Vec<(&'static str, String, Parser)> {
         }),
         ("shedding spec", SPEC.to_string(), |t| {
             loomkin_shed::ShedLaw::from_toml(t).map(|l| format!("{l:?}")).map_err(|e| e.to_string())
+        }),
+        ("pick montecarlo study", MONTECARLO.to_string(), |t| {
+            loomkin_picking::MonteCarlo::from_toml(t).map(|m| format!("{m:?}")).map_err(|e| e.to_string())
         }),
     ]
 }

@@ -10,4 +10,5 @@ mod output;
 mod pick;
 mod serve;
 mod servo;
+mod shard;
 mod shed;

@@ -1,0 +1,368 @@
+//! Monte-Carlo tolerance study of the loom settings: speed, strap play and position, shuttle and
+//! checking force drawn from stated distributions, the end-of-pick results as distributions.
+//!
+//! The study is a TOML file (see `examples/pick-montecarlo.toml`):
+//!
+//! ```toml
+//! draws = 1000
+//! seed = 1
+//! [settings]                     # any of speed_rpm, play_mm, strap_cm, shuttle_g, checking_kgf
+//! speed_rpm = { dist = "normal", mean = 200, sd = 3 }
+//! play_mm = { dist = "uniform", min = 0, max = 5 }
+//! shuttle_g = 420                # a plain number is fixed
+//! [limits]                       # any of the results, min and/or max
+//! velocity_m_s = { min = 16.5, max = 19 }
+//! ```
+//!
+//! Settings left out keep the mechanism's designed value. Each setting has its own variable of
+//! the draw stream ([`loomkin_study::uniform`]`(seed, draw, variable)`, variable = its place in
+//! [`INPUTS`]), so draw `i` is the same whether it is computed alone, by a shard or by any thread,
+//! and giving one setting a distribution does not change the draws of another. A draw is run by
+//! the route asked for ([`Method::Closed`] by default, which answers by numerical integration only
+//! where the closed form does not apply).
+
+use crate::{Mechanism, Method, PickEnd, PickError, Result, Setting, Settings, StartRule, simulate};
+use loomkin_study::{DistSpec, Distribution, Limit, Progress, Summary, evaluate_indexed, uniform};
+use serde::{Deserialize, Serialize};
+
+/// The settings drawn, in the order of their stream variables.
+pub const INPUTS: [Setting; 5] = [Setting::Speed, Setting::Play, Setting::Strap, Setting::Shuttle, Setting::Checking];
+
+/// The results of a draw, as named in files, tables and limits.
+pub const RESULTS: [&str; 6] =
+    ["velocity_m_s", "distance_m", "t_end_s", "accel_end_m_s2", "accel_peak_m_s2", "velocity_vs_required_pct"];
+
+/// Most draws a study may ask for.
+pub const MAX_DRAWS: u64 = 100_000_000;
+
+/// Default number of histogram bins.
+pub const DEFAULT_BINS: usize = 20;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StudyFile {
+    draws: u64,
+    seed: u64,
+    #[serde(default)]
+    method: Option<Method>,
+    #[serde(default)]
+    start: Option<StartRule>,
+    #[serde(default)]
+    bins: Option<usize>,
+    #[serde(default)]
+    percentiles: Option<Vec<f64>>,
+    #[serde(default)]
+    settings: SettingsFile,
+    #[serde(default)]
+    limits: LimitsFile,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SettingsFile {
+    speed_rpm: Option<DistSpec>,
+    play_mm: Option<DistSpec>,
+    strap_cm: Option<DistSpec>,
+    shuttle_g: Option<DistSpec>,
+    checking_kgf: Option<DistSpec>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LimitsFile {
+    velocity_m_s: Option<Limit>,
+    distance_m: Option<Limit>,
+    t_end_s: Option<Limit>,
+    accel_end_m_s2: Option<Limit>,
+    accel_peak_m_s2: Option<Limit>,
+    velocity_vs_required_pct: Option<Limit>,
+}
+
+/// A Monte-Carlo study of the loom settings, checked.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MonteCarlo {
+    /// Number of draws.
+    pub draws: u64,
+    /// Seed of the draw stream.
+    pub seed: u64,
+    /// Route of each draw.
+    pub method: Method,
+    /// Start rule of each draw.
+    pub start: StartRule,
+    /// Histogram bins per result.
+    pub bins: usize,
+    /// Percentiles reported (%).
+    pub percentiles: Vec<f64>,
+    /// Distribution of each setting of [`INPUTS`] (in its [`Setting::unit`]); `None` keeps the
+    /// designed value.
+    pub inputs: [Option<Distribution>; 5],
+    /// Limit of each result of [`RESULTS`].
+    pub limits: [Option<Limit>; 6],
+}
+
+fn study_err(e: loomkin_study::StudyError) -> PickError {
+    PickError::Study { reason: e.to_string() }
+}
+
+impl MonteCarlo {
+    /// Reads and checks a study file.
+    pub fn from_toml(text: &str) -> Result<Self> {
+        let f: StudyFile =
+            toml::from_str(text).map_err(|e| PickError::Study { reason: crate::mechanism::toml_reason(text, &e) })?;
+        if f.draws == 0 || f.draws > MAX_DRAWS {
+            return Err(PickError::Study {
+                reason: format!("draws = {} is out of range: allowed 1 ≤ draws ≤ {MAX_DRAWS}", f.draws),
+            });
+        }
+        let bins = f.bins.unwrap_or(DEFAULT_BINS);
+        if !(1..=1000).contains(&bins) {
+            return Err(PickError::Study {
+                reason: format!("bins = {bins} is out of range: allowed 1 ≤ bins ≤ 1000")
+            });
+        }
+        let percentiles = f.percentiles.unwrap_or_else(|| loomkin_study::DEFAULT_PERCENTILES.to_vec());
+        if percentiles.is_empty() || percentiles.len() > 101 || percentiles.iter().any(|p| !(0.0..=100.0).contains(p)) {
+            return Err(PickError::Study {
+                reason: "percentiles: give 1 to 101 values, each 0 ≤ p ≤ 100 (%)".into()
+            });
+        }
+        let s = &f.settings;
+        let specs = [&s.speed_rpm, &s.play_mm, &s.strap_cm, &s.shuttle_g, &s.checking_kgf];
+        let mut inputs = [None; 5];
+        for (k, spec) in specs.into_iter().enumerate() {
+            if let Some(spec) = spec {
+                inputs[k] = Some(spec.resolve(&format!("settings.{}", INPUTS[k].key())).map_err(study_err)?);
+            }
+        }
+        let l = &f.limits;
+        let limits =
+            [l.velocity_m_s, l.distance_m, l.t_end_s, l.accel_end_m_s2, l.accel_peak_m_s2, l.velocity_vs_required_pct];
+        for (k, lim) in limits.iter().enumerate() {
+            if let Some(lim) = lim {
+                lim.check(&format!("limits.{}", RESULTS[k])).map_err(study_err)?;
+            }
+        }
+        Ok(Self {
+            draws: f.draws,
+            seed: f.seed,
+            method: f.method.unwrap_or_default(),
+            start: f.start.unwrap_or_default(),
+            bins,
+            percentiles,
+            inputs,
+            limits,
+        })
+    }
+
+    /// The settings of draw `index`: the designed ones of `mechanism`, each drawn setting replaced.
+    pub fn settings(&self, mechanism: &Mechanism, index: u64) -> Settings {
+        let mut st = Settings::designed(mechanism).with_start(self.start);
+        for (k, d) in self.inputs.iter().enumerate() {
+            if let Some(d) = d {
+                st = INPUTS[k].apply(st, d.sample(uniform(self.seed, index, k)));
+            }
+        }
+        st
+    }
+
+    /// Runs the draws `items` (all: `0..draws`; a shard: [`loomkin_units::Shard::items`]) in
+    /// parallel; the rows come back in draw order and each is independent of the others, of the
+    /// shard and of the number of threads. A draw the model refuses (a play beyond the cam's reach,
+    /// a speed out of range) is a row with `result: Err(message)`.
+    pub fn run(&self, mechanism: &Mechanism, items: std::ops::Range<u64>, progress: Progress) -> Vec<Draw> {
+        let lo = items.start.min(self.draws);
+        let hi = items.end.min(self.draws).max(lo);
+        evaluate_indexed((hi - lo) as usize, progress, "draws", |i| self.draw(mechanism, lo + i as u64))
+    }
+
+    /// Draw `index` alone.
+    pub fn draw(&self, mechanism: &Mechanism, index: u64) -> Draw {
+        let st = self.settings(mechanism, index);
+        let inputs = INPUTS.map(|s| s.value(&st));
+        let result = simulate(mechanism, &st, self.method).map(|o| DrawResult {
+            values: [
+                o.velocity_m_s,
+                o.distance_m,
+                o.t_end_s,
+                o.accel_end_m_s2,
+                o.accel_peak_m_s2,
+                o.velocity_vs_required_pct,
+            ],
+            ode: o.method == Method::Ode,
+            separation: o.end == PickEnd::Separation,
+        });
+        Draw { index, inputs, result: result.map_err(|e| e.to_string()) }
+    }
+
+    /// The distributions of the results over `draws` (every draw of the study, in order: the rows
+    /// of one run, or the shards' rows concatenated). Sums run in draw order, so the report does
+    /// not depend on how the draws were computed.
+    pub fn report(&self, draws: &[Draw]) -> Report {
+        let ok: Vec<&DrawResult> = draws.iter().filter_map(|d| d.result.as_ref().ok()).collect();
+        let results = (0..RESULTS.len())
+            .filter_map(|k| {
+                let v: Vec<f64> = ok.iter().map(|r| r.values[k]).collect();
+                Summary::of(&v, &self.percentiles, self.bins, self.limits[k])
+                    .map(|s| Quantity { name: RESULTS[k], summary: s })
+            })
+            .collect();
+        let inputs = (0..INPUTS.len())
+            .filter(|&k| self.inputs[k].is_some_and(|d| !d.is_fixed()))
+            .filter_map(|k| {
+                let v: Vec<f64> = draws.iter().map(|d| d.inputs[k]).collect();
+                Summary::of(&v, &self.percentiles, self.bins, None).map(|s| Input { name: INPUTS[k].key(), summary: s })
+            })
+            .collect();
+        let failing = draws
+            .iter()
+            .filter(|d| match &d.result {
+                Err(_) => true,
+                Ok(r) => (0..RESULTS.len()).any(|k| self.limits[k].is_some_and(|l| l.fails(r.values[k]))),
+            })
+            .count() as u64;
+        let n = draws.len() as u64;
+        Report {
+            draws: n,
+            seed: self.seed,
+            method: self.method,
+            not_simulated: n - ok.len() as u64,
+            ode_draws: ok.iter().filter(|r| r.ode).count() as u64,
+            separation_draws: ok.iter().filter(|r| r.separation).count() as u64,
+            failing,
+            fail_share: if n > 0 { failing as f64 / n as f64 } else { 0.0 },
+            inputs,
+            results,
+        }
+    }
+}
+
+/// The results of one draw that the model answered.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DrawResult {
+    /// The values of [`RESULTS`], in that order.
+    pub values: [f64; 6],
+    /// Answered by numerical integration (the closed form did not apply).
+    pub ode: bool,
+    /// The shuttle left the picker before the end of the cam's rise.
+    pub separation: bool,
+}
+
+/// One draw: its index, its settings (in the units of [`INPUTS`]) and its results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Draw {
+    /// Index of the draw in the study, from 0.
+    pub index: u64,
+    /// The settings drawn, in [`Setting::unit`].
+    pub inputs: [f64; 5],
+    /// The results, or why the model refused the draw.
+    pub result: std::result::Result<DrawResult, String>,
+}
+
+/// The distribution of one drawn setting.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Input {
+    /// Name with unit, e.g. `speed_rpm`.
+    pub name: String,
+    /// Its distribution over the draws.
+    #[serde(flatten)]
+    pub summary: Summary,
+}
+
+/// The distribution of one result.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Quantity {
+    /// Name with unit, one of [`RESULTS`].
+    pub name: &'static str,
+    /// Its distribution over the draws the model answered.
+    #[serde(flatten)]
+    pub summary: Summary,
+}
+
+/// The outcome of a study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Draws.
+    pub draws: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Route asked for.
+    pub method: Method,
+    /// Draws the model refused (counted as failing).
+    pub not_simulated: u64,
+    /// Draws answered by numerical integration.
+    pub ode_draws: u64,
+    /// Draws where the shuttle left the picker before the end of the cam's rise.
+    pub separation_draws: u64,
+    /// Draws failing a limit or refused.
+    pub failing: u64,
+    /// `failing / draws`.
+    pub fail_share: f64,
+    /// The drawn settings' distributions (those with a spread).
+    pub inputs: Vec<Input>,
+    /// The results' distributions.
+    pub results: Vec<Quantity>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PAPER_SETTINGS: &str = "draws = 3\nseed = 5\n[settings]\nspeed_rpm = { dist = \"normal\", mean = 200, sd = 0 }\n\
+        play_mm = { dist = \"uniform\", min = 15.5, max = 15.5 }\nshuttle_g = { dist = \"fixed\", value = 440 }\n";
+
+    /// No spread: every draw is the deterministic simulation of the same settings, bit for bit.
+    #[test]
+    fn zero_spread_is_the_deterministic_design() {
+        let m = Mechanism::paper_default();
+        let mc = MonteCarlo::from_toml(PAPER_SETTINGS).unwrap();
+        let st = Settings::designed(&m).with_speed_rpm(200.0).with_play_mm(15.5).with_shuttle_g(440.0);
+        let o = simulate(&m, &st, Method::Closed).unwrap();
+        let draws = mc.run(&m, 0..3, Progress::Hidden);
+        assert_eq!(draws.len(), 3);
+        for d in &draws {
+            let r = d.result.as_ref().unwrap();
+            assert_eq!(r.values[0], o.velocity_m_s);
+            assert_eq!(r.values[1], o.distance_m);
+            assert_eq!(r.values[4], o.accel_peak_m_s2);
+        }
+        let rep = mc.report(&draws);
+        let v = &rep.results[0].summary;
+        assert_eq!((v.mean, v.sd, v.min, v.max), (o.velocity_m_s, 0.0, o.velocity_m_s, o.velocity_m_s));
+        assert!(v.percentiles.iter().all(|p| p.value == o.velocity_m_s));
+        assert!(rep.inputs.is_empty(), "no input has a spread");
+    }
+
+    /// Draws are the same computed alone, in a shard or all together; reports the same by thread count.
+    #[test]
+    fn draws_do_not_depend_on_shards_or_threads() {
+        let m = Mechanism::paper_default();
+        let text = "draws = 40\nseed = 11\n[settings]\nspeed_rpm = { dist = \"normal\", mean = 200, sd = 5 }\n\
+            play_mm = { dist = \"uniform\", min = 0, max = 20 }\n[limits]\nvelocity_m_s = { max = 19 }\n";
+        let mc = MonteCarlo::from_toml(text).unwrap();
+        let all = mc.run(&m, 0..40, Progress::Hidden);
+        let mut pieces = Vec::new();
+        for i in 1..=7 {
+            let r = loomkin_units::Shard { index: i, count: 7 }.items(40);
+            pieces.extend(mc.run(&m, r.start as u64..r.end as u64, Progress::Hidden));
+        }
+        assert_eq!(all, pieces);
+        assert_eq!(all[17], mc.draw(&m, 17));
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let serial = one.install(|| mc.report(&mc.run(&m, 0..40, Progress::Hidden)));
+        assert_eq!(serial, mc.report(&all));
+        assert!(serial.failing > 0 && serial.failing < 40, "the limit splits the draws: {}", serial.failing);
+    }
+
+    #[test]
+    fn bad_studies_name_the_field() {
+        let e = |t: &str| MonteCarlo::from_toml(t).unwrap_err().to_string();
+        assert!(e("draws = 0\nseed = 1\n").contains("draws = 0 is out of range"));
+        assert!(e("draws = 5\nseed = 1\n[settings]\nspeed = 3\n").contains("unknown field `speed`"));
+        assert!(
+            e("draws = 5\nseed = 1\n[settings]\nplay_mm = { dist = \"normal\", mean = 1, sd = -2 }\n")
+                .contains("settings.play_mm: sd = -2")
+        );
+        assert!(e("draws = 5\nseed = 1\n[limits]\ndistance_m = { min = 2, max = 1 }\n").contains("limits.distance_m"));
+        assert!(e("draws = 5\nseed = 1\npercentiles = [50, 101]\n").contains("percentiles"));
+    }
+}
