@@ -7,7 +7,7 @@
 use super::cam::Cam;
 use super::checks::{Warning, counter_cam_fold};
 use super::geometry::ModulatorGeometry;
-use super::kinematics::{ModulatorState, state_from_phi3};
+use super::kinematics::{ArmAngles, ModulatorState, state_from_phi3};
 use super::refine::{Extreme, Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, undercut};
 use crate::newton::{LoopState, NewtonOptions};
@@ -194,6 +194,77 @@ pub fn modulator_loops(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<4>
     LoopSystem::new(vec![l1, l2])
 }
 
+/// Loop (2) solved as one equation in the cam parameter: with `w = A − r(p)`, `|w| = l3` and
+/// `φ3 = atan2 w − α`. One continuation step is a scalar Newton iteration on `|w(p)| − l3` from the
+/// second-order prediction, then the rates in closed form from `w·w′ = 0` and its derivative:
+/// `p′ = (w·A′)/(w·r′)`, `p″ = (|w′|² + w·(A″ − r″p′²))/(w·r′)`, `φ3′ = (w × w′)/|w|²`,
+/// `φ3″ = (w × w″)/|w|² − 2(w × w′)(w·w′)/|w|⁴`, where `w·r′` is det J_q of the vector form.
+/// It accepts a step under the same conditions as [`LoopSystem::advance`] (residual, no jump to
+/// another branch, det J_q keeping its sign) and declines anything else, which the caller then
+/// hands to the general solver (step halving, fold location, messages).
+struct CamLoop<'a> {
+    curve: &'a dyn crate::curve::PlaneCurve,
+    l2: f64,
+    l3: f64,
+    alpha: f64,
+    tol: f64,
+}
+
+impl CamLoop<'_> {
+    fn step(&self, from: &LoopState<2>, x1: f64) -> Option<LoopState<2>> {
+        let h = x1 - from.input;
+        let pred = from.q + from.dq * h + from.ddq * (h * h / 2.0);
+        let ea = e(x1);
+        let (a0, a1) = (self.l2 * ea, self.l2 * crate::planar::perp(ea));
+        let a2 = -a0;
+        let mut p = pred[0];
+        let mut c = self.curve.eval(p);
+        let mut converged = false;
+        for _ in 0..12 {
+            let w = a0 - c.r;
+            let n = w.norm();
+            let d = n - self.l3;
+            if !d.is_finite() {
+                return None;
+            }
+            if d.abs() <= self.tol {
+                converged = true;
+                break;
+            }
+            let slope = -w.dot(&c.d1) / n;
+            if slope == 0.0 || !slope.is_finite() {
+                return None;
+            }
+            p -= d / slope;
+            c = self.curve.eval(p);
+        }
+        if !converged {
+            return None;
+        }
+        let w = a0 - c.r;
+        let det = w.dot(&c.d1);
+        if !(det.is_finite() && det != 0.0) || det.signum() != from.det.signum() {
+            return None;
+        }
+        let ww = w.norm_squared();
+        let phi3 = pred[1] + wrap_pi(w.y.atan2(w.x) - self.alpha - pred[1]);
+        let p1 = w.dot(&a1) / det;
+        let w1 = a1 - c.d1 * p1;
+        let p2 = (w1.norm_squared() + w.dot(&(a2 - c.d2 * (p1 * p1)))) / det;
+        let w2 = a2 - c.d2 * (p1 * p1) - c.d1 * p2;
+        let cr1 = crate::planar::cross(w, w1);
+        let phi3_1 = cr1 / ww;
+        let phi3_2 = crate::planar::cross(w, w2) / ww - 2.0 * cr1 * w.dot(&w1) / (ww * ww);
+        let q = SVector::<f64, 2>::new(p, phi3);
+        let change = (from.dq * h).amax() + (from.ddq * (h * h / 2.0)).amax();
+        if (q - pred).amax() > 1e-6 + 0.2 * change {
+            return None;
+        }
+        let (dq, ddq) = (SVector::<f64, 2>::new(p1, phi3_1), SVector::<f64, 2>::new(p2, phi3_2));
+        [p1, phi3_1, p2, phi3_2].iter().all(|v| v.is_finite()).then_some(LoopState { input: x1, q, dq, ddq, det })
+    }
+}
+
 /// Range `[min, max]` (m) of the distance from A to the cam curve at φ2 (sampled, 2048 points).
 fn reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> (f64, f64) {
     let a = g.l2_m * e(phi2);
@@ -327,14 +398,21 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     };
     let p0 = sys.solve_position(cx[0], SVector::<f64, 2>::new(q0[0], q0[1]), newton).map_err(fail)?;
     let mut traced = vec![sys.rates(cx[0], p0.q).map_err(fail)?];
+    let fast =
+        CamLoop { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha: g.alpha_rad(), tol: newton.residual_tol };
+    // One continuation step: the scalar form where it applies, the general solver otherwise.
+    let advance = |from: &LoopState<2>, x: f64| match fast.step(from, x) {
+        Some(st) => Ok(st),
+        None => sys.advance(from, x, newton),
+    };
     for &x in &cx[1..] {
         let last = traced[traced.len() - 1];
-        match sys.advance(&last, x, newton) {
+        match advance(&last, x) {
             Ok(st) => traced.push(st),
             Err(_) => return Err(locate_fold(g, cam, &sys, &last, x, newton)),
         }
     }
-    let loop_at = |x: f64| sys.advance(&traced[Revolution::nearest(&cx, x)], x, &opts.newton).ok();
+    let loop_at = |x: f64| advance(&traced[Revolution::nearest(&cx, x)], x).ok();
 
     // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
     // The extremes of δ = φ3 − φ2 are refined between the points of the check grid.
@@ -393,12 +471,15 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
         });
     }
 
+    let arms = ArmAngles::new(g);
     let close3 = |st: &LoopState<2>, phi6_ref: f64| {
-        state_from_phi3(g, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| MechError::CannotBuild {
-            phi2_deg: st.input.to_degrees(),
-            condition: format!("loop (3) cannot close: {e}"),
-            admissible: None,
-            parameter: None,
+        state_from_phi3(g, &arms, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
+            MechError::CannotBuild {
+                phi2_deg: st.input.to_degrees(),
+                condition: format!("loop (3) cannot close: {e}"),
+                admissible: None,
+                parameter: None,
+            }
         })
     };
     let mut fine = Vec::with_capacity(traced.len());
@@ -415,7 +496,7 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     let mut rows = Vec::with_capacity(xs.len());
     for &x in &xs {
         let j = Revolution::nearest(&cx, x);
-        let st = sys.advance(&traced[j], x, &opts.newton)?;
+        let st = advance(&traced[j], x)?;
         let s = close3(&st, refs[j])?;
         rows.push(AnalysisRow::new(g, &s, st.q[0], (x - xs[0]) / w2, w2));
         states.push(s);
@@ -504,5 +585,49 @@ fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechErr
         ),
         admissible: Some("the fold does not depend on α; change the cam, l2 or l3".into()),
         parameter: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{OutputLawSpec, SynthesisOptions, synthesize};
+
+    /// Independent route for the scalar cam-loop step: the general Newton continuation of the
+    /// vector loop ([`LoopSystem::advance`]) from the same states, over a revolution at 0.25°, for
+    /// the paper's ellipse and for a point-table cam.
+    #[test]
+    fn scalar_cam_loop_step_matches_the_vector_loop() {
+        let g = ModulatorGeometry::PAPER;
+        let s = synthesize(&g, &OutputLawSpec::default(), &SynthesisOptions { step_deg: 1.0, ..Default::default() })
+            .unwrap();
+        let pts: Vec<Vec2> = s.cam.centre.iter().map(|p| Vec2::new(p[0], p[1])).collect();
+        for cam in [Cam::paper(), Cam::from_points(&pts).unwrap()] {
+            let sys = cam_loop(&g, &cam).unwrap();
+            let newton = NewtonOptions::default();
+            let fast = CamLoop {
+                curve: cam.curve().as_ref(),
+                l2: g.l2_m,
+                l3: g.l3_m,
+                alpha: g.alpha_rad(),
+                tol: newton.residual_tol,
+            };
+            let xs = check_grid(0.0);
+            let q0 = assemble(&g, &cam, xs[0]).unwrap();
+            let mut st = sys.rates(xs[0], SVector::<f64, 2>::new(q0[0], q0[1])).unwrap();
+            let mut fast_steps = 0;
+            for &x in &xs[1..] {
+                let slow = sys.advance(&st, x, &newton).unwrap();
+                if let Some(f) = fast.step(&st, x) {
+                    fast_steps += 1;
+                    assert!((f.q - slow.q).amax() < 1e-11, "{x}: q {:?} vs {:?}", f.q, slow.q);
+                    assert!((f.dq - slow.dq).amax() < 1e-9 * slow.dq.amax().max(1.0), "{x}: q′");
+                    assert!((f.ddq - slow.ddq).amax() < 1e-8 * slow.ddq.amax().max(1.0), "{x}: q″");
+                    assert!(f.det.signum() == slow.det.signum() && (f.det - slow.det).abs() < 1e-9 * slow.det.abs());
+                }
+                st = slow;
+            }
+            assert_eq!(fast_steps, xs.len() - 1, "the scalar step declined a regular step");
+        }
     }
 }

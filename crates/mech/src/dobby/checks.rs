@@ -130,28 +130,28 @@ pub fn self_intersections(points: &[Vec2], closed: bool, limit: usize) -> Vec<Cr
     if nseg < 3 {
         return Vec::new();
     }
-    let seg = |i: usize| (points[i], points[(i + 1) % n]);
-    let mut order: Vec<usize> = (0..nseg).collect();
-    let minx = |i: usize| {
-        let (a, b) = seg(i);
-        a.x.min(b.x)
-    };
-    order.sort_by(|&i, &j| minx(i).total_cmp(&minx(j)));
+    // The segments' ends and x-extents in one contiguous table, and the sweep order as
+    // (leftmost x, index) pairs: a stable sort on x keeps equal keys in index order, and the
+    // runs a traced curve is made of are merged in about linear time.
+    let segs: Vec<(Vec2, Vec2, f64)> = (0..nseg)
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            (a, b, a.x.max(b.x))
+        })
+        .collect();
+    let mut order: Vec<(f64, usize)> = segs.iter().enumerate().map(|(i, s)| (s.0.x.min(s.1.x), i)).collect();
+    order.sort_by(|p, q| p.0.total_cmp(&q.0));
     let mut active: Vec<usize> = Vec::new();
     let mut out = Vec::new();
-    for &i in &order {
-        let (a, b) = seg(i);
-        let x0 = a.x.min(b.x);
-        active.retain(|&j| {
-            let (c, d) = seg(j);
-            c.x.max(d.x) >= x0
-        });
+    for &(x0, i) in &order {
+        let (a, b, _) = segs[i];
+        active.retain(|&j| segs[j].2 >= x0);
         for &j in &active {
             let adjacent = i.abs_diff(j) <= 1 || (closed && i.abs_diff(j) == nseg - 1);
             if adjacent {
                 continue;
             }
-            let (c, d) = seg(j);
+            let (c, d, _) = segs[j];
             if let Some(p) = segment_crossing(a, b, c, d) {
                 out.push(Crossing { segment_a: i.min(j), segment_b: i.max(j), x_m: p.x, y_m: p.y });
                 if out.len() >= limit {

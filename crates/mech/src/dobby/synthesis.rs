@@ -7,7 +7,7 @@
 use super::analysis::{check_common, input_grid};
 use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fold_at, slot_deviation};
 use super::geometry::ModulatorGeometry;
-use super::kinematics::{ModulatorState, state_from_phi6};
+use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
 use super::law::{OutputLawSpec, max_dwell_deg};
 use super::refine::{Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
@@ -204,18 +204,19 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
     }
 
     // The revolution on the check grid (φ3 kept continuous) and in closed form between its points.
+    let arms = ArmAngles::new(g);
     let mut fine = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
     for &x in &cx {
         let o = out.eval(x);
-        let s = state_from_phi6(g, x, [o.phi6, o.d1, o.d2], phi3_ref);
+        let s = state_from_phi6(g, &arms, x, [o.phi6, o.d1, o.d2], phi3_ref);
         phi3_ref = s.phi3[0];
         fine.push(s);
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
     let at = |x: f64| {
         let o = out.eval(x);
-        state_from_phi6(g, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(&cx, x)])
+        state_from_phi6(g, &arms, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(&cx, x)])
     };
     let states: Vec<ModulatorState> = xs.iter().map(|&x| at(x)).collect();
     let rev = Revolution { xs: cx.clone(), states: fine, eval: Box::new(|x| Some(at(x))) };
