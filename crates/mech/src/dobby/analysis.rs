@@ -98,6 +98,7 @@ pub struct AnalysisRow {
 
 impl AnalysisRow {
     pub(crate) fn new(g: &ModulatorGeometry, s: &ModulatorState, cam_param: f64, t_s: f64, w2: f64) -> Self {
+        let mu_bc = s.mu_bc_deg(g);
         Self {
             phi2_deg: s.phi2.to_degrees(),
             t_s,
@@ -116,8 +117,8 @@ impl AnalysisRow {
             c_x_m: s.c[0].x,
             c_y_m: s.c[0].y,
             mu_out_deg: s.mu_out_deg(),
-            mu_b_deg: s.mu_b_deg(g),
-            mu_c_deg: s.mu_c_deg(g),
+            mu_b_deg: mu_bc[0],
+            mu_c_deg: mu_bc[1],
             kappa_b_1_m: s.kappa_b(),
             kappa_c_1_m: s.kappa_c(),
         }

@@ -56,6 +56,13 @@ impl ModulatorState {
         roller_pressure_angle_deg(self.c[1], self.c[0] - self.a(g))
     }
 
+    /// Pressure angles at rollers B and C (deg), [`Self::mu_b_deg`] and [`Self::mu_c_deg`] with
+    /// the crank pin computed once.
+    pub(crate) fn mu_bc_deg(&self, g: &ModulatorGeometry) -> [f64; 2] {
+        let a = self.a(g);
+        [roller_pressure_angle_deg(self.b[1], self.b[0] - a), roller_pressure_angle_deg(self.c[1], self.c[0] - a)]
+    }
+
     /// Signed curvature of Γ at B along the direction of travel (1/m); 0 at a cusp.
     pub fn kappa_b(&self) -> f64 {
         curvature(self.b[1], self.b[2]).unwrap_or(0.0)

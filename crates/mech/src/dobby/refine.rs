@@ -53,6 +53,11 @@ fn finite_or_neg_inf(v: f64) -> f64 {
 /// falls well inside the bracket and shrinks the step, a golden-section step is taken otherwise.
 /// On a smooth maximum the parabolic steps converge superlinearly; on a kink or a jump it falls
 /// back to the golden-section steps and their guaranteed reduction.
+///
+/// Early end: after two successive parabolic steps below 1e-9 rad the maximum is taken as found
+/// if the function is smooth there, i.e. falls off quadratically on both sides (the drop at
+/// 2·10⁻⁵ rad more than three times the drop at 10⁻⁵ rad; a kink gives twice). The value is then
+/// exact to rounding, since it errs by f″·(1e-9)²; at a kink the search goes on to 1e-13 rad.
 pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
     const GOLD: f64 = 0.381_966_011_250_105_2; // (3 − √5)/2
     const TOL: f64 = 2.5e-14;
@@ -73,6 +78,7 @@ pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
     let (mut w, mut fw, mut v, mut fv) = (x, fx, x, fx);
     // d: the last step, e: the step before it.
     let (mut d, mut e) = (0.0f64, 0.0f64);
+    let (mut small, mut checked) = (0, false);
     for _ in 0..200 {
         let m = 0.5 * (lo + hi);
         if hi - lo <= 4.0 * TOL {
@@ -104,6 +110,18 @@ pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
         if !parabolic {
             e = if x < m { hi - x } else { lo - x };
             d = GOLD * e;
+        }
+        small = if parabolic && d.abs() <= 1e-9 { small + 1 } else { 0 };
+        if small >= 2 && !checked {
+            checked = true;
+            let drop = |t: f64| -fx - finite_or_neg_inf(f(t));
+            let smooth = |s: f64| {
+                let (d1, d2) = (drop(x + s * 1e-5), drop(x + s * 2e-5));
+                d1 >= 0.0 && d2 > 3.0 * d1
+            };
+            if smooth(-1.0) && smooth(1.0) {
+                break;
+            }
         }
         let u = if d.abs() >= TOL { x + d } else { x + TOL.copysign(d) };
         let fu = keep(u, finite_or_neg_inf(f(u)));
@@ -268,7 +286,10 @@ mod tests {
         let h = 0.25f64.to_radians();
         let e = golden_max(&g, 1.234 - h, 1.234 + h);
         assert!((e.value - 47.0).abs() < 1e-13 && (e.at - 1.234_567).abs() < 1e-7, "{e:?}");
-        assert!(calls.get() <= 30, "{} evaluations", calls.get());
+        assert!(calls.get() <= 16, "{} evaluations", calls.get());
+        // A kink in the same bracket is still located to 1e-12.
+        let e = golden_max(&|x: f64| 1.0 - (x - 1.234_567_891_2).abs(), 1.234 - h, 1.234 + h);
+        assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
     }
 
     #[test]

@@ -73,6 +73,7 @@ pub struct SynthesisRow {
 
 impl SynthesisRow {
     fn new(g: &ModulatorGeometry, s: &ModulatorState, w2: f64) -> Self {
+        let mu_bc = s.mu_bc_deg(g);
         Self {
             phi2_deg: s.phi2.to_degrees(),
             phi6_deg: s.phi6[0].to_degrees(),
@@ -86,8 +87,8 @@ impl SynthesisRow {
             c_x_m: s.c[0].x,
             c_y_m: s.c[0].y,
             mu_out_deg: s.mu_out_deg(),
-            mu_b_deg: s.mu_b_deg(g),
-            mu_c_deg: s.mu_c_deg(g),
+            mu_b_deg: mu_bc[0],
+            mu_c_deg: mu_bc[1],
             kappa_b_1_m: s.kappa_b(),
             kappa_c_1_m: s.kappa_c(),
         }
