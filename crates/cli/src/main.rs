@@ -8,6 +8,7 @@ mod cycle;
 mod dobby;
 mod dynamics;
 mod law;
+mod loom;
 mod output;
 mod pick;
 mod pick_montecarlo;
@@ -54,6 +55,9 @@ enum Command {
     /// Elastic follower dynamics: response at speed, residual vibration, sweeps, spectra, quiet laws.
     #[command(subcommand, name = "dyn")]
     Dyn(dynamics::DynCommand),
+    /// The whole loom: weave pattern (WIF, lift plan), shed geometry, shedding torque, stagger, timing diagram.
+    #[command(subcommand)]
+    Loom(loom::LoomCommand),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
@@ -68,6 +72,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Dobby(cmd) => dobby::run(cmd),
         Command::Cam(cmd) => cam::run(cmd),
         Command::Dyn(cmd) => dynamics::run(cmd),
+        Command::Loom(cmd) => loom::run(cmd),
         Command::Serve(args) => serve::run(args),
     }
 }

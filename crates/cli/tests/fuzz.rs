@@ -18,7 +18,8 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Working invocations, one per line of use; `{cycle}`, `{axis}`, `{drive}`, `{mechanism}`, `{cam}`,
-/// `{spec}`, `{mc}` are valid input files and `{out}` a fresh output path without extension.
+/// `{spec}`, `{mc}`, `{loom}`, `{wif}`, `{liftplan}` are valid input files and `{out}` a fresh output path without
+/// extension.
 const SEEDS: &[&str] = &[
     "law list",
     "law list --json",
@@ -78,6 +79,15 @@ const SEEDS: &[&str] = &[
     "servo check {axis} --law cycloidal --stroke-mm 80 --motion-deg 150 --speed-rpm 600 -o {out}.svg",
     "servo export --format cycle -o {out}.toml",
     "shed law dobby --emit-cycle {out}.toml",
+    "loom check {loom} --wif {wif}",
+    "loom check {loom} --lift-plan {liftplan} --json",
+    "loom check {loom}",
+    "loom torque {loom} --wif {wif} --csv",
+    "loom torque {loom} --wif {wif} --json --step-deg 2",
+    "loom torque {loom} --lift-plan {liftplan} -o {out}.svg",
+    "loom stagger {loom} --wif {wif} --json",
+    "loom stagger {loom} --wif {wif} --objective rms -o {out}.toml",
+    "loom timing {loom} --wif {wif} -o {out}.svg",
     "shed best --window-deg 120 --emit-cycle {out}.toml",
     "pick montecarlo {mc}",
     "pick montecarlo {mc} --json",
@@ -163,6 +173,10 @@ struct Files {
     hostile: Vec<PathBuf>,
 }
 
+fn example(name: &str) -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
+}
+
 fn files() -> Files {
     static CALLS: AtomicUsize = AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, Ordering::Relaxed);
@@ -205,6 +219,9 @@ fn files() -> Files {
              play_mm = { dist = \"uniform\", min = 0, max = 10 }\n[limits]\nvelocity_m_s = { max = 19 }\n"
                 .into(),
         ),
+        ("loom", example("shuttle-loom.toml")),
+        ("wif", example("twill-2-2.wif")),
+        ("liftplan", example("twill-3-1.txt")),
     ];
     let mut valid = Vec::new();
     let mut hostile =

@@ -27,6 +27,8 @@
 //! ```
 #![deny(missing_docs)]
 
+mod check;
+mod diagram;
 mod drive;
 mod error;
 mod file;
@@ -34,12 +36,16 @@ pub mod geometry;
 mod law;
 mod motion;
 mod pattern;
+mod stagger;
 mod timing;
 
+pub use check::{CheckReport, FrameCheck, check};
+pub use diagram::{timing_diagram, torque_figure};
 pub use drive::{Drive, FrameForce, Peak};
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern};
+pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger};
 pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};

@@ -6,6 +6,7 @@ mod dobby;
 mod docs;
 mod dynamics;
 mod law;
+mod loom;
 mod output;
 mod pick;
 mod serve;

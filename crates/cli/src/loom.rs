@@ -1,0 +1,282 @@
+//! `loomkin loom …`: the whole loom — pattern, shed geometry, shedding torque, stagger, timing.
+
+use crate::output::{self, outln};
+use crate::util::{self, Format};
+use anyhow::{Result, anyhow, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use loomkin_io::Table;
+use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger, timing_diagram, torque_figure};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+/// `loomkin loom`.
+#[derive(Debug, Subcommand)]
+pub enum LoomCommand {
+    /// Geometry per frame, peak and RMS shedding torque, clearance, window and highest speed.
+    Check(CheckArgs),
+    /// The shedding torque over the whole pattern repeat.
+    Torque(TorqueArgs),
+    /// Crossing-angle offsets (stagger) that lower the peak or RMS torque with every window kept.
+    Stagger(StaggerArgs),
+    /// The classic timing diagram (frame lifts, shed, insertion window, carrier path, beat-up).
+    Timing(TimingArgs),
+}
+
+/// The weave pattern: a WIF file or a plain lift plan (default: plain weave on the loom's frames).
+#[derive(Debug, Args)]
+pub struct PatternArgs {
+    /// A WIF 1.1 draft (lift plan, or tie-up with treadling; shafts numbered from the front).
+    #[arg(long, value_name = "FILE.wif")]
+    wif: Option<PathBuf>,
+    /// A plain lift plan: one line per pick, the raised shafts.
+    #[arg(long, value_name = "FILE.txt", conflicts_with = "wif")]
+    lift_plan: Option<PathBuf>,
+}
+
+/// `loomkin loom check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `loomkin loom torque`.
+#[derive(Debug, Args)]
+pub struct TorqueArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// Angle step of the curve, deg.
+    #[arg(long, default_value_t = 0.5)]
+    step_deg: f64,
+    #[command(flatten)]
+    format: Format,
+    /// Plot to this file (.svg or .png).
+    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    output: Option<PathBuf>,
+}
+
+/// What the stagger minimises.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum ObjectiveArg {
+    /// The largest |torque|.
+    Peak,
+    /// The RMS torque.
+    Rms,
+}
+
+/// `loomkin loom stagger`.
+#[derive(Debug, Args)]
+pub struct StaggerArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// What to minimise.
+    #[arg(long, value_enum, default_value = "peak")]
+    objective: ObjectiveArg,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write the loom file with the optimised stagger to this file (TOML).
+    #[arg(short, long)]
+    output: Option<String>,
+}
+
+/// `loomkin loom timing`.
+#[derive(Debug, Args)]
+pub struct TimingArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// The diagram (.svg or .png).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Runs `loomkin loom …`.
+pub fn run(cmd: LoomCommand) -> Result<()> {
+    match cmd {
+        LoomCommand::Check(a) => run_check(a),
+        LoomCommand::Torque(a) => run_torque(a),
+        LoomCommand::Stagger(a) => run_stagger(a),
+        LoomCommand::Timing(a) => {
+            let (loom, pattern) = read(&a.loom, &a.pattern)?;
+            output::figure(&timing_diagram(&loom, &pattern)?, &a.output)
+        }
+    }
+}
+
+fn read_loom(path: &Path) -> Result<(Loom, String)> {
+    let text = util::read_input(path)?;
+    let loom = Loom::from_toml(&text).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    Ok((loom, text))
+}
+
+fn read(path: &Path, p: &PatternArgs) -> Result<(Loom, Pattern)> {
+    let (loom, _) = read_loom(path)?;
+    Ok((loom.clone(), read_pattern(&loom, p)?))
+}
+
+fn read_pattern(loom: &Loom, p: &PatternArgs) -> Result<Pattern> {
+    let named = |path: &Path, r: loomkin_loom::Result<Pattern>| r.map_err(|e| anyhow!("{}: {e}", path.display()));
+    match (&p.wif, &p.lift_plan) {
+        (Some(w), _) => named(w, Pattern::from_wif(&util::read_input(w)?)),
+        (None, Some(l)) => named(l, Pattern::from_lift_plan(&util::read_input(l)?)),
+        (None, None) => Ok(Pattern::plain(loom.frame_count())?),
+    }
+}
+
+fn run_check(a: CheckArgs) -> Result<()> {
+    let (loom, pattern) = read(&a.loom, &a.pattern)?;
+    let r = check(&loom, &pattern)?;
+    if a.json {
+        return output::json(&r);
+    }
+    outln!(
+        "{} at {} rpm, {} picks, law {} over {}°",
+        if r.loom.is_empty() { a.loom.display().to_string() } else { r.loom.clone() },
+        r.speed_rpm,
+        r.picks,
+        r.law,
+        r.motion_deg
+    )?;
+    outln!(
+        "{:>5} {:>12} {:>12} {:>10} {:>10} {:>11} {:>16} {:>8} {:>6}",
+        "frame",
+        "fell[mm]",
+        "back[mm]",
+        "stroke[mm]",
+        "angle[deg]",
+        "max strain",
+        "equal-strain[mm]",
+        "ends",
+        "moves"
+    )?;
+    for f in &r.frames {
+        outln!(
+            "{:>5} {:>12.1} {:>12.1} {:>10.2} {:>10.3} {:>11.3e} {:>16.2} {:>8.0} {:>6}",
+            f.frame,
+            f.distance_mm,
+            f.back_depth_mm,
+            f.stroke_mm,
+            f.shed_angle_deg,
+            f.max_strain,
+            f.equal_strain_stroke_mm,
+            f.ends,
+            f.moves
+        )?;
+    }
+    outln!("largest strain: frame {}", r.max_strain_frame)?;
+    outln!(
+        "peak shedding torque {:.3} N·m at {:.3}° of the repeat, RMS {:.3} N·m",
+        r.peak_torque_n_m,
+        r.peak_angle_deg,
+        r.rms_torque_n_m
+    )?;
+    outln!(
+        "shed clears the carrier from {:.2}° to {:.2}° in every pick ({:.2}°); insertion {}° to {}°, least clearance {:.2} mm",
+        r.window_open_deg,
+        r.window_close_deg,
+        r.window_deg,
+        r.insertion_deg[0],
+        r.insertion_deg[1],
+        r.min_clearance_mm
+    )?;
+    outln!("carrier mean speed {:.3} m/s: highest loom speed {:.1} rpm", r.mean_speed_m_s, r.max_speed_rpm)?;
+    if r.min_clearance_mm < 0.0 {
+        output::warning(format_args!(
+            "the carrier touches the warp: {:.2} mm of interference between entry and exit (insertion.entry_deg, insertion.exit_deg)",
+            -r.min_clearance_mm
+        ));
+    }
+    Ok(())
+}
+
+fn run_torque(a: TorqueArgs) -> Result<()> {
+    let (loom, pattern) = read(&a.loom, &a.pattern)?;
+    if !(a.step_deg.is_finite() && a.step_deg >= 0.01 && a.step_deg <= 10.0) {
+        bail!("--step-deg {} out of range: allowed 0.01 ≤ step_deg ≤ 10 deg", a.step_deg);
+    }
+    if let Some(out) = &a.output {
+        return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out);
+    }
+    let motion = Motion::new(&loom, &pattern)?;
+    let drive = Drive::new(&loom, &motion, &pattern);
+    let curve = drive.torque_curve(a.step_deg);
+    if a.format.csv {
+        let mut t = Table::new(["angle_deg", "torque_n_m", "power_w"]);
+        let w = loom.speed.rad_per_s();
+        for (th, tq) in &curve {
+            t.push(vec![*th, *tq, tq * w])?;
+        }
+        return output::csv(&t);
+    }
+    let peak = drive.peak_of(&curve);
+    let rms = drive.rms();
+    if a.format.json {
+        let pts: Vec<_> = curve.iter().map(|(th, t)| json!({"angle_deg": th, "torque_n_m": t})).collect();
+        return output::json(&json!({
+            "speed_rpm": loom.speed.rpm(),
+            "picks": pattern.picks(),
+            "repeat_deg": motion.repeat_deg(),
+            "peak_torque_n_m": peak.torque_n_m.abs(),
+            "peak_angle_deg": peak.angle_deg,
+            "rms_torque_n_m": rms,
+            "step_deg": motion.repeat_deg() / curve.len() as f64,
+            "points": pts,
+        }));
+    }
+    outln!(
+        "shedding torque over {} picks ({}°) at {} rpm: peak {:.3} N·m at {:.3}°, RMS {:.3} N·m",
+        pattern.picks(),
+        motion.repeat_deg(),
+        loom.speed.rpm(),
+        peak.torque_n_m,
+        peak.angle_deg,
+        rms
+    )
+}
+
+fn run_stagger(a: StaggerArgs) -> Result<()> {
+    let (loom, text) = read_loom(&a.loom)?;
+    let pattern = read_pattern(&loom, &a.pattern)?;
+    let objective = match a.objective {
+        ObjectiveArg::Peak => Objective::Peak,
+        ObjectiveArg::Rms => Objective::Rms,
+    };
+    let r = optimise_stagger(&loom, &pattern, objective)?;
+    if let Some(out) = &a.output {
+        let toml = Loom::stagger_toml(&text, &r.best.stagger_deg, r.groups.as_deref())?;
+        output::text_to(out, &toml)?;
+    }
+    if a.json {
+        return output::json(&r);
+    }
+    outln!("{:<40} {:>12} {:>12} {:>15} {:>7}", "stagger", "peak[N·m]", "RMS[N·m]", "clearance[mm]", "window")?;
+    for c in [&r.none, &r.two_groups, &r.best] {
+        outln!(
+            "{:<40} {:>12.3} {:>12.3} {:>15.2} {:>7}",
+            c.label,
+            c.peak_torque_n_m,
+            c.rms_torque_n_m,
+            c.min_clearance_mm,
+            if c.window_kept { "kept" } else { "LOST" }
+        )?;
+    }
+    let list: Vec<String> = r.best.stagger_deg.iter().map(|s| format!("{s}")).collect();
+    outln!("optimised stagger [deg], front frame first: {}", list.join(", "))?;
+    outln!(
+        "peak torque reduction: optimised {:.1} %, two groups 7.5° {:.1} % ({} evaluations)",
+        r.peak_reduction_pct,
+        r.two_groups_peak_reduction_pct,
+        r.evaluations
+    )
+}

@@ -1,0 +1,144 @@
+//! `loomkin loom …`: the contract keys and headers, the files written, the errors.
+
+use crate::common::{loomkin, stdout_json, usage_error};
+use std::path::PathBuf;
+
+fn ex(name: &str) -> String {
+    concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/").to_string() + name
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("loomkin-loom-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn check_json_has_the_contract_keys() {
+    let v = stdout_json(&["loom", "check", &ex("rapier-loom.toml"), "--wif", &ex("point-24.wif"), "--json"]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 24);
+    assert_eq!(frames[0]["frame"], 1);
+    assert!((frames[0]["stroke_mm"].as_f64().unwrap() - 90.0).abs() < 1e-12);
+    // Front first: strokes grow towards the back (clean shed).
+    assert!(frames[23]["stroke_mm"].as_f64().unwrap() > frames[0]["stroke_mm"].as_f64().unwrap());
+    assert!(frames.iter().all(|f| f["max_strain"].as_f64().unwrap() > 0.0));
+    assert_eq!(v["picks"], 48);
+    for key in ["peak_torque_n_m", "rms_torque_n_m", "min_clearance_mm", "window_deg", "max_speed_rpm"] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    // The torque command says the same.
+    let t = stdout_json(&["loom", "torque", &ex("rapier-loom.toml"), "--wif", &ex("point-24.wif"), "--json"]);
+    assert_eq!(t["peak_torque_n_m"], v["peak_torque_n_m"]);
+    assert_eq!(t["rms_torque_n_m"], v["rms_torque_n_m"]);
+    // A lift plan and the default plain weave are read too.
+    let l = stdout_json(&["loom", "check", &ex("shuttle-loom.toml"), "--lift-plan", &ex("twill-3-1.txt"), "--json"]);
+    assert_eq!(l["picks"], 4);
+    let p = stdout_json(&["loom", "check", &ex("shuttle-loom.toml"), "--json"]);
+    assert_eq!(p["picks"], 2);
+}
+
+#[test]
+fn torque_csv_covers_the_repeat() {
+    let out = loomkin()
+        .args(["loom", "torque", &ex("rapier-loom.toml"), "--wif", &ex("satin-8.wif"), "--csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().starts_with("angle_deg,torque_n_m"));
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 8 * 720);
+    assert!(rows[0].starts_with("0,"));
+    assert!(rows.last().unwrap().starts_with("2879.5,"));
+}
+
+#[test]
+fn stagger_writes_a_loom_file_that_reads_back() {
+    let dir = scratch("stagger");
+    let out = dir.join("staggered.toml");
+    let v = stdout_json(&[
+        "loom",
+        "stagger",
+        &ex("rapier-loom.toml"),
+        "--wif",
+        &ex("satin-8.wif"),
+        "--json",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let best = v["best"]["peak_torque_n_m"].as_f64().unwrap();
+    assert!(best < v["none"]["peak_torque_n_m"].as_f64().unwrap());
+    assert_eq!(v["best"]["window_kept"], true);
+    let c = stdout_json(&["loom", "check", out.to_str().unwrap(), "--wif", &ex("satin-8.wif"), "--json"]);
+    // The file holds the stagger rounded to 1e-6°: the same peak to well within 1e-4.
+    assert!((c["peak_torque_n_m"].as_f64().unwrap() / best - 1.0).abs() < 1e-4);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn timing_draws_svg_and_png() {
+    let dir = scratch("timing");
+    for ext in ["svg", "png"] {
+        let f = dir.join(format!("t.{ext}"));
+        let out = loomkin()
+            .args([
+                "loom",
+                "timing",
+                &ex("shuttle-loom.toml"),
+                "--wif",
+                &ex("twill-2-2.wif"),
+                "-o",
+                f.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let bytes = std::fs::read(&f).unwrap();
+        if ext == "svg" {
+            let s = String::from_utf8(bytes).unwrap();
+            for label in ["frame lift [mm]", "shed at the carrier [mm]", "carrier across the reed [m]", "beat-up"] {
+                assert!(s.contains(label), "{label}");
+            }
+        } else {
+            assert_eq!(&bytes[1..4], b"PNG");
+        }
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_field() {
+    let dir = scratch("bad");
+    let write = |name: &str, text: String| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let shuttle = std::fs::read_to_string(ex("shuttle-loom.toml")).unwrap();
+    let rapier = std::fs::read_to_string(ex("rapier-loom.toml")).unwrap();
+    let front = write("front.toml", shuttle.replace("[230, 250,", "[-10, 250,"));
+    usage_error(&["loom", "check", &front], &["geometry.frame_distances_mm[0]", "in front of the fell"]);
+    let behind = write("behind.toml", shuttle.replace("270, 290]", "270, 950]"));
+    usage_error(&["loom", "check", &behind], &["geometry.frame_distances_mm[3]", "behind the back rest"]);
+    let tall = write("tall.toml", rapier.replace("carrier_height_mm = 22", "carrier_height_mm = 60"));
+    usage_error(&["loom", "check", &tall], &["insertion.carrier_height_mm", "taller than the shed"]);
+    let window = write("window.toml", rapier.replace("entry_deg = 70", "entry_deg = 10"));
+    usage_error(&["loom", "stagger", &window, "--wif", &ex("satin-8.wif")], &["insertion.entry_deg", "no stagger"]);
+    let twill = std::fs::read_to_string(ex("twill-2-2.wif")).unwrap();
+    let tieup = write("tieup.wif", twill.replace("[TREADLING]\n1=1", "[TREADLING]\n1=7"));
+    usage_error(
+        &["loom", "check", &ex("shuttle-loom.toml"), "--wif", &tieup],
+        &["[TREADLING]", "treadle 7", "[TIEUP]"],
+    );
+    let shafts = write("shafts.wif", twill.replace("[TIEUP]\n1=1,2", "[TIEUP]\n1=1,9"));
+    usage_error(&["loom", "torque", &ex("shuttle-loom.toml"), "--wif", &shafts], &["[TIEUP]", "shaft 9", "Shafts = 4"]);
+    usage_error(&["loom", "check", &ex("shuttle-loom.toml"), "--wif", &ex("satin-8.wif")], &["8 shafts", "4 frames"]);
+    usage_error(
+        &["loom", "check", &ex("shuttle-loom.toml"), "--wif", &ex("plain.wif"), "--lift-plan", &ex("twill-3-1.txt")],
+        &["--lift-plan"],
+    );
+    usage_error(&["loom", "torque", &ex("shuttle-loom.toml"), "--step-deg", "0"], &["--step-deg"]);
+    std::fs::remove_dir_all(dir).ok();
+}
