@@ -475,3 +475,73 @@ proptest! {
         prop_assert!(worst < 1e-9, "lift off by {:e} of the stroke", worst);
     }
 }
+
+/// The drawing through the DXF writer and back through the `dxf` crate: every curve closed, units
+/// stated, and the curve within the chord tolerance of its polyline everywhere (a 0.005° sample of
+/// the curve against the polyline's segments).
+#[test]
+fn dxf_drawing_is_closed_within_tolerance_and_in_mm() {
+    use loomkin_cams::profile::Shape;
+    use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, dxf_text};
+    let cam = CamProfile::new(
+        &heald(),
+        &design(Follower::Translating { offset_mm: 8.0 }, Closure::Conjugate, 12.0, Size::PrimeRadiusMm(85.0)),
+    )
+    .unwrap();
+    for tol in [0.01, 0.001] {
+        let layers = cam.drawing(tol, 30.0).unwrap();
+        let shapes: Vec<DxfShape> = layers
+            .iter()
+            .map(|l| match &l.shape {
+                Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
+                    layer: l.layer.into(),
+                    points: points.iter().map(|p| [p[0] * 1e-3, p[1] * 1e-3]).collect(),
+                    closed: *closed,
+                }),
+                Shape::Circle { centre, radius } => DxfShape::Circle {
+                    layer: l.layer.into(),
+                    centre: [centre[0] * 1e-3, centre[1] * 1e-3],
+                    radius: radius * 1e-3,
+                },
+                Shape::Line { from, to } => DxfShape::Line {
+                    layer: l.layer.into(),
+                    from: [from[0] * 1e-3, from[1] * 1e-3],
+                    to: [to[0] * 1e-3, to[1] * 1e-3],
+                },
+            })
+            .collect();
+        let text = dxf_text(&shapes, DxfUnit::Millimetre).unwrap();
+        let back = dxf::Drawing::load(&mut text.as_bytes()).unwrap();
+        assert_eq!(back.header.default_drawing_units, dxf::enums::Units::Millimeters);
+        let curves = [
+            ("CAM_PITCH", Curve::Pitch(0)),
+            ("CAM_PROFILE", Curve::Wall(0)),
+            ("COUNTER_PITCH", Curve::Pitch(1)),
+            ("COUNTER_PROFILE", Curve::Wall(1)),
+        ];
+        for (layer, curve) in curves {
+            let e = back.entities().find(|e| e.common.layer == layer).unwrap();
+            let dxf::entities::EntityType::LwPolyline(p) = &e.specific else { panic!("{layer} not a polyline") };
+            assert!(p.is_closed(), "{layer}");
+            let v: Vec<[f64; 2]> = p.vertices.iter().map(|q| [q.x, q.y]).collect();
+            let n = v.len();
+            let seg_dist = |c: [f64; 2], j: usize| {
+                let (a, b) = (v[j % n], v[(j + 1) % n]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let t = (((c[0] - a[0]) * dx + (c[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+                (c[0] - a[0] - t * dx).hypot(c[1] - a[1] - t * dy)
+            };
+            let mut j = 0;
+            let mut worst: f64 = 0.0;
+            for i in 0..72_000 {
+                let c = cam.point(curve, i as f64 * 0.005);
+                while j + 1 < 2 * n && seg_dist(c, j + 1) < seg_dist(c, j) {
+                    j += 1;
+                }
+                worst = worst.max(seg_dist(c, j));
+            }
+            assert!(worst <= tol * (1.0 + 1e-9), "{layer}: {worst} mm > {tol} mm");
+            assert!(worst > 0.2 * tol, "{layer}: {worst} mm — far more points than the tolerance needs");
+        }
+    }
+}

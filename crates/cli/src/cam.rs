@@ -1,10 +1,15 @@
 //! `loomkin cam …`: from a law to a part.
 
+use crate::output::outln;
 use crate::{output, util};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
+use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Layered, Shape, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
-use loomkin_laws::{Cycle, LawSpec, StrokeUnit};
+use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, save_shapes};
+use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
+use loomkin_units::{Range, compact};
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -14,6 +19,92 @@ pub enum CamCommand {
     /// A controller cam table (xyvaj, poly5, csv, twincat, st) of a cycle file or a single rise,
     /// with its exact re-interpolation error.
     Table(TableArgs),
+    /// A disc cam profile (translating, oscillating or flat-faced follower; single, conjugate or
+    /// groove) of a cycle file or a single rise and return: pitch curve, profile, pressure angle,
+    /// curvature, undercut, sizing; JSON, CSV, DXF, plot.
+    Profile(ProfileArgs),
+}
+
+/// `--follower`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FollowerArg {
+    /// Translating roller follower (radial, or offset with --offset-mm).
+    Translating,
+    /// Oscillating (swinging) roller follower: --arm-mm and --pivot-mm; the cycle in deg.
+    Oscillating,
+    /// Flat-faced translating follower.
+    Flat,
+}
+
+/// `cam profile`.
+#[derive(Debug, Args)]
+pub struct ProfileArgs {
+    /// The cycle file (TOML); or give --law, --stroke-mm (or --stroke-deg) and --motion-deg for a
+    /// rise, dwell, return and dwell over one turn.
+    #[arg(required_unless_present = "law", conflicts_with = "law")]
+    cycle: Option<PathBuf>,
+    /// The follower.
+    #[arg(long, value_enum)]
+    follower: FollowerArg,
+    /// Prime circle radius R in mm (the least radius of the pitch curve: base circle + roller).
+    #[arg(long, value_name = "R", conflicts_with = "max_pressure_deg", allow_hyphen_values = true)]
+    prime_radius_mm: Option<f64>,
+    /// Size the cam: the least prime circle whose largest pressure angle is at most A deg (default
+    /// 30 for a roller follower when no --prime-radius-mm is given).
+    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    max_pressure_deg: Option<f64>,
+    /// Roller radius in mm (default 0: a knife edge, the profile is the pitch curve).
+    #[arg(long, value_name = "r", default_value_t = 0.0, allow_hyphen_values = true)]
+    roller_radius_mm: f64,
+    /// Offset ε of a translating follower's line of motion in mm (positive: to the right of the
+    /// cam centre, seen with the follower above it).
+    #[arg(long, value_name = "e", default_value_t = 0.0, allow_hyphen_values = true)]
+    offset_mm: f64,
+    /// Arm length L of an oscillating follower in mm (pivot to roller centre).
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    arm_mm: Option<f64>,
+    /// Distance d from the cam centre to the pivot of an oscillating follower in mm.
+    #[arg(long, value_name = "d", allow_hyphen_values = true)]
+    pivot_mm: Option<f64>,
+    /// The conjugate pair: a counter-cam and a second roller on the same follower.
+    #[arg(long, conflicts_with = "groove")]
+    conjugate: bool,
+    /// A groove cam: the roller runs between two walls.
+    #[arg(long)]
+    groove: bool,
+    #[command(flatten)]
+    format: util::Format,
+    /// Write the cam as a DXF drawing (mm; layers CAM_PITCH, CAM_PROFILE, COUNTER_*, GROOVE_OUTER,
+    /// BASE_CIRCLE, CENTRE, BORE, PHASE_0).
+    #[arg(long, value_name = "FILE")]
+    dxf: Option<PathBuf>,
+    /// Chord tolerance of the DXF polylines in mm.
+    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true)]
+    chord_tol_mm: f64,
+    /// Bore diameter drawn in the DXF, mm (0: none; default 0.4 × base radius).
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    bore_mm: Option<f64>,
+    /// Main-shaft angle step of the printed points (deg).
+    #[arg(long, value_name = "D", default_value_t = 1.0, allow_hyphen_values = true)]
+    step_deg: f64,
+    /// Plot the cam (profile, pitch curve, base circle), its pressure angle and curvature (.svg or .png).
+    #[arg(short, long, value_name = "PLOT")]
+    output: Option<PathBuf>,
+    /// A catalogue law for the rise and the return (see `loomkin law list`).
+    #[arg(long)]
+    law: Option<String>,
+    /// A law parameter KEY=VALUE (repeatable).
+    #[arg(long = "param", value_parser = util::parse_key_value, requires = "law")]
+    params: Vec<(String, String)>,
+    /// Stroke of the rise in mm (translating or flat follower).
+    #[arg(long, requires = "law", conflicts_with = "stroke_deg", allow_hyphen_values = true)]
+    stroke_mm: Option<f64>,
+    /// Swing of the rise in deg (oscillating follower).
+    #[arg(long, requires = "law", allow_hyphen_values = true)]
+    stroke_deg: Option<f64>,
+    /// Master angle of the rise (and of the return), deg (at most 180).
+    #[arg(long, requires = "law", allow_hyphen_values = true)]
+    motion_deg: Option<f64>,
 }
 
 /// `cam table`.
@@ -61,6 +152,7 @@ pub struct TableArgs {
 pub fn run(cmd: CamCommand) -> Result<()> {
     match cmd {
         CamCommand::Table(a) => table(a),
+        CamCommand::Profile(a) => profile(a),
     }
 }
 
@@ -124,4 +216,342 @@ fn table(a: TableArgs) -> Result<()> {
         loomkin_units::compact(e.max_accel_error),
     ));
     Ok(())
+}
+
+fn profile_motion(a: &ProfileArgs) -> Result<(Motion, String)> {
+    if let Some(path) = &a.cycle {
+        let text = util::read_input(path)?;
+        let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        return Ok((Motion::from_cycle(&cycle), path.display().to_string()));
+    }
+    let name = a.law.as_deref().unwrap_or("cycloidal");
+    let law = LawSpec::parse(name, &a.params)?;
+    let (stroke, unit) = match (a.stroke_mm, a.stroke_deg) {
+        (Some(h), None) => (h, StrokeUnit::Mm),
+        (None, Some(h)) => (h, StrokeUnit::Deg),
+        _ => bail!("stroke_mm: --stroke-mm (or --stroke-deg for an oscillating follower) is needed with --law"),
+    };
+    let Some(b) = a.motion_deg else { bail!("motion_deg: --motion-deg is needed with --law") };
+    let spec = CycleSpec::rise_return(&law, unit, stroke, b)?;
+    Ok((Motion::from_cycle(&Cycle::new(&spec)?), format!("law {name} (rise, dwell, return, dwell)")))
+}
+
+fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {
+    let follower = match a.follower {
+        FollowerArg::Translating => Follower::Translating { offset_mm: a.offset_mm },
+        FollowerArg::Oscillating => match (a.arm_mm, a.pivot_mm) {
+            (Some(arm_mm), Some(pivot_mm)) => Follower::Oscillating { arm_mm, pivot_mm },
+            (None, _) => bail!("arm_mm: an oscillating follower needs --arm-mm L and --pivot-mm d"),
+            (_, None) => bail!("pivot_mm: an oscillating follower needs --arm-mm L and --pivot-mm d"),
+        },
+        FollowerArg::Flat => Follower::Flat,
+    };
+    if a.follower != FollowerArg::Oscillating && (a.arm_mm.is_some() || a.pivot_mm.is_some()) {
+        bail!("arm_mm: --arm-mm and --pivot-mm are for --follower oscillating");
+    }
+    if a.follower != FollowerArg::Translating && a.offset_mm != 0.0 {
+        bail!("offset_mm: --offset-mm is for --follower translating");
+    }
+    if a.follower == FollowerArg::Flat && a.roller_radius_mm != 0.0 {
+        bail!("roller_radius_mm: a flat-faced follower has no roller");
+    }
+    let closure = match (a.conjugate, a.groove) {
+        (true, _) => Closure::Conjugate,
+        (_, true) => Closure::Groove,
+        _ => Closure::Single,
+    };
+    let size = match (a.prime_radius_mm, a.max_pressure_deg) {
+        (Some(r), _) => Size::PrimeRadiusMm(r),
+        (None, Some(p)) => Size::MaxPressureDeg(p),
+        (None, None) if a.follower == FollowerArg::Flat => {
+            bail!(
+                "prime_radius_mm: a flat-faced follower needs --prime-radius-mm R (its pressure angle is 0 everywhere)"
+            )
+        }
+        (None, None) => Size::MaxPressureDeg(30.0),
+    };
+    Ok(CamDesign { follower, closure, roller_radius_mm: a.roller_radius_mm, size })
+}
+
+/// The allowed step of the printed points (deg).
+const POINT_STEP_RANGE: Range = Range::closed(1e-3, 90.0, "deg");
+
+fn profile(a: ProfileArgs) -> Result<()> {
+    let step = POINT_STEP_RANGE.check("step_deg", a.step_deg)?;
+    let design = profile_design(&a)?;
+    let (motion, source) = profile_motion(&a)?;
+    let cam = CamProfile::new(&motion, &design)?;
+    let undercut = cam.undercut_at_deg().map(|at| {
+        let e = cam.flat_extremes_report();
+        match (e, cam.roller_max_mm()) {
+            (Some(f), _) => format!(
+                "prime_radius_mm: the profile has a cusp at {} deg (radius of curvature {} mm); the least prime radius without one is {} mm",
+                compact(at),
+                compact(f.min_radius_profile_mm),
+                compact(f.least_prime_radius_mm)
+            ),
+            (None, Some(rmax)) => format!(
+                "roller_radius_mm: a {} mm roller undercuts the profile at {} deg; the largest roller without undercut is {} mm",
+                compact(design.roller_radius_mm),
+                compact(at),
+                compact(rmax)
+            ),
+            (None, None) => format!("roller_radius_mm: the profile is undercut at {} deg", compact(at)),
+        }
+    });
+    if let Some(path) = &a.dxf {
+        if let Some(msg) = &undercut {
+            bail!("{msg}: no DXF written");
+        }
+        let bore = a.bore_mm.unwrap_or(0.4 * cam.base_radius_mm());
+        let shapes: Vec<DxfShape> = cam.drawing(a.chord_tol_mm, bore)?.into_iter().map(dxf_shape).collect();
+        save_shapes(&shapes, DxfUnit::Millimetre, path).map_err(util::failure)?;
+        output::note(format_args!("wrote {}", path.display()));
+    }
+    if let Some(msg) = &undercut {
+        output::warning(msg);
+    }
+    let points = cam.sample(0, step);
+    let counter = (cam.track_count() == 2).then(|| cam.sample(1, step));
+    if let Some(path) = &a.output {
+        output::figure(&profile_figure(&cam, &points, counter.as_deref(), &source), path)?;
+    }
+    let (pmax, pat, _) = cam.max_pressure_angle();
+    let (rmin, rat) = cam.min_convex_radius_pitch();
+    let r = design.roller_radius_mm;
+    if a.format.json {
+        let pts = |v: &[CamPoint]| -> Vec<serde_json::Value> {
+            v.iter()
+                .map(|p| {
+                    json!({
+                        "angle_deg": p.angle_deg,
+                        "x_mm": p.pitch_mm[0],
+                        "y_mm": p.pitch_mm[1],
+                        "pressure_angle_deg": p.pressure_angle_deg,
+                        "curvature_pitch_per_mm": p.curvature_pitch_per_mm,
+                        "profile_x_mm": p.profile_mm[0],
+                        "profile_y_mm": p.profile_mm[1],
+                    })
+                })
+                .collect()
+        };
+        let mut report = json!({
+            "source": source,
+            "follower": follower_name(&design),
+            "closure": closure_name(design.closure),
+            "prime_radius_mm": cam.prime_radius_mm(),
+            "base_radius_mm": cam.base_radius_mm(),
+            "roller_radius_mm": if design.follower == Follower::Flat { 0.0 } else { r },
+            "max_pressure_angle_deg": pmax,
+            "max_pressure_angle_at_deg": pat,
+            "min_convex_radius_pitch_mm": rmin,
+            "min_convex_radius_pitch_at_deg": rat,
+            "undercut": undercut.is_some(),
+            "points": pts(&points),
+        });
+        let m = report.as_object_mut().expect("a JSON object");
+        match design.follower {
+            Follower::Oscillating { arm_mm, pivot_mm } => {
+                m.insert("arm_mm".into(), json!(arm_mm));
+                m.insert("pivot_mm".into(), json!(pivot_mm));
+                m.insert("stroke_deg".into(), json!(cam.stroke()));
+            }
+            Follower::Translating { offset_mm } => {
+                m.insert("offset_mm".into(), json!(offset_mm));
+                m.insert("stroke_mm".into(), json!(cam.stroke()));
+            }
+            Follower::Flat => {
+                m.insert("stroke_mm".into(), json!(cam.stroke()));
+            }
+        }
+        if let Some(rmax) = cam.roller_max_mm() {
+            m.insert("roller_max_mm".into(), json!(rmax));
+            m.insert("min_convex_radius_profile_mm".into(), json!(rmin - r));
+        }
+        if let Some(at) = cam.undercut_at_deg() {
+            m.insert("undercut_at_deg".into(), json!(at));
+        }
+        if let Some(f) = cam.flat_extremes_report() {
+            m.insert("min_radius_profile_mm".into(), json!(f.min_radius_profile_mm));
+            m.insert("min_radius_profile_at_deg".into(), json!(f.min_radius_profile_at_deg));
+            m.insert("least_prime_radius_no_cusp_mm".into(), json!(f.least_prime_radius_mm));
+            m.insert("face_min_mm".into(), json!(f.face_min_mm));
+            m.insert("face_max_mm".into(), json!(f.face_max_mm));
+        }
+        if let Some(c) = &counter {
+            let e = cam.track_extremes_all()[1];
+            m.insert("counter_max_pressure_angle_deg".into(), json!(e.max_pressure_angle_deg));
+            m.insert("counter_max_pressure_angle_at_deg".into(), json!(e.max_pressure_angle_at_deg));
+            m.insert("counter_points".into(), json!(pts(c)));
+        }
+        return output::json(&report);
+    }
+    if a.format.csv {
+        let mut head = vec![
+            "angle_deg",
+            "x_mm",
+            "y_mm",
+            "pressure_angle_deg",
+            "curvature_pitch_per_mm",
+            "profile_x_mm",
+            "profile_y_mm",
+            "curvature_profile_per_mm",
+        ];
+        if counter.is_some() {
+            head.extend([
+                "counter_x_mm",
+                "counter_y_mm",
+                "counter_pressure_angle_deg",
+                "counter_profile_x_mm",
+                "counter_profile_y_mm",
+            ]);
+        }
+        let mut t = loomkin_io::Table::new(head);
+        for (i, p) in points.iter().enumerate() {
+            let mut row = vec![
+                p.angle_deg,
+                p.pitch_mm[0],
+                p.pitch_mm[1],
+                p.pressure_angle_deg,
+                p.curvature_pitch_per_mm,
+                p.profile_mm[0],
+                p.profile_mm[1],
+                p.curvature_profile_per_mm,
+            ];
+            if let Some(c) = &counter {
+                let q = c[i];
+                row.extend([q.pitch_mm[0], q.pitch_mm[1], q.pressure_angle_deg, q.profile_mm[0], q.profile_mm[1]]);
+            }
+            t.push(row).map_err(util::failure)?;
+        }
+        return output::csv(&t);
+    }
+    outln!("cam profile of {source}: {}, {}", follower_name(&design), closure_name(design.closure))?;
+    let sized = match design.size {
+        Size::MaxPressureDeg(p) => format!(" (the least for a pressure angle of {}°)", compact(p)),
+        Size::PrimeRadiusMm(_) => String::new(),
+    };
+    outln!(
+        "  prime radius          {} mm{sized}; base radius {} mm",
+        compact(cam.prime_radius_mm()),
+        compact(cam.base_radius_mm())
+    )?;
+    outln!("  pressure angle        max {}° at {}°", compact(pmax), compact(pat))?;
+    outln!("  pitch curve           least convex radius of curvature {} mm at {}°", compact(rmin), compact(rat))?;
+    if let Some(rmax) = cam.roller_max_mm() {
+        outln!("  roller                {} mm; largest without undercut {} mm", compact(r), compact(rmax))?;
+    }
+    if let Some(f) = cam.flat_extremes_report() {
+        outln!(
+            "  profile               least radius of curvature {} mm at {}°; face from {} to {} mm",
+            compact(f.min_radius_profile_mm),
+            compact(f.min_radius_profile_at_deg),
+            compact(f.face_min_mm),
+            compact(f.face_max_mm)
+        )?;
+    }
+    outln!("  undercut              {}", if undercut.is_some() { "yes" } else { "no" })?;
+    Ok(())
+}
+
+fn follower_name(d: &CamDesign) -> String {
+    match d.follower {
+        Follower::Translating { offset_mm: 0.0 } => "radial translating roller follower".into(),
+        Follower::Translating { offset_mm } => format!("translating roller follower offset {} mm", compact(offset_mm)),
+        Follower::Oscillating { arm_mm, pivot_mm } => {
+            format!("oscillating roller follower (arm {} mm, pivot {} mm)", compact(arm_mm), compact(pivot_mm))
+        }
+        Follower::Flat => "flat-faced translating follower".into(),
+    }
+}
+
+fn closure_name(c: Closure) -> &'static str {
+    match c {
+        Closure::Single => "single cam",
+        Closure::Conjugate => "conjugate pair",
+        Closure::Groove => "groove cam",
+    }
+}
+
+/// A drawing shape (mm) as a DXF shape (m).
+fn dxf_shape(l: Layered) -> DxfShape {
+    let m = |p: [f64; 2]| [p[0] * 1e-3, p[1] * 1e-3];
+    match l.shape {
+        Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
+            layer: l.layer.into(),
+            points: points.into_iter().map(m).collect(),
+            closed,
+        }),
+        Shape::Circle { centre, radius } => {
+            DxfShape::Circle { layer: l.layer.into(), centre: m(centre), radius: radius * 1e-3 }
+        }
+        Shape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from: m(from), to: m(to) },
+    }
+}
+
+fn profile_figure(cam: &CamProfile, points: &[CamPoint], counter: Option<&[CamPoint]>, source: &str) -> Figure {
+    let closed = |c: Curve| -> Vec<(f64, f64)> {
+        let v = cam.polyline(c, 0.01);
+        let mut out: Vec<(f64, f64)> = v.iter().map(|p| (p[0], p[1])).collect();
+        if let Some(f) = out.first().copied() {
+            out.push(f);
+        }
+        out
+    };
+    let rb = cam.base_radius_mm();
+    let circle: Vec<(f64, f64)> =
+        (0..=360).map(|i| (i as f64).to_radians()).map(|t| (rb * t.cos(), rb * t.sin())).collect();
+    let mut drawing = vec![Series::line("profile", closed(Curve::Wall(0))).with_color([0, 0, 0])];
+    if let Some(w) = cam.walls().iter().position(|w| w.name == "groove_outer") {
+        drawing.push(Series::line("groove outer wall", closed(Curve::Wall(w))).with_color([0, 0, 0]));
+    }
+    drawing.push(Series::line("pitch curve", closed(Curve::Pitch(0))).with_color([0, 114, 178]).with_dashes());
+    if counter.is_some() {
+        drawing.push(Series::line("counter-cam profile", closed(Curve::Wall(1))).with_color([213, 94, 0]));
+        drawing.push(
+            Series::line("counter-cam pitch curve", closed(Curve::Pitch(1))).with_color([213, 94, 0]).with_dashes(),
+        );
+    }
+    drawing.push(Series::line("base circle", circle).with_color([120, 120, 120]).with_dashes());
+    let ph = cam.phase_point();
+    drawing.push(
+        Series::line("0° (follower at main-shaft 0°)", vec![(0.0, 0.0), (ph[0], ph[1])]).with_color([0, 158, 115]),
+    );
+    let mut d = Panel::new("y [mm]", drawing).with_legend(Legend::LowerRight);
+    d.x_label = Some("x [mm]".into());
+    d.equal_aspect = true;
+    let series = |v: &[CamPoint], f: fn(&CamPoint) -> f64| -> Vec<(f64, f64)> {
+        v.iter().map(|p| (p.angle_deg, f(p))).collect()
+    };
+    let mut pa = vec![Series::line("cam", series(points, |p| p.pressure_angle_deg)).with_color([0, 114, 178])];
+    let mut cu = vec![
+        Series::line("pitch curve", series(points, |p| p.curvature_pitch_per_mm))
+            .with_color([0, 114, 178])
+            .with_dashes(),
+        Series::line("profile", series(points, |p| p.curvature_profile_per_mm)).with_color([0, 0, 0]),
+    ];
+    if let Some(c) = counter {
+        pa.push(Series::line("counter-cam", series(c, |p| p.pressure_angle_deg)).with_color([213, 94, 0]));
+        cu.push(
+            Series::line("counter-cam pitch curve", series(c, |p| p.curvature_pitch_per_mm))
+                .with_color([213, 94, 0])
+                .with_dashes(),
+        );
+        cu.push(
+            Series::line("counter-cam profile", series(c, |p| p.curvature_profile_per_mm)).with_color([213, 94, 0]),
+        );
+    }
+    let (pmax, pat, _) = cam.max_pressure_angle();
+    let name = std::path::Path::new(source).file_name().map_or(source.into(), |n| n.to_string_lossy());
+    let title = format!(
+        "Cam of {name}: prime radius {:.2} mm, max pressure angle {pmax:.2}° at {pat:.1}°",
+        cam.prime_radius_mm()
+    );
+    let mut fig = Figure::new(
+        title,
+        "main-shaft angle [deg]",
+        vec![d, Panel::new("pressure angle [deg]", pa), Panel::new("curvature (convex > 0) [1/mm]", cu)],
+    );
+    fig.size = Some((1000, 1500));
+    fig
 }

@@ -10,6 +10,7 @@
 
 mod cam;
 mod design;
+mod drawing;
 mod extremes;
 mod jet;
 mod lift;
@@ -18,6 +19,7 @@ mod track;
 
 pub use cam::{CamPoint, CamProfile, Curve, FlatExtremes, TrackExtremes, Wall};
 pub use design::{CamDesign, Closure, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE, Size};
+pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE, Layered, Shape};
 pub use extremes::Extremes;
 pub use jet::Jet;
 pub use lift::Lift;

@@ -189,3 +189,160 @@ fn servo_check_reports_checks_and_plots() {
     ok(&["servo", "export", "--format", "cycle", "-o", sp.to_str().unwrap()]);
     stdout_json(&["servo", "check", axis, "--cycle", sp.to_str().unwrap(), "--json"]);
 }
+
+#[test]
+fn cam_profile_json_keys_sizing_and_points() {
+    let cycle = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml");
+    let v = stdout_json(&[
+        "cam",
+        "profile",
+        cycle,
+        "--follower",
+        "translating",
+        "--max-pressure-deg",
+        "30",
+        "--roller-radius-mm",
+        "15",
+        "--json",
+    ]);
+    for key in [
+        "prime_radius_mm",
+        "max_pressure_angle_deg",
+        "max_pressure_angle_at_deg",
+        "min_convex_radius_pitch_mm",
+        "undercut",
+        "roller_max_mm",
+        "points",
+    ] {
+        assert!(v.get(key).is_some(), "{key} missing: {v}");
+    }
+    assert!((v["max_pressure_angle_deg"].as_f64().unwrap() - 30.0).abs() < 1e-9);
+    assert_eq!(v["undercut"], false);
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 360);
+    let rp = v["prime_radius_mm"].as_f64().unwrap();
+    for p in pts {
+        for k in ["angle_deg", "x_mm", "y_mm", "pressure_angle_deg"] {
+            assert!(p[k].as_f64().is_some(), "{k}");
+        }
+        // the pitch curve never comes inside the prime circle, and reaches it on the first dwell
+        let r = p["x_mm"].as_f64().unwrap().hypot(p["y_mm"].as_f64().unwrap());
+        assert!(r >= rp - 1e-9);
+        assert!(p["pressure_angle_deg"].as_f64().unwrap().abs() <= 30.0 + 1e-9);
+    }
+    assert!((pts[0]["y_mm"].as_f64().unwrap() - rp).abs() < 1e-9);
+    // The same cam from its prime radius has the same largest pressure angle.
+    let v2 = stdout_json(&[
+        "cam",
+        "profile",
+        cycle,
+        "--follower",
+        "translating",
+        "--prime-radius-mm",
+        &rp.to_string(),
+        "--roller-radius-mm",
+        "15",
+        "--json",
+    ]);
+    assert!((v2["max_pressure_angle_deg"].as_f64().unwrap() - 30.0).abs() < 1e-9);
+}
+
+#[test]
+fn cam_profile_csv_dxf_plot_and_law() {
+    let cycle = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml");
+    let text =
+        ok(&["cam", "profile", cycle, "--follower", "flat", "--prime-radius-mm", "150", "--csv", "--step-deg", "10"]);
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "angle_deg,x_mm,y_mm,pressure_angle_deg,curvature_pitch_per_mm,profile_x_mm,profile_y_mm,curvature_profile_per_mm"
+        )
+    );
+    assert_eq!(lines.count(), 36);
+    let (d1, d2) = (tmp("p1.dxf"), tmp("p2.dxf"));
+    for d in [&d1, &d2] {
+        ok(&[
+            "cam",
+            "profile",
+            "--law",
+            "cycloidal",
+            "--stroke-deg",
+            "20",
+            "--motion-deg",
+            "120",
+            "--follower",
+            "oscillating",
+            "--arm-mm",
+            "100",
+            "--pivot-mm",
+            "120",
+            "--roller-radius-mm",
+            "8",
+            "--conjugate",
+            "--dxf",
+            d.to_str().unwrap(),
+            "-o",
+            tmp("p.svg").to_str().unwrap(),
+        ]);
+    }
+    let (a, b) = (std::fs::read(&d1).unwrap(), std::fs::read(&d2).unwrap());
+    assert_eq!(a, b, "the same cam must give the same bytes");
+    let text = String::from_utf8(a).unwrap();
+    for layer in
+        ["CAM_PITCH", "CAM_PROFILE", "COUNTER_PITCH", "COUNTER_PROFILE", "BASE_CIRCLE", "CENTRE", "BORE", "PHASE_0"]
+    {
+        assert!(text.contains(&format!("  8\n{layer}\n")), "{layer}");
+    }
+    assert!(std::fs::read_to_string(tmp("p.svg")).unwrap().contains("<svg"));
+}
+
+#[test]
+fn cam_profile_bad_input_names_the_field() {
+    let cycle = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml");
+    let fails = |args: &[&str], field: &str| {
+        let out = loomkin().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(field), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    };
+    let base = ["cam", "profile", cycle, "--follower"];
+    fails(&[&base[..], &["translating", "--prime-radius-mm", "20", "--offset-mm", "25"]].concat(), "prime_radius_mm");
+    fails(
+        &[&base[..], &["translating", "--prime-radius-mm", "40", "--roller-radius-mm", "40"]].concat(),
+        "roller_radius_mm",
+    );
+    fails(&[&base[..], &["oscillating", "--arm-mm", "100", "--pivot-mm", "120"]].concat(), "unit");
+    fails(&[&base[..], &["flat"]].concat(), "prime_radius_mm");
+    fails(&[&base[..], &["translating", "--max-pressure-deg", "95"]].concat(), "max_pressure_deg");
+    // A roller that undercuts: the angle and the largest roller are named, no DXF is written.
+    let out = loomkin()
+        .args([
+            "cam",
+            "profile",
+            "--law",
+            "cycloidal",
+            "--stroke-mm",
+            "50",
+            "--motion-deg",
+            "60",
+            "--follower",
+            "translating",
+            "--prime-radius-mm",
+            "40",
+            "--roller-radius-mm",
+            "30",
+            "--dxf",
+        ])
+        .arg(tmp("u.dxf"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("roller_radius_mm") && err.contains("deg") && err.contains("largest roller"), "{err}");
+    // A cycle that does not close.
+    let open = tmp("open.toml");
+    std::fs::write(&open, "unit = \"mm\"\nstroke = 10\n[[segment]]\nkind = \"rise\"\nto_deg = 360\n").unwrap();
+    fails(&["cam", "profile", open.to_str().unwrap(), "--follower", "translating"], "segment");
+}

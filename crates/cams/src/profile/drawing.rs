@@ -1,0 +1,92 @@
+//! What a drawing of the cam holds, layer by layer, with the curves within a chord tolerance.
+
+use super::cam::{CamProfile, Curve};
+use super::design::Closure;
+use crate::Result;
+use loomkin_units::Range;
+
+/// A drawn shape (mm, cam frame: the cam centre at the origin, the follower at main-shaft angle
+/// 0° along the phase mark).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A polyline; `closed` joins the last point to the first.
+    Polyline {
+        /// The vertices (mm).
+        points: Vec<[f64; 2]>,
+        /// Closed.
+        closed: bool,
+    },
+    /// A circle.
+    Circle {
+        /// Centre (mm).
+        centre: [f64; 2],
+        /// Radius (mm).
+        radius: f64,
+    },
+    /// A line segment.
+    Line {
+        /// Start (mm).
+        from: [f64; 2],
+        /// End (mm).
+        to: [f64; 2],
+    },
+}
+
+/// A shape on a named layer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layered {
+    /// Layer name.
+    pub layer: &'static str,
+    /// The shape.
+    pub shape: Shape,
+}
+
+/// Allowed chord tolerance (mm).
+pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
+/// Allowed bore diameter (mm).
+pub const BORE_RANGE: Range = Range::closed(0.0, 1e5, "mm");
+
+impl CamProfile {
+    /// The drawing of the cam: layers `CAM_PITCH`, `CAM_PROFILE` (and `COUNTER_PITCH`,
+    /// `COUNTER_PROFILE` for a conjugate pair — the counter-cam on its own layers, same centre and
+    /// phase — or `GROOVE_OUTER` for a groove cam), `BASE_CIRCLE`, `CENTRE` (a cross), `BORE`
+    /// (`bore_mm` diameter; none when 0) and `PHASE_0` (from the centre to the pitch point at
+    /// main-shaft angle 0°). Curves are polylines whose chords stay within `tol_mm` of the curve.
+    pub fn drawing(&self, tol_mm: f64, bore_mm: f64) -> Result<Vec<Layered>> {
+        let tol = CHORD_TOL_RANGE.check("chord_tol_mm", tol_mm)?;
+        let bore = BORE_RANGE.check("bore_mm", bore_mm)?;
+        let rb = self.base_radius_mm();
+        if bore > 0.0 && 0.5 * bore >= rb {
+            return Err(crate::CamError::Usage {
+                field: "bore_mm".into(),
+                reason: format!(
+                    "a bore of {} mm does not fit inside the base circle of {} mm diameter",
+                    loomkin_units::compact(bore),
+                    loomkin_units::compact(2.0 * rb)
+                ),
+            });
+        }
+        let poly = |c: Curve| Shape::Polyline { points: self.polyline(c, tol), closed: true };
+        let mut out = vec![
+            Layered { layer: "CAM_PITCH", shape: poly(Curve::Pitch(0)) },
+            Layered { layer: "CAM_PROFILE", shape: poly(Curve::Wall(0)) },
+        ];
+        match self.design().closure {
+            Closure::Conjugate => {
+                out.push(Layered { layer: "COUNTER_PITCH", shape: poly(Curve::Pitch(1)) });
+                out.push(Layered { layer: "COUNTER_PROFILE", shape: poly(Curve::Wall(1)) });
+            }
+            Closure::Groove => out.push(Layered { layer: "GROOVE_OUTER", shape: poly(Curve::Wall(1)) }),
+            Closure::Single => {}
+        }
+        out.push(Layered { layer: "BASE_CIRCLE", shape: Shape::Circle { centre: [0.0, 0.0], radius: rb } });
+        let arm = 0.15 * rb;
+        out.push(Layered { layer: "CENTRE", shape: Shape::Line { from: [-arm, 0.0], to: [arm, 0.0] } });
+        out.push(Layered { layer: "CENTRE", shape: Shape::Line { from: [0.0, -arm], to: [0.0, arm] } });
+        if bore > 0.0 {
+            out.push(Layered { layer: "BORE", shape: Shape::Circle { centre: [0.0, 0.0], radius: 0.5 * bore } });
+        }
+        out.push(Layered { layer: "PHASE_0", shape: Shape::Line { from: [0.0, 0.0], to: self.phase_point() } });
+        Ok(out)
+    }
+}
