@@ -545,3 +545,24 @@ fn dxf_drawing_is_closed_within_tolerance_and_in_mm() {
         }
     }
 }
+
+/// Shigley & Uicker, *Theory of Machines and Mechanisms* (cam design chapter, exercise on a radial
+/// flat-faced follower): "a disk cam drives a radial flat-faced follower with simple harmonic
+/// motion; the follower moves out and back in one revolution; total displacement 50 mm, minimum
+/// radius 25 mm — find the contour and the theoretical length of the follower face". The answer
+/// in closed form: s = 25 (1 − cos θ) makes the contour the circle of radius 50 mm about
+/// (0, −25 mm) — an eccentric, eccentricity 25 mm — of constant radius of curvature 50 mm, and the
+/// face must reach 25 mm either side of the line of motion (50 mm).
+#[test]
+fn textbook_eccentric_flat_faced_cam() {
+    let m = rise_return("harmonic", StrokeUnit::Mm, 50.0, 180.0);
+    let cam = CamProfile::new(&m, &design(Follower::Flat, Closure::Single, 0.0, Size::PrimeRadiusMm(25.0))).unwrap();
+    for k in 0..360 {
+        let p = cam.point(Curve::Wall(0), k as f64 + 0.5);
+        assert!((p[0].hypot(p[1] + 25.0) - 50.0).abs() < 1e-9, "{p:?}");
+    }
+    let f = cam.flat_extremes_report().unwrap();
+    assert!((f.min_radius_profile_mm - 50.0).abs() < 1e-9);
+    assert!((f.face_min_mm + 25.0).abs() < 1e-9 && (f.face_max_mm - 25.0).abs() < 1e-9, "{f:?}");
+    assert_eq!(f.least_prime_radius_mm, 0.0);
+}
