@@ -5,10 +5,12 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use loomkin_dynamics::{Follower, Response, STANDARD_GRAVITY, Start, Summary, sweep};
+use loomkin_dynamics::{
+    Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, Units, sweep, sweep_columns, sweep_row,
+};
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Panel, Series};
-use loomkin_laws::{Cycle, StrokeUnit};
+use loomkin_laws::Cycle;
 use loomkin_units::{ShaftSpeed, Span};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -190,18 +192,8 @@ pub fn run(cmd: DynCommand) -> Result<()> {
     }
 }
 
-/// Display units of a cycle: factor from SI, the position unit, and key suffixes.
-struct Units {
-    scale: f64,
-    pos: &'static str,
-    acc: &'static str,
-}
-
 fn units(cycle: &Cycle) -> Units {
-    match cycle.unit {
-        StrokeUnit::Mm => Units { scale: 1e3, pos: "mm", acc: "m_s2" },
-        StrokeUnit::Deg => Units { scale: 180.0 / std::f64::consts::PI, pos: "deg", acc: "rad_s2" },
-    }
+    Units::of(cycle.unit)
 }
 
 fn read_cycle(path: &Path) -> Result<Cycle> {
@@ -213,34 +205,7 @@ fn speed_of(flag: Option<f64>, cycle: &Cycle) -> Result<ShaftSpeed> {
     Ok(ShaftSpeed::from_rpm(flag.or(cycle.speed_rpm).unwrap_or(300.0))?)
 }
 
-fn summary_json(s: &Summary, u: &Units) -> serde_json::Value {
-    let p = u.pos;
-    let mut v = json!({
-        format!("residual_amplitude_{p}"): s.residual_amplitude_si * u.scale,
-        "residual_amplitude_pct_of_stroke": s.residual_pct_of_stroke,
-        format!("peak_dynamic_error_{p}"): s.peak_dynamic_error.value * u.scale,
-        "peak_dynamic_error_at_deg": s.peak_dynamic_error.angle_deg,
-        format!("peak_acceleration_{}", u.acc): s.peak_acceleration.value,
-        "peak_acceleration_at_deg": s.peak_acceleration.angle_deg,
-        format!("peak_input_acceleration_{}", u.acc): s.peak_input_acceleration.value,
-        "rigidity_ratio": s.rigidity_ratio,
-        "rigidity_warning": s.rigidity_warning,
-        "dwells": s.dwells.iter().map(|d| json!({
-            "segment": d.segment, "cycle": d.cycle, "angle_deg": d.angle_deg,
-            format!("residual_amplitude_{p}"): d.amplitude_si * u.scale,
-        })).collect::<Vec<_>>(),
-    });
-    if let (Some(f), Some(c)) = (s.peak_force_n, s.min_contact_force_n) {
-        v["peak_force_n"] = json!(f.value);
-        v["peak_force_at_deg"] = json!(f.angle_deg);
-        v["min_contact_force_n"] = json!(c.value);
-        v["min_contact_force_at_deg"] = json!(c.angle_deg);
-        v["loses_contact"] = json!(s.loses_contact);
-    }
-    v
-}
-
-fn rigidity_note(s: &Summary) {
+fn rigidity_note(s: &loomkin_dynamics::Summary) {
     if s.rigidity_warning {
         output::warning(format!(
             "rigidity ratio f_n/f_shaft = {} is below 10 (VDI 2149 Blatt 1): the rigid-body law does not describe \
@@ -280,13 +245,15 @@ fn response(a: ResponseArgs) -> Result<()> {
         return output::csv(&t);
     }
     if a.format.json {
-        let mut v = summary_json(&summary, &u);
-        v["speed_rpm"] = json!(speed.rpm());
-        v["natural_hz"] = json!(follower.natural_hz());
-        v["damping_ratio"] = json!(follower.damping_ratio());
-        v["start"] = json!(if a.steady { "steady" } else { "rest" });
-        v["cycles"] = json!(if a.steady { 1 } else { a.cycles });
-        return output::json(&v);
+        return output::json(&ResponseReport {
+            summary,
+            units: u,
+            speed_rpm: speed.rpm(),
+            natural_hz: follower.natural_hz(),
+            damping_ratio: follower.damping_ratio(),
+            start,
+            cycles: if a.steady { 1 } else { a.cycles },
+        });
     }
     if let Some(out) = a.output {
         let samples = r.samples(a.points);
@@ -301,7 +268,7 @@ fn response(a: ResponseArgs) -> Result<()> {
                 })
                 .collect()
         };
-        let acc_unit = if u.pos == "mm" { "m/s²" } else { "rad/s²" };
+        let acc_unit = u.acc_text();
         let panels = vec![
             Panel::new(
                 format!("position [{}]", u.pos),
@@ -385,34 +352,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let u = units(&cycle);
     let p = u.pos;
     let forces = follower.mass_kg().is_some();
-    let mut cols = vec![
-        "speed_rpm".to_string(),
-        format!("residual_amplitude_{p}"),
-        "residual_amplitude_pct_of_stroke".into(),
-        format!("peak_dynamic_error_{p}"),
-        "rigidity_ratio".into(),
-    ];
-    if forces {
-        cols.push("peak_force_n".into());
-        cols.push("min_contact_force_n".into());
-    }
-    let row = |q: &loomkin_dynamics::SweepPoint| {
-        let mut r = vec![
-            q.speed_rpm,
-            q.residual_amplitude_si * u.scale,
-            q.residual_pct_of_stroke,
-            q.peak_dynamic_error_si * u.scale,
-            q.rigidity_ratio,
-        ];
-        if forces {
-            r.push(q.peak_force_n.unwrap_or(0.0));
-            r.push(q.min_contact_force_n.unwrap_or(0.0));
-        }
-        r
-    };
+    let cols = sweep_columns(u, forces);
     let mut t = Table::new(cols);
     for q in &pts {
-        t.push(row(q))?;
+        t.push(sweep_row(q, u, forces))?;
     }
     if a.format.csv {
         return output::csv_shard(&t, a.shard.get());

@@ -58,7 +58,7 @@ function num(v, digits) {
 
 // ---------------------------------------------------------------- tabs
 
-const VIEW_TITLES = { servo: "Servo law", catalogue: "Law catalogue", shed: "Shedding", picking: "Picking", dobby: "Dobby" };
+const VIEW_TITLES = { servo: "Servo law", catalogue: "Law catalogue", shed: "Shedding", picking: "Picking", dobby: "Dobby", dynamics: "Dynamics" };
 const initialised = {};
 
 function showView(name) {
@@ -662,9 +662,127 @@ function drawDobby() {
   for (const ch of [dobby.phi, dobby.omega, dobby.mu]) { ch.markerX = p.phi2_deg; ch.draw(); }
 }
 
+// ---------------------------------------------------------------- elastic dynamics
+
+const dyn = { inflight: false, queued: false, sweepDirty: true, cycleToml: null, lastSweep: null };
+
+// A slider with a numeric field beside it; both edit one value.
+function sliderWithNumber(id, label, unit, min, max, step, value, onInput) {
+  const range = el("input", { type: "range", min: String(min), max: String(max), step: String(step), value: String(value), id: id + "-range" });
+  const field = el("input", { type: "number", min: String(min), max: String(max), step: "any", value: String(value), id, className: "short" });
+  range.addEventListener("input", () => { field.value = range.value; onInput(+range.value); });
+  field.addEventListener("change", () => {
+    const v = +field.value;
+    if (!isFinite(v) || field.value === "") { field.classList.add("bad"); return; }
+    field.classList.remove("bad");
+    range.value = String(Math.min(max, Math.max(min, v)));
+    onInput(v);
+  });
+  return { label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "row" }, range, field)), range, field };
+}
+
+async function initDynamics() {
+  const root = $("#dynamics-root");
+  let example;
+  try { example = await api("/dynamics/example"); } catch (e) { status("dynamics: " + e.message, true); return; }
+  dyn.cycleToml = example.cycle_toml;
+  const source = el("select", { id: "dyn-source" },
+    el("option", { value: "example", textContent: "heald-frame example cycle" }),
+    el("option", { value: "law", textContent: "a catalogue law: rise–dwell–return–dwell" }),
+    el("option", { value: "file", textContent: "a cycle file (TOML) …" }));
+  const law = el("select", { id: "dyn-law" });
+  try { for (const l of (await api("/laws")).laws) law.append(el("option", { value: l.name, textContent: l.name })); } catch (e) { status("laws: " + e.message, true); }
+  law.value = "modified-sine";
+  const stroke = el("input", { type: "number", step: "any", value: "100", min: "0", id: "dyn-stroke" });
+  const motion = el("input", { type: "number", step: "any", value: "120", min: "0", max: "180", id: "dyn-motion" });
+  const file = el("input", { type: "file", accept: ".toml,text/plain", id: "dyn-file" });
+  const fileName = el("span", { className: "hint", textContent: "" });
+  const lawBox = el("div", { className: "grid2", hidden: true }, el("label", {}, "law", law), el("label", {}, "stroke (mm)", stroke), el("label", {}, "motion angle, rise and return (°)", motion));
+  const fileBox = el("div", { hidden: true }, el("label", { className: "file" }, "load a cycle file", file), fileName);
+  const changed = () => { dyn.sweepDirty = true; respond(); };
+  source.addEventListener("change", () => {
+    lawBox.hidden = source.value !== "law"; fileBox.hidden = source.value !== "file";
+    if (source.value === "file" && !dyn.fileText) { file.click(); return; }
+    changed();
+  });
+  for (const e of [law, stroke, motion]) e.addEventListener("change", changed);
+  file.addEventListener("change", async () => {
+    const f = file.files[0]; if (!f) return;
+    dyn.fileText = await f.text(); fileName.textContent = f.name; changed();
+  });
+  dyn.source = source; dyn.law = law; dyn.stroke = stroke; dyn.motion = motion;
+  dyn.values = { speed_rpm: example.speed_rpm, natural_hz: example.natural_hz, damping_ratio: example.damping_ratio };
+  const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); });
+  const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); });
+  const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); });
+  const steady = el("input", { type: "checkbox", id: "dyn-steady" });
+  steady.addEventListener("change", changed);
+  dyn.steady = steady;
+  const from = el("input", { type: "number", step: "any", value: "100", id: "dyn-from", className: "short" });
+  const to = el("input", { type: "number", step: "any", value: "1200", id: "dyn-to", className: "short" });
+  for (const e of [from, to]) e.addEventListener("change", changed);
+  dyn.from = from; dyn.to = to;
+  const panel = el("div", { className: "panel" }, el("h2", { textContent: "Cycle and frame" }),
+    el("p", { className: "hint", textContent: "The frame as a mass on a spring and damper driven through the cycle, solved exactly. Move the speed: the vibration left in the dwells (shaded) is redrawn; the sweep shows the speeds to avoid." }),
+    el("label", { className: "wide" }, "cycle", source), lawBox, fileBox, fn.label, zeta.label, speed.label,
+    el("label", { className: "check" }, steady, "periodic steady state (else one cycle from rest)"),
+    el("div", { className: "row" }, "sweep from", from, "to", to, "rpm"));
+  const table = el("table", { className: "data", id: "dyn-summary" }, el("caption", { textContent: "Response" }), el("tbody"));
+  const charts = el("div", { className: "grid-charts" });
+  root.append(el("div", { className: "results" }, panel, table), charts);
+  const ax = { label: "main-shaft angle", unit: "°", range: [0, 360], step: 30 };
+  dyn.pos = new Chart(charts, { id: "dyn-pos", title: "Position", height: 220, x: ax, y: { label: "position", unit: "mm" } });
+  dyn.err = new Chart(charts, { id: "dyn-err", title: "Dynamic error x − s (dwells shaded)", height: 220, x: ax, y: { label: "x − s", unit: "mm" } });
+  dyn.acc = new Chart(charts, { id: "dyn-acc", title: "Acceleration of the frame", height: 220, x: ax, y: { label: "x''", unit: "m/s²" } });
+  dyn.sweep = new Chart(charts, { id: "dyn-sweep", title: "Speed sweep: residual vibration in the dwells", height: 220, x: { label: "main-shaft speed", unit: "rpm" }, y: { label: "amplitude", unit: "mm", includeZero: true } });
+  Object.assign(loomkin.charts, { dyn_pos: dyn.pos, dyn_err: dyn.err, dyn_acc: dyn.acc, dyn_sweep: dyn.sweep });
+  respond();
+}
+
+function dynRequest() {
+  const q = { speed_rpm: dyn.values.speed_rpm, natural_hz: dyn.values.natural_hz, damping_ratio: dyn.values.damping_ratio, steady: dyn.steady.checked, samples: 721 };
+  if (dyn.source.value === "law") q.law = { law: { name: dyn.law.value, params: {} }, stroke_mm: +dyn.stroke.value, motion_deg: +dyn.motion.value };
+  else if (dyn.source.value === "file" && dyn.fileText) q.cycle_toml = dyn.fileText;
+  if (dyn.sweepDirty) q.sweep = { from_rpm: +dyn.from.value, to_rpm: +dyn.to.value, points: 400 };
+  return q;
+}
+
+function respond() {
+  if (dyn.inflight) { dyn.queued = true; return; }
+  dyn.inflight = true;
+  const q = dynRequest();
+  api("/dynamics/response", q)
+    .then((r) => {
+      if (q.sweep) dyn.sweepDirty = false;
+      const c = r.curves, u = r.unit, rep = r.report;
+      for (const ch of [dyn.pos, dyn.err]) ch.opts.y.unit = u;
+      dyn.acc.opts.y.unit = r.acceleration_unit;
+      dyn.err.bands = r.dwells_deg;
+      dyn.pos.setSeries([{ label: "input s (rigid law)", x: c.angle_deg, y: c.s, dash: [6, 4] }, { label: "frame x", x: c.angle_deg, y: c.x }]);
+      dyn.err.setSeries([{ label: "x − s", x: c.angle_deg, y: c.error }]);
+      dyn.acc.setSeries([{ label: "frame x''", x: c.angle_deg, y: c.a }]);
+      if (r.sweep) {
+        dyn.lastSweep = r.sweep;
+        dyn.sweep.opts.y.unit = u;
+        dyn.sweep.setSeries([{ label: "residual amplitude", x: r.sweep.speed_rpm, y: r.sweep.residual_amplitude }, { label: "peak |x − s|", x: r.sweep.speed_rpm, y: r.sweep.peak_dynamic_error, dash: [6, 4] }]);
+      }
+      dyn.sweep.markerX = rep.speed_rpm; dyn.sweep.draw();
+      const rows = [
+        ["residual vibration (largest over the dwells)", `${num(rep["residual_amplitude_" + u], 4)} ${u} (${num(rep.residual_amplitude_pct_of_stroke, 3)} % of stroke)`, "dyn-residual"],
+        ["peak dynamic error |x − s|", `${num(rep["peak_dynamic_error_" + u], 4)} ${u} at ${num(rep.peak_dynamic_error_at_deg, 1)}°`],
+        ["peak acceleration |x''|", `${num(rep["peak_acceleration_" + (u === "mm" ? "m_s2" : "rad_s2")], 1)} ${r.acceleration_unit} (rigid law ${num(rep["peak_input_acceleration_" + (u === "mm" ? "m_s2" : "rad_s2")], 1)})`],
+        ["rigidity ratio f_n / f_shaft", `${num(rep.rigidity_ratio, 2)}${rep.rigidity_warning ? " — below 10 (VDI 2149): the rigid law does not describe the motion" : ""}`, "dyn-rigidity"],
+      ];
+      $("#dyn-summary tbody").replaceChildren(...rows.map(([k, v, id]) => el("tr", {}, el("th", { textContent: k }), el("td", { textContent: v, id: id || "" }))));
+      status(`response at ${num(rep.speed_rpm)} rpm`);
+    })
+    .catch((e) => status("dynamics: " + e.message, true))
+    .finally(() => { dyn.inflight = false; if (dyn.queued) { dyn.queued = false; respond(); } });
+}
+
 // ---------------------------------------------------------------- start
 
-const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking, dobby: initDobby };
+const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking, dobby: initDobby, dynamics: initDynamics };
 window.LoomkinViews = VIEWS;
 
 async function start() {

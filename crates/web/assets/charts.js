@@ -198,6 +198,14 @@ class Chart {
     c.fillText(axisTitle(this.opts.y.label, this.opts.y.unit), 0, 0); c.restore();
     // Series, clipped to the plot.
     c.save(); c.beginPath(); c.rect(L.left, L.top, L.pw, L.ph); c.clip();
+    // Shaded spans of x (dwells), under the curves.
+    if (this.bands) {
+      c.fillStyle = "rgba(148, 163, 184, 0.2)";
+      for (const [a, b] of this.bands) {
+        const [p0] = this.toPx(L, a, 0), [p1] = this.toPx(L, b, 0);
+        c.fillRect(p0, L.top, p1 - p0, L.ph);
+      }
+    }
     for (const s of this.series) {
       if (s.mode === "points" || s.mode === "markers") {
         c.fillStyle = s.color;

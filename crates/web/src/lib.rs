@@ -35,6 +35,7 @@
 mod assets;
 mod catalogue;
 mod dobby_api;
+mod dynamics_api;
 mod error;
 mod json;
 mod limits;
@@ -52,6 +53,10 @@ pub use catalogue::{
     compare,
 };
 pub use dobby_api::{DobbyCurves, DobbyLaw, DobbyRequest, DobbyResponse, dobby_synthesize};
+pub use dynamics_api::{
+    DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS, SweepCurves,
+    SweepRequest, respond as dynamics_response,
+};
 pub use error::{ApiError, check_count};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
@@ -75,4 +80,4 @@ pub use shed_api::{
 };
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics"];

@@ -27,6 +27,7 @@ pub fn router() -> Router {
         .merge(crate::picking_api::routes())
         .merge(crate::shed_api::routes())
         .merge(crate::dobby_api::routes())
+        .merge(crate::dynamics_api::routes())
         .fallback(api_not_found);
     Router::new()
         .route("/", get(assets::index))

@@ -274,9 +274,12 @@ fn drag_a_definition_point_and_the_torque_changes() {
     d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-catalogue.png"));
 
     // The study views render their first result.
-    for (view, ready) in
-        [("shed", "#shed-chosen tbody tr"), ("picking", "#pick-velocity"), ("dobby", "#dobby-summary tbody tr")]
-    {
+    for (view, ready) in [
+        ("shed", "#shed-chosen tbody tr"),
+        ("picking", "#pick-velocity"),
+        ("dobby", "#dobby-summary tbody tr"),
+        ("dynamics", "#dyn-residual"),
+    ] {
         d.click(&format!("#tabs button[data-view='{view}']"));
         d.wait_for(view, &format!("return document.querySelector(\"{ready}\") !== null"));
         let status = d.script("return document.querySelector('#status').className");
@@ -307,6 +310,24 @@ fn drag_a_definition_point_and_the_torque_changes() {
     );
     let v1 = v1.as_f64().expect("velocity");
     assert!((v1 - 20.88).abs() < 0.05, "{v1}");
+    // The dynamics view: a new speed typed into the numeric field redraws the response, and the
+    // residual shown is the API's for that speed; the sweep's marker follows.
+    d.click("#tabs button[data-view='dynamics']");
+    d.script(
+        "const f = document.querySelector('#dyn-speed'); f.value = 600; f.dispatchEvent(new Event('change')); \
+         return true",
+    );
+    let shown = d.wait_for(
+        "the dynamics response at 600 rpm",
+        "return loomkin.charts.dyn_sweep.markerX === 600 ? document.querySelector('#dyn-residual').textContent : null",
+    );
+    let shown: f64 =
+        shown.as_str().and_then(|t| t.split_whitespace().next()).and_then(|v| v.parse().ok()).expect("residual");
+    let body = json!({"speed_rpm": 600, "natural_hz": 54, "damping_ratio": 0.05, "samples": 10}).to_string();
+    let api = common::request(server, "POST", "/api/dynamics/response", Some(body.as_bytes())).expect("dynamics");
+    let api_mm = api.json()["report"]["residual_amplitude_mm"].as_f64().expect("residual");
+    assert!((shown - api_mm).abs() < 1e-4, "page {shown} mm vs API {api_mm} mm");
+    d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-dynamics.png"));
     let errors = d.script("return loomkin.errors");
     assert_eq!(errors, json!([]), "script errors on the page");
 }

@@ -25,6 +25,7 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ("GET", "/api/servo/default", None),
         ("GET", "/api/picking/settings", None),
         ("GET", "/api/dobby/default", None),
+        ("GET", "/api/dynamics/example", None),
         ("GET", "/", None),
         (
             "POST",
@@ -46,6 +47,18 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ),
         ("POST", "/api/shed/pareto", Some(json!({"family": "trapezoid", "step": 0.25, "motions_deg": [300]}))),
         ("POST", "/api/dobby/synthesize", Some(serde_json::to_value(DobbyRequest::default()).unwrap())),
+        (
+            "POST",
+            "/api/dynamics/response",
+            Some(json!({"speed_rpm": 600, "natural_hz": 54, "damping_ratio": 0.05, "samples": 50,
+                        "sweep": {"from_rpm": 300, "to_rpm": 900, "points": 20}})),
+        ),
+        (
+            "POST",
+            "/api/dynamics/response",
+            Some(json!({"speed_rpm": 600, "natural_hz": 54, "law": {"law": {"name": "cycloidal"}, "stroke_mm": 80,
+                        "motion_deg": 120}})),
+        ),
     ]
 }
 
