@@ -18,12 +18,18 @@ pub(crate) fn mul(p: &[f64], q: &[f64]) -> Vec<f64> {
         return Vec::new();
     }
     let mut r = vec![0.0; p.len() + q.len() - 1];
+    mul_into(p, q, &mut r);
+    r
+}
+
+/// The product `p·q` written into `r` (zeroed, at least `p.len() + q.len() − 1` long); the same
+/// sums in the same order as [`mul`].
+pub(crate) fn mul_into(p: &[f64], q: &[f64], r: &mut [f64]) {
     for (i, a) in p.iter().enumerate() {
         for (j, b) in q.iter().enumerate() {
             r[i + j] += a * b;
         }
     }
-    r
 }
 
 /// `∫₀ʷ p(t) dt`, exactly.
@@ -64,9 +70,25 @@ pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
 
 /// Largest `|p(t)|` on `[0, w]` and where it occurs (see [`abs_max_by`]).
 pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
-    let dp = deriv(p);
-    let ddp = deriv(&dp);
-    let (g0, mut d0) = (eval(p, 0.0), eval(&dp, 0.0));
+    // The two derivatives on the stack for the degrees the torque models have (≤ 16), as `deriv`
+    // computes them; the heap beyond.
+    let (mut d1, mut d2) = ([0.0; 16], [0.0; 16]);
+    let (heap1, heap2);
+    let (dp, ddp): (&[f64], &[f64]) = if p.len() <= 17 {
+        let n1 = p.len().saturating_sub(1);
+        for k in 1..p.len() {
+            d1[k - 1] = k as f64 * p[k];
+        }
+        for k in 1..n1 {
+            d2[k - 1] = k as f64 * d1[k];
+        }
+        (&d1[..n1], &d2[..n1.saturating_sub(1)])
+    } else {
+        heap1 = deriv(p);
+        heap2 = deriv(&heap1);
+        (&heap1, &heap2)
+    };
+    let (g0, mut d0) = (eval(p, 0.0), eval(dp, 0.0));
     let mut best = (g0.abs(), 0.0);
     let mut take = |v: f64, t: f64| {
         if v.abs() > best.0 {
@@ -78,11 +100,11 @@ pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
     let mut t0 = 0.0;
     for i in 1..=n {
         let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = (eval(p, t1), eval(&dp, t1));
+        let (g1, d1) = (eval(p, t1), eval(dp, t1));
         take(g1, t1);
         if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
             // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
-            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t)));
+            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(dp, t), eval(ddp, t)));
             take(eval(p, t), t);
         }
         t0 = t1;
@@ -206,5 +228,26 @@ mod tests {
         assert!((v - 0.5).abs() < 1e-14 && (t - 0.3).abs() < 1e-7, "{v} {t}");
         let (v, t) = abs_max(&p, 2.0, 8);
         assert!((v - (1.7f64.powi(2) - 0.5)).abs() < 1e-12 && t == 2.0);
+    }
+
+    /// The stack path (degree ≤ 16) and the heap path give the same peak: the same polynomial
+    /// padded with zero coefficients past 17 takes the heap path; both against the root-finding
+    /// route `abs_max_by` with the derivative written out.
+    #[test]
+    fn abs_max_stack_and_heap_paths_agree() {
+        let p: Vec<f64> = (0..9).map(|k| ((k * 7 % 5) as f64 - 2.0) / (k + 1) as f64).collect();
+        let mut long = p.clone();
+        long.resize(20, 0.0);
+        let (a, ta) = abs_max(&p, 1.3, 40);
+        let (b, tb) = abs_max(&long, 1.3, 40);
+        assert_eq!((a, ta), (b, tb));
+        let dp = deriv(&p);
+        let (c, tc) = abs_max_by(1.3, 40, |t| (eval(&p, t), eval(&dp, t)));
+        assert!((a - c).abs() < 1e-13 * a && (ta - tc).abs() < 1e-6, "{a} at {ta} vs {c} at {tc}");
+        assert_eq!(mul(&p, &dp), {
+            let mut r = vec![0.0; p.len() + dp.len() - 1];
+            mul_into(&p, &dp, &mut r);
+            r
+        });
     }
 }

@@ -152,9 +152,14 @@ fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool
         let mp = &mp[..=deg];
         let (pm, tm) = poly::abs_max(mp, w, 2 * deg + 2);
         let (pp, tp) = if with_power {
-            let v: Vec<f64> = (1..8).map(|k| k as f64 * p[k] * m.kappa).collect();
-            let pw = poly::mul(mp, &v);
-            poly::abs_max(&pw, w, 2 * (deg + 6) + 2)
+            let mut v = [0.0; 7];
+            for (k, c) in v.iter_mut().enumerate() {
+                *c = (k + 1) as f64 * p[k + 1] * m.kappa;
+            }
+            let mut pw = [0.0; 14];
+            let len = mp.len() + v.len() - 1;
+            poly::mul_into(mp, &v, &mut pw[..len]);
+            poly::abs_max(&pw[..len], w, 2 * (deg + 6) + 2)
         } else {
             (0.0, 0.0)
         };
