@@ -126,7 +126,21 @@ impl CamProfile {
         }
         let rp = match design.size {
             Size::PrimeRadiusMm(r) => r,
-            Size::MaxPressureDeg(a) => sizing::least_prime_radius(&lift, design, a)?,
+            Size::MaxPressureDeg(a) => {
+                let rp = sizing::least_prime_radius(&lift, design, a)?;
+                if !super::design::LENGTH_RANGE.contains(rp) {
+                    return Err(CamError::Usage {
+                        field: "max_pressure_deg".into(),
+                        reason: format!(
+                            "the least prime radius for {}° is {} mm, outside the allowed {}",
+                            loomkin_units::compact(a),
+                            loomkin_units::compact(rp),
+                            super::design::LENGTH_RANGE.describe("prime_radius_mm")
+                        ),
+                    });
+                }
+                rp
+            }
         };
         let tracks = tracks(&lift, design, rp)?;
         let r = if design.follower == Follower::Flat { 0.0 } else { design.roller_radius_mm };

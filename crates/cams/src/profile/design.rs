@@ -60,8 +60,8 @@ pub struct CamDesign {
     pub size: Size,
 }
 
-/// Allowed lengths (mm).
-pub const LENGTH_RANGE: Range = Range::open_closed(0.0, 1e5, "mm");
+/// Allowed lengths (mm): prime radius, arm, pivot distance (a micrometre up to 100 m).
+pub const LENGTH_RANGE: Range = Range::closed(1e-3, 1e5, "mm");
 /// Allowed roller radius (mm).
 pub const ROLLER_RANGE: Range = Range::closed(0.0, 1e5, "mm");
 /// Allowed offset (mm).

@@ -315,6 +315,8 @@ fn cam_profile_bad_input_names_the_field() {
     );
     fails(&[&base[..], &["oscillating", "--arm-mm", "100", "--pivot-mm", "120"]].concat(), "unit");
     fails(&[&base[..], &["flat"]].concat(), "prime_radius_mm");
+    // a prime radius too small to be represented (was NaN in the JSON before the range floor)
+    fails(&[&base[..], &["translating", "--prime-radius-mm", "1e-300", "--json"]].concat(), "prime_radius_mm");
     fails(&[&base[..], &["translating", "--max-pressure-deg", "95"]].concat(), "max_pressure_deg");
     // A roller that undercuts: the angle and the largest roller are named, no DXF is written.
     let out = loomkin()
