@@ -33,6 +33,11 @@ pub struct FrameForce {
     pub total_n: f64,
 }
 
+/// Power tables of frames over one move, by frame and grid offset (see [`Drive::torque_curve_cached`]).
+#[derive(Debug, Clone, Default)]
+#[allow(clippy::type_complexity)]
+pub struct TableCache(std::collections::HashMap<(usize, u64, usize), (Vec<f64>, Vec<f64>)>);
+
 /// The largest torque over the repeat.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Peak {
@@ -139,6 +144,13 @@ impl<'a> Drive<'a> {
     /// computed once and added at every move (exact, and independent of the number of picks);
     /// otherwise every point is evaluated directly.
     pub fn torque_curve(&self, step_deg: f64) -> Vec<(f64, f64)> {
+        self.torque_curve_cached(step_deg, &mut TableCache::default())
+    }
+
+    /// [`Drive::torque_curve`] keeping each frame's power tables in `cache`, keyed by the frame and
+    /// where its moves meet the grid: a search that shifts frames by multiples of the step's
+    /// divisors (the stagger search) reuses them. Use one cache per loom, pattern and step.
+    pub fn torque_curve_cached(&self, step_deg: f64, cache: &mut TableCache) -> Vec<(f64, f64)> {
         let period = self.motion.repeat_deg();
         let n = (period / step_deg).round().max(1.0) as usize;
         let h = period / n as f64;
@@ -166,9 +178,10 @@ impl<'a> Drive<'a> {
                     })
                     .collect()
             };
-            let (up, down) = (table(true), table(false));
+            let key = (i, x0.to_bits(), count);
+            let (up, down) = cache.0.entry(key).or_insert_with(|| (table(true), table(false)));
             for m in &moves {
-                let tab = if m.rising { &up } else { &down };
+                let tab = if m.rising { &*up } else { &*down };
                 let start = k0 + per_turn * m.pick as i64;
                 for (j, p) in tab.iter().enumerate() {
                     t[(start + j as i64).rem_euclid(n as i64) as usize] += p;
@@ -213,14 +226,14 @@ impl<'a> Drive<'a> {
     }
 
     /// The RMS torque over the repeat, N·m: `√(∫T²dθ / repeat)` by 16-point Gauss–Legendre on
-    /// panels between the joints of every frame's motion (where T is smooth), each at most 5° wide.
+    /// panels between the joints of every frame's motion (where T is smooth), each at most 20° wide.
     pub fn rms(&self) -> f64 {
         let joints = self.motion.joints();
         let rule = gauss_legendre(16);
         let mut sum = 0.0;
         for w in joints.windows(2) {
             let (a, b) = (w[0], w[1]);
-            let parts = ((b - a) / 5.0).ceil().max(1.0) as usize;
+            let parts = ((b - a) / 20.0).ceil().max(1.0) as usize;
             let hp = (b - a) / parts as f64;
             for p in 0..parts {
                 let mid = a + (p as f64 + 0.5) * hp;

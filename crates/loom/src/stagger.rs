@@ -10,7 +10,7 @@
 //! the window, the search first maximises the least clearance; if that stays negative, no stagger
 //! in range gives the window, and the error says how short it falls.
 
-use crate::{Drive, Loom, LoomError, Motion, Pattern, Result, Timing};
+use crate::{Drive, Loom, LoomError, Motion, Pattern, Result, TableCache, Timing};
 use serde::Serialize;
 
 /// What the stagger minimises.
@@ -60,6 +60,8 @@ pub struct StaggerResult {
     pub two_groups_peak_reduction_pct: f64,
     /// Objective evaluations made by the search.
     pub evaluations: usize,
+    /// Window (clearance) checks made by the search.
+    pub clearance_checks: usize,
 }
 
 /// Grid of the search, deg.
@@ -73,6 +75,8 @@ struct Search<'a> {
     objective: Objective,
     groups: Option<Vec<Vec<usize>>>,
     evaluations: usize,
+    clearance_checks: usize,
+    cache: TableCache,
 }
 
 impl Search<'_> {
@@ -100,14 +104,15 @@ impl Search<'_> {
     fn objective(&mut self, x: &[f64]) -> Result<f64> {
         self.evaluations += 1;
         let (loom, motion) = self.setup(x)?;
-        let curve = Drive::new(&loom, &motion, self.pattern).torque_curve(SEARCH_STEP_DEG);
+        let curve = Drive::new(&loom, &motion, self.pattern).torque_curve_cached(SEARCH_STEP_DEG, &mut self.cache);
         Ok(match self.objective {
             Objective::Peak => curve.iter().map(|(_, t)| t.abs()).fold(0.0, f64::max),
             Objective::Rms => (curve.iter().map(|(_, t)| t * t).sum::<f64>() / curve.len() as f64).sqrt(),
         })
     }
 
-    fn clearance(&self, x: &[f64]) -> Result<f64> {
+    fn clearance(&mut self, x: &[f64]) -> Result<f64> {
+        self.clearance_checks += 1;
         let (loom, motion) = self.setup(x)?;
         Ok(Timing::new(&loom, &motion, self.pattern)?.min_clearance_coarse(SEARCH_STEP_DEG))
     }
@@ -173,7 +178,8 @@ pub fn optimise_stagger(loom: &Loom, pattern: &Pattern, objective: Objective) ->
     let n = loom.frame_count();
     let groups = loom.shedding.groups.clone();
     let dims = groups.as_ref().map_or(n, Vec::len);
-    let mut s = Search { loom, pattern, objective, groups, evaluations: 0 };
+    let mut s =
+        Search { loom, pattern, objective, groups, evaluations: 0, clearance_checks: 0, cache: TableCache::default() };
     let zero = vec![0.0; dims];
     let two: Vec<f64> = match &s.groups {
         None => (0..n).map(|i| if i % 2 == 1 { 7.5f64.min(loom.shedding.max_stagger_deg) } else { 0.0 }).collect(),
@@ -240,5 +246,6 @@ pub fn optimise_stagger(loom: &Loom, pattern: &Pattern, objective: Objective) ->
         two_groups: two_case,
         best: best_case,
         evaluations: s.evaluations,
+        clearance_checks: s.clearance_checks,
     })
 }

@@ -163,8 +163,10 @@ impl<'a> Timing<'a> {
         let h = (to - from) / n as f64;
         let vals: Vec<f64> = (0..=n).map(|k| c(from + k as f64 * h)).collect();
         let mut best = vals.iter().copied().fold(f64::INFINITY, f64::min);
+        // Strict local minima of the grid only (a dwell's flat clearance is not refined point by point).
         for k in 1..n {
-            if vals[k] <= vals[k - 1] && vals[k] <= vals[k + 1] {
+            let strict = vals[k] < vals[k - 1] || vals[k] < vals[k + 1];
+            if strict && vals[k] <= vals[k - 1] && vals[k] <= vals[k + 1] {
                 let (_, m) = golden_max(|t| -c(t), from + (k - 1) as f64 * h, from + (k + 1) as f64 * h);
                 best = best.min(-m);
             }
@@ -218,12 +220,20 @@ impl<'a> Timing<'a> {
         })
     }
 
-    /// The largest clear height at the carrier's front edge over the repeat, m.
+    /// The largest clear height at the carrier's front edge over the repeat, m: per pick the
+    /// largest of a 5° grid, refined by golden-section search between its neighbours.
     pub fn max_clear_m(&self) -> f64 {
         let (a, b) = self.turn();
+        let h = (b - a) / 72.0;
         (0..self.upper.len())
-            .flat_map(|p| (0..=72).map(move |k| (p, a + (b - a) * k as f64 / 72.0)))
-            .map(|(p, t)| self.clear_m(p, self.x_c, 360.0 * p as f64 + t))
+            .map(|p| {
+                let f = |t: f64| self.clear_m(p, self.x_c, 360.0 * p as f64 + t);
+                let (k, v) = (0..=72)
+                    .map(|k| (k, f(a + h * k as f64)))
+                    .fold((0, f64::NEG_INFINITY), |best, kv| if kv.1 > best.1 { kv } else { best });
+                let t = a + h * k as f64;
+                golden_max(f, (t - h).max(a), (t + h).min(b)).1.max(v)
+            })
             .fold(f64::NEG_INFINITY, f64::max)
     }
 }
