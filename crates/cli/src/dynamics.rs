@@ -32,6 +32,41 @@ pub enum DynCommand {
     /// Shape the cycle's rises and returns for least residual vibration across a speed band, peak
     /// acceleration at most 110 % of the modified sine's; compares with modified-sine laws.
     Optimize(OptimizeArgs),
+    /// Two-mass train (drive stiffness to the dobby or cam-box output mass, frame stiffness to the frame):
+    /// modal frequencies, the drive's and the frame's peak dynamic errors (located exactly) and the bound
+    /// on the frame's residual vibration in the dwells.
+    TwoMass(TwoMassArgs),
+}
+
+/// `loomkin dyn two-mass`.
+#[derive(Debug, Args)]
+pub struct TwoMassArgs {
+    /// The cycle file (TOML): the motion of the drive's input.
+    file: PathBuf,
+    /// Main-shaft speed in rpm (default: the file's `speed_rpm`, else 300).
+    #[arg(long)]
+    speed_rpm: Option<f64>,
+    /// Mass of the drive's output (dobby or cam-box lever, reduced to the frame's motion), kg.
+    #[arg(long)]
+    drive_mass_kg: f64,
+    /// Stiffness from the input to the drive mass, N/m.
+    #[arg(long)]
+    drive_stiffness_n_m: f64,
+    /// Mass of the heald frame, kg.
+    #[arg(long)]
+    frame_mass_kg: f64,
+    /// Stiffness from the drive mass to the frame, N/m.
+    #[arg(long)]
+    frame_stiffness_n_m: f64,
+    /// Modal damping ratio ζ of both modes (0 ≤ ζ < 1).
+    #[arg(long, default_value_t = 0.0)]
+    damping_ratio: f64,
+    /// The periodic steady state instead of one cycle from rest.
+    #[arg(long)]
+    steady: bool,
+    /// Print machine-readable JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 /// `loomkin dyn optimize`.
@@ -189,6 +224,7 @@ pub fn run(cmd: DynCommand) -> Result<()> {
         DynCommand::Spectrum(a) => spectrum_cmd(a),
         DynCommand::Compensate(a) => compensate_cmd(a),
         DynCommand::Optimize(a) => optimize_cmd(a),
+        DynCommand::TwoMass(a) => two_mass_cmd(a),
     }
 }
 
@@ -652,5 +688,64 @@ fn optimize_cmd(a: OptimizeArgs) -> Result<()> {
             s.ca_ratio
         )?;
     }
+    Ok(())
+}
+
+fn two_mass_cmd(a: TwoMassArgs) -> Result<()> {
+    let cycle = read_cycle(&a.file)?;
+    let speed = speed_of(a.speed_rpm, &cycle)?;
+    let tm = loomkin_dynamics::TwoMass::new(
+        a.drive_mass_kg,
+        a.drive_stiffness_n_m,
+        a.frame_mass_kg,
+        a.frame_stiffness_n_m,
+        a.damping_ratio,
+    )?;
+    let exc = loomkin_dynamics::Excitation::from_cycle(&cycle, speed);
+    let start = if a.steady { Start::Steady } else { Start::Rest };
+    let modes = tm.respond(&exc, start, 1)?;
+    let [drive, frame] = tm.error_extremes(&modes);
+    let residual = tm.frame_residual_bound(&exc, &modes);
+    let u = units(&cycle);
+    let p = u.pos;
+    let hz = tm.omega.map(|w| w / std::f64::consts::TAU);
+    let (d, f) = (drive.peak_abs(), frame.peak_abs());
+    let shaft_hz = speed.hz();
+    let figures = [d.0, f.0, residual, hz[0], hz[1]];
+    if figures.iter().any(|v| !v.is_finite()) {
+        anyhow::bail!("the two-mass figures are not finite numbers at these masses and stiffnesses (an overflow)");
+    }
+    if a.json {
+        let mut m = serde_json::Map::new();
+        m.insert("natural_hz".into(), json!(hz));
+        m.insert(format!("peak_drive_error_{p}"), json!(d.0 * u.scale));
+        m.insert("peak_drive_error_at_deg".into(), json!(exc.angle_deg(d.1)));
+        m.insert(format!("peak_frame_error_{p}"), json!(f.0 * u.scale));
+        m.insert("peak_frame_error_at_deg".into(), json!(exc.angle_deg(f.1)));
+        m.insert(format!("frame_residual_bound_{p}"), json!(residual * u.scale));
+        m.insert("rigidity_ratio".into(), json!(hz[0] / shaft_hz));
+        m.insert("speed_rpm".into(), json!(speed.rpm()));
+        m.insert("damping_ratio".into(), json!(a.damping_ratio));
+        m.insert("start".into(), json!(loomkin_dynamics::start_name(start)));
+        return output::json(&serde_json::Value::Object(m));
+    }
+    if hz[0] / shaft_hz < loomkin_dynamics::VDI_2149_MIN_RATIO {
+        output::warning(format!(
+            "rigidity ratio f_1/f_shaft = {} is below 10 (VDI 2149 Blatt 1): read the elastic response",
+            loomkin_units::compact(hz[0] / shaft_hz)
+        ));
+    }
+    outln!(
+        "{} at {} rpm, two masses, ζ = {}, {}",
+        a.file.display(),
+        loomkin_units::compact(speed.rpm()),
+        loomkin_units::compact(a.damping_ratio),
+        if a.steady { "periodic steady state" } else { "one cycle from rest" }
+    )?;
+    outln!("natural frequencies: {:.4} Hz, {:.4} Hz", hz[0], hz[1])?;
+    outln!("peak drive error |x1 − s|: {:.6} {p} at {:.3}°", d.0 * u.scale, exc.angle_deg(d.1))?;
+    outln!("peak frame error |x2 − s|: {:.6} {p} at {:.3}°", f.0 * u.scale, exc.angle_deg(f.1))?;
+    outln!("frame residual vibration in the dwells (bound, largest): {:.6} {p}", residual * u.scale)?;
+    outln!("rigidity ratio f_1/f_shaft (VDI 2149): {:.3}", hz[0] / shaft_hz)?;
     Ok(())
 }

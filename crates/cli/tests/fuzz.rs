@@ -70,6 +70,7 @@ const SEEDS: &[&str] = &[
     "dyn sweep --speed-rpm 200:400:100 --natural-hz 80 {cycle} --json",
     "dyn spectrum cycloidal modified-trapezoid:ramp=0.1",
     "dyn compensate --natural-hz 80 -o {out}.csv {cycle}",
+    "dyn two-mass {cycle} --drive-mass-kg 8 --drive-stiffness-n-m 3e6 --frame-mass-kg 20 --frame-stiffness-n-m 2.2e6 --json",
     "cam table --format csv -o {out}.csv {cycle}",
     "cam table --format xyvaj -o - --law cycloidal --stroke-mm 100 --motion-deg 120",
     "cam table --format st -o {out}.txt --law poly345 --stroke-mm 50 --motion-deg 90 --json",

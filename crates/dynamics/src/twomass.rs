@@ -10,6 +10,7 @@
 //! is each mode's (the 4×4 one-cycle map is block-diagonal in modal coordinates).
 
 use crate::excitation::Excitation;
+use crate::peaks::{Extremes, extremes_of, grid_size};
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use crate::{Oscillator, Result};
 use loomkin_units::Range;
@@ -78,6 +79,32 @@ impl TwoMass {
             out[1] += deta;
             out[2] += self.phi2[i] * eta;
             out[3] += self.phi2[i] * deta;
+        }
+        out
+    }
+
+    /// Extremes of the drive error `y₁` and the frame error `y₂` over the computed motion, located exactly:
+    /// on every piece both modes are closed-form, so `yⱼ = Σᵢ φⱼᵢ·ηᵢ` and its two derivatives are too; the
+    /// roots of `yⱼ'` are bracketed on a grid finer than a third of the faster mode's half period and
+    /// refined by Newton ([`extremes_of`]). Locations are global times (s).
+    pub fn error_extremes(&self, modes: &[Vec<Solved>; 2]) -> [Extremes; 2] {
+        let mut out = [Extremes::EMPTY; 2];
+        let w_fast = self.omega[1].max(self.omega[0]);
+        for (a, b) in modes[0].iter().zip(&modes[1]) {
+            let dur = a.sol.duration();
+            let [e1, e2] = extremes_of(dur, grid_size(dur, w_fast), |t| {
+                let (ya, yb) = (a.sol.derivs_n::<3>(t), b.sol.derivs_n::<3>(t));
+                [
+                    [ya[0] + yb[0], ya[1] + yb[1], ya[2] + yb[2]],
+                    [
+                        self.phi2[0] * ya[0] + self.phi2[1] * yb[0],
+                        self.phi2[0] * ya[1] + self.phi2[1] * yb[1],
+                        self.phi2[0] * ya[2] + self.phi2[1] * yb[2],
+                    ],
+                ]
+            });
+            out[0].merge(&e1, a.t0);
+            out[1].merge(&e2, a.t0);
         }
         out
     }

@@ -131,3 +131,45 @@ fn optimize_meets_the_goal_at_300_rpm() {
     assert!(v["peak_acceleration_ratio"].as_f64().unwrap() <= 1.1, "{v}");
     assert!(v["residual_amplitude_mm"].as_f64().is_some());
 }
+
+/// A two-mass train whose drive is nearly rigid is the single-mass follower of the frame: the frame's
+/// peak error agrees with `dyn response` at f_n = √(k₂/m₂)/2π (an independent route through the
+/// single-mass solution).
+#[test]
+fn two_mass_with_a_rigid_drive_is_the_single_mass_frame() {
+    let fn_hz = (2.2e6f64 / 20.0).sqrt() / std::f64::consts::TAU;
+    let single = stdout_json(&[
+        "dyn",
+        "response",
+        HEALD,
+        "--speed-rpm",
+        "500",
+        "--natural-hz",
+        &fn_hz.to_string(),
+        "--damping-ratio",
+        "0.05",
+        "--json",
+    ]);
+    let two = stdout_json(&[
+        "dyn",
+        "two-mass",
+        HEALD,
+        "--speed-rpm",
+        "500",
+        "--drive-mass-kg",
+        "1",
+        "--drive-stiffness-n-m",
+        "1e12",
+        "--frame-mass-kg",
+        "20",
+        "--frame-stiffness-n-m",
+        "2.2e6",
+        "--damping-ratio",
+        "0.05",
+        "--json",
+    ]);
+    let (a, b) = (single["peak_dynamic_error_mm"].as_f64().unwrap(), two["peak_frame_error_mm"].as_f64().unwrap());
+    assert!((a - b).abs() < 1e-4 * a, "single {a} mm vs two-mass {b} mm");
+    assert!((two["natural_hz"][0].as_f64().unwrap() - fn_hz).abs() < 1e-4 * fn_hz);
+    assert!(two["peak_drive_error_mm"].as_f64().unwrap() < 1e-3 * b);
+}

@@ -286,6 +286,37 @@ fn two_mass_matches_dop853() {
     assert!(tm.frame_residual_bound(&exc, &modes) > 0.0);
 }
 
+/// The two-mass error extremes, located by Newton on the closed form, bound a dense sampling of the
+/// same closed form and are reached by it (to the sampling's second-order error), and the value at the
+/// reported time is the reported value.
+#[test]
+fn two_mass_extremes_are_exact() {
+    use loomkin_dynamics::{Excitation, TwoMass};
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    let tm = TwoMass::new(8.0, 3.0e6, 20.0, 2.2e6, 0.04).unwrap();
+    let exc = Excitation::from_cycle(&cycle, ShaftSpeed::from_rpm(500.0).unwrap());
+    let modes = tm.respond(&exc, Start::Rest, 1).unwrap();
+    let [drive, frame] = tm.error_extremes(&modes);
+    let total: f64 = exc.pieces.iter().map(|p| p.duration).sum();
+    let n = 400_000;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for i in 0..=n {
+        let e = tm.errors(&modes, total * i as f64 / n as f64);
+        for (j, v) in [e[0], e[2]].into_iter().enumerate() {
+            lo[j] = lo[j].min(v);
+            hi[j] = hi[j].max(v);
+        }
+    }
+    for (j, ex) in [drive, frame].iter().enumerate() {
+        let scale = ex.max.0.abs().max(ex.min.0.abs());
+        assert!(hi[j] <= ex.max.0 + 1e-12 * scale && lo[j] >= ex.min.0 - 1e-12 * scale, "mass {j}: sampled beyond");
+        assert!(ex.max.0 - hi[j] < 1e-6 * scale && lo[j] - ex.min.0 < 1e-6 * scale, "mass {j}: not reached");
+        let at = tm.errors(&modes, ex.max.1);
+        let v = if j == 0 { at[0] } else { at[2] };
+        assert!((v - ex.max.0).abs() < 1e-12 * scale, "mass {j}: value at the location");
+    }
+}
+
 /// The case proptest found (slow frame, short motions, undamped): the polynomial route lost 7 digits.
 #[test]
 fn slow_frame_short_motions() {
