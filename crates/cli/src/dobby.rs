@@ -27,6 +27,9 @@ pub enum DobbyCommand {
     Plot(PlotArgs),
     /// The α sweep of the paper: analysis of the cam and synthesis of the law for each α (θ = α).
     Sweep(SweepArgs),
+    /// Tolerance study: link lengths, lever angles and cam semi-axes drawn from stated distributions (TOML);
+    /// output-angle error, pressure angle, dead-point margin as percentiles, histograms, share failing.
+    Tolerance(crate::dobby_tolerance::ToleranceArgs),
 }
 
 /// Link lengths and lever angles; defaults are the paper's (eq. 10, α = 47°).
@@ -287,6 +290,7 @@ pub fn run(cmd: DobbyCommand) -> Result<()> {
         DobbyCommand::Synthesize(a) => synthesize_cmd(a),
         DobbyCommand::Plot(a) => plot_cmd(a),
         DobbyCommand::Sweep(a) => sweep_cmd(a),
+        DobbyCommand::Tolerance(a) => crate::dobby_tolerance::run(a),
     }
 }
 

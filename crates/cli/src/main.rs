@@ -6,6 +6,7 @@
 mod cam;
 mod cycle;
 mod dobby;
+mod dobby_tolerance;
 mod dynamics;
 mod law;
 mod loom;

@@ -9,7 +9,7 @@ use clap::Args;
 use loomkin_io::Table;
 use loomkin_picking::montecarlo::{Draw, DrawResult, INPUTS, RESULTS, Report};
 use loomkin_picking::{Mechanism, MonteCarlo};
-use loomkin_study::Progress;
+use loomkin_study::{Progress, Summary};
 use std::path::PathBuf;
 
 /// `pick montecarlo`.
@@ -164,6 +164,53 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
     text_report(&report)
 }
 
+fn text_report(r: &Report) -> Result<()> {
+    outln!(
+        "pick Monte-Carlo: {} draws, seed {}, route {} ({} by numerical integration), {} not simulated, {} separated early",
+        r.draws,
+        r.seed,
+        r.method.name(),
+        r.ode_draws,
+        r.not_simulated,
+        r.separation_draws
+    )?;
+    outln!("failing a limit or not simulated: {} of {} ({:.3} %)", r.failing, r.draws, 100.0 * r.fail_share)?;
+    let inputs: Vec<(&str, &Summary)> = r.inputs.iter().map(|q| (q.name.as_str(), &q.summary)).collect();
+    let results: Vec<(&str, &Summary)> = r.results.iter().map(|q| (q.name, &q.summary)).collect();
+    summary_table(&inputs, &results)
+}
+
+/// The summaries as a table (mean, sd, percentiles, count failing) and the results' histograms as bars.
+pub fn summary_table(inputs: &[(&str, &Summary)], results: &[(&str, &Summary)]) -> Result<()> {
+    let Some((_, first)) = results.first() else {
+        return Ok(());
+    };
+    let mut head = format!("{:<26} {:>12} {:>11}", "quantity", "mean", "sd");
+    for p in &first.percentiles {
+        head.push_str(&format!(" {:>11}", format!("p{}", p.p)));
+    }
+    head.push_str(&format!(" {:>9}", "failing"));
+    outln!("{head}")?;
+    for (name, s) in inputs.iter().chain(results) {
+        let mut line = format!("{name:<26} {:>12.6} {:>11.4e}", s.mean, s.sd);
+        for p in &s.percentiles {
+            line.push_str(&format!(" {:>11.6}", p.value));
+        }
+        let failing = if s.limit.is_some() { s.failing.to_string() } else { "—".into() };
+        line.push_str(&format!(" {failing:>9}"));
+        outln!("{line}")?;
+    }
+    outln!(
+        "histograms, smallest to largest value ({} bins; edges and counts with --json):",
+        first.histogram.counts.len()
+    )?;
+    for (name, s) in results {
+        let h = &s.histogram;
+        outln!("{name:<26} {:>11.6} |{}| {:.6}", h.edges[0], bars(&h.counts), h.edges[h.edges.len() - 1])?;
+    }
+    Ok(())
+}
+
 /// Eight-level bars of a histogram's counts.
 fn bars(counts: &[u64]) -> String {
     let top = counts.iter().copied().max().unwrap_or(0).max(1);
@@ -177,51 +224,4 @@ fn bars(counts: &[u64]) -> String {
             }
         })
         .collect()
-}
-
-fn text_report(r: &Report) -> Result<()> {
-    outln!(
-        "pick Monte-Carlo: {} draws, seed {}, route {} ({} by numerical integration), {} not simulated, {} separated early",
-        r.draws,
-        r.seed,
-        r.method.name(),
-        r.ode_draws,
-        r.not_simulated,
-        r.separation_draws
-    )?;
-    outln!("failing a limit or not simulated: {} of {} ({:.3} %)", r.failing, r.draws, 100.0 * r.fail_share)?;
-    let Some(first) = r.results.first() else {
-        return Ok(());
-    };
-    let ps: Vec<String> = first.summary.percentiles.iter().map(|p| format!("p{}", p.p)).collect();
-    let mut head = format!("{:<26} {:>12} {:>11}", "quantity", "mean", "sd");
-    for p in &ps {
-        head.push_str(&format!(" {p:>11}"));
-    }
-    head.push_str(&format!(" {:>9}", "failing"));
-    outln!("{head}")?;
-    let print = |name: &str, s: &loomkin_study::Summary| -> Result<()> {
-        let mut line = format!("{name:<26} {:>12.6} {:>11.4e}", s.mean, s.sd);
-        for p in &s.percentiles {
-            line.push_str(&format!(" {:>11.6}", p.value));
-        }
-        let failing = if s.limit.is_some() { s.failing.to_string() } else { "—".into() };
-        line.push_str(&format!(" {failing:>9}"));
-        outln!("{line}")
-    };
-    for q in &r.inputs {
-        print(&q.name, &q.summary)?;
-    }
-    for q in &r.results {
-        print(q.name, &q.summary)?;
-    }
-    outln!(
-        "histograms, smallest to largest value ({} bins; edges and counts with --json):",
-        first.summary.histogram.counts.len()
-    )?;
-    for q in &r.results {
-        let h = &q.summary.histogram;
-        outln!("{:<26} {:>11.6} |{}| {:.6}", q.name, h.edges[0], bars(&h.counts), h.edges[h.edges.len() - 1])?;
-    }
-    Ok(())
 }

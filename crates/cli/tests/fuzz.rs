@@ -18,8 +18,8 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Working invocations, one per line of use; `{cycle}`, `{axis}`, `{drive}`, `{mechanism}`, `{cam}`,
-/// `{spec}`, `{mc}`, `{loom}`, `{wif}`, `{liftplan}` are valid input files and `{out}` a fresh output path without
-/// extension.
+/// `{spec}`, `{mc}`, `{tol}`, `{loom}`, `{wif}`, `{liftplan}` are valid input files and `{out}` a fresh output path
+/// without extension.
 const SEEDS: &[&str] = &[
     "law list",
     "law list --json",
@@ -103,6 +103,9 @@ const SEEDS: &[&str] = &[
     "shed table --csv --shard 1/2",
     "dyn sweep --speed-rpm 200:400:100 --natural-hz 80 {cycle} --csv --shard 2/2",
     "dobby sweep --step-deg 10 --json --shard 2/7",
+    "dobby tolerance {tol}",
+    "dobby tolerance {tol} --json",
+    "dobby tolerance {tol} --csv --shard 1/2",
 ];
 
 const NUMBERS: &[&str] = &[
@@ -227,6 +230,12 @@ fn files() -> Files {
         ("loom", example("shuttle-loom.toml")),
         ("wif", example("twill-2-2.wif")),
         ("liftplan", example("twill-3-1.txt")),
+        (
+            "tol",
+            "draws = 0x3\nseed = 3\nstep_deg = 10\n[dimensions]\nl6_m = { dist = \"normal\", mean = 0.4, sd = 0.001 }\n\
+             alpha_deg = { dist = \"uniform\", min = 46, max = 48 }\n[limits]\npressure_angle_deg = { max = 60 }\n"
+                .into(),
+        ),
     ];
     let mut valid = Vec::new();
     let mut hostile =
@@ -551,6 +560,7 @@ fn every_hostile_file_in_every_file_argument() {
                 || s.contains("{cam}")
                 || s.contains("{spec}")
                 || s.contains("{mc}")
+                || s.contains("{tol}")
         })
         .collect();
     let mut findings = Vec::new();

@@ -53,6 +53,8 @@ pub use dobby::pose::{MechanismPose, nearest_state};
 pub use dobby::report::{CamChecks, CamProfile};
 pub use dobby::sweep::{SweepRow, alpha_sweep};
 pub use dobby::synthesis::{Synthesis, SynthesisOptions, SynthesisRow, SynthesisSummary, synthesize};
+pub use dobby::tolerance;
+pub use dobby::tolerance::Tolerance;
 pub use dyad::{circle_circle, line_circle};
 pub use error::{MechError, Result};
 pub use newton::{LoopState, NewtonOptions, Position};

@@ -1,5 +1,5 @@
 //! Property tests for every file parser of loomkin (cycle, drive, mechanism, cam point table,
-//! shedding spec, Monte-Carlo study): arbitrary text and mutated valid files never panic; a refusal is one line
+//! shedding spec, Monte-Carlo and tolerance studies): arbitrary text and mutated valid files never panic; a refusal is one line
 //! without `NaN`; an accepted file holds only finite numbers.
 //!
 //! They live here because the workbench crate depends on every library crate. Cases per
@@ -19,6 +19,8 @@ path_m = 1.53\nfree_shed_deg = 120.0\n";
 const MONTECARLO: &str = "draws = 5\nseed = 3\nbins = 4\npercentiles = [5, 50, 95]\n[settings]\n\
 speed_rpm = { dist = \"normal\", mean = 200, sd = 4, min = 190, max = 210 }\nplay_mm = { dist = \"uniform\", min = 0, \
 max = 10 }\nshuttle_g = 420\n[limits]\nvelocity_m_s = { min = 15, max = 19 }\n";
+const TOLERANCE: &str = "draws = 3\nseed = 3\nstep_deg = 10\n[dimensions]\nl6_m = { dist = \"normal\", mean = 0.4, \
+sd = 0.001 }\nalpha_deg = { dist = \"uniform\", min = 46, max = 48 }\n[limits]\npressure_angle_deg = { max = 60 }\n";
 const SPEC: &str = "motion_deg = 180\npositive = \"0.5:sine-ramp:0:1,0.5:cosine-ramp:1:0\"\n";
 
 fn cam_table() -> String {
@@ -57,6 +59,9 @@ fn parsers() -> Vec<(&'static str, String, Parser)> {
         }),
         ("pick montecarlo study", MONTECARLO.to_string(), |t| {
             loomkin_picking::MonteCarlo::from_toml(t).map(|m| format!("{m:?}")).map_err(|e| e.to_string())
+        }),
+        ("dobby tolerance study", TOLERANCE.to_string(), |t| {
+            loomkin_mech::Tolerance::from_toml(t).map(|m| format!("{:?}", m.nominal)).map_err(|e| e.to_string())
         }),
     ]
 }

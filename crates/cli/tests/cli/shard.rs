@@ -164,3 +164,53 @@ fn montecarlo_with_zero_spread_is_pick_simulate() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn dobby_tolerance_shards_concatenate_and_merge() {
+    let dir = std::env::temp_dir().join(format!("loomkin-tol-shard-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let study = dir.join("tol.toml");
+    std::fs::write(
+        &study,
+        "draws = 5\nseed = 8\nstep_deg = 10\n[dimensions]\nl6_m = { dist = \"normal\", mean = 0.4, sd = 0.001 }\n\
+         cam_a_m = { dist = \"uniform\", min = 0.365, max = 0.367 }\n[limits]\noutput_angle_error_deg = { max = 0.2 }\n",
+    )
+    .unwrap();
+    let s = study.to_str().unwrap();
+    check(&["dobby", "tolerance", s], 5);
+    let mut cat = Vec::new();
+    for i in 1..=7 {
+        cat.extend(run(&with(&["dobby", "tolerance", s, "--csv", "--shard"], &[&format!("{i}/7")])));
+    }
+    let draws = dir.join("draws.csv");
+    std::fs::write(&draws, &cat).unwrap();
+    let direct = run(&with(&["dobby", "tolerance", s, "--json"], &[]));
+    let merged = run(&with(&["dobby", "tolerance", s, "--json", "--from-draws"], &[draws.to_str().unwrap()]));
+    assert_eq!(String::from_utf8_lossy(&merged), String::from_utf8_lossy(&direct));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// With no spread the made mechanism is the nominal one: zero output-angle error, and the pressure
+/// angle of `dobby analyze` at the same step.
+#[test]
+fn dobby_tolerance_with_zero_spread_is_the_analysis() {
+    let dir = std::env::temp_dir().join(format!("loomkin-tol-zero-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let study = dir.join("tol.toml");
+    std::fs::write(
+        &study,
+        "draws = 2\nseed = 1\nstep_deg = 5\n[dimensions]\nl2_m = { dist = \"normal\", mean = 0.66, sd = 0 }\n",
+    )
+    .unwrap();
+    let r: serde_json::Value =
+        serde_json::from_slice(&run(&with(&["dobby", "tolerance", study.to_str().unwrap(), "--json"], &[]))).unwrap();
+    let a: serde_json::Value =
+        serde_json::from_slice(&run(&with(&["dobby", "analyze", "--step-deg", "5", "--json"], &[]))).unwrap();
+    let checks = &a["summary"];
+    let want = checks["mu_out_max_deg"].as_f64().unwrap().max(checks["mu_b_max_deg"].as_f64().unwrap());
+    let res = r["results"].as_array().unwrap();
+    assert_eq!(res[0]["name"], "output_angle_error_deg");
+    assert_eq!(res[0]["max"].as_f64().unwrap(), 0.0);
+    assert_eq!(res[1]["mean"].as_f64().unwrap(), want);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,5 +1,5 @@
 //! The modulator of a Stäubli-type rotary dobby (series 2600): geometry, analysis (task 1),
-//! synthesis (task 2), checks and the α sweep.
+//! synthesis (task 2), checks, the α sweep and tolerance studies.
 
 pub(crate) mod analysis;
 pub(crate) mod cam;
@@ -12,3 +12,4 @@ pub(crate) mod refine;
 pub(crate) mod report;
 pub(crate) mod sweep;
 pub(crate) mod synthesis;
+pub mod tolerance;

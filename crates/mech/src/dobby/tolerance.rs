@@ -1,0 +1,378 @@
+//! Tolerance study of the modulator: link lengths, lever angles and the elliptic cam's semi-axes
+//! drawn from stated distributions, the output-angle error, pressure angle and dead-point margin
+//! as distributions (percentiles, histograms, share failing a limit).
+//!
+//! The study is a TOML file (see `examples/dobby-tolerance.toml`): `draws`, `seed`, optional
+//! `step_deg` (analysis step, default 2°), `bins`, `percentiles`, a `[dimensions]` table with any of
+//! `l2_m`, `l3_m`, `l3p_m`, `l6_m`, `alpha_deg`, `theta_deg`, `cam_a_m`, `cam_b_m` (a number is fixed;
+//! `{ dist = "normal", mean, sd, min?, max? }` or `{ dist = "uniform", min, max }`), and `[limits]`
+//! on the results. The nominal mechanism has each dimension at its stated centre (the normal's
+//! mean, the uniform's midpoint) and the paper's values for the rest.
+//!
+//! Results of a draw, over one input turn at the analysis step:
+//!
+//! * `output_angle_error_deg`: `max |φ6 − φ6,nominal|` at the same input angles φ2 — how far the
+//!   made mechanism's output departs from the designed one;
+//! * `pressure_angle_deg`: the largest pressure angle on the drive path, `max(μ6, μB)` over the
+//!   turn (output slot and cam roller B, as in [`crate::AnalysisSummary`]);
+//! * `dead_point_margin_deg`: `arccos(l6/l2) − max |φ6 − φ2|`, how far the lag stays from the lag
+//!   at which the output pressure angle reaches 90° (the slider-crank's dead point,
+//!   [`crate::ModulatorGeometry::max_lag_deg`]).
+//!
+//! Draws use [`loomkin_study::uniform`]`(seed, draw, variable)`, the variable being the place of
+//! the dimension in [`DIMENSIONS`], so any draw is computed alone (shards, threads) and a
+//! dimension's draws do not depend on which others are drawn.
+
+use crate::{AnalysisOptions, Cam, MechError, ModulatorGeometry, Result, analyze};
+use loomkin_study::{DistSpec, Distribution, Limit, Progress, Summary, evaluate_indexed, uniform};
+use serde::{Deserialize, Serialize};
+
+/// The dimensions that may be drawn, in the order of their stream variables.
+pub const DIMENSIONS: [&str; 8] = ["l2_m", "l3_m", "l3p_m", "l6_m", "alpha_deg", "theta_deg", "cam_a_m", "cam_b_m"];
+
+/// The results of a draw.
+pub const RESULTS: [&str; 3] = ["output_angle_error_deg", "pressure_angle_deg", "dead_point_margin_deg"];
+
+/// Most draws a study may ask for.
+pub const MAX_DRAWS: u64 = 10_000_000;
+
+/// The paper's ellipse cam: semi-axes (m).
+const PAPER_CAM: [f64; 2] = [0.366, 0.577];
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StudyFile {
+    draws: u64,
+    seed: u64,
+    #[serde(default)]
+    step_deg: Option<f64>,
+    #[serde(default)]
+    bins: Option<usize>,
+    #[serde(default)]
+    percentiles: Option<Vec<f64>>,
+    #[serde(default)]
+    dimensions: DimensionsFile,
+    #[serde(default)]
+    limits: LimitsFile,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DimensionsFile {
+    l2_m: Option<DistSpec>,
+    l3_m: Option<DistSpec>,
+    l3p_m: Option<DistSpec>,
+    l6_m: Option<DistSpec>,
+    alpha_deg: Option<DistSpec>,
+    theta_deg: Option<DistSpec>,
+    cam_a_m: Option<DistSpec>,
+    cam_b_m: Option<DistSpec>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LimitsFile {
+    output_angle_error_deg: Option<Limit>,
+    pressure_angle_deg: Option<Limit>,
+    dead_point_margin_deg: Option<Limit>,
+}
+
+fn invalid(field: &str, reason: impl Into<String>) -> MechError {
+    MechError::Invalid { field: field.into(), reason: reason.into() }
+}
+
+fn centre(d: &Distribution) -> f64 {
+    match *d {
+        Distribution::Fixed { value } => value,
+        Distribution::Normal { mean, .. } => mean,
+        Distribution::Uniform { min, max } => 0.5 * (min + max),
+    }
+}
+
+/// A tolerance study of the modulator, checked, with its nominal analysis.
+#[derive(Debug, Clone)]
+pub struct Tolerance {
+    /// Number of draws.
+    pub draws: u64,
+    /// Seed of the draw stream.
+    pub seed: u64,
+    /// Analysis step (deg).
+    pub step_deg: f64,
+    /// Histogram bins.
+    pub bins: usize,
+    /// Percentiles reported (%).
+    pub percentiles: Vec<f64>,
+    /// Distribution of each of [`DIMENSIONS`]; `None` keeps the nominal value.
+    pub dimensions: [Option<Distribution>; 8],
+    /// Limit of each of [`RESULTS`].
+    pub limits: [Option<Limit>; 3],
+    /// The nominal dimensions, in the order of [`DIMENSIONS`].
+    pub nominal: [f64; 8],
+    /// The nominal output angle φ6 (deg) at each analysis input angle.
+    nominal_phi6_deg: Vec<f64>,
+}
+
+impl Tolerance {
+    /// Reads and checks a study file and analyses the nominal mechanism (which must assemble).
+    pub fn from_toml(text: &str) -> Result<Self> {
+        let f: StudyFile = toml::from_str(text).map_err(|e| {
+            let m = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+            invalid("tolerance study", m)
+        })?;
+        if f.draws == 0 || f.draws > MAX_DRAWS {
+            return Err(invalid(
+                "draws",
+                format!("draws = {} is out of range: allowed 1 ≤ draws ≤ {MAX_DRAWS}", f.draws),
+            ));
+        }
+        let step_deg = f.step_deg.unwrap_or(2.0);
+        loomkin_units::Range::closed(0.1, 30.0, "°").check("step_deg", step_deg)?;
+        let bins = f.bins.unwrap_or(20);
+        if !(1..=1000).contains(&bins) {
+            return Err(invalid("bins", format!("bins = {bins} is out of range: allowed 1 ≤ bins ≤ 1000")));
+        }
+        let percentiles = f.percentiles.unwrap_or_else(|| loomkin_study::DEFAULT_PERCENTILES.to_vec());
+        if percentiles.is_empty() || percentiles.len() > 101 || percentiles.iter().any(|p| !(0.0..=100.0).contains(p)) {
+            return Err(invalid("percentiles", "give 1 to 101 values, each 0 ≤ p ≤ 100 (%)"));
+        }
+        let d = &f.dimensions;
+        let specs = [&d.l2_m, &d.l3_m, &d.l3p_m, &d.l6_m, &d.alpha_deg, &d.theta_deg, &d.cam_a_m, &d.cam_b_m];
+        let g = ModulatorGeometry::PAPER;
+        let mut nominal = [g.l2_m, g.l3_m, g.l3p_m, g.l6_m, g.alpha_deg, g.theta_deg, PAPER_CAM[0], PAPER_CAM[1]];
+        let mut dimensions = [None; 8];
+        for (k, spec) in specs.into_iter().enumerate() {
+            if let Some(spec) = spec {
+                let field = format!("dimensions.{}", DIMENSIONS[k]);
+                let dist = spec.resolve(&field).map_err(|e| invalid(&field, e.to_string()))?;
+                nominal[k] = centre(&dist);
+                dimensions[k] = Some(dist);
+            }
+        }
+        let l = &f.limits;
+        let limits = [l.output_angle_error_deg, l.pressure_angle_deg, l.dead_point_margin_deg];
+        for (k, lim) in limits.iter().enumerate() {
+            if let Some(lim) = lim {
+                let field = format!("limits.{}", RESULTS[k]);
+                lim.check(&field).map_err(|e| invalid(&field, e.to_string()))?;
+            }
+        }
+        let (g, cam) = build(&nominal)?;
+        let a = analyze(&g, &cam, &options(step_deg))
+            .map_err(|e| invalid("dimensions", format!("the nominal mechanism does not run: {e}")))?;
+        let nominal_phi6_deg = a.rows.iter().map(|r| r.phi6_deg).collect();
+        Ok(Self {
+            draws: f.draws,
+            seed: f.seed,
+            step_deg,
+            bins,
+            percentiles,
+            dimensions,
+            limits,
+            nominal,
+            nominal_phi6_deg,
+        })
+    }
+
+    /// The dimensions of draw `index`, in the order of [`DIMENSIONS`].
+    pub fn dimensions_of(&self, index: u64) -> [f64; 8] {
+        std::array::from_fn(|k| match &self.dimensions[k] {
+            Some(d) => d.sample(uniform(self.seed, index, k)),
+            None => self.nominal[k],
+        })
+    }
+
+    /// Draw `index` alone.
+    pub fn draw(&self, index: u64) -> Draw {
+        let dims = self.dimensions_of(index);
+        Draw { index, dimensions: dims, result: self.evaluate(&dims).map_err(|e| e.to_string()) }
+    }
+
+    /// The results of a mechanism with dimensions `dims`, in the order of [`RESULTS`].
+    pub fn evaluate(&self, dims: &[f64; 8]) -> Result<[f64; 3]> {
+        let (g, cam) = build(dims)?;
+        let a = analyze(&g, &cam, &options(self.step_deg))?;
+        let error = a
+            .rows
+            .iter()
+            .zip(&self.nominal_phi6_deg)
+            .map(|(r, n)| crate::wrap_pi((r.phi6_deg - n).to_radians()).to_degrees().abs())
+            .fold(0.0, f64::max);
+        let c = &a.summary.checks;
+        let lag =
+            a.rows.iter().map(|r| crate::wrap_pi((r.phi6_deg - r.phi2_deg).to_radians()).abs()).fold(0.0, f64::max);
+        Ok([error, c.mu_out_max_deg.max(c.mu_b_max_deg), g.max_lag_deg() - lag.to_degrees()])
+    }
+
+    /// Runs the draws `items` in parallel, in draw order (independent of shards and threads).
+    pub fn run(&self, items: std::ops::Range<u64>, progress: Progress) -> Vec<Draw> {
+        let lo = items.start.min(self.draws);
+        let hi = items.end.min(self.draws).max(lo);
+        evaluate_indexed((hi - lo) as usize, progress, "draws", |i| self.draw(lo + i as u64))
+    }
+
+    /// The distributions over `draws` (all the study's draws in order); sums in draw order.
+    pub fn report(&self, draws: &[Draw]) -> Report {
+        let ok: Vec<&[f64; 3]> = draws.iter().filter_map(|d| d.result.as_ref().ok()).collect();
+        let results = (0..RESULTS.len())
+            .filter_map(|k| {
+                let v: Vec<f64> = ok.iter().map(|r| r[k]).collect();
+                Summary::of(&v, &self.percentiles, self.bins, self.limits[k])
+                    .map(|summary| Named { name: RESULTS[k], summary })
+            })
+            .collect();
+        let dimensions = (0..DIMENSIONS.len())
+            .filter(|&k| self.dimensions[k].is_some_and(|d| !d.is_fixed()))
+            .filter_map(|k| {
+                let v: Vec<f64> = draws.iter().map(|d| d.dimensions[k]).collect();
+                Summary::of(&v, &self.percentiles, self.bins, None)
+                    .map(|summary| Named { name: DIMENSIONS[k], summary })
+            })
+            .collect();
+        let failing = draws
+            .iter()
+            .filter(|d| match &d.result {
+                Err(_) => true,
+                Ok(r) => (0..RESULTS.len()).any(|k| self.limits[k].is_some_and(|l| l.fails(r[k]))),
+            })
+            .count() as u64;
+        let n = draws.len() as u64;
+        Report {
+            draws: n,
+            seed: self.seed,
+            step_deg: self.step_deg,
+            not_assembled: n - ok.len() as u64,
+            failing,
+            fail_share: if n > 0 { failing as f64 / n as f64 } else { 0.0 },
+            dimensions,
+            results,
+        }
+    }
+}
+
+fn options(step_deg: f64) -> AnalysisOptions {
+    AnalysisOptions { step_deg, ..AnalysisOptions::default() }
+}
+
+fn build(d: &[f64; 8]) -> Result<(ModulatorGeometry, Cam)> {
+    let g = ModulatorGeometry::new(d[0], d[1], d[2], d[3], d[4], d[5])?;
+    let cam = if d[6] == PAPER_CAM[0] && d[7] == PAPER_CAM[1] { Cam::paper() } else { Cam::ellipse(d[6], d[7])? };
+    Ok((g, cam))
+}
+
+/// One draw: its index, dimensions and results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Draw {
+    /// Index from 0.
+    pub index: u64,
+    /// The dimensions, in the order of [`DIMENSIONS`].
+    pub dimensions: [f64; 8],
+    /// The results in the order of [`RESULTS`], or why the mechanism does not run.
+    pub result: std::result::Result<[f64; 3], String>,
+}
+
+/// The distribution of one quantity.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Named {
+    /// Name with unit.
+    pub name: &'static str,
+    /// Its distribution.
+    #[serde(flatten)]
+    pub summary: Summary,
+}
+
+/// The outcome of a tolerance study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Draws.
+    pub draws: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Analysis step (deg).
+    pub step_deg: f64,
+    /// Draws whose mechanism does not run over the turn (counted as failing).
+    pub not_assembled: u64,
+    /// Draws failing a limit or not assembled.
+    pub failing: u64,
+    /// `failing / draws`.
+    pub fail_share: f64,
+    /// The drawn dimensions' distributions (those with a spread).
+    pub dimensions: Vec<Named>,
+    /// The results' distributions.
+    pub results: Vec<Named>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// No spread: every draw is the nominal mechanism, so its output-angle error is exactly zero and
+    /// its pressure angle and margin are the nominal analysis' own.
+    #[test]
+    fn zero_spread_is_the_nominal_mechanism() {
+        let t = Tolerance::from_toml(
+            "draws = 3\nseed = 1\nstep_deg = 5\n[dimensions]\nl2_m = { dist = \"normal\", mean = 0.66, sd = 0 }\n\
+             alpha_deg = { dist = \"uniform\", min = 47, max = 47 }\n",
+        )
+        .unwrap();
+        let a = analyze(&ModulatorGeometry::PAPER, &Cam::paper(), &options(5.0)).unwrap();
+        let c = &a.summary.checks;
+        for d in t.run(0..3, Progress::Hidden) {
+            let r = d.result.unwrap();
+            assert_eq!(r[0], 0.0);
+            assert_eq!(r[1], c.mu_out_max_deg.max(c.mu_b_max_deg));
+        }
+    }
+
+    /// The dead-point margin against the output pressure angle by a second route: in triangle O, A, D
+    /// (OA = l2, OD = l6, angle λ = lag at O) the slot AD makes the angle δ with OD, and the output
+    /// pressure angle is min(δ, 180° − δ); it grows with λ to 90° at λ = arccos(l6/l2). So the largest
+    /// output pressure angle over the rows is the triangle's at the largest lag, arccos(l6/l2) − margin.
+    #[test]
+    fn margin_and_output_pressure_angle_agree() {
+        let t = Tolerance::from_toml(
+            "draws = 12\nseed = 4\nstep_deg = 5\n[dimensions]\nl6_m = { dist = \"uniform\", min = 0.38, max = 0.42 }\n",
+        )
+        .unwrap();
+        for d in t.run(0..12, Progress::Hidden) {
+            let k = d.dimensions;
+            let g = ModulatorGeometry::new(k[0], k[1], k[2], k[3], k[4], k[5]).unwrap();
+            let a = analyze(&g, &Cam::paper(), &options(5.0)).unwrap();
+            let margin = d.result.unwrap()[2];
+            let lag = (g.max_lag_deg() - margin).to_radians();
+            let (ax, dx, dy) = (g.l2_m, g.l6_m * lag.cos(), g.l6_m * lag.sin());
+            let (u, v) = ([ax - dx, -dy], [-dx, -dy]);
+            let cos = (u[0] * v[0] + u[1] * v[1]) / (u[0].hypot(u[1]) * v[0].hypot(v[1]));
+            let delta = cos.clamp(-1.0, 1.0).acos().to_degrees();
+            let triangle = delta.min(180.0 - delta);
+            let rows = a.rows.iter().map(|r| r.mu_out_deg).fold(0.0, f64::max);
+            assert!((triangle - rows).abs() < 1e-9, "margin {margin}: triangle {triangle}°, rows {rows}°");
+            assert!(margin > 0.0 && rows < 90.0);
+        }
+    }
+
+    #[test]
+    fn draws_do_not_depend_on_shards() {
+        let t = Tolerance::from_toml(
+            "draws = 10\nseed = 2\nstep_deg = 10\n[dimensions]\nl3_m = { dist = \"normal\", mean = 0.36, sd = 0.001 }\n\
+             cam_a_m = { dist = \"normal\", mean = 0.366, sd = 0.0005 }\n[limits]\noutput_angle_error_deg = { max = 0.5 }\n",
+        )
+        .unwrap();
+        let all = t.run(0..10, Progress::Hidden);
+        let mut parts = t.run(0..4, Progress::Hidden);
+        parts.extend(t.run(4..10, Progress::Hidden));
+        assert_eq!(all, parts);
+        assert_eq!(all[6], t.draw(6));
+        let r = t.report(&all);
+        assert_eq!(r.dimensions.len(), 2);
+        assert!(r.results[0].summary.max > 0.0);
+    }
+
+    #[test]
+    fn bad_studies_name_the_field() {
+        let e = |s: &str| Tolerance::from_toml(s).unwrap_err().to_string();
+        assert!(e("draws = 0\nseed = 1\n").starts_with("draws: draws = 0 is out of range"));
+        assert!(e("draws = 1\nseed = 1\n[dimensions]\nl9_m = 1\n").contains("unknown field `l9_m`"));
+        assert!(e("draws = 1\nseed = 1\n[dimensions]\nl6_m = 0.7\n").starts_with("l6_m = 0.7 is out of range"));
+        assert!(e("draws = 1\nseed = 1\nstep_deg = 0\n").contains("step_deg"));
+    }
+}
