@@ -115,8 +115,8 @@ pub struct TableArgs {
     cycle: Option<PathBuf>,
     /// xyvaj (X,Y,V,A,J points), poly5 (fifth-degree segments), csv, twincat (motion-function point
     /// list), st (IEC 61131-3 ARRAY OF SMC_CAMXYVA).
-    #[arg(long, value_name = "xyvaj|poly5|csv|twincat|st")]
-    format: String,
+    #[arg(long, value_enum, ignore_case = true)]
+    format: Format,
     /// Points on every joint of the law and every D degrees from each joint (a shorter last step
     /// before a joint; default 1).
     #[arg(long, value_name = "D", conflicts_with = "tolerance", allow_hyphen_values = true)]
@@ -174,7 +174,7 @@ fn motion(a: &TableArgs) -> Result<(Motion, String)> {
 }
 
 fn table(a: TableArgs) -> Result<()> {
-    let format = Format::parse(a.format.trim())?;
+    let format = a.format;
     let (motion, source) = motion(&a)?;
     let spacing = match a.tolerance {
         Some(t) => Spacing::Tolerance(t),

@@ -673,8 +673,7 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
             let cam = a.cam.cam()?;
             let r = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
             warn(&r.warnings);
-            let path: Vec<[f64; 2]> = r.rows[..r.rows.len() - 1].iter().map(|x| [x.b_x_m, x.b_y_m]).collect();
-            let gamma = walls_of(&path, &r.states, a.roller_m.unwrap_or(0.0));
+            let gamma = r.cam_profile(a.roller_m.unwrap_or(0.0));
             (r.states, gamma, r.counter_cam, format!("Modulator, task 1: cam {}, α = {}°", cam.label(), g.alpha_deg))
         }
         TaskArg::Synthesize => {
@@ -695,21 +694,6 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
         }
     };
     output::figure(&fig, &a.output)
-}
-
-/// Cam Γ of an analysis as a profile (walls from the path's tangents).
-fn walls_of(path: &[[f64; 2]], states: &[ModulatorState], roller_m: f64) -> CamProfile {
-    let mut p = CamProfile { centre: path.to_vec(), ..CamProfile::default() };
-    if roller_m > 0.0 {
-        for s in &states[..path.len()] {
-            let n = s.b[1].norm();
-            let nrm = if n > 0.0 { [-s.b[1].y / n, s.b[1].x / n] } else { [0.0, 0.0] };
-            let b = s.b[0];
-            p.wall_left.push([b.x + roller_m * nrm[0], b.y + roller_m * nrm[1]]);
-            p.wall_right.push([b.x - roller_m * nrm[0], b.y - roller_m * nrm[1]]);
-        }
-    }
-    p
 }
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {

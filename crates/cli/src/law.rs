@@ -6,8 +6,9 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
-use loomkin_laws::{CATALOGUE, Continuity, Joint, Law, LawSpec, Metrics};
-use serde_json::{Value, json};
+use loomkin_laws::{CATALOGUE, Continuity, Joint, Law, LawSpec, Metrics, ParamValue};
+use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin law`.
@@ -103,23 +104,22 @@ pub fn build(name: &str, params: &[(String, String)]) -> Result<(LawSpec, Law)> 
 
 fn list(a: ListArgs) -> Result<()> {
     let mut rows = Vec::new();
-    for e in CATALOGUE.iter().filter(|e| !e.params.starts_with("segments=")) {
+    for e in CATALOGUE.iter().filter(|e| !e.required) {
         let (_, law) = build(e.name, &[])?;
         rows.push((e, law.metrics(), law.continuity().class));
     }
     if a.json {
-        let laws: Vec<Value> = rows
+        let laws = rows
             .iter()
-            .map(|(e, m, c)| {
-                let mut v = metrics_json(m);
-                v["name"] = json!(e.name);
-                v["description"] = json!(e.description);
-                v["params"] = json!(e.params);
-                v["continuity_class"] = json!(c);
-                v
+            .map(|(e, m, c)| ListedLaw {
+                name: e.name,
+                description: e.description,
+                params: e.params,
+                metrics: *m,
+                continuity_class: *c,
             })
             .collect();
-        return output::json(&json!({ "laws": laws }));
+        return output::json(&ListJson { laws });
     }
     outln!("Normalised rise laws (x: fraction of the motion angle, s: fraction of the stroke; values dimensionless)")?;
     outln!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  description", "law", "Cv", "Ca", "Cj", "Cm", "Ca_rms", "C^k")?;
@@ -166,31 +166,88 @@ fn class_text(c: i32) -> String {
     if c < 0 { "none".into() } else { format!("C{c}") }
 }
 
-fn metrics_json(m: &Metrics) -> Value {
-    json!({
-        "cv": m.cv, "x_cv": m.x_cv,
-        "ca": m.ca, "ca_pos": m.ca_pos, "x_ca_pos": m.x_ca_pos, "ca_neg": m.ca_neg, "x_ca_neg": m.x_ca_neg,
-        "cj": m.cj, "x_cj": m.x_cj, "cm": m.cm, "x_cm": m.x_cm, "ca_rms": m.ca_rms,
-    })
+/// One law of `law list --json`.
+#[derive(Serialize)]
+struct ListedLaw {
+    name: &'static str,
+    description: &'static str,
+    params: &'static str,
+    #[serde(flatten)]
+    metrics: Metrics,
+    continuity_class: i32,
 }
 
-fn joint_json(j: &Joint) -> Value {
-    let [s, v, a, jj] = j.flags();
-    json!({
-        "x": j.x, "ds": j.ds, "dv": j.dv, "da": j.da, "dj": j.dj,
-        "continuous": { "s": s, "v": v, "a": a, "j": jj },
-        "continuous_up_to": j.continuous_up_to,
-    })
+/// `law list --json`.
+#[derive(Serialize)]
+struct ListJson {
+    laws: Vec<ListedLaw>,
 }
 
-/// The continuity report as JSON.
-pub fn continuity_json(c: &Continuity) -> Value {
-    json!({
-        "class": c.class,
-        "start": joint_json(&c.start),
-        "joints": c.joints.iter().map(joint_json).collect::<Vec<_>>(),
-        "end": joint_json(&c.end),
-    })
+/// Which of s, v, a, j are continuous at a joint.
+#[derive(Serialize)]
+struct Flags {
+    s: bool,
+    v: bool,
+    a: bool,
+    j: bool,
+}
+
+/// A joint of the continuity report.
+#[derive(Serialize)]
+struct JointJson {
+    x: f64,
+    ds: f64,
+    dv: f64,
+    da: f64,
+    dj: f64,
+    continuous: Flags,
+    continuous_up_to: i32,
+}
+
+impl From<&Joint> for JointJson {
+    fn from(j: &Joint) -> Self {
+        let [s, v, a, jj] = j.flags();
+        Self {
+            x: j.x,
+            ds: j.ds,
+            dv: j.dv,
+            da: j.da,
+            dj: j.dj,
+            continuous: Flags { s, v, a, j: jj },
+            continuous_up_to: j.continuous_up_to,
+        }
+    }
+}
+
+/// The continuity report in JSON.
+#[derive(Serialize)]
+pub struct ContinuityJson {
+    class: i32,
+    start: JointJson,
+    joints: Vec<JointJson>,
+    end: JointJson,
+}
+
+impl From<&Continuity> for ContinuityJson {
+    fn from(c: &Continuity) -> Self {
+        Self {
+            class: c.class,
+            start: (&c.start).into(),
+            joints: c.joints.iter().map(JointJson::from).collect(),
+            end: (&c.end).into(),
+        }
+    }
+}
+
+/// `law info --json`: parameters typed (`"ramp": 0.1`).
+#[derive(Serialize)]
+struct InfoJson {
+    law: &'static str,
+    params: BTreeMap<String, ParamValue>,
+    #[serde(flatten)]
+    metrics: Metrics,
+    segments: usize,
+    continuity: ContinuityJson,
 }
 
 fn info(a: InfoArgs) -> Result<()> {
@@ -198,12 +255,13 @@ fn info(a: InfoArgs) -> Result<()> {
     let m = law.metrics();
     let c = law.continuity();
     if a.json {
-        let mut v = metrics_json(&m);
-        v["law"] = json!(spec.name());
-        v["params"] = json!(spec.params().into_iter().collect::<std::collections::BTreeMap<_, _>>());
-        v["segments"] = json!(law.segments().len());
-        v["continuity"] = continuity_json(&c);
-        return output::json(&v);
+        return output::json(&InfoJson {
+            law: spec.name(),
+            params: spec.param_values(),
+            metrics: m,
+            segments: law.segments().len(),
+            continuity: (&c).into(),
+        });
     }
     outln!("law {}", spec.label())?;
     outln!("  values per unit stroke and unit motion angle (dimensionless)")?;
@@ -298,7 +356,7 @@ fn plot(a: PlotArgs) -> Result<()> {
         bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
     }
     for (k, _) in &a.params.params {
-        let known = a.laws.iter().any(|l| CATALOGUE.iter().any(|e| e.name == l && e.params.starts_with(k.as_str())));
+        let known = a.laws.iter().any(|l| CATALOGUE.iter().any(|e| e.name == l && e.has_param(k)));
         if !known {
             bail!("--param {k}: none of the laws {} has this parameter", a.laws.join(", "));
         }
@@ -313,7 +371,7 @@ fn plot(a: PlotArgs) -> Result<()> {
             .params
             .params
             .iter()
-            .filter(|(k, _)| CATALOGUE.iter().any(|e| e.name == name && e.params.starts_with(k.as_str())))
+            .filter(|(k, _)| CATALOGUE.iter().any(|e| e.name == name && e.has_param(k)))
             .cloned()
             .collect();
         let (spec, law) = build(name, &applicable)?;

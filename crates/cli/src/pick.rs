@@ -290,7 +290,7 @@ fn design(a: DesignArgs) -> Result<()> {
         return output::json(&json!({
             "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
             "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
-            "psi_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
+            "natural_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
             "velocity_m_s": spec.velocity_m_s, "distance_m": spec.distance_m,
             "first_stage_m": spec.first_stage_m, "speed_rpm": spec.speed_rpm,
             "required_velocity_m_s": mech.required().at(spec.speed_rpm),
@@ -331,7 +331,7 @@ fn outcome_json(o: &Outcome) -> Value {
         "accel_end_m_s2": o.accel_end_m_s2, "accel_peak_m_s2": o.accel_peak_m_s2, "t_peak_s": o.t_peak_s,
         "end": match o.end { loomkin_picking::PickEnd::CamEnd => "cam-end", loomkin_picking::PickEnd::Separation => "separation" },
         "required_velocity_m_s": o.required_velocity_m_s, "velocity_vs_required_pct": o.velocity_vs_required_pct,
-        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "psi_1_s": o.natural_1_s,
+        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "natural_1_s": o.natural_1_s,
         "play_picker_m": o.play_picker_m,
     });
     if let Some(n) = &o.note {

@@ -7,11 +7,12 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_laws::Metrics;
 use loomkin_servo::{
-    CamTable, Drive, Interpolation, Objective, OptimizeOptions, SplineEnd, SplineLaw, TorqueSummary,
-    export_coeffs_text, export_json, format_points, parse_points, poly5_csv, poly5_segments, summaries, torque_curve,
+    Drive, ExportFormat, InterpolationError, Objective, OptimizeOptions, SplineEnd, SplineLaw, TorqueSummary,
+    format_points, parse_points, summaries, torque_curve,
 };
-use serde_json::{Value, json};
+use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -46,15 +47,14 @@ pub struct DefArgs {
     #[arg(long = "def", value_name = "X:Y,…", default_value = DEFAULT_DEF, hide_default_value = true)]
     def: String,
     /// Condition of the acceleration spline at x = 0: natural (f'' = 0) or clamped (f' = 0).
-    #[arg(long, value_name = "natural|clamped", default_value = "natural")]
-    end: String,
+    #[arg(long, value_enum, ignore_case = true, default_value_t = SplineEnd::Natural)]
+    end: SplineEnd,
 }
 
 impl DefArgs {
     fn build(&self) -> Result<SplineLaw> {
-        let end = SplineEnd::parse(&self.end)?;
         let pts = parse_points(&self.def)?;
-        SplineLaw::new(&pts, end).context("--def")
+        SplineLaw::new(&pts, self.end).context("--def")
     }
 }
 
@@ -117,8 +117,8 @@ pub struct OptimizeArgs {
     #[arg(long, value_delimiter = ',', default_value = "600")]
     speed_rpm: Vec<f64>,
     /// Quantity to minimise: peak or rms motor torque.
-    #[arg(long, value_name = "peak|rms", default_value = "peak")]
-    objective: String,
+    #[arg(long, value_enum, ignore_case = true, default_value_t = Objective::Peak)]
+    objective: Objective,
     /// Number of Nelder–Mead starts (the given points, then pseudo-random ones).
     #[arg(long, default_value_t = 6)]
     starts: usize,
@@ -140,8 +140,8 @@ pub struct ExportArgs {
     /// coeffs (documented text), json (intervals), csv (cam table), xyva (PLCopen-style
     /// points), poly5 (exact fifth-degree segments in master degrees), cycle (the drive's turn as
     /// a cycle file, for `loomkin cam table` and `servo check`).
-    #[arg(long, value_name = "coeffs|json|csv|xyva|poly5|cycle")]
-    format: String,
+    #[arg(long, value_enum, ignore_case = true)]
+    format: ExportFormat,
     /// Output file (`-` for standard output).
     #[arg(short, long)]
     output: String,
@@ -193,8 +193,37 @@ fn check_speeds(speeds: &[f64]) -> Result<()> {
     Ok(())
 }
 
-fn points_json(pts: &[[f64; 2]]) -> Value {
-    json!(pts.iter().map(|p| json!([p[0], p[1]])).collect::<Vec<_>>())
+/// One sample of a normalised law (`servo law --points N --json`).
+#[derive(Serialize)]
+struct Sample {
+    x: f64,
+    s: f64,
+    v: f64,
+    a: f64,
+    j: f64,
+}
+
+/// `servo law --points N --json`.
+#[derive(Serialize)]
+struct SamplesJson {
+    units: &'static str,
+    points: Vec<Sample>,
+}
+
+/// `servo law --json`.
+#[derive(Serialize)]
+struct LawJson<'a> {
+    def_points: &'a [[f64; 2]],
+    end: SplineEnd,
+    units: &'static str,
+    d: f64,
+    d_unit: f64,
+    scale: f64,
+    #[serde(flatten)]
+    metrics: Metrics,
+    continuity_class: i32,
+    intervals: usize,
+    spline_b: Vec<[f64; 4]>,
 }
 
 fn law(a: LawArgs) -> Result<()> {
@@ -206,11 +235,11 @@ fn law(a: LawArgs) -> Result<()> {
         }
         let samples = law.sample(n);
         if a.format.json {
-            let pts: Vec<Value> =
-                samples.iter().map(|(x, k)| json!({"x": x, "s": k.s, "v": k.v, "a": k.a, "j": k.j})).collect();
-            return output::json(
-                &json!({"units": "dimensionless (per unit stroke, per unit motion angle)", "points": pts}),
-            );
+            let points = samples.iter().map(|&(x, k)| Sample { x, s: k.s, v: k.v, a: k.a, j: k.j }).collect();
+            return output::json(&SamplesJson {
+                units: "dimensionless (per unit stroke, per unit motion angle)",
+                points,
+            });
         }
         let mut t = Table::new(["x", "s", "v", "a", "j"]);
         for (x, k) in samples {
@@ -224,22 +253,20 @@ fn law(a: LawArgs) -> Result<()> {
         bail!("--csv needs --sample N (the metrics are printed as text or --json)");
     }
     if a.format.json {
-        return output::json(&json!({
-            "def_points": points_json(sl.points()),
-            "end": sl.end().name(),
-            "units": "d: slope of the acceleration image f (through the points) at x = 0.5; \
-                      d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
-                      per unit stroke and unit motion angle (dimensionless)",
-            "d": sl.d(),
-            "d_unit": sl.d() * sl.scale(),
-            "scale": sl.scale(),
-            "cv": m.cv, "x_cv": m.x_cv,
-            "ca": m.ca, "ca_pos": m.ca_pos, "x_ca_pos": m.x_ca_pos, "ca_neg": m.ca_neg, "x_ca_neg": m.x_ca_neg,
-            "cj": m.cj, "x_cj": m.x_cj, "cm": m.cm, "x_cm": m.x_cm, "ca_rms": m.ca_rms,
-            "continuity_class": c.class,
-            "intervals": law.segments().len(),
-            "spline_b": sl.spline_coefficients(),
-        }));
+        return output::json(&LawJson {
+            def_points: sl.points(),
+            end: sl.end(),
+            units: "d: slope of the acceleration image f (through the points) at x = 0.5; \
+                    d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
+                    per unit stroke and unit motion angle (dimensionless)",
+            d: sl.d(),
+            d_unit: sl.d() * sl.scale(),
+            scale: sl.scale(),
+            metrics: m,
+            continuity_class: c.class,
+            intervals: law.segments().len(),
+            spline_b: sl.spline_coefficients(),
+        });
     }
     outln!(
         "servo law through {} definition points ({} start), unit stroke on x = 0…1",
@@ -267,29 +294,108 @@ fn law(a: LawArgs) -> Result<()> {
     Ok(())
 }
 
-fn summary_json(s: &TorqueSummary) -> Value {
-    json!({
-        "speed_rpm": s.speed_rpm,
-        "peak_torque_nm": s.peak_torque_nm,
-        "peak_torque_angle_deg": s.peak_torque_angle_deg,
-        "rms_torque_nm": s.rms_torque_nm,
-        "peak_power_w": s.peak_power_w,
-        "peak_velocity_m_s": s.peak_velocity_m_s,
-        "peak_accel_m_s2": s.peak_accel_m_s2,
-        "peak_motor_speed_rpm": s.peak_motor_speed_rpm,
-        "rise_time_s": s.rise_time_s,
-        "cycle_time_s": s.cycle_time_s,
-    })
+/// The drive's turn in degrees of the main shaft (`layout_deg` of the drive in JSON).
+#[derive(Serialize)]
+struct LayoutJson {
+    rise: f64,
+    dwell_after_rise: f64,
+    #[serde(rename = "return")]
+    return_: f64,
+    dwell_after_return: f64,
 }
 
-fn drive_json(d: &Drive) -> Result<Value> {
-    let lay = d.layout()?;
-    let mut v = serde_json::to_value(d)?;
-    v["layout_deg"] = json!({
-        "rise": lay.rise_deg, "dwell_after_rise": lay.dwell_after_rise_deg,
-        "return": lay.return_deg, "dwell_after_return": lay.dwell_after_return_deg,
-    });
-    Ok(v)
+/// A drive and its turn in JSON.
+#[derive(Serialize)]
+struct DriveJson<'a> {
+    #[serde(flatten)]
+    drive: &'a Drive,
+    layout_deg: LayoutJson,
+}
+
+impl<'a> DriveJson<'a> {
+    fn of(d: &'a Drive) -> Result<Self> {
+        let lay = d.layout()?;
+        let layout_deg = LayoutJson {
+            rise: lay.rise_deg,
+            dwell_after_rise: lay.dwell_after_rise_deg,
+            return_: lay.return_deg,
+            dwell_after_return: lay.dwell_after_return_deg,
+        };
+        Ok(Self { drive: d, layout_deg })
+    }
+}
+
+/// `servo torque --json`.
+#[derive(Serialize)]
+struct TorqueJson<'a> {
+    def_points: &'a [[f64; 2]],
+    drive: DriveJson<'a>,
+    results: &'a [TorqueSummary],
+}
+
+/// The worst peak and RMS torque over the speeds, and the summaries per speed.
+#[derive(Serialize)]
+struct Worst<'a> {
+    peak_torque_nm: f64,
+    rms_torque_nm: f64,
+    per_speed: &'a [TorqueSummary],
+}
+
+impl<'a> Worst<'a> {
+    fn of(v: &'a [TorqueSummary]) -> Self {
+        let peak_torque_nm = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
+        let rms_torque_nm = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
+        Self { peak_torque_nm, rms_torque_nm, per_speed: v }
+    }
+}
+
+/// `servo optimize --json`.
+#[derive(Serialize)]
+struct OptimizeJson<'a> {
+    objective: Objective,
+    speeds_rpm: &'a [f64],
+    before: Worst<'a>,
+    after: Worst<'a>,
+    def_points: &'a [[f64; 2]],
+    def: String,
+    end: SplineEnd,
+    evaluations: usize,
+}
+
+/// One re-interpolation row of `servo export --json`.
+#[derive(Serialize)]
+struct ReinterpolationJson {
+    interpolation: &'static str,
+    step_deg: f64,
+    max_position_error_m: f64,
+    max_velocity_error_m_per_deg: f64,
+    max_accel_error_m_per_deg2: f64,
+    rel_position_error: f64,
+    rel_velocity_error: f64,
+    rel_accel_error: f64,
+}
+
+impl From<&InterpolationError> for ReinterpolationJson {
+    fn from(e: &InterpolationError) -> Self {
+        Self {
+            interpolation: e.mode.name(),
+            step_deg: e.step_deg,
+            max_position_error_m: e.max_position_error_m,
+            max_velocity_error_m_per_deg: e.max_velocity_error_m_per_deg,
+            max_accel_error_m_per_deg2: e.max_accel_error_m_per_deg2,
+            rel_position_error: e.rel_position_error,
+            rel_velocity_error: e.rel_velocity_error,
+            rel_accel_error: e.rel_accel_error,
+        }
+    }
+}
+
+/// `servo export --json` (cam tables): the re-interpolation report.
+#[derive(Serialize)]
+struct ExportJson {
+    format: ExportFormat,
+    points: usize,
+    reinterpolation: Vec<ReinterpolationJson>,
 }
 
 fn print_drive(d: &Drive) -> Result<()> {
@@ -324,11 +430,7 @@ fn torque(a: TorqueArgs) -> Result<()> {
     let d = a.drive.load()?;
     let res = summaries(sl.law(), &d, &a.speed_rpm)?;
     if a.json {
-        return output::json(&json!({
-            "def_points": points_json(sl.points()),
-            "drive": drive_json(&d)?,
-            "results": res.iter().map(summary_json).collect::<Vec<_>>(),
-        }));
+        return output::json(&TorqueJson { def_points: sl.points(), drive: DriveJson::of(&d)?, results: &res });
     }
     print_drive(&d)?;
     outln!(
@@ -354,12 +456,6 @@ fn torque(a: TorqueArgs) -> Result<()> {
     Ok(())
 }
 
-fn worst(v: &[TorqueSummary]) -> Value {
-    let pk = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
-    let rms = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
-    json!({"peak_torque_nm": pk, "rms_torque_nm": rms, "per_speed": v.iter().map(summary_json).collect::<Vec<_>>()})
-}
-
 fn optimize(a: OptimizeArgs) -> Result<()> {
     check_speeds(&a.speed_rpm)?;
     if !(1..=1000).contains(&a.starts) {
@@ -368,7 +464,7 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     let sl = a.def.build()?;
     let d = a.drive.load()?;
     let opts = OptimizeOptions {
-        objective: Objective::parse(&a.objective)?,
+        objective: a.objective,
         speeds_rpm: a.speed_rpm.clone(),
         starts: a.starts,
         move_x: !a.fixed_x,
@@ -381,16 +477,16 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     eprintln!("loomkin: optimised in {elapsed:.3} s");
     let pts = r.law.points();
     if a.json {
-        return output::json(&json!({
-            "objective": opts.objective.name(),
-            "speeds_rpm": a.speed_rpm,
-            "before": worst(&r.before),
-            "after": worst(&r.after),
-            "def_points": points_json(pts),
-            "def": format_points(pts),
-            "end": r.law.end().name(),
-            "evaluations": r.evaluations,
-        }));
+        return output::json(&OptimizeJson {
+            objective: opts.objective,
+            speeds_rpm: &a.speed_rpm,
+            before: Worst::of(&r.before),
+            after: Worst::of(&r.after),
+            def_points: pts,
+            def: format_points(pts),
+            end: r.law.end(),
+            evaluations: r.evaluations,
+        });
     }
     print_drive(&d)?;
     outln!(
@@ -427,46 +523,16 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
 fn export(a: ExportArgs) -> Result<()> {
     let sl = a.def.build()?;
     let d = a.drive.load()?;
-    let format = a.format.trim().to_ascii_lowercase();
-    let text = match format.as_str() {
-        "coeffs" => export_coeffs_text(&sl),
-        "json" => export_json(&sl),
-        "csv" => CamTable::new(sl.law(), &d, a.step_deg)?.to_csv(),
-        "xyva" => CamTable::new(sl.law(), &d, a.step_deg)?.to_xyva(),
-        "poly5" => poly5_csv(&poly5_segments(sl.law(), &d)?),
-        "cycle" => format!(
-            "# The spline law on the drive's turn (rise, dwell, return, dwell): a cycle file for loomkin cycle,\n\
-             # cam profile, cam table and servo check. Definition points: {}\n{}",
-            format_points(sl.points()),
-            loomkin_servo::spline_cycle(&sl, &d, None)?.to_toml()?
-        ),
-        other => bail!("--format '{other}' is not known: allowed coeffs, json, csv, xyva, poly5, cycle"),
-    };
-    output::text_to(&a.output, &text)?;
-    if !matches!(format.as_str(), "csv" | "xyva") {
-        return Ok(());
-    }
-    // What the table loses when the controller interpolates between its points.
-    let table = CamTable::new(sl.law(), &d, a.step_deg)?;
-    let errs: Vec<_> =
-        Interpolation::ALL.iter().map(|&m| table.interpolation_error(sl.law(), &d, m)).collect::<Result<_, _>>()?;
+    let file = loomkin_servo::export(&sl, &d, a.format, a.step_deg)?;
+    output::text_to(&a.output, &file.text)?;
+    // What a cam table loses when the controller interpolates between its points.
+    let Some(table) = file.table else { return Ok(()) };
     if a.json {
-        let v: Vec<Value> = errs
-            .iter()
-            .map(|e| {
-                json!({
-                    "interpolation": e.mode.name(),
-                    "step_deg": e.step_deg,
-                    "max_position_error_m": e.max_position_error_m,
-                    "max_velocity_error_m_per_deg": e.max_velocity_error_m_per_deg,
-                    "max_accel_error_m_per_deg2": e.max_accel_error_m_per_deg2,
-                    "rel_position_error": e.rel_position_error,
-                    "rel_velocity_error": e.rel_velocity_error,
-                    "rel_accel_error": e.rel_accel_error,
-                })
-            })
-            .collect();
-        let report = json!({"format": format, "points": table.points.len(), "reinterpolation": v});
+        let report = ExportJson {
+            format: a.format,
+            points: table.points,
+            reinterpolation: table.reinterpolation.iter().map(ReinterpolationJson::from).collect(),
+        };
         if a.output == "-" {
             // The table went to stdout: keep it clean, the report goes to stderr.
             output::note(format_args!("{}", serde_json::to_string_pretty(&report)?));
@@ -476,14 +542,13 @@ fn export(a: ExportArgs) -> Result<()> {
     }
     let mut report = format!(
         "cam table: {} points, step {:.6}° of the main shaft; worst errors when re-interpolated:\n",
-        table.points.len(),
-        table.step_deg()
+        table.points, table.step_deg
     );
     report += &format!(
         "{:>16} {:>14} {:>18} {:>20} {:>10} {:>10} {:>10}\n",
         "interpolation", "position m", "velocity m/deg", "accel m/deg²", "pos/H", "vel/max", "acc/max"
     );
-    for e in &errs {
+    for e in &table.reinterpolation {
         report += &format!(
             "{:>16} {:>14.3e} {:>18.3e} {:>20.3e} {:>10.2e} {:>10.2e} {:>10.2e}\n",
             e.mode.name(),
@@ -511,7 +576,7 @@ fn plot(a: PlotArgs) -> Result<()> {
     let d = a.drive.load()?;
     let mut laws = vec![("given", a.def.build()?)];
     if let Some(c) = &a.compare {
-        let other = DefArgs { def: c.clone(), end: a.def.end.clone() };
+        let other = DefArgs { def: c.clone(), end: a.def.end };
         laws.push(("compare", other.build().context("--compare")?));
     }
     let n = 721;

@@ -3,12 +3,13 @@
 use crate::output::{self, outln};
 use crate::util::{self, failure};
 use anyhow::{Result, bail};
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, LoomRequirement, PRESETS, Progress, ShedLaw, Template, evaluate, preset,
+    Conditions, Criteria, DesignKind, Family, GridSpec, LoomRequirement, PRESETS, Progress, ShedLaw, Study, StudyTable,
+    Template, evaluate, preset, preset_table,
 };
-use serde_json::{Value, json};
+use serde::Serialize;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -89,26 +90,13 @@ pub struct LawArgs {
     emit_cycle: Option<PathBuf>,
 }
 
-/// Which experiment table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum DesignKind {
-    /// The five named laws.
-    Presets,
-    /// The paper's Table 1 (eight three-part laws, k3 = 1 − k1 − k2).
-    Table1,
-    /// The family of the paper's Fig. 1: a lead k1 from 0 to 0.5, k2 = k4 = (1 − k1)/4, k3 = (1 − k1)/2.
-    Fig1,
-    /// The full grid over k_T1…k_Tn with a step, Σk = 1.
-    Grid,
-}
-
 /// The experiment design and the family of laws it runs over.
 #[derive(Debug, Args, Clone)]
 pub struct DesignArgs {
     /// Family of shapes of the positive phase: trapezoid (rise, plateau, fall), lead-trapezoid
     /// (zero, rise, plateau, fall) or linear-trapezoid.
-    #[arg(long)]
-    family: Option<String>,
+    #[arg(long, value_enum, ignore_case = true)]
+    family: Option<Family>,
     /// Custom shapes of the positive phase instead of a family, e.g. "sine-ramp:0:1,constant:1,cosine-ramp:1:0".
     #[arg(long, conflicts_with = "family")]
     shapes: Option<String>,
@@ -296,33 +284,130 @@ fn load(name: Option<&str>, spec: Option<&PathBuf>) -> Result<(String, ShedLaw)>
     }
 }
 
-fn criteria_json(c: &Criteria, cond: &Conditions) -> Value {
-    let mut v = serde_json::to_value(c).unwrap_or(Value::Null);
-    v["stroke_mm"] = json!(cond.stroke_m() * 1000.0);
-    v["speed_rpm"] = json!(cond.speed_rpm());
-    v
+/// Criteria with the stroke and speed they were evaluated at.
+#[derive(Serialize)]
+struct CriteriaJson<'a> {
+    #[serde(flatten)]
+    criteria: &'a Criteria,
+    stroke_mm: f64,
+    speed_rpm: f64,
 }
 
-fn definition_json(law: &ShedLaw) -> Value {
-    json!({
-        "motion_deg": law.motion_deg(),
-        "symmetric": law.is_symmetric(),
-        "positive_fraction": law.positive_fraction(),
-        "positive": law.positive_text(),
-        "negative": law.negative_text(),
-    })
+impl<'a> CriteriaJson<'a> {
+    fn of(criteria: &'a Criteria, cond: &Conditions) -> Self {
+        Self { criteria, stroke_mm: cond.stroke_m() * 1000.0, speed_rpm: cond.speed_rpm() }
+    }
+}
+
+/// A law's definition in JSON.
+#[derive(Serialize)]
+struct DefinitionJson {
+    motion_deg: f64,
+    symmetric: bool,
+    positive_fraction: f64,
+    positive: String,
+    negative: String,
+}
+
+impl DefinitionJson {
+    fn of(law: &ShedLaw) -> Self {
+        Self {
+            motion_deg: law.motion_deg(),
+            symmetric: law.is_symmetric(),
+            positive_fraction: law.positive_fraction(),
+            positive: law.positive_text(),
+            negative: law.negative_text(),
+        }
+    }
+}
+
+/// One preset of `shed list --json`.
+#[derive(Serialize)]
+struct PresetJson {
+    name: &'static str,
+    name_ru: &'static str,
+    motion_deg: f64,
+    dwell_deg: f64,
+    table_shape: &'static str,
+    positive: &'static str,
+}
+
+/// `shed list --json`.
+#[derive(Serialize)]
+struct ListJson {
+    laws: Vec<PresetJson>,
+}
+
+/// `shed law --json`.
+#[derive(Serialize)]
+struct LawJson<'a> {
+    law: String,
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    definition: DefinitionJson,
+    segments: String,
+}
+
+/// One row of `shed table | pareto --json`: the preset's name or the design row, and the lengths.
+#[derive(Serialize)]
+struct RowJson<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    law: Option<&'a str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    row: Option<usize>,
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    lengths: &'a [f64],
+}
+
+/// `shed table | pareto --json`.
+#[derive(Serialize)]
+struct RowsJson<'a> {
+    rows: Vec<RowJson<'a>>,
+}
+
+/// `shed best --json`.
+#[derive(Serialize)]
+struct BestJson<'a> {
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    required_window_deg: f64,
+    family: &'a str,
+    lengths: &'a [f64],
+    segments: String,
+    definition: DefinitionJson,
+    laws_searched: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_jerk_m_s3: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    loom: Option<&'a LoomRequirement>,
+}
+
+/// `shed window --json`.
+#[derive(Serialize)]
+struct WindowJson<'a> {
+    #[serde(flatten)]
+    loom: &'a LoomRequirement,
+    flight_deg: f64,
+    required_window_deg: f64,
+    threshold: f64,
+    threshold_both_sheets: f64,
 }
 
 fn list(a: ListArgs) -> Result<()> {
     if a.json {
-        let v: Vec<Value> = PRESETS
+        let laws = PRESETS
             .iter()
-            .map(|p| {
-                json!({"name": p.name, "name_ru": p.name_ru, "motion_deg": p.motion_deg, "dwell_deg": 360.0 - p.motion_deg,
-                       "table_shape": p.table_shape, "positive": p.positive})
+            .map(|p| PresetJson {
+                name: p.name,
+                name_ru: p.name_ru,
+                motion_deg: p.motion_deg,
+                dwell_deg: 360.0 - p.motion_deg,
+                table_shape: p.table_shape,
+                positive: p.positive,
             })
             .collect();
-        return output::json(&json!({ "laws": v }));
+        return output::json(&ListJson { laws });
     }
     outln!("{:<12} {:>10} {:>9}  positive phase of the acceleration", "law", "motion_deg", "dwell_deg")?;
     for p in PRESETS {
@@ -342,11 +427,12 @@ fn law(a: LawArgs) -> Result<()> {
         emit_cycle(&law, &a.physical, path, &format!("loomkin shed law {name}"))?;
     }
     if a.json {
-        let mut v = criteria_json(&c, &cond);
-        v["law"] = json!(name);
-        v["definition"] = definition_json(&law);
-        v["segments"] = json!(law.positive_text());
-        return output::json(&v);
+        return output::json(&LawJson {
+            law: name,
+            criteria: CriteriaJson::of(&c, &cond),
+            definition: DefinitionJson::of(&law),
+            segments: law.positive_text(),
+        });
     }
     outln!("law {name}: motion {} deg, positive phase {}", law.motion_deg(), law.positive_text())?;
     print_criteria(&c, &cond)?;
@@ -385,24 +471,13 @@ fn print_criteria(c: &Criteria, cond: &Conditions) -> Result<()> {
     Ok(())
 }
 
-/// The rows of a table: an optional law name, the lengths and the criteria.
-struct Rows {
-    k_names: Vec<String>,
-    rows: Vec<(Option<String>, Candidate)>,
-}
-
-fn template(d: &DesignArgs, default: &str) -> Result<Template> {
-    Ok(match (&d.shapes, &d.family) {
-        (Some(s), _) => Template::parse("custom", s)?,
-        (None, Some(f)) => Template::named(f)?,
-        (None, None) => Template::named(default)?,
+fn template(d: &DesignArgs) -> Result<Option<Template>> {
+    Ok(match (&d.shapes, d.family) {
+        (Some(s), _) => Some(Template::parse("custom", s)?),
+        (None, Some(f)) => Some(f.template()),
+        (None, None) => None,
     })
 }
-
-/// Grid defaults of a subcommand: step, least and largest k.
-type GridDefaults = (f64, f64, f64);
-const TABLE_GRID: GridDefaults = (0.05, 0.05, 0.9);
-const BEST_GRID: GridDefaults = (0.01, 0.01, 0.98);
 
 /// The rows of an experiment table; only the laws `shard` takes are evaluated and listed (each with
 /// its rows at every motion angle).
@@ -412,164 +487,63 @@ fn design_rows(
     default_motion: &str,
     cond: &Conditions,
     shard: loomkin_units::Shard,
-) -> Result<Rows> {
+) -> Result<StudyTable> {
     if kind == DesignKind::Presets {
         if d.family.is_some() || d.shapes.is_some() || d.motion_deg.is_some() || d.step.is_some() {
             bail!("--design presets takes no --family, --shapes, --step or --motion-deg");
         }
-        let mut rows = Vec::new();
-        for p in &PRESETS[shard.items(PRESETS.len())] {
-            let law = p.law()?;
-            let c = evaluate(&law, cond)?;
-            let lengths = law.positive().iter().map(|s| s.length).collect();
-            let row = PRESETS.iter().position(|q| q.name == p.name).unwrap_or(rows.len());
-            rows.push((Some(p.name.to_string()), Candidate { row, lengths, criteria: c }));
-        }
-        return Ok(Rows { k_names: Vec::new(), rows });
+        return Ok(preset_table_in(cond, shard.items(PRESETS.len()))?);
     }
-    let (t, design) = study_design(kind, d, TABLE_GRID)?;
+    let study = study_design(kind, d, GridSpec::TABLE)?;
     let motions = loomkin_shed::parse_motion_angles(d.motion_deg.as_deref().unwrap_or(default_motion))?;
-    let items = shard.items(design.len());
-    let dims = loomkin_shed::evaluate_rows_in(&t, &design, cond.threshold(), Progress::Auto, items)?;
-    let rows = loomkin_shed::table(&design, &dims, &motions, cond)?;
-    Ok(Rows { k_names: design.names().to_vec(), rows: rows.into_iter().map(|c| (None, c)).collect() })
+    Ok(study.table_in(&motions, cond, Progress::Auto, shard.items(study.design.len()))?)
 }
 
-fn study_design(kind: DesignKind, d: &DesignArgs, g: GridDefaults) -> Result<(Template, loomkin_shed::Design)> {
+fn study_design(kind: DesignKind, d: &DesignArgs, g: GridSpec) -> Result<Study> {
     if kind != DesignKind::Grid && (d.min_k.is_some() || d.max_k.is_some()) {
         bail!("--min-k and --max-k apply to --design grid only");
     }
-    let (t, design) = match kind {
-        DesignKind::Table1 => (template(d, "trapezoid")?, loomkin_shed::table1_design()),
-        DesignKind::Fig1 => (template(d, "lead-trapezoid")?, loomkin_shed::fig1_design(d.step.unwrap_or(g.0))?),
-        DesignKind::Grid | DesignKind::Presets => {
-            let t = template(d, "trapezoid")?;
-            let grid = loomkin_shed::grid_design(
-                t.parts(),
-                d.min_k.unwrap_or(g.1),
-                d.max_k.unwrap_or(g.2),
-                d.step.unwrap_or(g.0),
-            )?;
-            (t, grid)
-        }
+    let grid = GridSpec {
+        step: d.step.unwrap_or(g.step),
+        min_k: d.min_k.unwrap_or(g.min_k),
+        max_k: d.max_k.unwrap_or(g.max_k),
     };
-    if design.dim() != t.parts() {
-        bail!(
-            "--design {kind:?}: the design has {} lengths, the family '{}' {} parts",
-            design.dim(),
-            t.name(),
-            t.parts()
-        );
-    }
-    Ok((t, design))
+    Ok(Study::new(kind, template(d)?, grid)?)
 }
 
-const COLUMNS: [&str; 18] = [
-    "motion_deg",
-    "dwell_deg",
-    "conditional_dwell_deg",
-    "window_deg",
-    "threshold",
-    "cv",
-    "ca",
-    "cj",
-    "cm",
-    "ca_rms",
-    "ca_turn",
-    "peak_velocity_m_s",
-    "peak_accel_m_s2",
-    "peak_jerk_m_s3",
-    "peak_power_w_kg",
-    "rms_accel_m_s2",
-    "a_jump",
-    "accel_jump_m_s2",
-];
-
-fn values(c: &Criteria) -> [f64; 18] {
-    [
-        c.motion_deg,
-        c.dwell_deg,
-        c.conditional_dwell_deg,
-        c.window_deg,
-        c.threshold,
-        c.cv,
-        c.ca,
-        c.cj,
-        c.cm,
-        c.ca_rms,
-        c.ca_turn,
-        c.peak_velocity_m_s,
-        c.peak_accel_m_s2,
-        c.peak_jerk_m_s3,
-        c.peak_power_w_kg,
-        c.rms_accel_m_s2,
-        c.a_jump,
-        c.accel_jump_m_s2,
-    ]
-}
-
-/// One row of a table as JSON (named presets carry `law`, design rows `row`).
-fn row_json(n: &Option<String>, c: &Candidate, cond: &Conditions) -> Value {
-    let mut v = criteria_json(&c.criteria, cond);
-    if let Some(n) = n {
-        v["law"] = json!(n);
-    } else {
-        v["row"] = json!(c.row);
+fn row_json<'a>(r: &'a StudyRow, cond: &Conditions) -> RowJson<'a> {
+    RowJson {
+        law: r.law.as_deref(),
+        row: r.law.is_none().then_some(r.candidate.row),
+        criteria: CriteriaJson::of(&r.candidate.criteria, cond),
+        lengths: &r.candidate.lengths,
     }
-    v["lengths"] = json!(c.lengths);
-    v
-}
-
-/// The table as CSV, with or without its header line.
-fn csv_text(rows: &Rows, named: bool, header_line: bool) -> Result<String> {
-    let mut out = String::new();
-    if header_line {
-        let mut header: Vec<String> = Vec::new();
-        if named {
-            header.push("law".into());
-        } else {
-            header.push("row".into());
-        }
-        header.extend(rows.k_names.iter().cloned());
-        header.extend(COLUMNS.iter().map(|s| s.to_string()));
-        writeln!(out, "{}", header.join(",")).map_err(failure)?;
-    }
-    for (n, c) in &rows.rows {
-        let vals = values(&c.criteria);
-        if let Some(bad) = c.lengths.iter().chain(&vals).find(|v| !v.is_finite()) {
-            return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {}", c.row)));
-        }
-        let mut line = n.clone().unwrap_or_else(|| c.row.to_string());
-        let ks = if named { &[][..] } else { &c.lengths[..] };
-        for v in ks.iter().chain(&vals) {
-            line.push(',');
-            line.push_str(&format!("{v}"));
-        }
-        writeln!(out, "{line}").map_err(failure)?;
-    }
-    Ok(out)
 }
 
 /// A shard of a table: CSV with the header in shard 1 only, or JSON Lines.
-fn emit_shard(rows: &Rows, format: util::Format, cond: &Conditions, shard: loomkin_units::Shard) -> Result<()> {
+fn emit_shard(rows: &StudyTable, format: util::Format, cond: &Conditions, shard: loomkin_units::Shard) -> Result<()> {
     if format.json {
-        return output::json_lines(rows.rows.iter().map(|(n, c)| row_json(n, c, cond)));
+        return output::json_lines(rows.rows.iter().map(|r| row_json(r, cond)));
     }
-    // Whether the table names presets is a property of the design, not of the shard's rows.
-    let named = rows.k_names.is_empty();
-    output::text_to("-", &csv_text(rows, named, shard.is_first())?)
+    if let Some((row, bad)) = rows.non_finite() {
+        return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {row}")));
+    }
+    output::text_to("-", &rows.to_csv_with(shard.is_first()))
 }
 
-fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
-    let named = rows.rows.iter().any(|(n, _)| n.is_some());
+fn emit(rows: &StudyTable, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
+    let named = rows.is_named();
     if format.json {
-        let v: Vec<Value> = rows.rows.iter().map(|(n, c)| row_json(n, c, cond)).collect();
-        return output::json(&json!({ "rows": v }));
+        let rows = rows.rows.iter().map(|r| row_json(r, cond)).collect();
+        return output::json(&RowsJson { rows });
+    }
+    if format.csv {
+        if let Some((row, bad)) = rows.non_finite() {
+            return Err(failure(anyhow::anyhow!("internal: non-finite value {bad} in row {row}")));
+        }
+        return output::text_to("-", &rows.to_csv());
     }
     let mut out = String::new();
-    if format.csv {
-        return output::text_to("-", &csv_text(rows, named, true)?);
-    }
     writeln!(
         out,
         "{title} (T = {}, stroke {} mm, {} rpm)",
@@ -585,9 +559,10 @@ fn emit(rows: &Rows, format: util::Format, cond: &Conditions, title: &str) -> Re
         "motion°", "dwell°", "cond°", "window°", "Ca", "Ca_turn", "a_max m/s²"
     )
     .map_err(failure)?;
-    for (n, c) in &rows.rows {
+    for r in &rows.rows {
+        let c = &r.candidate;
         let label =
-            n.clone().unwrap_or_else(|| c.lengths.iter().map(|k| format!("{k:.3}")).collect::<Vec<_>>().join(" "));
+            r.law.clone().unwrap_or_else(|| c.lengths.iter().map(|k| format!("{k:.3}")).collect::<Vec<_>>().join(" "));
         let k = &c.criteria;
         writeln!(
             out,
@@ -614,19 +589,19 @@ fn pareto(a: ParetoArgs) -> Result<()> {
     let front = if a.design == DesignKind::Presets {
         let all = design_rows(a.design, &a.d, "180:360:10", &cond, loomkin_units::Shard::WHOLE)?;
         let pts: Vec<[f64; 2]> =
-            all.rows.iter().map(|(_, c)| [c.criteria.window_deg, c.criteria.peak_accel_m_s2]).collect();
-        let idx = loomkin_shed::pareto_indices(&pts)?;
-        Rows { k_names: all.k_names.clone(), rows: idx.into_iter().map(|i| all.rows[i].clone()).collect() }
+            all.rows.iter().map(|r| [r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2]).collect();
+        all.select(&loomkin_shed::pareto_indices(&pts)?)
     } else {
-        let (t, design) = study_design(a.design, &a.d, TABLE_GRID)?;
+        let study = study_design(a.design, &a.d, GridSpec::TABLE)?;
         let motions = loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or("180:360:10"))?;
-        let dims = loomkin_shed::evaluate_rows(&t, &design, cond.threshold(), Progress::Auto)?;
-        let front = loomkin_shed::pareto(&design, &dims, &motions, &cond)?;
-        Rows { k_names: design.names().to_vec(), rows: front.into_iter().map(|c| (None, c)).collect() }
+        study.pareto(&motions, &cond, Progress::Auto)?
     };
     if let Some(path) = &a.output {
-        let line: Vec<(f64, f64)> =
-            front.rows.iter().map(|(_, c)| (c.criteria.window_deg, c.criteria.peak_accel_m_s2)).collect();
+        let line: Vec<(f64, f64)> = front
+            .rows
+            .iter()
+            .map(|r| (r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2))
+            .collect();
         let mut series = vec![Series { markers: true, ..Series::line("Pareto front", line) }];
         for p in PRESETS {
             let c = evaluate(&p.law()?, &cond)?;
@@ -661,16 +636,17 @@ fn best(a: BestArgs) -> Result<()> {
         bail!("--design presets is not searched by best; use table1, fig1 or grid");
     }
     let d = &a.d;
-    let (tpl, design) = study_design(a.design, d, BEST_GRID)?;
+    let study = study_design(a.design, d, GridSpec::BEST)?;
+    let (tpl, design) = (&study.template, &study.design);
     let motions = match &d.motion_deg {
         Some(m) => Some(loomkin_shed::parse_motion_angles(m)?),
         None => None,
     };
-    let dims = loomkin_shed::evaluate_rows(&tpl, &design, t, Progress::Auto)?;
-    let Some(b) = loomkin_shed::best(&design, &dims, motions.as_deref(), w, a.max_jerk_m_s3, &cond)? else {
+    let dims = study.evaluate(t, Progress::Auto)?;
+    let Some(b) = loomkin_shed::best(design, &dims, motions.as_deref(), w, a.max_jerk_m_s3, &cond)? else {
         // Blame the constraint that fails: the window alone, or the jerk limit on top of it.
         if let Some(j) = a.max_jerk_m_s3
-            && loomkin_shed::best(&design, &dims, motions.as_deref(), w, None, &cond)?.is_some()
+            && loomkin_shed::best(design, &dims, motions.as_deref(), w, None, &cond)?.is_some()
         {
             bail!(
                 "no law of the family '{}' with a window of {w} deg at T = {t} keeps the peak jerk within \
@@ -685,20 +661,17 @@ fn best(a: BestArgs) -> Result<()> {
         emit_cycle(&law, &a.physical, path, &format!("loomkin shed best --window-deg {w} (family {})", tpl.name()))?;
     }
     if a.json {
-        let mut v = criteria_json(&b.criteria, &cond);
-        v["required_window_deg"] = json!(w);
-        v["family"] = json!(tpl.name());
-        v["lengths"] = json!(b.lengths);
-        v["segments"] = json!(law.positive_text());
-        v["definition"] = definition_json(&law);
-        v["laws_searched"] = json!(design.len());
-        if let Some(j) = a.max_jerk_m_s3 {
-            v["max_jerk_m_s3"] = json!(j);
-        }
-        if let Some(r) = &req {
-            v["loom"] = serde_json::to_value(r).unwrap_or(Value::Null);
-        }
-        return output::json(&v);
+        return output::json(&BestJson {
+            criteria: CriteriaJson::of(&b.criteria, &cond),
+            required_window_deg: w,
+            family: tpl.name(),
+            lengths: &b.lengths,
+            segments: law.positive_text(),
+            definition: DefinitionJson::of(&law),
+            laws_searched: design.len(),
+            max_jerk_m_s3: a.max_jerk_m_s3,
+            loom: req.as_ref(),
+        });
     }
     outln!(
         "least peak acceleration with a window ≥ {w:.3} deg ({} laws of the family '{}' searched{})",
@@ -723,12 +696,13 @@ fn window(a: WindowArgs) -> Result<()> {
     };
     let w = r.required_window_deg()?;
     if a.json {
-        let mut v = serde_json::to_value(r).unwrap_or(Value::Null);
-        v["flight_deg"] = json!(r.flight_deg());
-        v["required_window_deg"] = json!(w);
-        v["threshold"] = json!(r.threshold());
-        v["threshold_both_sheets"] = json!(r.threshold_both_sheets());
-        return output::json(&v);
+        return output::json(&WindowJson {
+            loom: &r,
+            flight_deg: r.flight_deg(),
+            required_window_deg: w,
+            threshold: r.threshold(),
+            threshold_both_sheets: r.threshold_both_sheets(),
+        });
     }
     outln!("flight in the warp   φ_flight = 6n(L_cloth + l_carrier)/v = {:.3} deg", r.flight_deg())?;
     outln!("required window      φ_req = φ_flight + D_crossing      = {w:.3} deg")?;

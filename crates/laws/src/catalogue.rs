@@ -52,30 +52,88 @@ pub struct CatalogueEntry {
     pub description: &'static str,
     /// Parameters as `key=default (range)`, or empty.
     pub params: &'static str,
+    /// The parameters' keys (`ramp`, `segments`), listed by the law itself.
+    pub keys: &'static [&'static str],
+    /// Whether the law needs its parameters (no defaults: `segments`).
+    pub required: bool,
+}
+
+impl CatalogueEntry {
+    /// Whether the law takes the parameter `key`.
+    pub fn has_param(&self, key: &str) -> bool {
+        self.keys.contains(&key)
+    }
+}
+
+/// A parameter's value: a number (`ramp`) or text (`segments`); untagged in JSON, so
+/// `{"ramp": 0.1}` and `{"segments": "0.5:constant:1,…"}`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ParamValue {
+    /// A number.
+    Number(f64),
+    /// Text.
+    Text(String),
+}
+
+impl ParamValue {
+    /// The value as the text [`LawSpec::parse`] reads.
+    pub fn text(&self) -> String {
+        match self {
+            ParamValue::Number(v) => v.to_string(),
+            ParamValue::Text(t) => t.clone(),
+        }
+    }
 }
 
 /// Every named law, in catalogue order.
 pub const CATALOGUE: &[CatalogueEntry] = &[
-    CatalogueEntry { name: "constant-acceleration", description: "parabolic: +a then −a", params: "" },
-    CatalogueEntry { name: "harmonic", description: "simple harmonic, s = (1 − cos πx)/2", params: "" },
-    CatalogueEntry { name: "cycloidal", description: "s = x − sin(2πx)/2π", params: "" },
-    CatalogueEntry { name: "poly345", description: "3-4-5 polynomial", params: "" },
-    CatalogueEntry { name: "poly4567", description: "4-5-6-7 polynomial", params: "" },
+    CatalogueEntry {
+        name: "constant-acceleration",
+        description: "parabolic: +a then −a",
+        params: "",
+        keys: &[],
+        required: false,
+    },
+    CatalogueEntry {
+        name: "harmonic",
+        description: "simple harmonic, s = (1 − cos πx)/2",
+        params: "",
+        keys: &[],
+        required: false,
+    },
+    CatalogueEntry {
+        name: "cycloidal", description: "s = x − sin(2πx)/2π", params: "", keys: &[], required: false
+    },
+    CatalogueEntry { name: "poly345", description: "3-4-5 polynomial", params: "", keys: &[], required: false },
+    CatalogueEntry { name: "poly4567", description: "4-5-6-7 polynomial", params: "", keys: &[], required: false },
     CatalogueEntry {
         name: "modified-trapezoid",
         description: "sine ramps, constant plateaus",
         params: "ramp=0.125 (0 < ramp ≤ 0.25)",
+        keys: &["ramp"],
+        required: false,
     },
-    CatalogueEntry { name: "modified-sine", description: "quarter sines over 1/8, half cosine between", params: "" },
+    CatalogueEntry {
+        name: "modified-sine",
+        description: "quarter sines over 1/8, half cosine between",
+        params: "",
+        keys: &[],
+        required: false,
+    },
     CatalogueEntry {
         name: "piecewise",
         description: "general piecewise acceleration",
         params: "segments=LEN:SHAPE[:LEVEL…],… (lengths sum to 1)",
+        keys: &["segments"],
+        required: true,
     },
     CatalogueEntry {
         name: "polynomial",
         description: "polynomial acceleration per segment (e.g. a servo spline law)",
         params: "segments=LEN:c0[:c1…],… (a = c0 + c1·u + … in each segment, degree ≤ 5, lengths sum to 1)",
+        keys: &["segments"],
+        required: true,
     },
 ];
 
@@ -106,6 +164,14 @@ impl LawSpec {
             LawSpec::Piecewise { segments } => vec![("segments".into(), format_segments(segments))],
             LawSpec::Polynomial { segments } => vec![("segments".into(), format_poly_segments(segments))],
             _ => Vec::new(),
+        }
+    }
+
+    /// The parameters, typed: numbers as numbers (`ramp`), text as text (`segments`).
+    pub fn param_values(&self) -> std::collections::BTreeMap<String, ParamValue> {
+        match self {
+            LawSpec::ModifiedTrapezoid { ramp } => [("ramp".to_string(), ParamValue::Number(*ramp))].into(),
+            _ => self.params().into_iter().map(|(k, v)| (k, ParamValue::Text(v))).collect(),
         }
     }
 
@@ -296,5 +362,30 @@ mod duplicate_tests {
         let e = LawSpec::parse("modified-trapezoid", &[("ramp", "0.1"), ("ramp", "0.2")]).unwrap_err().to_string();
         assert!(e.contains("ramp given twice"), "{e}");
         assert!(LawSpec::parse("modified-trapezoid", &[("ramp", "0.1")]).is_ok());
+    }
+}
+
+#[cfg(test)]
+mod param_tests {
+    use super::*;
+
+    #[test]
+    fn each_law_lists_the_parameters_it_reads() {
+        for e in CATALOGUE {
+            // The description names exactly the listed keys.
+            let described: Vec<&str> =
+                e.params.split_whitespace().filter_map(|w| w.split_once('=')).map(|(k, _)| k).collect();
+            assert_eq!(described, e.keys, "{}", e.name);
+            let bare = LawSpec::parse::<&str, &str>(e.name, &[]);
+            assert_eq!(bare.is_err(), e.required, "{}", e.name);
+            if let Ok(spec) = bare {
+                let keys: Vec<String> = spec.param_values().into_keys().collect();
+                assert_eq!(keys, e.keys, "{}", e.name);
+                // A key the law does not list is refused.
+                assert!(LawSpec::parse(e.name, &[("bogus", "1")]).is_err());
+            }
+        }
+        let spec = LawSpec::parse("modified-trapezoid", &[("ramp", "0.1")]).unwrap();
+        assert_eq!(spec.param_values()["ramp"], ParamValue::Number(0.1));
     }
 }

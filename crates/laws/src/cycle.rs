@@ -54,6 +54,17 @@ pub enum SegmentKind {
     Return,
 }
 
+impl SegmentKind {
+    /// `dwell`, `rise` or `return`, as in cycle files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Dwell => "dwell",
+            Self::Rise => "rise",
+            Self::Return => "return",
+        }
+    }
+}
+
 /// One segment of a cycle file, as written in TOML (`[[segment]]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -24,6 +24,7 @@
 mod catalogue;
 mod continuity;
 mod cycle;
+mod cycle_report;
 mod error;
 mod extrema;
 mod kinematics;
@@ -34,9 +35,10 @@ mod quadrature;
 mod segment;
 mod shape;
 
-pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec};
+pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue};
 pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
+pub use cycle_report::{CycleReport, SegmentPeaks};
 pub use error::{LawError, Result, compact};
 pub use extrema::refine_root;
 pub use kinematics::{Kinematics, MotionLaw};

@@ -323,3 +323,22 @@ fn every_rise_law_of_the_core_synthesises_without_nan() {
         assert!(!json.contains("NaN") && !json.contains("null"), "{name}");
     }
 }
+
+/// Cam Γ of an analysis: its centre is the roller path B of the rows, its walls lie at the roller
+/// radius from it, on either side, and the paper's cam is an ellipse: B on (x/0.366)² + (y/0.577)² = 1.
+#[test]
+fn the_analysis_cam_profile_is_the_roller_path_with_offset_walls() {
+    let g = ModulatorGeometry::PAPER;
+    let a = analyze(&g, &Cam::paper(), &opts(2.0)).unwrap();
+    let r = 0.02;
+    let p = a.cam_profile(r);
+    assert_eq!(p.centre.len(), a.rows.len() - 1);
+    for (i, c) in p.centre.iter().enumerate() {
+        assert_eq!(*c, [a.rows[i].b_x_m, a.rows[i].b_y_m]);
+        assert!(((c[0] / 0.366).powi(2) + (c[1] / 0.577).powi(2) - 1.0).abs() < 1e-9);
+        for w in [p.wall_left[i], p.wall_right[i]] {
+            assert!(((w[0] - c[0]).hypot(w[1] - c[1]) - r).abs() < 1e-12);
+        }
+    }
+    assert!(a.cam_profile(0.0).wall_left.is_empty());
+}

@@ -31,9 +31,11 @@ mod axis;
 mod axis_check;
 mod camtable;
 mod cycle_file;
+mod design;
 mod drive;
 mod error;
 mod export;
+mod export_file;
 mod optimize;
 mod points;
 mod poly;
@@ -47,12 +49,14 @@ pub use camtable::{
     slave_at,
 };
 pub use cycle_file::spline_cycle;
+pub use design::{DesignFormat, MAX_DEF_POINTS, MAX_SPEEDS, ServoDesign};
 pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, DRIVE_KEYS, Drive};
 pub use error::{Result, ServoError};
 pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
     read_json,
 };
+pub use export_file::{Export, ExportFormat, TableReport, export};
 pub use optimize::{Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
 pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
 pub use spline::{SplineEnd, SplineLaw, slope_at_middle};

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 /// What the optimiser minimises; with several speeds, the worst (largest) value over the speeds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Objective {
     /// Peak |motor torque| over the turn (N·m).

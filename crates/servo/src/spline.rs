@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// At `x = 0.5` the slope is always the paper's `D` (see [`slope_at_middle`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum SplineEnd {
     /// `f''(0) = 0`, the natural spline (the default). The jerk `f'(0)` is free, so it jumps

@@ -36,25 +36,7 @@ pub fn catalogue() -> CatalogueResponse {
     }
 }
 
-/// A parameter value: the page may send a number or text (`segments` is text).
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(untagged)]
-pub enum ParamValue {
-    /// A number.
-    Number(f64),
-    /// Text.
-    Text(String),
-}
-
-impl ParamValue {
-    /// The value as the text `LawSpec::parse` reads.
-    pub fn text(&self) -> String {
-        match self {
-            ParamValue::Number(v) => v.to_string(),
-            ParamValue::Text(t) => t.clone(),
-        }
-    }
-}
+pub use loomkin_laws::ParamValue;
 
 /// One law to compare: a catalogue name and its parameters.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]

@@ -15,11 +15,8 @@ pub const DEFAULT_SAMPLES: usize = 1000;
 /// Most laws compared at once in the catalogue view.
 pub const MAX_COMPARE: usize = 8;
 
-/// Most main-shaft speeds evaluated at once.
-pub const MAX_SPEEDS: usize = 6;
-
-/// Most definition points of a servo law.
-pub const MAX_DEF_POINTS: usize = 64;
+/// Most main-shaft speeds and definition points of a servo design: the servo crate's bounds.
+pub use loomkin_servo::{MAX_DEF_POINTS, MAX_SPEEDS};
 
 /// Most rows of an exported cam table.
 pub const MAX_CAM_ROWS: usize = 100_000;

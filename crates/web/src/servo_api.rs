@@ -3,14 +3,14 @@
 use crate::error::check_count;
 use crate::limits::{DEFAULT_SAMPLES, MAX_CAM_ROWS, MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::{LawSamples, finite};
-use crate::servo_design::{DesignFormat, ServoDesign, servo_error};
+use crate::servo_design::{DesignFormat, ServoDesign, design_from_text, design_spline, design_text, servo_error};
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_laws::Metrics;
+pub use loomkin_servo::ExportFormat;
 use loomkin_servo::{
-    CamTable, Interpolation, InterpolationError, Objective, OptimizeOptions, TorqueSummary, export_coeffs_text,
-    export_json, optimize, poly5_csv, poly5_segments, summary, torque_curve,
+    Interpolation, InterpolationError, Objective, OptimizeOptions, TorqueSummary, optimize, summary, torque_curve,
 };
 use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
@@ -107,7 +107,7 @@ pub struct EvaluateResponse {
 pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
     let t0 = Instant::now();
     let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
-    let spline = req.design.spline().map_err(|e| e.within("design"))?;
+    let spline = design_spline(&req.design).map_err(|e| e.within("design"))?;
     let law = spline.law();
     let samples = LawSamples::of(law, n);
     let f = samples.a.iter().map(|a| finite(a / spline.scale())).collect();
@@ -210,7 +210,7 @@ pub(crate) fn optimize_until(
     stop: &loomkin_servo::StopFlag,
 ) -> Result<OptimizeResponse, ApiError> {
     let t0 = Instant::now();
-    let spline = req.design.spline().map_err(|e| e.within("design"))?;
+    let spline = design_spline(&req.design).map_err(|e| e.within("design"))?;
     let opts = OptimizeOptions {
         objective: req.objective,
         speeds_rpm: req.design.speeds_rpm.clone(),
@@ -227,22 +227,6 @@ pub(crate) fn optimize_until(
         evaluations: r.evaluations,
         elapsed_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
-}
-
-/// Export formats.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ExportFormat {
-    /// The spline coefficients per interval as documented text.
-    Coeffs,
-    /// The coefficients as JSON (`intervals` with `x_start`, `x_end`, `accel`, `velocity`, `position`).
-    Json,
-    /// Cam table over one turn as CSV (master deg → slave m, m/deg, m/deg²).
-    Csv,
-    /// Cam table as PLCopen-style XYVA points.
-    Xyva,
-    /// The exact law as fifth-degree polynomial segments in master degrees (CSV).
-    Poly5,
 }
 
 /// `POST /api/servo/export` request.
@@ -278,44 +262,42 @@ pub struct ExportResponse {
     pub note: String,
 }
 
-/// Writes the export file.
+/// Writes the export file (the servo crate's exporter; cam tables with `rows` rows over a turn).
 pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
-    let spline = req.design.spline().map_err(|e| e.within("design"))?;
-    let drive = &req.design.drive;
-    let (filename, media_type, text) = match req.format {
-        ExportFormat::Coeffs => ("servo-coefficients.txt", "text/plain", export_coeffs_text(&spline)),
-        ExportFormat::Json => ("servo-coefficients.json", "application/json", export_json(&spline)),
-        ExportFormat::Poly5 => {
-            let segs = poly5_segments(spline.law(), drive).map_err(|e| servo_error(e).within("design"))?;
-            ("servo-cam-poly5.csv", "text/csv", poly5_csv(&segs))
-        }
-        ExportFormat::Csv | ExportFormat::Xyva => {
-            let rows = check_count("rows", req.rows, 5, MAX_CAM_ROWS)?;
-            let step = Range::closed(0.0, 90.0, "deg").check("rows", 360.0 / (rows - 1) as f64)?;
-            let table = CamTable::new(spline.law(), drive, step).map_err(servo_error)?;
-            let interpolation = Interpolation::ALL
-                .iter()
-                .map(|&m| table.interpolation_error(spline.law(), drive, m))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(servo_error)?;
-            let worst =
-                |m: Interpolation| interpolation.iter().find(|e| e.mode == m).map_or(0.0, |e| e.max_position_error_m);
-            let (name, media, text, mode) = if req.format == ExportFormat::Csv {
-                ("servo-cam.csv", "text/csv", table.to_csv(), Interpolation::Linear)
-            } else {
-                ("servo-cam-xyva.csv", "text/csv", table.to_xyva(), Interpolation::QuinticHermite)
-            };
+    let spline = design_spline(&req.design).map_err(|e| e.within("design"))?;
+    let step = if req.format.is_cam_table() {
+        let rows = check_count("rows", req.rows, 5, MAX_CAM_ROWS)?;
+        Range::closed(0.0, 90.0, "deg").check("rows", 360.0 / (rows - 1) as f64)?
+    } else {
+        1.0
+    };
+    let file = loomkin_servo::export(&spline, &req.design.drive, req.format, step).map_err(|e| match req.format {
+        ExportFormat::Csv | ExportFormat::Xyva => servo_error(e),
+        _ => servo_error(e).within("design"),
+    })?;
+    let (interpolation, note) = match file.table {
+        Some(t) => {
+            let mode =
+                if req.format == ExportFormat::Csv { Interpolation::Linear } else { Interpolation::QuinticHermite };
+            let worst = t.reinterpolation.iter().find(|e| e.mode == mode).map_or(0.0, |e| e.max_position_error_m);
             let note = format!(
                 "{} rows, step {:.4}°; re-interpolated {}: worst position error {:.3e} m",
-                table.points.len(),
-                table.step_deg(),
+                t.points,
+                t.step_deg,
                 mode.name(),
-                worst(mode)
+                worst
             );
-            return Ok(ExportResponse { filename: name.into(), media_type: media, text, interpolation, note });
+            (t.reinterpolation, note)
         }
+        None => (Vec::new(), String::new()),
     };
-    Ok(ExportResponse { filename: filename.into(), media_type, text, interpolation: Vec::new(), note: String::new() })
+    Ok(ExportResponse {
+        filename: file.filename.into(),
+        media_type: file.media_type,
+        text: file.text,
+        interpolation,
+        note,
+    })
 }
 
 /// `POST /api/servo/design/save` request.
@@ -331,7 +313,7 @@ pub struct SaveRequest {
 
 /// Writes the design file (checked first, so a saved file always loads).
 pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
-    req.design.spline().map_err(|e| e.within("design"))?;
+    design_spline(&req.design).map_err(|e| e.within("design"))?;
     let (filename, media_type) = match req.format {
         DesignFormat::Toml => ("servo-design.toml", "application/toml"),
         _ => ("servo-design.json", "application/json"),
@@ -339,7 +321,7 @@ pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
     Ok(ExportResponse {
         filename: filename.into(),
         media_type,
-        text: req.design.to_text(req.format)?,
+        text: design_text(&req.design, req.format)?,
         interpolation: Vec::new(),
         note: String::new(),
     })
@@ -362,7 +344,7 @@ fn auto() -> DesignFormat {
 
 /// Reads a design file.
 pub fn load(req: &LoadRequest) -> Result<DesignResponse, ApiError> {
-    ServoDesign::from_text(&req.text, req.format).map(|design| DesignResponse { design })
+    design_from_text(&req.text, req.format).map(|design| DesignResponse { design })
 }
 
 async fn post_evaluate(ApiJson(req): ApiJson<EvaluateRequest>) -> Result<ApiJson<EvaluateResponse>, ApiError> {
@@ -450,7 +432,7 @@ mod tests {
     #[test]
     fn exports_read_back() {
         let design = ServoDesign::default();
-        let spline = design.spline().unwrap();
+        let spline = design_spline(&design).unwrap();
         let r = export(&ExportRequest { design: design.clone(), format: ExportFormat::Json, rows: 0 }).unwrap();
         let back = loomkin_servo::read_json(&r.text).unwrap();
         assert_eq!(back.def_points, spline.points());

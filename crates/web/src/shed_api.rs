@@ -8,7 +8,7 @@ use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::post;
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, Progress, ShedError, Template, cycle_curve, evaluate, evaluate_rows, grid_design,
+    Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, Progress, ShedError, Study, cycle_curve, evaluate,
     pareto, table,
 };
 use loomkin_units::{FieldError, Range};
@@ -81,7 +81,7 @@ fn shed_error(default_field: &str, e: ShedError) -> ApiError {
 #[serde(deny_unknown_fields)]
 pub struct ParetoRequest {
     /// Law family: `trapezoid` (3 parts), `lead-trapezoid` (4), `linear-trapezoid` (3).
-    pub family: String,
+    pub family: Family,
     /// Grid step of the relative lengths k_Ti (0.005 … 0.5).
     pub step: f64,
     /// Smallest relative length on the grid (default 0.005, the paper's practical minimum).
@@ -123,7 +123,7 @@ pub struct ParetoResponse {
 
 /// Evaluates the grid of the family and its Pareto front.
 pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
-    let template = Template::named(&req.family).map_err(|e| ApiError::invalid("family", e))?;
+    let template = req.family.template();
     let cond = req.conditions.build()?;
     check_count("motions_deg", req.motions_deg.len(), 1, MAX_MOTIONS)?;
     for (i, &m) in req.motions_deg.iter().enumerate() {
@@ -141,12 +141,14 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
             format!(
                 "step = {step} gives about {cube:.0} grid points for the {} parts of '{}': use step ≥ {:.3}",
                 template.parts(),
-                req.family,
+                req.family.name(),
                 smallest
             ),
         ));
     }
-    let design = grid_design(template.parts(), min, 1.0, step).map_err(|e| shed_error("step", e))?;
+    let study = Study::new(DesignKind::Grid, Some(template), GridSpec { step, min_k: min, max_k: 1.0 })
+        .map_err(|e| shed_error("step", e))?;
+    let design = &study.design;
     check_count("step", design.len(), 1, MAX_SHED_ROWS).map_err(|_| {
         ApiError::invalid(
             "step",
@@ -156,8 +158,7 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
             ),
         )
     })?;
-    let rows =
-        evaluate_rows(&template, &design, cond.threshold(), Progress::Hidden).map_err(|e| shed_error("family", e))?;
+    let rows = study.evaluate(cond.threshold(), Progress::Hidden).map_err(|e| shed_error("family", e))?;
     let laws = rows.iter().filter(|r| r.is_some()).count();
     if laws * req.motions_deg.len() > MAX_SHED_POINTS {
         return Err(ApiError::invalid(
@@ -168,8 +169,8 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
             ),
         ));
     }
-    let all = table(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
-    let front = pareto(&design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    let all = table(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    let front = pareto(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
     let cloud = ShedCloud {
         window_deg: all.iter().map(|c| finite(c.criteria.window_deg) as f32).collect(),
         peak_accel_m_s2: all.iter().map(|c| finite(c.criteria.peak_accel_m_s2) as f32).collect(),
@@ -183,7 +184,7 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
 #[serde(deny_unknown_fields)]
 pub struct ShedLawRequest {
     /// Law family (as in [`ParetoRequest::family`]).
-    pub family: String,
+    pub family: Family,
     /// Relative lengths k_T1 … k_Tn of the positive phase (sum 1).
     pub lengths: Vec<f64>,
     /// Motion angle φ (deg).
@@ -217,7 +218,7 @@ pub struct ShedLawResponse {
 
 /// The chosen law over one turn.
 pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
-    let template = Template::named(&req.family).map_err(|e| ApiError::invalid("family", e))?;
+    let template = req.family.template();
     let cond = req.conditions.build()?;
     let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
     check_count("lengths", req.lengths.len(), template.parts(), template.parts())?;
@@ -251,7 +252,7 @@ mod tests {
 
     fn req(step: f64) -> ParetoRequest {
         ParetoRequest {
-            family: "trapezoid".into(),
+            family: Family::Trapezoid,
             step,
             min_length: 0.005,
             motions_deg: vec![200.0, 300.0],
@@ -280,7 +281,7 @@ mod tests {
         // The law endpoint, through the generic path, gives the front's numbers (fast path).
         let f = &r.front[0];
         let l = shed_law(&ShedLawRequest {
-            family: "trapezoid".into(),
+            family: Family::Trapezoid,
             lengths: f.lengths.clone(),
             motion_deg: f.criteria.motion_deg,
             conditions: ShedConditions::default(),
@@ -297,11 +298,11 @@ mod tests {
     fn fine_grids_and_bad_values_are_refused() {
         assert_eq!(shed_pareto(&req(0.001)).map(|_| ()).unwrap_err().field(), "step");
         let mut r = req(0.05);
-        r.family = "lead-trapezoid".into();
+        r.family = Family::LeadTrapezoid;
         r.step = 0.005;
         assert_eq!(shed_pareto(&r).unwrap_err().field(), "step");
-        r.family = "hexagon".into();
-        assert_eq!(shed_pareto(&r).unwrap_err().field(), "family");
+        let e = crate::parse_json::<ParetoRequest>(br#"{"family": "hexagon", "step": 0.05, "motions_deg": [200]}"#);
+        assert_eq!(e.unwrap_err().field(), "family");
         let mut r = req(0.05);
         r.motions_deg = vec![400.0];
         assert_eq!(shed_pareto(&r).unwrap_err().field(), "motions_deg[0]");
@@ -312,18 +313,18 @@ mod tests {
 
     #[test]
     fn bad_lengths_are_named_as_in_the_request() {
-        let law = |family: &str, lengths: Vec<f64>| ShedLawRequest {
-            family: family.into(),
+        let law = |family: Family, lengths: Vec<f64>| ShedLawRequest {
+            family,
             lengths,
             motion_deg: 200.0,
             conditions: ShedConditions::default(),
             samples: 11,
         };
-        let e = shed_law(&law("trapezoid", vec![0.5, 0.5, 0.5])).unwrap_err();
+        let e = shed_law(&law(Family::Trapezoid, vec![0.5, 0.5, 0.5])).unwrap_err();
         assert_eq!(e.field(), "lengths", "{e}");
         assert!(e.to_string().starts_with("lengths: relative lengths k_Ti sum to 1.5"), "{e}");
         // Only the zero-acceleration lead: no rise.
-        let e = shed_law(&law("lead-trapezoid", vec![1.0, 0.0, 0.0, 0.0])).unwrap_err();
+        let e = shed_law(&law(Family::LeadTrapezoid, vec![1.0, 0.0, 0.0, 0.0])).unwrap_err();
         assert_eq!(e.field(), "lengths", "{e}");
     }
 }

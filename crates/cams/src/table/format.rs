@@ -8,6 +8,7 @@ use serde::Serialize;
 
 /// A cam-table file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Format {
     /// `X,Y,V,A,J` points after `#` comment lines ([`xyvaj`]).

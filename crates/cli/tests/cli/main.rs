@@ -13,3 +13,4 @@ mod serve;
 mod servo;
 mod shard;
 mod shed;
+mod snapshots;

@@ -98,7 +98,7 @@ fn sweep_csv_and_json() {
 fn sweep_through_a_resonance_says_so_and_answers() {
     // ψ/μ·200 ≈ 480.9 rev/min: the closed form's denominator vanishes between these points.
     let d = stdout_json(&["pick", "design", "--json"]);
-    let n_res = num(&d, "psi_1_s") / num(&d, "mu_1_s") * 200.0;
+    let n_res = num(&d, "natural_1_s") / num(&d, "mu_1_s") * 200.0;
     let at = format!("{n_res}");
     let out = loomkin().args(["pick", "simulate", "--speed-rpm", &at, "--json"]).output().unwrap();
     assert!(out.status.success());

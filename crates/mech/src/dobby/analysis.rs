@@ -172,6 +172,16 @@ pub struct Analysis {
     pub states: Vec<ModulatorState>,
 }
 
+impl Analysis {
+    /// Cam Γ (the roller-centre curve of B over one revolution) as a profile, with groove walls
+    /// for a roller of radius `roller_m` > 0, built as the counter-cam Γ′ is.
+    pub fn cam_profile(&self, roller_m: f64) -> CamProfile {
+        let n = self.states.len().saturating_sub(1);
+        let path: Vec<(Vec2, Vec2)> = self.states[..n].iter().map(|s| (s.b[0], s.b[1])).collect();
+        CamProfile::from_path(&path, roller_m)
+    }
+}
+
 /// Loop (2) alone, unknowns `q = (p, φ3)`: `r(p) + l3·e(φ3 + α) − l2·e(φ2) = 0`.
 pub fn cam_loop(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<2>> {
     let l = VectorLoop::new()

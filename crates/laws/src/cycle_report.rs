@@ -1,0 +1,189 @@
+//! A cycle at one speed: per-segment peaks from the laws' exact metrics, and samples; JSON keys
+//! carry the cycle's unit (`stroke_m`, `peak_velocity_m_s` … or `stroke_rad`, `peak_velocity_rad_s` …).
+
+use crate::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
+use loomkin_units::ShaftSpeed;
+use serde::ser::{Serialize, SerializeMap, Serializer};
+
+/// The peaks of one segment at one speed (SI: m, m/s, m/s², m/s³ or rad, rad/s, …).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SegmentPeaks {
+    /// What the segment does.
+    pub kind: SegmentKind,
+    /// Start angle (deg).
+    pub from_deg: f64,
+    /// End angle (deg).
+    pub to_deg: f64,
+    /// The law's label (`None` for a dwell; `"-"` in JSON).
+    pub law: Option<String>,
+    /// Unsigned stroke `h` (m or rad).
+    pub stroke: f64,
+    /// Peak |velocity| `h·Cv·ω/β`, with `ω` the shaft speed (rad/s) and `β` the segment angle (rad).
+    pub peak_velocity: f64,
+    /// Peak |acceleration| `h·Ca·(ω/β)²`.
+    pub peak_acceleration: f64,
+    /// Peak |jerk| `h·Cj·(ω/β)³`.
+    pub peak_jerk: f64,
+    /// The cycle's unit (names the JSON keys).
+    pub unit: StrokeUnit,
+}
+
+/// A cycle at one speed: timing, per-segment peaks and samples (`loomkin cycle --json`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CycleReport {
+    /// Main-shaft speed (rpm).
+    pub speed_rpm: f64,
+    /// Cycle angle (deg).
+    pub period_deg: f64,
+    /// Duration of one cycle (s).
+    pub cycle_time_s: f64,
+    /// The cycle's unit.
+    pub unit: StrokeUnit,
+    /// Peaks of every segment.
+    pub segments: Vec<SegmentPeaks>,
+    /// Samples over the cycle.
+    pub samples: Vec<CyclePoint>,
+}
+
+impl Cycle {
+    /// Per-segment peaks at `speed_rpm` from each law's exact metrics (Cv, Ca, Cj) and the chain
+    /// rule; dwells have zero peaks.
+    pub fn segment_peaks(&self, speed: ShaftSpeed) -> Vec<SegmentPeaks> {
+        // ω as `rpm·2π/60` (not `rpm·(2π/60)`): the figures stay bit for bit what the CLI printed.
+        let omega = speed.rpm() * std::f64::consts::TAU / 60.0;
+        self.segments
+            .iter()
+            .map(|s| {
+                let (law, pv, pa, pj) = match &s.law {
+                    Some((spec, law)) => {
+                        let m = law.metrics();
+                        let r = omega / s.length_rad;
+                        let h = s.stroke_si.abs();
+                        (Some(spec.label()), h * m.cv * r, h * m.ca * r * r, h * m.cj * r * r * r)
+                    }
+                    None => (None, 0.0, 0.0, 0.0),
+                };
+                SegmentPeaks {
+                    kind: s.kind,
+                    from_deg: s.start_rad.to_degrees(),
+                    to_deg: (s.start_rad + s.length_rad).to_degrees(),
+                    law,
+                    stroke: s.stroke_si.abs(),
+                    peak_velocity: pv,
+                    peak_acceleration: pa,
+                    peak_jerk: pj,
+                    unit: self.unit,
+                }
+            })
+            .collect()
+    }
+
+    /// The report at `speed` with `n` samples over the cycle.
+    pub fn report(&self, speed: ShaftSpeed, n: usize) -> CycleReport {
+        CycleReport {
+            speed_rpm: speed.rpm(),
+            period_deg: self.period_rad.to_degrees(),
+            cycle_time_s: self.period_rad / (speed.rpm() * std::f64::consts::TAU / 60.0),
+            unit: self.unit,
+            segments: self.segment_peaks(speed),
+            samples: self.sample(n, speed.rpm()),
+        }
+    }
+}
+
+impl Serialize for SegmentPeaks {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let [pu, vu, au, ju] = self.unit.key_units();
+        let mut m = s.serialize_map(Some(8))?;
+        m.serialize_entry("kind", &self.kind)?;
+        m.serialize_entry("from_deg", &self.from_deg)?;
+        m.serialize_entry("to_deg", &self.to_deg)?;
+        m.serialize_entry("law", self.law.as_deref().unwrap_or("-"))?;
+        m.serialize_entry(&format!("stroke_{pu}"), &self.stroke)?;
+        m.serialize_entry(&format!("peak_velocity_{vu}"), &self.peak_velocity)?;
+        m.serialize_entry(&format!("peak_acceleration_{au}"), &self.peak_acceleration)?;
+        m.serialize_entry(&format!("peak_jerk_{ju}"), &self.peak_jerk)?;
+        m.end()
+    }
+}
+
+/// One sample with unit-named keys.
+struct UnitPoint<'a>(&'a CyclePoint, StrokeUnit);
+
+impl Serialize for UnitPoint<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let [pu, vu, au, ju] = self.1.key_units();
+        let (p, mut m) = (self.0, s.serialize_map(Some(6))?);
+        m.serialize_entry("angle_deg", &p.angle_deg)?;
+        m.serialize_entry("time_s", &p.time_s)?;
+        m.serialize_entry(&format!("s_{pu}"), &p.kin.s)?;
+        m.serialize_entry(&format!("v_{vu}"), &p.kin.v)?;
+        m.serialize_entry(&format!("a_{au}"), &p.kin.a)?;
+        m.serialize_entry(&format!("j_{ju}"), &p.kin.j)?;
+        m.end()
+    }
+}
+
+impl Serialize for CycleReport {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(6))?;
+        m.serialize_entry("speed_rpm", &self.speed_rpm)?;
+        m.serialize_entry("period_deg", &self.period_deg)?;
+        m.serialize_entry("cycle_time_s", &self.cycle_time_s)?;
+        m.serialize_entry("unit", self.unit.si_units()[0])?;
+        m.serialize_entry("segments", &self.segments)?;
+        let samples: Vec<UnitPoint<'_>> = self.samples.iter().map(|p| UnitPoint(p, self.unit)).collect();
+        m.serialize_entry("samples", &samples)?;
+        m.end()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FILE: &str = r#"
+unit = "mm"
+stroke = 80
+[[segment]]
+kind = "rise"
+to_deg = 120
+law = "cycloidal"
+[[segment]]
+kind = "dwell"
+to_deg = 180
+[[segment]]
+kind = "return"
+to_deg = 300
+law = "poly345"
+[[segment]]
+kind = "dwell"
+to_deg = 360
+"#;
+
+    #[test]
+    fn peaks_match_the_sampled_cycle_and_name_their_units() {
+        let c = Cycle::from_toml(FILE).unwrap();
+        let speed = ShaftSpeed::from_rpm(400.0).unwrap();
+        let r = c.report(speed, 20_001);
+        assert_eq!(r.segments.len(), 4);
+        // Independent route: the largest sampled |v|, |a| over each moving segment approaches
+        // the closed-form peak from below.
+        for p in r.segments.iter().filter(|p| p.law.is_some()) {
+            let inside = r.samples.iter().filter(|s| s.angle_deg >= p.from_deg && s.angle_deg <= p.to_deg);
+            let (v, a) = inside.fold((0.0f64, 0.0f64), |(v, a), s| (v.max(s.kin.v.abs()), a.max(s.kin.a.abs())));
+            assert!(v <= p.peak_velocity * (1.0 + 1e-9) && v > p.peak_velocity * (1.0 - 1e-4), "{v} {p:?}");
+            assert!(a <= p.peak_acceleration * (1.0 + 1e-9) && a > p.peak_acceleration * (1.0 - 1e-3), "{a} {p:?}");
+        }
+        // Cycloidal rise over 120° at 400 rpm: Cv = 2, so v_max = h·2·ω/β.
+        let omega = 400.0 * std::f64::consts::TAU / 60.0;
+        let expected = 0.08 * 2.0 * omega / 120f64.to_radians();
+        assert!((r.segments[0].peak_velocity - expected).abs() < 1e-12 * expected);
+        let v = serde_json::to_value(&r).unwrap();
+        assert_eq!(v["unit"], "m");
+        assert_eq!(v["segments"][1]["law"], "-");
+        assert!(v["segments"][0]["peak_acceleration_m_s2"].is_f64());
+        assert!(v["samples"][0]["j_m_s3"].is_f64());
+        assert!((v["cycle_time_s"].as_f64().unwrap() - 0.15).abs() < 1e-15);
+    }
+}

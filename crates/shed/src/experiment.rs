@@ -1,0 +1,343 @@
+//! A shedding study as one value: the family of laws, the experiment design over its relative
+//! lengths, the evaluated table and its Pareto front. The CLI (`shed table | pareto | best`) and
+//! the workbench (`POST /api/shed/pareto`) both run it from here.
+
+use crate::{
+    Candidate, Conditions, Criteria, Dimensionless, PRESETS, Result, ShedError, Template, evaluate, evaluate_rows,
+    fig1_design, grid_design, table1_design,
+};
+use loomkin_study::{Design, Progress};
+use serde::{Deserialize, Serialize};
+
+/// The named families of positive-phase shapes with free relative lengths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// Rise, plateau, fall (3 parts): [`Template::trapezoid`].
+    Trapezoid,
+    /// Zero lead, rise, plateau, fall (4 parts): [`Template::lead_trapezoid`].
+    LeadTrapezoid,
+    /// Linear rise, plateau, linear fall (3 parts): [`Template::linear_trapezoid`].
+    LinearTrapezoid,
+}
+
+impl Family {
+    /// Kebab-case name (`lead-trapezoid`), as in files and requests.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Trapezoid => "trapezoid",
+            Self::LeadTrapezoid => "lead-trapezoid",
+            Self::LinearTrapezoid => "linear-trapezoid",
+        }
+    }
+
+    /// The family's template.
+    pub fn template(self) -> Template {
+        match self {
+            Self::Trapezoid => Template::trapezoid(),
+            Self::LeadTrapezoid => Template::lead_trapezoid(),
+            Self::LinearTrapezoid => Template::linear_trapezoid(),
+        }
+    }
+}
+
+/// Which experiment table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum DesignKind {
+    /// The five named laws.
+    Presets,
+    /// The paper's Table 1 (eight three-part laws, k3 = 1 − k1 − k2).
+    Table1,
+    /// The family of the paper's Fig. 1: a lead k1 from 0 to 0.5, k2 = k4 = (1 − k1)/4, k3 = (1 − k1)/2.
+    Fig1,
+    /// The full grid over k_T1…k_Tn with a step, Σk = 1.
+    Grid,
+}
+
+/// Step, least and largest relative length of a grid (the step also serves the Fig. 1 family).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GridSpec {
+    /// Grid step of k.
+    pub step: f64,
+    /// Least relative length.
+    pub min_k: f64,
+    /// Largest relative length.
+    pub max_k: f64,
+}
+
+impl GridSpec {
+    /// The defaults of an experiment table or Pareto front: step 0.05, k ∈ [0.05, 0.9].
+    pub const TABLE: Self = Self { step: 0.05, min_k: 0.05, max_k: 0.9 };
+    /// The defaults of a search for the best law: step 0.01, k ∈ [0.01, 0.98].
+    pub const BEST: Self = Self { step: 0.01, min_k: 0.01, max_k: 0.98 };
+}
+
+/// A family of laws and an experiment design over its relative lengths.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Study {
+    /// The shapes whose lengths the design sets.
+    pub template: Template,
+    /// One row of relative lengths per law.
+    pub design: Design,
+}
+
+impl Study {
+    /// The design `kind` over `template` (default: the trapezoid family, or the lead trapezoid
+    /// for [`DesignKind::Fig1`]); `grid` is used by [`DesignKind::Grid`] (all three values) and
+    /// [`DesignKind::Fig1`] (its step). [`DesignKind::Presets`] has no design of lengths: it is an
+    /// error here (see [`preset_table`]).
+    pub fn new(kind: DesignKind, template: Option<Template>, grid: GridSpec) -> Result<Self> {
+        let or = |default: fn() -> Template| template.clone().unwrap_or_else(default);
+        let (template, design) = match kind {
+            DesignKind::Table1 => (or(Template::trapezoid), table1_design()),
+            DesignKind::Fig1 => (or(Template::lead_trapezoid), fig1_design(grid.step)?),
+            DesignKind::Grid => {
+                let t = or(Template::trapezoid);
+                let d = grid_design(t.parts(), grid.min_k, grid.max_k, grid.step)?;
+                (t, d)
+            }
+            DesignKind::Presets => {
+                return Err(ShedError::Parse {
+                    field: "design".into(),
+                    reason: "the presets are named laws, not a design over a family's lengths".into(),
+                });
+            }
+        };
+        if design.dim() != template.parts() {
+            return Err(ShedError::Parse {
+                field: "family".into(),
+                reason: format!(
+                    "the {kind:?} design has {} lengths, the family '{}' {} parts",
+                    design.dim(),
+                    template.name(),
+                    template.parts()
+                ),
+            });
+        }
+        Ok(Self { template, design })
+    }
+
+    /// The dimensionless criteria of every row (`None` where a row makes no law), in parallel.
+    pub fn evaluate(&self, threshold: f64, progress: Progress) -> Result<Vec<Option<Dimensionless>>> {
+        evaluate_rows(&self.template, &self.design, threshold, progress)
+    }
+
+    /// Every law of the design at every motion angle, evaluated (see [`crate::table`]).
+    pub fn table(&self, motions_deg: &[f64], cond: &Conditions, progress: Progress) -> Result<StudyTable> {
+        self.table_in(motions_deg, cond, progress, 0..self.design.len())
+    }
+
+    /// [`Study::table`] of the design rows `items` only (one shard's share,
+    /// [`loomkin_units::Shard::items`]), each at every motion angle.
+    pub fn table_in(
+        &self,
+        motions_deg: &[f64],
+        cond: &Conditions,
+        progress: Progress,
+        items: std::ops::Range<usize>,
+    ) -> Result<StudyTable> {
+        let rows = crate::evaluate_rows_in(&self.template, &self.design, cond.threshold(), progress, items)?;
+        let rows = crate::table(&self.design, &rows, motions_deg, cond)?;
+        Ok(StudyTable::unnamed(&self.design, rows))
+    }
+
+    /// The Pareto front (largest window, least peak acceleration) over the design and the motion
+    /// angles (see [`crate::pareto`]).
+    pub fn pareto(&self, motions_deg: &[f64], cond: &Conditions, progress: Progress) -> Result<StudyTable> {
+        let rows = self.evaluate(cond.threshold(), progress)?;
+        let front = crate::pareto(&self.design, &rows, motions_deg, cond)?;
+        Ok(StudyTable::unnamed(&self.design, front))
+    }
+}
+
+/// One row of a study table: the preset's name (for named laws) and the candidate.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyRow {
+    /// The preset's name, for a table of named laws.
+    pub law: Option<String>,
+    /// Row of the design, lengths and criteria.
+    pub candidate: Candidate,
+}
+
+/// An evaluated experiment table (or front).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyTable {
+    /// Names of the length columns (`k1`, `k2`, …); empty for named laws.
+    pub k_names: Vec<String>,
+    /// The rows.
+    pub rows: Vec<StudyRow>,
+}
+
+/// The criteria columns of [`StudyTable::to_csv`], in order (after the row and length columns).
+pub const CRITERIA_COLUMNS: [&str; 18] = [
+    "motion_deg",
+    "dwell_deg",
+    "conditional_dwell_deg",
+    "window_deg",
+    "threshold",
+    "cv",
+    "ca",
+    "cj",
+    "cm",
+    "ca_rms",
+    "ca_turn",
+    "peak_velocity_m_s",
+    "peak_accel_m_s2",
+    "peak_jerk_m_s3",
+    "peak_power_w_kg",
+    "rms_accel_m_s2",
+    "a_jump",
+    "accel_jump_m_s2",
+];
+
+fn criteria_values(c: &Criteria) -> [f64; 18] {
+    [
+        c.motion_deg,
+        c.dwell_deg,
+        c.conditional_dwell_deg,
+        c.window_deg,
+        c.threshold,
+        c.cv,
+        c.ca,
+        c.cj,
+        c.cm,
+        c.ca_rms,
+        c.ca_turn,
+        c.peak_velocity_m_s,
+        c.peak_accel_m_s2,
+        c.peak_jerk_m_s3,
+        c.peak_power_w_kg,
+        c.rms_accel_m_s2,
+        c.a_jump,
+        c.accel_jump_m_s2,
+    ]
+}
+
+/// The five named laws evaluated under `cond`.
+pub fn preset_table(cond: &Conditions) -> Result<StudyTable> {
+    preset_table_in(cond, 0..PRESETS.len())
+}
+
+/// [`preset_table`] of the presets `items` only (rows keep their place in [`PRESETS`]).
+pub fn preset_table_in(cond: &Conditions, items: std::ops::Range<usize>) -> Result<StudyTable> {
+    let mut rows = Vec::new();
+    let (lo, hi) = (items.start.min(PRESETS.len()), items.end.min(PRESETS.len()));
+    for (row, p) in PRESETS.iter().enumerate().take(hi).skip(lo) {
+        let law = p.law()?;
+        let criteria = evaluate(&law, cond)?;
+        let lengths = law.positive().iter().map(|s| s.length).collect();
+        let candidate = Candidate { row, lengths, criteria };
+        rows.push(StudyRow { law: Some(p.name.to_string()), candidate });
+    }
+    Ok(StudyTable { k_names: Vec::new(), rows })
+}
+
+impl StudyTable {
+    fn unnamed(design: &Design, rows: Vec<Candidate>) -> Self {
+        let rows = rows.into_iter().map(|candidate| StudyRow { law: None, candidate }).collect();
+        Self { k_names: design.names().to_vec(), rows }
+    }
+
+    /// Whether the rows are named laws (presets) rather than rows of a design (which have length
+    /// columns), also for a shard without rows.
+    pub fn is_named(&self) -> bool {
+        self.k_names.is_empty()
+    }
+
+    /// The table with only the rows at `indices` (e.g. a Pareto front of it).
+    pub fn select(&self, indices: &[usize]) -> Self {
+        Self { k_names: self.k_names.clone(), rows: indices.iter().map(|&i| self.rows[i].clone()).collect() }
+    }
+
+    /// The first non-finite length or criterion: `(row of the design, value)`.
+    pub fn non_finite(&self) -> Option<(usize, f64)> {
+        self.rows.iter().find_map(|r| {
+            let c = &r.candidate;
+            c.lengths.iter().chain(&criteria_values(&c.criteria)).find(|v| !v.is_finite()).map(|&v| (c.row, v))
+        })
+    }
+
+    /// CSV: `law` (named laws) or `row` and the length columns, then [`CRITERIA_COLUMNS`]; numbers
+    /// in shortest round-trip form (check [`StudyTable::non_finite`] first).
+    pub fn to_csv(&self) -> String {
+        self.to_csv_with(true)
+    }
+
+    /// [`StudyTable::to_csv`] with or without the header line (shards after the first).
+    pub fn to_csv_with(&self, header_line: bool) -> String {
+        let named = self.is_named();
+        let mut header = vec![if named { "law" } else { "row" }.to_string()];
+        header.extend(self.k_names.iter().cloned());
+        header.extend(CRITERIA_COLUMNS.iter().map(|s| s.to_string()));
+        let mut out = if header_line { header.join(",") + "\n" } else { String::new() };
+        for r in &self.rows {
+            let c = &r.candidate;
+            let vals = criteria_values(&c.criteria);
+            let mut line = r.law.clone().unwrap_or_else(|| c.row.to_string());
+            let ks = if named { &[][..] } else { &c.lengths[..] };
+            for v in ks.iter().chain(&vals) {
+                line.push(',');
+                line.push_str(&format!("{v}"));
+            }
+            out.push_str(&line);
+            out.push('\n');
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn families_name_their_templates() {
+        for f in [Family::Trapezoid, Family::LeadTrapezoid, Family::LinearTrapezoid] {
+            assert_eq!(f.template(), Template::named(f.name()).unwrap());
+            let json = serde_json::to_string(&f).unwrap();
+            assert_eq!(json, format!("\"{}\"", f.name()));
+        }
+    }
+
+    #[test]
+    fn a_table_s_front_is_the_pareto_front_of_its_rows() {
+        let cond = Conditions::new(0.95, 0.1, 300.0).unwrap();
+        let s = Study::new(DesignKind::Grid, None, GridSpec { step: 0.1, ..GridSpec::TABLE }).unwrap();
+        let all = s.table(&[240.0, 300.0], &cond, Progress::Hidden).unwrap();
+        let front = s.pareto(&[240.0, 300.0], &cond, Progress::Hidden).unwrap();
+        // Independent route: the non-dominated rows of the whole table, by brute force.
+        let pts: Vec<[f64; 2]> =
+            all.rows.iter().map(|r| [r.candidate.criteria.window_deg, -r.candidate.criteria.peak_accel_m_s2]).collect();
+        let brute: Vec<[f64; 2]> = pts
+            .iter()
+            .filter(|p| !pts.iter().any(|q| q[0] >= p[0] && q[1] >= p[1] && (q[0] > p[0] || q[1] > p[1])))
+            .copied()
+            .collect();
+        assert_eq!(front.rows.len(), brute.len());
+        for r in &front.rows {
+            let p = [r.candidate.criteria.window_deg, -r.candidate.criteria.peak_accel_m_s2];
+            assert!(brute.contains(&p), "{p:?}");
+        }
+        assert_eq!(all.non_finite(), None);
+        let csv = all.to_csv();
+        assert!(csv.starts_with("row,k1,k2,k3,motion_deg,"));
+        assert_eq!(csv.lines().count(), all.rows.len() + 1);
+    }
+
+    #[test]
+    fn mismatched_designs_and_presets_are_refused() {
+        let e = Study::new(DesignKind::Table1, Some(Template::lead_trapezoid()), GridSpec::TABLE).unwrap_err();
+        assert!(e.to_string().starts_with("family: the Table1 design has 3 lengths"), "{e}");
+        assert!(Study::new(DesignKind::Presets, None, GridSpec::TABLE).is_err());
+        let cond = Conditions::new(0.95, 0.1, 300.0).unwrap();
+        let t = preset_table(&cond).unwrap();
+        assert!(t.is_named() && t.to_csv().starts_with("law,motion_deg,"));
+        // Shards: the rows keep their place, only the first writes the header.
+        let (a, b) = (preset_table_in(&cond, 0..2).unwrap(), preset_table_in(&cond, 2..5).unwrap());
+        assert_eq!([a.rows.clone(), b.rows.clone()].concat(), t.rows);
+        assert_eq!(a.to_csv_with(true) + &b.to_csv_with(false), t.to_csv());
+    }
+}
