@@ -14,11 +14,11 @@ use serde::{Deserialize, Serialize};
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Family {
-    /// Rise, plateau, fall (3 parts): [`Template::trapezoid`].
+    /// Rise, plateau, fall (3 parts).
     Trapezoid,
-    /// Zero lead, rise, plateau, fall (4 parts): [`Template::lead_trapezoid`].
+    /// Zero lead, rise, plateau, fall (4 parts).
     LeadTrapezoid,
-    /// Linear rise, plateau, linear fall (3 parts): [`Template::linear_trapezoid`].
+    /// Linear rise, plateau, linear fall (3 parts).
     LinearTrapezoid,
 }
 

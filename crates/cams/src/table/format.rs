@@ -11,15 +11,15 @@ use serde::Serialize;
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Format {
-    /// `X,Y,V,A,J` points after `#` comment lines ([`xyvaj`]).
+    /// `X,Y,V,A,J` points after `#` comment lines.
     Xyvaj,
-    /// Fifth-degree segments, `b₀…b₅` in the normalised master coordinate ([`poly5`]).
+    /// Fifth-degree segments, `b₀…b₅` in the normalised master coordinate.
     Poly5,
-    /// Plain CSV with a units header and no comments ([`csv`]).
+    /// Plain CSV with a units header and no comments.
     Csv,
-    /// A TwinCAT-style motion-function point list ([`twincat`]).
+    /// A TwinCAT-style motion-function point list.
     Twincat,
-    /// IEC 61131-3 Structured Text, an `ARRAY … OF SMC_CAMXYVA` initialiser ([`st`]).
+    /// IEC 61131-3 Structured Text, an `ARRAY … OF SMC_CAMXYVA` initialiser.
     St,
 }
 

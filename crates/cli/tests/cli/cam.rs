@@ -75,7 +75,7 @@ fn cam_table_of_a_single_rise_and_bad_input() {
             "-o",
             &out,
         ],
-        &["unknown format 'xyva'"],
+        &["invalid value 'xyva' for '--format", "possible values: xyvaj, poly5, csv, twincat, st"],
     );
     usage_error(
         &[

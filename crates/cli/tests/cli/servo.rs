@@ -145,11 +145,11 @@ fn bad_input_is_a_one_line_usage_error() {
     usage_error(&["servo", "law", "--def", "0:0,0.2:1,0.5:0"], &["at least 4"]);
     usage_error(&["servo", "law", "--def", "0:0,0.2:1,0.3:x,0.5:0"], &["0.3:x"]);
     usage_error(&["servo", "law", "--def", "0:0,0.2:1,0.3:1,0.5:0.2"], &["definition point 4", "Y = 0"]);
-    usage_error(&["servo", "law", "--end", "loose"], &["natural or clamped"]);
+    usage_error(&["servo", "law", "--end", "loose"], &["--end", "possible values: natural, clamped"]);
     usage_error(&["servo", "torque", "--speed-rpm=-600"], &["speed"]);
     usage_error(&["servo", "torque", "--speed-rpm", "0"], &["speed"]);
     usage_error(&["servo", "torque", "--speed-rpm", "nan"], &["speed"]);
-    usage_error(&["servo", "optimize", "--objective", "mean"], &["peak or rms"]);
+    usage_error(&["servo", "optimize", "--objective", "mean"], &["--objective", "possible values: peak, rms"]);
     usage_error(&["servo", "export", "--format", "pdf", "-o", "-"], &["pdf", "coeffs"]);
     usage_error(&["servo", "export", "--format", "csv", "--step-deg", "0", "-o", "-"], &["step_deg"]);
     usage_error(&["servo", "torque", "--drive", "/nonexistent/drive.toml"], &["/nonexistent/drive.toml"]);
