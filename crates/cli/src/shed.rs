@@ -6,8 +6,8 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_shed::{
-    Conditions, Criteria, DesignKind, Family, GridSpec, LoomRequirement, PRESETS, Progress, ShedLaw, Study, StudyTable,
-    Template, evaluate, preset, preset_table,
+    Conditions, Criteria, DesignKind, Family, GridSpec, LoomRequirement, PRESETS, Progress, ShedLaw, Study, StudyRow,
+    StudyTable, Template, evaluate, preset, preset_table_in,
 };
 use serde::Serialize;
 use std::fmt::Write;

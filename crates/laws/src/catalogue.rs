@@ -373,8 +373,13 @@ mod param_tests {
     fn each_law_lists_the_parameters_it_reads() {
         for e in CATALOGUE {
             // The description names exactly the listed keys.
-            let described: Vec<&str> =
-                e.params.split_whitespace().filter_map(|w| w.split_once('=')).map(|(k, _)| k).filter(|k| !k.is_empty()).collect();
+            let described: Vec<&str> = e
+                .params
+                .split_whitespace()
+                .filter_map(|w| w.split_once('='))
+                .map(|(k, _)| k)
+                .filter(|k| !k.is_empty())
+                .collect();
             assert_eq!(described, e.keys, "{}", e.name);
             let bare = LawSpec::parse::<&str, &str>(e.name, &[]);
             assert_eq!(bare.is_err(), e.required, "{}", e.name);

@@ -46,7 +46,9 @@ pub use conditions::{Conditions, TABLE3_THRESHOLD, THRESHOLD_RANGE, check_thresh
 pub use criteria::{Criteria, Dimensionless, evaluate};
 pub use curve::{CurvePoint, cycle_curve};
 pub use error::{Result, ShedError};
-pub use experiment::{CRITERIA_COLUMNS, DesignKind, Family, GridSpec, Study, StudyRow, StudyTable, preset_table, preset_table_in};
+pub use experiment::{
+    CRITERIA_COLUMNS, DesignKind, Family, GridSpec, Study, StudyRow, StudyTable, preset_table, preset_table_in,
+};
 pub use frame_cycle::{FRAME_PERIOD_DEG, frame_cycle, frame_cycle_toml};
 pub use paper::{TABLE3, Table3Check, Table3Row, table3, table3_minimax_threshold};
 pub use presets::{PRESETS, Preset, preset, preset_names};
