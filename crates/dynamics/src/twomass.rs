@@ -86,7 +86,7 @@ impl TwoMass {
     /// Extremes of the drive error `y₁` and the frame error `y₂` over the computed motion, located exactly:
     /// on every piece both modes are closed-form, so `yⱼ = Σᵢ φⱼᵢ·ηᵢ` and its two derivatives are too; the
     /// roots of `yⱼ'` are bracketed on a grid finer than a third of the faster mode's half period and
-    /// refined by Newton ([`extremes_of`]). Locations are global times (s).
+    /// refined by Newton. Locations are global times (s).
     pub fn error_extremes(&self, modes: &[Vec<Solved>; 2]) -> [Extremes; 2] {
         let mut out = [Extremes::EMPTY; 2];
         let w_fast = self.omega[1].max(self.omega[0]);
