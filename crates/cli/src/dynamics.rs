@@ -11,7 +11,7 @@ use loomkin_dynamics::{
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Panel, Series};
 use loomkin_laws::Cycle;
-use loomkin_units::{ShaftSpeed, Span};
+use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
@@ -374,17 +374,33 @@ fn response(a: ResponseArgs) -> Result<()> {
     Ok(())
 }
 
+/// Seconds per speed and cycle segment of `dyn sweep` (one closed-form response), measured on the
+/// reference machine (release, one core) with a margin of 2.
+const SWEEP_S_PER_SEGMENT: f64 = 2.0 * 5e-6;
+/// Bytes held per speed: the point, its table row and the list of speeds.
+const SWEEP_BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
+
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let cycle = read_cycle(&a.file)?;
     let follower = a.model.follower()?;
     let span = Span::parse("speed_rpm", &a.speed_rpm, ShaftSpeed::RANGE)?;
-    if span.count() > 10_000_000 {
-        anyhow::bail!("speed_rpm: {} speeds is too many: allowed at most 10000000", span.count());
-    }
     a.shard.check(a.format)?;
-    let speeds: Vec<f64> = a.shard.get().items(span.count()).map(|i| span.value(i)).collect();
+    let items = a.shard.get().items(span.count());
+    // Each speed of this shard is one response (closed form per segment of the cycle), in
+    // parallel; its row is held until printed (as a JSON object with --json).
+    let n = items.len() as f64;
+    let per_speed = SWEEP_S_PER_SEGMENT * cycle.segments.len() as f64 / util::cores();
+    let bytes = SWEEP_BYTES_PER_SPEED + if a.format.json { 1000.0 } else { 0.0 };
+    Budget::DEFAULT.check("speed_rpm", &a.speed_rpm, Cost::items(n, bytes, per_speed))?;
+    let speeds: Vec<f64> = items.map(|i| span.value(i)).collect();
     let start = if a.steady { Start::Steady } else { Start::Rest };
-    let pts = sweep(&cycle, &follower, &speeds, start)?;
+    let progress = util::Progress::new(speeds.len() as u64, "speeds");
+    let mut pts = Vec::with_capacity(speeds.len());
+    for chunk in speeds.chunks(1024) {
+        pts.extend(sweep(&cycle, &follower, chunk, start)?);
+        progress.inc(chunk.len() as u64);
+    }
+    progress.finish();
     let u = units(&cycle);
     let p = u.pos;
     let forces = follower.mass_kg().is_some();

@@ -150,11 +150,137 @@ fn check_finite(v: &serde_json::Value, path: &str) -> anyhow::Result<()> {
     }
 }
 
+/// Prints a large value as pretty JSON on standard output as it is serialised, in one pass: the
+/// memory needed is a buffer, whatever the size (`law sample --points 10000000 --json`). For values
+/// whose numbers the command has checked finite; should a non-finite one slip through anyway, the
+/// output stops at it with an internal error (exit 1) rather than print `null`.
+pub fn json_streamed(value: &impl Serialize) -> anyhow::Result<()> {
+    let mut out =
+        Checked { scan: NullScan::default(), out: io::BufWriter::with_capacity(1 << 16, io::stdout().lock()) };
+    match serde_json::to_writer_pretty(&mut out, value) {
+        Ok(()) => out.out.write_all(b"\n").and_then(|()| out.out.flush()).map_err(|e| WriteError::stdout(e).into()),
+        Err(_) if out.scan.found => {
+            Err(crate::util::failure(anyhow!("internal: a number in the output is not finite")))
+        }
+        Err(e) => Err(WriteError::stdout(io::Error::from(e)).into()),
+    }
+}
+
+/// Standard output behind a [`NullScan`]: a `null` outside strings fails the write.
+struct Checked<W: Write> {
+    scan: NullScan,
+    out: W,
+}
+
+impl<W: Write> Write for Checked<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.scan.write_all(buf)?;
+        if self.scan.found {
+            return Err(io::Error::other("a non-finite number"));
+        }
+        self.out.write_all(buf)?;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.flush()
+    }
+}
+
+/// A table serialised as a JSON array of objects as its rows are made: each row an object of
+/// the columns, keys in the sorted order `serde_json`'s own objects have (so the text is the one a
+/// `json!` object of the row would give). Serialised once; an iterator cannot be replayed.
+pub struct JsonRows<I> {
+    columns: Vec<String>,
+    /// Column indices in key order.
+    order: Vec<usize>,
+    rows: std::cell::RefCell<Option<I>>,
+}
+
+impl<R: AsRef<[f64]>, I: Iterator<Item = R>> JsonRows<I> {
+    /// The rows of `columns` that `rows` makes.
+    pub fn new<S: AsRef<str>>(columns: &[S], rows: I) -> Self {
+        let columns: Vec<String> = columns.iter().map(|c| c.as_ref().to_string()).collect();
+        let mut order: Vec<usize> = (0..columns.len()).collect();
+        order.sort_by(|&a, &b| columns[a].cmp(&columns[b]));
+        Self { columns, order, rows: std::cell::RefCell::new(Some(rows)) }
+    }
+}
+
+impl<R: AsRef<[f64]>, I: Iterator<Item = R>> Serialize for JsonRows<I> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        struct Row<'a, R>(&'a [String], &'a [usize], R);
+        impl<R: AsRef<[f64]>> Serialize for Row<'_, R> {
+            fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+                use serde::ser::SerializeMap;
+                let values = self.2.as_ref();
+                let mut m = ser.serialize_map(Some(self.1.len()))?;
+                for &i in self.1 {
+                    m.serialize_entry(&self.0[i], &values[i])?;
+                }
+                m.end()
+            }
+        }
+        let rows = self.rows.borrow_mut().take().into_iter().flatten();
+        ser.collect_seq(rows.map(|r| Row(&self.columns, &self.order, r)))
+    }
+}
+
+/// A JSON object of `fields` with one more key, `key`, holding `value`: all keys in sorted
+/// order, as `serde_json` writes its own objects (for a streamed table beside a summary).
+pub struct WithKey<'a, T> {
+    /// The other keys.
+    pub fields: &'a serde_json::Map<String, serde_json::Value>,
+    /// The key of `value`.
+    pub key: &'a str,
+    /// The value under `key`.
+    pub value: T,
+}
+
+impl<T: Serialize> Serialize for WithKey<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = ser.serialize_map(Some(self.fields.len() + 1))?;
+        let mut inserted = false;
+        for (k, v) in self.fields {
+            if !inserted && self.key < k.as_str() {
+                m.serialize_entry(self.key, &self.value)?;
+                inserted = true;
+            }
+            m.serialize_entry(k, v)?;
+        }
+        if !inserted {
+            m.serialize_entry(self.key, &self.value)?;
+        }
+        m.end()
+    }
+}
+
 /// Prints a table as CSV on standard output.
 pub fn csv(table: &loomkin_io::Table) -> anyhow::Result<()> {
-    let mut text = Vec::new();
-    table.write_csv(&mut text).map_err(crate::util::failure)?;
-    text_to("-", &String::from_utf8_lossy(&text))
+    csv_rows(table.columns(), true, table.rows().iter())
+}
+
+/// Prints CSV on standard output row by row as `rows` makes them (a buffer in memory, whatever the
+/// number of rows), with the header line unless `header` is false (a later shard of a table); a
+/// non-finite number is an internal error (exit 1) at its row.
+pub fn csv_rows<S: AsRef<str>, R: AsRef<[f64]>>(
+    columns: &[S],
+    header: bool,
+    rows: impl Iterator<Item = R>,
+) -> anyhow::Result<()> {
+    let out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    let fail = |e: loomkin_io::IoError| match e {
+        loomkin_io::IoError::Write(e) => WriteError::stdout(e).into(),
+        e => crate::util::failure(anyhow!("internal: {e}")),
+    };
+    let mut w =
+        if header { loomkin_io::CsvRows::new(out, columns) } else { loomkin_io::CsvRows::continuing(out, columns) }
+            .map_err(fail)?;
+    for row in rows {
+        w.push(row.as_ref()).map_err(fail)?;
+    }
+    w.finish().map_err(fail).map(drop)
 }
 
 /// Prints shard `shard` of a table as CSV: the header only in the first shard, then the rows the

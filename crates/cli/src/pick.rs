@@ -10,8 +10,10 @@ use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
-    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate, sweep_items,
+    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate,
+    sweep_observed,
 };
+use loomkin_units::{Budget, Cost};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -435,16 +437,34 @@ fn sweep_table(s: &Sweep) -> Result<Table> {
     Ok(t)
 }
 
+/// Seconds per point of `pick sweep` by the closed form (one `simulate`, the ODE fallback at a few
+/// points), measured on the reference machine (release, one core) with a margin of 2.
+const SWEEP_CLOSED_S_PER_POINT: f64 = 2.0 * 40e-6;
+/// Seconds per point by the ODE route, measured as above.
+const SWEEP_ODE_S_PER_POINT: f64 = 2.0 * 400e-6;
+/// Bytes held per point: the row (value and outcome, with its note's text at a fallback).
+const SWEEP_BYTES_PER_POINT: f64 = 200.0;
+
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let setting = Setting::parse(&a.setting)?;
-    if !(1..=1_000_000).contains(&a.points) {
-        bail!("--points {} is out of range: allowed 1 ≤ N ≤ 1000000", a.points);
+    if a.points < 1 {
+        bail!("--points 0 is too few: allowed N ≥ 1");
     }
     a.shard.check(a.format)?;
+    let method: Method = a.method.into();
+    let items = a.shard.get().items(a.points);
+    // This shard's points run in parallel; each is held as a row (and again as a row of the output).
+    let n = items.len() as f64;
+    let per_point = if method == Method::Ode { SWEEP_ODE_S_PER_POINT } else { SWEEP_CLOSED_S_PER_POINT };
+    let output_bytes = if a.format.json { 1500.0 } else { 300.0 };
+    let cost = Cost::items(n, SWEEP_BYTES_PER_POINT + output_bytes, per_point / util::cores());
+    Budget::DEFAULT.check("points", a.points, cost)?;
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
-    let items = a.shard.get().items(a.points);
-    let s = sweep_items(&mech, &st, setting, a.from, a.to, a.points, a.method.into(), items).map_err(lib_err)?;
+    let progress = util::Progress::new(items.len() as u64, "points");
+    let s = sweep_observed(&mech, &st, setting, a.from, a.to, a.points, method, items, &|| progress.inc(1))
+        .map_err(lib_err)?;
+    progress.finish();
     let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
     if let Some(first) = s.fallbacks().next() {
         output::note(format_args!(

@@ -22,7 +22,7 @@ pub fn run(a: ServeArgs) -> Result<()> {
         // The server runs on: a closed standard output is no reason to stop it.
         let _ = outln!("loomkin workbench: {url}  (listening on 127.0.0.1 only; Ctrl-C stops it)");
         if a.open
-            && let Err(msg) = loomkin_web::open_browser(url)
+            && let Err(msg) = loomkin_web::open_browser(url, output::warning)
         {
             output::warning(msg);
         }

@@ -62,3 +62,77 @@ pub fn read_input(path: &std::path::Path) -> anyhow::Result<String> {
     String::from_utf8(bytes)
         .map_err(|e| anyhow::anyhow!("cannot read {name}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
 }
+
+/// A progress bar on standard error for a run that may take long: drawn only when standard error
+/// is a terminal, and only once the run has lasted a second (so a quick run shows nothing).
+/// Counts are gathered locally and passed to the bar every few thousand items, so counting every
+/// row of a 10⁷-row table costs nothing measurable. The bar is cleared when dropped (an error line
+/// is not printed across it).
+pub struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    start: std::time::Instant,
+    pending: std::sync::atomic::AtomicU64,
+    shown: std::sync::atomic::AtomicBool,
+}
+
+impl Progress {
+    /// Items passed to the bar at once.
+    const BATCH: u64 = 4096;
+
+    /// A bar for `len` items named `label` (hidden unless standard error is a terminal).
+    pub fn new(len: u64, label: &str) -> Self {
+        use std::io::IsTerminal;
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = indicatif::ProgressBar::with_draw_target(Some(len), indicatif::ProgressDrawTarget::hidden());
+            if let Ok(style) = indicatif::ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} (eta {eta})") {
+                bar.set_style(style);
+            }
+            bar.set_message(label.to_string());
+            bar
+        });
+        Self { bar, start: std::time::Instant::now(), pending: 0.into(), shown: false.into() }
+    }
+
+    /// `n` more items done.
+    pub fn inc(&self, n: u64) {
+        use std::sync::atomic::Ordering::Relaxed;
+        let Some(bar) = &self.bar else { return };
+        let pending = self.pending.fetch_add(n, Relaxed) + n;
+        if pending < Self::BATCH {
+            return;
+        }
+        bar.inc(self.pending.swap(0, Relaxed));
+        if !self.shown.load(Relaxed) && self.start.elapsed().as_secs_f64() > 1.0 {
+            self.shown.store(true, Relaxed);
+            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        }
+    }
+
+    /// Sets the count done to `pos` (a watcher reading a counter).
+    pub fn set(&self, pos: u64) {
+        let Some(bar) = &self.bar else { return };
+        bar.set_position(pos);
+        if !self.shown.load(std::sync::atomic::Ordering::Relaxed) && self.start.elapsed().as_secs_f64() > 1.0 {
+            self.shown.store(true, std::sync::atomic::Ordering::Relaxed);
+            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        }
+    }
+
+    /// Clears the bar (also done when dropped).
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        self.finish();
+    }
+}
+
+/// Cores the parallel parts of a run share (at least 1), for time estimates.
+pub fn cores() -> f64 {
+    std::thread::available_parallelism().map_or(1, |n| n.get()) as f64
+}

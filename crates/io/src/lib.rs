@@ -26,4 +26,4 @@ mod table;
 
 pub use error::IoError;
 pub use output::{create_file, open_output};
-pub use table::Table;
+pub use table::{CsvRows, Table};

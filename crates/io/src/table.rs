@@ -42,17 +42,9 @@ impl Table {
     /// Writes the table as CSV: a header line, then one line per row, numbers in the shortest
     /// form that reads back exactly.
     pub fn write_csv(&self, w: &mut dyn Write) -> Result<(), IoError> {
-        writeln!(w, "{}", self.columns.join(","))?;
-        let mut line = String::new();
+        let mut out = CsvRows::new(w, &self.columns)?;
         for row in &self.rows {
-            line.clear();
-            for (i, v) in row.iter().enumerate() {
-                if i > 0 {
-                    line.push(',');
-                }
-                line.push_str(&fmt_num(*v));
-            }
-            writeln!(w, "{line}")?;
+            out.push(row)?;
         }
         Ok(())
     }
@@ -69,6 +61,62 @@ impl Table {
             })
             .collect();
         serde_json::Value::Array(rows)
+    }
+}
+
+/// A CSV table written row by row as the rows are made, so a table of 10⁷ rows never sits in
+/// memory: the same text as [`Table::write_csv`], the same checks as [`Table::push`].
+pub struct CsvRows<W: Write> {
+    w: W,
+    columns: Vec<String>,
+    row: usize,
+    line: String,
+}
+
+impl<W: Write> CsvRows<W> {
+    /// Writes the header line.
+    pub fn new<S: AsRef<str>>(mut w: W, columns: &[S]) -> Result<Self, IoError> {
+        let columns: Vec<String> = columns.iter().map(|c| c.as_ref().to_string()).collect();
+        writeln!(w, "{}", columns.join(","))?;
+        Ok(Self { w, columns, row: 0, line: String::new() })
+    }
+
+    /// Continues a table whose header was written elsewhere (a later shard): no header line.
+    pub fn continuing<S: AsRef<str>>(w: W, columns: &[S]) -> Result<Self, IoError> {
+        let columns: Vec<String> = columns.iter().map(|c| c.as_ref().to_string()).collect();
+        Ok(Self { w, columns, row: 0, line: String::new() })
+    }
+
+    /// Writes one row; it must be as wide as the header and hold only finite numbers.
+    pub fn push(&mut self, row: &[f64]) -> Result<(), IoError> {
+        if row.len() != self.columns.len() {
+            return Err(IoError::RowWidth { row: self.row, got: row.len(), want: self.columns.len() });
+        }
+        if let Some((c, &value)) = row.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(IoError::NotFinite { column: self.columns[c].clone(), row: self.row, value });
+        }
+        self.line.clear();
+        for (i, v) in row.iter().enumerate() {
+            if i > 0 {
+                self.line.push(',');
+            }
+            self.line.push_str(&fmt_num(*v));
+        }
+        self.line.push('\n');
+        self.w.write_all(self.line.as_bytes())?;
+        self.row += 1;
+        Ok(())
+    }
+
+    /// Rows written so far.
+    pub fn rows(&self) -> usize {
+        self.row
+    }
+
+    /// Flushes and hands back the writer.
+    pub fn finish(mut self) -> Result<W, IoError> {
+        self.w.flush()?;
+        Ok(self.w)
     }
 }
 
@@ -92,5 +140,24 @@ mod tests {
         t.write_csv(&mut out).unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), "a_m,b_s\n0.5,0\n");
         assert_eq!(t.to_json_rows()[0]["a_m"], 0.5);
+    }
+
+    #[test]
+    fn streamed_rows_are_the_table_text() {
+        let mut t = Table::new(["x", "y_m"]);
+        let rows = [[0.0, -0.0], [0.1 + 0.2, 1e-300], [2.5, -7.0]];
+        for r in rows {
+            t.push(r.to_vec()).unwrap();
+        }
+        let mut whole = Vec::new();
+        t.write_csv(&mut whole).unwrap();
+        let mut out = CsvRows::new(Vec::new(), t.columns()).unwrap();
+        for r in rows {
+            out.push(&r).unwrap();
+        }
+        assert_eq!(out.rows(), 3);
+        assert!(matches!(out.push(&[1.0, f64::INFINITY]), Err(IoError::NotFinite { row: 3, .. })));
+        assert!(matches!(out.push(&[1.0]), Err(IoError::RowWidth { .. })));
+        assert_eq!(out.finish().unwrap(), whole);
     }
 }

@@ -7,6 +7,18 @@ use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
+/// The modified trapezoid's ramp fraction, `1e-6 ≤ ramp ≤ 0.25`.
+///
+/// Above 0.25 the plateaus would be negative. The lower end is derived from the joints: they sit
+/// at sums of the widths, each rounded to within an ulp of 1 (2.2e-16), so a ramp of width `r`
+/// has a relative error of about `2.2e-16 / r` in its width and phase — and so in the jerk
+/// `Cj = Ca·π/(2r)` and in the continuity of `a` judged to [`crate::CONTINUITY_TOL`] = 1e-9. That
+/// error stays below 1e-9 for `r ≥ 2.2e-7`; 1e-6 keeps a margin of 4. (Measured against 40-digit
+/// quadrature: Cj is off by 6e-9 at 1e-8 and the law is wrongly reported C1 at 1e-9; at 1e-20
+/// the crossover had no width left and the build failed.) Below 1e-6 the law is constant
+/// acceleration for every purpose: Ca = 4 + 5.8e-6.
+pub const RAMP: Range = Range::closed(1e-6, 0.25, "");
+
 /// A law chosen from the catalogue with its parameters; [`LawSpec::build`] makes the [`Law`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "law", rename_all = "kebab-case")]
@@ -24,7 +36,7 @@ pub enum LawSpec {
     /// Modified trapezoid: quarter-sine ramps of relative width `ramp`, constant plateaus,
     /// a half-cosine crossover of width `2·ramp`.
     ModifiedTrapezoid {
-        /// Ramp fraction, 0 < ramp ≤ 0.25 (standard 1/8).
+        /// Ramp fraction, 1e-6 ≤ ramp ≤ 0.25 (standard 1/8); see [`RAMP`] for the lower end.
         ramp: f64,
     },
     /// Modified sine: quarter sines over the first and last eighths, a half cosine in between.
@@ -110,7 +122,7 @@ pub const CATALOGUE: &[CatalogueEntry] = &[
     CatalogueEntry {
         name: "modified-trapezoid",
         description: "sine ramps, constant plateaus",
-        params: "ramp=0.125 (0 < ramp ≤ 0.25)",
+        params: "ramp=0.125 (1e-6 ≤ ramp ≤ 0.25)",
         keys: &["ramp"],
         required: false,
     },
@@ -221,7 +233,7 @@ impl LawSpec {
                     *ramp = v.parse().map_err(|_| LawError::Parse {
                         field: "ramp".into(),
                         text: v.into(),
-                        expected: "a number, 0 < ramp ≤ 0.25".into(),
+                        expected: "a number, 1e-6 ≤ ramp ≤ 0.25".into(),
                     })?;
                 }
                 (LawSpec::Piecewise { segments }, "segments") => *segments = parse_segments(v, "segments")?,
@@ -244,7 +256,7 @@ impl LawSpec {
     pub fn validate(&self) -> Result<()> {
         match self {
             LawSpec::ModifiedTrapezoid { ramp } => {
-                Range::open_closed(0.0, 0.25, "").check("ramp", *ramp)?;
+                RAMP.check("ramp", *ramp)?;
                 Ok(())
             }
             LawSpec::Piecewise { segments } if segments.is_empty() => Err(LawError::Parse {

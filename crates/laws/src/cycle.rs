@@ -371,17 +371,20 @@ impl Cycle {
 
     /// `n ≥ 2` samples over one cycle at a speed, both ends included.
     pub fn sample(&self, n: usize, speed_rpm: f64) -> Vec<CyclePoint> {
+        self.samples(n, speed_rpm).collect()
+    }
+
+    /// The samples of [`Cycle::sample`] one at a time, nothing held (a table of 10⁷ rows streams).
+    pub fn samples(&self, n: usize, speed_rpm: f64) -> impl ExactSizeIterator<Item = CyclePoint> + '_ {
         let n = n.max(2);
         let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
         let start = self.segments[0].start_rad;
-        (0..n)
-            .map(|i| {
-                let f = i as f64 / (n - 1) as f64;
-                let th = start + f * self.period_rad;
-                // The last sample is the cycle's end, evaluated as the left limit.
-                let eval_th = if i + 1 == n { th - 1e-12 * self.period_rad } else { th };
-                CyclePoint { angle_deg: th / DEG, time_s: (th - start) / omega, kin: self.eval(eval_th, speed_rpm) }
-            })
-            .collect()
+        (0..n).map(move |i| {
+            let f = i as f64 / (n - 1) as f64;
+            let th = start + f * self.period_rad;
+            // The last sample is the cycle's end, evaluated as the left limit.
+            let eval_th = if i + 1 == n { th - 1e-12 * self.period_rad } else { th };
+            CyclePoint { angle_deg: th / DEG, time_s: (th - start) / omega, kin: self.eval(eval_th, speed_rpm) }
+        })
     }
 }

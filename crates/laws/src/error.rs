@@ -87,12 +87,11 @@ pub type Result<T, E = LawError> = std::result::Result<T, E>;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use loomkin_units::Range;
 
     #[test]
     fn range_errors_name_the_field_as_data() {
-        let e: LawError = Range::open_closed(0.0, 0.25, "").check("ramp", 1e300).unwrap_err().into();
-        assert_eq!(e.to_string(), "ramp = 1e300 is out of range: allowed 0 < ramp ≤ 0.25");
+        let e: LawError = crate::RAMP.check("ramp", 1e300).unwrap_err().into();
+        assert_eq!(e.to_string(), "ramp = 1e300 is out of range: allowed 1e-6 ≤ ramp ≤ 0.25");
         assert_eq!(e.field(), Some("ramp"));
         assert_eq!(compact(1e308), "1e308");
     }

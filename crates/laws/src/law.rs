@@ -28,6 +28,31 @@ impl AccelPiece {
     }
 }
 
+/// The pieces with their acceleration multiplied by a power of two (exact) that brings its
+/// largest coefficient near 1, when that coefficient is beyond 2^±500; otherwise unchanged.
+fn rescaled(pieces: &[AccelPiece]) -> Vec<AccelPiece> {
+    let peak = pieces
+        .iter()
+        .flat_map(|p| p.poly.iter().copied().chain(p.sine.map(|s| s.amp)))
+        .map(f64::abs)
+        .filter(|c| c.is_finite())
+        .fold(0.0, f64::max);
+    let e = if peak > 0.0 { peak.log2().round() as i32 } else { 0 };
+    if e.abs() <= 500 {
+        return pieces.to_vec();
+    }
+    // Two factors, each representable (2^1074 is not, for a peak of 5e-324).
+    let (f1, f2) = (2f64.powi(-e / 2), 2f64.powi(-e + e / 2));
+    pieces
+        .iter()
+        .map(|p| AccelPiece {
+            width: p.width,
+            poly: p.poly.iter().map(|c| c * f1 * f2).collect(),
+            sine: p.sine.map(|s| Sine { amp: s.amp * f1 * f2, ..s }),
+        })
+        .collect()
+}
+
 /// How [`Law::from_accel_pieces`] treats the end of the integrated motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EndCondition {
@@ -97,11 +122,26 @@ impl Law {
         if (sum - 1.0).abs() > 1e-9 {
             return Err(LawError::LengthsDoNotSumToOne { field: field.into(), sum });
         }
+        // The law is normalised to s(1) = 1, so the scale of the acceleration does not matter:
+        // levels far from 1 (1e-308, 1e300) are first brought near 1 by a power of two, which is
+        // exact, so that s(1) cannot underflow and 1/s(1) overflow (levels of ±1e-308 gave Cv = −∞).
+        let pieces = &rescaled(pieces);
         let mut segs = Vec::with_capacity(pieces.len());
         let (mut x, mut s, mut v) = (0.0, 0.0, 0.0);
         for (i, p) in pieces.iter().enumerate() {
             // Snap the last end onto 1 exactly so the law covers [0, 1].
             let x1 = if i + 1 == pieces.len() { 1.0 } else { x + p.width / sum };
+            if x1 <= x {
+                return Err(LawError::NotARise {
+                    field: format!("{field}[{i}]"),
+                    reason: format!(
+                        "a length of {} is too narrow to have a place of its own at x = {x} (positions are resolved \
+                         to {:e} there)",
+                        loomkin_units::compact(p.width),
+                        if x > 0.0 { f64::EPSILON * x } else { f64::MIN_POSITIVE }
+                    ),
+                });
+            }
             let seg = Segment::from_accel(x, x1, &p.poly, p.sine, s, v).ok_or_else(|| LawError::NotARise {
                 field: format!("{field}[{i}]"),
                 reason: "acceleration must be finite, of polynomial degree ≤ 5, with a non-zero sine frequency".into(),
@@ -120,6 +160,25 @@ impl Law {
         }
         let k = 1.0 / s;
         let segs: Vec<Segment> = segs.iter().map(|g| g.scaled(k)).collect();
+        // Every metric must be finite: max |s|, |v|, |a|, |j| (and the two derivatives used to
+        // locate them) are bounded by the coefficient sums, and Cm = max v·a and Ca,rms = √∫a² by
+        // the products of those bounds. A net displacement tiny against the acceleration (its
+        // areas nearly cancelling) scales them past the largest double.
+        let bounds = segs
+            .iter()
+            .map(Segment::derivative_bounds)
+            .fold([0.0f64; 6], |acc, b| std::array::from_fn(|i| acc[i].max(b[i])));
+        let peak = bounds[..4].iter().copied().fold(0.0, f64::max);
+        if !(k.is_finite() && bounds.iter().all(|b| b.is_finite()) && (peak * peak).is_finite()) {
+            return Err(LawError::NotARise {
+                field: field.into(),
+                reason: format!(
+                    "the acceleration gives a net displacement of only {s:e} of its own scale: normalised to a unit \
+                     stroke its values would pass {:e}, and v·a and a² would not be finite numbers",
+                    f64::MAX.sqrt()
+                ),
+            });
+        }
         if end == EndCondition::Rest {
             let vmax = segs.iter().map(|g| g.start().v.abs().max(g.end().v.abs())).fold(0.0, f64::max);
             let v1 = v * k;
@@ -214,6 +273,108 @@ impl Law {
         k.into_iter().enumerate().map(|(i, k)| (if i + 1 == n { 1.0 } else { i as f64 * h }, k)).collect()
     }
 }
+
+impl Law {
+    /// The same samples as [`Law::sample`], produced a block at a time: the memory held is one
+    /// block (a few hundred KB) whatever `n`, and the values are bit-identical to [`Law::sample`]'s.
+    pub fn samples(&self, n: usize) -> Samples<'_> {
+        let n = n.max(2);
+        let h = 1.0 / (n - 1) as f64;
+        // The runs of points per segment, decided exactly as in `sample_into`.
+        let mut runs = Vec::with_capacity(self.segments.len());
+        let mut i = 0;
+        for (si, seg) in self.segments.iter().enumerate() {
+            let last = si + 1 == self.segments.len();
+            let mut end = if last { n } else { ((seg.x1() / h).ceil() as usize).clamp(i, n) };
+            if !last {
+                while end > i && (end - 1) as f64 * h >= seg.x1() {
+                    end -= 1;
+                }
+                while end < n && (end as f64) * h < seg.x1() {
+                    end += 1;
+                }
+            }
+            if end > i {
+                runs.push((si, i, end));
+            }
+            i = end;
+        }
+        Samples { law: self, n, h, runs, run: 0, next: 0, block: Vec::new(), block_start: 0, pos: 0 }
+    }
+}
+
+/// Points per block of [`Samples`] (a multiple of the segment recurrence's re-seed interval).
+const SAMPLE_BLOCK: usize = 64 * crate::segment::RUN_CHUNK;
+
+/// Evenly spaced samples `(x, kinematics)` of a law, made a block at a time ([`Law::samples`]).
+#[derive(Debug, Clone)]
+pub struct Samples<'a> {
+    law: &'a Law,
+    n: usize,
+    h: f64,
+    /// `(segment, first point, end point)` of each run of points in one segment.
+    runs: Vec<(usize, usize, usize)>,
+    /// The run the next block comes from.
+    run: usize,
+    /// The first point of the next block.
+    next: usize,
+    block: Vec<Kinematics>,
+    /// Index of `block[0]`.
+    block_start: usize,
+    /// Next point to hand out.
+    pos: usize,
+}
+
+impl Samples<'_> {
+    /// Fills the block with the next points (never across a segment's run, so each block starts
+    /// a multiple of the re-seed interval after its run's start).
+    fn refill(&mut self) -> bool {
+        while let Some(&(si, start, end)) = self.runs.get(self.run) {
+            let from = self.next.max(start);
+            if from >= end {
+                self.run += 1;
+                continue;
+            }
+            let to = (from + SAMPLE_BLOCK).min(end);
+            let seg = &self.law.segments[si];
+            self.block.clear();
+            self.block.resize(to - from, Kinematics::default());
+            seg.eval_run_from(start as f64 * self.h - seg.x0(), self.h, from - start, &mut self.block);
+            if to == self.n {
+                // The last point lands exactly on x = 1, as in `sample_into`.
+                *self.block.last_mut().expect("a block holds a point") = self.law.eval(1.0);
+            }
+            self.block_start = from;
+            self.next = to;
+            return true;
+        }
+        false
+    }
+}
+
+impl Iterator for Samples<'_> {
+    type Item = (f64, Kinematics);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.pos >= self.n {
+            return None;
+        }
+        if self.pos >= self.block_start + self.block.len() && !self.refill() {
+            return None;
+        }
+        let i = self.pos;
+        self.pos += 1;
+        let x = if i + 1 == self.n { 1.0 } else { i as f64 * self.h };
+        Some((x, self.block[i - self.block_start]))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.n - self.pos;
+        (left, Some(left))
+    }
+}
+
+impl ExactSizeIterator for Samples<'_> {}
 
 impl MotionLaw for Law {
     fn eval(&self, x: f64) -> Kinematics {

@@ -35,14 +35,14 @@ mod quadrature;
 mod segment;
 mod shape;
 
-pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue};
+pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue, RAMP};
 pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
 pub use cycle_report::{CycleReport, SegmentPeaks};
 pub use error::{LawError, Result, compact};
 pub use extrema::refine_root;
 pub use kinematics::{Kinematics, MotionLaw};
-pub use law::{AccelPiece, EndCondition, Law};
+pub use law::{AccelPiece, EndCondition, Law, Samples};
 pub use metrics::Metrics;
 pub use polynomial::{MAX_ACCEL_DEGREE, PolySegment, format_poly_segments, parse_poly_segments, poly_segments_of};
 pub use quadrature::gauss_legendre;

@@ -66,8 +66,8 @@ pub fn parse_poly_segments(text: &str, field: &str) -> Result<Vec<PolySegment>> 
 pub fn format_poly_segments(segs: &[PolySegment]) -> String {
     segs.iter()
         .map(|s| {
-            let mut parts = vec![format!("{}", s.length)];
-            parts.extend(s.accel.iter().map(|c| format!("{}", c + 0.0)));
+            let mut parts = vec![crate::shape::number_text(s.length)];
+            parts.extend(s.accel.iter().map(|c| crate::shape::number_text(c + 0.0)));
             parts.join(":")
         })
         .collect::<Vec<_>>()

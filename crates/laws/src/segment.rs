@@ -157,6 +157,19 @@ impl Segment {
         acc
     }
 
+    /// Upper bounds of |s|, |v|, |a|, |j| and the next two derivatives over the segment, from the
+    /// coefficients: `Σ |p_k·k!/(k−n)!| + |A|·|ω|^(n−2)` for order `n` (`|t| ≤ width ≤ 1`).
+    pub(crate) fn derivative_bounds(&self) -> [f64; 6] {
+        let mut out = [0.0; 6];
+        for (order, o) in out.iter_mut().enumerate() {
+            *o = (order..NC).map(|k| (self.p[k] * FALLING[order][k]).abs()).sum::<f64>();
+            if let Some(sn) = self.sine {
+                *o += sn.amp.abs() * sn.omega.abs().powi(order as i32 - 2);
+            }
+        }
+        out
+    }
+
     /// The derivatives of orders 0 to 5 of the displacement at local `t`, with one `sin_cos`.
     pub fn derivs_local(&self, t: f64) -> [f64; 6] {
         let mut out = [0.0; 6];
@@ -230,20 +243,28 @@ impl Segment {
     /// rotates by 4h, so the four rotation chains run in parallel instead of one serial chain),
     /// re-seeded from `sin_cos` every [`RUN_CHUNK`] points so rounding cannot accumulate.
     pub(crate) fn eval_run(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
+        self.eval_run_from(t0, h, 0, out);
+    }
+
+    /// Points `first, first + 1, …` of the run `t = t0 + i·h` into `out`: a piece of a longer
+    /// run, bit-identical to the same points of [`Segment::eval_run`] over the whole run as long
+    /// as `first` is a multiple of [`RUN_CHUNK`] (the recurrence is re-seeded at the same points).
+    pub(crate) fn eval_run_from(&self, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
+        debug_assert_eq!(first % RUN_CHUNK, 0);
         let c = DerivCoeffs::new(&self.p);
         match self.deg {
-            0 | 1 => self.run::<1>(&c, t0, h, out),
-            2 | 3 => self.run::<3>(&c, t0, h, out),
-            4 | 5 => self.run::<5>(&c, t0, h, out),
-            _ => self.run::<7>(&c, t0, h, out),
+            0 | 1 => self.run::<1>(&c, t0, h, first, out),
+            2 | 3 => self.run::<3>(&c, t0, h, first, out),
+            4 | 5 => self.run::<5>(&c, t0, h, first, out),
+            _ => self.run::<7>(&c, t0, h, first, out),
         }
     }
 
     #[inline(always)]
-    fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, out: &mut [Kinematics]) {
+    fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
         let Some(sn) = self.sine else {
             for (i, k) in out.iter_mut().enumerate() {
-                *k = c.kin::<D>(t0 + i as f64 * h);
+                *k = c.kin::<D>(t0 + (first + i) as f64 * h);
             }
             return;
         };
@@ -251,7 +272,7 @@ impl Segment {
         let rot = |m: f64| (sn.omega * h * m).sin_cos();
         let (r1, r2, r3, (s4, c4)) = (rot(1.0), rot(2.0), rot(3.0), rot(4.0));
         for (ci, chunk) in out.chunks_mut(RUN_CHUNK).enumerate() {
-            let i0 = ci * RUN_CHUNK;
+            let i0 = first + ci * RUN_CHUNK;
             let (s0, c0) = (sn.omega * (t0 + i0 as f64 * h) + sn.phase).sin_cos();
             let mut sin = [s0, s0 * r1.1 + c0 * r1.0, s0 * r2.1 + c0 * r2.0, s0 * r3.1 + c0 * r3.0];
             let mut cos = [c0, c0 * r1.1 - s0 * r1.0, c0 * r2.1 - s0 * r2.0, c0 * r3.1 - s0 * r3.0];
@@ -278,7 +299,7 @@ impl Segment {
 }
 
 /// Points per re-seed of the sinusoid recurrence in [`Segment::eval_run`] (32 rotations per lane).
-const RUN_CHUNK: usize = 128;
+pub(crate) const RUN_CHUNK: usize = 128;
 
 /// The coefficients of s, v, a and j of a displacement polynomial, lowest power first.
 struct DerivCoeffs {

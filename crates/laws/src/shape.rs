@@ -147,16 +147,23 @@ impl Shape {
 
 impl std::fmt::Display for Shape {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = number_text;
         match *self {
             Shape::Zero => write!(f, "zero"),
-            Shape::Constant { level } => write!(f, "constant:{level}"),
-            Shape::Linear { from, to } => write!(f, "linear:{from}:{to}"),
-            Shape::SineRamp { from, to } => write!(f, "sine-ramp:{from}:{to}"),
-            Shape::CosineRamp { from, to } => write!(f, "cosine-ramp:{from}:{to}"),
-            Shape::HalfCosine { from, to } => write!(f, "half-cosine:{from}:{to}"),
-            Shape::SineArc { peak } => write!(f, "sine-arc:{peak}"),
+            Shape::Constant { level } => write!(f, "constant:{}", n(level)),
+            Shape::Linear { from, to } => write!(f, "linear:{}:{}", n(from), n(to)),
+            Shape::SineRamp { from, to } => write!(f, "sine-ramp:{}:{}", n(from), n(to)),
+            Shape::CosineRamp { from, to } => write!(f, "cosine-ramp:{}:{}", n(from), n(to)),
+            Shape::HalfCosine { from, to } => write!(f, "half-cosine:{}:{}", n(from), n(to)),
+            Shape::SineArc { peak } => write!(f, "sine-arc:{}", n(peak)),
         }
     }
+}
+
+/// The shortest text that reads back as `v`: plain for ordinary magnitudes, with an exponent
+/// below 1e-4 and from 1e16 on (a level of 1e-308 is not written in 310 digits).
+pub(crate) fn number_text(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e16).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
 }
 
 /// One segment of a piecewise-acceleration law: a relative length and a shape.
@@ -193,5 +200,5 @@ pub fn parse_segments(text: &str, field: &str) -> Result<Vec<ShapeSegment>> {
 
 /// Writes segments in the form [`parse_segments`] reads.
 pub fn format_segments(segs: &[ShapeSegment]) -> String {
-    segs.iter().map(|s| format!("{}:{}", s.length, s.shape)).collect::<Vec<_>>().join(",")
+    segs.iter().map(|s| format!("{}:{}", number_text(s.length), s.shape)).collect::<Vec<_>>().join(",")
 }

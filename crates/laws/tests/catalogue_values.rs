@@ -136,3 +136,53 @@ fn derivative_roots_of_the_cycloid() {
     assert_eq!(j.len(), 2, "{j:?}");
     assert!((j[0] - 0.25).abs() < 1e-14 && (j[1] - 0.75).abs() < 1e-14, "{j:?}");
 }
+
+/// The narrowest ramp allowed is exact; a narrower one is refused naming `ramp` and its range.
+#[test]
+fn the_narrowest_ramp_is_exact_and_a_narrower_one_is_refused() {
+    // Independent route: s(1) = 2∫₀^½ (½ − x)·a(x) dx of the unit-level acceleration by 40-digit
+    // quadrature (mpmath), Ca = 1/s(1), Cj = Ca·π/(2·ramp).
+    let m = LawSpec::ModifiedTrapezoid { ramp: 1e-6 }.build().unwrap().metrics();
+    assert!((m.ca / 4.000005814092093 - 1.0).abs() < 1e-13, "{}", m.ca);
+    assert!((m.cj / 6283194.4399340898 - 1.0).abs() < 1e-12, "{}", m.cj);
+    assert_eq!(LawSpec::ModifiedTrapezoid { ramp: 1e-6 }.build().unwrap().continuity().class, 2);
+    for r in ["9.99e-7", "1e-20", "5e-324"] {
+        let e = LawSpec::parse("modified-trapezoid", &[("ramp", r)]).unwrap_err().to_string();
+        assert!(e.contains("allowed 1e-6 ≤ ramp ≤ 0.25"), "{e}");
+    }
+}
+
+/// The scale of a piecewise law's levels does not matter (it is normalised to a unit stroke):
+/// levels of ±1e-308 (which made s(1) subnormal and 1/s(1) infinite) give the law of ±1.
+#[test]
+fn tiny_and_huge_levels_give_the_unit_level_law() {
+    let unit = LawSpec::parse("piecewise", &[("segments", "0.5:constant:1,0.5:constant:-1")]).unwrap().build().unwrap();
+    let want = unit.metrics();
+    for level in ["1e-308", "5e-324", "1e300", "1.7e308"] {
+        let segs = format!("0.5:constant:{level},0.5:constant:-{level}");
+        let law = LawSpec::parse("piecewise", &[("segments", segs.as_str())]).unwrap().build().unwrap();
+        let m = law.metrics();
+        for (got, want) in [(m.cv, want.cv), (m.ca, want.ca), (m.cj, want.cj), (m.cm, want.cm), (m.ca_rms, want.ca_rms)]
+        {
+            assert!(got.is_finite() && (got - want).abs() <= 1e-12 * want.abs().max(1.0), "{level}: {got} vs {want}");
+        }
+    }
+}
+
+/// A net displacement tiny against the acceleration (areas all but cancelling) would scale the
+/// law past the largest double: refused naming the segments, never a law with infinite metrics.
+#[test]
+fn a_nearly_cancelling_law_is_refused_not_infinite() {
+    // A push and a pull of 1e-100 each, then rest: s(1) = 1e-200, so a unit stroke needs
+    // a = 1e200 and a² overflows.
+    let segs = "1e-100:constant:1,1e-100:constant:-1,1:zero";
+    let e = LawSpec::parse("piecewise", &[("segments", segs)]).unwrap().build().unwrap_err();
+    assert_eq!(loomkin_units::FieldError::field(&e), Some("segments"));
+    let text = e.to_string();
+    assert!(text.contains("net displacement") && !text.contains("inf") && !text.contains("NaN"), "{text}");
+    // A piece too narrow to have a place of its own at the end of the motion is named as such.
+    let segs = "0.5:constant:1,0.5:constant:-1,1e-170:constant:1";
+    let e = LawSpec::parse("piecewise", &[("segments", segs)]).unwrap().build().unwrap_err();
+    assert_eq!(loomkin_units::FieldError::field(&e), Some("segments[2]"));
+    assert!(e.to_string().contains("too narrow"), "{e}");
+}

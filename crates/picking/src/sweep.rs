@@ -47,6 +47,7 @@ pub fn sweep(
 /// The points `items` (indices into `0..steps`, e.g. one shard's share,
 /// [`loomkin_units::Shard::items`]) of the sweep [`sweep`] would run: each point's value and
 /// outcome are those of the whole sweep, bit for bit. Indices past `steps` are left out.
+#[allow(clippy::too_many_arguments)]
 pub fn sweep_items(
     mechanism: &Mechanism,
     base: &Settings,
@@ -57,15 +58,36 @@ pub fn sweep_items(
     method: Method,
     items: std::ops::Range<usize>,
 ) -> Result<Sweep> {
+    sweep_observed(mechanism, base, setting, from, to, steps, method, items, &|| {})
+}
+
+/// [`sweep_items`], calling `on_point` as each point is done (from the worker threads: a
+/// progress bar).
+#[allow(clippy::too_many_arguments)]
+pub fn sweep_observed(
+    mechanism: &Mechanism,
+    base: &Settings,
+    setting: Setting,
+    from: f64,
+    to: f64,
+    steps: usize,
+    method: Method,
+    items: std::ops::Range<usize>,
+    on_point: &(dyn Fn() + Sync),
+) -> Result<Sweep> {
     Range::finite(setting.unit()).check("from", from)?;
     Range::finite(setting.unit()).check("to", to)?;
-    Range::closed(1.0, 1e6, "").check("steps", steps as f64)?;
+    // No upper bound here: a front end estimates the time of its points against its budget.
+    Range::at_least(1.0, "").check("steps", steps as f64)?;
     let value = |i: usize| if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
     let rows = (items.start.min(steps)..items.end.min(steps))
         .into_par_iter()
         .map(|i| {
             let v = value(i);
-            simulate(mechanism, &setting.apply(*base, v), method).map(|outcome| SweepRow { value: v, outcome })
+            let row =
+                simulate(mechanism, &setting.apply(*base, v), method).map(|outcome| SweepRow { value: v, outcome });
+            on_point();
+            row
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(Sweep { setting, rows })

@@ -64,6 +64,32 @@ pub struct OptimizeOptions {
     /// [`StopFlag::is_set`] to know that the result is not a finished optimisation.
     #[serde(skip)]
     pub stop: StopFlag,
+    /// Counts the objective evaluations as they are made, for another thread to read (a
+    /// progress bar over `starts × max_evals_per_start`).
+    #[serde(skip)]
+    pub evaluated: Counter,
+}
+
+/// A count shared between an optimisation and whoever watches it.
+#[derive(Debug, Clone, Default)]
+pub struct Counter(std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl Counter {
+    /// The count so far.
+    pub fn get(&self) -> usize {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    fn add(&self, n: usize) {
+        self.0.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+impl PartialEq for Counter {
+    /// Two counters are equal when they are the same counter.
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// A flag shared between an optimisation and whoever may stop it.
@@ -101,6 +127,7 @@ impl Default for OptimizeOptions {
             max_gap_factor: 3.0,
             seed: 0x5eed_1e55,
             stop: StopFlag::default(),
+            evaluated: Counter::default(),
         }
     }
 }
@@ -238,6 +265,7 @@ pub fn optimize(start: &SplineLaw, drive: &Drive, opts: &OptimizeOptions) -> Res
             let mut evals = 0usize;
             let mut counted = |z: &[f64]| {
                 evals += 1;
+                opts.evaluated.add(1);
                 f(z)
             };
             let (z1, _) = nelder_mead(&mut counted, zs, 0.2, opts.max_evals_per_start / 2);

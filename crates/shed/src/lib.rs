@@ -53,10 +53,10 @@ pub use frame_cycle::{FRAME_PERIOD_DEG, frame_cycle, frame_cycle_toml};
 pub use paper::{TABLE3, Table3Check, Table3Row, table3, table3_minimax_threshold};
 pub use presets::{PRESETS, Preset, preset, preset_names};
 pub use requirement::LoomRequirement;
-pub use shedlaw::{NegativePhase, ShedLaw, check_motion_deg, mirror};
+pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
-    Candidate, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design, grid_design, pareto,
-    pareto_indices, parse_motion_angles, table, table1_design,
+    Candidate, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design, grid_design,
+    grid_design_rows, pareto, pareto_indices, parse_motion_angles, table, table1_design,
 };
 pub use template::{MAX_PARTS, Template};
 

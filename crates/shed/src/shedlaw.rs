@@ -93,9 +93,19 @@ fn check_lengths(field: &str, segs: &[ShapeSegment]) -> Result<()> {
     Ok(())
 }
 
-/// Checks a motion angle: `0 < φ_дв ≤ 360°`.
+/// The motion angle's range, `1° ≤ φ_дв ≤ 360°`.
+///
+/// The upper end is one turn. The lower end is derived from what is reported of a law: its
+/// angles (motion, dwell, conditional dwell, window) are printed and compared to 0.001°, so a
+/// motion of `Φ` degrees is resolved to `0.001/Φ` of itself; at 1° that is 0.1 %, below it the
+/// criteria are no longer read to three significant digits, while the frame's velocity and
+/// acceleration (∝ 1/Φ, 1/Φ²) run away (the `dobby` law over 0.001°: 3.6·10⁵ m/s). No loom moves a
+/// frame in less than a degree of the main shaft.
+pub const MOTION_DEG: Range = Range::closed(1.0, 360.0, "deg");
+
+/// Checks a motion angle against [`MOTION_DEG`].
 pub fn check_motion_deg(motion_deg: f64) -> Result<f64> {
-    Ok(Range::open_closed(0.0, 360.0, "deg").check("motion_deg", motion_deg)?)
+    Ok(MOTION_DEG.check("motion_deg", motion_deg)?)
 }
 
 /// The mirror image of positive-phase segments: reversed order, each shape reversed in time and

@@ -32,6 +32,12 @@ pub fn grid_design(parts: usize, min: f64, max: f64, step: f64) -> Result<Design
     Ok(Design::simplex(parts, min, max, step)?)
 }
 
+/// The number of laws [`grid_design`] makes with these arguments, counted without making them
+/// (for an estimate of memory and time before a study runs).
+pub fn grid_design_rows(parts: usize, min: f64, max: f64, step: f64) -> f64 {
+    loomkin_study::simplex_rows(parts, min, max, step)
+}
+
 /// Dimensionless criteria of every row of a design (`None` where the row makes no law, e.g. only
 /// a zero-acceleration part), evaluated in parallel.
 pub fn evaluate_rows(

@@ -174,6 +174,49 @@ impl Design {
     }
 }
 
+/// The number of rows [`Design::simplex`] makes, counted without making them (for an estimate of
+/// memory and time before a run): the lattice points `u ∈ {0…L}^(n−1)` with `Σu` in the range that
+/// keeps `k_n` within `[min, max]`, by inclusion–exclusion,
+/// `#{Σu ≤ T} = Σ_j (−1)^j C(n−1, j) C(T − j(L+1) + n − 1, n − 1)`.
+///
+/// Exact up to the 1e-9 tolerance of the bounds and f64 rounding of the binomials (a large count
+/// is an estimate to a few parts in 10¹⁶). Invalid arguments give 0 (the design itself refuses them).
+pub fn simplex_rows(parts: usize, min: f64, max: f64, step: f64) -> f64 {
+    let valid = (1..=16).contains(&parts)
+        && (0.0..=1.0).contains(&min)
+        && (min..=1.0).contains(&max)
+        && step.is_finite()
+        && step > 0.0;
+    if !valid {
+        return 0.0;
+    }
+    let l = ((max - min) / step + TOL).floor();
+    let n = (parts - 1) as i32;
+    if n == 0 {
+        return if (min - TOL..=max + TOL).contains(&1.0) { 1.0 } else { 0.0 };
+    }
+    // Σk_i = n·min + step·Σu must lie in [1 − max, 1 − min] (±TOL).
+    let lo = ((1.0 - max - f64::from(n) * min - TOL) / step).ceil().max(0.0);
+    let hi = ((1.0 - min - f64::from(n) * min + TOL) / step).floor();
+    if !(hi >= lo) || !l.is_finite() {
+        return 0.0;
+    }
+    let binom = |a: f64, b: i32| (0..b).fold(1.0, |acc, i| acc * (a - f64::from(i)) / f64::from(i + 1));
+    let at_most = |t: f64| -> f64 {
+        (0..=n)
+            .map(|j| {
+                let r = t - f64::from(j) * (l + 1.0);
+                if r < 0.0 {
+                    0.0
+                } else {
+                    (if j % 2 == 0 { 1.0 } else { -1.0 }) * binom(f64::from(n), j) * binom(r + f64::from(n), n)
+                }
+            })
+            .sum()
+    };
+    (at_most(hi) - at_most(lo - 1.0)).max(0.0).round()
+}
+
 fn fill(axis: &[f64], row: &mut [f64], i: usize, sum: f64, min: f64, max: f64, out: &mut Vec<f64>) {
     let n = row.len();
     if i + 1 == n {
@@ -199,6 +242,24 @@ fn fill(axis: &[f64], row: &mut [f64], i: usize, sum: f64, min: f64, max: f64, o
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn simplex_rows_counts_what_simplex_makes() {
+        // Counted by the formula against the rows made (an independent route: enumeration).
+        for parts in 1..=5 {
+            for (min, max, step) in
+                [(0.05, 0.9, 0.05), (0.0, 1.0, 0.1), (0.01, 0.98, 0.03), (0.2, 0.5, 0.1), (0.0, 0.3, 0.07)]
+            {
+                let made = Design::simplex(parts, min, max, step).map(|d| d.len()).unwrap_or(0);
+                assert_eq!(simplex_rows(parts, min, max, step), made as f64, "parts {parts}, {min}…{max} by {step}");
+            }
+        }
+        assert_eq!(simplex_rows(3, 0.5, 0.2, 0.1), 0.0);
+        assert_eq!(simplex_rows(0, 0.0, 1.0, 0.1), 0.0);
+        // Large grids are counted without being made: 4 parts by 1e-4 is C(10003, 3).
+        let big = simplex_rows(4, 0.0, 1.0, 1e-4);
+        assert!((big / 166_766_685_001.0 - 1.0).abs() < 1e-9, "{big}");
+    }
 
     #[test]
     fn simplex_rows_sum_to_one_and_count_matches_the_formula() {

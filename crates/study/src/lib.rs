@@ -32,7 +32,7 @@ mod pareto;
 mod random;
 mod stats;
 
-pub use design::{Design, MAX_POINTS, stepped_axis};
+pub use design::{Design, MAX_POINTS, simplex_rows, stepped_axis};
 pub use error::{Result, StudyError};
 pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed};
 pub use optimum::argmin_subject_to;

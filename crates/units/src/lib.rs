@@ -1,7 +1,8 @@
 //! # loomkin-units — the words every loomkin crate shares
 //!
 //! One range error with one number format, one shaft-speed type, unit conversions named once and one
-//! syntax for stepped sweeps. Every library error embeds a [`RangeError`] for an out-of-range number,
+//! syntax for stepped sweeps, and one budget of memory and time ([`Budget`]) a run is estimated
+//! against before it starts. Every library error embeds a [`RangeError`] for an out-of-range number,
 //! so one quantity has one bound in the library, the CLI and the workbench, and a front end finds the
 //! offending field from data ([`FieldError::field`]), never from message text.
 //!
@@ -19,12 +20,14 @@
 //! ```
 #![deny(missing_docs)]
 
+mod budget;
 mod convert;
 mod format;
 mod range;
 mod speed;
 mod sweep;
 
+pub use budget::{Budget, BudgetError, Cost, bytes_text, seconds_text};
 pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg};
 pub use format::compact;
 pub use range::{Bound, FieldError, Range, RangeError};

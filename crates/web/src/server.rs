@@ -243,22 +243,61 @@ pub fn serve_blocking(port: u16, on_ready: impl FnOnce(&str)) -> std::io::Result
 
 /// Asks the desktop to open `url` in the default browser (`xdg-open`, `open` or `start`).
 ///
-/// Returns an error text when no opener could be started; the server runs on regardless.
-pub fn open_browser(url: &str) -> Result<(), String> {
-    let mut cmd = if cfg!(target_os = "macos") {
-        std::process::Command::new("open")
+/// On a Unix desktop other than macOS, nothing is started without a display (`DISPLAY` and
+/// `WAYLAND_DISPLAY` unset or empty): `xdg-open` would fail there after the fact. Otherwise the
+/// opener runs in the background and a thread waits for it, so it never lingers as a zombie; if
+/// it exits with a failure, `on_failure` gets the one-line reason. Returns the reason at once when
+/// no opener could be started. The server runs on either way.
+pub fn open_browser(url: &str, on_failure: impl FnOnce(String) + Send + 'static) -> Result<(), String> {
+    let unix_desktop = !cfg!(target_os = "macos") && !cfg!(windows);
+    if unix_desktop && !has_display(|name| std::env::var_os(name)) {
+        return Err(format!(
+            "no display to open a browser on (DISPLAY and WAYLAND_DISPLAY are unset); open {url} yourself"
+        ));
+    }
+    let (name, mut cmd) = if cfg!(target_os = "macos") {
+        ("open", std::process::Command::new("open"))
     } else if cfg!(windows) {
         let mut c = std::process::Command::new("cmd");
         c.args(["/C", "start", ""]);
-        c
+        ("start", c)
     } else {
-        std::process::Command::new("xdg-open")
+        ("xdg-open", std::process::Command::new("xdg-open"))
     };
-    cmd.arg(url)
+    let mut child = cmd
+        .arg(url)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn()
-        .map(|_| ())
-        .map_err(|e| format!("could not start a browser ({e}); open {url} yourself"))
+        .map_err(|e| format!("could not start a browser ({name}: {e}); open {url} yourself"))?;
+    let url = url.to_string();
+    std::thread::spawn(move || match child.wait() {
+        Ok(status) if status.success() => {}
+        Ok(status) => on_failure(format!("{name} could not open a browser ({status}); open {url} yourself")),
+        Err(e) => on_failure(format!("{name}: {e}; open {url} yourself")),
+    });
+    Ok(())
+}
+
+/// Whether a display is named by `DISPLAY` or `WAYLAND_DISPLAY` (non-empty), read through `var`.
+fn has_display(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| var(v).is_some_and(|s| !s.is_empty()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::has_display;
+    use std::ffi::OsString;
+
+    #[test]
+    fn a_display_is_a_non_empty_display_variable() {
+        let env = |pairs: &'static [(&'static str, &'static str)]| {
+            move |name: &str| pairs.iter().find(|(k, _)| *k == name).map(|(_, v)| OsString::from(v))
+        };
+        assert!(!has_display(env(&[])));
+        assert!(!has_display(env(&[("DISPLAY", ""), ("WAYLAND_DISPLAY", "")])));
+        assert!(has_display(env(&[("DISPLAY", ":0")])));
+        assert!(has_display(env(&[("WAYLAND_DISPLAY", "wayland-0")])));
+    }
 }

@@ -6,6 +6,7 @@ mod dobby;
 mod docs;
 mod dynamics;
 mod law;
+mod limits;
 mod loom;
 mod output;
 mod pick;

@@ -99,3 +99,79 @@ fn busy_port_fails_with_one_line() {
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(err.contains(&format!("cannot serve on 127.0.0.1:{port}")) && err.lines().count() == 1, "{err}");
 }
+
+/// Starts `loomkin serve --open --port 0` with `envs` (and no display unless given one), returns
+/// the server and a receiver of its standard-error lines.
+fn serve_open(envs: &[(&str, &std::ffi::OsStr)]) -> (Server, std::sync::mpsc::Receiver<String>) {
+    let bin = assert_cmd::cargo::cargo_bin!("loomkin");
+    let mut cmd = Command::new(bin);
+    cmd.args(["serve", "--open", "--port", "0"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    for (k, v) in envs {
+        cmd.env(k, v);
+    }
+    let mut server = Server(cmd.spawn().expect("start loomkin serve"));
+    let stderr = server.0.stderr.take().expect("stderr");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            let _ = tx.send(line);
+        }
+    });
+    (server, rx)
+}
+
+/// Children of `pid` that are zombies (state Z in /proc), on Linux.
+#[cfg(target_os = "linux")]
+fn zombie_children(pid: u32) -> Vec<String> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
+        let Ok(stat) = std::fs::read_to_string(e.path().join("stat")) else { continue };
+        // pid (comm) state ppid …
+        let Some(rest) = stat.rsplit_once(") ").map(|(_, r)| r) else { continue };
+        let f: Vec<&str> = rest.split_whitespace().collect();
+        if f.len() > 1 && f[0] == "Z" && f[1] == pid.to_string() {
+            out.push(stat);
+        }
+    }
+    out
+}
+
+#[test]
+fn open_without_a_display_warns_in_one_line_and_serves_on() {
+    let (mut server, rx) = serve_open(&[]);
+    let line = rx.recv_timeout(Duration::from_secs(30)).expect("a warning within 30 s");
+    assert!(line.starts_with("loomkin: warning: no display"), "{line}");
+    assert!(line.contains("open http://127.0.0.1:"), "{line}");
+    assert!(rx.recv_timeout(Duration::from_millis(500)).is_err(), "more than one line");
+    assert!(server.0.try_wait().expect("status").is_none(), "the server stopped");
+    #[cfg(target_os = "linux")]
+    assert!(zombie_children(server.0.id()).is_empty());
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_failing_opener_is_reaped_and_reported_in_one_line() {
+    // An `xdg-open` that fails, first on PATH, with a display named.
+    let dir = std::env::temp_dir().join(format!("loomkin-open-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let opener = dir.join("xdg-open");
+    std::fs::write(&opener, "#!/bin/sh\nexit 3\n").expect("write the stub");
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&opener, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    let path = std::env::join_paths(
+        std::iter::once(dir.clone()).chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
+    )
+    .expect("PATH");
+    let (mut server, rx) = serve_open(&[("PATH", path.as_os_str()), ("DISPLAY", std::ffi::OsStr::new(":99"))]);
+    let line = rx.recv_timeout(Duration::from_secs(30)).expect("a warning within 30 s");
+    assert!(line.starts_with("loomkin: warning: xdg-open could not open a browser"), "{line}");
+    assert!(line.contains("exit status: 3"), "{line}");
+    // The stub has been waited for: no zombie child, and the server still runs.
+    assert!(zombie_children(server.0.id()).is_empty());
+    assert!(server.0.try_wait().expect("status").is_none(), "the server stopped");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,73 @@
+//! Finite by construction and bounded by an estimate: extreme inputs inside the old ranges are
+//! either answered with finite numbers or refused in one line naming the input (exit 2), the text
+//! and `--json` paths alike; runs estimated beyond about 1 GB or a minute are refused up front
+//! with the estimate and the limit.
+
+use crate::common::{loomkin, stdout_json, usage_error};
+
+const HEALD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml");
+
+/// Both paths (text and `--json`) refuse, naming every needle.
+fn refused_both_ways(args: &[&str], needles: &[&str]) {
+    usage_error(args, needles);
+    let mut json = args.to_vec();
+    json.push("--json");
+    usage_error(&json, needles);
+}
+
+#[test]
+fn tiny_piecewise_levels_give_the_unit_law_in_both_paths() {
+    let segs = "segments=0.5:constant:1e-308,0.5:constant:-1e-308";
+    let v = stdout_json(&["law", "info", "piecewise", "--param", segs, "--json"]);
+    for k in ["cv", "ca", "cj", "cm", "ca_rms"] {
+        assert!(v[k].is_number(), "{k}: {v}");
+    }
+    assert!((v["cv"].as_f64().unwrap() - 2.0).abs() < 1e-12 && (v["ca"].as_f64().unwrap() - 4.0).abs() < 1e-12);
+    let out = loomkin().args(["law", "info", "piecewise", "--param", segs]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Cv   = max v       = 2.0000000000"), "{text}");
+    assert!(text.contains("constant:1e-308") && !text.to_lowercase().contains("inf"), "{text}");
+}
+
+#[test]
+fn extreme_inputs_inside_the_old_ranges_are_refused_by_name() {
+    refused_both_ways(&["law", "info", "modified-trapezoid", "--param", "ramp=1e-20"], &["ramp", "1e-6 ≤ ramp ≤ 0.25"]);
+    refused_both_ways(
+        &["shed", "law", "dobby", "--motion-deg", "1e-9"],
+        &["motion_deg", "allowed 1 ≤ motion_deg ≤ 360 deg"],
+    );
+    refused_both_ways(&["cycle", HEALD, "--speed-rpm", "5e-324"], &["speed-rpm", "0.001"]);
+}
+
+#[test]
+fn runs_beyond_the_budget_are_refused_with_the_estimate() {
+    let limit = "the limit is 1 GB and 1 min";
+    for (args, field) in [
+        (&["pick", "sweep", "speed", "--from", "160", "--to", "240", "--points", "1000000000"][..], "points = 1000000000"),
+        (&["dyn", "sweep", HEALD, "--natural-hz", "80", "--speed-rpm", "1:100000:0.01"][..], "speed_rpm = 1:100000:0.01"),
+    ] {
+        usage_error(args, &[field, "(estimate)", limit]);
+    }
+}
+
+#[test]
+fn streamed_tables_are_the_tables() {
+    // CSV and JSON of the same samples carry the same numbers, row for row.
+    let out = loomkin().args(["law", "sample", "modified-trapezoid", "--points", "20001"]).output().unwrap();
+    assert!(out.status.success());
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let v = stdout_json(&["law", "sample", "modified-trapezoid", "--points", "20001", "--json"]);
+    let pts = v["points"].as_array().unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,s,v,a,j"));
+    assert_eq!(pts.len(), 20001);
+    for (p, line) in pts.iter().zip(lines) {
+        let nums: Vec<f64> = line.split(',').map(|t| t.parse().unwrap()).collect();
+        for (i, k) in ["x", "s", "v", "a", "j"].iter().enumerate() {
+            let j = p[k].as_f64().unwrap();
+            assert!((j - nums[i]).abs() <= 1e-15 * j.abs().max(1e-300), "{k}: {j} vs {}", nums[i]);
+        }
+    }
+    assert_eq!(v["law"], "modified-trapezoid");
+}

@@ -1,0 +1,190 @@
+//! What a run may cost: an estimate of its memory and time made before it starts, and the one
+//! limit every front end refuses beyond (about 1 GB and one minute).
+//!
+//! A command that grows with an input (`--points`, a sweep's step, a number of starts) knows
+//! what one item costs — the bytes it holds per item and the seconds per item, measured by the
+//! crate's benchmarks on the reference machine (2 cores) — and checks `items × cost` against
+//! [`Budget::DEFAULT`] before allocating anything. The largest allowed count is derived from
+//! the same figures, so the limit moves when the code gets faster or leaner, not by editing a
+//! constant.
+//!
+//! ```
+//! use loomkin_units::{Budget, Cost};
+//!
+//! // 10⁷ rows streamed (a block in memory) at 0.4 µs each: allowed.
+//! let ok = Cost::items(1e7, 0.0, 0.4e-6);
+//! assert!(Budget::DEFAULT.check("points", 10_000_000, ok).is_ok());
+//! // 10⁹ rows of 600 bytes held at once: 600 GB, refused up front, naming both.
+//! let e = Budget::DEFAULT.check("points", 1_000_000_000, Cost::items(1e9, 600.0, 1e-6)).unwrap_err();
+//! assert_eq!(
+//!     e.to_string(),
+//!     "points = 1000000000 needs about 600 GB of memory and 17 min (estimate); the limit is 1 GB and 1 min"
+//! );
+//! ```
+
+use std::fmt;
+
+use serde::Serialize;
+
+use crate::format::compact;
+
+/// An estimate of what a run needs: peak memory in bytes and wall time in seconds.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Cost {
+    /// Memory held at the peak (bytes).
+    pub bytes: f64,
+    /// Wall time (seconds).
+    pub seconds: f64,
+}
+
+impl Cost {
+    /// `n` items, each holding `bytes_each` until the end and taking `seconds_each`.
+    pub fn items(n: f64, bytes_each: f64, seconds_each: f64) -> Self {
+        Self { bytes: n * bytes_each, seconds: n * seconds_each }
+    }
+
+    /// Both costs added (two phases, or a fixed part and a part per item).
+    pub fn plus(self, other: Cost) -> Self {
+        Self { bytes: self.bytes + other.bytes, seconds: self.seconds + other.seconds }
+    }
+
+    /// The cost repeated `n` times (an outer loop around a measured inner cost; memory is
+    /// assumed held by every repetition).
+    pub fn times(self, n: f64) -> Self {
+        Self { bytes: self.bytes * n, seconds: self.seconds * n }
+    }
+}
+
+/// The most a run may take: a request estimated beyond it is refused before it starts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Budget {
+    /// Peak memory (bytes).
+    pub bytes: f64,
+    /// Wall time (seconds).
+    pub seconds: f64,
+}
+
+impl Budget {
+    /// About 1 GB and one minute: a command-line run or a workbench request.
+    pub const DEFAULT: Budget = Budget { bytes: 1e9, seconds: 60.0 };
+
+    /// Whether `cost` fits.
+    pub fn allows(&self, cost: Cost) -> bool {
+        // `!(a > b)` so that a NaN estimate (a corrupt input) is refused too.
+        cost.bytes <= self.bytes && cost.seconds <= self.seconds
+    }
+
+    /// `Ok` if `cost`, the estimate for `field = value`, fits; else the error naming both.
+    /// `value` is printed as given (`10000000`, `1:360:0.001`).
+    pub fn check(&self, field: &str, value: impl fmt::Display, cost: Cost) -> Result<(), BudgetError> {
+        if self.allows(cost) {
+            Ok(())
+        } else {
+            Err(BudgetError { field: field.into(), value: value.to_string(), cost, budget: *self })
+        }
+    }
+}
+
+/// A run estimated to need more memory or time than the [`Budget`] allows.
+///
+/// One line: `points = 1000000000 needs about 600 GB of memory and 17 min (estimate); the limit
+/// is 1 GB and 1 min`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BudgetError {
+    /// The input that makes the run large (`points`, `step_deg`, `starts`).
+    pub field: String,
+    /// Its value, as given.
+    pub value: String,
+    /// The estimate.
+    pub cost: Cost,
+    /// The limit.
+    pub budget: Budget,
+}
+
+impl fmt::Display for BudgetError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} = {} needs about {} of memory and {} (estimate); the limit is {} and {}",
+            self.field,
+            self.value,
+            bytes_text(self.cost.bytes),
+            seconds_text(self.cost.seconds),
+            bytes_text(self.budget.bytes),
+            seconds_text(self.budget.seconds)
+        )
+    }
+}
+
+impl std::error::Error for BudgetError {}
+
+impl crate::range::FieldError for BudgetError {
+    fn field(&self) -> Option<&str> {
+        Some(&self.field)
+    }
+}
+
+/// `600 GB`, `48 MB`, `2 kB`: two significant digits at most, decimal prefixes.
+pub fn bytes_text(b: f64) -> String {
+    if !b.is_finite() {
+        return "more than can be counted".into();
+    }
+    let units = [(1e15, "PB"), (1e12, "TB"), (1e9, "GB"), (1e6, "MB"), (1e3, "kB")];
+    match units.iter().find(|(u, _)| b >= *u) {
+        Some((u, name)) => format!("{} {name}", two_digits(b / u)),
+        None => format!("{} bytes", b.round()),
+    }
+}
+
+/// `17 min`, `1 min`, `45 s`, `0.2 s`, `3.2 h`, `2 days`.
+pub fn seconds_text(s: f64) -> String {
+    if !s.is_finite() {
+        return "longer than can be counted".into();
+    }
+    match s {
+        s if s >= 86_400.0 * 2.0 => format!("{} days", two_digits(s / 86_400.0)),
+        s if s >= 3600.0 => format!("{} h", two_digits(s / 3600.0)),
+        s if s >= 60.0 => format!("{} min", two_digits(s / 60.0)),
+        s => format!("{} s", two_digits(s)),
+    }
+}
+
+/// Two significant digits, no trailing zeros (`17`, `1.5`, `0.25`, `600`).
+fn two_digits(v: f64) -> String {
+    let r: f64 = format!("{v:.1e}").parse().unwrap_or(v);
+    compact(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn texts_are_short() {
+        assert_eq!(bytes_text(6e11), "600 GB");
+        assert_eq!(bytes_text(4.8e7), "48 MB");
+        assert_eq!(bytes_text(1e9), "1 GB");
+        assert_eq!(bytes_text(12.0), "12 bytes");
+        assert_eq!(seconds_text(1000.0), "17 min");
+        assert_eq!(seconds_text(0.25), "0.25 s");
+        assert_eq!(seconds_text(60.0), "1 min");
+        assert_eq!(seconds_text(3.0 * 86_400.0), "3 days");
+        assert_eq!(seconds_text(f64::INFINITY), "longer than can be counted");
+    }
+
+    #[test]
+    fn the_limit_is_inclusive_and_nan_is_refused() {
+        let b = Budget::DEFAULT;
+        assert!(b.allows(Cost { bytes: 1e9, seconds: 60.0 }));
+        assert!(!b.allows(Cost { bytes: 1.0001e9, seconds: 1.0 }));
+        assert!(!b.allows(Cost { bytes: 1.0, seconds: 61.0 }));
+        assert!(!b.allows(Cost { bytes: f64::NAN, seconds: 1.0 }));
+        let e = b.check("step_deg", compact(1e-7), Cost::items(3.6e9, 8.0, 1e-7)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "step_deg = 1e-7 needs about 29 GB of memory and 6 min (estimate); the limit is 1 GB and 1 min"
+        );
+        use crate::FieldError;
+        assert_eq!(e.field(), Some("step_deg"));
+    }
+}
