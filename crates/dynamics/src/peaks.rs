@@ -52,6 +52,66 @@ pub fn grid_size(duration: f64, omega: f64) -> usize {
     if n.is_finite() { n.min(1e5) as usize } else { 100_000 }
 }
 
+/// The largest value of a function known by its values only (no derivative), on `[lo, hi]`, and
+/// where it is: the function on a grid of `n` intervals, then every local maximum of the grid
+/// (the ends included) refined by golden-section search in its two neighbouring intervals down to
+/// 1e-12 of the interval. So the result is the function's maximum, not the grid's, whenever each
+/// peak is resolved by the grid (one peak per bracket); a finer grid only finds the same peaks.
+pub fn band_max(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> (f64, f64) {
+    let n = n.max(2);
+    let x = |j: usize| if j == n { hi } else { lo + (hi - lo) * j as f64 / n as f64 };
+    let v: Vec<f64> = (0..=n).map(|j| f(x(j))).collect();
+    let mut best = (f64::NEG_INFINITY, lo);
+    for j in 0..=n {
+        let left = if j > 0 { v[j - 1] } else { f64::NEG_INFINITY };
+        let right = if j < n { v[j + 1] } else { f64::NEG_INFINITY };
+        if v[j] >= left && v[j] >= right {
+            let (a, b) = (x(j.saturating_sub(1)), x((j + 1).min(n)));
+            let (at, val) = golden_max(&f, a, b, (x(j), v[j]));
+            if val > best.0 {
+                best = (val, at);
+            }
+        }
+    }
+    best
+}
+
+/// Golden-section search for the maximum of `f` on `[a, b]`, keeping the best point seen (`start`
+/// included), to 1e-12 of the interval.
+fn golden_max(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64, start: (f64, f64)) -> (f64, f64) {
+    const INV_PHI: f64 = 0.618_033_988_749_894_8;
+    let tol = 1e-12 * (b - a).abs().max(f64::MIN_POSITIVE);
+    let mut best = start;
+    let mut c = b - INV_PHI * (b - a);
+    let mut d = a + INV_PHI * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for (p, q) in [(c, fc), (d, fd)] {
+        if q > best.1 {
+            best = (p, q);
+        }
+    }
+    while (b - a).abs() > tol {
+        if fc >= fd {
+            b = d;
+            (d, fd) = (c, fc);
+            c = b - INV_PHI * (b - a);
+            fc = f(c);
+            if fc > best.1 {
+                best = (c, fc);
+            }
+        } else {
+            a = c;
+            (c, fc) = (d, fd);
+            d = a + INV_PHI * (b - a);
+            fd = f(d);
+            if fd > best.1 {
+                best = (d, fd);
+            }
+        }
+    }
+    best
+}
+
 /// The extremes of `f` on `[0, duration]`; `f(t)` returns `[f, f', f'']`. Candidates: both ends and
 /// every root of `f'` bracketed on an `n`-interval grid and refined by Newton.
 pub fn extremes(duration: f64, n: usize, f: impl Fn(f64) -> [f64; 3]) -> Extremes {

@@ -225,7 +225,8 @@ pub fn best(
             let best = argmin_subject_to(
                 &idx,
                 |&i| accel(rows[i].as_ref().expect("feasible"), phi[i].expect("feasible")),
-                |&i| matches!(phi[i], Some(p) if p > 0.0 && jerk_ok(rows[i].as_ref().expect("some"), p)),
+                // The motion angle must be one a law may have (at least 1°: [`crate::MOTION_DEG`]).
+                |&i| matches!(phi[i], Some(p) if crate::MOTION_DEG.contains(p) && jerk_ok(rows[i].as_ref().expect("some"), p)),
             );
             Ok(best.map(|i| {
                 candidate(design, i, phi[i].expect("feasible"), rows[i].as_ref().expect("feasible"), conditions)

@@ -90,7 +90,7 @@ fn free_motion_optimum_beats_every_motion_on_a_grid() {
     let d = grid_design(3, 0.0, 1.0, 0.05).unwrap();
     let rows = evaluate_rows(&t, &d, 0.95, Progress::Hidden).unwrap();
     let cond = Conditions::default();
-    let motions: Vec<f64> = (1..=720).map(|i| i as f64 * 0.5).collect();
+    let motions: Vec<f64> = (2..=720).map(|i| i as f64 * 0.5).collect();
     for w in [140.0, 175.0, 250.0] {
         let free = best(&d, &rows, None, w, None, &cond).unwrap().unwrap();
         let grid = best(&d, &rows, Some(&motions), w, None, &cond).unwrap().unwrap();

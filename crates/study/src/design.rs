@@ -198,7 +198,7 @@ pub fn simplex_rows(parts: usize, min: f64, max: f64, step: f64) -> f64 {
     // Σk_i = n·min + step·Σu must lie in [1 − max, 1 − min] (±TOL).
     let lo = ((1.0 - max - f64::from(n) * min - TOL) / step).ceil().max(0.0);
     let hi = ((1.0 - min - f64::from(n) * min + TOL) / step).floor();
-    if !(hi >= lo) || !l.is_finite() {
+    if hi < lo || hi.is_nan() || lo.is_nan() || !l.is_finite() {
         return 0.0;
     }
     let binom = |a: f64, b: i32| (0..b).fold(1.0, |acc, i| acc * (a - f64::from(i)) / f64::from(i + 1));
