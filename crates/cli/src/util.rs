@@ -108,16 +108,6 @@ impl Progress {
         }
     }
 
-    /// Sets the count done to `pos` (a watcher reading a counter).
-    pub fn set(&self, pos: u64) {
-        let Some(bar) = &self.bar else { return };
-        bar.set_position(pos);
-        if !self.shown.load(std::sync::atomic::Ordering::Relaxed) && self.start.elapsed().as_secs_f64() > 1.0 {
-            self.shown.store(true, std::sync::atomic::Ordering::Relaxed);
-            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-        }
-    }
-
     /// Clears the bar (also done when dropped).
     pub fn finish(&self) {
         if let Some(bar) = &self.bar {

@@ -44,8 +44,14 @@ fn extreme_inputs_inside_the_old_ranges_are_refused_by_name() {
 fn runs_beyond_the_budget_are_refused_with_the_estimate() {
     let limit = "the limit is 1 GB and 1 min";
     for (args, field) in [
-        (&["pick", "sweep", "speed", "--from", "160", "--to", "240", "--points", "1000000000"][..], "points = 1000000000"),
-        (&["dyn", "sweep", HEALD, "--natural-hz", "80", "--speed-rpm", "1:100000:0.01"][..], "speed_rpm = 1:100000:0.01"),
+        (
+            &["pick", "sweep", "speed", "--from", "160", "--to", "240", "--points", "1000000000"][..],
+            "points = 1000000000",
+        ),
+        (
+            &["dyn", "sweep", HEALD, "--natural-hz", "80", "--speed-rpm", "1:100000:0.01"][..],
+            "speed_rpm = 1:100000:0.01",
+        ),
     ] {
         usage_error(args, &[field, "(estimate)", limit]);
     }
