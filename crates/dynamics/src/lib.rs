@@ -63,7 +63,7 @@ pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
 pub use optimize::{Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, quiet_law};
-pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, SERIES_BELOW, free_roots};
+pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, free_roots, series_below};
 pub use peaks::{Extremes, band_max, extremes, grid_size};
 pub use report::{ResponseReport, Units, start_name, sweep_columns, sweep_row};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};

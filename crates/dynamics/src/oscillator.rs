@@ -193,7 +193,8 @@ impl Oscillator {
         };
         let mut sol = PieceSolution { osc: *self, forcing: *f, poly, sine, a: 0.0, b: 0.0, duration, series: None };
         let (s0, s1) = sol.sine_part(0.0);
-        if w * duration < SERIES_BELOW {
+        let degree = f.poly.iter().rposition(|&q| q != 0.0);
+        if degree.is_some_and(|d| w * duration < series_below(d)) {
             // c_{n+2} = (q_n − 2ζω(n+1)c_{n+1} − ω²c_n)/((n+2)(n+1)), c₀, c₁ from the initial state.
             let mut c = [0.0; NSERIES];
             c[0] = y0 - s0;
@@ -202,8 +203,27 @@ impl Oscillator {
                 let q = if n < NCOEF { f.poly[n] } else { 0.0 };
                 c[n + 2] = (q - 2.0 * z * w * (n + 1) as f64 * c[n + 1] - w2 * c[n]) / ((n + 2) * (n + 1)) as f64;
             }
+            // The terms that matter on [0, T], for every derivative the piece is asked for (orders 0..5): term
+            // n weighs |c_n|·n!/(n−k)!·T^{n−k} in the k-th; it is kept while above 1e-18 of the largest.
+            // (The common factor T^{−k} cancels from the comparison.)
+            let mut power = 1.0;
+            let mut size: [f64; NSERIES] = std::array::from_fn(|n| {
+                let v = c[n].abs() * power;
+                power *= duration;
+                v
+            });
+            let mut len = 2;
+            for k in 0..5 {
+                let largest = size.iter().fold(0.0, |m: f64, &v| m.max(v));
+                if let Some(n) = size.iter().rposition(|&v| v > 1e-18 * largest) {
+                    len = len.max(n + 1);
+                }
+                for (n, v) in size.iter_mut().enumerate() {
+                    *v *= n.saturating_sub(k) as f64;
+                }
+            }
             sol.poly = [0.0; NCOEF];
-            sol.series = Some(c);
+            sol.series = Some(Series { c, len });
             return sol;
         }
         let p0 = poly_derivs::<2>(&sol.poly, 0.0);
@@ -241,37 +261,54 @@ pub struct PieceSolution {
     /// Initial rate of the free-vibration part.
     b: f64,
     duration: f64,
-    /// Short pieces (`ω_n·T` below [`SERIES_BELOW`]): the polynomial-forced part with its initial state as
+    /// Short pieces (`ω_n·T` below [`series_below`] of the forcing's degree): the polynomial-forced part with its initial state as
     /// one power series in `t` (replaces `poly`, `a`, `b`).
-    series: Option<[f64; NSERIES]>,
+    series: Option<Series>,
 }
 
-/// Below this `ω_n·T` the polynomial part is solved as a power series. The particular polynomial of a
-/// degree-d forcing holds terms of about `d!/(ω_nT)^{d+2}` times the response, which the free vibration
-/// then cancels: with the switch at 0.5, a poly4567 return (d = 5) at `ω_nT` just above it lost seven
-/// digits (2e-9 of the response against DOP853, found by the random-cycle property test). At 3 that
-/// ratio is at most `7!/3⁹ ≈ 0.26` (d ≤ 7); below, the series' terms sum to at most `e^{ω_nT} ≈ 20` times
-/// the initial amplitude (about one digit) and its tail after [`NSERIES`] terms is below `3³²/32! ≈ 7e-21`.
-pub const SERIES_BELOW: f64 = 3.0;
+/// The power series `Σ c_n t^n` of a short piece, with the number of terms that matter on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Series {
+    c: [f64; NSERIES],
+    len: usize,
+}
 
-/// Number of power-series coefficients: the tail beyond is below `SERIES_BELOW^NSERIES/NSERIES!`.
+/// Below this `ω_n·T` the polynomial part of a piece whose forcing polynomial has degree `d` is solved as a
+/// power series. The particular polynomial holds terms of about `d!/(ω_nT)^{d+2}` times the response, which
+/// the free vibration then cancels: with one switch at 0.5 for every degree, a poly4567 return (d = 5)
+/// just above it lost seven digits (2e-9 of the response against DOP853, found by the random-cycle
+/// property test). The switch is where that ratio is `1.25^{−(d+2)}` (below one):
+/// `1.25·(d!)^{1/(d+2)}` = 1.25 (d = 0, 1) … 2.50 (d = 5) … 3.24 (d = 7). Below it the series' terms sum
+/// to at most `e^{ω_nT} < 26` times the initial amplitude (about one digit) and its tail after [`NSERIES`]
+/// terms is below `3.3³²/32! ≈ 1.6e-19`. A piece without polynomial forcing (a dwell) loses nothing on the
+/// closed-form route and never takes the series.
+pub fn series_below(degree: usize) -> f64 {
+    let factorial: f64 = (1..=degree).map(|k| k as f64).product();
+    1.25 * factorial.powf(1.0 / (degree + 2) as f64)
+}
+
+/// Number of power-series coefficients: the tail beyond is below `series_below(7)^NSERIES/NSERIES!`.
 pub const NSERIES: usize = 32;
 
-/// `Σ c_n t^n` and its derivatives of orders `0..N`.
-fn series_derivs<const N: usize>(c: &[f64; NSERIES], t: f64) -> [f64; N] {
-    let mut out = [0.0; N];
-    for (order, o) in out.iter_mut().enumerate() {
-        let mut acc = 0.0;
-        for n in (order..NSERIES).rev() {
-            let mut f = 1.0;
-            for m in 0..order {
-                f *= (n - m) as f64;
-            }
-            acc = acc * t + c[n] * f;
+/// `Σ c_n t^n` (its first `len` terms) and its derivatives of orders `0..N`, in one Horner pass: after term
+/// n, `d[k]` holds the k-th Taylor coefficient at `t` of the terms seen so far.
+#[inline]
+fn series_derivs<const N: usize>(s: &Series, t: f64) -> [f64; N] {
+    let mut d = [0.0; N];
+    for &c in s.c[..s.len].iter().rev() {
+        for k in (1..N).rev() {
+            d[k] = d[k] * t + d[k - 1];
         }
-        *o = acc;
+        if N > 0 {
+            d[0] = d[0] * t + c;
+        }
     }
-    out
+    let mut factorial = 1.0;
+    for (k, v) in d.iter_mut().enumerate().skip(1) {
+        factorial *= k as f64;
+        *v *= factorial;
+    }
+    d
 }
 
 impl PieceSolution {
@@ -344,14 +381,16 @@ impl PieceSolution {
             None => poly_derivs::<N>(&self.poly, t),
         };
         let o = &self.osc;
-        // The free part e^{−ζωt}(A cos ω_d t + B sin ω_d t).
+        // The free part e^{−ζωt}(A cos ω_d t + B sin ω_d t) (none on the series route: the series holds it).
         let (zw, wd) = (o.zeta * o.omega_n, o.omega_d);
-        let (mut ca, mut cb) = (self.a, (self.b + zw * self.a) / wd);
-        let e = (-zw * t).exp();
-        let (sn, cs) = (wd * t).sin_cos();
-        for d in out.iter_mut() {
-            *d += e * (ca * cs + cb * sn);
-            (ca, cb) = (-zw * ca + wd * cb, -wd * ca - zw * cb);
+        if self.series.is_none() {
+            let (mut ca, mut cb) = (self.a, (self.b + zw * self.a) / wd);
+            let e = (-zw * t).exp();
+            let (sn, cs) = (wd * t).sin_cos();
+            for d in out.iter_mut() {
+                *d += e * (ca * cs + cb * sn);
+                (ca, cb) = (-zw * ca + wd * cb, -wd * ca - zw * cb);
+            }
         }
         match self.sine {
             SinePart::None => {}
@@ -391,6 +430,9 @@ impl PieceSolution {
             None => poly_derivs::<2>(&self.poly, t),
         };
         let (s0, s1) = self.sine_part(t);
+        if self.series.is_some() {
+            return (p[0] + s0, p[1] + s1);
+        }
         let (h0, h1) = self.osc.free(self.a, self.b, t);
         (p[0] + s0 + h0, p[1] + s1 + h1)
     }
@@ -449,18 +491,18 @@ mod tests {
         }
     }
 
-    /// The power series (just below [`SERIES_BELOW`]) and the particular polynomial plus free vibration
+    /// The power series (just below [`series_below`]) and the particular polynomial plus free vibration
     /// (just above) give the same response, for a degree-7 forcing at light and heavy damping.
     #[test]
     fn the_two_polynomial_routes_agree_at_the_switch() {
         let f = Forcing { poly: [0.0, 0.0, 420.0, -1680.0, 2100.0, -840.0, 30.0, -2.0], sine: None };
         for zeta in [0.0, 0.3, 0.95] {
             let osc = Oscillator::new(1.0, zeta);
-            let below = osc.solve(&f, SERIES_BELOW * (1.0 - 1e-9), 0.3, -0.7);
-            let above = osc.solve(&f, SERIES_BELOW * (1.0 + 1e-9), 0.3, -0.7);
+            let below = osc.solve(&f, series_below(7) * (1.0 - 1e-9), 0.3, -0.7);
+            let above = osc.solve(&f, series_below(7) * (1.0 + 1e-9), 0.3, -0.7);
             assert!(below.series.is_some() && above.series.is_none());
-            let scale = (0..=60).map(|k| above.state(0.05 * k as f64).0.abs()).fold(0.0, f64::max);
-            for k in 0..=59 {
+            let scale = (0..=64).map(|k| above.state(0.05 * k as f64).0.abs()).fold(0.0, f64::max);
+            for k in 0..=64 {
                 let t = 0.05 * k as f64;
                 let (a, b) = (below.state(t), above.state(t));
                 assert!(

@@ -127,7 +127,7 @@ fn steady_state_matches_dop853_and_repeats() {
 }
 
 /// A poly4567 return of ω_n·T just above 0.5 — where the polynomial route once lost seven digits (found by
-/// `random_cycles_match_dop853` at 2e-9; see `SERIES_BELOW`).
+/// `random_cycles_match_dop853` at 2e-9; see `series_below`).
 #[test]
 fn return_at_the_old_series_switch_matches_dop853() {
     let text = "unit = \"mm\"\nstroke = 80\n[[segment]]\nkind = \"rise\"\nlength_deg = 21.106566445041018\n\
