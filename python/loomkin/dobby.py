@@ -1,0 +1,51 @@
+"""The rotary-dobby modulator (Stäubli 2600 type): analysis of a given cam (task 1) and synthesis
+of the conjugate cams for an output law with dwells (task 2).
+
+Geometry keywords (the CLI's flags): ``alpha_deg`` (47), ``theta_deg`` (= alpha), ``l2_m`` (0.66),
+``l3_m`` (0.36), ``l3p_m`` (0.36), ``l6_m`` (0.40), ``speed_rpm`` (None: values per rad/s of
+input), ``pressure_limit_deg`` (60). Lengths in m, angles in deg.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _loomkin as _m
+from ._table import Table
+
+__all__ = ["analyze", "synthesize"]
+
+
+def _wrap(r: Dict[str, Any]) -> Dict[str, Any]:
+    r["rows"] = Table(r["rows"])
+    return r
+
+
+def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: float = 1.0,
+            roller_m: Optional[float] = None, **geometry: Any) -> Dict[str, Any]:
+    """``loomkin dobby analyze --json``: summary (checks: output speed and acceleration range,
+    pressure angles, curvature, closure; admissible α), warnings, and rows as a :class:`Table`.
+
+    ``cam``: None (the paper's elliptic cam), ``"ellipse:a=A,b=B"`` (semi-axes in m) or an (N, 2)
+    array of the cam's points in m (a closed curve, as ``--cam-file``)."""
+    spec, text = None, None
+    if isinstance(cam, str):
+        spec = cam
+    elif cam is not None:
+        pts = np.asarray(cam, dtype=float)
+        text = "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
+    return _wrap(_m.dobby_analyze(cam_spec=spec, cam_points_text=text, step_deg=float(step_deg),
+                                  roller_m=roller_m, **geometry))
+
+
+def synthesize(dwell_deg: float = 40.0, dwell_centre_deg: float = 90.0, cycles: int = 2, law: str = "cycloidal",
+               params: Optional[Dict[str, Any]] = None, roller_m: float = 0.03, step_deg: float = 1.0,
+               **geometry: Any) -> Dict[str, Any]:
+    """``loomkin dobby synthesize --json``: the cam Γ and counter-cam Γ′ for ``cycles`` output
+    motions by the catalogue ``law`` with dwells of ``dwell_deg`` centred on ``dwell_centre_deg``.
+    summary, warnings, rows (a :class:`Table`) and ``cam`` / ``counter_cam``: dicts of (N, 2)
+    arrays centre_m, wall_left_m, wall_right_m (the roller-centre curve and the groove walls)."""
+    return _wrap(_m.dobby_synthesize(float(dwell_deg), float(dwell_centre_deg), cycles, law, params, float(roller_m),
+                                     float(step_deg), **geometry))

@@ -1,0 +1,56 @@
+"""Shuttle picking dynamics of an elastic under-pick mechanism (Jederán 1959).
+
+Keywords (all optional, the CLI's flags with ``_``): the mechanism — ``mechanism`` (a TOML file
+path; default: the paper's), ``law`` (a catalogue law for the cam instead of the compound law) and
+``params`` (a dict of its parameters), ``velocity_m_s``, ``distance_m`` / ``distance_cm``,
+``first_stage_m`` / ``first_stage_cm``, ``design_speed_rpm``, ``retardation_pct``, ``path_m``,
+``free_shed_deg``; the loom settings — ``speed_rpm``, ``play_mm``, ``strap_cm``, ``shuttle_g``,
+``checking_kgf``, ``start`` ("paper" or "equilibrium"); and ``method`` ("closed" or "ode").
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Tuple, Union
+
+from . import _loomkin as _m
+from ._inputs import text_of
+from ._table import Table
+
+__all__ = ["design", "simulate", "history", "sweep", "SETTINGS"]
+
+#: Settings :func:`sweep` can vary (``loomkin pick sweep SETTING``).
+SETTINGS = ("speed", "play", "strap", "shuttle", "checking")
+
+
+def _kw(mechanism: Optional[Any], kw: Dict[str, Any]) -> Dict[str, Any]:
+    if mechanism is not None:
+        kw["mechanism_toml"] = text_of(mechanism)
+    return kw
+
+
+def design(mechanism: Optional[Any] = None, **kw: Any) -> Dict[str, Any]:
+    """``loomkin pick design --json``: A (m/s²), μ (1/s), τ and T′ (s) of the compound law, the
+    constants B (s²), C, D (m), natural_1_s, stroke_m, the design V, X, X1, speed and the cam."""
+    return _m.pick_design(**_kw(mechanism, kw))
+
+
+def simulate(mechanism: Optional[Any] = None, **kw: Any) -> Dict[str, Any]:
+    """``loomkin pick simulate --json``: the shuttle's velocity (m/s) and travel (m) at the end of
+    the pick, delays (s), accelerations (m/s²), the required velocity and the shortfall (%)."""
+    return _m.pick_simulate(**_kw(mechanism, kw))
+
+
+def history(points: int = 201, mechanism: Optional[Any] = None, **kw: Any) -> Tuple[Table, Dict[str, Any]]:
+    """The pick over time (``loomkin pick simulate --csv``): a :class:`Table` of t_s, s_m, v_s_m_s,
+    a_s_m_s2 (the picker's nominal motion) and x_m, v_m_s, a_m_s2 (the shuttle), and the outcome."""
+    cols, outcome = _m.pick_history(points, **_kw(mechanism, kw))
+    return Table(cols), outcome
+
+
+def sweep(setting: str, start: float, stop: float, points: int, mechanism: Optional[Any] = None,
+          **kw: Any) -> Dict[str, Any]:
+    """``loomkin pick sweep SETTING --from START --to STOP --points N --json``; ``rows`` is a
+    :class:`Table` (one column per outcome key, the swept value under ``<setting>_<unit>``)."""
+    r = _m.pick_sweep(setting, float(start), float(stop), points, **_kw(mechanism, kw))
+    r["rows"] = Table(r["rows"])
+    return r

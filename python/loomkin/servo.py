@@ -1,0 +1,81 @@
+"""Servo motion functions from definition points (Sivčák 2017): the spline law, motor torque of a
+drive, optimisation of the points and the controller exports.
+
+``def_points`` is ``"X:Y,X:Y,…"`` or a sequence of (x, y) pairs (None: the CLI's default, the
+sine-shaped start). ``drive`` is None (the built-in needle-rack drive), a path to a drive file
+(TOML or JSON) or a dict with the drive's keys. Speeds in rpm of the main shaft; torque in N·m,
+power in W, rack motion in m, m/s, m/s².
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Sequence, Union
+
+from . import _loomkin as _m
+from ._inputs import PathOrDict, text_of
+from ._loomkin import Law
+from ._table import Table
+
+__all__ = ["spline_law", "law", "torque", "torque_curve", "optimize", "export", "EXPORT_FORMATS"]
+
+DefPoints = Union[str, Sequence[Sequence[float]], None]
+
+#: The formats of :func:`export` (``loomkin servo export --format``).
+EXPORT_FORMATS = ("coeffs", "json", "csv", "xyva", "poly5", "cycle")
+
+
+def _drive(drive: Optional[PathOrDict]) -> Optional[str]:
+    # A dict of the drive's keys is the file's [drive] table.
+    if isinstance(drive, dict) and "drive" not in drive:
+        drive = {"drive": drive}
+    return text_of(drive)
+
+
+def _speeds(speed_rpm: Union[float, Sequence[float]]) -> list:
+    if isinstance(speed_rpm, (int, float)):
+        return [float(speed_rpm)]
+    return [float(s) for s in speed_rpm]
+
+
+def spline_law(def_points: DefPoints = None, end: str = "natural") -> Law:
+    """The servo law through the definition points as a :class:`loomkin.Law` (unit stroke on
+    x = 0…1): metrics, continuity, samples. ``end``: "natural" or "clamped"."""
+    return _m.servo_spline_law(def_points, end)
+
+
+def law(def_points: DefPoints = None, end: str = "natural") -> Dict[str, Any]:
+    """``loomkin servo law --json``: def_points, d, d_unit, scale, metrics (dimensionless),
+    continuity_class, intervals, spline_b."""
+    return _m.servo_law(def_points, end)
+
+
+def torque(speed_rpm: Union[float, Sequence[float]] = (600.0, 750.0), def_points: DefPoints = None,
+           end: str = "natural", drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
+    """``loomkin servo torque --json``: def_points, drive (with layout_deg) and per speed the peak
+    and RMS motor torque (N·m), the angle of the peak (deg), peak power (W), peak rack velocity
+    (m/s) and acceleration (m/s²), peak motor speed (rpm), rise and cycle time (s)."""
+    return _m.servo_torque(_speeds(speed_rpm), def_points, end, _drive(drive))
+
+
+def torque_curve(speed_rpm: float = 600.0, points: int = 721, def_points: DefPoints = None,
+                 end: str = "natural", drive: Optional[PathOrDict] = None) -> Table:
+    """The drive over one turn: angle_deg, time_s, u_m, v_m_s, a_m_s2, torque_nm, power_w (arrays)
+    and phase (a list of rise / dwell-after-rise / return / dwell-after-return)."""
+    return Table(_m.servo_torque_curve(float(speed_rpm), points, def_points, end, _drive(drive)))
+
+
+def optimize(speed_rpm: Union[float, Sequence[float]] = (600.0,), objective: str = "peak", starts: int = 6,
+             fixed_x: bool = False, def_points: DefPoints = None, end: str = "natural",
+             drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
+    """``loomkin servo optimize --json``: least worst peak (or "rms") motor torque over the
+    speeds; before, after (N·m), the optimised def_points and def text, evaluations. Deterministic.
+    The GIL is released while it runs."""
+    return _m.servo_optimize(_speeds(speed_rpm), objective, starts, fixed_x, def_points, end, _drive(drive))
+
+
+def export(format: str, step_deg: float = 1.0, def_points: DefPoints = None, end: str = "natural",
+           drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
+    """``loomkin servo export --format F``: text (the file's content), filename, media_type; for
+    the cam tables (csv, xyva) also points, step_deg (deg) and reinterpolation (worst errors of
+    linear, cubic-spline and quintic-Hermite re-interpolation: m, m/deg, m/deg², relative)."""
+    return _m.servo_export(format, float(step_deg), def_points, end, _drive(drive))

@@ -1,0 +1,149 @@
+//! Machine cycles in SI units at a speed, from a TOML file's text or a dict (as JSON text).
+
+use crate::convert::{columns, to_py, value_records_to_columns};
+use crate::errors::{OrRaise, check_count};
+use loomkin_laws::{CycleSpec, LawError};
+use loomkin_units::{Range, ShaftSpeed};
+use numpy::{AllowTypeChange, PyArrayLike1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Samples of a cycle (as the CLI's `--points`).
+const CYCLE_POINTS: Range = Range::closed(2.0, 1e7, "");
+/// The speed when neither the call nor the file gives one (the CLI's default).
+const DEFAULT_RPM: f64 = 300.0;
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Cycle>()?;
+    Ok(())
+}
+
+/// A checked machine cycle: dwells, rises and returns over one turn of the main shaft, each
+/// moving segment a catalogue law; results in SI units (m, m/s, m/s², m/s³ for `unit = "mm"`;
+/// rad, rad/s … for `unit = "deg"`).
+///
+/// Build it with `Cycle.from_toml(text)` or `Cycle.from_json(text)` (the Python layer's
+/// `loomkin.cycles.load(path)` and `loomkin.cycles.from_dict(d)` call these).
+#[pyclass(module = "loomkin", frozen)]
+pub struct Cycle {
+    inner: loomkin_laws::Cycle,
+}
+
+impl Cycle {
+    fn speed(&self, speed_rpm: Option<f64>) -> PyResult<ShaftSpeed> {
+        let rpm = speed_rpm.or(self.inner.speed_rpm).unwrap_or(DEFAULT_RPM);
+        ShaftSpeed::from_rpm_field("speed_rpm", rpm).or_raise()
+    }
+}
+
+#[pymethods]
+impl Cycle {
+    /// from_toml(text) -> Cycle
+    /// --
+    ///
+    /// Reads and checks a cycle file's TOML text (the format of `loomkin cycle FILE.toml`).
+    #[staticmethod]
+    fn from_toml(text: &str) -> PyResult<Self> {
+        Ok(Self { inner: loomkin_laws::Cycle::from_toml(text).or_raise()? })
+    }
+
+    /// from_json(text) -> Cycle
+    /// --
+    ///
+    /// Reads and checks a cycle given as JSON text with the cycle file's keys (unit, stroke,
+    /// speed_rpm, period_deg, segment: [{kind, to_deg | length_deg, law, params, stroke}, …]).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        let spec: CycleSpec = serde_json::from_str(text)
+            .map_err(|e| LawError::Parse {
+                field: "cycle".into(),
+                text: e.to_string(),
+                expected: "the cycle file's keys: unit, stroke, speed_rpm, period_deg, segment (a list of tables)"
+                    .into(),
+            })
+            .or_raise()?;
+        Ok(Self { inner: loomkin_laws::Cycle::new(&spec).or_raise()? })
+    }
+
+    /// The unit of the file's strokes: "mm" (translating follower) or "deg" (swinging).
+    #[getter]
+    fn unit(&self) -> &'static str {
+        match self.inner.unit {
+            loomkin_laws::StrokeUnit::Mm => "mm",
+            loomkin_laws::StrokeUnit::Deg => "deg",
+        }
+    }
+
+    /// Angle of one cycle of the main shaft (deg).
+    #[getter]
+    fn period_deg(&self) -> f64 {
+        self.inner.period_rad.to_degrees()
+    }
+
+    /// The speed given in the file (rpm), or None.
+    #[getter]
+    fn speed_rpm(&self) -> Option<f64> {
+        self.inner.speed_rpm
+    }
+
+    /// report(speed_rpm=None, points=721) -> dict
+    /// --
+    ///
+    /// `loomkin cycle FILE --json`: speed_rpm, period_deg, cycle_time_s (s), unit (SI unit of
+    /// position), segments (kind, from_deg, to_deg, law, stroke and peak velocity, acceleration,
+    /// jerk with their units in the keys) and samples as a dict of numpy arrays (angle_deg, time_s,
+    /// s_m, v_m_s, a_m_s2, j_m_s3 or the rad forms). speed_rpm: the call's, else the file's, else 300.
+    /// Runs with the GIL released.
+    #[pyo3(signature = (speed_rpm=None, points=721))]
+    fn report(&self, py: Python<'_>, speed_rpm: Option<f64>, points: usize) -> PyResult<Py<PyAny>> {
+        let speed = self.speed(speed_rpm)?;
+        check_count("points", points, CYCLE_POINTS)?;
+        let r = py.detach(|| serde_json::to_value(self.inner.report(speed, points)));
+        let mut value = r.map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("internal: {e}")))?;
+        let samples = value.as_object_mut().and_then(|o| o.remove("samples")).unwrap_or_default();
+        let out = crate::convert::value_to_py(py, &value)?;
+        out.bind(py).set_item("samples", value_records_to_columns(py, &samples)?)?;
+        Ok(out)
+    }
+
+    /// segments(speed_rpm=None) -> list[dict]
+    /// --
+    ///
+    /// The per-segment peaks of `report` without the samples.
+    #[pyo3(signature = (speed_rpm=None))]
+    fn segments(&self, py: Python<'_>, speed_rpm: Option<f64>) -> PyResult<Py<PyAny>> {
+        let speed = self.speed(speed_rpm)?;
+        to_py(py, &self.inner.segment_peaks(speed))
+    }
+
+    /// __call__(angle_deg, speed_rpm=None) -> dict[str, numpy.ndarray]
+    /// --
+    ///
+    /// The cycle at main-shaft angles (deg, wrapped into the cycle) as arrays angle_deg, s, v, a, j
+    /// in SI units. Runs with the GIL released.
+    #[pyo3(signature = (angle_deg, speed_rpm=None))]
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        angle_deg: PyArrayLike1<'py, f64, AllowTypeChange>,
+        speed_rpm: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let rpm = self.speed(speed_rpm)?.rpm();
+        let th: Vec<f64> = angle_deg.as_array().iter().copied().collect();
+        let cols = py.detach(|| {
+            let k: Vec<_> = th.iter().map(|&t| self.inner.eval(t.to_radians(), rpm)).collect();
+            vec![
+                ("angle_deg", th.clone()),
+                ("s", k.iter().map(|k| k.s).collect()),
+                ("v", k.iter().map(|k| k.v).collect()),
+                ("a", k.iter().map(|k| k.a).collect()),
+                ("j", k.iter().map(|k| k.j).collect()),
+            ]
+        });
+        columns(py, cols)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Cycle(unit={}, period_deg={}, segments={})", self.unit(), self.period_deg(), self.inner.segments.len())
+    }
+}

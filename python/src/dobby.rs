@@ -1,0 +1,204 @@
+//! The rotary-dobby modulator (Stäubli 2600 type): analysis of a given cam and synthesis of the
+//! conjugate cams for an output law, keyed as `loomkin dobby analyze|synthesize --json`.
+
+use crate::convert::{to_py, value_records_to_columns};
+use crate::errors::{Fault, OrRaise};
+use loomkin_laws::{LawError, LawSpec};
+use loomkin_mech::{
+    AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, OutputLawSpec, SynthesisOptions, analyze,
+    parse_point_table, synthesize,
+};
+use loomkin_units::{RangeError, ShaftSpeed};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::Serialize;
+
+impl Fault for MechError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            Self::Law(e) => e.range(),
+            _ => None,
+        }
+    }
+    fn accepted(&self) -> Option<String> {
+        match self {
+            Self::Law(e) => e.accepted(),
+            _ => None,
+        }
+    }
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(dobby_analyze, m)?)?;
+    m.add_function(wrap_pyfunction!(dobby_synthesize, m)?)?;
+    Ok(())
+}
+
+/// The modulator's dimensions and speed, as the CLI's geometry flags.
+struct Geometry {
+    alpha_deg: Option<f64>,
+    theta_deg: Option<f64>,
+    l2_m: f64,
+    l3_m: f64,
+    l3p_m: f64,
+    l6_m: f64,
+    speed_rpm: Option<f64>,
+}
+
+impl Geometry {
+    fn build(&self) -> PyResult<ModulatorGeometry> {
+        let alpha = self.alpha_deg.unwrap_or(47.0);
+        let theta = self.theta_deg.unwrap_or(alpha);
+        ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, alpha, theta).or_raise()
+    }
+    /// The input speed (rad/s): 1 rad/s (per-radian values) unless a speed is given.
+    fn speed_rad_s(&self) -> PyResult<f64> {
+        match self.speed_rpm {
+            None => Ok(1.0),
+            Some(n) => Ok(ShaftSpeed::from_rpm_field("speed_rpm", n).or_raise()?.rad_per_s()),
+        }
+    }
+}
+
+fn parse_err(field: &str, text: &str, expected: &str) -> PyErr {
+    crate::errors::raise(LawError::Parse { field: field.into(), text: text.into(), expected: expected.into() })
+}
+
+/// The cam: None (the paper's ellipse), `"ellipse:a=A,b=B"` (semi-axes in m), or a point table's
+/// text (x_m, y_m per line: what `cam_points` becomes in the Python layer).
+fn cam(spec: Option<&str>, points_text: Option<&str>) -> PyResult<Cam> {
+    if let Some(text) = points_text {
+        let pts = parse_point_table(text).or_raise()?;
+        return Cam::from_points(&pts).or_raise();
+    }
+    let Some(spec) = spec else { return Ok(Cam::paper()) };
+    let usage = "ellipse:a=A,b=B with the semi-axes in m, e.g. ellipse:a=0.366,b=0.577";
+    let Some(rest) = spec.trim().strip_prefix("ellipse:") else { return Err(parse_err("cam", spec, usage)) };
+    let (mut a, mut b) = (None, None);
+    for kv in rest.split(',') {
+        let (k, v) = kv.split_once('=').ok_or_else(|| parse_err("cam", spec, usage))?;
+        let v: f64 = v.trim().parse().map_err(|_| parse_err("cam", spec, usage))?;
+        match k.trim() {
+            "a" => a = Some(v),
+            "b" => b = Some(v),
+            _ => return Err(parse_err("cam", spec, usage)),
+        }
+    }
+    let (Some(a), Some(b)) = (a, b) else { return Err(parse_err("cam", spec, usage)) };
+    Cam::ellipse(a, b).or_raise()
+}
+
+/// A report (summary, warnings, rows) with the rows as a dict of numpy arrays.
+fn report<'py, S: Serialize, W: Serialize, R: Serialize>(
+    py: Python<'py>,
+    summary: &S,
+    warnings: &W,
+    rows: &R,
+) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("summary", to_py(py, summary)?)?;
+    out.set_item("warnings", to_py(py, warnings)?)?;
+    let rows = serde_json::to_value(rows).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    out.set_item("rows", value_records_to_columns(py, &rows)?)?;
+    Ok(out)
+}
+
+/// dobby_analyze(...) -> dict
+/// --
+///
+/// `loomkin dobby analyze --json` (task 1): the given cam's output motion, pressure angles,
+/// curvature and closure checks (summary, warnings) and rows (phi2_deg, t_s, phi3_deg, phi6_deg,
+/// s53_m, omega*_rad_s, eps*_rad_s2, … as numpy arrays). Lengths in m, angles in deg; speeds per
+/// rad/s of input unless speed_rpm is given. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (alpha_deg=None, theta_deg=None, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
+    pressure_limit_deg=60.0, cam_spec=None, cam_points_text=None, step_deg=1.0, roller_m=None))]
+fn dobby_analyze<'py>(
+    py: Python<'py>,
+    alpha_deg: Option<f64>,
+    theta_deg: Option<f64>,
+    l2_m: f64,
+    l3_m: f64,
+    l3p_m: f64,
+    l6_m: f64,
+    speed_rpm: Option<f64>,
+    pressure_limit_deg: f64,
+    cam_spec: Option<&str>,
+    cam_points_text: Option<&str>,
+    step_deg: f64,
+    roller_m: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let geo = Geometry { alpha_deg, theta_deg, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
+    let g = geo.build()?;
+    let c = cam(cam_spec, cam_points_text)?;
+    let opts = AnalysisOptions {
+        step_deg,
+        input_speed_rad_s: geo.speed_rad_s()?,
+        roller_m,
+        pressure_limit_deg,
+        ..AnalysisOptions::default()
+    };
+    let res = py.detach(|| analyze(&g, &c, &opts)).or_raise()?;
+    report(py, &res.summary, &res.warnings, &res.rows)
+}
+
+fn profile<'py>(py: Python<'py>, p: &CamProfile) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let xy = |v: &[[f64; 2]]| -> PyResult<Py<PyAny>> {
+        let rows: Vec<Vec<f64>> = v.iter().map(|p| p.to_vec()).collect();
+        if rows.is_empty() {
+            return Ok(numpy::PyArray2::<f64>::zeros(py, [0, 2], false).into_any().unbind());
+        }
+        Ok(numpy::PyArray2::from_vec2(py, &rows)
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?
+            .into_any()
+            .unbind())
+    };
+    d.set_item("centre_m", xy(&p.centre)?)?;
+    d.set_item("wall_left_m", xy(&p.wall_left)?)?;
+    d.set_item("wall_right_m", xy(&p.wall_right)?)?;
+    Ok(d)
+}
+
+/// dobby_synthesize(...) -> dict
+/// --
+///
+/// `loomkin dobby synthesize --json` (task 2): the cam Γ and counter-cam Γ′ for an output law of
+/// `cycles` motions with dwells of dwell_deg centred on dwell_centre_deg (law: a catalogue rise
+/// law with params). summary, warnings and rows as `--json`, plus cam and counter_cam: the
+/// roller-centre curves and groove walls as (N, 2) arrays in m (what `--dxf` draws). Runs with
+/// the GIL released.
+#[pyfunction]
+#[pyo3(signature = (dwell_deg=40.0, dwell_centre_deg=90.0, cycles=2, law="cycloidal", params=None, roller_m=0.03,
+    step_deg=1.0, alpha_deg=None, theta_deg=None, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
+    pressure_limit_deg=60.0))]
+fn dobby_synthesize<'py>(
+    py: Python<'py>,
+    dwell_deg: f64,
+    dwell_centre_deg: f64,
+    cycles: u32,
+    law: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    roller_m: f64,
+    step_deg: f64,
+    alpha_deg: Option<f64>,
+    theta_deg: Option<f64>,
+    l2_m: f64,
+    l3_m: f64,
+    l3p_m: f64,
+    l6_m: f64,
+    speed_rpm: Option<f64>,
+    pressure_limit_deg: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let geo = Geometry { alpha_deg, theta_deg, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
+    let g = geo.build()?;
+    let rise = LawSpec::parse(law, &crate::convert::params(params)?).or_raise()?;
+    let spec = OutputLawSpec { cycles, dwell_deg, dwell_centre_deg, rise };
+    let opts = SynthesisOptions { step_deg, input_speed_rad_s: geo.speed_rad_s()?, roller_m, pressure_limit_deg };
+    let res = py.detach(|| synthesize(&g, &spec, &opts)).or_raise()?;
+    let out = report(py, &res.summary, &res.warnings, &res.rows)?;
+    out.set_item("cam", profile(py, &res.cam)?)?;
+    out.set_item("counter_cam", profile(py, &res.counter_cam)?)?;
+    Ok(out)
+}

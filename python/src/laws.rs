@@ -1,0 +1,288 @@
+//! Normalised laws: the catalogue, `Law` objects (catalogue, piecewise, polynomial, servo spline)
+//! with metrics, continuity and sampling into numpy arrays.
+
+use crate::convert::{self, columns, to_py};
+use crate::errors::{OrRaise, check_count};
+use loomkin_laws::{CATALOGUE, Continuity, Joint, Kinematics, LawSpec, Metrics, ParamValue};
+use loomkin_units::Range;
+use numpy::{AllowTypeChange, PyArrayLike1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Samples of one law: 2 ≤ points ≤ 10⁸ (800 MB of float64 columns at the top).
+pub const SAMPLE_POINTS: Range = Range::closed(2.0, 1e8, "");
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Law>()?;
+    m.add_function(wrap_pyfunction!(law_catalogue, m)?)?;
+    Ok(())
+}
+
+/// Which of s, v, a, j are continuous at a joint (the CLI's `continuous`).
+#[derive(Serialize)]
+struct Flags {
+    s: bool,
+    v: bool,
+    a: bool,
+    j: bool,
+}
+
+/// A joint of the continuity report, keyed as `loomkin law info --json`.
+#[derive(Serialize)]
+struct JointJson {
+    x: f64,
+    ds: f64,
+    dv: f64,
+    da: f64,
+    dj: f64,
+    continuous: Flags,
+    continuous_up_to: i32,
+}
+
+impl From<&Joint> for JointJson {
+    fn from(j: &Joint) -> Self {
+        let [s, v, a, jj] = j.flags();
+        Self {
+            x: j.x,
+            ds: j.ds,
+            dv: j.dv,
+            da: j.da,
+            dj: j.dj,
+            continuous: Flags { s, v, a, j: jj },
+            continuous_up_to: j.continuous_up_to,
+        }
+    }
+}
+
+/// The continuity report keyed as `loomkin law info --json`'s `continuity`.
+#[derive(Serialize)]
+pub struct ContinuityJson {
+    class: i32,
+    start: JointJson,
+    joints: Vec<JointJson>,
+    end: JointJson,
+}
+
+impl From<&Continuity> for ContinuityJson {
+    fn from(c: &Continuity) -> Self {
+        Self {
+            class: c.class,
+            start: (&c.start).into(),
+            joints: c.joints.iter().map(JointJson::from).collect(),
+            end: (&c.end).into(),
+        }
+    }
+}
+
+/// One law of `law list --json`.
+#[derive(Serialize)]
+struct ListedLaw {
+    name: &'static str,
+    description: &'static str,
+    params: &'static str,
+    #[serde(flatten)]
+    metrics: Metrics,
+    continuity_class: i32,
+}
+
+/// `law info --json`.
+#[derive(Serialize)]
+struct InfoJson<'a> {
+    law: &'a str,
+    params: &'a BTreeMap<String, ParamValue>,
+    #[serde(flatten)]
+    metrics: Metrics,
+    segments: usize,
+    continuity: ContinuityJson,
+}
+
+/// law_catalogue() -> list[dict]
+/// --
+///
+/// The catalogue of laws that need no parameters given, as `loomkin law list --json`'s `laws`:
+/// name, description, params, the metrics cv, x_cv, ca, ca_pos, x_ca_pos, ca_neg, x_ca_neg, cj,
+/// x_cj, cm, x_cm, ca_rms (dimensionless: per unit stroke and unit motion angle; x a fraction of
+/// the motion angle) and continuity_class.
+#[pyfunction]
+fn law_catalogue(py: Python<'_>) -> PyResult<Py<PyAny>> {
+    let mut rows = Vec::new();
+    for e in CATALOGUE.iter().filter(|e| !e.required) {
+        let law = LawSpec::parse::<&str, &str>(e.name, &[]).and_then(|s| s.build()).or_raise()?;
+        rows.push(ListedLaw {
+            name: e.name,
+            description: e.description,
+            params: e.params,
+            metrics: law.metrics(),
+            continuity_class: law.continuity().class,
+        });
+    }
+    to_py(py, &rows)
+}
+
+/// A normalised rise law: x ∈ [0, 1] (fraction of the motion angle) to s ∈ [0, 1] (fraction of
+/// the stroke), with v = ds/dx, a = d²s/dx², j = d³s/dx³ (all dimensionless), exact in closed form.
+///
+/// `Law(name, **params)` takes a catalogue name (`loomkin.laws.names()`) and its parameters as
+/// keywords, e.g. `Law("modified-trapezoid", ramp=0.1)` or
+/// `Law("piecewise", segments="0.5:constant:1,0.5:constant:-1")`. Servo spline laws come from
+/// `loomkin.servo.spline_law`.
+#[pyclass(module = "loomkin", frozen)]
+pub struct Law {
+    name: String,
+    label: String,
+    params: BTreeMap<String, ParamValue>,
+    pub(crate) inner: loomkin_laws::Law,
+}
+
+impl Law {
+    /// A law object around a law built elsewhere (the servo spline).
+    pub fn wrap(name: &str, label: String, params: BTreeMap<String, ParamValue>, inner: loomkin_laws::Law) -> Self {
+        Self { name: name.to_string(), label, params, inner }
+    }
+}
+
+fn sample_columns(law: &loomkin_laws::Law, n: usize) -> Vec<(&'static str, Vec<f64>)> {
+    let mut k = vec![Kinematics::default(); n];
+    law.sample_into(&mut k);
+    let h = 1.0 / (n - 1) as f64;
+    let x: Vec<f64> = (0..n).map(|i| if i + 1 == n { 1.0 } else { i as f64 * h }).collect();
+    kin_columns(x, &k)
+}
+
+fn kin_columns(x: Vec<f64>, k: &[Kinematics]) -> Vec<(&'static str, Vec<f64>)> {
+    vec![
+        ("x", x),
+        ("s", k.iter().map(|k| k.s).collect()),
+        ("v", k.iter().map(|k| k.v).collect()),
+        ("a", k.iter().map(|k| k.a).collect()),
+        ("j", k.iter().map(|k| k.j).collect()),
+    ]
+}
+
+/// Samples of a law, `points` evenly spaced from 0 to 1, as a dict of arrays x, s, v, a, j; the
+/// GIL is released while they are computed.
+pub fn sample_dict<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
+    check_count("points", points, SAMPLE_POINTS)?;
+    let cols = py.detach(|| sample_columns(law, points));
+    columns(py, cols)
+}
+
+#[pymethods]
+impl Law {
+    #[new]
+    #[pyo3(signature = (name, **params))]
+    fn new(name: &str, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let params = convert::params(params)?;
+        let spec = LawSpec::parse(name, &params).or_raise()?;
+        let inner = spec.build().or_raise()?;
+        Ok(Self { name: spec.name().to_string(), label: spec.label(), params: spec.param_values(), inner })
+    }
+
+    /// The catalogue name (`"cycloidal"`, `"servo-spline"` for a spline law).
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The name with its parameters, e.g. `modified-trapezoid (ramp=0.1)`.
+    #[getter]
+    fn label(&self) -> &str {
+        &self.label
+    }
+
+    /// The parameters, typed: numbers as floats, text as str.
+    #[getter]
+    fn params(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        to_py(py, &self.params)
+    }
+
+    /// Number of closed-form segments.
+    #[getter]
+    fn segments(&self) -> usize {
+        self.inner.segments().len()
+    }
+
+    /// The positions x of the joints between segments (fractions of the motion angle).
+    #[getter]
+    fn joints(&self) -> Vec<f64> {
+        self.inner.joints().collect()
+    }
+
+    /// metrics() -> dict
+    /// --
+    ///
+    /// Exact metrics (dimensionless, per unit stroke and unit motion angle; x a fraction of the
+    /// motion angle): cv = max v at x_cv; ca = max |a|, ca_pos at x_ca_pos, ca_neg at x_ca_neg;
+    /// cj = max |j| inside segments at x_cj; cm = max v·a at x_cm; ca_rms = √∫a²dx. Extremes are
+    /// located per segment (bracketing and Newton), not read on a grid.
+    fn metrics(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let m = py.detach(|| self.inner.metrics());
+        to_py(py, &m)
+    }
+
+    /// continuity() -> dict
+    /// --
+    ///
+    /// The jumps (right − left) ds, dv, da, dj at x = 0 against a dwell at s = 0 (`start`), at
+    /// every joint (`joints`) and at x = 1 against a dwell at s = 1 (`end`), each with the flags
+    /// `continuous` {s, v, a, j} and `continuous_up_to`; `class` is the law's continuity class in a
+    /// dwell-rise-dwell cycle (2: C2, −1: s jumps). As `loomkin law info --json`'s `continuity`.
+    fn continuity(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let c = self.inner.continuity();
+        to_py(py, &ContinuityJson::from(&c))
+    }
+
+    /// info() -> dict
+    /// --
+    ///
+    /// Everything `loomkin law info NAME --json` prints: law, params, the metrics (flattened),
+    /// segments and continuity.
+    fn info(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let m = py.detach(|| self.inner.metrics());
+        let c = self.inner.continuity();
+        to_py(
+            py,
+            &InfoJson {
+                law: &self.name,
+                params: &self.params,
+                metrics: m,
+                segments: self.inner.segments().len(),
+                continuity: (&c).into(),
+            },
+        )
+    }
+
+    /// sample(points) -> dict[str, numpy.ndarray]
+    /// --
+    ///
+    /// `points` (2 ≤ points ≤ 1e8) evenly spaced samples from x = 0 to 1, both ends included, as
+    /// float64 arrays x, s, v, a, j (dimensionless). The same numbers as `loomkin law sample`.
+    /// Runs with the GIL released.
+    fn sample<'py>(&self, py: Python<'py>, points: usize) -> PyResult<Bound<'py, PyDict>> {
+        sample_dict(py, &self.inner, points)
+    }
+
+    /// __call__(x) -> dict[str, numpy.ndarray]
+    /// --
+    ///
+    /// The law at the positions `x` (a float64 array or anything numpy turns into one; clamped to
+    /// [0, 1]) as arrays x, s, v, a, j of the same length. Runs with the GIL released.
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyArrayLike1<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let xs: Vec<f64> = x.as_array().iter().copied().collect();
+        let cols = py.detach(|| {
+            let k: Vec<Kinematics> = xs.iter().map(|&x| self.inner.eval(x)).collect();
+            kin_columns(xs, &k)
+        });
+        columns(py, cols)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Law({})", self.label)
+    }
+}

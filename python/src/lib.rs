@@ -1,0 +1,35 @@
+//! # loomkin for Python — the extension module `loomkin._loomkin`
+//!
+//! This crate only converts: Python arguments into the libraries' types, the libraries' results
+//! into Python objects (dicts keyed as the CLI's `--json`, numpy arrays for sampled curves), and
+//! library errors into Python exceptions carrying the field and the allowed range. Every number is
+//! computed by the loomkin crates; long computations run with the GIL released
+//! ([`Python::detach`]), so other Python threads go on meanwhile.
+//!
+//! The Python package around it (`python/loomkin/`) arranges the functions in modules, adds type
+//! stubs and turns tables into pandas DataFrames when pandas is installed.
+
+mod convert;
+mod cycles;
+mod dobby;
+mod errors;
+mod laws;
+mod picking;
+mod servo;
+mod shed;
+
+use pyo3::prelude::*;
+
+/// The extension module.
+#[pymodule]
+fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    errors::register(m)?;
+    laws::register(m)?;
+    servo::register(m)?;
+    cycles::register(m)?;
+    picking::register(m)?;
+    dobby::register(m)?;
+    shed::register(m)?;
+    Ok(())
+}

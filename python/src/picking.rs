@@ -1,0 +1,319 @@
+//! Shuttle picking dynamics (Jederán 1959): design, simulation and sweeps, keyed as
+//! `loomkin pick … --json`.
+
+use crate::convert::{columns, value_records_to_columns, value_to_py};
+use crate::errors::{Fault, OrRaise, check_count};
+use loomkin_laws::LawSpec;
+use loomkin_picking::units::M_PER_CM;
+use loomkin_picking::{
+    Mechanism, Method, Outcome, PickEnd, PickError, Setting, Settings, StartRule, history, simulate,
+};
+use loomkin_units::{Range, RangeError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde_json::{Value, json};
+
+/// Samples of a pick's history (as the CLI's `--points`).
+const HISTORY_POINTS: Range = Range::closed(2.0, 1e6, "");
+/// Points of a sweep (the CLI's budget refuses more than a few million).
+const SWEEP_POINTS: Range = Range::closed(1.0, 1e6, "");
+
+impl Fault for PickError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            Self::Law(e) => e.range(),
+            _ => None,
+        }
+    }
+    fn accepted(&self) -> Option<String> {
+        match self {
+            Self::Law(e) => e.accepted(),
+            _ => None,
+        }
+    }
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(pick_design, m)?)?;
+    m.add_function(wrap_pyfunction!(pick_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(pick_history, m)?)?;
+    m.add_function(wrap_pyfunction!(pick_sweep, m)?)?;
+    Ok(())
+}
+
+/// The mechanism options of `loomkin pick` (the CLI's flags, same names with `_`).
+#[derive(Default)]
+struct Model {
+    mechanism_toml: Option<String>,
+    law: Option<String>,
+    params: Vec<(String, String)>,
+    velocity_m_s: Option<f64>,
+    distance_m: Option<f64>,
+    first_stage_m: Option<f64>,
+    design_speed_rpm: Option<f64>,
+    retardation_pct: Option<f64>,
+    path_m: Option<f64>,
+    free_shed_deg: Option<f64>,
+}
+
+/// What a call's keywords say: the mechanism, the settings changed, the start rule, the route.
+struct Call {
+    model: Model,
+    set: Vec<(Setting, f64)>,
+    start: StartRule,
+    method: Method,
+}
+
+impl Model {
+    fn from_kw(kw: Option<&Bound<'_, PyDict>>) -> PyResult<Call> {
+        let mut m = Model::default();
+        let mut set = Vec::new();
+        let (mut start, mut method) = (StartRule::Paper, Method::Closed);
+        let Some(kw) = kw else { return Ok(Call { model: m, set, start, method }) };
+        for (k, v) in kw.iter() {
+            let key: String = k.extract()?;
+            if v.is_none() {
+                continue;
+            }
+            let num = || v.extract::<f64>();
+            match key.as_str() {
+                "mechanism_toml" => m.mechanism_toml = Some(v.extract()?),
+                "law" => m.law = Some(v.extract()?),
+                "params" => {
+                    let d = v.cast::<PyDict>()?;
+                    m.params = crate::convert::params(Some(d))?;
+                }
+                "velocity_m_s" => m.velocity_m_s = Some(num()?),
+                "distance_m" => m.distance_m = Some(num()?),
+                "distance_cm" => m.distance_m = Some(num()? * M_PER_CM),
+                "first_stage_m" => m.first_stage_m = Some(num()?),
+                "first_stage_cm" => m.first_stage_m = Some(num()? * M_PER_CM),
+                "design_speed_rpm" => m.design_speed_rpm = Some(num()?),
+                "retardation_pct" => m.retardation_pct = Some(num()?),
+                "path_m" => m.path_m = Some(num()?),
+                "free_shed_deg" => m.free_shed_deg = Some(num()?),
+                "speed_rpm" => set.push((Setting::Speed, num()?)),
+                "play_mm" => set.push((Setting::Play, num()?)),
+                "strap_cm" => set.push((Setting::Strap, num()?)),
+                "shuttle_g" => set.push((Setting::Shuttle, num()?)),
+                "checking_kgf" => set.push((Setting::Checking, num()?)),
+                "start" => {
+                    start = match v.extract::<String>()?.as_str() {
+                        "paper" => StartRule::Paper,
+                        "equilibrium" => StartRule::Equilibrium,
+                        other => return Err(parse_err("start", other, "paper or equilibrium")),
+                    }
+                }
+                "method" => {
+                    method = match v.extract::<String>()?.as_str() {
+                        "closed" => Method::Closed,
+                        "ode" => Method::Ode,
+                        other => return Err(parse_err("method", other, "closed or ode")),
+                    }
+                }
+                other => {
+                    return Err(parse_err(
+                        other,
+                        other,
+                        "mechanism, law, params, velocity_m_s, distance_m, distance_cm, first_stage_m, \
+                         first_stage_cm, design_speed_rpm, retardation_pct, path_m, free_shed_deg, speed_rpm, \
+                         play_mm, strap_cm, shuttle_g, checking_kgf, start, method",
+                    ));
+                }
+            }
+        }
+        Ok(Call { model: m, set, start, method })
+    }
+
+    /// The mechanism, as the CLI builds it from its flags.
+    fn build(&self) -> PyResult<Mechanism> {
+        let mech = match &self.mechanism_toml {
+            Some(text) => Mechanism::from_toml(text).or_raise()?,
+            None => Mechanism::paper_default(),
+        };
+        let design = [self.velocity_m_s, self.distance_m, self.first_stage_m, self.design_speed_rpm];
+        let mech = if design.iter().any(Option::is_some) {
+            let mut spec = *mech.design_spec();
+            spec.velocity_m_s = self.velocity_m_s.unwrap_or(spec.velocity_m_s);
+            spec.distance_m = self.distance_m.unwrap_or(spec.distance_m);
+            spec.first_stage_m = self.first_stage_m.unwrap_or(spec.first_stage_m);
+            spec.speed_rpm = self.design_speed_rpm.unwrap_or(spec.speed_rpm);
+            let required = *mech.required();
+            Mechanism::new(*mech.params(), spec).and_then(|n| n.with_required(required)).or_raise()?
+        } else {
+            mech
+        };
+        let mech = if self.retardation_pct.is_some() || self.path_m.is_some() || self.free_shed_deg.is_some() {
+            let mut r = *mech.required();
+            r.retardation_pct = self.retardation_pct.unwrap_or(r.retardation_pct);
+            r.path_m = self.path_m.unwrap_or(r.path_m);
+            r.free_shed_deg = self.free_shed_deg.unwrap_or(r.free_shed_deg);
+            mech.with_required(r).or_raise()?
+        } else {
+            mech
+        };
+        if self.law.as_deref().is_none_or(|l| l == "compound") && !self.params.is_empty() {
+            return Err(parse_err(
+                "params",
+                "given",
+                "params need a catalogue law: the compound law has none (it is designed from V, X, X1)",
+            ));
+        }
+        match &self.law {
+            Some(name) if name != "compound" => {
+                let spec = LawSpec::parse(name, &self.params).or_raise()?;
+                mech.with_law(spec).or_raise()
+            }
+            _ => Ok(mech),
+        }
+    }
+}
+
+fn parse_err(field: &str, text: &str, expected: &str) -> PyErr {
+    crate::errors::raise(loomkin_laws::LawError::Parse {
+        field: field.into(),
+        text: text.into(),
+        expected: expected.into(),
+    })
+}
+
+fn settings(mech: &Mechanism, set: &[(Setting, f64)], start: StartRule) -> Settings {
+    let mut st = Settings::designed(mech);
+    for (s, v) in set {
+        st = s.apply(st, *v);
+    }
+    st.with_start(start)
+}
+
+fn outcome_json(o: &Outcome) -> Value {
+    let mut v = json!({
+        "t_end_s": o.t_end_s, "t0_s": o.t0_s, "distance_m": o.distance_m, "velocity_m_s": o.velocity_m_s,
+        "accel_end_m_s2": o.accel_end_m_s2, "accel_peak_m_s2": o.accel_peak_m_s2, "t_peak_s": o.t_peak_s,
+        "end": match o.end { PickEnd::CamEnd => "cam-end", PickEnd::Separation => "separation" },
+        "required_velocity_m_s": o.required_velocity_m_s, "velocity_vs_required_pct": o.velocity_vs_required_pct,
+        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "natural_1_s": o.natural_1_s,
+        "play_picker_m": o.play_picker_m,
+    });
+    if let Some(n) = &o.note {
+        v["note"] = json!(n);
+    }
+    v
+}
+
+/// pick_design(**model) -> dict
+/// --
+///
+/// `loomkin pick design --json`: the compound picking law designed for V, X, X1 at the design
+/// speed (A m/s², μ 1/s, τ s, T′ s) and the mechanism constants B (s²), C, D (m), natural_1_s.
+#[pyfunction]
+#[pyo3(signature = (**model))]
+fn pick_design(py: Python<'_>, model: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
+    let mech = Model::from_kw(model)?.model.build()?;
+    let d = mech.design();
+    let k = d.constants;
+    let spec = d.spec;
+    value_to_py(
+        py,
+        &json!({
+            "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
+            "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
+            "natural_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
+            "velocity_m_s": spec.velocity_m_s, "distance_m": spec.distance_m,
+            "first_stage_m": spec.first_stage_m, "speed_rpm": spec.speed_rpm,
+            "required_velocity_m_s": mech.required().at(spec.speed_rpm),
+            "cam": mech.cam().label(),
+        }),
+    )
+}
+
+/// pick_simulate(**model_and_settings) -> dict
+/// --
+///
+/// `loomkin pick simulate --json`: the end of the pick (t_end_s, t0_s, distance_m, velocity_m_s,
+/// accelerations m/s², required velocity and the shortfall in %, the route used, B′, C′, D′, and a
+/// note when the closed form fell back to the ODE). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (**kw))]
+fn pick_simulate(py: Python<'_>, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
+    let Call { model, set, start, method } = Model::from_kw(kw)?;
+    let mech = model.build()?;
+    let st = settings(&mech, &set, start);
+    let o = py.detach(|| simulate(&mech, &st, method)).or_raise()?;
+    value_to_py(py, &outcome_json(&o))
+}
+
+/// pick_history(points=201, **model_and_settings) -> (dict, dict)
+/// --
+///
+/// The pick over time, as `loomkin pick simulate --csv`: arrays t_s, s_m, v_s_m_s, a_s_m_s2
+/// (nominal picker motion) and x_m, v_m_s, a_m_s2 (the shuttle), with the outcome dict.
+/// Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (points=201, **kw))]
+fn pick_history<'py>(
+    py: Python<'py>,
+    points: usize,
+    kw: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyDict>, Py<PyAny>)> {
+    check_count("points", points, HISTORY_POINTS)?;
+    let Call { model, set, start, method } = Model::from_kw(kw)?;
+    let mech = model.build()?;
+    let st = settings(&mech, &set, start);
+    let h = py.detach(|| history(&mech, &st, method, points)).or_raise()?;
+    let col = |f: &dyn Fn(&loomkin_picking::Sample) -> f64| h.samples.iter().map(f).collect::<Vec<f64>>();
+    let cols = vec![
+        ("t_s", col(&|s| s.t_s)),
+        ("s_m", col(&|s| s.nominal.s_m)),
+        ("v_s_m_s", col(&|s| s.nominal.v_m_s)),
+        ("a_s_m_s2", col(&|s| s.nominal.a_m_s2)),
+        ("x_m", col(&|s| s.actual.x_m)),
+        ("v_m_s", col(&|s| s.actual.v_m_s)),
+        ("a_m_s2", col(&|s| s.actual.a_m_s2)),
+    ];
+    Ok((columns(py, cols)?, value_to_py(py, &outcome_json(&h.outcome))?))
+}
+
+/// pick_sweep(setting, start, stop, points, **model_and_settings) -> dict
+/// --
+///
+/// `loomkin pick sweep SETTING --from --to --points --json`: setting, unit, method,
+/// fallback_values and rows, here a dict of columns (the outcome keys of `pick_simulate` and the
+/// swept value under `<setting>_<unit>`; numbers as numpy arrays, text as lists, a missing note
+/// None). The points run in parallel with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (setting, start, stop, points, **kw))]
+fn pick_sweep(
+    py: Python<'_>,
+    setting: &str,
+    start: f64,
+    stop: f64,
+    points: usize,
+    kw: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Py<PyAny>> {
+    let setting = Setting::parse(setting).or_raise()?;
+    check_count("points", points, SWEEP_POINTS)?;
+    let Call { model, set, start: start_rule, method } = Model::from_kw(kw)?;
+    let mech = model.build()?;
+    let st = settings(&mech, &set, start_rule);
+    let s = py.detach(|| loomkin_picking::sweep(&mech, &st, setting, start, stop, points, method)).or_raise()?;
+    let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
+    let rows: Vec<Value> = s
+        .rows
+        .iter()
+        .map(|r| {
+            let mut v = outcome_json(&r.outcome);
+            v[setting.key()] = json!(r.value);
+            v
+        })
+        .collect();
+    let out = value_to_py(
+        py,
+        &json!({
+            "setting": setting.name(), "unit": setting.unit(), "method": method.name(),
+            "fallback_values": fallbacks,
+        }),
+    )?;
+    out.bind(py).set_item("rows", value_records_to_columns(py, &Value::Array(rows))?)?;
+    Ok(out)
+}

@@ -1,0 +1,393 @@
+//! Servo motion functions from definition points: the spline law, drive torque, optimisation and
+//! the controller exports, keyed as `loomkin servo … --json`.
+
+use crate::convert::{records_to_columns, to_py};
+use crate::errors::{OrRaise, check_count, raise};
+use crate::laws::Law;
+use loomkin_laws::{Metrics, ParamValue};
+use loomkin_servo::{
+    Drive, ExportFormat, InterpolationError, Objective, OptimizeOptions, ServoError, SplineEnd, SplineLaw,
+    TorqueSummary, format_points, parse_points, summaries, torque_curve,
+};
+use loomkin_units::{Range, ShaftSpeed};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::Serialize;
+
+/// The CLI's default `--def` (the sine-shaped start of the paper), written as the CLI writes it so
+/// that a call without `def` gives the CLI's numbers bit for bit.
+const DEFAULT_DEF: &str = "0:0,0.0833333333333333:0.5,0.1666666666666667:0.8660254037844386,0.25:1,\
+0.3333333333333333:0.8660254037844387,0.4166666666666667:0.5,0.5:0";
+
+/// Points of a torque curve over one turn.
+const CURVE_POINTS: Range = Range::closed(2.0, 1e7, "");
+/// Optimiser starts (as the CLI's `--starts`).
+const STARTS: Range = Range::closed(1.0, 1000.0, "");
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(servo_spline_law, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_law, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_torque, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_torque_curve, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_optimize, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_export, m)?)?;
+    Ok(())
+}
+
+/// Definition points from Python: `None` (the CLI's default), `"X:Y,X:Y,…"` or a sequence of
+/// (x, y) pairs (a list, or an (N, 2) numpy array).
+fn def_points(def: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<[f64; 2]>> {
+    match def {
+        None => parse_points(DEFAULT_DEF).or_raise(),
+        Some(d) => {
+            if let Ok(text) = d.extract::<String>() {
+                parse_points(&text).or_raise()
+            } else {
+                let rows: Vec<Vec<f64>> = d.extract().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err("def: expected 'X:Y,X:Y,…' or a sequence of (x, y) pairs")
+                })?;
+                rows.iter()
+                    .map(|r| match r.as_slice() {
+                        [x, y] => Ok([*x, *y]),
+                        _ => Err(raise(ServoError::Parse {
+                            field: "def".into(),
+                            text: format!("{r:?}"),
+                            expected: "(x, y) pairs".into(),
+                        })),
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+fn spline(def: Option<&Bound<'_, PyAny>>, end: &str) -> PyResult<SplineLaw> {
+    let pts = def_points(def)?;
+    let end = SplineEnd::parse(end).or_raise()?;
+    SplineLaw::new(&pts, end).or_raise()
+}
+
+fn drive(text: Option<&str>) -> PyResult<Drive> {
+    match text {
+        None => Ok(Drive::needle_rack_default()),
+        Some(t) => Drive::from_text(t).or_raise(),
+    }
+}
+
+fn speeds(v: &[f64]) -> PyResult<()> {
+    if v.is_empty() {
+        return Err(raise(ServoError::Parse {
+            field: "speed_rpm".into(),
+            text: String::new(),
+            expected: "at least one speed".into(),
+        }));
+    }
+    for &n in v {
+        ShaftSpeed::from_rpm_field("speed_rpm", n).or_raise()?;
+    }
+    Ok(())
+}
+
+/// servo_spline_law(def_points=None, end="natural") -> Law
+/// --
+///
+/// The servo motion law through the definition points (Sivčák 2017) as a `Law`: unit stroke on
+/// x = 0…1 (dimensionless), with metrics, continuity and sampling like any catalogue law.
+#[pyfunction]
+#[pyo3(signature = (def_points=None, end="natural"))]
+fn servo_spline_law(def_points: Option<&Bound<'_, PyAny>>, end: &str) -> PyResult<Law> {
+    let sl = spline(def_points, end)?;
+    let def_text = format_points(sl.points());
+    let params = [
+        ("def".to_string(), ParamValue::Text(def_text.clone())),
+        ("end".to_string(), ParamValue::Text(sl.end().name().to_string())),
+    ]
+    .into();
+    let label = format!("servo-spline (def={def_text}, end={})", sl.end().name());
+    Ok(Law::wrap("servo-spline", label, params, sl.into_law()))
+}
+
+/// `servo law --json`.
+#[derive(Serialize)]
+struct LawJson<'a> {
+    def_points: &'a [[f64; 2]],
+    end: SplineEnd,
+    units: &'static str,
+    d: f64,
+    d_unit: f64,
+    scale: f64,
+    #[serde(flatten)]
+    metrics: Metrics,
+    continuity_class: i32,
+    intervals: usize,
+    spline_b: Vec<[f64; 4]>,
+}
+
+/// servo_law(def_points=None, end="natural") -> dict
+/// --
+///
+/// `loomkin servo law --json`: the definition points, d (slope of the acceleration image at
+/// x = 0.5), d_unit, scale, the metrics (dimensionless), continuity_class, intervals and the
+/// spline coefficients spline_b.
+#[pyfunction]
+#[pyo3(signature = (def_points=None, end="natural"))]
+fn servo_law(py: Python<'_>, def_points: Option<&Bound<'_, PyAny>>, end: &str) -> PyResult<Py<PyAny>> {
+    let sl = spline(def_points, end)?;
+    let law = sl.law();
+    let m = py.detach(|| law.metrics());
+    to_py(
+        py,
+        &LawJson {
+            def_points: sl.points(),
+            end: sl.end(),
+            units: "d: slope of the acceleration image f (through the points) at x = 0.5; \
+                    d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
+                    per unit stroke and unit motion angle (dimensionless)",
+            d: sl.d(),
+            d_unit: sl.d() * sl.scale(),
+            scale: sl.scale(),
+            metrics: m,
+            continuity_class: law.continuity().class,
+            intervals: law.segments().len(),
+            spline_b: sl.spline_coefficients(),
+        },
+    )
+}
+
+#[derive(Serialize)]
+struct LayoutJson {
+    rise: f64,
+    dwell_after_rise: f64,
+    #[serde(rename = "return")]
+    return_: f64,
+    dwell_after_return: f64,
+}
+
+#[derive(Serialize)]
+struct DriveJson<'a> {
+    #[serde(flatten)]
+    drive: &'a Drive,
+    layout_deg: LayoutJson,
+}
+
+impl<'a> DriveJson<'a> {
+    fn of(d: &'a Drive) -> Result<Self, ServoError> {
+        let lay = d.layout()?;
+        let layout_deg = LayoutJson {
+            rise: lay.rise_deg,
+            dwell_after_rise: lay.dwell_after_rise_deg,
+            return_: lay.return_deg,
+            dwell_after_return: lay.dwell_after_return_deg,
+        };
+        Ok(Self { drive: d, layout_deg })
+    }
+}
+
+#[derive(Serialize)]
+struct TorqueJson<'a> {
+    def_points: &'a [[f64; 2]],
+    drive: DriveJson<'a>,
+    results: &'a [TorqueSummary],
+}
+
+/// servo_torque(speed_rpm=(600, 750), def_points=None, end="natural", drive=None) -> dict
+/// --
+///
+/// `loomkin servo torque --json`: per speed (rpm) the peak motor torque (N·m) and its angle (deg),
+/// the RMS torque, peak power (W), peak rack velocity and acceleration, peak motor speed (rpm),
+/// rise and cycle time (s); `drive` is the drive file's text (TOML or JSON; None: the built-in
+/// needle-rack drive). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (speed_rpm=vec![600.0, 750.0], def_points=None, end="natural", drive_text=None))]
+fn servo_torque(
+    py: Python<'_>,
+    speed_rpm: Vec<f64>,
+    def_points: Option<&Bound<'_, PyAny>>,
+    end: &str,
+    drive_text: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    speeds(&speed_rpm)?;
+    let sl = spline(def_points, end)?;
+    let d = drive(drive_text)?;
+    let res = py.detach(|| summaries(sl.law(), &d, &speed_rpm)).or_raise()?;
+    let dj = DriveJson::of(&d).or_raise()?;
+    to_py(py, &TorqueJson { def_points: sl.points(), drive: dj, results: &res })
+}
+
+/// servo_torque_curve(speed_rpm=600, points=721, def_points=None, end="natural", drive=None) -> dict
+/// --
+///
+/// The drive over one main-shaft turn at `points` evenly spaced angles, as arrays angle_deg,
+/// time_s, u_m, v_m_s, a_m_s2, torque_nm, power_w and the list phase. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (speed_rpm=600.0, points=721, def_points=None, end="natural", drive_text=None))]
+fn servo_torque_curve(
+    py: Python<'_>,
+    speed_rpm: f64,
+    points: usize,
+    def_points: Option<&Bound<'_, PyAny>>,
+    end: &str,
+    drive_text: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    speeds(&[speed_rpm])?;
+    check_count("points", points, CURVE_POINTS)?;
+    let sl = spline(def_points, end)?;
+    let d = drive(drive_text)?;
+    let curve = py.detach(|| torque_curve(sl.law(), &d, speed_rpm, points)).or_raise()?;
+    records_to_columns(py, &curve)
+}
+
+#[derive(Serialize)]
+struct Worst<'a> {
+    peak_torque_nm: f64,
+    rms_torque_nm: f64,
+    per_speed: &'a [TorqueSummary],
+}
+
+impl<'a> Worst<'a> {
+    fn of(v: &'a [TorqueSummary]) -> Self {
+        let peak_torque_nm = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
+        let rms_torque_nm = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
+        Self { peak_torque_nm, rms_torque_nm, per_speed: v }
+    }
+}
+
+#[derive(Serialize)]
+struct OptimizeJson<'a> {
+    objective: Objective,
+    speeds_rpm: &'a [f64],
+    before: Worst<'a>,
+    after: Worst<'a>,
+    def_points: &'a [[f64; 2]],
+    def: String,
+    end: SplineEnd,
+    evaluations: usize,
+}
+
+/// servo_optimize(speed_rpm=(600,), objective="peak", starts=6, fixed_x=False, def_points=None,
+/// end="natural", drive=None) -> dict
+/// --
+///
+/// `loomkin servo optimize --json`: moves the free definition points to minimise the worst peak
+/// (or RMS) motor torque (N·m) over the speeds (rpm); before, after, the optimised def_points and
+/// def text, evaluations. Deterministic (seeded starts). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (speed_rpm=vec![600.0], objective="peak", starts=6, fixed_x=false, def_points=None, end="natural", drive_text=None))]
+fn servo_optimize(
+    py: Python<'_>,
+    speed_rpm: Vec<f64>,
+    objective: &str,
+    starts: usize,
+    fixed_x: bool,
+    def_points: Option<&Bound<'_, PyAny>>,
+    end: &str,
+    drive_text: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    speeds(&speed_rpm)?;
+    check_count("starts", starts, STARTS)?;
+    let objective = Objective::parse(objective).or_raise()?;
+    let sl = spline(def_points, end)?;
+    let d = drive(drive_text)?;
+    let opts = OptimizeOptions {
+        objective,
+        speeds_rpm: speed_rpm.clone(),
+        starts,
+        move_x: !fixed_x,
+        ..OptimizeOptions::default()
+    };
+    let r = py.detach(|| loomkin_servo::optimize(&sl, &d, &opts)).or_raise()?;
+    let pts = r.law.points();
+    to_py(
+        py,
+        &OptimizeJson {
+            objective,
+            speeds_rpm: &speed_rpm,
+            before: Worst::of(&r.before),
+            after: Worst::of(&r.after),
+            def_points: pts,
+            def: format_points(pts),
+            end: r.law.end(),
+            evaluations: r.evaluations,
+        },
+    )
+}
+
+#[derive(Serialize)]
+struct ReinterpolationJson {
+    interpolation: &'static str,
+    step_deg: f64,
+    max_position_error_m: f64,
+    max_velocity_error_m_per_deg: f64,
+    max_accel_error_m_per_deg2: f64,
+    rel_position_error: f64,
+    rel_velocity_error: f64,
+    rel_accel_error: f64,
+}
+
+impl From<&InterpolationError> for ReinterpolationJson {
+    fn from(e: &InterpolationError) -> Self {
+        Self {
+            interpolation: e.mode.name(),
+            step_deg: e.step_deg,
+            max_position_error_m: e.max_position_error_m,
+            max_velocity_error_m_per_deg: e.max_velocity_error_m_per_deg,
+            max_accel_error_m_per_deg2: e.max_accel_error_m_per_deg2,
+            rel_position_error: e.rel_position_error,
+            rel_velocity_error: e.rel_velocity_error,
+            rel_accel_error: e.rel_accel_error,
+        }
+    }
+}
+
+fn export_format(name: &str) -> PyResult<ExportFormat> {
+    const ALL: [ExportFormat; 6] = [
+        ExportFormat::Coeffs,
+        ExportFormat::Json,
+        ExportFormat::Csv,
+        ExportFormat::Xyva,
+        ExportFormat::Poly5,
+        ExportFormat::Cycle,
+    ];
+    ALL.into_iter().find(|f| f.name().eq_ignore_ascii_case(name.trim())).ok_or_else(|| {
+        raise(ServoError::Parse {
+            field: "format".into(),
+            text: name.into(),
+            expected: ALL.map(|f| f.name()).join(", "),
+        })
+    })
+}
+
+/// servo_export(format, step_deg=1.0, def_points=None, end="natural", drive=None) -> dict
+/// --
+///
+/// Every controller export of `loomkin servo export`: format one of coeffs, json, csv, xyva,
+/// poly5, cycle. Returns text (the file `-o` writes, byte for byte), filename, media_type and, for
+/// the cam tables (csv, xyva), points, step_deg and reinterpolation (the worst errors when the
+/// controller interpolates: m, m/deg, m/deg²; as `--json` prints).
+#[pyfunction]
+#[pyo3(signature = (format, step_deg=1.0, def_points=None, end="natural", drive_text=None))]
+fn servo_export<'py>(
+    py: Python<'py>,
+    format: &str,
+    step_deg: f64,
+    def_points: Option<&Bound<'_, PyAny>>,
+    end: &str,
+    drive_text: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let format = export_format(format)?;
+    let sl = spline(def_points, end)?;
+    let d = drive(drive_text)?;
+    let file = py.detach(|| loomkin_servo::export(&sl, &d, format, step_deg)).or_raise()?;
+    let out = PyDict::new(py);
+    out.set_item("format", format.name())?;
+    out.set_item("filename", file.filename)?;
+    out.set_item("media_type", file.media_type)?;
+    out.set_item("text", file.text)?;
+    if let Some(t) = file.table {
+        out.set_item("points", t.points)?;
+        out.set_item("step_deg", t.step_deg)?;
+        let rows: Vec<ReinterpolationJson> = t.reinterpolation.iter().map(ReinterpolationJson::from).collect();
+        out.set_item("reinterpolation", to_py(py, &rows)?)?;
+    }
+    Ok(out)
+}

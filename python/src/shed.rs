@@ -1,0 +1,399 @@
+//! Shedding laws: dwell and window criteria, experiment tables, Pareto fronts and the best law
+//! for a window, keyed as `loomkin shed … --json` (tables as dicts of numpy arrays).
+
+use crate::convert::{to_py, value_records_to_columns};
+use crate::errors::{Fault, OrRaise};
+use loomkin_shed::{
+    Conditions, Criteria, DesignKind, Family, GridSpec, PRESETS, Progress, ShedError, ShedLaw, Study, StudyRow,
+    StudyTable, Template, evaluate, preset, preset_table_in,
+};
+use loomkin_study::StudyError;
+use loomkin_units::{Range, RangeError};
+use pyo3::prelude::*;
+use serde::Serialize;
+
+impl Fault for StudyError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl Fault for ShedError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            Self::Law(e) => e.range(),
+            Self::Study(e) => e.range(),
+            _ => None,
+        }
+    }
+    fn accepted(&self) -> Option<String> {
+        match self {
+            Self::Law(e) => e.accepted(),
+            _ => None,
+        }
+    }
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(shed_presets, m)?)?;
+    m.add_function(wrap_pyfunction!(shed_law, m)?)?;
+    m.add_function(wrap_pyfunction!(shed_table, m)?)?;
+    m.add_function(wrap_pyfunction!(shed_pareto, m)?)?;
+    m.add_function(wrap_pyfunction!(shed_best, m)?)?;
+    Ok(())
+}
+
+fn parse_err(field: &str, reason: String) -> PyErr {
+    crate::errors::raise(ShedError::Parse { field: field.into(), reason })
+}
+
+/// The conditions of the CLI's `--threshold --stroke-mm --speed-rpm`.
+fn conditions(threshold: f64, stroke_mm: f64, speed_rpm: f64) -> PyResult<Conditions> {
+    Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", stroke_mm).or_raise()?;
+    Conditions::new(threshold, stroke_mm / 1000.0, speed_rpm).or_raise()
+}
+
+#[derive(Serialize)]
+struct CriteriaJson<'a> {
+    #[serde(flatten)]
+    criteria: &'a Criteria,
+    stroke_mm: f64,
+    speed_rpm: f64,
+}
+
+impl<'a> CriteriaJson<'a> {
+    fn of(criteria: &'a Criteria, cond: &Conditions) -> Self {
+        Self { criteria, stroke_mm: cond.stroke_m() * 1000.0, speed_rpm: cond.speed_rpm() }
+    }
+}
+
+#[derive(Serialize)]
+struct DefinitionJson {
+    motion_deg: f64,
+    symmetric: bool,
+    positive_fraction: f64,
+    positive: String,
+    negative: String,
+}
+
+impl DefinitionJson {
+    fn of(law: &ShedLaw) -> Self {
+        Self {
+            motion_deg: law.motion_deg(),
+            symmetric: law.is_symmetric(),
+            positive_fraction: law.positive_fraction(),
+            positive: law.positive_text(),
+            negative: law.negative_text(),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct PresetJson {
+    name: &'static str,
+    name_ru: &'static str,
+    motion_deg: f64,
+    dwell_deg: f64,
+    table_shape: &'static str,
+    positive: &'static str,
+}
+
+/// shed_presets() -> list[dict]
+/// --
+///
+/// `loomkin shed list --json`'s laws: name, name_ru, motion_deg, dwell_deg (deg of the main
+/// shaft), table_shape and the positive phase of the acceleration.
+#[pyfunction]
+fn shed_presets(py: Python<'_>) -> PyResult<Py<PyAny>> {
+    let laws: Vec<PresetJson> = PRESETS
+        .iter()
+        .map(|p| PresetJson {
+            name: p.name,
+            name_ru: p.name_ru,
+            motion_deg: p.motion_deg,
+            dwell_deg: 360.0 - p.motion_deg,
+            table_shape: p.table_shape,
+            positive: p.positive,
+        })
+        .collect();
+    to_py(py, &laws)
+}
+
+#[derive(Serialize)]
+struct LawJson<'a> {
+    law: String,
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    definition: DefinitionJson,
+    segments: String,
+}
+
+/// shed_law(name=None, spec_toml=None, motion_deg=None, threshold=0.95, stroke_mm=100, speed_rpm=300) -> dict
+/// --
+///
+/// `loomkin shed law NAME --json`: the window, absolute and conditional dwell (deg), the
+/// dimensionless cv, ca, cj, cm, ca_rms and the physical peaks (m/s, m/s², m/s³, W/kg) at the
+/// stroke (mm) and speed (rpm), with the law's definition.
+#[pyfunction]
+#[pyo3(signature = (name=None, spec_toml=None, motion_deg=None, threshold=loomkin_shed::TABLE3_THRESHOLD,
+    stroke_mm=100.0, speed_rpm=300.0, label=None))]
+fn shed_law(
+    py: Python<'_>,
+    name: Option<&str>,
+    spec_toml: Option<&str>,
+    motion_deg: Option<f64>,
+    threshold: f64,
+    stroke_mm: f64,
+    speed_rpm: f64,
+    label: Option<String>,
+) -> PyResult<Py<PyAny>> {
+    let (name, mut law) = match (spec_toml, name) {
+        (Some(text), _) => (label.unwrap_or_else(|| "spec".into()), ShedLaw::from_toml(text).or_raise()?),
+        (None, Some(n)) => (n.to_string(), preset(n).or_raise()?),
+        (None, None) => return Err(parse_err("name", "give a law name or a spec".into())),
+    };
+    if let Some(m) = motion_deg {
+        law = law.with_motion_deg(m).or_raise()?;
+    }
+    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
+    let c = evaluate(&law, &cond).or_raise()?;
+    to_py(
+        py,
+        &LawJson {
+            law: name,
+            criteria: CriteriaJson::of(&c, &cond),
+            definition: DefinitionJson::of(&law),
+            segments: law.positive_text(),
+        },
+    )
+}
+
+/// The CLI's design flags.
+struct DesignArgs<'a> {
+    family: Option<&'a str>,
+    shapes: Option<&'a str>,
+    step: Option<f64>,
+    min_k: Option<f64>,
+    max_k: Option<f64>,
+}
+
+fn kebab<T: serde::de::DeserializeOwned>(field: &str, text: &str, allowed: &str) -> PyResult<T> {
+    serde_json::from_value(serde_json::Value::String(text.trim().to_ascii_lowercase()))
+        .map_err(|_| parse_err(field, format!("'{text}': allowed {allowed}")))
+}
+
+fn design_kind(text: &str) -> PyResult<DesignKind> {
+    kebab("design", text, "presets, table1, fig1, grid")
+}
+
+fn template(d: &DesignArgs) -> PyResult<Option<Template>> {
+    Ok(match (d.shapes, d.family) {
+        (Some(s), _) => Some(Template::parse("custom", s).or_raise()?),
+        (None, Some(f)) => {
+            let f: Family = kebab("family", f, "trapezoid, lead-trapezoid, linear-trapezoid")?;
+            Some(f.template())
+        }
+        (None, None) => None,
+    })
+}
+
+fn study(kind: DesignKind, d: &DesignArgs, g: GridSpec) -> PyResult<Study> {
+    if kind != DesignKind::Grid && (d.min_k.is_some() || d.max_k.is_some()) {
+        return Err(parse_err("min_k", "min_k and max_k apply to design grid only".into()));
+    }
+    let grid = GridSpec {
+        step: d.step.unwrap_or(g.step),
+        min_k: d.min_k.unwrap_or(g.min_k),
+        max_k: d.max_k.unwrap_or(g.max_k),
+    };
+    Study::new(kind, template(d)?, grid).or_raise()
+}
+
+#[derive(Serialize)]
+struct RowJson<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    law: Option<&'a str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    row: Option<usize>,
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    lengths: &'a [f64],
+}
+
+fn row_json<'a>(r: &'a StudyRow, cond: &Conditions) -> RowJson<'a> {
+    RowJson {
+        law: r.law.as_deref(),
+        row: r.law.is_none().then_some(r.candidate.row),
+        criteria: CriteriaJson::of(&r.candidate.criteria, cond),
+        lengths: &r.candidate.lengths,
+    }
+}
+
+fn rows_columns(py: Python<'_>, t: &StudyTable, cond: &Conditions) -> PyResult<Py<PyAny>> {
+    let rows: Vec<RowJson> = t.rows.iter().map(|r| row_json(r, cond)).collect();
+    let v = serde_json::to_value(&rows).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    value_records_to_columns(py, &v)
+}
+
+/// shed_table(design="presets", ...) -> dict[str, array]
+/// --
+///
+/// `loomkin shed table --json`'s rows as columns: law (presets) or row (a design), the criteria
+/// (window_deg, dwell_deg, conditional_dwell_deg, ca, peak_accel_m_s2, …), stroke_mm, speed_rpm and
+/// lengths (the relative lengths k of each law, a list per row). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (design="presets", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
+    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=300.0))]
+fn shed_table(
+    py: Python<'_>,
+    design: &str,
+    family: Option<&str>,
+    shapes: Option<&str>,
+    step: Option<f64>,
+    min_k: Option<f64>,
+    max_k: Option<f64>,
+    motion_deg: Option<&str>,
+    threshold: f64,
+    stroke_mm: f64,
+    speed_rpm: f64,
+) -> PyResult<Py<PyAny>> {
+    let kind = design_kind(design)?;
+    let d = DesignArgs { family, shapes, step, min_k, max_k };
+    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
+    let t = if kind == DesignKind::Presets {
+        if family.is_some() || shapes.is_some() || motion_deg.is_some() || step.is_some() {
+            return Err(parse_err("design", "design presets takes no family, shapes, step or motion_deg".into()));
+        }
+        py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?
+    } else {
+        let s = study(kind, &d, GridSpec::TABLE)?;
+        let motions = loomkin_shed::parse_motion_angles(motion_deg.unwrap_or("300")).or_raise()?;
+        py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, 0..s.design.len())).or_raise()?
+    };
+    rows_columns(py, &t, &cond)
+}
+
+/// shed_pareto(design="grid", ...) -> dict[str, array]
+/// --
+///
+/// `loomkin shed pareto --json`'s rows as columns: the laws of the family not dominated in
+/// (largest window_deg, least peak_accel_m_s2) over the motion angles `motion_deg`
+/// ("FROM:TO:STEP" or a list "A,B,…"; default 180:360:10). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (design="grid", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
+    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=300.0))]
+fn shed_pareto(
+    py: Python<'_>,
+    design: &str,
+    family: Option<&str>,
+    shapes: Option<&str>,
+    step: Option<f64>,
+    min_k: Option<f64>,
+    max_k: Option<f64>,
+    motion_deg: Option<&str>,
+    threshold: f64,
+    stroke_mm: f64,
+    speed_rpm: f64,
+) -> PyResult<Py<PyAny>> {
+    let kind = design_kind(design)?;
+    let d = DesignArgs { family, shapes, step, min_k, max_k };
+    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
+    let motions = loomkin_shed::parse_motion_angles(motion_deg.unwrap_or("180:360:10")).or_raise()?;
+    let front = if kind == DesignKind::Presets {
+        let all = py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?;
+        let pts: Vec<[f64; 2]> =
+            all.rows.iter().map(|r| [r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2]).collect();
+        all.select(&loomkin_shed::pareto_indices(&pts).or_raise()?)
+    } else {
+        let s = study(kind, &d, GridSpec::TABLE)?;
+        py.detach(|| s.pareto(&motions, &cond, Progress::Hidden)).or_raise()?
+    };
+    rows_columns(py, &front, &cond)
+}
+
+#[derive(Serialize)]
+struct BestJson<'a> {
+    #[serde(flatten)]
+    criteria: CriteriaJson<'a>,
+    required_window_deg: f64,
+    family: &'a str,
+    lengths: &'a [f64],
+    segments: String,
+    definition: DefinitionJson,
+    laws_searched: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_jerk_m_s3: Option<f64>,
+}
+
+/// shed_best(window_deg, threshold=0.95, max_jerk_m_s3=None, design="grid", ...) -> dict
+/// --
+///
+/// `loomkin shed best --window-deg W --json`: the law of the family with the least peak
+/// acceleration (m/s²) among those giving a window ≥ window_deg (deg) at the threshold, with its
+/// lengths, definition and criteria; max_jerk_m_s3 bounds the peak jerk. Runs with the GIL
+/// released.
+#[pyfunction]
+#[pyo3(signature = (window_deg, threshold=loomkin_shed::TABLE3_THRESHOLD, max_jerk_m_s3=None, design="grid",
+    family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None, stroke_mm=100.0, speed_rpm=300.0))]
+fn shed_best(
+    py: Python<'_>,
+    window_deg: f64,
+    threshold: f64,
+    max_jerk_m_s3: Option<f64>,
+    design: &str,
+    family: Option<&str>,
+    shapes: Option<&str>,
+    step: Option<f64>,
+    min_k: Option<f64>,
+    max_k: Option<f64>,
+    motion_deg: Option<&str>,
+    stroke_mm: f64,
+    speed_rpm: f64,
+) -> PyResult<Py<PyAny>> {
+    let kind = design_kind(design)?;
+    let d = DesignArgs { family, shapes, step, min_k, max_k };
+    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
+    loomkin_shed::check_window_deg(window_deg).or_raise()?;
+    if kind == DesignKind::Presets {
+        return Err(parse_err("design", "design presets is not searched by best; use table1, fig1 or grid".into()));
+    }
+    let s = study(kind, &d, GridSpec::BEST)?;
+    let motions = match motion_deg {
+        Some(m) => Some(loomkin_shed::parse_motion_angles(m).or_raise()?),
+        None => None,
+    };
+    let found = py
+        .detach(|| {
+            let dims = s.evaluate(threshold, Progress::Hidden)?;
+            loomkin_shed::best(&s.design, &dims, motions.as_deref(), window_deg, max_jerk_m_s3, &cond)
+        })
+        .or_raise()?;
+    let Some(b) = found else {
+        return Err(parse_err(
+            "window_deg",
+            format!(
+                "no law of the family '{}' gives a window of {window_deg} deg at T = {threshold}{}",
+                s.template.name(),
+                if max_jerk_m_s3.is_some() { " within max_jerk_m_s3" } else { "" }
+            ),
+        ));
+    };
+    let law = s.template.law(b.criteria.motion_deg, &b.lengths).or_raise()?;
+    to_py(
+        py,
+        &BestJson {
+            criteria: CriteriaJson::of(&b.criteria, &cond),
+            required_window_deg: window_deg,
+            family: s.template.name(),
+            lengths: &b.lengths,
+            segments: law.positive_text(),
+            definition: DefinitionJson::of(&law),
+            laws_searched: s.design.len(),
+            max_jerk_m_s3,
+        },
+    )
+}

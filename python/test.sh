@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The Python package's tests: builds `loomkin` (release, abi3 wheel) into a virtual environment
+# with `pip install ./python`, then runs pytest. The parity tests run the CLI binary
+# (<target>/release/loomkin, which `cargo test --release --workspace` has built; built here if
+# missing; $LOOMKIN_BIN names another). The venv: $LOOMKIN_VENV, default <target>/python-venv.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target="${CARGO_TARGET_DIR:-$PWD/target}"
+venv="${LOOMKIN_VENV:-$target/python-venv}"
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/pip" install -q "./python[test]"
+bin="${LOOMKIN_BIN:-$target/release/loomkin}"
+[ -x "$bin" ] || cargo build --release -p loomkin-cli
+cd python
+# `pytest`, not `python -m pytest`: the latter puts python/ on sys.path, where the sources of the
+# package (without its compiled module) would shadow the installed package.
+LOOMKIN_BIN="$bin" "$venv/bin/pytest" -q tests

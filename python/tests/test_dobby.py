@@ -1,0 +1,51 @@
+"""Dobby: parity with `loomkin dobby analyze|synthesize --json`, errors."""
+
+import numpy as np
+import pytest
+
+import loomkin
+from conftest import records, same
+
+
+def test_analyze_matches_dobby_analyze(cli):
+    ref = cli("dobby", "analyze", "--alpha-deg", "47", "--step-deg", "5", "--json")
+    r = loomkin.dobby.analyze(alpha_deg=47, step_deg=5)
+    same(records(r.pop("rows")), ref.pop("rows"))
+    same(r, ref)
+
+
+def test_analyze_ellipse_and_points_give_the_paper_cam(cli):
+    ref = cli("dobby", "analyze", "--cam", "ellipse:a=0.366,b=0.577", "--speed-rpm", "300", "--step-deg", "10",
+              "--json")
+    r = loomkin.dobby.analyze("ellipse:a=0.366,b=0.577", speed_rpm=300, step_deg=10)
+    same(records(r.pop("rows")), ref.pop("rows"))
+    same(r, ref)
+
+
+def test_synthesize_matches_dobby_synthesize(cli):
+    ref = cli("dobby", "synthesize", "--dwell-deg", "40", "--roller-m", "0.03", "--step-deg", "5", "--json")
+    r = loomkin.dobby.synthesize(dwell_deg=40, roller_m=0.03, step_deg=5)
+    cam, counter, rows = r.pop("cam"), r.pop("counter_cam"), r.pop("rows")
+    same(records(rows), ref.pop("rows"))
+    same(r, ref)
+    # The cam's roller-centre curve is the rows' roller B positions (b_x_m, b_y_m), point for point
+    # (the closed curve without the row at 360°, which repeats 0°).
+    n = len(cam["centre_m"])
+    assert n == len(rows["b_x_m"]) - 1
+    np.testing.assert_array_equal(cam["centre_m"][:, 0], rows["b_x_m"][:n])
+    np.testing.assert_array_equal(counter["centre_m"][:, 1], rows["c_y_m"][:n])
+    # Independent route: each groove wall lies one roller radius from the centre curve.
+    gap = np.hypot(*(cam["wall_left_m"] - cam["centre_m"]).T)
+    np.testing.assert_allclose(gap, 0.03, rtol=1e-12)
+
+
+def test_dobby_errors():
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.dobby.analyze(alpha_deg=500)
+    assert e.value.field == "alpha_deg"
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.dobby.analyze("circle:r=1")
+    assert e.value.field == "cam"
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.dobby.synthesize(law="no-such-law")
+    assert e.value.field == "law"

@@ -1,0 +1,48 @@
+"""Long computations release the GIL: another Python thread keeps running meanwhile."""
+
+import threading
+import time
+
+import loomkin
+
+
+def ticks_during(call):
+    """Runs `call` in a worker thread while this thread ticks; returns the call's duration and
+    the longest gap between ticks while it ran. With the GIL held for the whole call, the gap
+    would be the call's whole duration."""
+    done = threading.Event()
+    box = {}
+
+    def work():
+        t0 = time.perf_counter()
+        box["result"] = call()
+        box["seconds"] = time.perf_counter() - t0
+        done.set()
+
+    worker = threading.Thread(target=work)
+    last = time.perf_counter()
+    gap = 0.0
+    worker.start()
+    while not done.is_set():
+        now = time.perf_counter()
+        gap = max(gap, now - last)
+        last = now
+    worker.join()
+    return box["seconds"], gap, box["result"]
+
+
+def test_sampling_releases_the_gil():
+    law = loomkin.Law("modified-sine")
+    # Ten calls of 2·10⁶ points (0.1 s or more in a release build): the GIL is taken back only
+    # between the calls, to build the arrays.
+    seconds, gap, out = ticks_during(lambda: [law.sample(2_000_000) for _ in range(10)])
+    assert out[-1]["x"].shape == (2_000_000,)
+    assert seconds > 0.02, "the call is too short to tell"
+    assert gap < 0.5 * seconds, f"the other thread stalled {gap:.3f} s of a {seconds:.3f} s call"
+
+
+def test_optimisation_releases_the_gil():
+    seconds, gap, r = ticks_during(lambda: loomkin.servo.optimize([600, 750], starts=2))
+    assert r["evaluations"] > 0
+    assert seconds > 0.02, "the call is too short to tell"
+    assert gap < 0.5 * seconds, f"the other thread stalled {gap:.3f} s of a {seconds:.3f} s call"
