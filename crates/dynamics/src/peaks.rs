@@ -136,7 +136,10 @@ pub fn extremes_of<const K: usize>(duration: f64, n: usize, f: impl Fn(f64) -> [
             e[i].take(cur[i][0], t);
             if prev[i][1] * cur[i][1] < 0.0 {
                 let lo = (t - h).max(0.0);
-                let r = loomkin_laws::refine_root(lo, t, prev[i][1] < 0.0, |x| {
+                // Start from the secant point of f' at the grid's two ends (within O(h²) of the root).
+                let (g0, g1) = (prev[i][1], cur[i][1]);
+                let start = (lo * g1 - t * g0) / (g1 - g0);
+                let r = loomkin_laws::refine_root_from(lo, t, start, prev[i][1] < 0.0, |x| {
                     let d = f(x)[i];
                     (d[1], d[2])
                 });

@@ -112,9 +112,21 @@ fn refine(lo: f64, hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
 /// is replaced by a secant step between the bracket's ends (their values fetched once when not yet
 /// known), and by bisection only when that fails too, so a root sitting on an end of the first
 /// bracket is reached in a few steps rather than by halving. `gd(t)` returns `(g(t), g'(t))`.
-pub fn refine_root(mut lo: f64, mut hi: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64, f64)) -> f64 {
+pub fn refine_root(lo: f64, hi: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64, f64)) -> f64 {
+    refine_root_from(lo, hi, 0.5 * (lo + hi), lo_negative, gd)
+}
+
+/// [`refine_root`] from a first guess `start` inside `[lo, hi]` (e.g. the secant point of values the
+/// caller already has), which saves the steps from the bracket's middle.
+pub fn refine_root_from(
+    mut lo: f64,
+    mut hi: f64,
+    start: f64,
+    lo_negative: bool,
+    gd: impl Fn(f64) -> (f64, f64),
+) -> f64 {
     let (mut g_lo, mut g_hi): (Option<f64>, Option<f64>) = (None, None);
-    let mut t = 0.5 * (lo + hi);
+    let mut t = if start > lo && start < hi { start } else { 0.5 * (lo + hi) };
     for _ in 0..100 {
         let (gt, d) = gd(t);
         if gt == 0.0 {
