@@ -6,7 +6,7 @@ this package only converts arguments and results. Reports are dicts keyed as the
 dicts of float64 numpy arrays (:class:`Table`, with ``.frame()`` for a pandas DataFrame).
 
 Modules: :mod:`loomkin.laws`, :mod:`loomkin.cycles`, :mod:`loomkin.servo`, :mod:`loomkin.picking`,
-:mod:`loomkin.dobby`, :mod:`loomkin.shed`.
+:mod:`loomkin.dobby`, :mod:`loomkin.shed`, :mod:`loomkin.loom`, :mod:`loomkin.dynamics`.
 
 Errors are :class:`LoomkinError` (a ``ValueError``) with ``.field`` and ``.allowed``;
 :class:`OutOfRangeError` adds ``.value``, ``.unit``, ``.low``, ``.high``. Long computations release
@@ -15,7 +15,7 @@ the GIL.
 
 from ._loomkin import __version__, Cycle, Law, LoomkinError, OutOfRangeError
 from ._table import Table
-from . import cycles, dobby, laws, picking, servo, shed
+from . import cycles, dobby, dynamics, laws, loom, picking, servo, shed
 
 __all__ = [
     "__version__",
@@ -26,7 +26,9 @@ __all__ = [
     "Table",
     "cycles",
     "dobby",
+    "dynamics",
     "laws",
+    "loom",
     "picking",
     "servo",
     "shed",

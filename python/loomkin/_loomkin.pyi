@@ -143,3 +143,28 @@ def shed_law(
 def shed_table(**kw: Any) -> Dict[str, Any]: ...
 def shed_pareto(**kw: Any) -> Dict[str, Any]: ...
 def shed_best(window_deg: float, **kw: Any) -> Dict[str, Any]: ...
+
+# the loom (texts of the loom file and the weave)
+def loom_check(loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None) -> Dict[str, Any]: ...
+def loom_torque(
+    loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None, step_deg: float = 0.5
+) -> Dict[str, Any]: ...
+def loom_stagger(
+    loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None, objective: str = "peak"
+) -> Dict[str, Any]: ...
+
+# dynamics
+def dyn_response(
+    cycle: Cycle,
+    natural_hz: float,
+    damping_ratio: float = 0.0,
+    mass_kg: Optional[float] = None,
+    return_spring_n_m: float = 0.0,
+    preload_n: float = 0.0,
+    weight: bool = False,
+    force_n: float = 0.0,
+    speed_rpm: Optional[float] = None,
+    cycles: int = 1,
+    steady: bool = False,
+    points: int = 721,
+) -> Dict[str, Any]: ...

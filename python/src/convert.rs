@@ -46,10 +46,10 @@ pub fn value_to_py(py: Python<'_>, v: &Value) -> PyResult<Py<PyAny>> {
 }
 
 /// Named columns of numbers as a dict of 1-D float64 numpy arrays, in the given order.
-pub fn columns<'py>(py: Python<'py>, cols: Vec<(&str, Vec<f64>)>) -> PyResult<Bound<'py, PyDict>> {
+pub fn columns<'py, K: AsRef<str>>(py: Python<'py>, cols: Vec<(K, Vec<f64>)>) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     for (k, v) in cols {
-        d.set_item(k, PyArray1::from_vec(py, v))?;
+        d.set_item(k.as_ref(), PyArray1::from_vec(py, v))?;
     }
     Ok(d)
 }

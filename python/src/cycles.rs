@@ -26,11 +26,11 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// `loomkin.cycles.load(path)` and `loomkin.cycles.from_dict(d)` call these).
 #[pyclass(module = "loomkin", frozen)]
 pub struct Cycle {
-    inner: loomkin_laws::Cycle,
+    pub(crate) inner: loomkin_laws::Cycle,
 }
 
 impl Cycle {
-    fn speed(&self, speed_rpm: Option<f64>) -> PyResult<ShaftSpeed> {
+    pub(crate) fn speed(&self, speed_rpm: Option<f64>) -> PyResult<ShaftSpeed> {
         let rpm = speed_rpm.or(self.inner.speed_rpm).unwrap_or(DEFAULT_RPM);
         ShaftSpeed::from_rpm_field("speed_rpm", rpm).or_raise()
     }

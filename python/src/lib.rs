@@ -12,8 +12,10 @@
 mod convert;
 mod cycles;
 mod dobby;
+mod dynamics;
 mod errors;
 mod laws;
+mod loom;
 mod picking;
 mod servo;
 mod shed;
@@ -31,5 +33,7 @@ fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
     picking::register(m)?;
     dobby::register(m)?;
     shed::register(m)?;
+    loom::register(m)?;
+    dynamics::register(m)?;
     Ok(())
 }

@@ -1,0 +1,45 @@
+"""The whole loom: every frame's motion from a weave pattern, shed geometry, the shedding torque
+over the repeat and the stagger of the frames' crossings.
+
+``loom`` is a loom file (TOML, as ``loomkin loom check LOOM.toml``); ``wif`` a WIF weave draft
+and ``lift_plan`` a lift plan (text files); without either, plain weave over the loom's frames.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, Optional, Union
+
+from . import _loomkin as _m
+from ._inputs import text_of
+from ._table import Table
+
+__all__ = ["check", "torque", "stagger"]
+
+Path = Union[str, "os.PathLike[str]"]
+
+
+def _texts(loom: Path, wif: Optional[Path], lift_plan: Optional[Path]):
+    return text_of(loom), text_of(wif), text_of(lift_plan)
+
+
+def check(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None) -> Dict[str, Any]:
+    """``loomkin loom check --json``: per frame stroke (mm), shed angle (deg), warp strain; peak
+    and RMS shedding torque (N·m), the insertion window (deg), the least clearance (mm)."""
+    return _m.loom_check(*_texts(loom, wif, lift_plan))
+
+
+def torque(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
+           step_deg: float = 0.5) -> Dict[str, Any]:
+    """``loomkin loom torque --json``: peak and RMS shedding torque (N·m) over the repeat and
+    ``points``, a :class:`Table` of angle_deg and torque_n_m."""
+    r = _m.loom_torque(*_texts(loom, wif, lift_plan), float(step_deg))
+    r["points"] = Table(r["points"])
+    return r
+
+
+def stagger(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
+            objective: str = "peak") -> Dict[str, Any]:
+    """``loomkin loom stagger --json``: crossing offsets (deg) that least the peak (or "rms")
+    shedding torque with the window kept, against no stagger and two groups."""
+    return _m.loom_stagger(*_texts(loom, wif, lift_plan), objective)

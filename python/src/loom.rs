@@ -1,0 +1,134 @@
+//! The whole loom: pattern, shed geometry, shedding torque and the stagger of the frames, keyed
+//! as `loomkin loom check|torque|stagger --json`.
+
+use crate::convert::{columns, to_py};
+use crate::errors::{Fault, OrRaise, raise};
+use loomkin_loom::{Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_stagger};
+use loomkin_units::{Range, RangeError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+impl Fault for LoomError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            Self::Law(e) => e.range(),
+            Self::Shed(e) => e.range(),
+            Self::Pick(e) => e.range(),
+            _ => None,
+        }
+    }
+    fn accepted(&self) -> Option<String> {
+        match self {
+            Self::Law(e) => e.accepted(),
+            _ => None,
+        }
+    }
+}
+
+/// The torque curve's step (as the CLI's `--step-deg`).
+const STEP_DEG: Range = Range::closed(0.01, 10.0, "deg");
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(loom_check, m)?)?;
+    m.add_function(wrap_pyfunction!(loom_torque, m)?)?;
+    m.add_function(wrap_pyfunction!(loom_stagger, m)?)?;
+    Ok(())
+}
+
+/// The loom file's text and the pattern (a WIF's text, a lift plan's text, or neither: plain
+/// weave over the loom's frames), as the CLI reads `LOOM.toml --wif | --lift-plan`.
+fn read(loom_toml: &str, wif: Option<&str>, lift_plan: Option<&str>) -> PyResult<(Loom, Pattern)> {
+    let loom = Loom::from_toml(loom_toml).or_raise()?;
+    let pattern = match (wif, lift_plan) {
+        (Some(w), _) => Pattern::from_wif(w),
+        (None, Some(l)) => Pattern::from_lift_plan(l),
+        (None, None) => Pattern::plain(loom.frame_count()),
+    }
+    .or_raise()?;
+    Ok((loom, pattern))
+}
+
+/// loom_check(loom_toml, wif=None, lift_plan=None) -> dict
+/// --
+///
+/// `loomkin loom check LOOM.toml --json`: per frame the stroke (mm), shed angle (deg), largest
+/// warp strain and the equal-strain stroke; the peak and RMS shedding torque (N·m) over the
+/// repeat, the weft-insertion window (deg) and the least clearance (mm). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None))]
+fn loom_check(py: Python<'_>, loom_toml: &str, wif: Option<&str>, lift_plan: Option<&str>) -> PyResult<Py<PyAny>> {
+    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+    let r = py.detach(|| check(&loom, &pattern)).or_raise()?;
+    to_py(py, &r)
+}
+
+/// loom_torque(loom_toml, wif=None, lift_plan=None, step_deg=0.5) -> dict
+/// --
+///
+/// `loomkin loom torque LOOM.toml --json`: speed_rpm, picks, repeat_deg, peak_torque_n_m and its
+/// peak_angle_deg, rms_torque_n_m, step_deg, and points as arrays angle_deg, torque_n_m (the
+/// shedding torque over the whole repeat). Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, step_deg=0.5))]
+fn loom_torque<'py>(
+    py: Python<'py>,
+    loom_toml: &str,
+    wif: Option<&str>,
+    lift_plan: Option<&str>,
+    step_deg: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+    STEP_DEG.check("step_deg", step_deg).map_err(raise)?;
+    let (curve, peak, rms, repeat_deg) = py
+        .detach(|| -> Result<_, LoomError> {
+            let motion = Motion::new(&loom, &pattern)?;
+            let drive = Drive::new(&loom, &motion, &pattern);
+            let curve = drive.torque_curve(step_deg);
+            let peak = drive.peak_of(&curve);
+            Ok((curve, peak, drive.rms(), motion.repeat_deg()))
+        })
+        .or_raise()?;
+    let out = PyDict::new(py);
+    out.set_item("speed_rpm", loom.speed.rpm())?;
+    out.set_item("picks", pattern.picks())?;
+    out.set_item("repeat_deg", repeat_deg)?;
+    out.set_item("peak_torque_n_m", peak.torque_n_m.abs())?;
+    out.set_item("peak_angle_deg", peak.angle_deg)?;
+    out.set_item("rms_torque_n_m", rms)?;
+    out.set_item("step_deg", repeat_deg / curve.len() as f64)?;
+    let cols =
+        vec![("angle_deg", curve.iter().map(|c| c.0).collect()), ("torque_n_m", curve.iter().map(|c| c.1).collect())];
+    out.set_item("points", columns(py, cols)?)?;
+    Ok(out)
+}
+
+/// loom_stagger(loom_toml, wif=None, lift_plan=None, objective="peak") -> dict
+/// --
+///
+/// `loomkin loom stagger LOOM.toml --json`: the crossing offsets of the frames (deg) that least
+/// the peak (or RMS) shedding torque with the window kept, beside no stagger and two groups;
+/// the reductions in %. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, objective="peak"))]
+fn loom_stagger(
+    py: Python<'_>,
+    loom_toml: &str,
+    wif: Option<&str>,
+    lift_plan: Option<&str>,
+    objective: &str,
+) -> PyResult<Py<PyAny>> {
+    let objective = match objective.trim().to_ascii_lowercase().as_str() {
+        "peak" => Objective::Peak,
+        "rms" => Objective::Rms,
+        other => {
+            return Err(raise(LoomError::Field {
+                field: "objective".into(),
+                reason: format!("'{other}': allowed peak or rms"),
+            }));
+        }
+    };
+    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+    let r = py.detach(|| optimise_stagger(&loom, &pattern, objective)).or_raise()?;
+    to_py(py, &r)
+}

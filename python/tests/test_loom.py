@@ -1,0 +1,42 @@
+"""Loom: parity with `loomkin loom check|torque|stagger --json`, errors."""
+
+import numpy as np
+import pytest
+
+import loomkin
+from conftest import REPO, records, same
+
+EX = REPO / "examples"
+
+
+def test_check_matches_loom_check(cli):
+    ref = cli("loom", "check", "examples/rapier-loom.toml", "--wif", "examples/point-24.wif", "--json")
+    same(loomkin.loom.check(EX / "rapier-loom.toml", wif=EX / "point-24.wif"), ref)
+
+
+def test_torque_matches_loom_torque(cli):
+    ref = cli("loom", "torque", "examples/shuttle-loom.toml", "--wif", "examples/twill-2-2.wif", "--step-deg", "1",
+              "--json")
+    r = loomkin.loom.torque(EX / "shuttle-loom.toml", wif=EX / "twill-2-2.wif", step_deg=1)
+    same(records(r.pop("points")), ref.pop("points"))
+    same(r, ref)
+    # Independent route: the RMS of the sampled curve approaches the exact RMS.
+    t = loomkin.loom.torque(EX / "shuttle-loom.toml", wif=EX / "twill-2-2.wif", step_deg=0.1)
+    sampled = np.sqrt(np.mean(t["points"]["torque_n_m"] ** 2))
+    assert sampled == pytest.approx(t["rms_torque_n_m"], rel=2e-3)
+
+
+def test_stagger_matches_loom_stagger(cli):
+    ref = cli("loom", "stagger", "examples/shuttle-loom.toml", "--wif", "examples/twill-2-2.wif", "--json")
+    same(loomkin.loom.stagger(EX / "shuttle-loom.toml", wif=EX / "twill-2-2.wif"), ref)
+
+
+def test_loom_errors(tmp_path):
+    bad = tmp_path / "loom.toml"
+    bad.write_text((EX / "shuttle-loom.toml").read_text().replace("speed_rpm = ", "speed_rpm = -"))
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.loom.check(bad)
+    assert e.value.field is not None
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.loom.stagger(EX / "shuttle-loom.toml", objective="mean")
+    assert e.value.field == "objective"
