@@ -4,9 +4,8 @@ use crate::output::outln;
 use crate::{output, util};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Layered, Shape, Size};
+use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
-use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, save_shapes};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
 use loomkin_units::{Range, compact};
@@ -277,7 +276,7 @@ fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {
 const POINT_STEP_RANGE: Range = Range::closed(1e-3, 90.0, "deg");
 
 fn profile(a: ProfileArgs) -> Result<()> {
-    let step = POINT_STEP_RANGE.check("step_deg", a.step_deg)?;
+    POINT_STEP_RANGE.check("step_deg", a.step_deg)?;
     let design = profile_design(&a)?;
     let (motion, source) = profile_motion(&a)?;
     let cam = CamProfile::new(&motion, &design)?;
@@ -299,22 +298,33 @@ fn profile(a: ProfileArgs) -> Result<()> {
             (None, None) => format!("roller_radius_mm: the profile is undercut at {} deg", compact(at)),
         }
     });
-    if let Some(path) = &a.dxf {
-        if let Some(msg) = &undercut {
-            bail!("{msg}: no DXF written");
+    // An undercut cam is reported in every output (undercut: true, a warning naming the angle and
+    // the largest roller); a drawing of it is never written: with --dxf the report is printed
+    // and the command then fails (exit 2) naming the roller.
+    match (&a.dxf, &undercut) {
+        (Some(_), Some(_)) => {}
+        (Some(path), None) => {
+            let bore = a.bore_mm.unwrap_or(0.4 * cam.base_radius_mm());
+            let text = cam.dxf(a.chord_tol_mm, bore)?;
+            output::text_to(&path.display().to_string(), &text)?;
         }
-        let bore = a.bore_mm.unwrap_or(0.4 * cam.base_radius_mm());
-        let shapes: Vec<DxfShape> = cam.drawing(a.chord_tol_mm, bore)?.into_iter().map(dxf_shape).collect();
-        save_shapes(&shapes, DxfUnit::Millimetre, path).map_err(util::failure)?;
-        output::note(format_args!("wrote {}", path.display()));
+        (None, Some(msg)) => output::warning(msg),
+        (None, None) => {}
     }
-    if let Some(msg) = &undercut {
-        output::warning(msg);
+    print_profile(&a, &cam, &design, undercut.is_some(), &source)?;
+    if let (Some(_), Some(msg)) = (&a.dxf, &undercut) {
+        bail!("{msg}: no DXF written");
     }
+    Ok(())
+}
+
+/// Prints the cam's report (JSON, CSV or text) and writes its plot.
+fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut: bool, source: &str) -> Result<()> {
+    let step = a.step_deg;
     let points = cam.sample(0, step);
     let counter = (cam.track_count() == 2).then(|| cam.sample(1, step));
     if let Some(path) = &a.output {
-        output::figure(&profile_figure(&cam, &points, counter.as_deref(), &source), path)?;
+        output::figure(&profile_figure(cam, &points, counter.as_deref(), source), path)?;
     }
     let (pmax, pat, _) = cam.max_pressure_angle();
     let (rmin, rat) = cam.min_convex_radius_pitch();
@@ -337,7 +347,7 @@ fn profile(a: ProfileArgs) -> Result<()> {
         };
         let mut report = json!({
             "source": source,
-            "follower": follower_name(&design),
+            "follower": follower_name(design),
             "closure": closure_name(design.closure),
             "prime_radius_mm": cam.prime_radius_mm(),
             "base_radius_mm": cam.base_radius_mm(),
@@ -346,7 +356,7 @@ fn profile(a: ProfileArgs) -> Result<()> {
             "max_pressure_angle_at_deg": pat,
             "min_convex_radius_pitch_mm": rmin,
             "min_convex_radius_pitch_at_deg": rat,
-            "undercut": undercut.is_some(),
+            "undercut": undercut,
             "points": pts(&points),
         });
         let m = report.as_object_mut().expect("a JSON object");
@@ -426,7 +436,7 @@ fn profile(a: ProfileArgs) -> Result<()> {
         }
         return output::csv(&t);
     }
-    outln!("cam profile of {source}: {}, {}", follower_name(&design), closure_name(design.closure))?;
+    outln!("cam profile of {source}: {}, {}", follower_name(design), closure_name(design.closure))?;
     let sized = match design.size {
         Size::MaxPressureDeg(p) => format!(" (the least for a pressure angle of {}°)", compact(p)),
         Size::PrimeRadiusMm(_) => String::new(),
@@ -450,7 +460,7 @@ fn profile(a: ProfileArgs) -> Result<()> {
             compact(f.face_max_mm)
         )?;
     }
-    outln!("  undercut              {}", if undercut.is_some() { "yes" } else { "no" })?;
+    outln!("  undercut              {}", if undercut { "yes" } else { "no" })?;
     Ok(())
 }
 
@@ -470,22 +480,6 @@ fn closure_name(c: Closure) -> &'static str {
         Closure::Single => "single cam",
         Closure::Conjugate => "conjugate pair",
         Closure::Groove => "groove cam",
-    }
-}
-
-/// A drawing shape (mm) as a DXF shape (m).
-fn dxf_shape(l: Layered) -> DxfShape {
-    let m = |p: [f64; 2]| [p[0] * 1e-3, p[1] * 1e-3];
-    match l.shape {
-        Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
-            layer: l.layer.into(),
-            points: points.into_iter().map(m).collect(),
-            closed,
-        }),
-        Shape::Circle { centre, radius } => {
-            DxfShape::Circle { layer: l.layer.into(), centre: m(centre), radius: radius * 1e-3 }
-        }
-        Shape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from: m(from), to: m(to) },
     }
 }
 

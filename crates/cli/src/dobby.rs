@@ -542,7 +542,10 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     let law = a.law.spec()?;
     let res = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
     warn(&res.warnings);
-    if let Some(path) = &a.dxf {
+    // As `cam profile`: an undercut cam is reported (the warning above names the angle and the
+    // admissible roller) but never drawn; with --dxf the report is printed, then exit 2.
+    let refused = a.dxf.is_some() && res.summary.undercut;
+    if let Some(path) = a.dxf.as_ref().filter(|_| !refused) {
         let mut polys = profile_polylines("CAM", &res.cam);
         polys.extend(profile_polylines("COUNTER_CAM", &res.counter_cam));
         let unit = match a.dxf_unit {
@@ -557,42 +560,60 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
         points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
         output::note(format_args!("wrote {}", path.display()));
     }
-    if a.format.csv {
-        return output::csv(&synthesis_table(&res)?);
+    let report = || -> Result<()> {
+        if a.format.csv {
+            return output::csv(&synthesis_table(&res)?);
+        }
+        if a.format.json {
+            return output::json(&json!({
+                "summary": serde_json::to_value(&res.summary)?,
+                "warnings": serde_json::to_value(&res.warnings)?,
+                "rows": serde_json::to_value(&res.rows)?,
+            }));
+        }
+        if (a.dxf.is_some() && !refused) || a.points_csv.is_some() {
+            return Ok(());
+        }
+        let s = &res.summary;
+        outln!("rotary-dobby modulator, task 2 (synthesis): {}", s.law)?;
+        print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
+        outln!("  roller radius        {} m", s.roller_m)?;
+        outln!(
+            "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
+            s.checks.omega6_max_rad_s,
+            s.checks.eps6_min_rad_s2,
+            s.checks.eps6_max_rad_s2
+        )?;
+        outln!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg)?;
+        print_checks(&s.checks)?;
+        outln!(
+            "  undercut             Γ {}, Γ′ {}; largest roller without undercut {}",
+            yes_no(s.undercut_b),
+            yes_no(s.undercut_c),
+            s.checks.roller_max_m.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "any".into())
+        )?;
+        outln!(
+            "  admissible α         ({:.3}°, {:.3}°) for this law (no fold at roller B)",
+            s.admissible_alpha_deg[0],
+            s.admissible_alpha_deg[1]
+        )?;
+        Ok(())
+    };
+    report()?;
+    if refused {
+        let s = &res.summary;
+        let at = res
+            .warnings
+            .iter()
+            .find(|w| w.message.starts_with("undercut"))
+            .and_then(|w| w.phi2_deg)
+            .map_or(String::new(), |a| format!(" at φ2 = {a:.2} deg"));
+        let largest = s
+            .checks
+            .roller_max_m
+            .map_or(String::new(), |r| format!("; the largest roller without undercut is {r:.5} m"));
+        bail!("roller_m: a {} m roller undercuts the cams{at}{largest}: no DXF written", s.roller_m);
     }
-    if a.format.json {
-        return output::json(&json!({
-            "summary": serde_json::to_value(&res.summary)?,
-            "warnings": serde_json::to_value(&res.warnings)?,
-            "rows": serde_json::to_value(&res.rows)?,
-        }));
-    }
-    if a.dxf.is_some() || a.points_csv.is_some() {
-        return Ok(());
-    }
-    let s = &res.summary;
-    outln!("rotary-dobby modulator, task 2 (synthesis): {}", s.law)?;
-    print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
-    outln!("  roller radius        {} m", s.roller_m)?;
-    outln!(
-        "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
-        s.checks.omega6_max_rad_s,
-        s.checks.eps6_min_rad_s2,
-        s.checks.eps6_max_rad_s2
-    )?;
-    outln!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg)?;
-    print_checks(&s.checks)?;
-    outln!(
-        "  undercut             Γ {}, Γ′ {}; largest roller without undercut {}",
-        yes_no(s.undercut_b),
-        yes_no(s.undercut_c),
-        s.checks.roller_max_m.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "any".into())
-    )?;
-    outln!(
-        "  admissible α         ({:.3}°, {:.3}°) for this law (no fold at roller B)",
-        s.admissible_alpha_deg[0],
-        s.admissible_alpha_deg[1]
-    )?;
     Ok(())
 }
 

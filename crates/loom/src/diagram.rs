@@ -1,48 +1,126 @@
 //! Figures: the classic loom timing diagram and the torque over the repeat.
 
-use crate::{Drive, Loom, Motion, Pattern, Result, Timing, crossing_offset_deg};
+use crate::{Drive, Loom, Motion, Pattern, Result, Timing, TimingReport, crossing_offset_deg};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use serde::Serialize;
+
+/// The numbers behind the timing diagram over picks `from_pick … from_pick + picks` of the repeat
+/// (angles absolute, 0° = the first pick's beat-up): what [`timing_diagram`] draws and the
+/// workbench's loom view shows.
+#[derive(Debug, Clone, Serialize)]
+pub struct TimingCurves {
+    /// Main-shaft angles, every `step_deg` from `360·from_pick` to `360·(from_pick + picks)`.
+    pub angle_deg: Vec<f64>,
+    /// Every frame's position from the level shed (mid-stroke), mm, up positive (`lift_mm[i][k]`:
+    /// frame `i`, front first).
+    pub lift_mm: Vec<Vec<f64>>,
+    /// Frames that move at least once in the repeat (0-based).
+    pub moving_frames: Vec<usize>,
+    /// Clear height of the shed at the carrier's front edge, mm (0 where closed).
+    pub clear_mm: Vec<f64>,
+    /// The shed open to the carrier (clear height ≥ carrier height).
+    pub open: Vec<bool>,
+    /// Carrier height, mm.
+    pub carrier_height_mm: f64,
+    /// Reed width the carrier crosses, m.
+    pub reed_width_m: f64,
+    /// The carrier's entry and exit in each pick shown (absolute deg).
+    pub insertion_deg: Vec<[f64; 2]>,
+    /// The window common to every pick, in each pick shown (absolute deg).
+    pub clear_window_deg: Vec<[f64; 2]>,
+    /// Each pick's own window where the shed clears the carrier (absolute deg).
+    pub pick_window_deg: Vec<[f64; 2]>,
+    /// Beat-ups (absolute deg).
+    pub beat_up_deg: Vec<f64>,
+    /// The whole repeat's timing figures.
+    pub report: TimingReport,
+}
+
+/// [`TimingCurves`] of `picks` picks from `from_pick` (0-based, taken within the repeat) at
+/// `step_deg`.
+pub fn timing_curves(
+    loom: &Loom,
+    pattern: &Pattern,
+    from_pick: usize,
+    picks: usize,
+    step_deg: f64,
+) -> Result<TimingCurves> {
+    let motion = Motion::new(loom, pattern)?;
+    let timing = Timing::new(loom, &motion, pattern)?;
+    let report = timing.report()?;
+    let from = from_pick % pattern.picks();
+    let picks = picks.clamp(1, pattern.picks());
+    let (a, b) = (360.0 * from as f64, 360.0 * (from + picks) as f64);
+    let n = ((b - a) / step_deg).ceil().max(1.0) as usize;
+    let angle_deg: Vec<f64> = (0..=n).map(|k| if k == n { b } else { a + k as f64 * step_deg }).collect();
+    let frames = loom.frame_count();
+    let lift_mm = (0..frames).map(|i| angle_deg.iter().map(|&t| 1e3 * motion.frame(i, t).y_m).collect()).collect();
+    let moving_frames = (0..frames).filter(|&i| !motion.moves(i).is_empty()).collect();
+    let delta = crossing_offset_deg(loom.shedding.crossing_deg);
+    let pick_at = |t: f64| ((t - delta) / 360.0).floor().max(0.0) as usize;
+    let x_c = timing.carrier_edge_m();
+    let clear_mm: Vec<f64> = angle_deg.iter().map(|&t| 1e3 * timing.clear_m(pick_at(t), x_c, t).max(0.0)).collect();
+    let h_c = loom.insertion.carrier_height_m * 1e3;
+    let open = clear_mm.iter().map(|&c| c >= h_c).collect();
+    let ins = &loom.insertion;
+    let base = |p: usize| 360.0 * (from + p) as f64;
+    let insertion_deg = (0..picks).map(|p| [base(p) + ins.entry_deg, base(p) + ins.exit_deg]).collect();
+    let clear_window_deg = (0..picks).map(|p| [base(p) + report.open_deg, base(p) + report.close_deg]).collect();
+    let pick_window_deg = (0..picks)
+        .map(|p| {
+            let w = &report.picks[(from + p) % report.picks.len()];
+            [base(p) + w.open_deg, base(p) + w.close_deg]
+        })
+        .collect();
+    let beat_up_deg = (0..=picks).map(|p| base(p) + loom.beat_up_deg).filter(|&t| t <= b).collect();
+    Ok(TimingCurves {
+        angle_deg,
+        lift_mm,
+        moving_frames,
+        clear_mm,
+        open,
+        carrier_height_mm: h_c,
+        reed_width_m: ins.reed_width_m,
+        insertion_deg,
+        clear_window_deg,
+        pick_window_deg,
+        beat_up_deg,
+        report,
+    })
+}
 
 /// The classic timing diagram over the first two picks (0° to 720°, 0° = beat-up): every frame's
 /// lift; the clear shed at the carrier's front edge against the carrier's height, with the shed
 /// open (clear of the carrier) or closed; the insertion window; the carrier's path across the
 /// reed; the beat-ups.
 pub fn timing_diagram(loom: &Loom, pattern: &Pattern) -> Result<Figure> {
-    let motion = Motion::new(loom, pattern)?;
-    let timing = Timing::new(loom, &motion, pattern)?;
-    let report = timing.report()?;
     let turns = pattern.picks().min(2);
-    let end = 360.0 * turns as f64;
-    let step = 0.5;
-    let n = (end / step) as usize;
-    let angles: Vec<f64> = (0..=n).map(|k| k as f64 * step).collect();
+    let c = timing_curves(loom, pattern, 0, turns, 0.5)?;
+    let report = &c.report;
+    let angles = &c.angle_deg;
     let frames = loom.frame_count();
     // The frames that move (at most 12 of them), else the first ones.
-    let moving: Vec<usize> = (0..frames).filter(|&i| !motion.moves(i).is_empty()).collect();
-    let pool = if moving.is_empty() { (0..frames).collect() } else { moving };
+    let pool = if c.moving_frames.is_empty() { (0..frames).collect() } else { c.moving_frames.clone() };
     let shown: Vec<usize> =
         if pool.len() <= 12 { pool } else { pool.iter().copied().step_by(pool.len().div_ceil(12)).collect() };
     let lifts: Vec<Series> = shown
         .iter()
         .map(|&i| {
-            let pts = angles.iter().map(|&t| (t, 1e3 * motion.frame(i, t).y_m)).collect();
+            let pts = angles.iter().zip(&c.lift_mm[i]).map(|(&t, &y)| (t, y)).collect();
             Series::line(format!("frame {}", i + 1), pts)
         })
         .collect();
-    let delta = crossing_offset_deg(loom.shedding.crossing_deg);
-    let pick_at = |t: f64| ((t - delta) / 360.0).floor().max(0.0) as usize;
-    let x_c = timing.carrier_edge_m();
-    let clear: Vec<(f64, f64)> =
-        angles.iter().map(|&t| (t, 1e3 * timing.clear_m(pick_at(t), x_c, t).max(0.0))).collect();
-    let h_c = loom.insertion.carrier_height_m * 1e3;
-    let open: Vec<(f64, f64)> = clear.iter().map(|&(t, c)| (t, if c >= h_c { h_c } else { 0.0 })).collect();
-    let ins = &loom.insertion;
+    let clear: Vec<(f64, f64)> = angles.iter().zip(&c.clear_mm).map(|(&t, &y)| (t, y)).collect();
+    let h_c = c.carrier_height_mm;
+    let open: Vec<(f64, f64)> = angles.iter().zip(&c.open).map(|(&t, &o)| (t, if o { h_c } else { 0.0 })).collect();
     // One series per pick (a line through a gap would join the picks); the first carries the label.
-    let per_pick = |label: &str, color: [u8; 3], pts: &dyn Fn(f64) -> Vec<(f64, f64)>| -> Vec<Series> {
-        (0..turns)
-            .map(|p| {
+    let per_pick = |label: &str, color: [u8; 3], spans: &[[f64; 2]], y: [f64; 2]| -> Vec<Series> {
+        spans
+            .iter()
+            .enumerate()
+            .map(|(p, s)| {
                 let l = if p == 0 { label } else { "" };
-                Series::line(l, pts(360.0 * p as f64)).with_color(color)
+                Series::line(l, vec![(s[0], y[0]), (s[1], y[1])]).with_color(color)
             })
             .collect()
     };
@@ -54,15 +132,9 @@ pub fn timing_diagram(loom: &Loom, pattern: &Pattern) -> Result<Figure> {
             .with_dashes(),
         Series::line("shed open to the carrier", open).with_color([0, 158, 115]),
     ];
-    shed.extend(per_pick("insertion (entry to exit)", [0, 0, 0], &|b| {
-        vec![(b + ins.entry_deg, -2.0), (b + ins.exit_deg, -2.0)]
-    }));
-    shed.extend(per_pick("clear window (all picks)", [204, 121, 167], &|b| {
-        vec![(b + report.open_deg, -4.0), (b + report.close_deg, -4.0)]
-    }));
-    let mut carrier = per_pick("carrier path", [0, 114, 178], &|b| {
-        vec![(b + ins.entry_deg, 0.0), (b + ins.exit_deg, ins.reed_width_m)]
-    });
+    shed.extend(per_pick("insertion (entry to exit)", [0, 0, 0], &c.insertion_deg, [-2.0, -2.0]));
+    shed.extend(per_pick("clear window (all picks)", [204, 121, 167], &c.clear_window_deg, [-4.0, -4.0]));
+    let mut carrier = per_pick("carrier path", [0, 114, 178], &c.insertion_deg, [0.0, c.reed_width_m]);
     carrier.push(Series::markers("beat-up", beat).with_color([213, 94, 0]));
     let panels = vec![
         Panel::new("frame lift [mm]", lifts).with_legend(if shown.len() <= 8 {

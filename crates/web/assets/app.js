@@ -784,6 +784,12 @@ function respond() {
 
 const VIEWS = { servo: initServo, catalogue: initCatalogue, shed: initShed, picking: initPicking, dobby: initDobby, dynamics: initDynamics };
 window.LoomkinViews = VIEWS;
+// Views in files of their own (cam.js, loom.js) register here: they load after this file and
+// before the tabs are built (start waits for /api/info).
+window.LoomkinApp = {
+  api, status, download, el, num, sliderWithNumber, loomkin,
+  register(name, title, init) { VIEWS[name] = init; VIEW_TITLES[name] = title; },
+};
 
 async function start() {
   let views = ["servo", "catalogue"];

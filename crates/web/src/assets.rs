@@ -11,6 +11,10 @@ pub const STYLE_CSS: &str = include_str!("../assets/style.css");
 pub const CHARTS_JS: &str = include_str!("../assets/charts.js");
 /// The views and their wiring to the JSON API.
 pub const APP_JS: &str = include_str!("../assets/app.js");
+/// The cam view.
+pub const CAM_JS: &str = include_str!("../assets/cam.js");
+/// The loom view.
+pub const LOOM_JS: &str = include_str!("../assets/loom.js");
 
 fn asset(body: &'static str, content_type: &'static str) -> Response {
     ([(header::CONTENT_TYPE, content_type), (header::CACHE_CONTROL, "no-cache")], body).into_response()
@@ -30,4 +34,12 @@ pub(crate) async fn charts() -> Response {
 
 pub(crate) async fn app() -> Response {
     asset(APP_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn cam() -> Response {
+    asset(CAM_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn loom() -> Response {
+    asset(LOOM_JS, "text/javascript; charset=utf-8")
 }

@@ -33,12 +33,14 @@
 #![deny(missing_docs)]
 
 mod assets;
+mod cam_api;
 mod catalogue;
 mod dobby_api;
 mod dynamics_api;
 mod error;
 mod json;
 mod limits;
+mod loom_api;
 mod picking_api;
 mod pool;
 mod series;
@@ -47,7 +49,12 @@ mod servo_api;
 mod servo_design;
 mod shed_api;
 
-pub use assets::{APP_JS, CHARTS_JS, INDEX_HTML, STYLE_CSS};
+pub use assets::{APP_JS, CAM_JS, CHARTS_JS, INDEX_HTML, LOOM_JS, STYLE_CSS};
+pub use cam_api::{
+    CAM_EXAMPLES, CamDesignRequest, CamDxfRequest, CamExamples, CamFile, CamLaw, CamProfileRequest, CamProfileResponse,
+    CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, ShedSource, cam_dxf,
+    cam_profile, cam_table,
+};
 pub use catalogue::{
     CatalogueItem, CatalogueResponse, CompareRequest, CompareResponse, ComparedLaw, LawChoice, ParamValue, catalogue,
     compare,
@@ -61,6 +68,11 @@ pub use error::{ApiError, check_count};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
     DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS, MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES,
+};
+pub use loom_api::{
+    LOOM_EXAMPLES, LoomExamples, LoomRequest, LoomResponse, MAX_TIMING_PICKS, MAX_WEB_PICKS, ObjectiveKind,
+    PATTERN_EXAMPLES, PatternGrid, PatternSource, StaggerRequest, StaggerResponse, TorqueCurve,
+    evaluate as loom_evaluate, stagger as loom_stagger,
 };
 pub use picking_api::{
     PickingCurves, PickingRequest, PickingResponse, SettingInfo, SettingsInfo, settings_info, simulate as simulate_pick,
@@ -80,4 +92,4 @@ pub use shed_api::{
 };
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom"];

@@ -331,3 +331,90 @@ fn drag_a_definition_point_and_the_torque_changes() {
     let errors = d.script("return loomkin.errors");
     assert_eq!(errors, json!([]), "script errors on the page");
 }
+
+/// The cam and loom views: each shows the API's figures for the request the page holds, and the
+/// loom view's stagger optimisation redraws the torque with the optimum's peak.
+#[test]
+#[cfg_attr(
+    not(loomkin_browser),
+    ignore = "chromium and chromedriver are not both installed (Debian: apt-get install -y chromium chromium-driver)"
+)]
+fn the_cam_and_loom_views_show_the_api_figures() {
+    let chromium = find("LOOMKIN_CHROMIUM", &["chromium", "chromium-browser", "google-chrome"], &[]);
+    let chromedriver = find("LOOMKIN_CHROMEDRIVER", &["chromedriver"], &["/usr/lib/chromium/chromedriver"]);
+    let (Some(chromium), Some(chromedriver)) = (chromium, chromedriver) else {
+        eprintln!("SKIPPED browser test: chromium and chromedriver are not both installed");
+        return;
+    };
+    let server = common::spawn_server();
+    let d = Driver::start(&chromium, &chromedriver);
+    d.cmd("POST", "/url", Some(json!({"url": format!("http://{server}/#cam")})));
+    let first = |text: String| -> f64 {
+        text.split(|c: char| c.is_whitespace() || c == '°').next().and_then(|v| v.parse().ok()).unwrap_or(f64::NAN)
+    };
+    // A conjugate pair with an offset follower, sized for 30°: the page's figures are the API's.
+    d.wait_for("the first cam", "return document.querySelector('#cam-max-pressure-angle') !== null");
+    d.script(
+        "const c = document.querySelector('#cam-closure'); c.value = 'conjugate'; c.dispatchEvent(new Event('change')); \
+         const o = document.querySelector('#cam-offset'); o.value = 10; o.dispatchEvent(new Event('change')); return true",
+    );
+    let shown = d.wait_for(
+        "the conjugate pair",
+        "const t = document.querySelector('#cam-max-pressure-angle'); \
+         return t && t.textContent.includes('counter-cam') ? t.textContent : null",
+    );
+    let req = d.script("return loomkin.camRequest()");
+    let api = common::request(server, "POST", "/api/cam/profile", Some(req.to_string().as_bytes())).expect("cam");
+    let rep = api.json()["report"].clone();
+    let api_deg = rep["max_pressure_angle_deg"].as_f64().expect("pressure angle");
+    let page_deg = first(shown.as_str().unwrap_or("").to_string());
+    assert!((page_deg - api_deg).abs() < 1e-3, "page {page_deg}° vs API {api_deg}°");
+    let prime = first(d.text("#cam-prime-radius"));
+    assert!((prime - rep["prime_radius_mm"].as_f64().expect("prime")).abs() < 1e-3, "{prime}");
+    // The pressure-angle panel carries the cam, the counter-cam and the ±30° limit lines.
+    let labels = d.script("return loomkin.charts.cam_pressure.series.map((s) => s.label)");
+    assert_eq!(labels, json!(["cam", "counter-cam", "±30°", ""]));
+    d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-cam.png"));
+
+    // The loom view: the shuttle loom weaving the 2/2 twill; the stagger redraws the torque.
+    d.click("#tabs button[data-view='loom']");
+    d.wait_for("the loom", "return document.querySelector('#loom-peak-torque') !== null");
+    d.script(
+        "const l = document.querySelector('#loom-file'); l.value = 'shuttle-loom.toml'; l.dispatchEvent(new Event('change')); \
+         const p = document.querySelector('#loom-pattern'); p.value = 'twill-2-2.wif'; p.dispatchEvent(new Event('change')); \
+         return true",
+    );
+    let shown = d.wait_for(
+        "the shuttle loom weaving the twill",
+        "const c = loomkin.charts.loom_torque; const t = document.querySelector('#loom-summary tbody'); \
+         return t && t.textContent.includes('4 picks on 4 shafts') ? document.querySelector('#loom-peak-torque').textContent : null",
+    );
+    let req = d.script("return loomkin.loomRequest()");
+    let api = common::request(server, "POST", "/api/loom/evaluate", Some(req.to_string().as_bytes())).expect("loom");
+    let api_nm = api.json()["report"]["peak_torque_n_m"].as_f64().expect("peak");
+    let page_nm = first(shown.as_str().unwrap_or("").to_string());
+    assert!((page_nm - api_nm).abs() < 0.01, "page {page_nm} N·m vs API {api_nm} N·m");
+    d.click("#loom-optimise");
+    let note = d.wait_for(
+        "the stagger",
+        "const n = document.querySelector('#loom-stagger-note').textContent; \
+         return n && loomkin.charts.loom_torque.series.length === 3 ? n : null",
+    );
+    let note = note.as_str().unwrap_or("").to_string();
+    assert!(note.contains("window kept"), "{note}");
+    let req = d.script("return loomkin.loomRequest()");
+    assert!(req["stagger_deg"].is_array(), "{req}");
+    let api = common::request(server, "POST", "/api/loom/evaluate", Some(req.to_string().as_bytes())).expect("loom");
+    let staggered = api.json()["report"]["peak_torque_n_m"].as_f64().expect("peak");
+    let shown = d.wait_for(
+        "the staggered figures",
+        &format!(
+            "const v = parseFloat(document.querySelector('#loom-peak-torque').textContent); \
+             return Math.abs(v - {staggered}) < 0.01 ? v : null"
+        ),
+    );
+    assert!(shown.as_f64().is_some_and(|v| v <= page_nm + 0.01), "{shown} vs {page_nm}");
+    d.screenshot(&PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("workbench-loom.png"));
+    let errors = d.script("return loomkin.errors");
+    assert_eq!(errors, json!([]), "script errors on the page");
+}

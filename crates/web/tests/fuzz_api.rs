@@ -26,7 +26,11 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ("GET", "/api/picking/settings", None),
         ("GET", "/api/dobby/default", None),
         ("GET", "/api/dynamics/example", None),
+        ("GET", "/api/cam/examples", None),
+        ("GET", "/api/loom/examples", None),
         ("GET", "/", None),
+        ("GET", "/cam.js", None),
+        ("GET", "/loom.js", None),
         (
             "POST",
             "/api/laws/compare",
@@ -58,6 +62,50 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
             "/api/dynamics/response",
             Some(json!({"speed_rpm": 600, "natural_hz": 54, "law": {"law": {"name": "cycloidal"}, "stroke_mm": 80,
                         "motion_deg": 120}})),
+        ),
+        (
+            "POST",
+            "/api/cam/profile",
+            Some(json!({"design": {"follower": "translating", "roller_radius_mm": 15, "max_pressure_deg": 30,
+                                   "offset_mm": 5}, "step_deg": 2})),
+        ),
+        (
+            "POST",
+            "/api/cam/profile",
+            Some(json!({"source": {"law": {"law": {"name": "modified-sine"}, "stroke_deg": 15, "motion_deg": 120}},
+                        "design": {"follower": "oscillating", "closure": "conjugate", "arm_mm": 160, "pivot_mm": 190,
+                                   "roller_radius_mm": 10, "max_pressure_deg": 40}, "step_deg": 3})),
+        ),
+        (
+            "POST",
+            "/api/cam/profile",
+            Some(json!({"source": {"shed": {"preset": "dobby", "stroke_mm": 100, "motion_deg": 280}},
+                        "design": {"follower": "flat", "prime_radius_mm": 150}, "step_deg": 4})),
+        ),
+        (
+            "POST",
+            "/api/cam/dxf",
+            Some(json!({"design": {"follower": "translating", "closure": "groove", "roller_radius_mm": 12,
+                                   "prime_radius_mm": 130}, "chord_tol_mm": 0.05, "bore_mm": 30})),
+        ),
+        ("POST", "/api/cam/table", Some(json!({"format": "st", "step_deg": 5}))),
+        (
+            "POST",
+            "/api/cam/table",
+            Some(json!({"source": {"cycle_toml": loomkin_web::CAM_EXAMPLES[0].1}, "format": "twincat",
+                        "tolerance": 0.001})),
+        ),
+        (
+            "POST",
+            "/api/loom/evaluate",
+            Some(json!({"loom_toml": loomkin_web::LOOM_EXAMPLES[1].1,
+                        "pattern": {"lift_plan": "1 2 3\n2 3 4\n3 4 1\n4 1 2\n"}, "picks": 2, "step_deg": 2})),
+        ),
+        (
+            "POST",
+            "/api/loom/stagger",
+            Some(json!({"loom_toml": loomkin_web::LOOM_EXAMPLES[1].1,
+                        "pattern": {"wif": loomkin_web::PATTERN_EXAMPLES[1].1}, "objective": "rms"})),
         ),
     ]
 }

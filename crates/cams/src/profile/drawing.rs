@@ -89,4 +89,30 @@ impl CamProfile {
         out.push(Layered { layer: "PHASE_0", shape: Shape::Line { from: [0.0, 0.0], to: self.phase_point() } });
         Ok(out)
     }
+
+    /// The [`drawing`](Self::drawing) as the text of a complete DXF file in millimetres
+    /// (`loomkin_io::dxf`: AutoCAD 2000, every section, byte-identical for identical input) — the
+    /// one route of `cam profile --dxf` and of the workbench's download.
+    pub fn dxf(&self, tol_mm: f64, bore_mm: f64) -> Result<String> {
+        use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, dxf_text};
+        // The writer takes metres.
+        let m = |p: [f64; 2]| [p[0] * 1e-3, p[1] * 1e-3];
+        let shapes: Vec<DxfShape> = self
+            .drawing(tol_mm, bore_mm)?
+            .into_iter()
+            .map(|l| match l.shape {
+                Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
+                    layer: l.layer.into(),
+                    points: points.into_iter().map(m).collect(),
+                    closed,
+                }),
+                Shape::Circle { centre, radius } => {
+                    DxfShape::Circle { layer: l.layer.into(), centre: m(centre), radius: radius * 1e-3 }
+                }
+                Shape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from: m(from), to: m(to) },
+            })
+            .collect();
+        dxf_text(&shapes, DxfUnit::Millimetre)
+            .map_err(|e| crate::CamError::Usage { field: "dxf".into(), reason: e.to_string() })
+    }
 }

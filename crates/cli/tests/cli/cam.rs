@@ -335,6 +335,7 @@ fn cam_profile_bad_input_names_the_field() {
             "40",
             "--roller-radius-mm",
             "30",
+            "--json",
             "--dxf",
         ])
         .arg(tmp("u.dxf"))
@@ -343,6 +344,11 @@ fn cam_profile_bad_input_names_the_field() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("roller_radius_mm") && err.contains("deg") && err.contains("largest roller"), "{err}");
+    // The report is printed all the same (undercut: true), the drawing is not written.
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["undercut"], true);
+    assert!(v["undercut_at_deg"].is_number() && v["roller_max_mm"].as_f64().unwrap() < 30.0, "{v}");
+    assert!(!tmp("u.dxf").exists());
     // A cycle that does not close.
     let open = tmp("open.toml");
     std::fs::write(&open, "unit = \"mm\"\nstroke = 10\n[[segment]]\nkind = \"rise\"\nto_deg = 360\n").unwrap();

@@ -214,3 +214,24 @@ fn undercut_is_a_warning_not_an_error() {
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["summary"]["undercut"], true);
 }
+
+#[test]
+fn an_undercut_cam_is_reported_but_never_drawn() {
+    // As `cam profile`: with --dxf the report is still printed, the drawing refused (exit 2)
+    // naming the roller, the angle and the largest roller.
+    let dir = std::env::temp_dir().join(format!("loomkin-dobby-undercut-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let dxf = dir.join("cams.dxf");
+    let out =
+        loomkin().args(["dobby", "synthesize", "--roller-m", "0.08", "--json", "--dxf"]).arg(&dxf).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("roller_m") && err.contains("φ2 =") && err.contains("largest roller") && err.contains("no DXF"),
+        "{err}"
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["summary"]["undercut"], true);
+    assert!(!dxf.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
