@@ -6,7 +6,8 @@ this package only converts arguments and results. Reports are dicts keyed as the
 dicts of float64 numpy arrays (:class:`Table`, with ``.frame()`` for a pandas DataFrame).
 
 Modules: :mod:`loomkin.laws`, :mod:`loomkin.cycles`, :mod:`loomkin.servo`, :mod:`loomkin.picking`,
-:mod:`loomkin.dobby`, :mod:`loomkin.shed`, :mod:`loomkin.loom`, :mod:`loomkin.dynamics`.
+:mod:`loomkin.dobby`, :mod:`loomkin.shed`, :mod:`loomkin.loom`, :mod:`loomkin.dynamics`,
+:mod:`loomkin.cams`.
 
 Errors are :class:`LoomkinError` (a ``ValueError``) with ``.field`` and ``.allowed``;
 :class:`OutOfRangeError` adds ``.value``, ``.unit``, ``.low``, ``.high``. Long computations release
@@ -15,7 +16,7 @@ the GIL.
 
 from ._loomkin import __version__, Cycle, Law, LoomkinError, OutOfRangeError
 from ._table import Table
-from . import cycles, dobby, dynamics, laws, loom, picking, servo, shed
+from . import cams, cycles, dobby, dynamics, laws, loom, picking, servo, shed
 
 __all__ = [
     "__version__",
@@ -24,6 +25,7 @@ __all__ = [
     "LoomkinError",
     "OutOfRangeError",
     "Table",
+    "cams",
     "cycles",
     "dobby",
     "dynamics",

@@ -168,3 +168,8 @@ def dyn_response(
     steady: bool = False,
     points: int = 721,
 ) -> Dict[str, Any]: ...
+
+# cam tables
+def cam_table(
+    cycle: Cycle, format: str, step_deg: Optional[float] = None, tolerance: Optional[float] = None, source: str = ""
+) -> Dict[str, Any]: ...

@@ -9,6 +9,7 @@
 //! The Python package around it (`python/loomkin/`) arranges the functions in modules, adds type
 //! stubs and turns tables into pandas DataFrames when pandas is installed.
 
+mod cams;
 mod convert;
 mod cycles;
 mod dobby;
@@ -35,5 +36,6 @@ fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
     shed::register(m)?;
     loom::register(m)?;
     dynamics::register(m)?;
+    cams::register(m)?;
     Ok(())
 }

@@ -42,7 +42,7 @@ def test_sampling_releases_the_gil():
 
 
 def test_optimisation_releases_the_gil():
-    seconds, gap, r = ticks_during(lambda: loomkin.servo.optimize([600, 750], starts=2))
+    seconds, gap, r = ticks_during(lambda: loomkin.servo.optimize([600, 750], starts=6))
     assert r["evaluations"] > 0
     assert seconds > 0.02, "the call is too short to tell"
     assert gap < 0.5 * seconds, f"the other thread stalled {gap:.3f} s of a {seconds:.3f} s call"
