@@ -173,3 +173,15 @@ def dyn_response(
 def cam_table(
     cycle: Cycle, format: str, step_deg: Optional[float] = None, tolerance: Optional[float] = None, source: str = ""
 ) -> Dict[str, Any]: ...
+def dyn_sweep(
+    cycle: Cycle,
+    speed_rpm: npt.ArrayLike,
+    natural_hz: float,
+    damping_ratio: float = 0.0,
+    mass_kg: Optional[float] = None,
+    return_spring_n_m: float = 0.0,
+    preload_n: float = 0.0,
+    weight: bool = False,
+    force_n: float = 0.0,
+    steady: bool = False,
+) -> Dict[str, Any]: ...

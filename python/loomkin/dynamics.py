@@ -10,7 +10,7 @@ from . import _loomkin as _m
 from ._table import Table
 from .cycles import _cycle
 
-__all__ = ["response"]
+__all__ = ["response", "sweep"]
 
 
 def response(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
@@ -23,4 +23,14 @@ def response(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
     rad/s² forms for a swinging follower)."""
     r = _m.dyn_response(_cycle(cycle), float(natural_hz), **kw)
     r["samples"] = Table(r["samples"])
+    return r
+
+
+def sweep(cycle: Any, speed_rpm: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
+    """``loomkin dyn sweep FILE --speed-rpm … --natural-hz F --json`` at the speeds of an array
+    (rpm): natural_hz, damping_ratio, start and ``points``, a :class:`Table` with the CLI's
+    columns (speed_rpm, the residual vibration and peak error in the cycle's units, …).
+    Keywords as :func:`response` (without speed_rpm, cycles, points)."""
+    r = _m.dyn_sweep(_cycle(cycle), speed_rpm, float(natural_hz), **kw)
+    r["points"] = Table(r["points"])
     return r

@@ -4,8 +4,11 @@
 use crate::convert::{columns, to_py};
 use crate::cycles::Cycle;
 use crate::errors::{Fault, OrRaise, check_count};
-use loomkin_dynamics::{DynError, Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, Units};
+use loomkin_dynamics::{
+    DynError, Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, Units, sweep, sweep_columns, sweep_row,
+};
 use loomkin_units::{Range, RangeError};
+use numpy::{AllowTypeChange, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,7 +28,28 @@ const POINTS: Range = Range::closed(2.0, 1e6, "");
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dyn_response, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_sweep, m)?)?;
     Ok(())
+}
+
+/// The follower of the CLI's model flags.
+fn follower(
+    natural_hz: f64,
+    damping_ratio: f64,
+    mass_kg: Option<f64>,
+    return_spring_n_m: f64,
+    preload_n: f64,
+    weight: bool,
+    force_n: f64,
+) -> PyResult<Follower> {
+    let f = Follower::new(natural_hz, damping_ratio).or_raise()?;
+    match mass_kg {
+        Some(m) => {
+            let w = if weight { m * STANDARD_GRAVITY } else { 0.0 };
+            f.with_loads(m, return_spring_n_m, preload_n + w + force_n).or_raise()
+        }
+        None => Ok(f),
+    }
 }
 
 /// dyn_response(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
@@ -58,14 +82,7 @@ fn dyn_response<'py>(
     points: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let speed = cycle.speed(speed_rpm)?;
-    let f = Follower::new(natural_hz, damping_ratio).or_raise()?;
-    let follower = match mass_kg {
-        Some(m) => {
-            let w = if weight { m * STANDARD_GRAVITY } else { 0.0 };
-            f.with_loads(m, return_spring_n_m, preload_n + w + force_n).or_raise()?
-        }
-        None => f,
-    };
+    let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
     check_count("cycles", cycles, CYCLES)?;
     check_count("points", points, POINTS)?;
     let start = if steady { Start::Steady } else { Start::Rest };
@@ -97,5 +114,52 @@ fn dyn_response<'py>(
         (format!("a_{}", u.acc), col(4, 1.0)),
     ];
     out.set_item("samples", columns(py, cols)?)?;
+    Ok(out)
+}
+
+/// The most speeds of one sweep (each is one response, a few µs to ms).
+const SWEEP_SPEEDS: Range = Range::closed(1.0, 1e6, "");
+
+/// dyn_sweep(cycle, speed_rpm, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
+/// preload_n=0, weight=False, force_n=0, steady=False) -> dict
+/// --
+///
+/// `loomkin dyn sweep FILE --speed-rpm … --json` at the speeds of an array (rpm, any order):
+/// natural_hz, damping_ratio, start and points, a dict of arrays with the CLI's columns
+/// (speed_rpm, residual amplitude, peak error, … in the cycle's units; forces in N with a mass).
+/// The speeds run in parallel with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (cycle, speed_rpm, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0,
+    preload_n=0.0, weight=false, force_n=0.0, steady=false))]
+fn dyn_sweep<'py>(
+    py: Python<'py>,
+    cycle: PyRef<'py, Cycle>,
+    speed_rpm: PyArrayLike1<'py, f64, AllowTypeChange>,
+    natural_hz: f64,
+    damping_ratio: f64,
+    mass_kg: Option<f64>,
+    return_spring_n_m: f64,
+    preload_n: f64,
+    weight: bool,
+    force_n: f64,
+    steady: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let speeds: Vec<f64> = speed_rpm.as_array().iter().copied().collect();
+    check_count("speed_rpm", speeds.len(), SWEEP_SPEEDS)?;
+    let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
+    let start = if steady { Start::Steady } else { Start::Rest };
+    let inner = &cycle.inner;
+    let pts = py.detach(|| sweep(inner, &follower, &speeds, start)).or_raise()?;
+    let u = Units::of(inner.unit);
+    let forces = follower.mass_kg().is_some();
+    let names = sweep_columns(u, forces);
+    let rows: Vec<Vec<f64>> = pts.iter().map(|q| sweep_row(q, u, forces)).collect();
+    let cols: Vec<(String, Vec<f64>)> =
+        names.into_iter().enumerate().map(|(i, n)| (n, rows.iter().map(|r| r[i]).collect())).collect();
+    let out = PyDict::new(py);
+    out.set_item("natural_hz", follower.natural_hz())?;
+    out.set_item("damping_ratio", follower.damping_ratio())?;
+    out.set_item("start", if steady { "steady" } else { "rest" })?;
+    out.set_item("points", columns(py, cols)?)?;
     Ok(out)
 }
