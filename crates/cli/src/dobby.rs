@@ -681,12 +681,7 @@ fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, s
 }
 
 fn plot_cmd(a: PlotArgs) -> Result<()> {
-    if !a.at_deg.is_finite() {
-        bail!("--at-deg is not a finite number: allowed −360 ≤ at_deg ≤ 360 °");
-    }
-    if a.at_deg.abs() > 360.0 {
-        bail!("--at-deg {} is out of range: allowed −360 ≤ at_deg ≤ 360 °", a.at_deg);
-    }
+    loomkin_units::Range::closed(-360.0, 360.0, "deg").check("--at-deg", a.at_deg)?;
     let g = a.geometry.geometry()?;
     let w2 = a.geometry.speed_rad_s()?;
     let (states, gamma, gamma_p, title) = match a.task {

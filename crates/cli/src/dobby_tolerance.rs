@@ -111,6 +111,8 @@ pub fn run(a: ToleranceArgs) -> Result<()> {
         Some(path) => read_draws(path, t.draws)?,
         None => {
             let items = a.shard.get().items(t.draws as usize);
+            let cost = t.cost(items.start as u64..items.end as u64);
+            loomkin_units::Budget::DEFAULT.check("draws", t.draws, cost)?;
             let draws = t.run(items.start as u64..items.end as u64, Progress::Auto);
             let refused: Vec<&Draw> = draws.iter().filter(|d| d.result.is_err()).collect();
             if let Some(first) = refused.first() {

@@ -385,12 +385,14 @@ pub fn print_samples(law: &Law, n: usize, shard: Shard, form: SampleForm, name: 
     Ok(())
 }
 
-/// Seconds per row of `law sample --json` (formatting five numbers pretty-printed: 160 bytes a
-/// row), measured on the reference machine (release build, 2 cores busy) with a margin of 2.
-const SAMPLE_JSON_S_PER_ROW: f64 = 2.0 * 0.6e-6;
+/// Seconds per row of `law sample --json` (five numbers with their keys, pretty-printed): the
+/// `cycle_json_rows` bench of loomkin-laws (release, fastest of 10: 0.92 µs a row of six keyed
+/// numbers) with a margin of 2.
+const SAMPLE_JSON_S_PER_ROW: f64 = 2.0 * 0.92e-6;
 
-/// Seconds per row of `law sample --csv` (five numbers, about 90 bytes a row), measured as above.
-const SAMPLE_CSV_S_PER_ROW: f64 = 2.0 * 0.5e-6;
+/// Seconds per row of `law sample --csv` (five numbers in shortest round-trip form): the
+/// `law_sample_csv_rows` bench (fastest of 10: 1.83 µs) with a margin of 2.
+const SAMPLE_CSV_S_PER_ROW: f64 = 2.0 * 1.83e-6;
 
 fn plot(a: PlotArgs) -> Result<()> {
     if a.points < 2 || a.points > 100_000 {

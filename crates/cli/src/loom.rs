@@ -2,7 +2,7 @@
 
 use crate::output::{self, outln};
 use crate::util::{self, Format};
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger, timing_diagram, torque_figure};
@@ -202,9 +202,7 @@ fn run_check(a: CheckArgs) -> Result<()> {
 
 fn run_torque(a: TorqueArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
-    if !(a.step_deg.is_finite() && a.step_deg >= 0.01 && a.step_deg <= 10.0) {
-        bail!("--step-deg {} out of range: allowed 0.01 ≤ step_deg ≤ 10 deg", a.step_deg);
-    }
+    loomkin_units::Range::closed(0.01, 10.0, "deg").check("--step-deg", a.step_deg)?;
     if let Some(out) = &a.output {
         return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out);
     }

@@ -166,6 +166,23 @@ pub fn json_streamed(value: &impl Serialize) -> anyhow::Result<()> {
     }
 }
 
+/// An iterator serialised as a JSON array as it runs, for [`json_streamed`]: nothing is held per
+/// item. It is consumed by the first serialisation (a second one writes `[]`).
+pub struct Streamed<'a, T>(std::cell::RefCell<Option<Box<dyn Iterator<Item = T> + 'a>>>);
+
+impl<'a, T> Streamed<'a, T> {
+    /// The items of `items`, to be serialised once.
+    pub fn new(items: impl Iterator<Item = T> + 'a) -> Self {
+        Self(std::cell::RefCell::new(Some(Box::new(items))))
+    }
+}
+
+impl<T: Serialize> Serialize for Streamed<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        ser.collect_seq(self.0.borrow_mut().take().into_iter().flatten())
+    }
+}
+
 /// Standard output behind a [`NullScan`]: a `null` outside strings fails the write.
 struct Checked<W: Write> {
     scan: NullScan,

@@ -133,6 +133,8 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
         Some(path) => read_draws(path, mc.draws)?,
         None => {
             let items = a.shard.get().items(mc.draws as usize);
+            let cost = mc.cost(items.start as u64..items.end as u64);
+            loomkin_units::Budget::DEFAULT.check("draws", mc.draws, cost)?;
             let draws = mc.run(&mech, items.start as u64..items.end as u64, Progress::Auto);
             let refused: Vec<&Draw> = draws.iter().filter(|d| d.result.is_err()).collect();
             if let Some(first) = refused.first() {

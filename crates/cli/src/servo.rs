@@ -5,7 +5,6 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::Metrics;
 use loomkin_servo::{
@@ -203,11 +202,11 @@ struct Sample {
     j: f64,
 }
 
-/// `servo law --points N --json`.
+/// `servo law --points N --json` (the points streamed as they are made).
 #[derive(Serialize)]
-struct SamplesJson {
+struct SamplesJson<'a> {
     units: &'static str,
-    points: Vec<Sample>,
+    points: output::Streamed<'a, Sample>,
 }
 
 /// `servo law --json`.
@@ -230,22 +229,28 @@ fn law(a: LawArgs) -> Result<()> {
     let sl = a.def.build()?;
     let law = sl.law();
     if let Some(n) = a.points {
-        if !(2..=10_000_000).contains(&n) {
-            bail!("--sample {n} out of range: allowed 2 ≤ N ≤ 10000000");
+        if n < 2 {
+            bail!("--points {n} is too few: allowed 2 ≤ N");
         }
-        let samples = law.sample(n);
+        crate::law::check_sample_budget(n, n, a.format.json)?;
+        // Checked finite first (sampling is cheap beside printing), then streamed: one block of
+        // samples in memory whatever N.
+        if let Some((x, _)) = law.samples(n).find(|(_, k)| ![k.s, k.v, k.a, k.j].iter().all(|v| v.is_finite())) {
+            return Err(util::failure(anyhow::anyhow!("internal: the law is not finite at x = {x}")));
+        }
+        let progress = util::Progress::new(n as u64, "samples");
+        let rows = law.samples(n).inspect(|_| progress.inc(1));
         if a.format.json {
-            let points = samples.iter().map(|&(x, k)| Sample { x, s: k.s, v: k.v, a: k.a, j: k.j }).collect();
-            return output::json(&SamplesJson {
+            let points = output::Streamed::new(rows.map(|(x, k)| Sample { x, s: k.s, v: k.v, a: k.a, j: k.j }));
+            output::json_streamed(&SamplesJson {
                 units: "dimensionless (per unit stroke, per unit motion angle)",
                 points,
-            });
+            })?;
+        } else {
+            output::csv_rows(&["x", "s", "v", "a", "j"], true, rows.map(|(x, k)| [x, k.s, k.v, k.a, k.j]))?;
         }
-        let mut t = Table::new(["x", "s", "v", "a", "j"]);
-        for (x, k) in samples {
-            t.push(vec![x, k.s, k.v, k.a, k.j])?;
-        }
-        return output::csv(&t);
+        progress.finish();
+        return Ok(());
     }
     let m = law.metrics();
     let c = law.continuity();
@@ -458,8 +463,8 @@ fn torque(a: TorqueArgs) -> Result<()> {
 
 fn optimize(a: OptimizeArgs) -> Result<()> {
     check_speeds(&a.speed_rpm)?;
-    if !(1..=1000).contains(&a.starts) {
-        bail!("--starts {} out of range: allowed 1 ≤ starts ≤ 1000", a.starts);
+    if a.starts < 1 {
+        bail!("--starts 0 is too few: allowed starts ≥ 1");
     }
     let sl = a.def.build()?;
     let d = a.drive.load()?;
@@ -470,11 +475,29 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
         move_x: !a.fixed_x,
         ..OptimizeOptions::default()
     };
+    // Refused up front if the most evaluations it may make would pass the budget.
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    loomkin_units::Budget::DEFAULT.check("starts", a.starts, opts.cost(sl.points().len(), cores))?;
     let t0 = Instant::now();
-    let r = loomkin_servo::optimize(&sl, &d, &opts)?;
+    let total = (a.starts * opts.max_evals_per_start) as u64;
+    let progress = util::Progress::new(total, "evaluations");
+    let done = std::sync::atomic::AtomicBool::new(false);
+    // A watcher passes the optimiser's evaluation count to the bar (drawn only on a terminal).
+    let r = std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                progress.set(opts.evaluated.get() as u64);
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+        });
+        let r = loomkin_servo::optimize(&sl, &d, &opts);
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        r
+    })?;
+    progress.finish();
     let elapsed = t0.elapsed().as_secs_f64();
     // The elapsed time goes to stderr only: identical input gives byte-identical output.
-    eprintln!("loomkin: optimised in {elapsed:.3} s");
+    output::note(format_args!("loomkin: optimised in {elapsed:.3} s"));
     let pts = r.law.points();
     if a.json {
         return output::json(&OptimizeJson {

@@ -102,7 +102,22 @@ impl Progress {
             return;
         }
         bar.inc(self.pending.swap(0, Relaxed));
-        if !self.shown.load(Relaxed) && self.start.elapsed().as_secs_f64() > 1.0 {
+        self.show_after_a_second();
+    }
+
+    /// `n` items done in all (for a count kept elsewhere, read now and then).
+    pub fn set(&self, n: u64) {
+        let Some(bar) = &self.bar else { return };
+        bar.set_position(n);
+        self.show_after_a_second();
+    }
+
+    fn show_after_a_second(&self) {
+        use std::sync::atomic::Ordering::Relaxed;
+        if let Some(bar) = &self.bar
+            && !self.shown.load(Relaxed)
+            && self.start.elapsed().as_secs_f64() > 1.0
+        {
             self.shown.store(true, Relaxed);
             bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
         }

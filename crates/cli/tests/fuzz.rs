@@ -106,6 +106,21 @@ const SEEDS: &[&str] = &[
     "dobby tolerance {tol}",
     "dobby tolerance {tol} --json",
     "dobby tolerance {tol} --csv --shard 1/2",
+    "dyn optimize {cycle} --speed-rpm 300 --band-pct 10 --natural-hz 54 --damping-ratio 0.05 -o {out}.toml",
+    "dyn optimize {cycle} --speed-rpm 300 --natural-hz 54 --json",
+    "servo law --points 7 --json",
+    "servo law --sample 9 --csv",
+    "servo optimize --speed-rpm 600,750 --starts 2 --objective rms --fixed-x",
+    "cycle {cycle} --points 40 -o {out}.svg",
+    "shed table --design grid --step 0.2 --motion-deg 240,300 --json",
+    "shed table --design fig1 --step 0.1 --csv",
+    "shed table --design table1 --motion-deg 200:300:50",
+    "shed table --design grid --family lead-trapezoid --step 0.25 --json --shard 2/3",
+    "shed pareto --design grid --step 0.2 --motion-deg 240:300:30 --json",
+    "shed best --window-deg 120 --design grid --step 0.05 --max-jerk-m-s3 50000 --json",
+    "pick sweep speed --from 160 --to 240 --points 4 --csv",
+    "cam profile --law poly345 --stroke-mm 30 --motion-deg 100 --follower translating --max-pressure-deg 25 --csv",
+    "loom torque {loom} --wif {wif} --step-deg 5 --csv",
 ];
 
 const NUMBERS: &[&str] = &[

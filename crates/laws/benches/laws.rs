@@ -53,3 +53,53 @@ fn metrics(bencher: divan::Bencher, name: &str) {
     let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
     bencher.bench_local(|| divan::black_box(&law).metrics());
 }
+
+/// What `law sample --json` and `cycle --json` spend per row (the figures behind their budget
+/// estimates): 10⁵ rows serialised as pretty JSON, or formatted as CSV, into a sink.
+const ROWS: usize = 100_000;
+
+#[divan::bench(sample_count = 10)]
+fn law_sample_json_rows(bencher: divan::Bencher) {
+    let law = LawSpec::parse::<&str, &str>("cycloidal", &[]).unwrap().build().unwrap();
+    bencher.counter(divan::counter::ItemsCount::new(ROWS)).bench_local(|| {
+        let rows: Vec<[f64; 5]> = law.samples(ROWS).map(|(x, k)| [k.a, k.j, k.s, k.v, x]).collect();
+        serde_json::to_writer_pretty(std::io::sink(), &rows).unwrap();
+    });
+}
+
+#[divan::bench(sample_count = 10)]
+fn law_sample_csv_rows(bencher: divan::Bencher) {
+    use std::io::Write;
+    let law = LawSpec::parse::<&str, &str>("cycloidal", &[]).unwrap().build().unwrap();
+    bencher.counter(divan::counter::ItemsCount::new(ROWS)).bench_local(|| {
+        let mut out = std::io::BufWriter::new(std::io::sink());
+        for (x, k) in law.samples(ROWS) {
+            writeln!(out, "{x},{},{},{},{}", k.s, k.v, k.a, k.j).unwrap();
+        }
+    });
+}
+
+#[divan::bench(sample_count = 10)]
+fn cycle_json_rows(bencher: divan::Bencher) {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml")).unwrap();
+    let cycle = loomkin_laws::Cycle::from_toml(&text).unwrap();
+    let speed = loomkin_units::ShaftSpeed::from_rpm(300.0).unwrap();
+    bencher.counter(divan::counter::ItemsCount::new(ROWS)).bench_local(|| {
+        serde_json::to_writer_pretty(std::io::sink(), &cycle.report_streamed(speed, ROWS, || {})).unwrap();
+    });
+}
+
+#[divan::bench(sample_count = 10)]
+fn cycle_csv_rows(bencher: divan::Bencher) {
+    use std::io::Write;
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml")).unwrap();
+    let cycle = loomkin_laws::Cycle::from_toml(&text).unwrap();
+    bencher.counter(divan::counter::ItemsCount::new(ROWS)).bench_local(|| {
+        let mut out = std::io::BufWriter::new(std::io::sink());
+        for p in cycle.samples(ROWS, 300.0) {
+            writeln!(out, "{},{},{},{},{},{}", p.angle_deg, p.time_s, p.kin.s, p.kin.v, p.kin.a, p.kin.j).unwrap();
+        }
+    });
+}

@@ -89,6 +89,11 @@ impl Cycle {
             samples: self.sample(n, speed.rpm()),
         }
     }
+
+    /// [`Cycle::report`] with its `n` samples made while it is serialised (see [`StreamedReport`]).
+    pub fn report_streamed<F: Fn()>(&self, speed: ShaftSpeed, n: usize, tick: F) -> StreamedReport<'_, F> {
+        StreamedReport { head: self.report(speed, 0), cycle: self, n, tick }
+    }
 }
 
 impl Serialize for SegmentPeaks {
@@ -108,12 +113,12 @@ impl Serialize for SegmentPeaks {
 }
 
 /// One sample with unit-named keys.
-struct UnitPoint<'a>(&'a CyclePoint, StrokeUnit);
+struct UnitPoint(CyclePoint, StrokeUnit);
 
-impl Serialize for UnitPoint<'_> {
+impl Serialize for UnitPoint {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let [pu, vu, au, ju] = self.1.key_units();
-        let (p, mut m) = (self.0, s.serialize_map(Some(6))?);
+        let (p, mut m) = (&self.0, s.serialize_map(Some(6))?);
         m.serialize_entry("angle_deg", &p.angle_deg)?;
         m.serialize_entry("time_s", &p.time_s)?;
         m.serialize_entry(&format!("s_{pu}"), &p.kin.s)?;
@@ -126,15 +131,50 @@ impl Serialize for UnitPoint<'_> {
 
 impl Serialize for CycleReport {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(6))?;
-        m.serialize_entry("speed_rpm", &self.speed_rpm)?;
-        m.serialize_entry("period_deg", &self.period_deg)?;
-        m.serialize_entry("cycle_time_s", &self.cycle_time_s)?;
-        m.serialize_entry("unit", self.unit.si_units()[0])?;
-        m.serialize_entry("segments", &self.segments)?;
-        let samples: Vec<UnitPoint<'_>> = self.samples.iter().map(|p| UnitPoint(p, self.unit)).collect();
-        m.serialize_entry("samples", &samples)?;
-        m.end()
+        serialize_report(self, self.samples.iter().copied(), s)
+    }
+}
+
+/// The report's fields, then `samples` written as `points` makes them.
+fn serialize_report<S: Serializer>(
+    r: &CycleReport,
+    points: impl Iterator<Item = CyclePoint>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    let mut m = s.serialize_map(Some(6))?;
+    m.serialize_entry("speed_rpm", &r.speed_rpm)?;
+    m.serialize_entry("period_deg", &r.period_deg)?;
+    m.serialize_entry("cycle_time_s", &r.cycle_time_s)?;
+    m.serialize_entry("unit", r.unit.si_units()[0])?;
+    m.serialize_entry("segments", &r.segments)?;
+    m.serialize_entry("samples", &Points(std::cell::RefCell::new(Some(points.map(|p| UnitPoint(p, r.unit))))))?;
+    m.end()
+}
+
+/// Samples serialised as an array as they are made (once).
+struct Points<I>(std::cell::RefCell<Option<I>>);
+
+impl<I: Iterator<Item = UnitPoint>> Serialize for Points<I> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.borrow_mut().take().into_iter().flatten())
+    }
+}
+
+/// A [`CycleReport`] whose samples are made as it is serialised, one at a time: nothing is held
+/// per sample, so `loomkin cycle --points 10000000 --json` needs a buffer, not the table. The
+/// text is the [`CycleReport`]'s byte for byte. `tick` is called once per sample written (a
+/// progress count).
+pub struct StreamedReport<'a, F: Fn()> {
+    head: CycleReport,
+    cycle: &'a Cycle,
+    n: usize,
+    tick: F,
+}
+
+impl<F: Fn()> Serialize for StreamedReport<'_, F> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let points = self.cycle.samples(self.n, self.head.speed_rpm).inspect(|_| (self.tick)());
+        serialize_report(&self.head, points, s)
     }
 }
 
@@ -185,5 +225,10 @@ to_deg = 360
         assert!(v["segments"][0]["peak_acceleration_m_s2"].is_f64());
         assert!(v["samples"][0]["j_m_s3"].is_f64());
         assert!((v["cycle_time_s"].as_f64().unwrap() - 0.15).abs() < 1e-15);
+        // The streamed report is the same text, and counts its samples.
+        let count = std::cell::Cell::new(0);
+        let streamed = c.report_streamed(speed, 20_001, || count.set(count.get() + 1));
+        assert_eq!(serde_json::to_string(&streamed).unwrap(), serde_json::to_string(&r).unwrap());
+        assert_eq!(count.get(), 20_001);
     }
 }

@@ -65,3 +65,41 @@ fn cam_table_1deg(bencher: divan::Bencher) {
         t.interpolation_error(law.law(), &drive, Interpolation::QuinticHermite).unwrap().max_position_error_m
     });
 }
+
+/// One objective evaluation of the optimiser (the figure behind `EVAL_S_PER_POINT_SPEED`): a start
+/// capped at 200 evaluations, for 7 and 33 definition points at 1 and 6 speeds, both objectives.
+/// Time per evaluation = the time shown / the evaluations counted (printed once).
+#[divan::bench(args = [(7, 1), (7, 6), (33, 1), (33, 6)], sample_count = 5)]
+fn optimize_eval(bencher: divan::Bencher, (points, speeds): (usize, usize)) {
+    let def: Vec<[f64; 2]> = (0..points)
+        .map(|i| {
+            let x = 0.5 * i as f64 / (points - 1) as f64;
+            [x, if i == 0 || i + 1 == points { 0.0 } else { (std::f64::consts::TAU * x).sin() }]
+        })
+        .collect();
+    let start = SplineLaw::new(&def, SplineEnd::Natural).unwrap();
+    let drive = Drive::needle_rack_default();
+    let speeds_rpm: Vec<f64> = (0..speeds).map(|i| 500.0 + 50.0 * i as f64).collect();
+    for objective in [Objective::Peak, Objective::Rms] {
+        let opts = OptimizeOptions {
+            speeds_rpm: speeds_rpm.clone(),
+            objective,
+            starts: 1,
+            max_evals_per_start: 200,
+            ..OptimizeOptions::default()
+        };
+        optimize(&start, &drive, &opts).unwrap();
+        eprintln!(
+            "optimize_eval {points} points, {speeds} speeds, {objective:?}: {} evaluations",
+            opts.evaluated.get()
+        );
+    }
+    let opts = OptimizeOptions {
+        speeds_rpm,
+        objective: Objective::Rms,
+        starts: 1,
+        max_evals_per_start: 200,
+        ..OptimizeOptions::default()
+    };
+    bencher.bench_local(|| optimize(&start, &drive, &opts).unwrap().objective_after_nm);
+}

@@ -57,7 +57,7 @@ pub use export::{
     read_json,
 };
 pub use export_file::{Export, ExportFormat, TableReport, export};
-pub use optimize::{Counter, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
+pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
 pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
 pub use spline::{SplineEnd, SplineLaw, slope_at_middle};
 pub use torque::{DrivePoint, Phase, TorqueSummary, summaries, summary, torque_curve};

@@ -30,3 +30,21 @@ fn grid_4_parts_step_0_005_all_criteria(bencher: divan::Bencher) {
         .counter(divan::counter::ItemsCount::new(d.len()))
         .bench_local(|| evaluate_rows(&t, &d, 0.95, Progress::Hidden).unwrap().len());
 }
+
+/// Output rows of a streamed table, the library's part (criteria scaled, CSV line): the 3-part grid at
+/// step 0.05 (153 laws) at 100 motion angles, each row's criteria scaled and formatted as CSV.
+#[divan::bench(sample_count = 10)]
+fn table_rows_csv(bencher: divan::Bencher) {
+    use loomkin_shed::{Conditions, DesignKind, GridSpec, Study};
+    let study = Study::new(DesignKind::Grid, None, GridSpec::TABLE).unwrap();
+    let cond = Conditions::new(0.95, 0.1, 300.0).unwrap();
+    let motions: Vec<f64> = (0..100).map(|i| 200.0 + i as f64).collect();
+    let rows = study.design.len() * motions.len();
+    bencher.counter(divan::counter::ItemsCount::new(rows)).bench_local(|| {
+        let mut out = String::new();
+        for r in study.rows_in(&motions, &cond, Progress::Hidden, 0..study.design.len()).unwrap() {
+            loomkin_shed::csv_line(&r, false, &mut out);
+            out.clear();
+        }
+    });
+}

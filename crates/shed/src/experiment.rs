@@ -144,12 +144,82 @@ impl Study {
         Ok(StudyTable::unnamed(&self.design, rows))
     }
 
+    /// The rows of [`Study::table_in`] made one at a time, in the same order and bit for bit: the
+    /// laws of `items` are evaluated first (held: one set of criteria per law), then each row is
+    /// made as the iterator is read, so a table of 10⁷ rows is printed without being held.
+    pub fn rows_in<'a>(
+        &'a self,
+        motions_deg: &'a [f64],
+        cond: &'a Conditions,
+        progress: Progress,
+        items: std::ops::Range<usize>,
+    ) -> Result<impl Iterator<Item = StudyRow> + 'a> {
+        let dims = crate::evaluate_rows_in(&self.template, &self.design, cond.threshold(), progress, items)?;
+        crate::study::check_motions_at(motions_deg, cond)?;
+        let design = &self.design;
+        Ok(dims.into_iter().enumerate().filter_map(|(i, d)| d.map(|d| (i, d))).flat_map(move |(i, d)| {
+            motions_deg.iter().map(move |&m| StudyRow {
+                law: None,
+                candidate: Candidate { row: i, lengths: design.row(i).to_vec(), criteria: Criteria::new(m, &d, cond) },
+            })
+        }))
+    }
+
     /// The Pareto front (largest window, least peak acceleration) over the design and the motion
     /// angles (see [`crate::pareto`]).
     pub fn pareto(&self, motions_deg: &[f64], cond: &Conditions, progress: Progress) -> Result<StudyTable> {
         let rows = self.evaluate(cond.threshold(), progress)?;
         let front = crate::pareto(&self.design, &rows, motions_deg, cond)?;
         Ok(StudyTable::unnamed(&self.design, front))
+    }
+}
+
+/// Seconds to evaluate one law of a design (its dwell and window roots, its exact extremes): the
+/// `criteria_generic_one_law` bench (release, fastest of 100: 6.9 µs; the closed-form path of the
+/// named families takes 0.51 µs) with a margin of 2.
+pub const STUDY_S_PER_LAW: f64 = 2.0 * 7e-6;
+/// Bytes held per law of a design: its criteria (an `Option<Dimensionless>`) besides its lengths.
+pub const STUDY_BYTES_PER_LAW: f64 = 112.0;
+
+/// What a study will cost, estimated before its design is made.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StudyEstimate {
+    /// Laws in the design (counted, not made: [`crate::grid_design_rows`]).
+    pub laws: f64,
+    /// Memory and time.
+    pub cost: loomkin_units::Cost,
+}
+
+impl Study {
+    /// The cost of a study of `kind` over a family of `parts` parts: the design made whole, the
+    /// fraction `share` of its laws evaluated on `cores` threads, each at `motions` angles, each
+    /// output row costing `row` (what the caller holds and spends per row: nothing held for a
+    /// streamed table, the time to print it) — refuse it with [`loomkin_units::Budget::check`]
+    /// before [`Study::new`] allocates anything.
+    pub fn estimate(
+        kind: DesignKind,
+        parts: usize,
+        grid: GridSpec,
+        motions: usize,
+        share: f64,
+        row: loomkin_units::Cost,
+        cores: usize,
+    ) -> StudyEstimate {
+        let laws = match kind {
+            DesignKind::Table1 => 8.0,
+            DesignKind::Presets => PRESETS.len() as f64,
+            DesignKind::Fig1 if grid.step > 0.0 => (0.5 / grid.step + 1e-9).floor() + 1.0,
+            DesignKind::Fig1 => 0.0,
+            DesignKind::Grid => crate::grid_design_rows(parts, grid.min_k, grid.max_k, grid.step),
+        };
+        let (p, mine, rows) = (parts as f64, laws * share, laws * share * motions as f64);
+        let cores = cores.max(1) as f64;
+        // The design, the motion angles, the criteria of the evaluated laws, then the rows.
+        let cost = loomkin_units::Cost::items(laws, p * 8.0, 0.0)
+            .plus(loomkin_units::Cost::items(motions as f64, 8.0, 0.0))
+            .plus(loomkin_units::Cost::items(mine, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW / cores))
+            .plus(row.times(rows));
+        StudyEstimate { laws, cost }
     }
 }
 
@@ -268,25 +338,39 @@ impl StudyTable {
 
     /// [`StudyTable::to_csv`] with or without the header line (shards after the first).
     pub fn to_csv_with(&self, header_line: bool) -> String {
-        let named = self.is_named();
-        let mut header = vec![if named { "law" } else { "row" }.to_string()];
-        header.extend(self.k_names.iter().cloned());
-        header.extend(CRITERIA_COLUMNS.iter().map(|s| s.to_string()));
-        let mut out = if header_line { header.join(",") + "\n" } else { String::new() };
+        let mut out = if header_line { csv_header(&self.k_names) } else { String::new() };
         for r in &self.rows {
-            let c = &r.candidate;
-            let vals = criteria_values(&c.criteria);
-            let mut line = r.law.clone().unwrap_or_else(|| c.row.to_string());
-            let ks = if named { &[][..] } else { &c.lengths[..] };
-            for v in ks.iter().chain(&vals) {
-                line.push(',');
-                line.push_str(&format!("{v}"));
-            }
-            out.push_str(&line);
-            out.push('\n');
+            csv_line(r, self.is_named(), &mut out);
         }
         out
     }
+}
+
+/// The header line of [`StudyTable::to_csv`] (with its newline): `law` for named laws (no
+/// `k_names`), else `row` and the length columns, then [`CRITERIA_COLUMNS`].
+pub fn csv_header(k_names: &[String]) -> String {
+    let mut header = vec![if k_names.is_empty() { "law" } else { "row" }.to_string()];
+    header.extend(k_names.iter().cloned());
+    header.extend(CRITERIA_COLUMNS.iter().map(|s| s.to_string()));
+    header.join(",") + "\n"
+}
+
+/// Appends one row of [`StudyTable::to_csv`] (with its newline) to `out`; `named`: a table of
+/// named laws (no length columns).
+pub fn csv_line(r: &StudyRow, named: bool, out: &mut String) {
+    use std::fmt::Write;
+    let c = &r.candidate;
+    match &r.law {
+        Some(l) => out.push_str(l),
+        None => {
+            let _ = write!(out, "{}", c.row);
+        }
+    }
+    let ks = if named { &[][..] } else { &c.lengths[..] };
+    for v in ks.iter().chain(&criteria_values(&c.criteria)) {
+        let _ = write!(out, ",{v}");
+    }
+    out.push('\n');
 }
 
 #[cfg(test)]

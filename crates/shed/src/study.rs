@@ -106,7 +106,7 @@ fn check_motions(motions: &[f64]) -> Result<()> {
 }
 
 /// [`check_motions`] and finite physical values at every angle.
-fn check_motions_at(motions: &[f64], conditions: &Conditions) -> Result<()> {
+pub(crate) fn check_motions_at(motions: &[f64], conditions: &Conditions) -> Result<()> {
     check_motions(motions)?;
     motions.iter().try_for_each(|&m| check_scales(m, conditions))
 }

@@ -52,6 +52,30 @@ fn runs_beyond_the_budget_are_refused_with_the_estimate() {
             &["dyn", "sweep", HEALD, "--natural-hz", "80", "--speed-rpm", "1:100000:0.01"][..],
             "speed_rpm = 1:100000:0.01",
         ),
+        (&["law", "sample", "cycloidal", "--points", "100000000000", "--json"][..], "points = 100000000000"),
+        (&["servo", "law", "--points", "100000000000", "--json"][..], "points = 100000000000"),
+        (&["servo", "law", "--sample", "100000000000"][..], "points = 100000000000"),
+        (&["cycle", HEALD, "--points", "100000000000", "--csv"][..], "points = 100000000000"),
+        (&["cycle", HEALD, "--points", "100000000000", "--json"][..], "points = 100000000000"),
+        (&["servo", "optimize", "--starts", "1000000"][..], "starts = 1000000"),
+        (&["shed", "table", "--design", "fig1", "--step", "1e-9"][..], "step = 1e-9"),
+        (
+            &[
+                "shed",
+                "table",
+                "--design",
+                "grid",
+                "--family",
+                "trapezoid",
+                "--step",
+                "0.1",
+                "--motion-deg",
+                "1:360:0.00001",
+            ][..],
+            "motion_deg = 1:360:0.00001",
+        ),
+        (&["shed", "pareto", "--design", "fig1", "--step", "1e-9"][..], "step = 1e-9"),
+        (&["shed", "best", "--window-deg", "175", "--design", "grid", "--step", "1e-6"][..], "step = 1e-6"),
     ] {
         usage_error(args, &[field, "(estimate)", limit]);
     }
@@ -76,4 +100,60 @@ fn streamed_tables_are_the_tables() {
         }
     }
     assert_eq!(v["law"], "modified-trapezoid");
+}
+
+#[test]
+fn streamed_shed_tables_are_the_tables() {
+    // The table streamed row by row: its JSON, CSV and text agree row for row, and with the
+    // shards' concatenation.
+    let args = ["shed", "table", "--design", "grid", "--step", "0.1", "--motion-deg", "240,300"];
+    let v = stdout_json(&[&args[..], &["--json"]].concat());
+    let rows = v["rows"].as_array().unwrap();
+    assert!(rows.len() > 20, "{v}");
+    let csv = String::from_utf8(loomkin().args(args).arg("--csv").output().unwrap().stdout).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(&header[..5], ["row", "k1", "k2", "k3", "motion_deg"]);
+    let body: Vec<&str> = lines.collect();
+    assert_eq!(body.len(), rows.len());
+    for (r, line) in rows.iter().zip(&body) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[0], r["row"].to_string());
+        let col = |k: &str| cells[header.iter().position(|h| *h == k).unwrap()].parse::<f64>().unwrap();
+        for k in ["motion_deg", "window_deg", "peak_accel_m_s2", "peak_jerk_m_s3"] {
+            assert_eq!(col(k), r[k].as_f64().unwrap(), "{k}");
+        }
+    }
+    let text = String::from_utf8(loomkin().args(args).output().unwrap().stdout).unwrap();
+    assert_eq!(text.lines().count(), rows.len() + 2);
+    let mut shards = String::new();
+    for i in 1..=3 {
+        let out = loomkin().args(args).args(["--csv", "--shard", &format!("{i}/3")]).output().unwrap();
+        assert!(out.status.success());
+        shards.push_str(&String::from_utf8(out.stdout).unwrap());
+    }
+    assert_eq!(shards, csv);
+}
+
+#[test]
+fn studies_of_too_many_draws_are_refused_with_the_estimate() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/");
+    for (example, cmd, draws) in
+        [("pick-montecarlo.toml", "pick", "100000000"), ("dobby-tolerance.toml", "dobby", "10000000")]
+    {
+        let text = std::fs::read_to_string(format!("{root}{example}")).unwrap();
+        let big: String = text
+            .lines()
+            .map(|l| if l.starts_with("draws") { format!("draws = {draws}") } else { l.to_string() })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let path = std::env::temp_dir().join(format!("loomkin-limits-{}-{example}", std::process::id()));
+        std::fs::write(&path, big).unwrap();
+        let sub = if cmd == "pick" { "montecarlo" } else { "tolerance" };
+        usage_error(
+            &[cmd, sub, path.to_str().unwrap()],
+            &[&format!("draws = {draws}"), "(estimate)", "the limit is 1 GB and 1 min"],
+        );
+        std::fs::remove_file(&path).unwrap();
+    }
 }
