@@ -8,6 +8,8 @@
 //! 60 s), each run at most 60 s. `LOOMKIN_FUZZ_SEED` picks another sequence. A large run:
 //! `LOOMKIN_FUZZ_CASES=10000 LOOMKIN_FUZZ_SECONDS=3000 cargo test --release -p loomkin-cli --test fuzz -- --nocapture`.
 //!
+//! `LOOMKIN_FUZZ_BIN=target/release/loomkin` fuzzes that binary instead of this build's.
+//!
 //! To fuzz a new subcommand, add working invocations of it to [`SEEDS`].
 
 use std::io::Read;
@@ -506,9 +508,14 @@ fn every_seed_invocation_works() {
     assert!(failures.is_empty(), "seed invocations that fail:\n{}", failures.join("\n"));
 }
 
+/// The binary fuzzed: this build's, or `LOOMKIN_FUZZ_BIN` (a release build for a large run).
+fn fuzzed_binary() -> PathBuf {
+    std::env::var_os("LOOMKIN_FUZZ_BIN").map_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_loomkin")), PathBuf::from)
+}
+
 #[test]
 fn the_cli_survives_hostile_input() {
-    let bin = PathBuf::from(env!("CARGO_BIN_EXE_loomkin"));
+    let bin = fuzzed_binary();
     let cases = env_usize("LOOMKIN_FUZZ_CASES", 120);
     let budget = Duration::from_secs(env_usize("LOOMKIN_FUZZ_SECONDS", 60) as u64);
     let seed = env_usize("LOOMKIN_FUZZ_SEED", 0x5eed) as u64;
