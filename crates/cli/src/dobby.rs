@@ -6,12 +6,13 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_io::dxf::{DxfPolyline, DxfUnit, save_dxf};
+use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, save_shapes};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
-    Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
-    SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
+    Analysis, AnalysisOptions, Cam, CamProfile, DobbyLayered, DobbyShape, MechError, ModulatorGeometry, ModulatorState,
+    OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table,
+    synthesize,
 };
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -192,6 +193,13 @@ pub struct SynthesizeArgs {
     /// Unit of the DXF coordinates.
     #[arg(long, value_enum, default_value_t = UnitArg::Mm)]
     dxf_unit: UnitArg,
+    /// Chord tolerance of the DXF polylines, mm (the curves are drawn within it whatever --step-deg).
+    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true)]
+    chord_tol_mm: f64,
+    /// Bore diameter about the crank centre drawn in the DXF, mm (0: none; default 0.4 × the cams'
+    /// least radius).
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    bore_mm: Option<f64>,
     /// Write the cam point tables (centre curves and walls of Γ and Γ′) as CSV to this file.
     #[arg(long, value_name = "FILE")]
     points_csv: Option<PathBuf>,
@@ -490,13 +498,15 @@ fn print_checks(c: &loomkin_mech::CamChecks) -> Result<()> {
     )
 }
 
-fn profile_polylines(prefix: &str, p: &CamProfile) -> Vec<DxfPolyline> {
-    let mut v = vec![DxfPolyline::closed(format!("{prefix}_CENTRE"), p.centre.clone())];
-    if !p.wall_left.is_empty() {
-        v.push(DxfPolyline::closed(format!("{prefix}_WALL_LEFT"), p.wall_left.clone()));
-        v.push(DxfPolyline::closed(format!("{prefix}_WALL_RIGHT"), p.wall_right.clone()));
+/// A shape of the dobby drawing (m) as a DXF shape (m).
+fn dxf_shape(l: DobbyLayered) -> DxfShape {
+    match l.shape {
+        DobbyShape::Polyline { points, closed } => {
+            DxfShape::Polyline(DxfPolyline { layer: l.layer.into(), points, closed })
+        }
+        DobbyShape::Circle { centre, radius } => DxfShape::Circle { layer: l.layer.into(), centre, radius },
+        DobbyShape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from, to },
     }
-    v
 }
 
 fn points_table(s: &Synthesis) -> Result<Table> {
@@ -546,13 +556,13 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     // admissible roller) but never drawn; with --dxf the report is printed, then exit 2.
     let refused = a.dxf.is_some() && res.summary.undercut;
     if let Some(path) = a.dxf.as_ref().filter(|_| !refused) {
-        let mut polys = profile_polylines("CAM", &res.cam);
-        polys.extend(profile_polylines("COUNTER_CAM", &res.counter_cam));
+        let bore_mm = a.bore_mm.unwrap_or(400.0 * res.least_radius_m());
+        let shapes: Vec<DxfShape> = res.drawing(a.chord_tol_mm, bore_mm)?.into_iter().map(dxf_shape).collect();
         let unit = match a.dxf_unit {
             UnitArg::Mm => DxfUnit::Millimetre,
             UnitArg::M => DxfUnit::Metre,
         };
-        save_dxf(&polys, unit, path).map_err(util::failure)?;
+        save_shapes(&shapes, unit, path).map_err(util::failure)?;
         output::note(format_args!("wrote {}", path.display()));
     }
     if let Some(path) = &a.points_csv {

@@ -183,6 +183,19 @@ impl Out {
         self.num(code + 20, 0.0);
     }
 
+    /// The header groups every entity (and `BLOCK`/`ENDBLK`) starts with: type, handle, owner,
+    /// `AcDbEntity`, paper space flag (`67 1`, paper space only) and layer.
+    fn entity(&mut self, kind: &str, handle: u32, owner: u32, paper: bool, layer: &str) {
+        self.pair(0, kind);
+        self.pair(5, hex(handle));
+        self.pair(330, hex(owner));
+        self.pair(100, "AcDbEntity");
+        if paper {
+            self.pair(67, 1);
+        }
+        self.pair(8, layer);
+    }
+
     fn handle(&mut self) -> u32 {
         let h = self.next;
         self.next += 1;
@@ -386,28 +399,14 @@ pub fn dxf_text(shapes: &[DxfShape], unit: DxfUnit) -> Result<String, IoError> {
     for (b, e, owner, name, paper) in
         [(blk_ms, end_ms, br_ms, "*Model_Space", false), (blk_ps, end_ps, br_ps, "*Paper_Space", true)]
     {
-        o.pair(0, "BLOCK");
-        o.pair(5, hex(b));
-        o.pair(330, hex(owner));
-        o.pair(100, "AcDbEntity");
-        if paper {
-            o.pair(67, 1);
-        }
-        o.pair(8, "0");
+        o.entity("BLOCK", b, owner, paper, "0");
         o.pair(100, "AcDbBlockBegin");
         o.pair(2, name);
         o.pair(70, 0);
         o.point(10, [0.0, 0.0]);
         o.pair(3, name);
         o.pair(1, "");
-        o.pair(0, "ENDBLK");
-        o.pair(5, hex(e));
-        o.pair(330, hex(owner));
-        o.pair(100, "AcDbEntity");
-        if paper {
-            o.pair(67, 1);
-        }
-        o.pair(8, "0");
+        o.entity("ENDBLK", e, owner, paper, "0");
         o.pair(100, "AcDbBlockEnd");
     }
     o.pair(0, "ENDSEC");
@@ -417,11 +416,7 @@ pub fn dxf_text(shapes: &[DxfShape], unit: DxfUnit) -> Result<String, IoError> {
     o.pair(2, "ENTITIES");
     for (s, h) in shapes.iter().zip(&entity_h) {
         let head = |o: &mut Out, kind: &str, sub: &str| {
-            o.pair(0, kind);
-            o.pair(5, hex(*h));
-            o.pair(330, hex(br_ms));
-            o.pair(100, "AcDbEntity");
-            o.pair(8, s.layer());
+            o.entity(kind, *h, br_ms, false, s.layer());
             o.pair(100, sub);
         };
         match s {
