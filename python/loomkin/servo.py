@@ -69,7 +69,7 @@ def optimize(speed_rpm: Union[float, Sequence[float]] = (600.0,), objective: str
              drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
     """``loomkin servo optimize --json``: least worst peak (or "rms") motor torque over the
     speeds; before, after (N·m), the optimised def_points and def text, evaluations. Deterministic.
-    The GIL is released while it runs."""
+    The GIL is released while it runs; Ctrl-C (a notebook's interrupt) stops it with KeyboardInterrupt."""
     return _m.servo_optimize(_speeds(speed_rpm), objective, starts, fixed_x, def_points, end, _drive(drive))
 
 

@@ -270,7 +270,8 @@ struct OptimizeJson<'a> {
 ///
 /// `loomkin servo optimize --json`: moves the free definition points to minimise the worst peak
 /// (or RMS) motor torque (N·m) over the speeds (rpm); before, after, the optimised def_points and
-/// def text, evaluations. Deterministic (seeded starts). Runs with the GIL released.
+/// def text, evaluations. Deterministic (seeded starts). Runs with the GIL released; Ctrl-C
+/// (a notebook's interrupt) stops it and raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (speed_rpm=vec![600.0], objective="peak", starts=6, fixed_x=false, def_points=None, end="natural", drive_text=None))]
 fn servo_optimize(
@@ -295,7 +296,7 @@ fn servo_optimize(
         move_x: !fixed_x,
         ..OptimizeOptions::default()
     };
-    let r = py.detach(|| loomkin_servo::optimize(&sl, &d, &opts)).or_raise()?;
+    let r = interruptible(py, || opts.stop.stop(), || loomkin_servo::optimize(&sl, &d, &opts))?.or_raise()?;
     let pts = r.law.points();
     to_py(
         py,
@@ -310,6 +311,38 @@ fn servo_optimize(
             evaluations: r.evaluations,
         },
     )
+}
+
+/// Runs `work` on a scoped thread with the GIL released, and on the calling thread checks Python's
+/// signals every 50 ms: on Ctrl-C (KeyboardInterrupt in a notebook) `stop` is called, the work is
+/// waited for (it ends at once when stopped) and the exception is raised instead of its result.
+fn interruptible<T: Send>(py: Python<'_>, stop: impl FnOnce(), work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::scope(|s| {
+        s.spawn(move || {
+            let _ = tx.send(work());
+        });
+        // The receiver is moved into each wait and back (it is `Send`, not `Sync`).
+        let mut rx = rx;
+        loop {
+            let (got, back) = py.detach(move || (rx.recv_timeout(std::time::Duration::from_millis(50)), rx));
+            rx = back;
+            match got {
+                Ok(v) => return Ok(v),
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                    return Err(pyo3::exceptions::PyRuntimeError::new_err("internal: the computation panicked"));
+                }
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                    if let Err(e) = py.check_signals() {
+                        stop();
+                        // The stopped work finishes quickly; its result is dropped.
+                        let _ = py.detach(move || rx.recv());
+                        return Err(e);
+                    }
+                }
+            }
+        }
+    })
 }
 
 #[derive(Serialize)]
