@@ -6,13 +6,12 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, save_shapes};
+use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
-    Analysis, AnalysisOptions, Cam, CamProfile, DobbyLayered, DobbyShape, MechError, ModulatorGeometry, ModulatorState,
-    OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table,
-    synthesize,
+    Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
+    SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
 };
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -498,55 +497,6 @@ fn print_checks(c: &loomkin_mech::CamChecks) -> Result<()> {
     )
 }
 
-/// A shape of the dobby drawing (m) as a DXF shape (m).
-fn dxf_shape(l: DobbyLayered) -> DxfShape {
-    match l.shape {
-        DobbyShape::Polyline { points, closed } => {
-            DxfShape::Polyline(DxfPolyline { layer: l.layer.into(), points, closed })
-        }
-        DobbyShape::Circle { centre, radius } => DxfShape::Circle { layer: l.layer.into(), centre, radius },
-        DobbyShape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from, to },
-    }
-}
-
-fn points_table(s: &Synthesis) -> Result<Table> {
-    let mut t = Table::new([
-        "phi2_deg",
-        "b_x_m",
-        "b_y_m",
-        "b_left_x_m",
-        "b_left_y_m",
-        "b_right_x_m",
-        "b_right_y_m",
-        "c_x_m",
-        "c_y_m",
-        "c_left_x_m",
-        "c_left_y_m",
-        "c_right_x_m",
-        "c_right_y_m",
-    ]);
-    let (b, c) = (&s.cam, &s.counter_cam);
-    for i in 0..b.centre.len() {
-        let w = |v: &Vec<[f64; 2]>, k: usize| v.get(i).map(|p| p[k]).unwrap_or(0.0);
-        t.push(vec![
-            s.rows[i].phi2_deg,
-            b.centre[i][0],
-            b.centre[i][1],
-            w(&b.wall_left, 0),
-            w(&b.wall_left, 1),
-            w(&b.wall_right, 0),
-            w(&b.wall_right, 1),
-            c.centre[i][0],
-            c.centre[i][1],
-            w(&c.wall_left, 0),
-            w(&c.wall_left, 1),
-            w(&c.wall_right, 0),
-            w(&c.wall_right, 1),
-        ])?;
-    }
-    Ok(t)
-}
-
 fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     let g = a.geometry.geometry()?;
     let law = a.law.spec()?;
@@ -556,8 +506,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     // admissible roller) but never drawn; with --dxf the report is printed, then exit 2.
     let refused = a.dxf.is_some() && res.summary.undercut;
     if let Some(path) = a.dxf.as_ref().filter(|_| !refused) {
-        let bore_mm = a.bore_mm.unwrap_or(400.0 * res.least_radius_m());
-        let shapes: Vec<DxfShape> = res.drawing(a.chord_tol_mm, bore_mm)?.into_iter().map(dxf_shape).collect();
+        let shapes: Vec<DxfShape> = loomkin_io::dobby_export::synthesis_shapes(&res, a.chord_tol_mm, a.bore_mm)?;
         let unit = match a.dxf_unit {
             UnitArg::Mm => DxfUnit::Millimetre,
             UnitArg::M => DxfUnit::Metre,
@@ -567,7 +516,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     }
     if let Some(path) = &a.points_csv {
         let mut f = loomkin_io::create_file(path).map_err(util::failure)?;
-        points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
+        loomkin_io::dobby_export::synthesis_points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
         output::note(format_args!("wrote {}", path.display()));
     }
     let report = || -> Result<()> {

@@ -18,6 +18,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod dobby_export;
 pub mod dxf;
 mod error;
 mod output;

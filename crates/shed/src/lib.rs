@@ -44,7 +44,7 @@ mod template;
 
 pub use conditions::{Conditions, TABLE3_THRESHOLD, THRESHOLD_RANGE, check_threshold};
 pub use criteria::{Criteria, Dimensionless, evaluate};
-pub use curve::{CurvePoint, cycle_curve};
+pub use curve::{AccelJump, CurvePoint, cycle_accel_jumps, cycle_curve};
 pub use error::{Result, ShedError};
 pub use experiment::{
     CRITERIA_COLUMNS, DesignKind, Family, GridSpec, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW, Study, StudyEstimate,
@@ -57,7 +57,8 @@ pub use requirement::LoomRequirement;
 pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
     Candidate, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design, grid_design,
-    grid_design_rows, pareto, pareto_indices, parse_motion_angles, table, table1_design,
+    grid_design_rows, pareto, pareto_indices, pareto_within, parse_motion_angles, table, table1_design,
+    within_jerk_limit,
 };
 pub use template::{MAX_PARTS, Template};
 

@@ -137,11 +137,46 @@ pub fn pareto(
     motions: &[f64],
     conditions: &Conditions,
 ) -> Result<Vec<Candidate>> {
+    pareto_within(design, rows, motions, conditions, None)
+}
+
+/// Whether a law at motion angle `motion_deg` keeps its peak jerk `h·Cj·(ω/Φ)³` within
+/// `max_jerk_m_s3`; a law whose acceleration jumps has an unbounded jerk and never does (as in
+/// [`best`]). Every law does when there is no limit.
+pub fn within_jerk_limit(
+    d: &Dimensionless,
+    motion_deg: f64,
+    max_jerk_m_s3: Option<f64>,
+    conditions: &Conditions,
+) -> bool {
+    match max_jerk_m_s3 {
+        None => true,
+        Some(j) => d.a_jump <= 1e-9 * d.ca && d.cj * conditions.scale(motion_deg, 3) <= j,
+    }
+}
+
+/// [`pareto`] over the (law, motion angle) pairs [`within_jerk_limit`] only: the front an
+/// engineer may choose from when the frame's drive bounds the jerk.
+pub fn pareto_within(
+    design: &Design,
+    rows: &[Option<Dimensionless>],
+    motions: &[f64],
+    conditions: &Conditions,
+    max_jerk_m_s3: Option<f64>,
+) -> Result<Vec<Candidate>> {
     check_motions_at(motions, conditions)?;
+    if let Some(j) = max_jerk_m_s3 {
+        Range::open_closed(0.0, f64::MAX, "m/s³").check("max_jerk_m_s3", j)?;
+    }
     let senses = [Sense::Maximize, Sense::Minimize];
-    let ok: Vec<usize> = (0..rows.len()).filter(|&i| rows[i].is_some()).collect();
     let mut pool: Vec<(usize, f64)> = Vec::new();
     for &m in motions {
+        let ok: Vec<usize> = (0..rows.len())
+            .filter(|&i| rows[i].as_ref().is_some_and(|d| within_jerk_limit(d, m, max_jerk_m_s3, conditions)))
+            .collect();
+        if ok.is_empty() {
+            continue;
+        }
         let a = conditions.scale(m, 2);
         let pts: Vec<[f64; 2]> = ok
             .iter()
@@ -151,6 +186,9 @@ pub fn pareto(
             })
             .collect();
         pool.extend(pareto_front(&pts, &senses)?.into_iter().map(|j| (ok[j], m)));
+    }
+    if pool.is_empty() {
+        return Ok(Vec::new());
     }
     let cands: Vec<Candidate> =
         pool.iter().map(|&(i, m)| candidate(design, i, m, rows[i].as_ref().expect("filtered"), conditions)).collect();
@@ -269,4 +307,47 @@ pub fn parse_motion_angles(text: &str) -> Result<Vec<f64>> {
     };
     check_motions(&out)?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod jerk_limit_tests {
+    use super::*;
+
+    /// The front within a jerk limit: its members keep the limit, no admissible pair beats one of
+    /// them in both criteria (checked by brute force over every pair), no limit gives the plain
+    /// front, and a limit below every law leaves none.
+    #[test]
+    fn the_front_within_a_jerk_limit_is_the_front_of_the_admissible_laws() {
+        let cond = Conditions::new(0.95, 0.1, 300.0).expect("conditions");
+        let t = Template::linear_trapezoid();
+        let design = grid_design(t.parts(), 0.0, 1.0, 0.08).expect("grid");
+        let rows = evaluate_rows(&t, &design, cond.threshold(), Progress::Hidden).expect("rows");
+        let motions = [200.0, 260.0];
+        assert_eq!(
+            pareto_within(&design, &rows, &motions, &cond, None).unwrap(),
+            pareto(&design, &rows, &motions, &cond).unwrap()
+        );
+        let pairs: Vec<Candidate> = table(&design, &rows, &motions, &cond).unwrap();
+        let jerks: Vec<f64> =
+            pairs.iter().filter(|c| c.criteria.accel_jump_m_s2 == 0.0).map(|c| c.criteria.peak_jerk_m_s3).collect();
+        assert!(!jerks.is_empty(), "some laws of the grid have no steps");
+        let mut sorted = jerks.clone();
+        sorted.sort_by(f64::total_cmp);
+        let limit = sorted[sorted.len() / 2];
+        let front = pareto_within(&design, &rows, &motions, &cond, Some(limit)).unwrap();
+        assert!(!front.is_empty());
+        let ok =
+            |c: &Candidate| c.criteria.accel_jump_m_s2 == 0.0 && c.criteria.peak_jerk_m_s3 <= limit * (1.0 + 1e-12);
+        for f in &front {
+            assert!(ok(f), "front member over the limit: {:?}", f.criteria);
+            let (w, a) = (f.criteria.window_deg, f.criteria.peak_accel_m_s2);
+            let beaten = pairs.iter().filter(|c| ok(c)).any(|c| {
+                let (cw, ca) = (c.criteria.window_deg, c.criteria.peak_accel_m_s2);
+                cw >= w && ca <= a && (cw > w * (1.0 + 1e-12) || ca < a * (1.0 - 1e-12))
+            });
+            assert!(!beaten, "({w}, {a}) is dominated by an admissible law");
+        }
+        assert!(pareto_within(&design, &rows, &motions, &cond, Some(sorted[0] * 0.5)).unwrap().is_empty());
+        assert!(pareto_within(&design, &rows, &motions, &cond, Some(0.0)).is_err());
+    }
 }

@@ -32,14 +32,9 @@ function status(text, isError) {
   el.className = isError ? "error" : "";
 }
 
+// Saves a file (through LoomkinCharts.download, which tests can watch).
 function download(filename, text, type) {
-  const blob = new Blob([text], { type: type || "text/plain" });
-  const a = document.createElement("a");
-  a.href = URL.createObjectURL(blob);
-  a.download = filename;
-  document.body.appendChild(a);
-  a.click();
-  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+  window.LoomkinCharts.download(filename, text, type);
 }
 
 function el(tag, props, ...children) {
@@ -56,18 +51,205 @@ function num(v, digits) {
   return /^-0(\.0*)?$/.test(t) ? t.slice(1) : t; // never "-0.0"
 }
 
+// ---------------------------------------------------------------- shared pieces for every view
+
+// A slider with a numeric field beside it; both edit one value. The slider moves in `step`, the
+// field takes any value in [min, max] (e.g. 15.5 mm of strap play). onInput(v) on every move or
+// typed value; onCommit(v) when an edit ends (slider released, field changed): record it for undo.
+// Returns {label, range, field, set(v)}; set shows a value without calling back.
+function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCommit) {
+  const range = el("input", { type: "range", min: String(min), max: String(max), step: String(step), value: String(value), id: id + "-range" });
+  const field = el("input", { type: "number", min: String(min), max: String(max), step: "any", value: String(value), id, className: "short" });
+  field.setAttribute("aria-label", `${label} (${unit})`);
+  range.addEventListener("input", () => { field.value = range.value; field.classList.remove("bad"); onInput(+range.value); });
+  range.addEventListener("change", () => { if (onCommit) onCommit(+range.value); });
+  field.addEventListener("change", () => {
+    const v = +field.value;
+    if (!isFinite(v) || field.value === "" || v < min || v > max) {
+      field.classList.add("bad");
+      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${min} … ${max} ${unit}`, true);
+      return;
+    }
+    field.classList.remove("bad");
+    range.value = String(v);
+    onInput(v);
+    if (onCommit) onCommit(v);
+  });
+  const set = (v) => { range.value = String(v); field.value = String(v); field.classList.remove("bad"); };
+  return { label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "num-slider" }, range, field)), range, field, set };
+}
+
+// Marks the inputs a refused request names (error.field, a JSON path such as
+// "design.points[2]") and says which table row it is, counted from 1 as the table shows.
+// fields(path) → {inputs: [elements], row?: <tr>, rowNumber?: n, label?: text} or null.
+function showFieldError(prefix, e, fields) {
+  for (const x of document.querySelectorAll(".bad-api")) x.classList.remove("bad", "bad-api");
+  let msg = e.message;
+  const hit = e.field && fields ? fields(e.field) : null;
+  if (hit) {
+    for (const i of hit.inputs || []) if (i) i.classList.add("bad", "bad-api");
+    if (hit.row) hit.row.classList.add("bad", "bad-api");
+    if (hit.rowNumber) {
+      // The API names the field by its 0-based index; the table counts rows from 1.
+      msg = `row ${hit.rowNumber}: ` + msg.replace(/^[\w.]+\[\d+\]:\s*/, "");
+    } else if (hit.label) {
+      msg = `${hit.label}: ` + msg.replace(/^[\w.\[\]]+:\s*/, "");
+    }
+  }
+  status((prefix ? prefix + ": " : "") + msg, true);
+}
+
+function clearFieldErrors() {
+  for (const x of document.querySelectorAll(".bad-api")) x.classList.remove("bad", "bad-api");
+}
+
+// ---------------------------------------------------------------- undo, redo and the URL
+
+// Each view keeps a history of its states (JSON snapshots): undo and redo walk it, and the state
+// shown is written into the address, "#view/<state>", so that back, forward, reload and a shared
+// link bring it back. A view calls
+//   const h = viewHistory("servo", get, set);  // get(): the state; set(state): show it
+//   h.ready();    // once its first state is shown: takes the state from the address if any
+//   h.commit();   // after every edit (drag end, field changed, button)
+const histories = {};
+let currentView = null;
+
+function encodeState(obj) {
+  const bytes = new TextEncoder().encode(JSON.stringify(obj));
+  let bin = "";
+  for (const b of bytes) bin += String.fromCharCode(b);
+  return btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+}
+
+function decodeState(text) {
+  const bin = atob(text.replace(/-/g, "+").replace(/_/g, "/"));
+  return JSON.parse(new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0))));
+}
+
+// "#view/state" → {view, state (text or null)}.
+function parseHash(hash) {
+  const h = (hash || "").replace(/^#/, "");
+  const k = h.indexOf("/");
+  return k < 0 ? { view: h, state: null } : { view: h.slice(0, k), state: h.slice(k + 1) || null };
+}
+
+function viewHistory(view, get, set) {
+  const h = {
+    states: [], at: -1, isReady: false,
+    snapshot() { return JSON.stringify(get()); },
+    // Records the state now shown (if it differs from the last one) and writes the address.
+    commit(replace) {
+      if (!h.isReady) return;
+      const snap = h.snapshot();
+      if (snap !== h.states[h.at]) {
+        h.states = h.states.slice(0, h.at + 1);
+        h.states.push(snap);
+        if (h.states.length > 200) h.states.shift();
+        h.at = h.states.length - 1;
+      }
+      writeHash(view, replace);
+      updateHistoryButtons();
+    },
+    undo() { if (h.at > 0) { h.at--; h.apply(); } },
+    redo() { if (h.at < h.states.length - 1) { h.at++; h.apply(); } },
+    apply() {
+      set(JSON.parse(h.states[h.at]));
+      writeHash(view, false);
+      updateHistoryButtons();
+    },
+    // A state from the address (back, forward, a typed or reloaded URL): shown and recorded.
+    fromHash(text) {
+      let state;
+      try { state = decodeState(text); } catch (_) { status(`address: the ${view} state in the URL cannot be read; kept the one shown`, true); return; }
+      if (JSON.stringify(state) === h.states[h.at]) return;
+      set(state);
+      const snap = h.snapshot();
+      h.states = h.states.slice(0, h.at + 1);
+      h.states.push(snap);
+      h.at = h.states.length - 1;
+      updateHistoryButtons();
+    },
+    ready() {
+      h.isReady = true;
+      const p = parseHash(location.hash);
+      if (p.view === view && p.state) h.fromHash(p.state);
+      else h.commit(true);
+      if (h.at < 0) h.commit(true);
+    },
+    current() { return get(); },
+  };
+  histories[view] = h;
+  loomkin.histories[view] = h;
+  return h;
+}
+
+function writeHash(view, replace) {
+  if (view !== currentView) return;
+  const h = histories[view];
+  const hash = "#" + view + (h && h.at >= 0 ? "/" + encodeState(JSON.parse(h.states[h.at])) : "");
+  if (location.hash === hash) return;
+  if (replace) history.replaceState(null, "", hash); else history.pushState(null, "", hash);
+}
+
+function updateHistoryButtons() {
+  const h = histories[currentView];
+  $("#undo").disabled = !h || h.at <= 0;
+  $("#redo").disabled = !h || h.at >= h.states.length - 1;
+}
+
+function undo() {
+  const h = histories[currentView];
+  if (h) h.undo();
+}
+
+function redo() {
+  const h = histories[currentView];
+  if (h) h.redo();
+}
+
+document.addEventListener("keydown", (e) => {
+  if (!(e.ctrlKey || e.metaKey) || e.altKey) return;
+  const k = e.key.toLowerCase();
+  if (k !== "z" && k !== "y") return;
+  e.preventDefault();
+  // A field being typed into ends its edit first (its change is recorded), then the undo.
+  const a = document.activeElement;
+  if (a && a !== document.body && a.blur) a.blur();
+  if (k === "y" || e.shiftKey) redo(); else undo();
+});
+
+Object.assign(loomkin, { histories: {}, undo, redo, encodeState, decodeState });
+window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, viewHistory, download, api, status, el, num };
+
 // ---------------------------------------------------------------- tabs
 
 const VIEW_TITLES = { servo: "Servo law", catalogue: "Law catalogue", shed: "Shedding", picking: "Picking", dobby: "Dobby", dynamics: "Dynamics" };
 const initialised = {};
 
-function showView(name) {
+// Shows a view; `fromAddress` when the address already names it (no new history entry).
+function showView(name, fromAddress) {
+  if (!document.querySelector(`#tabs button[data-view="${name}"]`)) return;
+  currentView = name;
+  loomkin.view = name;
   for (const b of document.querySelectorAll("#tabs button")) b.setAttribute("aria-selected", String(b.dataset.view === name));
   for (const s of document.querySelectorAll(".view")) s.hidden = s.id !== "view-" + name;
   if (!initialised[name] && VIEWS[name]) { initialised[name] = true; VIEWS[name](); }
   for (const c of Object.values(loomkin.charts)) c.draw();
-  if (location.hash !== "#" + name) history.replaceState(null, "", "#" + name);
+  if (!fromAddress) writeHash(name, false);
+  else if (histories[name] && !parseHash(location.hash).state) writeHash(name, true);
+  updateHistoryButtons();
 }
+
+// The address changed (typed, back, forward): switch view and take its state.
+function onAddress() {
+  const p = parseHash(location.hash);
+  if (!p.view) return;
+  if (p.view !== currentView) showView(p.view, true);
+  const h = histories[p.view];
+  if (h && h.isReady && p.state) h.fromHash(p.state);
+}
+window.addEventListener("hashchange", onAddress);
+window.addEventListener("popstate", onAddress);
 
 // ---------------------------------------------------------------- servo law editor
 
@@ -116,16 +298,20 @@ function initServo() {
   }
   Object.assign(loomkin.charts, { editor, torque, power, rack, ...Object.fromEntries(Object.entries(kin).map(([k, c]) => ["kin_" + k, c])) });
   servo.charts = { editor, torque, power, rack, kin };
-  editor.setPoints([], { onDrag: dragPoint, onDragEnd: () => evaluate() });
+  editor.setPoints([], { onDrag: dragPoint, onDragEnd: () => { evaluate(); servo.history.commit(); } });
+  $("#drag-x").addEventListener("change", (e) => { editor.freeX = e.target.checked; });
+  servo.history = viewHistory("servo", () => servo.design, (d) => setDesign(d));
 
   const form = $("#drive-form");
   for (const [key, label, unit, optional] of DRIVE_FIELDS) {
     const input = el("input", { type: "number", step: "any", name: key, id: "drive-" + key, placeholder: optional || "" }); // optional: blank = default
     input.addEventListener("input", () => { readDrive(); evaluate(); });
+    input.addEventListener("change", () => servo.history.commit());
     form.append(el("label", {}, `${label} (${unit})`, input));
   }
   $("#speeds").addEventListener("input", () => { readSpeeds(); evaluate(); });
-  $("#spline-end").addEventListener("change", (e) => { servo.design.end = e.target.value; evaluate(); });
+  $("#speeds").addEventListener("change", () => servo.history.commit());
+  $("#spline-end").addEventListener("change", (e) => { servo.design.end = e.target.value; evaluate(); servo.history.commit(); });
   $("#point-add").addEventListener("click", addPoint);
   $("#optimise").addEventListener("click", optimise);
   $("#export-coeffs").addEventListener("click", () => exportDesign("coeffs"));
@@ -144,6 +330,7 @@ async function loadDefault() {
   try {
     const d = await api("/servo/default");
     setDesign(d.design);
+    if (servo.history.isReady) servo.history.commit(); else servo.history.ready();
   } catch (e) { status("default design: " + e.message, true); }
 }
 
@@ -184,13 +371,15 @@ function renderPointsTable() {
     const yi = el("input", { type: "number", step: "any", value: String(+y.toFixed(6)), disabled: fixed, id: `pt-y-${i}` });
     const onInput = () => {
       const nx = parseFloat(xi.value), ny = parseFloat(yi.value);
-      if (isFinite(nx) && isFinite(ny)) { pts[i] = [nx, ny]; evaluate(); }
+      xi.classList.toggle("bad", !isFinite(nx));
+      yi.classList.toggle("bad", !isFinite(ny));
+      if (isFinite(nx) && isFinite(ny)) { pts[i] = [nx, ny]; evaluate(); servo.history.commit(); }
     };
     xi.addEventListener("change", onInput);
     yi.addEventListener("change", onInput);
     const del = el("button", { type: "button", className: "icon", textContent: "×", title: "remove point", disabled: fixed || n <= 4 });
-    del.addEventListener("click", () => { pts.splice(i, 1); renderPointsTable(); evaluate(); });
-    body.append(el("tr", {}, el("td", { textContent: String(i + 1) }), el("td", {}, xi), el("td", {}, yi), el("td", {}, del)));
+    del.addEventListener("click", () => { pts.splice(i, 1); renderPointsTable(); evaluate(); servo.history.commit(); });
+    body.append(el("tr", { id: `pt-row-${i}` }, el("td", { textContent: String(i + 1) }), el("td", {}, xi), el("td", {}, yi), el("td", {}, del)));
   });
 }
 
@@ -213,6 +402,7 @@ function addPoint() {
   pts.splice(k + 1, 0, [x, Math.max(-1, Math.min(1, y))]);
   renderPointsTable();
   evaluate();
+  servo.history.commit();
 }
 
 // Mouse drag of definition point i to chart coordinates (x, y), kept inside its neighbours.
@@ -241,15 +431,30 @@ function evaluate() {
   api("/servo/evaluate", { design: servo.design, samples: 1000 })
     .then((r) => {
       servo.result = r;
+      clearFieldErrors();
       renderServo(r);
       status(`evaluated in ${(performance.now() - started).toFixed(0)} ms (server ${r.compute_ms.toFixed(2)} ms)`);
     })
-    .catch((e) => status(e.message, true))
+    .catch((e) => showFieldError("", e, servoField))
     .finally(() => {
       servo.inflight = false;
       loomkin.evalCount++;
       if (servo.queued) { servo.queued = false; evaluate(); } else { loomkin.busy = false; }
     });
+}
+
+// The inputs a refused servo design names: a definition point (its table row, counted from 1),
+// a drive field or the speeds.
+function servoField(path) {
+  let m = /^design\.points\[(\d+)\]/.exec(path);
+  if (m) {
+    const i = +m[1];
+    return { inputs: [$(`#pt-x-${i}`), $(`#pt-y-${i}`)], row: $(`#pt-row-${i}`), rowNumber: i + 1 };
+  }
+  m = /^design\.drive\.(\w+)/.exec(path);
+  if (m) return { inputs: [$(`#drive-${m[1]}`)], label: (DRIVE_FIELDS.find((f) => f[0] === m[1]) || [m[1], m[1]])[1] };
+  if (/^design\.speeds_rpm/.test(path)) return { inputs: [$("#speeds")], label: "main-shaft speeds" };
+  return null;
 }
 
 function renderServo(r) {
@@ -289,6 +494,7 @@ async function optimise() {
     servo.design.points = r.def_points;
     renderPointsTable();
     evaluate();
+    servo.history.commit();
     const rows = r.before.map((b, k) => {
       const a = r.after[k];
       return el("tr", {}, el("td", { textContent: num(b.speed_rpm) }),
@@ -327,6 +533,7 @@ async function loadDesign(ev) {
     const format = /\.toml$/i.test(file.name) ? "toml" : /\.json$/i.test(file.name) ? "json" : "auto";
     const r = await api("/servo/design/load", { text, format });
     setDesign(r.design);
+    servo.history.commit();
     status(`loaded ${file.name}`);
   } catch (e) { status(`load ${file.name}: ${e.message}`, true); }
   ev.target.value = "";
@@ -334,7 +541,10 @@ async function loadDesign(ev) {
 
 // ---------------------------------------------------------------- law catalogue
 
-const catalogueState = { chosen: new Set(["cycloidal", "modified-trapezoid", "poly345"]), params: {} };
+// The compared laws: a list of {name, params}; one law may appear several times with different
+// parameters (variants), each one a curve and a row of the table.
+const catalogueState = { entries: [{ name: "cycloidal", params: {} }, { name: "modified-trapezoid", params: { ramp: "0.125" } }, { name: "poly345", params: {} }], laws: [] };
+const MAX_COMPARED = 8;
 
 async function initCatalogue() {
   const charts = {};
@@ -343,46 +553,112 @@ async function initCatalogue() {
     loomkin.charts["cat_" + k] = charts[k];
   }
   catalogueState.charts = charts;
+  catalogueState.history = viewHistory("catalogue", () => catalogueState.entries, (entries) => {
+    catalogueState.entries = entries;
+    renderCatalogueList();
+    compareLaws();
+  });
   try {
     const cat = await api("/laws");
-    const list = $("#catalogue-list");
     for (const law of cat.laws) {
-      const box = el("input", { type: "checkbox", checked: catalogueState.chosen.has(law.name), id: "cat-" + law.name });
-      box.addEventListener("change", () => { box.checked ? catalogueState.chosen.add(law.name) : catalogueState.chosen.delete(law.name); compareLaws(); });
-      const row = el("div", { className: "check" }, box, el("label", { htmlFor: box.id, textContent: law.name, title: law.description }));
       const m = /^(\w+)=([^\s]+)/.exec(law.params);
       if (m) {
-        const key = m[1];
-        const def = law.name === "piecewise" ? "0.25:sine-ramp:0:1,0.25:cosine-ramp:1:0,0.25:sine-ramp:0:-1,0.25:cosine-ramp:-1:0" : m[2];
-        catalogueState.params[law.name] = { [key]: def };
-        const inp = el("input", { type: "text", value: def, title: law.params, spellcheck: false });
-        inp.addEventListener("change", () => { catalogueState.params[law.name] = { [key]: inp.value }; compareLaws(); });
-        row.append(el("small", { textContent: key + " =" }), inp);
+        law.key = m[1];
+        law.default = law.name === "piecewise" ? "0.25:sine-ramp:0:1,0.25:cosine-ramp:1:0,0.25:sine-ramp:0:-1,0.25:cosine-ramp:-1:0" : m[2];
       }
-      list.append(row, el("div", { className: "hint", textContent: law.description }));
     }
+    catalogueState.laws = cat.laws;
   } catch (e) { status("catalogue: " + e.message, true); }
+  renderCatalogueList();
   compareLaws();
+  catalogueState.history.ready();
+}
+
+function catalogueChanged() {
+  renderCatalogueList();
+  compareLaws();
+  catalogueState.history.commit();
+}
+
+// The list: a box per law (ticked when compared), then one parameter field per variant of it.
+function renderCatalogueList() {
+  const list = $("#catalogue-list");
+  const entries = catalogueState.entries;
+  list.replaceChildren();
+  for (const law of catalogueState.laws) {
+    const mine = entries.map((e, i) => [e, i]).filter(([e]) => e.name === law.name);
+    const box = el("input", { type: "checkbox", checked: mine.length > 0, id: "cat-" + law.name });
+    box.addEventListener("change", () => {
+      if (box.checked) {
+        if (entries.length >= MAX_COMPARED) { box.checked = false; status(`at most ${MAX_COMPARED} laws are compared`, true); return; }
+        entries.push({ name: law.name, params: law.key ? { [law.key]: law.default } : {} });
+      } else {
+        catalogueState.entries = entries.filter((e) => e.name !== law.name);
+      }
+      catalogueChanged();
+    });
+    const row = el("div", { className: "check" }, box, el("label", { htmlFor: box.id, textContent: law.name, title: law.description }));
+    list.append(row);
+    if (law.key) {
+      const variants = mine.length ? mine : [[null, -1]];
+      variants.forEach(([e, i], k) => {
+        const inp = el("input", { type: "text", value: e ? e.params[law.key] ?? law.default : law.default, title: law.params, spellcheck: false, disabled: !e, id: `cat-param-${i}` });
+        inp.addEventListener("change", () => { e.params = { [law.key]: inp.value }; compareLaws(); catalogueState.history.commit(); });
+        const line = k === 0 ? row : el("div", { className: "check variant" }, el("span", { className: "hint", textContent: "variant" }));
+        line.append(el("small", { textContent: law.key + " =" }), inp);
+        if (k > 0) {
+          const del = el("button", { type: "button", className: "icon", textContent: "×", title: "remove this variant" });
+          del.addEventListener("click", () => { entries.splice(i, 1); catalogueChanged(); });
+          line.append(del);
+          list.append(line);
+        }
+      });
+      if (mine.length) {
+        const add = el("button", { type: "button", className: "icon", textContent: "+ variant", title: `compare ${law.name} with another ${law.key}`, id: `cat-variant-${law.name}` });
+        add.addEventListener("click", () => {
+          if (entries.length >= MAX_COMPARED) { status(`at most ${MAX_COMPARED} laws are compared`, true); return; }
+          const last = mine[mine.length - 1][0];
+          entries.splice(mine[mine.length - 1][1] + 1, 0, { name: law.name, params: { ...last.params } });
+          catalogueChanged();
+        });
+        row.append(add);
+      }
+    }
+    list.append(el("div", { className: "hint", textContent: law.description }));
+  }
 }
 
 async function compareLaws() {
-  const laws = [...catalogueState.chosen].map((name) => ({ name, params: catalogueState.params[name] || {} }));
-  if (laws.length === 0) return;
+  const laws = catalogueState.entries.map((e) => ({ name: e.name, params: e.params || {} }));
+  if (laws.length === 0) {
+    for (const k of ["s", "v", "a", "j"]) catalogueState.charts[k].setSeries([]);
+    $("#catalogue-metrics tbody").replaceChildren();
+    return;
+  }
   try {
     const r = await api("/laws/compare", { laws, samples: 801 });
+    clearFieldErrors();
     for (const k of ["s", "v", "a", "j"]) {
-      catalogueState.charts[k].setSeries(r.laws.map((l, i) => ({ label: l.label, x: l.samples.x, y: l.samples[k], color: PALETTE[i % PALETTE.length] })));
+      catalogueState.charts[k].setSeries(r.laws.map((l, i) => ({ label: l.label, x: l.samples.x, y: l.samples[k], color: PALETTE[i % PALETTE.length], dash: DASHES[Math.floor(i / 4) % DASHES.length] })));
     }
     $("#catalogue-metrics tbody").replaceChildren(...r.laws.map((l, i) => {
       const sw = el("span", { className: "swatch" });
       sw.style.background = PALETTE[i % PALETTE.length];
       const m = l.metrics;
-      return el("tr", {}, el("td", {}, sw, l.label), ...[m.cv, m.ca, m.ca_pos, m.ca_neg, m.cj, m.cm, m.ca_rms].map((v) => el("td", { textContent: num(v) })),
+      return el("tr", { id: `cat-row-${i}` }, el("td", {}, sw, l.label), ...[m.cv, m.ca, m.ca_pos, m.ca_neg, m.cj, m.cm, m.ca_rms].map((v) => el("td", { textContent: num(v) })),
         el("td", { textContent: "C" + l.continuity_class }));
     }));
     status(`${r.laws.length} laws compared`);
-  } catch (e) { status("compare: " + e.message, true); }
+  } catch (e) {
+    showFieldError("compare", e, (f) => {
+      const m = /^laws\[(\d+)\]/.exec(f);
+      const e = m && catalogueState.entries[+m[1]];
+      return e ? { inputs: [$(`#cat-param-${m[1]}`)], label: `law ${+m[1] + 1} of the comparison (${e.name})` } : null;
+    });
+  }
 }
+
+const DASHES = [[], [7, 4], [2, 3]];
 
 
 // ---------------------------------------------------------------- picking scenario
@@ -394,7 +670,7 @@ async function initPicking() {
   const panel = el("div", { className: "panel" }, el("h2", { textContent: "Loom settings" }),
     el("p", { className: "hint", textContent: "The paper's under-pick mechanism (Jederán 1959), its cam designed for V = 17 m/s over X = 0.22 m. Move a slider: the pick is recomputed." }));
   const method = el("select", { id: "picking-method" }, el("option", { value: "closed", textContent: "closed form (corrected)" }), el("option", { value: "ode", textContent: "numerical (DOP853)" }));
-  method.addEventListener("change", simulatePick);
+  method.addEventListener("change", () => { simulatePick(); picking.history.commit(); });
   const table = el("table", { className: "data", id: "picking-outcome" }, el("caption", { textContent: "End of the pick" }), el("tbody"));
   const charts = el("div", { className: "grid-charts" });
   root.append(el("div", { className: "results" }, panel, table), charts);
@@ -403,16 +679,34 @@ async function initPicking() {
   Object.assign(loomkin.charts, { pick_x: picking.charts.x, pick_v: picking.charts.v, pick_a: picking.charts.a });
   try {
     const info = await api("/picking/settings");
+    picking.sliders = {};
     for (const s of info.settings) {
       picking.values[s.key] = s.designed;
-      const out = el("output", { textContent: `${num(s.designed)} ${s.unit}` });
-      const range = el("input", { type: "range", min: String(s.min), max: String(s.max), step: String((s.max - s.min) / 200), value: String(s.designed), id: "pick-" + s.key });
-      range.addEventListener("input", () => { picking.values[s.key] = +range.value; out.textContent = `${num(+range.value)} ${s.unit}`; simulatePick(); });
-      panel.append(el("label", { className: "slider" }, el("span", { textContent: `${s.description} (${s.unit})` }), range, out));
+      // The slider moves in round steps; the field beside it takes any value (15.5 mm of play).
+      const step = niceRound((s.max - s.min) / 200);
+      const w = sliderWithNumber("pick-" + s.key, s.description, s.unit, s.min, s.max, step, +s.designed.toPrecision(6),
+        (v) => { picking.values[s.key] = v; simulatePick(); }, () => picking.history.commit());
+      w.field.value = String(+s.designed.toPrecision(6));
+      picking.sliders[s.key] = w;
+      panel.append(w.label);
     }
     panel.append(el("label", { className: "slider" }, el("span", { textContent: "route" }), method));
   } catch (e) { status("picking: " + e.message, true); }
+  picking.history = viewHistory("picking", () => ({ settings: picking.values, method: $("#picking-method").value }), (st) => {
+    Object.assign(picking.values, st.settings || {});
+    for (const [k, w] of Object.entries(picking.sliders || {})) w.set(picking.values[k]);
+    if (st.method) $("#picking-method").value = st.method;
+    simulatePick();
+  });
   simulatePick();
+  picking.history.ready();
+}
+
+// 1, 2 or 5 times a power of ten, at or below v (slider steps).
+function niceRound(v) {
+  const p = Math.pow(10, Math.floor(Math.log10(v)));
+  const f = v / p;
+  return (f >= 5 ? 5 : f >= 2 ? 2 : 1) * p;
 }
 
 function simulatePick() {
@@ -438,7 +732,10 @@ function simulatePick() {
       $("#picking-outcome tbody").replaceChildren(...rows.map(([k, v, id]) => el("tr", {}, el("th", { textContent: k }), el("td", { textContent: v, id: id || "" }))));
       status("pick simulated");
     })
-    .catch((e) => status("picking: " + e.message, true))
+    .catch((e) => showFieldError("picking", e, (f) => {
+      const m = /^settings\.(\w+)/.exec(f);
+      return m && picking.sliders && picking.sliders[m[1]] ? { inputs: [picking.sliders[m[1]].field], label: m[1] } : null;
+    }))
     .finally(() => { picking.inflight = false; if (picking.queued) { picking.queued = false; simulatePick(); } });
 }
 
@@ -461,14 +758,19 @@ function initShed() {
     step: el("input", { type: "number", step: "any", value: "0.025", id: "shed-step" }),
     motions: el("input", { type: "text", value: "180, 200, 220, 240, 260, 280, 300", id: "shed-motions", spellcheck: false }),
     threshold: el("input", { type: "number", step: "any", value: "0.95", id: "shed-threshold" }),
-    stroke: el("input", { type: "number", step: "any", value: "0.1", id: "shed-stroke" }),
+    // mm, as `loomkin shed … --stroke-mm` (the API takes stroke_m).
+    stroke: el("input", { type: "number", step: "any", value: "100", id: "shed-stroke" }),
     speed: el("input", { type: "number", step: "any", value: "300", id: "shed-speed" }),
+    jerk: el("input", { type: "number", step: "any", min: "0", placeholder: "none", id: "shed-jerk" }),
   };
+  const log = el("input", { type: "checkbox", id: "shed-log" });
   const form = el("div", { className: "panel" }, el("h2", { textContent: "Family and grid" }),
-    el("p", { className: "hint", textContent: "Heald-frame laws (Makarov et al. 2004): every law of the family on a grid of relative lengths k_Ti, at each motion angle. Click a point of the Pareto front to see that law." }),
+    el("p", { className: "hint", textContent: "Heald-frame laws (Makarov et al. 2004): every law of the family on a grid of relative lengths k_Ti, at each motion angle. Click a point of the Pareto front to see that law. A jerk limit keeps only the laws whose peak jerk stays under it (laws whose acceleration jumps have no bounded jerk)." }),
     el("div", { className: "grid2" }, field("law family", family), field("grid step of k_Ti (–)", inputs.step),
       field("motion angles φ (°)", inputs.motions), field("dwell threshold T (–)", inputs.threshold),
-      field("stroke h (m)", inputs.stroke), field("main-shaft speed n (rpm)", inputs.speed)));
+      field("stroke h (mm)", inputs.stroke), field("main-shaft speed n (rpm)", inputs.speed),
+      field("jerk limit (m/s³)", inputs.jerk)),
+    el("label", { className: "check" }, log, "log scale for the peak acceleration"));
   const table = el("table", { className: "data", id: "shed-chosen" }, el("caption", { textContent: "Chosen law" }), el("tbody"));
   const charts = el("div", { className: "charts" });
   root.append(el("div", { className: "results" }, form, table), charts);
@@ -481,39 +783,88 @@ function initShed() {
   shed.s = mk("shed-s", "Frame displacement (up, then down)", "s", "mm");
   shed.v = mk("shed-v", "Frame velocity over two picks", "v", "m/s");
   shed.a = mk("shed-a", "Frame acceleration over two picks", "a", "m/s²");
-  Object.assign(loomkin.charts, { shed_pareto: shed.pareto, shed_s: shed.s, shed_v: shed.v, shed_a: shed.a });
+  shed.j = mk("shed-j", "Frame jerk over two picks", "j", "m/s³");
+  Object.assign(loomkin.charts, { shed_pareto: shed.pareto, shed_s: shed.s, shed_v: shed.v, shed_a: shed.a, shed_j: shed.j });
   shed.pareto.setHandlers({ onClick: (x, y, px, py) => pickFront(px, py) });
-  for (const e of [family, ...Object.values(inputs)]) e.addEventListener("change", computePareto);
+  for (const e of [family, ...Object.values(inputs)]) e.addEventListener("change", () => { computePareto(); shed.history.commit(); });
+  log.addEventListener("change", () => { shed.logTouched = true; shed.pareto.opts.y.log = log.checked; shed.pareto.resetView(); shed.history.commit(); });
   shed.inputs = { family, ...inputs };
-  computePareto();
+  shed.log = log;
+  shed.history = viewHistory("shed", () => ({
+    family: family.value, step: inputs.step.value, motions_deg: inputs.motions.value, threshold: inputs.threshold.value,
+    stroke_mm: inputs.stroke.value, speed_rpm: inputs.speed.value, max_jerk_m_s3: inputs.jerk.value, log: log.checked, chosen: shed.chosen,
+  }), (st) => {
+    family.value = st.family; inputs.step.value = st.step; inputs.motions.value = st.motions_deg; inputs.threshold.value = st.threshold;
+    inputs.stroke.value = st.stroke_mm; inputs.speed.value = st.speed_rpm; inputs.jerk.value = st.max_jerk_m_s3 || "";
+    log.checked = !!st.log; shed.logTouched = true; shed.pareto.opts.y.log = log.checked;
+    computePareto(st.chosen);
+  });
+  computePareto().then(() => shed.history.ready());
 }
 
 function shedConditions() {
   const i = shed.inputs;
-  return { threshold: +i.threshold.value, stroke_m: +i.stroke.value, speed_rpm: +i.speed.value };
+  return { threshold: +i.threshold.value, stroke_m: +i.stroke.value / 1000, speed_rpm: +i.speed.value };
 }
 
-async function computePareto() {
+function shedJerkLimit() {
+  const t = shed.inputs.jerk.value.trim();
+  return t === "" ? null : +t;
+}
+
+// The inputs a refused shedding request names.
+function shedField(path) {
+  const i = shed.inputs;
+  const map = { "conditions.threshold": [i.threshold, "dwell threshold T"], "conditions.stroke_m": [i.stroke, "stroke h"], "conditions.speed_rpm": [i.speed, "main-shaft speed n"],
+    step: [i.step, "grid step"], max_jerk_m_s3: [i.jerk, "jerk limit"], family: [i.family, "law family"] };
+  if (/^motions_deg/.test(path)) {
+    const m = /\[(\d+)\]/.exec(path);
+    return { inputs: [i.motions], label: m ? `motion angle ${+m[1] + 1} of the list` : "motion angles" };
+  }
+  const hit = map[path];
+  return hit ? { inputs: [hit[0]], label: hit[1] } : null;
+}
+
+async function computePareto(chosen) {
   const i = shed.inputs;
   const motions_deg = i.motions.value.split(/[,;\s]+/).filter((t) => t).map(Number);
   status("evaluating the grid…");
+  const req = { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() };
+  const jl = shedJerkLimit();
+  if (jl !== null) req.max_jerk_m_s3 = jl;
   try {
-    const r = await api("/shed/pareto", { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() });
+    const r = await api("/shed/pareto", req);
+    clearFieldErrors();
     shed.result = r;
-    const byMotion = {};
+    const byMotion = {}, over = { x: [], y: [] };
     r.cloud.motion_deg.forEach((m, k) => {
-      (byMotion[m] = byMotion[m] || { x: [], y: [] }).x.push(r.cloud.window_deg[k]);
-      byMotion[m].y.push(r.cloud.peak_accel_m_s2[k]);
+      const ok = !r.cloud.within_jerk_limit || r.cloud.within_jerk_limit[k];
+      const d = ok ? (byMotion[m] = byMotion[m] || { x: [], y: [] }) : over;
+      d.x.push(r.cloud.window_deg[k]);
+      d.y.push(r.cloud.peak_accel_m_s2[k]);
     });
     const front = [...r.front].sort((a, b) => a.criteria.window_deg - b.criteria.window_deg);
     shed.front = front;
-    const series = Object.entries(byMotion).map(([m, d], k) => ({ label: `φ = ${m}°`, mode: "points", radius: 1.3, x: d.x, y: d.y, color: CLOUD_COLOURS[k % CLOUD_COLOURS.length] }));
+    const series = [];
+    if (over.x.length) series.push({ label: "over the jerk limit", mode: "points", radius: 1.1, x: over.x, y: over.y, color: "#cbd5e1", hover: false });
+    Object.entries(byMotion).forEach(([m, d], k) => series.push({ label: `φ = ${m}°`, mode: "points", radius: 1.3, x: d.x, y: d.y, color: CLOUD_COLOURS[k % CLOUD_COLOURS.length] }));
     series.push({ label: "Pareto front", mode: "markers", line: true, radius: 4, color: "#111827", x: front.map((c) => c.criteria.window_deg), y: front.map((c) => c.criteria.peak_accel_m_s2) });
     shed.series = series;
+    // Accelerations over more than two decades (the lead-trapezoid family reaches 10⁵ m/s²) are
+    // drawn on a log axis, unless the box was set by hand.
+    if (!shed.logTouched) {
+      const ys = r.cloud.peak_accel_m_s2.filter((v) => v > 0);
+      shed.log.checked = ys.length > 0 && Math.max(...ys) / Math.min(...ys) > 100;
+      shed.pareto.opts.y.log = shed.log.checked;
+    }
+    shed.pareto.view = null;
     shed.pareto.setSeries(series);
-    status(`${r.laws} laws × ${Object.keys(byMotion).length} motion angles; ${r.front.length} on the Pareto front`);
-    chooseLaw(Math.floor(front.length / 2));
-  } catch (e) { status("shedding: " + e.message, true); }
+    const n = Object.keys(byMotion).length;
+    status(`${r.laws} laws × ${r.cloud.motion_deg.length / Math.max(1, r.laws)} motion angles; ${r.front.length} on the Pareto front` +
+      (over.x.length ? `; ${over.x.length} of ${r.cloud.motion_deg.length} over the jerk limit` : "") + (n ? "" : " — no law within the jerk limit"));
+    if (front.length) await chooseLaw(chosen !== undefined && chosen < front.length ? chosen : Math.floor(front.length / 2));
+    else { for (const c of [shed.s, shed.v, shed.a, shed.j]) c.setSeries([]); $("#shed-chosen tbody").replaceChildren(); }
+  } catch (e) { showFieldError("shedding", e, shedField); }
 }
 
 function pickFront(px, py) {
@@ -524,29 +875,40 @@ function pickFront(px, py) {
     const d = (qx - px) ** 2 + (qy - py) ** 2;
     if (d < bd) { bd = d; best = k; }
   });
-  if (best >= 0) chooseLaw(best);
+  if (best >= 0) chooseLaw(best).then(() => shed.history.commit());
 }
 
 async function chooseLaw(k) {
   const c = shed.front[k];
   if (!c) return;
+  shed.chosen = k;
   const sel = { label: "chosen", mode: "markers", radius: 7, color: "#f59e0b", hover: false, x: [c.criteria.window_deg], y: [c.criteria.peak_accel_m_s2] };
   shed.pareto.setSeries([...shed.series, sel]);
   try {
-    const r = await api("/shed/law", { family: shed.inputs.family.value, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shedConditions() });
+    const r = await api("/shed/law", { family: shed.inputs.family.value, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shedConditions(), samples: 2881 });
     shed.s.setSeries([{ label: "", x: r.angle_deg, y: r.s_mm }]);
     shed.v.setSeries([{ label: "", x: r.angle_deg, y: r.v_m_s }]);
     shed.a.setSeries([{ label: "", x: r.angle_deg, y: r.a_m_s2 }]);
-    const q = r.criteria;
+    const q = r.criteria, jl = shedJerkLimit();
+    // Jerk inside the segments; where the acceleration jumps the jerk is unbounded: those
+    // angles are marked by vertical bars (the jump is in the table).
+    shed.j.bands = (r.accel_jumps_deg || []).map((x) => [x - 0.8, x + 0.8]);
+    shed.j.hlines = jl !== null ? [{ y: jl, label: `jerk limit ${num(jl)} m/s³` }, { y: -jl }] : [];
+    shed.j.setSeries([{ label: q.accel_jump_m_s2 > 0 ? "jerk (unbounded at the shaded jumps)" : "", x: r.angle_deg, y: r.j_m_s3 }]);
+    const jumps = q.accel_jump_m_s2 > 0;
+    const jerkText = jumps ? `unbounded: the acceleration jumps by ${num(q.accel_jump_m_s2, 1)} m/s² (${num(q.peak_jerk_m_s3, 0)} m/s³ between jumps)`
+      : `${num(q.peak_jerk_m_s3, 0)} m/s³`;
     const rows = [
       ["relative lengths k_Ti", c.lengths.map((v) => num(v, 3)).join(" : ")],
       ["motion angle φ", `${num(q.motion_deg, 1)} °`], ["dwell", `${num(q.dwell_deg, 1)} °`],
       ["conditional dwell", `${num(q.conditional_dwell_deg, 1)} °`], ["window φ*", `${num(q.window_deg, 1)} °`],
-      ["Ca", num(q.ca)], ["Cv", num(q.cv)], ["peak acceleration", `${num(q.peak_accel_m_s2, 1)} m/s²`],
+      ["Ca", num(q.ca)], ["Cv", num(q.cv)], ["Cj", num(q.cj)], ["peak acceleration", `${num(q.peak_accel_m_s2, 1)} m/s²`],
       ["peak velocity", `${num(q.peak_velocity_m_s, 3)} m/s`], ["RMS acceleration", `${num(q.rms_accel_m_s2, 1)} m/s²`],
+      ["peak jerk", jerkText, "shed-peak-jerk"],
     ];
-    $("#shed-chosen tbody").replaceChildren(...rows.map(([a, b]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b }))));
-  } catch (e) { status("shedding law: " + e.message, true); }
+    if (jl !== null) rows.push(["within the jerk limit", !jumps && q.peak_jerk_m_s3 <= jl ? `yes (${num(jl)} m/s³)` : `no (${num(jl)} m/s³)`, "shed-jerk-ok"]);
+    $("#shed-chosen tbody").replaceChildren(...rows.map(([a, b, id]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b, id: id || "" }))));
+  } catch (e) { showFieldError("shedding law", e, shedField); }
 }
 
 
@@ -565,14 +927,14 @@ async function initDobby() {
     roller: el("input", { type: "number", step: "any", id: "dobby-roller" }),
   };
   for (const name of ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"]) inputs.rise.append(el("option", { value: name, textContent: name }));
-  const angle = el("input", { type: "range", min: "0", max: "360", step: "1", value: "40", id: "dobby-angle" });
-  const angleOut = el("output", { textContent: "40°" });
+  const angleW = sliderWithNumber("dobby-angle", "input angle φ2", "°", 0, 360, 1, 40, () => drawDobby(), () => dobby.history.commit());
+  const angle = angleW.range;
   const play = el("button", { type: "button", id: "dobby-play", textContent: "▶ turn the crank" });
   let timer = null;
   play.addEventListener("click", () => {
     if (timer) { clearInterval(timer); timer = null; play.textContent = "▶ turn the crank"; return; }
     play.textContent = "⏸ stop";
-    timer = setInterval(() => { angle.value = String((+angle.value + 2) % 360); angleOut.textContent = `${angle.value}°`; drawDobby(); }, 40);
+    timer = setInterval(() => { angleW.set((+angle.value + 2) % 360); drawDobby(); }, 40);
   });
   const field = (label, input) => el("label", {}, label, input);
   const panel = el("div", { className: "panel" }, el("h2", { textContent: "Output law and modulator" }),
@@ -580,11 +942,15 @@ async function initDobby() {
     el("div", { className: "grid2" }, field("cycles per turn (–)", inputs.cycles), field("dwell per cycle (°)", inputs.dwell),
       field("first dwell centred at (°)", inputs.centre), field("rise law", inputs.rise),
       field("angle α slot–arm AB (°)", inputs.alpha), field("roller radius (mm)", inputs.roller)),
-    el("label", { className: "slider" }, el("span", { textContent: "input angle φ2 (°)" }), angle, angleOut), play);
+    angleW.label, play,
+    el("div", { className: "row wrap" },
+      el("button", { type: "button", id: "dobby-dxf", textContent: "DXF of the cams (mm)", title: "both cams: roller-centre curves and groove walls, as loomkin dobby synthesize --dxf" }),
+      el("button", { type: "button", id: "dobby-csv", textContent: "Cam table (CSV)", title: "centre curves and walls of both cams per input angle, as loomkin dobby synthesize --points-csv" })));
   const table = el("table", { className: "data", id: "dobby-summary" }, el("caption", { textContent: "Checks" }), el("tbody"));
   const charts = el("div", { className: "grid-charts" });
   root.append(el("div", { className: "results" }, panel, table), charts);
   dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", title: "Cams and mechanism", height: 480, unit: "mm", scale: 1000 });
+  loomkin.dobbyScene = () => dobby.scene;
   const side = el("div", { className: "charts" });
   charts.append(side);
   const mk = (id, title, label, unit, step) => new Chart(side, { id, title, height: 150, x: { label: "input angle φ2", unit: "°", range: [0, 360], step: 30 }, y: { label, unit, step } });
@@ -592,24 +958,62 @@ async function initDobby() {
   dobby.omega = mk("dobby-omega", "Output speed and acceleration at ω2 = 1 rad/s", "ω6, ε6", "rad/s, rad/s²");
   dobby.mu = mk("dobby-mu", "Pressure angles", "μ", "°");
   Object.assign(loomkin.charts, { dobby_phi: dobby.phi, dobby_omega: dobby.omega, dobby_mu: dobby.mu });
-  angle.addEventListener("input", () => { angleOut.textContent = `${angle.value}°`; drawDobby(); });
-  dobby.inputs = inputs; dobby.angle = angle;
+  dobby.inputs = inputs; dobby.angle = angle; dobby.angleW = angleW;
+  $("#dobby-dxf").addEventListener("click", () => exportDobby("dxf"));
+  $("#dobby-csv").addEventListener("click", () => exportDobby("csv"));
   try {
     dobby.req = await api("/dobby/default");
     const r = dobby.req;
     inputs.cycles.value = r.law.cycles; inputs.dwell.value = r.law.dwell_deg; inputs.centre.value = r.law.dwell_centre_deg;
     inputs.rise.value = r.law.rise.name; inputs.alpha.value = r.geometry.alpha_deg; inputs.roller.value = r.roller_m * 1000;
   } catch (e) { status("dobby: " + e.message, true); return; }
-  for (const e of Object.values(inputs)) e.addEventListener("change", synthesizeDobby);
-  synthesizeDobby();
+  for (const e of Object.values(inputs)) e.addEventListener("change", () => { synthesizeDobby(); dobby.history.commit(); });
+  dobby.history = viewHistory("dobby", () => ({ ...readDobbyInputs(), angle_deg: +angle.value }), (st) => {
+    const i = dobby.inputs;
+    i.cycles.value = st.law.cycles; i.dwell.value = st.law.dwell_deg; i.centre.value = st.law.dwell_centre_deg;
+    i.rise.value = st.law.rise.name; i.alpha.value = st.geometry.alpha_deg; i.roller.value = st.roller_mm;
+    if (st.angle_deg !== undefined) angleW.set(st.angle_deg);
+    synthesizeDobby();
+  });
+  synthesizeDobby().then(() => dobby.history.ready());
+}
+
+// The page's request: the roller radius in mm (as the CLI's --roller-mm), the rest as the API.
+function readDobbyInputs() {
+  const i = dobby.inputs, r = dobby.req;
+  return {
+    law: { cycles: parseInt(i.cycles.value, 10), dwell_deg: +i.dwell.value, dwell_centre_deg: +i.centre.value, rise: { name: i.rise.value, params: {} } },
+    geometry: { ...r.geometry, alpha_deg: +i.alpha.value }, roller_mm: +i.roller.value, step_deg: r.step_deg,
+  };
+}
+
+function dobbyRequest() {
+  const q = readDobbyInputs();
+  return { law: q.law, geometry: q.geometry, roller_m: q.roller_mm / 1000, step_deg: q.step_deg };
+}
+
+function dobbyField(path) {
+  const i = dobby.inputs;
+  const map = { "law.cycles": [i.cycles, "cycles per turn"], "law.dwell_deg": [i.dwell, "dwell per cycle"], "law.dwell_centre_deg": [i.centre, "first dwell centre"],
+    "law.rise": [i.rise, "rise law"], "geometry.alpha_deg": [i.alpha, "angle α"], roller_m: [i.roller, "roller radius"] };
+  const hit = map[path];
+  return hit ? { inputs: [hit[0]], label: hit[1] } : null;
+}
+
+async function exportDobby(format) {
+  try {
+    const r = await api("/dobby/export", { request: dobbyRequest(), format });
+    download(r.filename, r.text, r.media_type);
+    status(`exported ${r.filename}`);
+  } catch (e) { showFieldError("dobby export", e, (f) => dobbyField(f.replace(/^request\./, ""))); }
 }
 
 async function synthesizeDobby() {
-  const i = dobby.inputs, r = dobby.req;
-  r.law.cycles = parseInt(i.cycles.value, 10); r.law.dwell_deg = +i.dwell.value; r.law.dwell_centre_deg = +i.centre.value;
-  r.law.rise = { name: i.rise.value, params: {} }; r.geometry.alpha_deg = +i.alpha.value; r.roller_m = +i.roller.value / 1000;
+  const r = dobbyRequest();
+  dobby.req = r;
   try {
     const res = await api("/dobby/synthesize", r);
+    clearFieldErrors();
     dobby.result = res;
     const c = res.curves;
     dobby.phi.setSeries([{ label: "φ6", x: c.phi2_deg, y: c.phi6_deg }]);
@@ -631,7 +1035,7 @@ async function synthesizeDobby() {
     $("#dobby-summary tbody").replaceChildren(...rows.map(([a, b]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b }))));
     status("cams synthesised");
     drawDobby();
-  } catch (e) { status("dobby: " + e.message, true); }
+  } catch (e) { showFieldError("dobby", e, dobbyField); }
 }
 
 function drawDobby() {
@@ -641,14 +1045,16 @@ function drawDobby() {
   let k = 0, bd = Infinity;
   res.poses.forEach((p, j) => { const d = Math.abs(p.phi2_deg - phi); if (d < bd) { bd = d; k = j; } });
   const p = res.poses[k], r = dobby.req.roller_m;
+  dobby.poseDeg = p.phi2_deg;
   const far = [p.a[0] + 1.4 * (p.d[0] - p.a[0]), p.a[1] + 1.4 * (p.d[1] - p.a[1])];
   const items = [
-    { kind: "line", pts: res.cam.wall_left, color: "#1f5fa8", width: 1.5, legend: "Γ" },
-    { kind: "line", pts: res.cam.wall_right, color: "#1f5fa8", width: 1.5 },
-    { kind: "line", pts: res.cam.centre, color: "#1f5fa8", width: 1, dash: [4, 4] },
-    { kind: "line", pts: res.counter_cam.wall_left, color: "#15803d", width: 1.5, legend: "Γ′" },
-    { kind: "line", pts: res.counter_cam.wall_right, color: "#15803d", width: 1.5 },
-    { kind: "line", pts: res.counter_cam.centre, color: "#15803d", width: 1, dash: [4, 4] },
+    // The cams are closed curves over the whole turn: the last point (359°) joins the first (0°).
+    { kind: "line", pts: res.cam.wall_left, color: "#1f5fa8", width: 1.5, legend: "Γ", closed: true, name: "cam wall left" },
+    { kind: "line", pts: res.cam.wall_right, color: "#1f5fa8", width: 1.5, closed: true, name: "cam wall right" },
+    { kind: "line", pts: res.cam.centre, color: "#1f5fa8", width: 1, dash: [4, 4], closed: true, name: "cam roller-centre curve" },
+    { kind: "line", pts: res.counter_cam.wall_left, color: "#15803d", width: 1.5, legend: "Γ′", closed: true, name: "counter-cam wall left" },
+    { kind: "line", pts: res.counter_cam.wall_right, color: "#15803d", width: 1.5, closed: true, name: "counter-cam wall right" },
+    { kind: "line", pts: res.counter_cam.centre, color: "#15803d", width: 1, dash: [4, 4], closed: true, name: "counter-cam roller-centre curve" },
     { kind: "line", pts: [p.a, far], color: "#9ca3af", width: 5, legend: "slot" },
     { kind: "line", pts: [p.o, p.a], color: "#111827", width: 4, legend: "crank OA" },
     { kind: "line", pts: [p.b, p.a, p.c], color: "#c2410c", width: 4, legend: "lever BAC" },
@@ -665,21 +1071,6 @@ function drawDobby() {
 // ---------------------------------------------------------------- elastic dynamics
 
 const dyn = { inflight: false, queued: false, sweepDirty: true, cycleToml: null, lastSweep: null };
-
-// A slider with a numeric field beside it; both edit one value.
-function sliderWithNumber(id, label, unit, min, max, step, value, onInput) {
-  const range = el("input", { type: "range", min: String(min), max: String(max), step: String(step), value: String(value), id: id + "-range" });
-  const field = el("input", { type: "number", min: String(min), max: String(max), step: "any", value: String(value), id, className: "short" });
-  range.addEventListener("input", () => { field.value = range.value; onInput(+range.value); });
-  field.addEventListener("change", () => {
-    const v = +field.value;
-    if (!isFinite(v) || field.value === "") { field.classList.add("bad"); return; }
-    field.classList.remove("bad");
-    range.value = String(Math.min(max, Math.max(min, v)));
-    onInput(v);
-  });
-  return { label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "row" }, range, field)), range, field };
-}
 
 async function initDynamics() {
   const root = $("#dynamics-root");
@@ -700,28 +1091,43 @@ async function initDynamics() {
   const lawBox = el("div", { className: "grid2", hidden: true }, el("label", {}, "law", law), el("label", {}, "stroke (mm)", stroke), el("label", {}, "motion angle, rise and return (°)", motion));
   const fileBox = el("div", { hidden: true }, el("label", { className: "file" }, "load a cycle file", file), fileName);
   const changed = () => { dyn.sweepDirty = true; respond(); };
+  const commit = () => dyn.history.commit();
+  const showSource = () => { lawBox.hidden = source.value !== "law"; fileBox.hidden = source.value !== "file"; };
   source.addEventListener("change", () => {
-    lawBox.hidden = source.value !== "law"; fileBox.hidden = source.value !== "file";
+    showSource();
     if (source.value === "file" && !dyn.fileText) { file.click(); return; }
     changed();
+    commit();
   });
-  for (const e of [law, stroke, motion]) e.addEventListener("change", changed);
+  for (const e of [law, stroke, motion]) e.addEventListener("change", () => { changed(); commit(); });
   file.addEventListener("change", async () => {
     const f = file.files[0]; if (!f) return;
     dyn.fileText = await f.text(); fileName.textContent = f.name; changed();
   });
   dyn.source = source; dyn.law = law; dyn.stroke = stroke; dyn.motion = motion;
   dyn.values = { speed_rpm: example.speed_rpm, natural_hz: example.natural_hz, damping_ratio: example.damping_ratio };
-  const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); });
-  const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); });
-  const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); });
+  const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); }, commit);
+  const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); }, commit);
+  const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); }, commit);
   const steady = el("input", { type: "checkbox", id: "dyn-steady" });
-  steady.addEventListener("change", changed);
+  steady.addEventListener("change", () => { changed(); commit(); });
   dyn.steady = steady;
   const from = el("input", { type: "number", step: "any", value: "100", id: "dyn-from", className: "short" });
   const to = el("input", { type: "number", step: "any", value: "1200", id: "dyn-to", className: "short" });
-  for (const e of [from, to]) e.addEventListener("change", changed);
+  for (const e of [from, to]) e.addEventListener("change", () => { changed(); commit(); });
   dyn.from = from; dyn.to = to;
+  // The state in the address; a loaded cycle file is not (it stays in the page only).
+  dyn.history = viewHistory("dynamics", () => ({
+    source: source.value === "file" ? "example" : source.value, law: law.value, stroke_mm: stroke.value, motion_deg: motion.value,
+    ...dyn.values, steady: steady.checked, sweep_from_rpm: from.value, sweep_to_rpm: to.value,
+  }), (st) => {
+    source.value = st.source; law.value = st.law; stroke.value = st.stroke_mm; motion.value = st.motion_deg;
+    dyn.values = { speed_rpm: st.speed_rpm, natural_hz: st.natural_hz, damping_ratio: st.damping_ratio };
+    speed.set(st.speed_rpm); fn.set(st.natural_hz); zeta.set(st.damping_ratio);
+    steady.checked = !!st.steady; from.value = st.sweep_from_rpm; to.value = st.sweep_to_rpm;
+    showSource();
+    changed();
+  });
   const panel = el("div", { className: "panel" }, el("h2", { textContent: "Cycle and frame" }),
     el("p", { className: "hint", textContent: "The frame as a mass on a spring and damper driven through the cycle, solved exactly. Move the speed: the vibration left in the dwells (shaded) is redrawn; the sweep shows the speeds to avoid." }),
     el("label", { className: "wide" }, "cycle", source), lawBox, fileBox, fn.label, zeta.label, speed.label,
@@ -737,6 +1143,7 @@ async function initDynamics() {
   dyn.sweep = new Chart(charts, { id: "dyn-sweep", title: "Speed sweep: residual vibration in the dwells", height: 220, x: { label: "main-shaft speed", unit: "rpm" }, y: { label: "amplitude", unit: "mm", includeZero: true } });
   Object.assign(loomkin.charts, { dyn_pos: dyn.pos, dyn_err: dyn.err, dyn_acc: dyn.acc, dyn_sweep: dyn.sweep });
   respond();
+  dyn.history.ready();
 }
 
 function dynRequest() {
@@ -801,8 +1208,10 @@ async function start() {
     b.addEventListener("click", () => showView(v));
     tabs.append(b);
   }
-  const want = location.hash.slice(1);
-  showView(views.includes(want) ? want : views[0]);
+  $("#undo").addEventListener("click", undo);
+  $("#redo").addEventListener("click", redo);
+  const want = parseHash(location.hash).view;
+  showView(views.includes(want) ? want : views[0], views.includes(want));
   loomkin.ready = true;
 }
 

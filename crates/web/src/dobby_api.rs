@@ -6,9 +6,11 @@ use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
+use loomkin_io::dobby_export::{DEFAULT_CHORD_TOL_MM, synthesis_points_table, synthesis_shapes};
+use loomkin_io::dxf::{DxfUnit, write_shapes};
 use loomkin_mech::{
-    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, SynthesisOptions, SynthesisSummary,
-    Warning, synthesize,
+    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, Synthesis, SynthesisOptions,
+    SynthesisSummary, Warning, synthesize,
 };
 use loomkin_units::{FieldError, Range};
 use serde::{Deserialize, Serialize};
@@ -17,6 +19,7 @@ pub(crate) fn routes() -> Router {
     Router::new()
         .route("/dobby/default", get(|| async { ApiJson(DobbyRequest::default()) }))
         .route("/dobby/synthesize", post(post_synthesize))
+        .route("/dobby/export", post(post_export))
 }
 
 /// The output law of the modulator.
@@ -122,8 +125,7 @@ fn mech_error(e: MechError) -> ApiError {
     }
 }
 
-/// Synthesises the cams and samples the mechanism.
-pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
+fn synthesis(req: &DobbyRequest) -> Result<Synthesis, ApiError> {
     let step = Range::closed(0.25, 10.0, "deg").check("step_deg", req.step_deg)?;
     let roller = Range::closed(0.0, 0.2, "m").check("roller_m", req.roller_m)?;
     Range::closed(1.0, 6.0, "").check("law.cycles", f64::from(req.law.cycles))?;
@@ -135,7 +137,12 @@ pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
         rise,
     };
     let opts = SynthesisOptions { step_deg: step, roller_m: roller, ..SynthesisOptions::default() };
-    let s = synthesize(&req.geometry, &spec, &opts).map_err(mech_error)?;
+    synthesize(&req.geometry, &spec, &opts).map_err(mech_error)
+}
+
+/// Synthesises the cams and samples the mechanism.
+pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
+    let s = synthesis(req)?;
     let col = |f: &dyn Fn(&loomkin_mech::SynthesisRow) -> f64| s.rows.iter().map(|r| finite(f(r))).collect::<Vec<_>>();
     let curves = DobbyCurves {
         phi2_deg: col(&|r| r.phi2_deg),
@@ -155,6 +162,79 @@ pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
         curves,
         poses,
     })
+}
+
+/// What `POST /api/dobby/export` writes.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum DobbyExportFormat {
+    /// The drawing of both cams in mm, as `loomkin dobby synthesize --dxf` writes it.
+    Dxf,
+    /// The cam point table as CSV in m (as `loomkin dobby synthesize --points-csv`).
+    Csv,
+}
+
+/// `POST /api/dobby/export` request.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DobbyExportRequest {
+    /// The synthesis, as for `/api/dobby/synthesize`.
+    pub request: DobbyRequest,
+    /// The file to write.
+    pub format: DobbyExportFormat,
+}
+
+/// `POST /api/dobby/export` answer: a file for the browser to save.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct DobbyExportResponse {
+    /// Suggested file name.
+    pub filename: &'static str,
+    /// Media type.
+    pub media_type: &'static str,
+    /// The file's text.
+    pub text: String,
+}
+
+/// The cams of a synthesis as a file, through the same writers as the CLI.
+pub fn dobby_export(req: &DobbyExportRequest) -> Result<DobbyExportResponse, ApiError> {
+    let s = synthesis(&req.request).map_err(|e| e.within("request"))?;
+    // As the CLI: an undercut cam is reported, never drawn.
+    if s.summary.undercut {
+        let largest = s
+            .summary
+            .checks
+            .roller_max_m
+            .map(|r| format!("; the largest roller without undercut is {} mm", loomkin_units::compact(r * 1e3)));
+        return Err(ApiError::invalid(
+            "request.roller_m",
+            format!(
+                "a {} mm roller undercuts the cams{}",
+                loomkin_units::compact(req.request.roller_m * 1e3),
+                largest.unwrap_or_default()
+            ),
+        ));
+    }
+    let mut out = Vec::new();
+    let (filename, media_type) = match req.format {
+        DobbyExportFormat::Dxf => {
+            // The CLI's defaults: chord tolerance 0.01 mm, bore 0.4 × the cams' least radius.
+            let shapes = synthesis_shapes(&s, DEFAULT_CHORD_TOL_MM, None).map_err(mech_error)?;
+            write_shapes(&shapes, DxfUnit::Millimetre, &mut out).map_err(|e| ApiError::Internal(e.to_string()))?;
+            ("dobby-cams.dxf", "image/vnd.dxf")
+        }
+        DobbyExportFormat::Csv => {
+            synthesis_points_table(&s)
+                .and_then(|t| t.write_csv(&mut out))
+                .map_err(|e| ApiError::Internal(e.to_string()))?;
+            ("dobby-cams.csv", "text/csv")
+        }
+    };
+    let text = String::from_utf8(out).map_err(|e| ApiError::Internal(e.to_string()))?;
+    Ok(DobbyExportResponse { filename, media_type, text })
+}
+
+async fn post_export(ApiJson(req): ApiJson<DobbyExportRequest>) -> Result<ApiJson<DobbyExportResponse>, ApiError> {
+    crate::server::blocking(move || dobby_export(&req)).await.map(ApiJson)
 }
 
 async fn post_synthesize(ApiJson(req): ApiJson<DobbyRequest>) -> Result<ApiJson<DobbyResponse>, ApiError> {
@@ -186,6 +266,40 @@ mod tests {
         // Dwell: φ6 is held at the dwell centre (90°) around φ2 = 90°.
         let i = r.curves.phi2_deg.iter().position(|&x| (x - 90.0).abs() < 1e-9).unwrap();
         assert!((r.curves.phi6_deg[i] - 90.0).abs() < 1e-9 && r.curves.omega6_rad_s[i].abs() < 1e-9);
+    }
+
+    /// The DXF holds the six closed polylines of both cams in mm, the CSV one row per input angle
+    /// whose cam points are the synthesis's (m); a bad request names its field under `request`.
+    #[test]
+    fn exports_are_the_cams_of_the_synthesis() {
+        let request = DobbyRequest { step_deg: 2.0, ..DobbyRequest::default() };
+        let r = dobby_synthesize(&request).unwrap();
+        let dxf =
+            dobby_export(&DobbyExportRequest { request: request.clone(), format: DobbyExportFormat::Dxf }).unwrap();
+        assert_eq!(dxf.text.matches("\nLWPOLYLINE\r\n").count() + dxf.text.matches("\nLWPOLYLINE\n").count(), 6);
+        for layer in ["CAM_CENTRE", "CAM_WALL_LEFT", "COUNTER_CAM_WALL_RIGHT"] {
+            assert!(dxf.text.contains(layer), "{layer}");
+        }
+        // $INSUNITS 4 = millimetres, and a point of the cam's centre curve appears scaled to mm.
+        assert!(dxf.text.contains("$INSUNITS"));
+        let csv =
+            dobby_export(&DobbyExportRequest { request: request.clone(), format: DobbyExportFormat::Csv }).unwrap();
+        let lines: Vec<&str> = csv.text.lines().collect();
+        assert!(lines[0].starts_with("phi2_deg,b_x_m,b_y_m"));
+        assert_eq!(lines.len() - 1, r.cam.centre.len());
+        let row: Vec<f64> = lines[1].split(',').map(|v| v.parse().unwrap()).collect();
+        assert!((row[1] - r.cam.centre[0][0]).abs() < 1e-12 && (row[2] - r.cam.centre[0][1]).abs() < 1e-12);
+        let mut big = request.clone();
+        big.roller_m = 0.19;
+        if dobby_synthesize(&big).unwrap().summary.undercut {
+            let e = dobby_export(&DobbyExportRequest { request: big, format: DobbyExportFormat::Dxf }).unwrap_err();
+            assert_eq!(e.field(), "request.roller_m", "{e}");
+            assert!(e.to_string().contains("undercuts"), "{e}");
+        }
+        let mut bad = request;
+        bad.roller_m = -1.0;
+        let e = dobby_export(&DobbyExportRequest { request: bad, format: DobbyExportFormat::Dxf }).unwrap_err();
+        assert_eq!(e.field(), "request.roller_m");
     }
 
     #[test]

@@ -59,7 +59,10 @@ pub use catalogue::{
     CatalogueItem, CatalogueResponse, CompareRequest, CompareResponse, ComparedLaw, LawChoice, ParamValue, catalogue,
     compare,
 };
-pub use dobby_api::{DobbyCurves, DobbyLaw, DobbyRequest, DobbyResponse, dobby_synthesize};
+pub use dobby_api::{
+    DobbyCurves, DobbyExportFormat, DobbyExportRequest, DobbyExportResponse, DobbyLaw, DobbyRequest, DobbyResponse,
+    dobby_export, dobby_synthesize,
+};
 pub use dynamics_api::{
     DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS, SweepCurves,
     SweepRequest, respond as dynamics_response,

@@ -8,8 +8,8 @@ use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::post;
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, Progress, ShedError, Study, cycle_curve, evaluate,
-    pareto, table,
+    Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, Progress, ShedError, Study, cycle_accel_jumps,
+    cycle_curve, evaluate, pareto_within, table, within_jerk_limit,
 };
 use loomkin_units::{FieldError, Range};
 use serde::{Deserialize, Serialize};
@@ -92,6 +92,10 @@ pub struct ParetoRequest {
     /// Evaluation conditions.
     #[serde(default)]
     pub conditions: ShedConditions,
+    /// Jerk limit (m/s³): the front is drawn from the laws whose peak jerk stays within it (a
+    /// law whose acceleration steps has no bounded jerk); none when absent.
+    #[serde(default)]
+    pub max_jerk_m_s3: Option<f64>,
 }
 
 fn default_min() -> f64 {
@@ -108,6 +112,8 @@ pub struct ShedCloud {
     pub peak_accel_m_s2: Vec<f32>,
     /// Motion angle (deg).
     pub motion_deg: Vec<f32>,
+    /// Whether the point keeps the request's jerk limit (all `true` without one).
+    pub within_jerk_limit: Vec<bool>,
 }
 
 /// `POST /api/shed/pareto` answer.
@@ -169,12 +175,20 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
             ),
         ));
     }
+    if let Some(j) = req.max_jerk_m_s3 {
+        Range::open_closed(0.0, 1e12, "m/s³").check("max_jerk_m_s3", j)?;
+    }
     let all = table(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
-    let front = pareto(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    let front = pareto_within(design, &rows, &req.motions_deg, &cond, req.max_jerk_m_s3)
+        .map_err(|e| shed_error("motions_deg", e))?;
+    let within = |c: &Candidate| {
+        rows[c.row].as_ref().is_some_and(|d| within_jerk_limit(d, c.criteria.motion_deg, req.max_jerk_m_s3, &cond))
+    };
     let cloud = ShedCloud {
         window_deg: all.iter().map(|c| finite(c.criteria.window_deg) as f32).collect(),
         peak_accel_m_s2: all.iter().map(|c| finite(c.criteria.peak_accel_m_s2) as f32).collect(),
         motion_deg: all.iter().map(|c| c.criteria.motion_deg as f32).collect(),
+        within_jerk_limit: all.iter().map(within).collect(),
     };
     Ok(ParetoResponse { laws, cloud, front })
 }
@@ -214,6 +228,13 @@ pub struct ShedLawResponse {
     pub v_m_s: Vec<f64>,
     /// Frame acceleration (m/s²).
     pub a_m_s2: Vec<f64>,
+    /// Frame jerk (m/s³), inside the law's segments; unbounded at the steps of
+    /// `accel_jumps_deg`.
+    pub j_m_s3: Vec<f64>,
+    /// Main-shaft angles (deg) where the acceleration steps (the jerk is unbounded there).
+    pub accel_jumps_deg: Vec<f64>,
+    /// The steps of the acceleration at those angles (m/s², after less before).
+    pub accel_jumps_m_s2: Vec<f64>,
 }
 
 /// The chosen law over one turn.
@@ -229,12 +250,16 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
     let law = template.law(req.motion_deg, &req.lengths).map_err(|e| shed_error("lengths", e))?;
     let criteria = evaluate(&law, &cond).map_err(|e| shed_error("lengths", e))?;
     let curve = cycle_curve(&law, &cond, n).map_err(|e| shed_error("lengths", e))?;
+    let jumps = cycle_accel_jumps(&law, &cond).map_err(|e| shed_error("lengths", e))?;
     Ok(ShedLawResponse {
         criteria,
         angle_deg: curve.iter().map(|p| finite(p.angle_deg)).collect(),
         s_mm: curve.iter().map(|p| finite(p.s_m * 1e3)).collect(),
         v_m_s: curve.iter().map(|p| finite(p.v_m_s)).collect(),
         a_m_s2: curve.iter().map(|p| finite(p.a_m_s2)).collect(),
+        j_m_s3: curve.iter().map(|p| finite(p.j_m_s3)).collect(),
+        accel_jumps_deg: jumps.iter().map(|j| finite(j.angle_deg)).collect(),
+        accel_jumps_m_s2: jumps.iter().map(|j| finite(j.jump_m_s2)).collect(),
     })
 }
 
@@ -257,7 +282,40 @@ mod tests {
             min_length: 0.005,
             motions_deg: vec![200.0, 300.0],
             conditions: ShedConditions::default(),
+            max_jerk_m_s3: None,
         }
+    }
+
+    /// With a jerk limit the front keeps it, the cloud flags exactly the points over it, and the
+    /// chosen law's jerk curve peaks at the criteria's peak jerk.
+    #[test]
+    fn a_jerk_limit_keeps_the_front_within_it() {
+        let free = shed_pareto(&req(0.05)).unwrap();
+        assert!(free.cloud.within_jerk_limit.iter().all(|&b| b));
+        let mut r = req(0.05);
+        let mut jerks: Vec<f64> = free.front.iter().map(|c| c.criteria.peak_jerk_m_s3).collect();
+        jerks.sort_by(f64::total_cmp);
+        let limit = jerks[jerks.len() / 2];
+        r.max_jerk_m_s3 = Some(limit);
+        let lim = shed_pareto(&r).unwrap();
+        assert!(!lim.front.is_empty());
+        assert!(lim.front.iter().all(|c| c.criteria.peak_jerk_m_s3 <= limit && c.criteria.accel_jump_m_s2 == 0.0));
+        let over = lim.cloud.within_jerk_limit.iter().filter(|&&b| !b).count();
+        assert!(over > 0 && over < lim.cloud.within_jerk_limit.len());
+        r.max_jerk_m_s3 = Some(-1.0);
+        assert_eq!(shed_pareto(&r).unwrap_err().field(), "max_jerk_m_s3");
+        let f = &lim.front[0];
+        let l = shed_law(&ShedLawRequest {
+            family: Family::Trapezoid,
+            lengths: f.lengths.clone(),
+            motion_deg: f.criteria.motion_deg,
+            conditions: ShedConditions::default(),
+            samples: 2001,
+        })
+        .unwrap();
+        let jmax = l.j_m_s3.iter().fold(0.0f64, |m, j| m.max(j.abs()));
+        assert!(jmax <= f.criteria.peak_jerk_m_s3 * (1.0 + 1e-9) && jmax > 0.95 * f.criteria.peak_jerk_m_s3, "{jmax}");
+        assert!(l.accel_jumps_deg.is_empty());
     }
 
     #[test]

@@ -1,0 +1,68 @@
+//! The rotary-dobby modulator's cams for a workshop: both cams as DXF polylines and their point
+//! table, the same for `loomkin dobby synthesize --dxf/--points-csv` and the workbench's buttons.
+
+use crate::dxf::{DxfPolyline, DxfShape};
+use crate::{IoError, Table};
+use loomkin_mech::{DobbyLayered, DobbyShape, MechError, Synthesis};
+
+/// The default chord tolerance of the drawing, mm (`dobby synthesize --chord-tol-mm`).
+pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
+
+/// A shape of the dobby drawing (m) as a DXF shape (m).
+pub fn dxf_shape(l: DobbyLayered) -> DxfShape {
+    match l.shape {
+        DobbyShape::Polyline { points, closed } => {
+            DxfShape::Polyline(DxfPolyline { layer: l.layer.into(), points, closed })
+        }
+        DobbyShape::Circle { centre, radius } => DxfShape::Circle { layer: l.layer.into(), centre, radius },
+        DobbyShape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from, to },
+    }
+}
+
+/// The drawing of both cams as DXF shapes ([`Synthesis::drawing`]: closed polylines within
+/// `chord_tol_mm` of the curves, centre, bore, 0° phase and rollers); the bore defaults to 0.4 ×
+/// the cams' least radius.
+pub fn synthesis_shapes(s: &Synthesis, chord_tol_mm: f64, bore_mm: Option<f64>) -> Result<Vec<DxfShape>, MechError> {
+    let bore_mm = bore_mm.unwrap_or(400.0 * s.least_radius_m());
+    Ok(s.drawing(chord_tol_mm, bore_mm)?.into_iter().map(dxf_shape).collect())
+}
+
+/// The cam point table, one row per input angle: centre curve and walls of Γ (`b_…`) and Γ′
+/// (`c_…`), in m (walls 0 without a roller).
+pub fn synthesis_points_table(s: &Synthesis) -> Result<Table, IoError> {
+    let mut t = Table::new([
+        "phi2_deg",
+        "b_x_m",
+        "b_y_m",
+        "b_left_x_m",
+        "b_left_y_m",
+        "b_right_x_m",
+        "b_right_y_m",
+        "c_x_m",
+        "c_y_m",
+        "c_left_x_m",
+        "c_left_y_m",
+        "c_right_x_m",
+        "c_right_y_m",
+    ]);
+    let (b, c) = (&s.cam, &s.counter_cam);
+    for i in 0..b.centre.len() {
+        let w = |v: &Vec<[f64; 2]>, k: usize| v.get(i).map(|p| p[k]).unwrap_or(0.0);
+        t.push(vec![
+            s.rows[i].phi2_deg,
+            b.centre[i][0],
+            b.centre[i][1],
+            w(&b.wall_left, 0),
+            w(&b.wall_left, 1),
+            w(&b.wall_right, 0),
+            w(&b.wall_right, 1),
+            c.centre[i][0],
+            c.centre[i][1],
+            w(&c.wall_left, 0),
+            w(&c.wall_left, 1),
+            w(&c.wall_right, 0),
+            w(&c.wall_right, 1),
+        ])?;
+    }
+    Ok(t)
+}
