@@ -291,7 +291,8 @@ mod tests {
         assert!((row[1] - r.cam.centre[0][0]).abs() < 1e-12 && (row[2] - r.cam.centre[0][1]).abs() < 1e-12);
         let mut big = request.clone();
         big.roller_m = 0.19;
-        if dobby_synthesize(&big).unwrap().summary.undercut {
+        assert!(dobby_synthesize(&big).unwrap().summary.undercut, "a 190 mm roller undercuts the paper's cams");
+        {
             let e = dobby_export(&DobbyExportRequest { request: big, format: DobbyExportFormat::Dxf }).unwrap_err();
             assert_eq!(e.field(), "request.roller_m", "{e}");
             assert!(e.to_string().contains("undercuts"), "{e}");

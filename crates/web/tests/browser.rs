@@ -269,13 +269,15 @@ const SETTLED: &str = "return window.loomkin && loomkin.ready && loomkin.evalCou
                        && document.querySelector('#peak-torque-0') !== null";
 
 /// The element each view shows once its first result is in.
-const VIEWS: [(&str, &str); 6] = [
+const VIEWS: [(&str, &str); 8] = [
     ("servo", "#peak-torque-0"),
     ("catalogue", "#catalogue-metrics tbody tr"),
     ("shed", "#shed-peak-jerk"),
     ("picking", "#pick-velocity"),
     ("dobby", "#dobby-summary tbody tr"),
     ("dynamics", "#dyn-residual"),
+    ("cam", "#cam-max-pressure-angle"),
+    ("loom", "#loom-peak-torque"),
 ];
 
 /// Replaces the page's file download by a recorder: `window.saved` gets name, type, size and
