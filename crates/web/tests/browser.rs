@@ -377,6 +377,12 @@ fn the_workbench_in_a_real_browser() {
     settled_after(&d, "the redraw after the Shift drag", n);
     let (x_shift, _) = point(&d, 2);
     assert!(x_shift > x_before + 0.01, "Shift-drag moves X: {x_before} → {x_shift}");
+    // Hover over the torque chart: the read-out follows the mouse.
+    let r = d.script("const r = loomkin.charts.torque.canvas.getBoundingClientRect(); return [r.left + r.width * 0.3, r.top + r.height / 2]");
+    let (hx, hy) = (r[0].as_f64().expect("x").round() as i64, r[1].as_f64().expect("y").round() as i64);
+    d.actions(json!([{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+                      "actions": [{"type": "pointerMove", "duration": 0, "origin": "viewport", "x": hx, "y": hy}]}]));
+    assert!(d.script("return loomkin.charts.torque.hoverX").as_f64().is_some_and(|x| x > 0.0 && x < 360.0));
     d.shot("drag");
     lap("drag (Y only, X with Shift)");
 
@@ -555,6 +561,9 @@ fn the_workbench_in_a_real_browser() {
         "the shedding view",
         "return document.querySelector('#shed-peak-jerk') !== null && loomkin.charts.shed_j.series.length === 1",
     );
+    // The frame's motion is drawn over its whole period of two picks (0 … 720°), not cut at 360°.
+    let span = d.script("const c = loomkin.charts.shed_s; return [c.L.xt.lo, c.L.xt.hi, Math.max(...c.series[0].x)]");
+    assert_eq!(span, json!([0, 720, 720]), "shedding chart x range");
     let jpeak = d.num("return Math.max(...loomkin.charts.shed_j.series[0].y.map(Math.abs))");
     assert!(jpeak > 0.0);
     assert_eq!(
@@ -593,6 +602,23 @@ fn the_workbench_in_a_real_browser() {
     d.wait_for("the mechanism at 123.5°", "return loomkin.charts.dobby_phi.markerX === 123.5 || Math.abs(loomkin.charts.dobby_phi.markerX - 123.5) <= 0.5");
     d.shot("dobby");
     lap("dobby cams");
+
+    // Dynamics: a speed typed into the numeric field redraws the response; the residual shown is
+    // the API's for that speed, and the sweep's marker follows.
+    d.click("#tabs button[data-view='dynamics']");
+    d.wait_for("the dynamics view", "return document.querySelector('#dyn-residual') !== null");
+    d.type_into("#dyn-speed", "600");
+    let shown = d.wait_for(
+        "the dynamics response at 600 rpm",
+        "return loomkin.charts.dyn_sweep.markerX === 600 ? document.querySelector('#dyn-residual').textContent : null",
+    );
+    let shown: f64 =
+        shown.as_str().and_then(|t| t.split_whitespace().next()).and_then(|v| v.parse().ok()).expect("residual");
+    let body = json!({"speed_rpm": 600, "natural_hz": 54, "damping_ratio": 0.05, "samples": 10}).to_string();
+    let api = common::request(server, "POST", "/api/dynamics/response", Some(body.as_bytes())).expect("dynamics");
+    let api_mm = api.json()["report"]["residual_amplitude_mm"].as_f64().expect("residual");
+    assert!((shown - api_mm).abs() < 1e-4, "page {shown} mm vs API {api_mm} mm");
+    lap("dynamics speed field");
 
     // 12. Every view at 1024 px wide: nothing wider than the window, legends inside their charts.
     d.cmd("POST", "/window/rect", Some(json!({"width": 1024, "height": 900})));
