@@ -65,7 +65,11 @@ pub fn band_max(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> (f64, f64
     for j in 0..=n {
         let left = if j > 0 { v[j - 1] } else { f64::NEG_INFINITY };
         let right = if j < n { v[j + 1] } else { f64::NEG_INFINITY };
-        if v[j] >= left && v[j] >= right {
+        // A plateau is refined once, from its first point: on a flat stretch (a narrow band, where
+        // neighbouring values round to the same number) every point is a local maximum, and each
+        // search costs dozens of evaluations.
+        let on_plateau = j > 0 && v[j] == left;
+        if v[j] >= left && v[j] >= right && !on_plateau {
             let (a, b) = (x(j.saturating_sub(1)), x((j + 1).min(n)));
             let (at, val) = golden_max(&f, a, b, (x(j), v[j]));
             if val > best.0 {
@@ -80,7 +84,11 @@ pub fn band_max(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> (f64, f64
 /// included), to 1e-12 of the interval.
 fn golden_max(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64, start: (f64, f64)) -> (f64, f64) {
     const INV_PHI: f64 = 0.618_033_988_749_894_8;
-    let tol = 1e-12 * (b - a).abs().max(f64::MIN_POSITIVE);
+    // Not below a few ulps of the ends: a narrow interval far from 0 (a band of ±0.2 % around
+    // 300 rpm) cannot shrink to 1e-12 of its width, and the search would never end. Capped too.
+    let ulps = 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let tol = (1e-12 * (b - a).abs()).max(ulps).max(f64::MIN_POSITIVE);
+    let mut rounds = 0;
     let mut best = start;
     let mut c = b - INV_PHI * (b - a);
     let mut d = a + INV_PHI * (b - a);
@@ -90,7 +98,8 @@ fn golden_max(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64, start: (f64, f64)
             best = (p, q);
         }
     }
-    while (b - a).abs() > tol {
+    while (b - a).abs() > tol && rounds < 200 {
+        rounds += 1;
         if fc >= fd {
             b = d;
             (d, fd) = (c, fc);
@@ -153,6 +162,26 @@ pub fn extremes_of<const K: usize>(duration: f64, n: usize, f: impl Fn(f64) -> [
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_narrow_band_far_from_zero_ends() {
+        // ±0.2 % around 300: the grid's intervals are 3e-2 wide, 1e-12 of that is below an ulp of 300.
+        let (val, at) = band_max(299.4, 300.6, 40, |x| -(x - 300.1).powi(2));
+        assert!((at - 300.1).abs() < 1e-6 && val <= 0.0, "{at} {val}");
+    }
+
+    #[test]
+    fn a_flat_band_is_refined_once() {
+        // Every grid point of a constant is a local maximum; one search, not 41.
+        let calls = std::cell::Cell::new(0);
+        let (val, at) = band_max(1.0, 2.0, 40, |_| {
+            calls.set(calls.get() + 1);
+            3.0
+        });
+        assert_eq!((val, at), (3.0, 1.0));
+        assert!(calls.get() < 41 + 80, "{} evaluations", calls.get());
+    }
+
     use super::*;
 
     #[test]
