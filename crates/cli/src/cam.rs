@@ -9,7 +9,6 @@ use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
 use loomkin_units::{Range, compact};
-use serde_json::json;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin cam`.
@@ -185,20 +184,7 @@ fn table(a: TableArgs) -> Result<()> {
     let u = table.unit_name();
     let e = &out.error;
     if a.json {
-        let d = table.decimals();
-        let report = json!({
-            "source": source,
-            "format": format.name(),
-            "points": out.points,
-            "unit": u,
-            "spacing": table.spacing(),
-            "interpolation": if format == Format::Poly5 { "poly5 segments as written" } else { loomkin_cams::table::INTERPOLATION },
-            format!("max_position_error_{u}"): e.max_position_error,
-            "max_position_error_at_deg": e.max_position_error_at_deg,
-            format!("max_velocity_error_{u}_per_deg"): e.max_velocity_error,
-            format!("max_accel_error_{u}_per_deg2"): e.max_accel_error,
-            "decimals": {"master": d.master, "y": d.y, "v": d.v, "a": d.a, "j": d.j},
-        });
+        let report = table.report(source, format, &out);
         if a.output == "-" {
             output::note(format_args!("{}", serde_json::to_string_pretty(&report)?));
             return Ok(());
@@ -330,71 +316,7 @@ fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut
     let (rmin, rat) = cam.min_convex_radius_pitch();
     let r = design.roller_radius_mm;
     if a.format.json {
-        let pts = |v: &[CamPoint]| -> Vec<serde_json::Value> {
-            v.iter()
-                .map(|p| {
-                    json!({
-                        "angle_deg": p.angle_deg,
-                        "x_mm": p.pitch_mm[0],
-                        "y_mm": p.pitch_mm[1],
-                        "pressure_angle_deg": p.pressure_angle_deg,
-                        "curvature_pitch_per_mm": p.curvature_pitch_per_mm,
-                        "profile_x_mm": p.profile_mm[0],
-                        "profile_y_mm": p.profile_mm[1],
-                    })
-                })
-                .collect()
-        };
-        let mut report = json!({
-            "source": source,
-            "follower": follower_name(design),
-            "closure": closure_name(design.closure),
-            "prime_radius_mm": cam.prime_radius_mm(),
-            "base_radius_mm": cam.base_radius_mm(),
-            "roller_radius_mm": if design.follower == Follower::Flat { 0.0 } else { r },
-            "max_pressure_angle_deg": pmax,
-            "max_pressure_angle_at_deg": pat,
-            "min_convex_radius_pitch_mm": rmin,
-            "min_convex_radius_pitch_at_deg": rat,
-            "undercut": undercut,
-            "points": pts(&points),
-        });
-        let m = report.as_object_mut().expect("a JSON object");
-        match design.follower {
-            Follower::Oscillating { arm_mm, pivot_mm } => {
-                m.insert("arm_mm".into(), json!(arm_mm));
-                m.insert("pivot_mm".into(), json!(pivot_mm));
-                m.insert("stroke_deg".into(), json!(cam.stroke()));
-            }
-            Follower::Translating { offset_mm } => {
-                m.insert("offset_mm".into(), json!(offset_mm));
-                m.insert("stroke_mm".into(), json!(cam.stroke()));
-            }
-            Follower::Flat => {
-                m.insert("stroke_mm".into(), json!(cam.stroke()));
-            }
-        }
-        if let Some(rmax) = cam.roller_max_mm() {
-            m.insert("roller_max_mm".into(), json!(rmax));
-            m.insert("min_convex_radius_profile_mm".into(), json!(rmin - r));
-        }
-        if let Some(at) = cam.undercut_at_deg() {
-            m.insert("undercut_at_deg".into(), json!(at));
-        }
-        if let Some(f) = cam.flat_extremes_report() {
-            m.insert("min_radius_profile_mm".into(), json!(f.min_radius_profile_mm));
-            m.insert("min_radius_profile_at_deg".into(), json!(f.min_radius_profile_at_deg));
-            m.insert("least_prime_radius_no_cusp_mm".into(), json!(f.least_prime_radius_mm));
-            m.insert("face_min_mm".into(), json!(f.face_min_mm));
-            m.insert("face_max_mm".into(), json!(f.face_max_mm));
-        }
-        if let Some(c) = &counter {
-            let e = cam.track_extremes_all()[1];
-            m.insert("counter_max_pressure_angle_deg".into(), json!(e.max_pressure_angle_deg));
-            m.insert("counter_max_pressure_angle_at_deg".into(), json!(e.max_pressure_angle_at_deg));
-            m.insert("counter_points".into(), json!(pts(c)));
-        }
-        return output::json(&report);
+        return output::json(&cam.report(source, step));
     }
     if a.format.csv {
         let mut head = vec![
@@ -436,7 +358,7 @@ fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut
         }
         return output::csv(&t);
     }
-    outln!("cam profile of {source}: {}, {}", follower_name(design), closure_name(design.closure))?;
+    outln!("cam profile of {source}: {}, {}", design.follower.description(), design.closure.description())?;
     let sized = match design.size {
         Size::MaxPressureDeg(p) => format!(" (the least for a pressure angle of {}°)", compact(p)),
         Size::PrimeRadiusMm(_) => String::new(),
@@ -462,25 +384,6 @@ fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut
     }
     outln!("  undercut              {}", if undercut { "yes" } else { "no" })?;
     Ok(())
-}
-
-fn follower_name(d: &CamDesign) -> String {
-    match d.follower {
-        Follower::Translating { offset_mm: 0.0 } => "radial translating roller follower".into(),
-        Follower::Translating { offset_mm } => format!("translating roller follower offset {} mm", compact(offset_mm)),
-        Follower::Oscillating { arm_mm, pivot_mm } => {
-            format!("oscillating roller follower (arm {} mm, pivot {} mm)", compact(arm_mm), compact(pivot_mm))
-        }
-        Follower::Flat => "flat-faced translating follower".into(),
-    }
-}
-
-fn closure_name(c: Closure) -> &'static str {
-    match c {
-        Closure::Single => "single cam",
-        Closure::Conjugate => "conjugate pair",
-        Closure::Groove => "groove cam",
-    }
 }
 
 fn profile_figure(cam: &CamProfile, points: &[CamPoint], counter: Option<&[CamPoint]>, source: &str) -> Figure {

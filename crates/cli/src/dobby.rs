@@ -13,7 +13,6 @@ use loomkin_mech::{
     Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
     SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
 };
-use serde_json::{Value, json};
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin dobby`.
@@ -433,11 +432,7 @@ fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
         return output::csv(&analysis_table(&res)?);
     }
     if a.format.json {
-        return output::json(&json!({
-            "summary": serde_json::to_value(&res.summary)?,
-            "warnings": serde_json::to_value(&res.warnings)?,
-            "rows": serde_json::to_value(&res.rows)?,
-        }));
+        return output::json(&res.report());
     }
     let s = &res.summary;
     let c = &s.checks;
@@ -524,11 +519,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
             return output::csv(&synthesis_table(&res)?);
         }
         if a.format.json {
-            return output::json(&json!({
-                "summary": serde_json::to_value(&res.summary)?,
-                "warnings": serde_json::to_value(&res.warnings)?,
-                "rows": serde_json::to_value(&res.rows)?,
-            }));
+            return output::json(&res.report());
         }
         if (a.dxf.is_some() && !refused) || a.points_csv.is_some() {
             return Ok(());
@@ -701,10 +692,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     )
     .map_err(|e: MechError| anyhow::Error::from(e))?;
     if a.format.json && a.shard.given() {
-        return output::json_lines(rows.iter().map(row_json));
+        return output::json_lines(rows.iter());
     }
     if a.format.json {
-        return output::json(&json!({ "rows": rows.iter().map(row_json).collect::<Vec<Value>>() }));
+        return output::json(&loomkin_mech::SweepReport { rows: &rows });
     }
     let cols = [
         "alpha_deg",
@@ -777,13 +768,4 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// A sweep row as JSON: failed tasks carry their error text instead of numbers (no nulls).
-fn row_json(r: &loomkin_mech::SweepRow) -> Value {
-    let mut v = serde_json::to_value(r).unwrap_or(Value::Null);
-    if let Value::Object(m) = &mut v {
-        m.retain(|_, x| !x.is_null());
-    }
-    v
 }

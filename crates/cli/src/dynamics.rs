@@ -6,13 +6,13 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use loomkin_dynamics::{
-    Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, Units, sweep, sweep_columns, sweep_row,
+    Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, SweepEntry, SweepReport, Units, sweep, sweep_columns,
+    sweep_row,
 };
 use loomkin_io::Table;
 use loomkin_io::plot::{Figure, Panel, Series};
 use loomkin_laws::Cycle;
 use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
-use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// `loomkin dyn` subcommands.
@@ -413,15 +413,17 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         return output::csv_shard(&t, a.shard.get());
     }
     if a.format.json && a.shard.given() {
-        return output::json_lines(t.to_json_rows().as_array().into_iter().flatten());
+        return output::json_lines(pts.iter().map(|q| SweepEntry { q, units: u, forces }));
     }
     if a.format.json {
-        return output::json(&json!({
-            "natural_hz": follower.natural_hz(),
-            "damping_ratio": follower.damping_ratio(),
-            "start": if a.steady { "steady" } else { "rest" },
-            "points": t.to_json_rows(),
-        }));
+        return output::json(&SweepReport {
+            points: &pts,
+            units: u,
+            forces,
+            natural_hz: follower.natural_hz(),
+            damping_ratio: follower.damping_ratio(),
+            start,
+        });
     }
     if let Some(out) = a.output {
         let col = |f: &dyn Fn(&loomkin_dynamics::SweepPoint) -> f64| {
@@ -661,25 +663,16 @@ fn optimize_cmd(a: OptimizeArgs) -> Result<()> {
     if let Some(out) = &a.output {
         output::text_to(out, &opt.cycle_toml)?;
     }
-    let improvement = opt.cycle_residual_modified_sine_si / opt.cycle_residual_si.max(f64::MIN_POSITIVE);
+    let improvement = opt.improvement_factor();
     if a.json {
-        return output::json(&json!({
-            "speed_rpm": speed.rpm(),
-            "band_pct": a.band_pct,
-            "natural_hz": follower.natural_hz(),
-            "damping_ratio": follower.damping_ratio(),
-            format!("residual_amplitude_{p}"): opt.cycle_residual_si * u.scale,
-            format!("modified_sine_residual_amplitude_{p}"): opt.cycle_residual_modified_sine_si * u.scale,
-            "improvement_factor": improvement.min(1e300),
-            "peak_acceleration_ratio": opt.peak_acceleration_ratio,
-            "segments": opt.segments.iter().map(|s| json!({
-                "segment": s.segment,
-                "ratio_band": s.ratio_band,
-                "residual_fraction_of_stroke": s.residual,
-                "modified_sine_residual_fraction_of_stroke": s.residual_modified_sine,
-                "ca_ratio": s.ca_ratio,
-            })).collect::<Vec<_>>(),
-        }));
+        return output::json(&loomkin_dynamics::OptimizeReport {
+            optimized: &opt,
+            units: u,
+            speed_rpm: speed.rpm(),
+            band_pct: a.band_pct,
+            natural_hz: follower.natural_hz(),
+            damping_ratio: follower.damping_ratio(),
+        });
     }
     if a.output.as_deref() == Some("-") {
         return Ok(());
@@ -719,36 +712,17 @@ fn two_mass_cmd(a: TwoMassArgs) -> Result<()> {
     )?;
     let exc = loomkin_dynamics::Excitation::from_cycle(&cycle, speed);
     let start = if a.steady { Start::Steady } else { Start::Rest };
-    let modes = tm.respond(&exc, start, 1)?;
-    let [drive, frame] = tm.error_extremes(&modes);
-    let residual = tm.frame_residual_bound(&exc, &modes);
     let u = units(&cycle);
     let p = u.pos;
-    let hz = tm.omega.map(|w| w / std::f64::consts::TAU);
-    let (d, f) = (drive.peak_abs(), frame.peak_abs());
-    let shaft_hz = speed.hz();
-    let figures = [d.0, f.0, residual, hz[0], hz[1]];
-    if figures.iter().any(|v| !v.is_finite()) {
-        anyhow::bail!("the two-mass figures are not finite numbers at these masses and stiffnesses (an overflow)");
-    }
+    let r = tm.report(&exc, speed, start, u)?;
     if a.json {
-        let mut m = serde_json::Map::new();
-        m.insert("natural_hz".into(), json!(hz));
-        m.insert(format!("peak_drive_error_{p}"), json!(d.0 * u.scale));
-        m.insert("peak_drive_error_at_deg".into(), json!(exc.angle_deg(d.1)));
-        m.insert(format!("peak_frame_error_{p}"), json!(f.0 * u.scale));
-        m.insert("peak_frame_error_at_deg".into(), json!(exc.angle_deg(f.1)));
-        m.insert(format!("frame_residual_bound_{p}"), json!(residual * u.scale));
-        m.insert("rigidity_ratio".into(), json!(hz[0] / shaft_hz));
-        m.insert("speed_rpm".into(), json!(speed.rpm()));
-        m.insert("damping_ratio".into(), json!(a.damping_ratio));
-        m.insert("start".into(), json!(loomkin_dynamics::start_name(start)));
-        return output::json(&serde_json::Value::Object(m));
+        return output::json(&r);
     }
-    if hz[0] / shaft_hz < loomkin_dynamics::VDI_2149_MIN_RATIO {
+    let hz = r.natural_hz;
+    if r.rigidity_ratio < loomkin_dynamics::VDI_2149_MIN_RATIO {
         output::warning(format!(
             "rigidity ratio f_1/f_shaft = {} is below 10 (VDI 2149 Blatt 1): read the elastic response",
-            loomkin_units::compact(hz[0] / shaft_hz)
+            loomkin_units::compact(r.rigidity_ratio)
         ));
     }
     outln!(
@@ -759,9 +733,10 @@ fn two_mass_cmd(a: TwoMassArgs) -> Result<()> {
         if a.steady { "periodic steady state" } else { "one cycle from rest" }
     )?;
     outln!("natural frequencies: {:.4} Hz, {:.4} Hz", hz[0], hz[1])?;
-    outln!("peak drive error |x1 − s|: {:.6} {p} at {:.3}°", d.0 * u.scale, exc.angle_deg(d.1))?;
-    outln!("peak frame error |x2 − s|: {:.6} {p} at {:.3}°", f.0 * u.scale, exc.angle_deg(f.1))?;
-    outln!("frame residual vibration in the dwells (bound, largest): {:.6} {p}", residual * u.scale)?;
-    outln!("rigidity ratio f_1/f_shaft (VDI 2149): {:.3}", hz[0] / shaft_hz)?;
+    let (d, f) = (r.peak_drive_error, r.peak_frame_error);
+    outln!("peak drive error |x1 − s|: {:.6} {p} at {:.3}°", d.value * u.scale, d.angle_deg)?;
+    outln!("peak frame error |x2 − s|: {:.6} {p} at {:.3}°", f.value * u.scale, f.angle_deg)?;
+    outln!("frame residual vibration in the dwells (bound, largest): {:.6} {p}", r.frame_residual_bound_si * u.scale)?;
+    outln!("rigidity ratio f_1/f_shaft (VDI 2149): {:.3}", r.rigidity_ratio)?;
     Ok(())
 }

@@ -6,7 +6,6 @@ use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger, timing_diagram, torque_figure};
-use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// `loomkin loom`.
@@ -217,21 +216,11 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
         }
         return output::csv(&t);
     }
+    if a.format.json {
+        return output::json(&drive.torque_report(&curve));
+    }
     let peak = drive.peak_of(&curve);
     let rms = drive.rms();
-    if a.format.json {
-        let pts: Vec<_> = curve.iter().map(|(th, t)| json!({"angle_deg": th, "torque_n_m": t})).collect();
-        return output::json(&json!({
-            "speed_rpm": loom.speed.rpm(),
-            "picks": pattern.picks(),
-            "repeat_deg": motion.repeat_deg(),
-            "peak_torque_n_m": peak.torque_n_m.abs(),
-            "peak_angle_deg": peak.angle_deg,
-            "rms_torque_n_m": rms,
-            "step_deg": motion.repeat_deg() / curve.len() as f64,
-            "points": pts,
-        }));
-    }
     outln!(
         "shedding torque over {} picks ({}°) at {} rpm: peak {:.3} N·m at {:.3}°, RMS {:.3} N·m",
         pattern.picks(),

@@ -14,7 +14,6 @@ use loomkin_picking::{
     sweep_observed,
 };
 use loomkin_units::{Budget, Cost};
-use serde_json::{Value, json};
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin pick`.
@@ -289,15 +288,7 @@ fn design(a: DesignArgs) -> Result<()> {
     let k = d.constants;
     let spec = d.spec;
     if a.json {
-        return output::json(&json!({
-            "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
-            "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
-            "natural_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
-            "velocity_m_s": spec.velocity_m_s, "distance_m": spec.distance_m,
-            "first_stage_m": spec.first_stage_m, "speed_rpm": spec.speed_rpm,
-            "required_velocity_m_s": mech.required().at(spec.speed_rpm),
-            "cam": mech.cam().label(),
-        }));
+        return output::json(&mech.design_report());
     }
     if matches!(mech.cam(), loomkin_picking::Cam::Compound) {
         outln!("compound picking law (sine, then constant acceleration), eqs. 18–20")?;
@@ -327,21 +318,6 @@ fn design(a: DesignArgs) -> Result<()> {
     Ok(())
 }
 
-fn outcome_json(o: &Outcome) -> Value {
-    let mut v = json!({
-        "t_end_s": o.t_end_s, "t0_s": o.t0_s, "distance_m": o.distance_m, "velocity_m_s": o.velocity_m_s,
-        "accel_end_m_s2": o.accel_end_m_s2, "accel_peak_m_s2": o.accel_peak_m_s2, "t_peak_s": o.t_peak_s,
-        "end": match o.end { loomkin_picking::PickEnd::CamEnd => "cam-end", loomkin_picking::PickEnd::Separation => "separation" },
-        "required_velocity_m_s": o.required_velocity_m_s, "velocity_vs_required_pct": o.velocity_vs_required_pct,
-        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "natural_1_s": o.natural_1_s,
-        "play_picker_m": o.play_picker_m,
-    });
-    if let Some(n) = &o.note {
-        v["note"] = json!(n);
-    }
-    v
-}
-
 fn history_table(h: &History) -> Result<Table> {
     let mut t = Table::new(["t_s", "s_m", "v_s_m_s", "a_s_m_s2", "x_m", "v_m_s", "a_m_s2"]);
     for s in &h.samples {
@@ -366,7 +342,7 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     let o = simulate(&mech, &st, method).map_err(lib_err)?;
     note(&o);
     if a.format.json {
-        return output::json(&outcome_json(&o));
+        return output::json(&o);
     }
     outln!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name())?;
     outln!(
@@ -484,19 +460,10 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         return output::csv_shard(&sweep_table(&s)?, a.shard.get());
     }
     if a.format.json {
-        let row_json = |r: &loomkin_picking::SweepRow| {
-            let mut v = outcome_json(&r.outcome);
-            v[setting.key()] = json!(r.value);
-            v
-        };
         if a.shard.given() {
-            return output::json_lines(s.rows.iter().map(row_json));
+            return output::json_lines(s.rows.iter().map(|r| r.report(setting)));
         }
-        let rows: Vec<Value> = s.rows.iter().map(row_json).collect();
-        return output::json(&json!({
-            "setting": setting.name(), "unit": setting.unit(), "method": Method::from(a.method).name(),
-            "fallback_values": fallbacks, "rows": rows,
-        }));
+        return output::json(&s.report(method));
     }
     outln!(
         "{:>14} {:>10} {:>10} {:>12} {:>14} {:>15} {:>13} {:>9}",

@@ -65,7 +65,9 @@ pub use follower::{Follower, STANDARD_GRAVITY};
 pub use optimize::{Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, quiet_law};
 pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, free_roots, series_below};
 pub use peaks::{Extremes, band_max, extremes, grid_size};
-pub use report::{ResponseReport, Units, start_name, sweep_columns, sweep_row};
+pub use report::{
+    OptimizeReport, ResponseReport, SweepEntry, SweepReport, TwoMassReport, Units, start_name, sweep_columns, sweep_row,
+};
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
 pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};
 pub use sweep::{SweepPoint, sweep, sweep_point};

@@ -281,6 +281,14 @@ pub struct Optimized {
     pub peak_acceleration_ratio: f64,
 }
 
+impl Optimized {
+    /// How many times lower the cycle's largest dwell residual is than the modified-sine cycle's
+    /// (at most 1e300: a residual of 0 is not an infinite improvement in a file).
+    pub fn improvement_factor(&self) -> f64 {
+        (self.cycle_residual_modified_sine_si / self.cycle_residual_si.max(f64::MIN_POSITIVE)).min(1e300)
+    }
+}
+
 /// The figures of one optimised segment.
 #[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct SegmentFigures {
@@ -289,8 +297,10 @@ pub struct SegmentFigures {
     /// Ratio band `[r_lo, r_hi]` (motion time / natural period).
     pub ratio_band: [f64; 2],
     /// Largest A/h over the band, optimised law.
+    #[serde(rename = "residual_fraction_of_stroke")]
     pub residual: f64,
     /// Largest A/h over the band, modified sine.
+    #[serde(rename = "modified_sine_residual_fraction_of_stroke")]
     pub residual_modified_sine: f64,
     /// Ca(optimised) / Ca(modified sine).
     pub ca_ratio: f64,

@@ -4,6 +4,7 @@
 //! The CLI (`loomkin dyn response --json`, `loomkin dyn sweep --json`) and the workbench serialise
 //! these same structs, so one value has one key everywhere.
 
+use crate::optimize::Optimized;
 use crate::response::{Located, Summary};
 use crate::sweep::SweepPoint;
 use crate::trajectory::Start;
@@ -93,6 +94,147 @@ impl Serialize for ResponseReport {
         m.serialize_entry("damping_ratio", &self.damping_ratio)?;
         m.serialize_entry("start", start_name(self.start))?;
         m.serialize_entry("cycles", &self.cycles)?;
+        m.end()
+    }
+}
+
+/// The figures of a two-mass train over one cycle (`loomkin dyn two-mass --json`), SI inside and
+/// in the cycle's units in the keys (`P` = `mm` or `deg`): `natural_hz` (both modes),
+/// `peak_drive_error_P` and `…_at_deg`, `peak_frame_error_P` and `…_at_deg`,
+/// `frame_residual_bound_P`, `rigidity_ratio` (f₁ / f_shaft), `speed_rpm`, `damping_ratio`, `start`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoMassReport {
+    /// Natural frequencies of the two modes (Hz), lower first.
+    pub natural_hz: [f64; 2],
+    /// Largest |x₁ − s| of the drive (SI) and where (main-shaft deg).
+    pub peak_drive_error: Located,
+    /// Largest |x₂ − s| of the frame (SI) and where (main-shaft deg).
+    pub peak_frame_error: Located,
+    /// Bound on the frame's residual vibration in the dwells, largest (SI).
+    pub frame_residual_bound_si: f64,
+    /// f₁ / f_shaft (VDI 2149 asks for at least [`crate::VDI_2149_MIN_RATIO`]).
+    pub rigidity_ratio: f64,
+    /// Main-shaft speed (rpm).
+    pub speed_rpm: f64,
+    /// Modal damping ratio.
+    pub damping_ratio: f64,
+    /// From rest or the periodic steady state.
+    pub start: Start,
+    /// Units of the cycle.
+    pub units: Units,
+}
+
+impl Serialize for TwoMassReport {
+    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        let u = self.units;
+        let p = u.pos;
+        let mut m = ser.serialize_map(Some(10))?;
+        m.serialize_entry("natural_hz", &self.natural_hz)?;
+        m.serialize_entry(&format!("peak_drive_error_{p}"), &(self.peak_drive_error.value * u.scale))?;
+        m.serialize_entry("peak_drive_error_at_deg", &self.peak_drive_error.angle_deg)?;
+        m.serialize_entry(&format!("peak_frame_error_{p}"), &(self.peak_frame_error.value * u.scale))?;
+        m.serialize_entry("peak_frame_error_at_deg", &self.peak_frame_error.angle_deg)?;
+        m.serialize_entry(&format!("frame_residual_bound_{p}"), &(self.frame_residual_bound_si * u.scale))?;
+        m.serialize_entry("rigidity_ratio", &self.rigidity_ratio)?;
+        m.serialize_entry("speed_rpm", &self.speed_rpm)?;
+        m.serialize_entry("damping_ratio", &self.damping_ratio)?;
+        m.serialize_entry("start", start_name(self.start))?;
+        m.end()
+    }
+}
+
+/// A speed sweep with the follower it ran on (`loomkin dyn sweep --json`): `natural_hz`,
+/// `damping_ratio`, `start`, and `points`, each a row of [`sweep_columns`] as an object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepReport<'a> {
+    /// The sweep's points.
+    pub points: &'a [SweepPoint],
+    /// Units of the cycle.
+    pub units: Units,
+    /// Whether the points carry forces (a follower with a mass).
+    pub forces: bool,
+    /// Natural frequency of the follower (Hz).
+    pub natural_hz: f64,
+    /// Damping ratio.
+    pub damping_ratio: f64,
+    /// From rest or the periodic steady state.
+    pub start: Start,
+}
+
+impl Serialize for SweepReport<'_> {
+    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        let mut m = ser.serialize_map(Some(4))?;
+        m.serialize_entry("natural_hz", &self.natural_hz)?;
+        m.serialize_entry("damping_ratio", &self.damping_ratio)?;
+        m.serialize_entry("start", start_name(self.start))?;
+        let rows: Vec<SweepEntry> =
+            self.points.iter().map(|q| SweepEntry { q, units: self.units, forces: self.forces }).collect();
+        m.serialize_entry("points", &rows)?;
+        m.end()
+    }
+}
+
+/// One point of a sweep as an object with the keys of [`sweep_columns`] (`loomkin dyn sweep --json`,
+/// one per line with `--shard`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepEntry<'a> {
+    /// The point.
+    pub q: &'a SweepPoint,
+    /// Units of the cycle.
+    pub units: Units,
+    /// Whether to write the force columns.
+    pub forces: bool,
+}
+
+impl Serialize for SweepEntry<'_> {
+    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        let cols = sweep_columns(self.units, self.forces);
+        let row = sweep_row(self.q, self.units, self.forces);
+        let mut m = ser.serialize_map(Some(cols.len()))?;
+        for (k, v) in cols.iter().zip(row) {
+            m.serialize_entry(k, &v)?;
+        }
+        m.end()
+    }
+}
+
+/// A cycle shaped for quiet dwells with the run's settings (`loomkin dyn optimize --json`), the
+/// position unit `P` (`mm` or `deg`) in the keys: `speed_rpm`, `band_pct`, `natural_hz`,
+/// `damping_ratio`, `residual_amplitude_P`, `modified_sine_residual_amplitude_P`,
+/// `improvement_factor`, `peak_acceleration_ratio`, `segments` (each a [`SegmentFigures`]).
+#[derive(Debug, Clone, Copy)]
+pub struct OptimizeReport<'a> {
+    /// The optimised cycle's figures.
+    pub optimized: &'a Optimized,
+    /// Units of the cycle.
+    pub units: Units,
+    /// Design speed (rpm).
+    pub speed_rpm: f64,
+    /// Half-width of the speed band (%).
+    pub band_pct: f64,
+    /// Natural frequency of the follower (Hz).
+    pub natural_hz: f64,
+    /// Damping ratio.
+    pub damping_ratio: f64,
+}
+
+impl Serialize for OptimizeReport<'_> {
+    fn serialize<S: Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        let (o, u) = (self.optimized, self.units);
+        let p = u.pos;
+        let mut m = ser.serialize_map(Some(9))?;
+        m.serialize_entry("speed_rpm", &self.speed_rpm)?;
+        m.serialize_entry("band_pct", &self.band_pct)?;
+        m.serialize_entry("natural_hz", &self.natural_hz)?;
+        m.serialize_entry("damping_ratio", &self.damping_ratio)?;
+        m.serialize_entry(&format!("residual_amplitude_{p}"), &(o.cycle_residual_si * u.scale))?;
+        m.serialize_entry(
+            &format!("modified_sine_residual_amplitude_{p}"),
+            &(o.cycle_residual_modified_sine_si * u.scale),
+        )?;
+        m.serialize_entry("improvement_factor", &o.improvement_factor())?;
+        m.serialize_entry("peak_acceleration_ratio", &o.peak_acceleration_ratio)?;
+        m.serialize_entry("segments", &o.segments)?;
         m.end()
     }
 }

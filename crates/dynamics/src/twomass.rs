@@ -11,9 +11,11 @@
 
 use crate::excitation::Excitation;
 use crate::peaks::{Extremes, extremes_of, grid_size};
+use crate::report::{TwoMassReport, Units};
+use crate::response::Located;
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use crate::{Oscillator, Result};
-use loomkin_units::Range;
+use loomkin_units::{Range, ShaftSpeed};
 
 /// A two-mass follower.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,6 +109,36 @@ impl TwoMass {
             out[1].merge(&e2, a.t0);
         }
         out
+    }
+
+    /// The train's figures over one cycle of `exc` (run at `speed`) from `start`, in `units`: the
+    /// natural frequencies, the drive's and the frame's largest errors and where, the frame's
+    /// residual bound in the dwells and the rigidity ratio. Refuses figures that are not finite
+    /// (masses and stiffnesses whose modes overflow).
+    pub fn report(&self, exc: &Excitation, speed: ShaftSpeed, start: Start, units: Units) -> Result<TwoMassReport> {
+        let modes = self.respond(exc, start, 1)?;
+        let [drive, frame] = self.error_extremes(&modes);
+        let residual = self.frame_residual_bound(exc, &modes);
+        let hz = self.omega.map(|w| w / std::f64::consts::TAU);
+        let (d, f) = (drive.peak_abs(), frame.peak_abs());
+        if [d.0, f.0, residual, hz[0], hz[1]].iter().any(|v| !v.is_finite()) {
+            return Err(crate::DynError::Input {
+                field: "two_mass".into(),
+                reason: "the two-mass figures are not finite numbers at these masses and stiffnesses (an overflow)"
+                    .into(),
+            });
+        }
+        Ok(TwoMassReport {
+            natural_hz: hz,
+            peak_drive_error: Located { value: d.0, angle_deg: exc.angle_deg(d.1) },
+            peak_frame_error: Located { value: f.0, angle_deg: exc.angle_deg(f.1) },
+            frame_residual_bound_si: residual,
+            rigidity_ratio: hz[0] / speed.hz(),
+            speed_rpm: speed.rpm(),
+            damping_ratio: self.zeta,
+            start,
+            units,
+        })
     }
 
     /// Bound on the frame's residual vibration at the start of each dwell: `Σᵢ |φ₂ᵢ|·Aᵢ` with `Aᵢ` the

@@ -2,8 +2,9 @@
 //!
 //! Shared output plumbing of the loomkin tools: numeric [`Table`]s written as CSV or JSON (headers
 //! carry units, non-finite numbers are refused rather than printed), [`open_output`] where `-`
-//! means standard output, and stacked line [`plot::Figure`]s rendered to SVG or PNG with an
-//! embedded font (no system fonts or C libraries needed).
+//! means standard output, every CSV file's framing ([`csv`]), and (feature `plot`, on by default)
+//! stacked line `plot::Figure`s rendered to SVG or PNG with an embedded font (no system fonts or C
+//! libraries needed). The libraries that only write CSV use it without `plot`.
 //!
 //! ```
 //! use loomkin_io::Table;
@@ -18,10 +19,12 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod csv;
 pub mod dobby_export;
 pub mod dxf;
 mod error;
 mod output;
+#[cfg(feature = "plot")]
 pub mod plot;
 mod table;
 

@@ -77,8 +77,10 @@ impl<W: Write> CsvRows<W> {
     /// Writes the header line.
     pub fn new<S: AsRef<str>>(mut w: W, columns: &[S]) -> Result<Self, IoError> {
         let columns: Vec<String> = columns.iter().map(|c| c.as_ref().to_string()).collect();
-        writeln!(w, "{}", columns.join(","))?;
-        Ok(Self { w, columns, row: 0, line: String::new() })
+        let mut line = String::new();
+        crate::csv::push_line(&mut line, &columns);
+        w.write_all(line.as_bytes())?;
+        Ok(Self { w, columns, row: 0, line })
     }
 
     /// Continues a table whose header was written elsewhere (a later shard): no header line.
@@ -96,13 +98,7 @@ impl<W: Write> CsvRows<W> {
             return Err(IoError::NotFinite { column: self.columns[c].clone(), row: self.row, value });
         }
         self.line.clear();
-        for (i, v) in row.iter().enumerate() {
-            if i > 0 {
-                self.line.push(',');
-            }
-            self.line.push_str(&fmt_num(*v));
-        }
-        self.line.push('\n');
+        crate::csv::push_line(&mut self.line, row.iter().map(|v| crate::csv::shortest(*v)));
         self.w.write_all(self.line.as_bytes())?;
         self.row += 1;
         Ok(())
@@ -118,11 +114,6 @@ impl<W: Write> CsvRows<W> {
         self.w.flush()?;
         Ok(self.w)
     }
-}
-
-/// Shortest round-trip text of a finite number (`-0` printed as `0`).
-pub(crate) fn fmt_num(v: f64) -> String {
-    if v == 0.0 { "0".to_string() } else { format!("{v}") }
 }
 
 #[cfg(test)]

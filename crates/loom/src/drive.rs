@@ -47,6 +47,36 @@ pub struct Peak {
     pub angle_deg: f64,
 }
 
+/// One point of the torque curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TorquePoint {
+    /// Main-shaft angle, deg (within the repeat).
+    pub angle_deg: f64,
+    /// Torque the main shaft delivers, N·m.
+    pub torque_n_m: f64,
+}
+
+/// The shedding torque over the repeat (`loomkin loom torque --json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TorqueReport {
+    /// Main-shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// Picks in the repeat.
+    pub picks: usize,
+    /// The repeat, deg.
+    pub repeat_deg: f64,
+    /// Largest |torque|, N·m (located exactly, see [`Drive::peak_of`]).
+    pub peak_torque_n_m: f64,
+    /// Where, deg.
+    pub peak_angle_deg: f64,
+    /// RMS torque over the repeat, N·m.
+    pub rms_torque_n_m: f64,
+    /// Step of the points, deg (the repeat divided into a whole number of steps).
+    pub step_deg: f64,
+    /// The curve.
+    pub points: Vec<TorquePoint>,
+}
+
 /// The shedding drive of a loom weaving a pattern.
 #[derive(Debug, Clone)]
 pub struct Drive<'a> {
@@ -189,6 +219,21 @@ impl<'a> Drive<'a> {
             }
         }
         t.into_iter().enumerate().map(|(k, v)| (k as f64 * h, v)).collect()
+    }
+
+    /// The torque report of a curve already computed ([`Drive::torque_curve`]).
+    pub fn torque_report(&self, curve: &[(f64, f64)]) -> TorqueReport {
+        let peak = self.peak_of(curve);
+        TorqueReport {
+            speed_rpm: self.loom.speed.rpm(),
+            picks: self.motion.picks(),
+            repeat_deg: self.motion.repeat_deg(),
+            peak_torque_n_m: peak.torque_n_m.abs(),
+            peak_angle_deg: peak.angle_deg,
+            rms_torque_n_m: self.rms(),
+            step_deg: self.motion.repeat_deg() / curve.len() as f64,
+            points: curve.iter().map(|&(angle_deg, torque_n_m)| TorquePoint { angle_deg, torque_n_m }).collect(),
+        }
     }
 
     /// The largest |torque| over the repeat: the grid's largest local maxima of |T| (at

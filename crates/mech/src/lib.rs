@@ -40,7 +40,8 @@ mod vloop;
 
 pub use curve::{CurvePoint, Ellipse, PlaneCurve};
 pub use dobby::analysis::{
-    Analysis, AnalysisOptions, AnalysisRow, AnalysisSummary, analyze, assemble, cam_loop, modulator_loops,
+    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, analyze, assemble, cam_loop,
+    modulator_loops,
 };
 pub use dobby::cam::{Cam, parse_point_table};
 pub use dobby::checks::{
@@ -52,8 +53,8 @@ pub use dobby::kinematics::ModulatorState;
 pub use dobby::law::{OutputLaw, OutputLawSpec, OutputState, max_dwell_deg};
 pub use dobby::pose::{MechanismPose, nearest_state};
 pub use dobby::report::{CamChecks, CamProfile};
-pub use dobby::sweep::{SweepRow, alpha_sweep};
-pub use dobby::synthesis::{Synthesis, SynthesisOptions, SynthesisRow, SynthesisSummary, synthesize};
+pub use dobby::sweep::{SweepReport, SweepRow, alpha_sweep};
+pub use dobby::synthesis::{Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize};
 pub use dobby::tolerance;
 pub use dobby::tolerance::Tolerance;
 pub use dyad::{circle_circle, line_circle};

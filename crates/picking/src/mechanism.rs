@@ -150,6 +150,68 @@ pub(crate) fn toml_reason(text: &str, e: &toml::de::Error) -> String {
     }
 }
 
+/// The designed pick and the mechanism's constants (`loomkin pick design --json`): the compound
+/// law's `a_m_s2`, `mu_1_s`, `tau_s`, `t_end_s` (eqs. 18–20), the constants `b_s2`, `c`, `d_m`,
+/// `natural_1_s` (eq. 4), the nominal `stroke_m`, the specification and the cam's label.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct DesignReport {
+    /// A: peak (and second-stage) acceleration, m/s².
+    pub a_m_s2: f64,
+    /// μ: circular frequency of the sine stage, 1/s.
+    pub mu_1_s: f64,
+    /// τ = π/(2μ): end of the sine stage, s.
+    pub tau_s: f64,
+    /// T': end of the pick, s.
+    pub t_end_s: f64,
+    /// B, s².
+    pub b_s2: f64,
+    /// C.
+    pub c: f64,
+    /// D, m.
+    pub d_m: f64,
+    /// ψ = √((C+1)/B), 1/s.
+    pub natural_1_s: f64,
+    /// Nominal stroke s(T') − D, m.
+    pub stroke_m: f64,
+    /// V: shuttle velocity at the end of the pick, m/s.
+    pub velocity_m_s: f64,
+    /// X: distance of the pick, m.
+    pub distance_m: f64,
+    /// X₁: distance of the sine stage, m.
+    pub first_stage_m: f64,
+    /// Designed loom speed, rpm.
+    pub speed_rpm: f64,
+    /// Required velocity at the designed speed, m/s.
+    pub required_velocity_m_s: f64,
+    /// The cam law ([`crate::Cam::label`]).
+    pub cam: String,
+}
+
+impl Mechanism {
+    /// The designed pick and constants as one report.
+    pub fn design_report(&self) -> DesignReport {
+        let d = self.design();
+        let (k, spec) = (d.constants, d.spec);
+        DesignReport {
+            a_m_s2: d.a_m_s2,
+            mu_1_s: d.mu_1_s,
+            tau_s: d.tau_s,
+            t_end_s: d.t_end_s,
+            b_s2: k.b_s2,
+            c: k.c,
+            d_m: k.d_m,
+            natural_1_s: k.natural_1_s(),
+            stroke_m: d.stroke_m(),
+            velocity_m_s: spec.velocity_m_s,
+            distance_m: spec.distance_m,
+            first_stage_m: spec.first_stage_m,
+            speed_rpm: spec.speed_rpm,
+            required_velocity_m_s: self.required().at(spec.speed_rpm),
+            cam: self.cam().label(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -63,7 +63,9 @@ pub struct Outcome {
     pub velocity_vs_required_pct: f64,
     /// The route that answered.
     pub method: Method,
-    /// Why the closed form did not answer, when it was asked and could not.
+    /// Why the closed form did not answer, when it was asked and could not (left out of the JSON
+    /// when it did).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
     /// B' at the setting, s².
     pub b_s2: f64,

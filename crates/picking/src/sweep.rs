@@ -30,6 +30,72 @@ impl Sweep {
     }
 }
 
+/// A sweep as users read it (`loomkin pick sweep --json`): the setting's name and unit, the route
+/// asked for, the values where the closed form fell back to integration, and the rows.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepReport<'a> {
+    /// The swept setting's name ([`Setting::name`]).
+    pub setting: &'static str,
+    /// Its unit.
+    pub unit: &'static str,
+    /// The route asked for.
+    pub method: Method,
+    /// Values where the closed form could not answer.
+    pub fallback_values: Vec<f64>,
+    /// The rows.
+    pub rows: Vec<RowReport<'a>>,
+}
+
+/// A sweep row as users read it: the outcome's keys and the swept value under the setting's key
+/// (e.g. `play_mm`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RowReport<'a> {
+    /// The end-of-pick values.
+    #[serde(flatten)]
+    pub outcome: &'a Outcome,
+    /// The swept value, keyed by [`Setting::key`].
+    #[serde(flatten)]
+    pub value: SettingValue,
+}
+
+/// A setting's value under its key ([`Setting::key`]): one entry of a JSON object.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SettingValue {
+    /// The setting.
+    pub setting: Setting,
+    /// Its value, in [`Setting::unit`].
+    pub value: f64,
+}
+
+impl Serialize for SettingValue {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = ser.serialize_map(Some(1))?;
+        m.serialize_entry(&self.setting.key(), &self.value)?;
+        m.end()
+    }
+}
+
+impl SweepRow {
+    /// This row as users read it, the value keyed by `setting`.
+    pub fn report(&self, setting: Setting) -> RowReport<'_> {
+        RowReport { outcome: &self.outcome, value: SettingValue { setting, value: self.value } }
+    }
+}
+
+impl Sweep {
+    /// The sweep as users read it, run by `method`.
+    pub fn report(&self, method: Method) -> SweepReport<'_> {
+        SweepReport {
+            setting: self.setting.name(),
+            unit: self.setting.unit(),
+            method,
+            fallback_values: self.fallbacks().map(|r| r.value).collect(),
+            rows: self.rows.iter().map(|r| r.report(self.setting)).collect(),
+        }
+    }
+}
+
 /// Runs `setting` from `from` to `to` (its practical unit, both ends included) in `steps ≥ 1`
 /// evenly spaced points over `base`, in parallel. Fails on the first invalid point, naming it.
 pub fn sweep(

@@ -4,6 +4,7 @@
 use crate::drive::CYCLE_DEG;
 use crate::spline::solve_tridiagonal;
 use crate::{Drive, Result, ServoError, poly};
+use loomkin_io::csv::{CsvText, exponent};
 use loomkin_laws::{Law, Segment};
 use loomkin_units::Range;
 use serde::Serialize;
@@ -124,26 +125,27 @@ impl CamTable {
 
     /// CSV with header `master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2`.
     pub fn to_csv(&self) -> String {
-        let mut s = String::from("master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2\n");
-        for p in &self.points {
-            s.push_str(&format!("{:e},{:e},{:e},{:e}\n", p.master_deg, p.slave_m, p.v_m_per_deg, p.a_m_per_deg2));
-        }
-        s
+        self.points_csv(&[], &["master_deg", "slave_m", "slave_v_m_per_deg", "slave_a_m_per_deg2"])
     }
 
     /// PLCopen-style XYVA points (`X,Y,V,A` per line after comment lines); a controller joins
     /// them with fifth-degree polynomials ([`Interpolation::QuinticHermite`]).
     pub fn to_xyva(&self) -> String {
-        let mut s = String::from(
-            "# loomkin servo cam: PLCopen-style XYVA points over one main-shaft turn\n\
-             # X master angle (deg), Y slave position (m), V = dY/dX (m/deg), A = d2Y/dX2 (m/deg^2)\n\
-             # join consecutive points with fifth-degree polynomials matching Y, V, A at both ends\n\
-             X,Y,V,A\n",
-        );
+        let comments = [
+            "loomkin servo cam: PLCopen-style XYVA points over one main-shaft turn",
+            "X master angle (deg), Y slave position (m), V = dY/dX (m/deg), A = d2Y/dX2 (m/deg^2)",
+            "join consecutive points with fifth-degree polynomials matching Y, V, A at both ends",
+        ];
+        self.points_csv(&comments, &["X", "Y", "V", "A"])
+    }
+
+    /// The points as CSV under `comments` and the header `columns`, numbers in exponent form.
+    fn points_csv(&self, comments: &[&str], columns: &[&str]) -> String {
+        let mut t = CsvText::new(comments, columns);
         for p in &self.points {
-            s.push_str(&format!("{:e},{:e},{:e},{:e}\n", p.master_deg, p.slave_m, p.v_m_per_deg, p.a_m_per_deg2));
+            t.push([p.master_deg, p.slave_m, p.v_m_per_deg, p.a_m_per_deg2].map(exponent));
         }
-        s
+        t.finish()
     }
 
     /// Re-interpolates the table as a controller would and returns the worst errors against the
@@ -365,14 +367,24 @@ pub fn poly5_segments(law: &Law, drive: &Drive) -> Result<Vec<Poly5Segment>> {
 /// The fifth-degree segments as CSV with comment lines:
 /// `master_start_deg,master_end_deg,c0_m,c1_m_per_deg,…,c5_m_per_deg5`.
 pub fn poly5_csv(segments: &[Poly5Segment]) -> String {
-    let mut s = String::from(
-        "# loomkin servo cam: fifth-degree polynomial segments over one main-shaft turn\n\
-         # slave position (m) = c0 + c1*t + ... + c5*t^5 with t = master angle - master_start_deg (deg)\n\
-         master_start_deg,master_end_deg,c0_m,c1_m_per_deg,c2_m_per_deg2,c3_m_per_deg3,c4_m_per_deg4,c5_m_per_deg5\n",
+    let mut t = CsvText::new(
+        &[
+            "loomkin servo cam: fifth-degree polynomial segments over one main-shaft turn",
+            "slave position (m) = c0 + c1*t + ... + c5*t^5 with t = master angle - master_start_deg (deg)",
+        ],
+        &[
+            "master_start_deg",
+            "master_end_deg",
+            "c0_m",
+            "c1_m_per_deg",
+            "c2_m_per_deg2",
+            "c3_m_per_deg3",
+            "c4_m_per_deg4",
+            "c5_m_per_deg5",
+        ],
     );
     for g in segments {
-        let c: Vec<String> = g.coeffs.iter().map(|c| format!("{c:e}")).collect();
-        s.push_str(&format!("{:e},{:e},{}\n", g.master_start_deg, g.master_end_deg, c.join(",")));
+        t.push([g.master_start_deg, g.master_end_deg].iter().chain(&g.coeffs).map(|&v| exponent(v)));
     }
-    s
+    t.finish()
 }

@@ -352,25 +352,20 @@ pub fn csv_header(k_names: &[String]) -> String {
     let mut header = vec![if k_names.is_empty() { "law" } else { "row" }.to_string()];
     header.extend(k_names.iter().cloned());
     header.extend(CRITERIA_COLUMNS.iter().map(|s| s.to_string()));
-    header.join(",") + "\n"
+    let mut line = String::new();
+    loomkin_io::csv::push_line(&mut line, &header);
+    line
 }
 
 /// Appends one row of [`StudyTable::to_csv`] (with its newline) to `out`; `named`: a table of
 /// named laws (no length columns).
 pub fn csv_line(r: &StudyRow, named: bool, out: &mut String) {
-    use std::fmt::Write;
     let c = &r.candidate;
-    match &r.law {
-        Some(l) => out.push_str(l),
-        None => {
-            let _ = write!(out, "{}", c.row);
-        }
-    }
+    let first = r.law.clone().unwrap_or_else(|| c.row.to_string());
     let ks = if named { &[][..] } else { &c.lengths[..] };
-    for v in ks.iter().chain(&criteria_values(&c.criteria)) {
-        let _ = write!(out, ",{v}");
-    }
-    out.push('\n');
+    // `{}` display: the shortest text that reads back (a `-0` stays `-0`, as before).
+    let values = ks.iter().chain(&criteria_values(&c.criteria)).map(|v| format!("{v}")).collect::<Vec<_>>();
+    loomkin_io::csv::push_line(out, std::iter::once(first).chain(values));
 }
 
 #[cfg(test)]

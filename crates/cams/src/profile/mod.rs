@@ -14,6 +14,7 @@ mod drawing;
 mod extremes;
 mod jet;
 mod lift;
+mod report;
 mod sizing;
 mod track;
 
@@ -23,4 +24,5 @@ pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE, Layered, Shape};
 pub use extremes::Extremes;
 pub use jet::Jet;
 pub use lift::Lift;
+pub use report::{PointReport, ProfileReport};
 pub use track::{Track, TrackJets, curvature, offset};

@@ -53,6 +53,49 @@ pub struct Export {
     pub points: usize,
 }
 
+/// A written table's report (`loomkin cam table --json`): source, format, points, spacing and
+/// decimals, and the exact re-interpolation error with the slave unit `U` (`mm` or `deg`) in its
+/// keys: `max_position_error_U`, `max_position_error_at_deg`, `max_velocity_error_U_per_deg`,
+/// `max_accel_error_U_per_deg2`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableReport {
+    /// What the motion came from (a file name, `law cycloidal`).
+    pub source: String,
+    /// The format written.
+    pub format: Format,
+    /// Number of points (poly5: segments + 1).
+    pub points: usize,
+    /// The slave unit, `mm` or `deg`.
+    pub unit: &'static str,
+    /// The spacing of the points.
+    pub spacing: Spacing,
+    /// The exact error of the table as written.
+    pub error: ReinterpolationError,
+    /// The decimals of each column.
+    pub decimals: Decimals,
+}
+
+impl Serialize for TableReport {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let (u, e) = (self.unit, &self.error);
+        let interpolation = if self.format == Format::Poly5 { "poly5 segments as written" } else { INTERPOLATION };
+        let mut m = ser.serialize_map(Some(11))?;
+        m.serialize_entry("source", &self.source)?;
+        m.serialize_entry("format", self.format.name())?;
+        m.serialize_entry("points", &self.points)?;
+        m.serialize_entry("unit", u)?;
+        m.serialize_entry("spacing", &self.spacing)?;
+        m.serialize_entry("interpolation", interpolation)?;
+        m.serialize_entry(&format!("max_position_error_{u}"), &e.max_position_error)?;
+        m.serialize_entry("max_position_error_at_deg", &e.max_position_error_at_deg)?;
+        m.serialize_entry(&format!("max_velocity_error_{u}_per_deg"), &e.max_velocity_error)?;
+        m.serialize_entry(&format!("max_accel_error_{u}_per_deg2"), &e.max_accel_error)?;
+        m.serialize_entry("decimals", &self.decimals)?;
+        m.end()
+    }
+}
+
 impl CamTable {
     /// Places the points of `motion` for `spacing` and rounds them to their decimals.
     pub fn new(motion: Motion, spacing: Spacing) -> Result<Self> {
@@ -107,6 +150,19 @@ impl CamTable {
         let error = reinterpolation_error(&self.motion, &intervals);
         let text = format.write(self, &self.header(format, &error));
         Ok(Export { text, error, points: intervals.len() + 1 })
+    }
+
+    /// The report of `export`, written in `format` from a motion that came from `source`.
+    pub fn report(&self, source: impl Into<String>, format: Format, export: &Export) -> TableReport {
+        TableReport {
+            source: source.into(),
+            format,
+            points: export.points,
+            unit: self.unit_name(),
+            spacing: self.spacing,
+            error: export.error,
+            decimals: self.decimals,
+        }
     }
 
     /// The comment lines that head a file (without comment markers).

@@ -6,6 +6,7 @@ use super::decimals::fixed;
 use super::format::{numbers, points_from_rows};
 use super::{CamPoint, CamTable};
 use crate::{CamError, Result};
+use loomkin_io::csv::CsvText;
 
 /// The header for a slave unit (`mm` or `deg`).
 pub fn header(unit: &str) -> String {
@@ -14,20 +15,19 @@ pub fn header(unit: &str) -> String {
 
 /// Writes the points.
 pub fn write(table: &CamTable) -> String {
+    let head = header(table.unit_name());
+    let columns: Vec<&str> = head.split(',').collect();
+    let mut t = CsvText::new(&[], &columns);
+    push_points(&mut t, table);
+    t.finish()
+}
+
+/// Appends the points as rows of X, Y, V, A, J with the table's fixed decimals (CSV and XYVAJ).
+pub(super) fn push_points(t: &mut CsvText, table: &CamTable) {
     let d = table.decimals();
-    let mut s = header(table.unit_name());
-    s.push('\n');
     for p in table.points() {
-        s.push_str(&format!(
-            "{},{},{},{},{}\n",
-            fixed(p.master_deg, d.master),
-            fixed(p.y, d.y),
-            fixed(p.v, d.v),
-            fixed(p.a, d.a),
-            fixed(p.j, d.j)
-        ));
+        t.push([fixed(p.master_deg, d.master), fixed(p.y, d.y), fixed(p.v, d.v), fixed(p.a, d.a), fixed(p.j, d.j)]);
     }
-    s
 }
 
 /// Reads the points back.

@@ -16,7 +16,7 @@ mod tolerance;
 pub mod twincat;
 pub mod xyvaj;
 
-pub use camtable::{CamTable, Export, INTERPOLATION};
+pub use camtable::{CamTable, Export, INTERPOLATION, TableReport};
 pub use decimals::{Decimals, RELATIVE_RESOLUTION, decimals_exact, decimals_for, fixed, round};
 pub use format::Format;
 pub use interp::Interval;

@@ -15,6 +15,7 @@ use super::format::numbers;
 use super::points::hermite_intervals;
 use super::{CamTable, Interval};
 use crate::{CamError, Result};
+use loomkin_io::csv::CsvText;
 
 /// The column header for a slave unit.
 pub fn header(unit: &str) -> String {
@@ -67,14 +68,14 @@ pub fn segments(table: &CamTable) -> Vec<Interval> {
 pub fn write(table: &CamTable, head: &[String]) -> String {
     let d = table.decimals();
     let dc = coeff_decimals(table, &hermite_intervals(table.points()));
-    let mut s: String = head.iter().map(|l| format!("# {l}\n")).collect();
-    s.push_str(&header(table.unit_name()));
-    s.push('\n');
+    let comments: Vec<&str> = head.iter().map(String::as_str).collect();
+    let columns = header(table.unit_name());
+    let mut t = CsvText::new(&comments, &columns.split(',').collect::<Vec<_>>());
     for iv in segments(table) {
-        let b: Vec<String> = iv.b.iter().zip(dc).map(|(&c, n)| fixed(c, n)).collect();
-        s.push_str(&format!("{},{},{}\n", fixed(iv.start_deg, d.master), fixed(iv.end_deg, d.master), b.join(",")));
+        let b = iv.b.iter().zip(dc).map(|(&c, n)| fixed(c, n));
+        t.push([fixed(iv.start_deg, d.master), fixed(iv.end_deg, d.master)].into_iter().chain(b));
     }
-    s
+    t.finish()
 }
 
 /// Reads the segments back; they must follow one another without gap.

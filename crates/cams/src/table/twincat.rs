@@ -19,6 +19,7 @@ use super::decimals::fixed;
 use super::format::{numbers, points_from_rows};
 use super::{CamPoint, CamTable};
 use crate::{CamError, Result};
+use loomkin_io::csv::CsvText;
 
 /// The column header.
 pub const HEADER: &str = "PointIndex,FunctionType,RelIndexNextPoint,MasterPos,SlavePos,SlaveVelo,SlaveAcc,SlaveJerk";
@@ -39,28 +40,26 @@ fn function_type(p: &CamPoint, next: Option<&CamPoint>) -> &'static str {
 pub fn write(table: &CamTable, header: &[String]) -> String {
     let d = table.decimals();
     let u = table.unit_name();
-    let mut s: String = header.iter().map(|l| format!("# {l}\n")).collect();
-    s.push_str(&format!(
-        "# MasterPos in deg, SlavePos in {u}, SlaveVelo in {u}/deg, SlaveAcc in {u}/deg^2, SlaveJerk in {u}/deg^3\n"
-    ));
-    s.push_str(HEADER);
-    s.push('\n');
+    let units = format!(
+        "MasterPos in deg, SlavePos in {u}, SlaveVelo in {u}/deg, SlaveAcc in {u}/deg^2, SlaveJerk in {u}/deg^3"
+    );
+    let comments: Vec<&str> = header.iter().map(String::as_str).chain([units.as_str()]).collect();
+    let mut t = CsvText::new(&comments, &HEADER.split(',').collect::<Vec<_>>());
     let pts = table.points();
     for (i, p) in pts.iter().enumerate() {
         let next = pts.get(i + 1);
-        s.push_str(&format!(
-            "{},{},{},{},{},{},{},{}\n",
-            i + 1,
-            function_type(p, next),
-            usize::from(next.is_some()),
+        t.push([
+            (i + 1).to_string(),
+            function_type(p, next).to_string(),
+            usize::from(next.is_some()).to_string(),
             fixed(p.master_deg, d.master),
             fixed(p.y, d.y),
             fixed(p.v, d.v),
             fixed(p.a, d.a),
-            fixed(p.j, d.j)
-        ));
+            fixed(p.j, d.j),
+        ]);
     }
-    s
+    t.finish()
 }
 
 /// Reads the points back (every segment type is interpolated as the quintic through the ends'

@@ -6,27 +6,17 @@
 //! 0,0.0000,0.000000,0.00000000,0.004112
 //! ```
 
-use super::decimals::fixed;
 use super::format::{numbers, points_from_rows};
 use super::{CamPoint, CamTable};
 use crate::Result;
+use loomkin_io::csv::CsvText;
 
 /// Writes the points.
 pub fn write(table: &CamTable, header: &[String]) -> String {
-    let d = table.decimals();
-    let mut s: String = header.iter().map(|l| format!("# {l}\n")).collect();
-    s.push_str("X,Y,V,A,J\n");
-    for p in table.points() {
-        s.push_str(&format!(
-            "{},{},{},{},{}\n",
-            fixed(p.master_deg, d.master),
-            fixed(p.y, d.y),
-            fixed(p.v, d.v),
-            fixed(p.a, d.a),
-            fixed(p.j, d.j)
-        ));
-    }
-    s
+    let comments: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut t = CsvText::new(&comments, &["X", "Y", "V", "A", "J"]);
+    super::csv::push_points(&mut t, table);
+    t.finish()
 }
 
 /// Reads the points back (comment lines and the header skipped).

@@ -68,11 +68,108 @@ fn json_of_each_command() {
         ("pick_sweep", &["pick", "sweep", "shuttle", "--from", "380", "--to", "520", "--points", "3", "--json"]),
         ("dobby_analyze", &["dobby", "analyze", "--alpha-deg", "47", "--step-deg", "30", "--json"]),
         ("dobby_synthesize", &["dobby", "synthesize", "--dwell-deg", "30", "--law", "modified-sine", "--json"]),
+        ("dobby_sweep", &["dobby", "sweep", "--from", "40", "--to", "60", "--by", "10", "--step-deg", "10", "--json"]),
+        (
+            "cam_profile",
+            &[
+                "cam",
+                "profile",
+                "examples/heald-frame-cycle.toml",
+                "--follower",
+                "oscillating",
+                "--arm-mm",
+                "100",
+                "--pivot-mm",
+                "150",
+                "--conjugate",
+                "--roller-radius-mm",
+                "10",
+                "--step-deg",
+                "45",
+                "--json",
+            ],
+        ),
+        (
+            "cam_profile_flat",
+            &[
+                "cam",
+                "profile",
+                "--law",
+                "cycloidal",
+                "--stroke-mm",
+                "20",
+                "--motion-deg",
+                "120",
+                "--follower",
+                "flat",
+                "--prime-radius-mm",
+                "60",
+                "--step-deg",
+                "45",
+                "--json",
+            ],
+        ),
+        (
+            "dyn_sweep",
+            &["dyn", "sweep", HEALD, "--speed-rpm", "300:400:50", "--natural-hz", "60", "--mass-kg", "20", "--json"],
+        ),
+        (
+            "dyn_two_mass",
+            &[
+                "dyn",
+                "two-mass",
+                HEALD,
+                "--speed-rpm",
+                "500",
+                "--drive-mass-kg",
+                "1",
+                "--drive-stiffness-n-m",
+                "1e8",
+                "--frame-mass-kg",
+                "20",
+                "--frame-stiffness-n-m",
+                "2.2e6",
+                "--json",
+            ],
+        ),
+        (
+            "loom_torque",
+            &[
+                "loom",
+                "torque",
+                "examples/shuttle-loom.toml",
+                "--lift-plan",
+                "examples/twill-3-1.txt",
+                "--step-deg",
+                "10",
+                "--json",
+            ],
+        ),
     ];
     for (name, args) in cases {
         snap(&format!("json__{name}"), &stdout(args));
     }
+    // A cam table's report names no path; the table goes to a file.
+    let file = std::env::temp_dir().join(format!("loomkin-snapshot-cam-{}.csv", std::process::id()));
+    let args = [
+        "cam",
+        "table",
+        "--law",
+        "cycloidal",
+        "--stroke-mm",
+        "80",
+        "--motion-deg",
+        "120",
+        "--step-deg",
+        "30",
+        "--format",
+    ];
+    let report = stdout(&[&args[..], &["csv", "-o", file.to_str().unwrap(), "--json"]].concat());
+    snap("json__cam_table", &report);
+    std::fs::remove_file(&file).ok();
 }
+
+const HEALD: &str = "examples/heald-frame-cycle.toml";
 
 /// Every export format, written to a file and read back.
 #[test]

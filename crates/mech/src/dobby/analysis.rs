@@ -172,7 +172,24 @@ pub struct Analysis {
     pub states: Vec<ModulatorState>,
 }
 
+/// What `loomkin dobby analyze --json` prints of an [`Analysis`]: the rows, summary and warnings
+/// (the counter-cam and the states are left out).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AnalysisReport<'a> {
+    /// The summary.
+    pub summary: &'a AnalysisSummary,
+    /// The warnings.
+    pub warnings: &'a [Warning],
+    /// The rows.
+    pub rows: &'a [AnalysisRow],
+}
+
 impl Analysis {
+    /// The report of this analysis ([`AnalysisReport`]).
+    pub fn report(&self) -> AnalysisReport<'_> {
+        AnalysisReport { summary: &self.summary, warnings: &self.warnings, rows: &self.rows }
+    }
+
     /// Cam Γ (the roller-centre curve of B over one revolution) as a profile, with groove walls
     /// for a roller of radius `roller_m` > 0, built as the counter-cam Γ′ is.
     pub fn cam_profile(&self, roller_m: f64) -> CamProfile {

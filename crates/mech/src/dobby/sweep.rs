@@ -8,6 +8,13 @@ use super::synthesis::{SynthesisOptions, synthesize};
 use crate::Result;
 use serde::Serialize;
 
+/// The α sweep as `loomkin dobby sweep --json` prints it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SweepReport<'a> {
+    /// One row per lever angle.
+    pub rows: &'a [SweepRow],
+}
+
 /// One lever angle of the sweep; a failed task leaves its fields `None` and gives its error text.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepRow {

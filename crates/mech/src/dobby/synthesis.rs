@@ -157,6 +157,25 @@ pub struct Synthesis {
     pub draw_counter_cam: CamProfile,
 }
 
+/// What `loomkin dobby synthesize --json` prints of a [`Synthesis`]: the rows, summary and
+/// warnings (the cams and the states are left out: `--dxf` and `--points-csv` write the cams).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SynthesisReport<'a> {
+    /// The summary.
+    pub summary: &'a SynthesisSummary,
+    /// The warnings.
+    pub warnings: &'a [Warning],
+    /// The rows.
+    pub rows: &'a [SynthesisRow],
+}
+
+impl Synthesis {
+    /// The report of this synthesis ([`SynthesisReport`]).
+    pub fn report(&self) -> SynthesisReport<'_> {
+        SynthesisReport { summary: &self.summary, warnings: &self.warnings, rows: &self.rows }
+    }
+}
+
 fn law_label(spec: &OutputLawSpec) -> String {
     format!(
         "{} × (dwell {}° centred at {}°, {} rise of {}°)",
