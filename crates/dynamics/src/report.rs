@@ -201,7 +201,7 @@ impl Serialize for SweepEntry<'_> {
 /// A cycle shaped for quiet dwells with the run's settings (`loomkin dyn optimize --json`), the
 /// position unit `P` (`mm` or `deg`) in the keys: `speed_rpm`, `band_pct`, `natural_hz`,
 /// `damping_ratio`, `residual_amplitude_P`, `modified_sine_residual_amplitude_P`,
-/// `improvement_factor`, `peak_acceleration_ratio`, `segments` (each a [`SegmentFigures`]).
+/// `improvement_factor`, `peak_acceleration_ratio`, `segments` (each a [`crate::SegmentFigures`]).
 #[derive(Debug, Clone, Copy)]
 pub struct OptimizeReport<'a> {
     /// The optimised cycle's figures.

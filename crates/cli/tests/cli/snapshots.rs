@@ -74,7 +74,7 @@ fn json_of_each_command() {
             &[
                 "cam",
                 "profile",
-                "examples/heald-frame-cycle.toml",
+                "examples/sley-cycle.toml",
                 "--follower",
                 "oscillating",
                 "--arm-mm",
