@@ -7,6 +7,7 @@ mod cam;
 mod cycle;
 mod dobby;
 mod dobby_tolerance;
+mod draws;
 mod dynamics;
 mod law;
 mod loom;

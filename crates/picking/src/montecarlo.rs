@@ -22,7 +22,7 @@
 //! where the closed form does not apply).
 
 use crate::{Mechanism, Method, PickEnd, PickError, Result, Setting, Settings, StartRule, simulate};
-use loomkin_study::{DistSpec, Distribution, Limit, Progress, Summary, evaluate_indexed, uniform};
+use loomkin_study::{DistSpec, Distribution, DrawRow, Drawn, Limit, Named, Progress, tally, uniform};
 use serde::{Deserialize, Serialize};
 
 /// The settings drawn, in the order of their stream variables.
@@ -36,7 +36,7 @@ pub const RESULTS: [&str; 6] =
 pub const MAX_DRAWS: u64 = 100_000_000;
 
 /// Default number of histogram bins.
-pub const DEFAULT_BINS: usize = 20;
+pub const DEFAULT_BINS: usize = loomkin_study::DEFAULT_BINS;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -126,23 +126,8 @@ impl MonteCarlo {
     pub fn from_toml(text: &str) -> Result<Self> {
         let f: StudyFile =
             toml::from_str(text).map_err(|e| PickError::Study { reason: crate::mechanism::toml_reason(text, &e) })?;
-        if f.draws == 0 || f.draws > MAX_DRAWS {
-            return Err(PickError::Study {
-                reason: format!("draws = {} is out of range: allowed 1 ≤ draws ≤ {MAX_DRAWS}", f.draws),
-            });
-        }
-        let bins = f.bins.unwrap_or(DEFAULT_BINS);
-        if !(1..=1000).contains(&bins) {
-            return Err(PickError::Study {
-                reason: format!("bins = {bins} is out of range: allowed 1 ≤ bins ≤ 1000")
-            });
-        }
-        let percentiles = f.percentiles.unwrap_or_else(|| loomkin_study::DEFAULT_PERCENTILES.to_vec());
-        if percentiles.is_empty() || percentiles.len() > 101 || percentiles.iter().any(|p| !(0.0..=100.0).contains(p)) {
-            return Err(PickError::Study {
-                reason: "percentiles: give 1 to 101 values, each 0 ≤ p ≤ 100 (%)".into()
-            });
-        }
+        let (bins, percentiles) =
+            loomkin_study::check_plan(f.draws, MAX_DRAWS, f.bins, f.percentiles).map_err(study_err)?;
         let s = &f.settings;
         let specs = [&s.speed_rpm, &s.play_mm, &s.strap_cm, &s.shuttle_g, &s.checking_kgf];
         let mut inputs = [None; 5];
@@ -187,9 +172,7 @@ impl MonteCarlo {
     /// shard and of the number of threads. A draw the model refuses (a play beyond the cam's reach,
     /// a speed out of range) is a row with `result: Err(message)`.
     pub fn run(&self, mechanism: &Mechanism, items: std::ops::Range<u64>, progress: Progress) -> Vec<Draw> {
-        let lo = items.start.min(self.draws);
-        let hi = items.end.min(self.draws).max(lo);
-        evaluate_indexed((hi - lo) as usize, progress, "draws", |i| self.draw(mechanism, lo + i as u64))
+        loomkin_study::run_draws(self.draws, items, progress, |i| self.draw(mechanism, i))
     }
 
     /// Draw `index` alone.
@@ -215,40 +198,22 @@ impl MonteCarlo {
     /// of one run, or the shards' rows concatenated). Sums run in draw order, so the report does
     /// not depend on how the draws were computed.
     pub fn report(&self, draws: &[Draw]) -> Report {
-        let ok: Vec<&DrawResult> = draws.iter().filter_map(|d| d.result.as_ref().ok()).collect();
-        let results = (0..RESULTS.len())
-            .filter_map(|k| {
-                let v: Vec<f64> = ok.iter().map(|r| r.values[k]).collect();
-                Summary::of(&v, &self.percentiles, self.bins, self.limits[k])
-                    .map(|s| Quantity { name: RESULTS[k], summary: s })
-            })
-            .collect();
-        let inputs = (0..INPUTS.len())
-            .filter(|&k| self.inputs[k].is_some_and(|d| !d.is_fixed()))
-            .filter_map(|k| {
-                let v: Vec<f64> = draws.iter().map(|d| d.inputs[k]).collect();
-                Summary::of(&v, &self.percentiles, self.bins, None).map(|s| Input { name: INPUTS[k].key(), summary: s })
-            })
-            .collect();
-        let failing = draws
-            .iter()
-            .filter(|d| match &d.result {
-                Err(_) => true,
-                Ok(r) => (0..RESULTS.len()).any(|k| self.limits[k].is_some_and(|l| l.fails(r.values[k]))),
-            })
-            .count() as u64;
-        let n = draws.len() as u64;
+        let inputs: Vec<(String, bool)> =
+            INPUTS.iter().zip(&self.inputs).map(|(s, d)| (s.key(), d.is_some_and(|d| !d.is_fixed()))).collect();
+        let results: Vec<(&str, Option<Limit>)> = RESULTS.iter().copied().zip(self.limits).collect();
+        let t = tally(draws, &self.percentiles, self.bins, &inputs, &results);
+        let ok = || draws.iter().filter_map(|d| d.result.as_ref().ok());
         Report {
-            draws: n,
+            draws: t.draws,
             seed: self.seed,
             method: self.method,
-            not_simulated: n - ok.len() as u64,
-            ode_draws: ok.iter().filter(|r| r.ode).count() as u64,
-            separation_draws: ok.iter().filter(|r| r.separation).count() as u64,
-            failing,
-            fail_share: if n > 0 { failing as f64 / n as f64 } else { 0.0 },
-            inputs,
-            results,
+            not_simulated: t.refused,
+            ode_draws: ok().filter(|r| r.ode).count() as u64,
+            separation_draws: ok().filter(|r| r.separation).count() as u64,
+            failing: t.failing,
+            fail_share: t.fail_share,
+            inputs: t.inputs,
+            results: t.results,
         }
     }
 }
@@ -275,24 +240,50 @@ pub struct Draw {
     pub result: std::result::Result<DrawResult, String>,
 }
 
-/// The distribution of one drawn setting.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Input {
-    /// Name with unit, e.g. `speed_rpm`.
-    pub name: String,
-    /// Its distribution over the draws.
-    #[serde(flatten)]
-    pub summary: Summary,
+/// The distribution of one drawn setting (its name is the setting's key, e.g. `speed_rpm`).
+pub type Input = Named;
+
+/// The distribution of one result (its name is one of [`RESULTS`]).
+pub type Quantity = Named;
+
+impl Drawn for Draw {
+    fn inputs(&self) -> &[f64] {
+        &self.inputs
+    }
+    fn results(&self) -> Option<&[f64]> {
+        self.result.as_ref().ok().map(|r| &r.values[..])
+    }
 }
 
-/// The distribution of one result.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Quantity {
-    /// Name with unit, one of [`RESULTS`].
-    pub name: &'static str,
-    /// Its distribution over the draws the model answered.
-    #[serde(flatten)]
-    pub summary: Summary,
+impl DrawRow for Draw {
+    const ANSWERED: &'static str = "simulated";
+    const FLAGS: &'static [&'static str] = &["ode", "separation"];
+    fn input_names() -> Vec<String> {
+        INPUTS.iter().map(Setting::key).collect()
+    }
+    fn result_names() -> Vec<String> {
+        RESULTS.iter().map(|s| s.to_string()).collect()
+    }
+    fn index(&self) -> u64 {
+        self.index
+    }
+    fn flags(&self) -> Vec<bool> {
+        self.result.as_ref().map_or(vec![false; 2], |r| vec![r.ode, r.separation])
+    }
+    fn error(&self) -> Option<&str> {
+        self.result.as_ref().err().map(String::as_str)
+    }
+    fn from_parts(index: u64, inputs: &[f64], answered: Option<(&[f64], &[bool])>) -> Self {
+        let result = match answered {
+            Some((v, f)) => Ok(DrawResult {
+                values: std::array::from_fn(|k| v[k]),
+                ode: f.first() == Some(&true),
+                separation: f.get(1) == Some(&true),
+            }),
+            None => Err("not simulated".to_string()),
+        };
+        Draw { index, inputs: std::array::from_fn(|k| inputs[k]), result }
+    }
 }
 
 /// The outcome of a study.

@@ -4,8 +4,9 @@
 //! axes, Cartesian grids and simplex grids of relative lengths `k_T1 … k_Tn` with `Σ k = 1`),
 //! parallel evaluation with a progress bar that appears only on a terminal, non-dominated sorting
 //! and the Pareto front, the constrained optimum, and for Monte-Carlo studies reproducible draws
-//! from stated [`Distribution`]s ([`uniform`]: any draw computed alone) and the [`Summary`] of a
-//! result (percentiles, histogram, share failing a [`Limit`]).
+//! from stated [`Distribution`]s ([`uniform`]: any draw computed alone), the [`Summary`] of a
+//! result (percentiles, histogram, share failing a [`Limit`]), and the Monte-Carlo runner and
+//! report every such study shares ([`run_draws`], [`tally`]).
 //!
 //! ```
 //! use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
@@ -27,6 +28,7 @@
 mod design;
 mod error;
 mod eval;
+mod montecarlo;
 mod optimum;
 mod pareto;
 mod random;
@@ -35,6 +37,7 @@ mod stats;
 pub use design::{Design, MAX_POINTS, simplex_rows, stepped_axis};
 pub use error::{Result, StudyError};
 pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed};
+pub use montecarlo::{DEFAULT_BINS, DrawEntry, DrawRow, Drawn, MAX_BINS, Named, Tally, check_plan, run_draws, tally};
 pub use optimum::argmin_subject_to;
 pub use pareto::{Sense, dominates, non_dominated_ranks, pareto_front};
 pub use random::{DistSpec, DistTable, Distribution, MAX_VARIABLES, normal_cdf, normal_pdf, normal_quantile, uniform};

@@ -24,7 +24,7 @@
 //! dimension's draws do not depend on which others are drawn.
 
 use crate::{AnalysisOptions, Cam, MechError, ModulatorGeometry, Result, analyze};
-use loomkin_study::{DistSpec, Distribution, Limit, Progress, Summary, evaluate_indexed, uniform};
+use loomkin_study::{DistSpec, Distribution, DrawRow, Drawn, Limit, Progress, tally, uniform};
 use serde::{Deserialize, Serialize};
 
 /// The dimensions that may be drawn, in the order of their stream variables.
@@ -79,6 +79,15 @@ struct LimitsFile {
 
 fn invalid(field: &str, reason: impl Into<String>) -> MechError {
     MechError::Invalid { field: field.into(), reason: reason.into() }
+}
+
+/// A study error as the mechanism's, naming the same key.
+fn study_err(e: loomkin_study::StudyError) -> MechError {
+    use loomkin_units::FieldError;
+    match e {
+        loomkin_study::StudyError::Distribution { field, reason } => invalid(&field, reason),
+        e => invalid(e.field().unwrap_or("tolerance study"), e.to_string()),
+    }
 }
 
 fn centre(d: &Distribution) -> f64 {
@@ -137,22 +146,10 @@ impl Tolerance {
             let m = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
             invalid("tolerance study", m)
         })?;
-        if f.draws == 0 || f.draws > MAX_DRAWS {
-            return Err(invalid(
-                "draws",
-                format!("draws = {} is out of range: allowed 1 ≤ draws ≤ {MAX_DRAWS}", f.draws),
-            ));
-        }
+        let (bins, percentiles) =
+            loomkin_study::check_plan(f.draws, MAX_DRAWS, f.bins, f.percentiles).map_err(study_err)?;
         let step_deg = f.step_deg.unwrap_or(2.0);
         loomkin_units::Range::closed(0.1, 30.0, "°").check("step_deg", step_deg)?;
-        let bins = f.bins.unwrap_or(20);
-        if !(1..=1000).contains(&bins) {
-            return Err(invalid("bins", format!("bins = {bins} is out of range: allowed 1 ≤ bins ≤ 1000")));
-        }
-        let percentiles = f.percentiles.unwrap_or_else(|| loomkin_study::DEFAULT_PERCENTILES.to_vec());
-        if percentiles.is_empty() || percentiles.len() > 101 || percentiles.iter().any(|p| !(0.0..=100.0).contains(p)) {
-            return Err(invalid("percentiles", "give 1 to 101 values, each 0 ≤ p ≤ 100 (%)"));
-        }
         let d = &f.dimensions;
         let specs = [&d.l2_m, &d.l3_m, &d.l3p_m, &d.l6_m, &d.alpha_deg, &d.theta_deg, &d.cam_a_m, &d.cam_b_m];
         let g = ModulatorGeometry::PAPER;
@@ -223,46 +220,27 @@ impl Tolerance {
 
     /// Runs the draws `items` in parallel, in draw order (independent of shards and threads).
     pub fn run(&self, items: std::ops::Range<u64>, progress: Progress) -> Vec<Draw> {
-        let lo = items.start.min(self.draws);
-        let hi = items.end.min(self.draws).max(lo);
-        evaluate_indexed((hi - lo) as usize, progress, "draws", |i| self.draw(lo + i as u64))
+        loomkin_study::run_draws(self.draws, items, progress, |i| self.draw(i))
     }
 
     /// The distributions over `draws` (all the study's draws in order); sums in draw order.
     pub fn report(&self, draws: &[Draw]) -> Report {
-        let ok: Vec<&[f64; 3]> = draws.iter().filter_map(|d| d.result.as_ref().ok()).collect();
-        let results = (0..RESULTS.len())
-            .filter_map(|k| {
-                let v: Vec<f64> = ok.iter().map(|r| r[k]).collect();
-                Summary::of(&v, &self.percentiles, self.bins, self.limits[k])
-                    .map(|summary| Named { name: RESULTS[k], summary })
-            })
-            .collect();
-        let dimensions = (0..DIMENSIONS.len())
-            .filter(|&k| self.dimensions[k].is_some_and(|d| !d.is_fixed()))
-            .filter_map(|k| {
-                let v: Vec<f64> = draws.iter().map(|d| d.dimensions[k]).collect();
-                Summary::of(&v, &self.percentiles, self.bins, None)
-                    .map(|summary| Named { name: DIMENSIONS[k], summary })
-            })
-            .collect();
-        let failing = draws
+        let dims: Vec<(String, bool)> = DIMENSIONS
             .iter()
-            .filter(|d| match &d.result {
-                Err(_) => true,
-                Ok(r) => (0..RESULTS.len()).any(|k| self.limits[k].is_some_and(|l| l.fails(r[k]))),
-            })
-            .count() as u64;
-        let n = draws.len() as u64;
+            .zip(&self.dimensions)
+            .map(|(n, d)| (n.to_string(), d.is_some_and(|d| !d.is_fixed())))
+            .collect();
+        let results: Vec<(&str, Option<Limit>)> = RESULTS.iter().copied().zip(self.limits).collect();
+        let t = tally(draws, &self.percentiles, self.bins, &dims, &results);
         Report {
-            draws: n,
+            draws: t.draws,
             seed: self.seed,
             step_deg: self.step_deg,
-            not_assembled: n - ok.len() as u64,
-            failing,
-            fail_share: if n > 0 { failing as f64 / n as f64 } else { 0.0 },
-            dimensions,
-            results,
+            not_assembled: t.refused,
+            failing: t.failing,
+            fail_share: t.fail_share,
+            dimensions: t.inputs,
+            results: t.results,
         }
     }
 }
@@ -288,14 +266,40 @@ pub struct Draw {
     pub result: std::result::Result<[f64; 3], String>,
 }
 
-/// The distribution of one quantity.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Named {
-    /// Name with unit.
-    pub name: &'static str,
-    /// Its distribution.
-    #[serde(flatten)]
-    pub summary: Summary,
+/// The distribution of one quantity (its name is one of [`DIMENSIONS`] or [`RESULTS`]).
+pub use loomkin_study::Named;
+
+impl Drawn for Draw {
+    fn inputs(&self) -> &[f64] {
+        &self.dimensions
+    }
+    fn results(&self) -> Option<&[f64]> {
+        self.result.as_ref().ok().map(|r| &r[..])
+    }
+}
+
+impl DrawRow for Draw {
+    const ANSWERED: &'static str = "assembled";
+    const FLAGS: &'static [&'static str] = &[];
+    fn input_names() -> Vec<String> {
+        DIMENSIONS.iter().map(|s| s.to_string()).collect()
+    }
+    fn result_names() -> Vec<String> {
+        RESULTS.iter().map(|s| s.to_string()).collect()
+    }
+    fn index(&self) -> u64 {
+        self.index
+    }
+    fn flags(&self) -> Vec<bool> {
+        Vec::new()
+    }
+    fn error(&self) -> Option<&str> {
+        self.result.as_ref().err().map(String::as_str)
+    }
+    fn from_parts(index: u64, inputs: &[f64], answered: Option<(&[f64], &[bool])>) -> Self {
+        let result = answered.map(|(v, _)| std::array::from_fn(|k| v[k])).ok_or_else(|| "not assembled".to_string());
+        Draw { index, dimensions: std::array::from_fn(|k| inputs[k]), result }
+    }
 }
 
 /// The outcome of a tolerance study.
