@@ -88,21 +88,8 @@ pub struct ProfileArgs {
     /// Plot the cam (profile, pitch curve, base circle), its pressure angle and curvature (.svg or .png).
     #[arg(short, long, value_name = "PLOT")]
     output: Option<PathBuf>,
-    /// A catalogue law for the rise and the return (see `loomkin law list`).
-    #[arg(long)]
-    law: Option<String>,
-    /// A law parameter KEY=VALUE (repeatable).
-    #[arg(long = "param", value_parser = util::parse_key_value, requires = "law")]
-    params: Vec<(String, String)>,
-    /// Stroke of the rise in mm (translating or flat follower).
-    #[arg(long, requires = "law", conflicts_with = "stroke_deg", allow_hyphen_values = true)]
-    stroke_mm: Option<f64>,
-    /// Swing of the rise in deg (oscillating follower).
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    stroke_deg: Option<f64>,
-    /// Master angle of the rise (and of the return), deg (at most 180).
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    motion_deg: Option<f64>,
+    #[command(flatten)]
+    rise: util::RiseArgs,
 }
 
 /// `cam table`.
@@ -126,21 +113,8 @@ pub struct TableArgs {
     /// Output file (`-` for standard output).
     #[arg(short, long)]
     output: String,
-    /// A catalogue law for a single rise (see `loomkin law list`).
-    #[arg(long)]
-    law: Option<String>,
-    /// A law parameter KEY=VALUE (repeatable).
-    #[arg(long = "param", value_parser = util::parse_key_value, requires = "law")]
-    params: Vec<(String, String)>,
-    /// Stroke of the single rise in mm (translating follower).
-    #[arg(long, requires = "law", conflicts_with = "stroke_deg", allow_hyphen_values = true)]
-    stroke_mm: Option<f64>,
-    /// Stroke of the single rise in deg (swinging follower).
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    stroke_deg: Option<f64>,
-    /// Master angle of the single rise, deg.
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    motion_deg: Option<f64>,
+    #[command(flatten)]
+    rise: util::RiseArgs,
     /// Print the report (points, decimals, exact errors) as JSON.
     #[arg(long)]
     json: bool,
@@ -156,19 +130,11 @@ pub fn run(cmd: CamCommand) -> Result<()> {
 
 fn motion(a: &TableArgs) -> Result<(Motion, String)> {
     if let Some(path) = &a.cycle {
-        let text = util::read_input(path)?;
-        let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let cycle = util::read_cycle(path)?;
         return Ok((Motion::from_cycle(&cycle), path.display().to_string()));
     }
-    let name = a.law.as_deref().unwrap_or("cycloidal");
-    let law = LawSpec::parse(name, &a.params)?.build()?;
-    let (stroke, unit) = match (a.stroke_mm, a.stroke_deg) {
-        (Some(h), None) => (h, StrokeUnit::Mm),
-        (None, Some(h)) => (h, StrokeUnit::Deg),
-        _ => bail!("--stroke-mm or --stroke-deg is needed with --law"),
-    };
-    let Some(b) = a.motion_deg else { bail!("--motion-deg is needed with --law") };
-    Ok((Motion::rise(&law, stroke, b, unit)?, format!("law {name}")))
+    let (law, stroke, unit, b) = a.rise.rise()?;
+    Ok((Motion::rise(&law.build()?, stroke, b, unit)?, format!("law {}", a.rise.name())))
 }
 
 fn table(a: TableArgs) -> Result<()> {
@@ -204,21 +170,8 @@ fn table(a: TableArgs) -> Result<()> {
 }
 
 fn profile_motion(a: &ProfileArgs) -> Result<(Motion, String)> {
-    if let Some(path) = &a.cycle {
-        let text = util::read_input(path)?;
-        let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        return Ok((Motion::from_cycle(&cycle), path.display().to_string()));
-    }
-    let name = a.law.as_deref().unwrap_or("cycloidal");
-    let law = LawSpec::parse(name, &a.params)?;
-    let (stroke, unit) = match (a.stroke_mm, a.stroke_deg) {
-        (Some(h), None) => (h, StrokeUnit::Mm),
-        (None, Some(h)) => (h, StrokeUnit::Deg),
-        _ => bail!("stroke_mm: --stroke-mm (or --stroke-deg for an oscillating follower) is needed with --law"),
-    };
-    let Some(b) = a.motion_deg else { bail!("motion_deg: --motion-deg is needed with --law") };
-    let spec = CycleSpec::rise_return(&law, unit, stroke, b)?;
-    Ok((Motion::from_cycle(&Cycle::new(&spec)?), format!("law {name} (rise, dwell, return, dwell)")))
+    let (cycle, source) = a.rise.cycle(a.cycle.as_deref())?;
+    Ok((Motion::from_cycle(&cycle), source))
 }
 
 fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {

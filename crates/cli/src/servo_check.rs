@@ -19,21 +19,9 @@ pub struct CheckArgs {
     /// The cycle the axis moves (TOML cycle file).
     #[arg(long, required_unless_present = "law", conflicts_with = "law")]
     cycle: Option<PathBuf>,
-    /// Or a catalogue law: rise over --motion-deg, dwell, return, dwell over one turn.
-    #[arg(long)]
-    law: Option<String>,
-    /// A law parameter KEY=VALUE (repeatable).
-    #[arg(long = "param", value_parser = util::parse_key_value, requires = "law")]
-    params: Vec<(String, String)>,
-    /// Stroke in mm (translating slave).
-    #[arg(long, requires = "law", conflicts_with = "stroke_deg", allow_hyphen_values = true)]
-    stroke_mm: Option<f64>,
-    /// Stroke in deg (swinging slave).
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    stroke_deg: Option<f64>,
-    /// Master angle of the rise and of the return, deg (≤ 180).
-    #[arg(long, requires = "law", allow_hyphen_values = true)]
-    motion_deg: Option<f64>,
+    // Or a catalogue law: rise over --motion-deg, dwell, return, dwell over one turn.
+    #[command(flatten)]
+    rise: util::RiseArgs,
     /// Main-shaft speed in rpm (default: the cycle file's, else 300).
     #[arg(long, allow_hyphen_values = true)]
     speed_rpm: Option<f64>,
@@ -45,24 +33,9 @@ pub struct CheckArgs {
     output: Option<PathBuf>,
 }
 
-fn cycle(a: &CheckArgs) -> Result<Cycle> {
-    if let Some(path) = &a.cycle {
-        let text = util::read_input(path)?;
-        return Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()));
-    }
-    let law = LawSpec::parse(a.law.as_deref().unwrap_or("cycloidal"), &a.params)?;
-    let (h, unit) = match (a.stroke_mm, a.stroke_deg) {
-        (Some(h), None) => (h, StrokeUnit::Mm),
-        (None, Some(h)) => (h, StrokeUnit::Deg),
-        _ => bail!("--stroke-mm or --stroke-deg is needed with --law"),
-    };
-    let Some(b) = a.motion_deg else { bail!("--motion-deg is needed with --law") };
-    Ok(Cycle::new(&CycleSpec::rise_return(&law, unit, h, b)?)?)
-}
-
 /// Runs `servo check`.
 pub fn run(a: CheckArgs) -> Result<()> {
-    let cycle = cycle(&a)?;
+    let (cycle, _) = a.rise.cycle(a.cycle.as_deref())?;
     let text = util::read_input(&a.axis)?;
     let axis = Axis::from_toml(&text, cycle.unit).map_err(|e| anyhow::anyhow!("{}: {e}", a.axis.display()))?;
     let rpm = a.speed_rpm.or(cycle.speed_rpm).unwrap_or(300.0);

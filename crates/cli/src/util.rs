@@ -2,6 +2,7 @@
 
 use anyhow::Context;
 use clap::Args;
+use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
 
 /// An error that is a failure of the run (exit 1), not of the user's input (exit 2).
 #[derive(Debug)]
@@ -35,6 +36,64 @@ pub struct Format {
     /// Print CSV (header with units, one row per sample).
     #[arg(long)]
     pub csv: bool,
+}
+
+/// A catalogue law for a rise (and, where the command makes a whole cycle, the return) instead of
+/// a cycle file: `cam table`, `cam profile` and `servo check` take the same flags.
+#[derive(Debug, Args)]
+pub struct RiseArgs {
+    /// A catalogue law for the rise (see `loomkin law list`), instead of a cycle file.
+    #[arg(long)]
+    pub law: Option<String>,
+    /// A law parameter KEY=VALUE (repeatable).
+    #[arg(long = "param", value_parser = parse_key_value, requires = "law")]
+    pub params: Vec<(String, String)>,
+    /// Stroke of the rise in mm (translating follower or slave).
+    #[arg(long, requires = "law", conflicts_with = "stroke_deg", allow_hyphen_values = true)]
+    pub stroke_mm: Option<f64>,
+    /// Swing of the rise in deg (oscillating follower, swinging slave).
+    #[arg(long, requires = "law", allow_hyphen_values = true)]
+    pub stroke_deg: Option<f64>,
+    /// Master angle of the rise (and of the return, where there is one), deg.
+    #[arg(long, requires = "law", allow_hyphen_values = true)]
+    pub motion_deg: Option<f64>,
+}
+
+impl RiseArgs {
+    /// The law (default `cycloidal`), the stroke and its unit, the motion angle (deg).
+    pub fn rise(&self) -> anyhow::Result<(LawSpec, f64, StrokeUnit, f64)> {
+        let law = LawSpec::parse(self.name(), &self.params)?;
+        let (stroke, unit) = match (self.stroke_mm, self.stroke_deg) {
+            (Some(h), None) => (h, StrokeUnit::Mm),
+            (None, Some(h)) => (h, StrokeUnit::Deg),
+            _ => anyhow::bail!("stroke_mm: --stroke-mm or --stroke-deg is needed with --law"),
+        };
+        let Some(b) = self.motion_deg else { anyhow::bail!("motion_deg: --motion-deg is needed with --law") };
+        Ok((law, stroke, unit, b))
+    }
+
+    /// The law's name (`cycloidal` when none is given).
+    pub fn name(&self) -> &str {
+        self.law.as_deref().unwrap_or("cycloidal")
+    }
+
+    /// The cycle of `file`, or of this rise with a dwell, the return and a dwell over one turn;
+    /// with where it came from (the file's name, or `law NAME (rise, dwell, return, dwell)`).
+    pub fn cycle(&self, file: Option<&std::path::Path>) -> anyhow::Result<(Cycle, String)> {
+        if let Some(path) = file {
+            let cycle = read_cycle(path)?;
+            return Ok((cycle, path.display().to_string()));
+        }
+        let (law, stroke, unit, b) = self.rise()?;
+        let cycle = Cycle::new(&CycleSpec::rise_return(&law, unit, stroke, b)?)?;
+        Ok((cycle, format!("law {} (rise, dwell, return, dwell)", self.name())))
+    }
+}
+
+/// Reads a cycle file (TOML), naming the file in the error.
+pub fn read_cycle(path: &std::path::Path) -> anyhow::Result<Cycle> {
+    let text = read_input(path)?;
+    Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
 /// Splits `KEY=VALUE`.
