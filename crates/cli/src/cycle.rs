@@ -98,7 +98,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     outln!(
         "cycle {} at {rpm} rpm (one cycle {:.6} s)",
         a.file.display(),
-        cycle.period_rad / (rpm * std::f64::consts::TAU / 60.0)
+        cycle.period_rad / loomkin_units::rad_per_s_from_rpm(rpm)
     )?;
     outln!(
         "{:>3} {:<7} {:>9} {:>9} {:<36} {:>12} {:>14} {:>14}",

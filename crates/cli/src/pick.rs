@@ -347,11 +347,11 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     outln!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name())?;
     outln!(
         "  speed {} rpm, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
-        fmt(st.speed_rpm),
-        fmt(st.play_m * 1e3),
-        fmt(st.strap_m * 1e2),
-        fmt(st.shuttle_kg * 1e3),
-        fmt(st.checking_n / loomkin_picking::units::N_PER_KGF)
+        loomkin_units::compact(st.speed_rpm),
+        loomkin_units::compact(st.play_m * 1e3),
+        loomkin_units::compact(st.strap_m * 1e2),
+        loomkin_units::compact(st.shuttle_kg * 1e3),
+        loomkin_units::compact(st.checking_n / loomkin_picking::units::N_PER_KGF)
     )?;
     outln!("  t0           = {:.6} s   (delay taking up the play)", o.t0_s)?;
     outln!(
@@ -370,11 +370,6 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     outln!("  accel peak   = {:.3} m/s² at t = {:.6} s", o.accel_peak_m_s2, o.t_peak_s)?;
     outln!("  B' = {:.6e} s², C' = {:.6e}, D' = {:.6e} m, ψ = {:.3} 1/s", o.b_s2, o.c, o.d_m, o.natural_1_s)?;
     Ok(())
-}
-
-fn fmt(v: f64) -> String {
-    let s = format!("{v:.4}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 const SWEEP_COLUMNS: [&str; 10] = [
@@ -571,9 +566,9 @@ fn plot(a: PlotArgs) -> Result<()> {
     let title = format!(
         "Picking: nominal and actual motion (cam {}, {} rpm, play {} mm, k = {} cm)",
         mech.cam().label(),
-        fmt(st.speed_rpm),
-        fmt(st.play_m * 1e3),
-        fmt(st.strap_m * 1e2)
+        loomkin_units::compact(st.speed_rpm),
+        loomkin_units::compact(st.play_m * 1e3),
+        loomkin_units::compact(st.strap_m * 1e2)
     );
     output::figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output)
 }

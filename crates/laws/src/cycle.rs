@@ -355,7 +355,7 @@ impl Cycle {
 
     /// Kinematics in SI units at main-shaft angle `theta_rad` (wrapped into the cycle) and speed.
     pub fn eval(&self, theta_rad: f64, speed_rpm: f64) -> Kinematics {
-        let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
+        let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
         let start = self.segments[0].start_rad;
         let th = start + (theta_rad - start).rem_euclid(self.period_rad);
         let seg = self.segments.iter().rev().find(|s| th >= s.start_rad).unwrap_or(&self.segments[0]);
@@ -377,7 +377,7 @@ impl Cycle {
     /// The samples of [`Cycle::sample`] one at a time, nothing held (a table of 10⁷ rows streams).
     pub fn samples(&self, n: usize, speed_rpm: f64) -> impl ExactSizeIterator<Item = CyclePoint> + '_ {
         let n = n.max(2);
-        let omega = speed_rpm * 2.0 * std::f64::consts::PI / 60.0;
+        let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
         let start = self.segments[0].start_rad;
         (0..n).map(move |i| {
             let f = i as f64 / (n - 1) as f64;

@@ -50,7 +50,7 @@ impl Cycle {
     /// rule; dwells have zero peaks.
     pub fn segment_peaks(&self, speed: ShaftSpeed) -> Vec<SegmentPeaks> {
         // ω as `rpm·2π/60` (not `rpm·(2π/60)`): the figures stay bit for bit what the CLI printed.
-        let omega = speed.rpm() * std::f64::consts::TAU / 60.0;
+        let omega = loomkin_units::rad_per_s_from_rpm(speed.rpm());
         self.segments
             .iter()
             .map(|s| {
@@ -83,7 +83,7 @@ impl Cycle {
         CycleReport {
             speed_rpm: speed.rpm(),
             period_deg: self.period_rad.to_degrees(),
-            cycle_time_s: self.period_rad / (speed.rpm() * std::f64::consts::TAU / 60.0),
+            cycle_time_s: self.period_rad / loomkin_units::rad_per_s_from_rpm(speed.rpm()),
             unit: self.unit,
             segments: self.segment_peaks(speed),
             samples: self.sample(n, speed.rpm()),

@@ -112,7 +112,7 @@ impl Model {
             eps: (l.spring_n_m * base + l.constant_force_n) / ke,
             mu: l.friction_n / ke,
             sign: h.signum(),
-            kappa: k * h * r * 60.0 / (2.0 * PI),
+            kappa: loomkin_units::rpm_from_rad_per_s(k * h * r),
         }
     }
 
@@ -133,7 +133,7 @@ impl Model {
 pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
     axis.validate(cycle.unit)?;
     let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
-    let omega = speed_rpm * 2.0 * PI / 60.0;
+    let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
     let cycle_time_s = cycle.period_rad / omega;
     let mut pk_t = (0.0f64, 0.0f64);
     let mut pk_n = (0.0f64, 0.0f64);
@@ -235,7 +235,11 @@ pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) ->
             let q = p.kin;
             let fric = if q.v == 0.0 { 0.0 } else { l.friction_n * q.v.signum() };
             let t = a_eff * q.a + (l.viscous_n_s_m * q.v + fric + l.spring_n_m * q.s + l.constant_force_n) / ke;
-            OperatingPoint { angle_deg: p.angle_deg, motor_speed_rpm: k * q.v * 60.0 / (2.0 * PI), torque_nm: t }
+            OperatingPoint {
+                angle_deg: p.angle_deg,
+                motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(k * q.v),
+                torque_nm: t,
+            }
         })
         .collect())
 }

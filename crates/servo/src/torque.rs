@@ -221,7 +221,7 @@ pub fn summary(law: &Law, drive: &Drive, speed_rpm: f64) -> Result<TorqueSummary
         peak_power_w: st.peak_power_w,
         peak_velocity_m_s: vmax,
         peak_accel_m_s2: h * met.ca / (t_min * t_min),
-        peak_motor_speed_rpm: vmax * drive.motor_rad_per_m() * 60.0 / (2.0 * PI),
+        peak_motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(vmax * drive.motor_rad_per_m()),
         rise_time_s: t_rise,
         cycle_time_s: cycle_s,
     })

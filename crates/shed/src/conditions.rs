@@ -58,7 +58,7 @@ impl Conditions {
 
     /// Main-shaft angular speed `ω = 2πn/60`, rad/s.
     pub fn omega_rad_s(&self) -> f64 {
-        self.speed_rpm * std::f64::consts::TAU / 60.0
+        loomkin_units::rad_per_s_from_rpm(self.speed_rpm)
     }
 
     /// The factor `h·(ω/Φ)^order` that turns the dimensionless derivative of order `order` of a

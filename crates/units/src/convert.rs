@@ -28,9 +28,39 @@ pub fn deg_from_rad(rad: f64) -> f64 {
     rad.to_degrees()
 }
 
+/// Seconds per minute.
+const S_PER_MIN: f64 = 60.0;
+
+/// Angular speed in rad/s from a speed in rpm, `rpm·2π/60` (the product first, then the division:
+/// the rounding every study of loomkin has used, so their figures keep their last bits;
+/// [`crate::ShaftSpeed::rad_per_s`] is a checked main-shaft speed's).
+#[inline]
+pub fn rad_per_s_from_rpm(rpm: f64) -> f64 {
+    rpm * std::f64::consts::TAU / S_PER_MIN
+}
+
+/// Speed in rpm from an angular speed in rad/s, `ω·60/2π` (a motor's speed from its shaft's).
+#[inline]
+pub fn rpm_from_rad_per_s(rad_per_s: f64) -> f64 {
+    rad_per_s * S_PER_MIN / std::f64::consts::TAU
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn speeds_are_the_formulas_they_replace_bit_for_bit() {
+        use std::f64::consts::PI;
+        for rpm in [0.0, 1e-3, 1.0, 200.0, 333.3, 600.0, 750.0, 1e5, 12345.678] {
+            assert_eq!(rad_per_s_from_rpm(rpm).to_bits(), (rpm * 2.0 * PI / 60.0).to_bits());
+            let w = rad_per_s_from_rpm(rpm);
+            assert_eq!(rpm_from_rad_per_s(w).to_bits(), (w * 60.0 / (2.0 * PI)).to_bits());
+            assert!((rpm_from_rad_per_s(w) - rpm).abs() <= 4.0 * f64::EPSILON * rpm);
+        }
+        // 60 rpm is one revolution per second.
+        assert_eq!(rad_per_s_from_rpm(60.0), std::f64::consts::TAU);
+    }
 
     #[test]
     fn round_trips() {
