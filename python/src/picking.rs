@@ -1,17 +1,15 @@
 //! Shuttle picking dynamics (Jederán 1959): design, simulation and sweeps, keyed as
 //! `loomkin pick … --json`.
 
-use crate::convert::{columns, value_records_to_columns, value_to_py};
+use crate::convert::{columns, to_py, value_records_to_columns, value_to_py};
 use crate::errors::{Fault, OrRaise, check_count};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
-use loomkin_picking::{
-    Mechanism, Method, Outcome, PickEnd, PickError, Setting, Settings, StartRule, history, simulate,
-};
+use loomkin_picking::{Mechanism, Method, PickError, Setting, Settings, StartRule, history, simulate};
 use loomkin_units::{Range, RangeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde_json::{Value, json};
+use serde_json::Value;
 
 /// Samples of a pick's history (as the CLI's `--points`).
 const HISTORY_POINTS: Range = Range::closed(2.0, 1e6, "");
@@ -186,21 +184,6 @@ fn settings(mech: &Mechanism, set: &[(Setting, f64)], start: StartRule) -> Setti
     st.with_start(start)
 }
 
-fn outcome_json(o: &Outcome) -> Value {
-    let mut v = json!({
-        "t_end_s": o.t_end_s, "t0_s": o.t0_s, "distance_m": o.distance_m, "velocity_m_s": o.velocity_m_s,
-        "accel_end_m_s2": o.accel_end_m_s2, "accel_peak_m_s2": o.accel_peak_m_s2, "t_peak_s": o.t_peak_s,
-        "end": match o.end { PickEnd::CamEnd => "cam-end", PickEnd::Separation => "separation" },
-        "required_velocity_m_s": o.required_velocity_m_s, "velocity_vs_required_pct": o.velocity_vs_required_pct,
-        "method": o.method.name(), "b_s2": o.b_s2, "c": o.c, "d_m": o.d_m, "natural_1_s": o.natural_1_s,
-        "play_picker_m": o.play_picker_m,
-    });
-    if let Some(n) = &o.note {
-        v["note"] = json!(n);
-    }
-    v
-}
-
 /// pick_design(**model) -> dict
 /// --
 ///
@@ -210,21 +193,7 @@ fn outcome_json(o: &Outcome) -> Value {
 #[pyo3(signature = (**model))]
 fn pick_design(py: Python<'_>, model: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
     let mech = Model::from_kw(model)?.model.build()?;
-    let d = mech.design();
-    let k = d.constants;
-    let spec = d.spec;
-    value_to_py(
-        py,
-        &json!({
-            "a_m_s2": d.a_m_s2, "mu_1_s": d.mu_1_s, "tau_s": d.tau_s, "t_end_s": d.t_end_s,
-            "b_s2": k.b_s2, "c": k.c, "d_m": k.d_m,
-            "natural_1_s": k.natural_1_s(), "stroke_m": d.stroke_m(),
-            "velocity_m_s": spec.velocity_m_s, "distance_m": spec.distance_m,
-            "first_stage_m": spec.first_stage_m, "speed_rpm": spec.speed_rpm,
-            "required_velocity_m_s": mech.required().at(spec.speed_rpm),
-            "cam": mech.cam().label(),
-        }),
-    )
+    to_py(py, &mech.design_report())
 }
 
 /// pick_simulate(**model_and_settings) -> dict
@@ -240,7 +209,7 @@ fn pick_simulate(py: Python<'_>, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Py<
     let mech = model.build()?;
     let st = settings(&mech, &set, start);
     let o = py.detach(|| simulate(&mech, &st, method)).or_raise()?;
-    value_to_py(py, &outcome_json(&o))
+    to_py(py, &o)
 }
 
 /// pick_history(points=201, **model_and_settings) -> (dict, dict)
@@ -271,7 +240,7 @@ fn pick_history<'py>(
         ("v_m_s", col(&|s| s.actual.v_m_s)),
         ("a_m_s2", col(&|s| s.actual.a_m_s2)),
     ];
-    Ok((columns(py, cols)?, value_to_py(py, &outcome_json(&h.outcome))?))
+    Ok((columns(py, cols)?, to_py(py, &h.outcome)?))
 }
 
 /// pick_sweep(setting, start, stop, points, **model_and_settings) -> dict
@@ -297,23 +266,11 @@ fn pick_sweep(
     let mech = model.build()?;
     let st = settings(&mech, &set, start_rule);
     let s = py.detach(|| loomkin_picking::sweep(&mech, &st, setting, start, stop, points, method)).or_raise()?;
-    let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
-    let rows: Vec<Value> = s
-        .rows
-        .iter()
-        .map(|r| {
-            let mut v = outcome_json(&r.outcome);
-            v[setting.key()] = json!(r.value);
-            v
-        })
-        .collect();
-    let out = value_to_py(
-        py,
-        &json!({
-            "setting": setting.name(), "unit": setting.unit(), "method": method.name(),
-            "fallback_values": fallbacks,
-        }),
-    )?;
-    out.bind(py).set_item("rows", value_records_to_columns(py, &Value::Array(rows))?)?;
+    // The report as `loomkin pick sweep --json` prints it, its rows as columns.
+    let mut report = serde_json::to_value(s.report(method))
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("internal: {e}")))?;
+    let rows = report.as_object_mut().and_then(|m| m.remove("rows")).unwrap_or(Value::Array(Vec::new()));
+    let out = value_to_py(py, &report)?;
+    out.bind(py).set_item("rows", value_records_to_columns(py, &rows)?)?;
     Ok(out)
 }

@@ -7,7 +7,6 @@ use clap::{Args, Subcommand};
 use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
-use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
 use loomkin_units::{Range, compact};
 use std::path::PathBuf;
 

@@ -1,10 +1,9 @@
 //! `loomkin servo check`: a servo axis (motor and load from a TOML file) moving a cycle.
 
 use crate::{output, util};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
-use loomkin_laws::{Cycle, CycleSpec, LawSpec, StrokeUnit};
 use loomkin_servo::{Axis, check_axis, envelope_lines, operating_points};
 use std::path::PathBuf;
 

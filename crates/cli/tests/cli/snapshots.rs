@@ -1,10 +1,11 @@
-//! Snapshots of each command's `--json` and of every export format,
-//! so a change of wording or format is a diff someone reviews (`crates/cli/tests/snapshots/`).
+//! Snapshots of every command's `--help`, of each command's `--json`, of every export format and of
+//! a DXF drawing's geometry, so a change of wording or format is a diff someone reviews
+//! (`crates/cli/tests/snapshots/`).
 //!
-//! After an intended change: `INSTA_UPDATE=always cargo test -p loomkin-cli --test cli snapshots`
-//! (or `cargo insta review`), then read the diff of the `.snap` files before committing. A new
-//! The commands below print no paths and no
-//! times, so the snapshots are the same on every machine of this kind.
+//! After an intended change (a new flag or command included): `INSTA_UPDATE=always cargo test -p
+//! loomkin-cli --test cli snapshots` (or `cargo insta review`), then read the diff of the `.snap`
+//! files before committing. The commands below print no paths and no times, so the snapshots are
+//! the same on every machine of this kind.
 
 use crate::common::loomkin;
 use std::path::{Path, PathBuf};
@@ -25,6 +26,64 @@ fn snap(name: &str, text: &str) {
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false, omit_expression => true }, {
         insta::assert_snapshot!(name, text);
     });
+}
+
+/// The subcommands listed under `Commands:` in a help text (without `help`).
+fn subcommands(help: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut inside = false;
+    for line in help.lines() {
+        if line.starts_with("Commands:") {
+            inside = true;
+        } else if inside && line.trim().is_empty() {
+            break;
+        } else if inside
+            && let Some(name) = line.split_whitespace().next()
+            && name != "help"
+            && line.starts_with("  ")
+            && !line.starts_with("    ")
+        {
+            out.push(name.to_string());
+        }
+    }
+    out
+}
+
+/// `--help` of every command, found by walking `Commands:` from `loomkin --help` (wrapped at
+/// COLUMNS=100). A new command or flag is a new or changed snapshot.
+#[test]
+fn help_of_every_command() {
+    let mut todo = vec![Vec::<String>::new()];
+    let mut seen = 0;
+    while let Some(path) = todo.pop() {
+        let mut args: Vec<&str> = path.iter().map(String::as_str).collect();
+        args.push("--help");
+        let help = stdout(&args);
+        let name = if path.is_empty() { "help".to_string() } else { format!("help__{}", path.join("__")) };
+        snap(&name, &help);
+        seen += 1;
+        for sub in subcommands(&help) {
+            let mut p = path.clone();
+            p.push(sub);
+            todo.push(p);
+        }
+    }
+    assert!(seen > 30, "only {seen} help texts found");
+}
+
+/// The geometry of a cam's DXF drawing (its ENTITIES section: layers, polylines, circles), which
+/// the writer numbers in a fixed order.
+#[test]
+fn dxf_geometry() {
+    let file = std::env::temp_dir().join(format!("loomkin-snapshot-{}.dxf", std::process::id()));
+    let f = file.to_str().unwrap();
+    let args = ["cam", "profile", "examples/heald-frame-cycle.toml", "--follower", "translating"];
+    stdout(&[&args[..], &["--roller-radius-mm", "15", "--chord-tol-mm", "0.5", "--dxf", f]].concat());
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::remove_file(&file).ok();
+    let start = text.find("ENTITIES").expect("an ENTITIES section");
+    let end = start + text[start..].find("ENDSEC").expect("its end");
+    snap("export__cam_dxf_entities", &text[start..end]);
 }
 
 /// `--json` of each command (small inputs; deterministic: optimisers with one start).
