@@ -13,7 +13,6 @@ use loomkin_mech::{
     Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
     SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
 };
-use loomkin_units::Range;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin dobby`.

@@ -6,7 +6,6 @@ use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger, timing_diagram, torque_figure};
-use loomkin_units::Range;
 use std::path::{Path, PathBuf};
 
 /// `loomkin loom`.
