@@ -400,6 +400,17 @@ fn closure_name(c: Closure) -> &'static str {
     }
 }
 
+fn follower_name(d: &CamDesign) -> String {
+    match d.follower {
+        Follower::Translating { offset_mm: 0.0 } => "radial translating roller follower".into(),
+        Follower::Translating { offset_mm } => format!("translating roller follower offset {} mm", compact(offset_mm)),
+        Follower::Oscillating { arm_mm, pivot_mm } => {
+            format!("oscillating roller follower (arm {} mm, pivot {} mm)", compact(arm_mm), compact(pivot_mm))
+        }
+        Follower::Flat => "flat-faced translating follower".into(),
+    }
+}
+
 /// The profile, refusing a sampling step that would answer more than [`MAX_CAM_POINTS`] angles.
 fn build(source: &CamSource, design: &CamDesignRequest) -> Result<(CamProfile, CamDesign, Motion, String), ApiError> {
     let d = design.design()?;
@@ -484,7 +495,7 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
     };
     let report = CamReport {
         source,
-        follower: d.follower.description(),
+        follower: follower_name(&d),
         closure: closure_name(d.closure),
         unit: if motion.unit() == StrokeUnit::Deg { "deg" } else { "mm" },
         stroke: cam.stroke(),
