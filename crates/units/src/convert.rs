@@ -58,8 +58,9 @@ mod tests {
             assert_eq!(rpm_from_rad_per_s(w).to_bits(), (w * 60.0 / (2.0 * PI)).to_bits());
             assert!((rpm_from_rad_per_s(w) - rpm).abs() <= 4.0 * f64::EPSILON * rpm);
         }
-        // 60 rpm is one revolution per second.
-        assert_eq!(rad_per_s_from_rpm(60.0), std::f64::consts::TAU);
+        // 60 rpm is one revolution per second (to the rounding of the product 60·2π).
+        let tau = std::f64::consts::TAU;
+        assert!((rad_per_s_from_rpm(60.0) - tau).abs() <= f64::EPSILON * tau);
     }
 
     #[test]
