@@ -89,6 +89,8 @@ pub struct ProfileArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     rise: util::RiseArgs,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// `cam table`.
@@ -262,7 +264,7 @@ fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut
     let points = cam.sample(0, step);
     let counter = (cam.track_count() == 2).then(|| cam.sample(1, step));
     if let Some(path) = &a.output {
-        output::figure(&profile_figure(cam, &points, counter.as_deref(), source), path)?;
+        output::figure(&profile_figure(cam, &points, counter.as_deref(), source), path, &a.plot)?;
     }
     let (pmax, pat, _) = cam.max_pressure_angle();
     let (rmin, rat) = cam.min_convex_radius_pitch();
@@ -366,7 +368,7 @@ fn profile_figure(cam: &CamProfile, points: &[CamPoint], counter: Option<&[CamPo
     drawing.push(
         Series::line("0° (follower at main-shaft 0°)", vec![(0.0, 0.0), (ph[0], ph[1])]).with_color([0, 158, 115]),
     );
-    let mut d = Panel::new("y [mm]", drawing).with_legend(Legend::LowerRight);
+    let mut d = Panel::new("y [mm]", drawing).with_legend(Legend::Auto);
     d.x_label = Some("x [mm]".into());
     d.equal_aspect = true;
     let series = |v: &[CamPoint], f: fn(&CamPoint) -> f64| -> Vec<(f64, f64)> {

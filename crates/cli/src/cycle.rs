@@ -25,6 +25,8 @@ pub struct CycleArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Runs `loomkin cycle`.
@@ -91,8 +93,8 @@ pub fn run(a: CycleArgs) -> Result<()> {
             Panel::new(format!("acceleration [{as_}]"), vec![Series::line("", col(|k| k.a))]),
             Panel::new(format!("jerk [{js}]"), vec![Series::line("", col(|k| k.j))]),
         ];
-        let title = format!("{} at {rpm} rpm", a.file.display());
-        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out);
+        let title = format!("{} at {rpm} rpm", util::file_name(&a.file));
+        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out, &a.plot);
     }
     let [su, vs, as_, _] = cycle.unit.si_units();
     outln!(

@@ -257,6 +257,8 @@ pub struct PlotArgs {
     /// Output file, .svg or .png.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// `dobby sweep`.
@@ -584,7 +586,7 @@ fn law_panels(states: &[ModulatorState], w2: f64) -> Vec<Panel> {
                 Series::line("input φ2", pts(&|s| s.phi2.to_degrees())),
             ],
         )
-        .with_legend(Legend::UpperLeft),
+        .with_legend(Legend::Auto),
         Panel::new("speed ω6 [rad/s]", vec![Series::line("ω6", pts(&|s| s.phi6[1] * w2))]),
         Panel::new("acceleration ε6 [rad/s²]", vec![Series::line("ε6", pts(&|s| s.phi6[2] * w2 * w2))]),
     ]
@@ -624,7 +626,7 @@ fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, s
     series.push(Series::line("lever 3: arms AB, AC", vec![t(p.b), t(p.a), t(p.c)]));
     series.push(Series::line("slot of lever 3 (A, D)", vec![t(p.a), t(beyond)]));
     series.push(Series::markers("joints O, A, B, C, D", vec![t(p.o), t(p.a), t(p.b), t(p.c), t(p.d)]));
-    let mut panel = Panel::new("y [m]", series).with_legend(Legend::LowerRight);
+    let mut panel = Panel::new("y [m]", series).with_legend(Legend::Auto);
     panel.x_label = Some("x [m]".into());
     panel.equal_aspect = true;
     panel
@@ -659,7 +661,7 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
             f
         }
     };
-    output::figure(&fig, &a.output)
+    output::figure(&fig, &a.output, &a.plot)
 }
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {

@@ -127,6 +127,8 @@ pub struct SpectrumArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with = "csv")]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// The follower model shared by the subcommands.
@@ -192,6 +194,8 @@ pub struct ResponseArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// `loomkin dyn sweep`.
@@ -214,6 +218,8 @@ pub struct SweepArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Runs `loomkin dyn …`.
@@ -330,7 +336,7 @@ fn response(a: ResponseArgs) -> Result<()> {
             u.pos,
             summary.residual_pct_of_stroke,
         );
-        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out);
+        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out, &a.plot);
     }
     let p = u.pos;
     outln!(
@@ -456,7 +462,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             loomkin_units::compact(follower.damping_ratio()),
             if a.steady { ", steady state" } else { ", one cycle from rest" }
         );
-        return output::figure(&Figure::new(title, "main-shaft speed [rpm]", panels), &out);
+        return output::figure(&Figure::new(title, "main-shaft speed [rpm]", panels), &out, &a.plot);
     }
     let worst = pts.iter().max_by(|x, y| x.residual_amplitude_si.total_cmp(&y.residual_amplitude_si));
     outln!(
@@ -559,7 +565,7 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
             Panel::new("residual amplitude [% of stroke]", lines),
             Panel::new("log₁₀(residual amplitude / stroke) [-]", logs),
         ];
-        return output::figure(&Figure::new(title, "motion time / natural period  T·f_n [-]", panels), &out);
+        return output::figure(&Figure::new(title, "motion time / natural period  T·f_n [-]", panels), &out, &a.plot);
     }
     outln!("{:<44} {:>8} {:>14} {:>8}", "law", "ζ", "max [%]", "at r")?;
     for (label, _, z, pct) in &series {

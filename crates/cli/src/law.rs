@@ -80,6 +80,8 @@ pub struct PlotArgs {
     /// Output file, .svg or .png.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
     /// Points per curve.
     #[arg(long, default_value_t = 801)]
     points: usize,
@@ -424,8 +426,8 @@ fn plot(a: PlotArgs) -> Result<()> {
         }
     }
     for (i, p) in panels.iter_mut().enumerate() {
-        p.legend = if i == 0 { Legend::UpperLeft } else { Legend::Hidden };
+        p.legend = if i == 0 { Legend::Auto } else { Legend::Hidden };
     }
     let fig = Figure::new("Normalised motion laws", "x = fraction of the motion angle [-]", panels);
-    output::figure(&fig, &a.output)
+    output::figure(&fig, &a.output, &a.plot)
 }

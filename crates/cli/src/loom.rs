@@ -59,6 +59,8 @@ pub struct TorqueArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// What the stagger minimises.
@@ -98,6 +100,8 @@ pub struct TimingArgs {
     /// The diagram (.svg or .png).
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Runs `loomkin loom …`.
@@ -108,7 +112,7 @@ pub fn run(cmd: LoomCommand) -> Result<()> {
         LoomCommand::Stagger(a) => run_stagger(a),
         LoomCommand::Timing(a) => {
             let (loom, pattern) = read(&a.loom, &a.pattern)?;
-            output::figure(&timing_diagram(&loom, &pattern)?, &a.output)
+            output::figure(&timing_diagram(&loom, &pattern)?, &a.output, &a.plot)
         }
     }
 }
@@ -203,7 +207,7 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     loomkin_units::Range::closed(0.01, 10.0, "deg").check("--step-deg", a.step_deg)?;
     if let Some(out) = &a.output {
-        return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out);
+        return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out, &a.plot);
     }
     let motion = Motion::new(&loom, &pattern)?;
     let drive = Drive::new(&loom, &motion, &pattern);

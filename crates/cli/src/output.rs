@@ -272,8 +272,9 @@ where
     out.flush().map_err(|e| WriteError::stdout(e).into())
 }
 
-/// Saves a figure, naming the file in the error.
-pub fn figure(fig: &loomkin_io::plot::Figure, path: &Path) -> anyhow::Result<()> {
+/// Saves a figure with the user's size, resolution and title, naming the file in the error.
+pub fn figure(fig: &loomkin_io::plot::Figure, path: &Path, opts: &crate::util::PlotOpts) -> anyhow::Result<()> {
+    let fig = fig.clone().with_page(&opts.page()?).map_err(crate::util::page_error)?;
     match fig.save(path) {
         Ok(()) => {
             note(format_args!("wrote {}", path.display()));

@@ -182,6 +182,8 @@ pub struct SweepArgs {
     /// Plot velocity, distance and accelerations against the setting to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// `pick plot`.
@@ -197,6 +199,8 @@ pub struct PlotArgs {
     /// Output file, .svg or .png.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
     /// Points per curve.
     #[arg(long, default_value_t = 601)]
     points: usize,
@@ -449,7 +453,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         ));
     }
     if let Some(path) = &a.output {
-        return output::figure(&sweep_figure(&s), path);
+        return output::figure(&sweep_figure(&s), path, &a.plot);
     }
     if a.format.csv {
         return output::csv_shard(&sweep_table(&s)?, a.shard.get());
@@ -498,7 +502,7 @@ fn sweep_figure(s: &Sweep) -> Figure {
                 Series::line("required velocity V_r", pts(&|o| o.required_velocity_m_s)),
             ],
         )
-        .with_legend(Legend::LowerRight),
+        .with_legend(Legend::Auto),
         Panel::new("distance [cm]", vec![Series::line("path of the pick X", pts(&|o| o.distance_m * 100.0))]),
         Panel::new(
             "acceleration [m/s²]",
@@ -507,7 +511,7 @@ fn sweep_figure(s: &Sweep) -> Figure {
                 Series::line("peak during the pick", pts(&|o| o.accel_peak_m_s2)),
             ],
         )
-        .with_legend(Legend::UpperLeft),
+        .with_legend(Legend::Auto),
     ];
     Figure::new(
         format!("Effect of the {} on the end of the pick", s.setting.description()),
@@ -540,7 +544,7 @@ fn plot(a: PlotArgs) -> Result<()> {
                 Series::line("actual x", curve(&h, &|s| s.actual.x_m * 1e3)),
             ],
         )
-        .with_legend(Legend::UpperLeft),
+        .with_legend(Legend::Auto),
         Panel::new(
             "velocity [m/s]",
             vec![
@@ -548,7 +552,7 @@ fn plot(a: PlotArgs) -> Result<()> {
                 Series::line("actual v", curve(&h, &|s| s.actual.v_m_s)),
             ],
         )
-        .with_legend(Legend::UpperLeft),
+        .with_legend(Legend::Auto),
         Panel::new(
             "acceleration [m/s²]",
             vec![
@@ -556,7 +560,7 @@ fn plot(a: PlotArgs) -> Result<()> {
                 Series::line("actual a", curve(&h, &|s| s.actual.a_m_s2)),
             ],
         )
-        .with_legend(Legend::UpperLeft),
+        .with_legend(Legend::Auto),
     ];
     if let Some(r) = &reference {
         panels[0].series.push(Series::line("actual x, designed setting", curve(r, &|s| s.actual.x_m * 1e3)));
@@ -570,5 +574,5 @@ fn plot(a: PlotArgs) -> Result<()> {
         loomkin_units::compact(st.play_m * 1e3),
         loomkin_units::compact(st.strap_m * 1e2)
     );
-    output::figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output)
+    output::figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output, &a.plot)
 }

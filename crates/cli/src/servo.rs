@@ -168,6 +168,8 @@ pub struct PlotArgs {
     /// Output file, .svg or .png.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Runs a `servo` subcommand.
@@ -605,9 +607,9 @@ fn plot(a: PlotArgs) -> Result<()> {
     let n = 721;
     let mut image = Panel::new("acceleration image f(x) [-]", Vec::new());
     image.x_label = Some("x = fraction of the motion angle [-]".into());
-    let mut unit = Panel::new("unit law u°(x) [-]", Vec::new()).with_legend(Legend::UpperLeft);
+    let mut unit = Panel::new("unit law u°(x) [-]", Vec::new()).with_legend(Legend::Auto);
     unit.x_label = Some("x = fraction of the motion angle [-]".into());
-    let mut torque = Panel::new("motor torque M [N·m]", Vec::new()).with_legend(Legend::LowerRight);
+    let mut torque = Panel::new("motor torque M [N·m]", Vec::new()).with_legend(Legend::Auto);
     // As the paper's Fig. 3: the given law solid, the compared one dashed; the points in the colour
     // of their curve; one colour per speed in the torque panel.
     const PALETTE: [[u8; 3]; 6] =
@@ -637,5 +639,5 @@ fn plot(a: PlotArgs) -> Result<()> {
         "main-shaft angle [deg]",
         vec![image, unit, torque],
     );
-    output::figure(&fig, &a.output)
+    output::figure(&fig, &a.output, &a.plot)
 }

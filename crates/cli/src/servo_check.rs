@@ -30,6 +30,8 @@ pub struct CheckArgs {
     /// Plot the torque–speed operating points against the motor envelope (.svg or .png).
     #[arg(short, long)]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Runs `servo check`.
@@ -69,9 +71,9 @@ pub fn run(a: CheckArgs) -> Result<()> {
         let fig = Figure::new(
             title,
             "motor speed [rpm]",
-            vec![Panel::new("motor torque [N·m]", series).with_legend(Legend::UpperRight)],
+            vec![Panel::new("motor torque [N·m]", series).with_legend(Legend::Auto)],
         );
-        output::figure(&fig, path)?;
+        output::figure(&fig, path, &a.plot)?;
     }
     if a.json {
         return output::json(&r);

@@ -150,6 +150,8 @@ pub struct ParetoArgs {
     /// Plot the front (with the presets for reference) to an .svg or .png file.
     #[arg(short, long, conflicts_with_all = ["json", "csv"])]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
 }
 
 /// Loom data that set the required window (and the threshold) in loom terms.
@@ -253,6 +255,8 @@ pub struct PlotArgs {
     /// Output file, .svg or .png.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
     /// Points per curve.
     #[arg(long, default_value_t = 1441)]
     points: usize,
@@ -705,7 +709,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             let c = evaluate(&p.law()?, &cond)?;
             series.push(Series::markers(p.name, vec![(c.window_deg, c.peak_accel_m_s2)]));
         }
-        let panel = Panel::new("peak frame acceleration [m/s²]", series).with_legend(Legend::UpperLeft);
+        let panel = Panel::new("peak frame acceleration [m/s²]", series).with_legend(Legend::Auto);
         let fig = Figure::new(
             format!(
                 "Pareto front: window vs peak acceleration (T = {}, stroke {} mm, {} rpm)",
@@ -716,7 +720,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             "weft-insertion window [deg]",
             vec![panel],
         );
-        return output::figure(&fig, path);
+        return output::figure(&fig, path, &a.plot);
     }
     emit(front, a.format, &cond, "Pareto front: largest window, least peak acceleration")
 }
@@ -838,9 +842,9 @@ fn plot(a: PlotArgs) -> Result<()> {
         format!("Heald frame over two picks (stroke {} mm, {} rpm)", a.physical.stroke_mm, a.physical.speed_rpm),
         "main-shaft angle [deg]",
         vec![
-            Panel::new("frame position [mm]", s_series).with_legend(Legend::UpperRight),
+            Panel::new("frame position [mm]", s_series).with_legend(Legend::Auto),
             Panel::new("frame acceleration [m/s²]", a_series).with_legend(Legend::Hidden),
         ],
     );
-    output::figure(&fig, &a.output)
+    output::figure(&fig, &a.output, &a.plot)
 }

@@ -200,3 +200,46 @@ impl Drop for Progress {
 pub fn cores() -> f64 {
     std::thread::available_parallelism().map_or(1, |n| n.get()) as f64
 }
+
+/// Size, resolution and title of a plot file, shared by every command that plots.
+#[derive(Debug, Clone, Args, Default)]
+pub struct PlotOpts {
+    /// Plot width in pixels at 96 dpi (200 to 8000; default 1000).
+    #[arg(long, value_name = "PX", help_heading = "Plot")]
+    pub width: Option<f64>,
+    /// Plot height in pixels at 96 dpi (200 to 8000; default from the number of panels).
+    #[arg(long, value_name = "PX", help_heading = "Plot")]
+    pub height: Option<f64>,
+    /// PNG resolution in dots per inch (24 to 1200; 96 draws one pixel per SVG pixel).
+    #[arg(long, help_heading = "Plot")]
+    pub dpi: Option<f64>,
+    /// Plot title (default: the input's file name and the run's settings).
+    #[arg(long, help_heading = "Plot")]
+    pub title: Option<String>,
+}
+
+impl PlotOpts {
+    /// The settings as the plotting library takes them, checked (one-line error naming the flag).
+    pub fn page(&self) -> anyhow::Result<loomkin_io::plot::Page> {
+        let page =
+            loomkin_io::plot::Page { width: self.width, height: self.height, dpi: self.dpi, title: self.title.clone() };
+        page.check().map_err(page_error)?;
+        Ok(page)
+    }
+}
+
+/// A page setting's error named as its flag (`--dpi = 0 is out of range: allowed 24 ≤ --dpi ≤ 1200 dpi`).
+pub fn page_error(e: loomkin_io::IoError) -> anyhow::Error {
+    match e {
+        loomkin_io::IoError::Range(r) => {
+            let flag = format!("--{}", r.field);
+            anyhow::Error::new(r.renamed(flag))
+        }
+        other => anyhow::anyhow!("--{}", other.to_string().trim_start_matches("plot: ")),
+    }
+}
+
+/// A file's name without its folders, for a plot title (`examples/x.toml` → `x.toml`).
+pub fn file_name(path: &std::path::Path) -> String {
+    path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+}

@@ -43,7 +43,20 @@ pub enum IoError {
         /// The path.
         path: String,
     },
-    /// A figure that cannot be drawn.
+    /// A figure that cannot be drawn, or a page setting that is not allowed.
     #[error("plot: {0}")]
     Plot(String),
+    /// A page setting (width, height, DPI) out of its range.
+    #[error(transparent)]
+    Range(#[from] loomkin_units::RangeError),
+}
+
+impl loomkin_units::FieldError for IoError {
+    fn field(&self) -> Option<&str> {
+        match self {
+            IoError::Range(e) => Some(&e.field),
+            IoError::NotFinite { column, .. } => Some(column),
+            _ => None,
+        }
+    }
 }

@@ -137,13 +137,9 @@ pub fn timing_diagram(loom: &Loom, pattern: &Pattern) -> Result<Figure> {
     let mut carrier = per_pick("carrier path", [0, 114, 178], &c.insertion_deg, [0.0, c.reed_width_m]);
     carrier.push(Series::markers("beat-up", beat).with_color([213, 94, 0]));
     let panels = vec![
-        Panel::new("frame lift [mm]", lifts).with_legend(if shown.len() <= 8 {
-            Legend::UpperRight
-        } else {
-            Legend::Hidden
-        }),
-        Panel::new("shed at the carrier [mm]", shed).with_legend(Legend::UpperRight),
-        Panel::new("carrier across the reed [m]", carrier).with_legend(Legend::UpperLeft),
+        Panel::new("frame lift [mm]", lifts).with_legend(if shown.len() <= 8 { Legend::Auto } else { Legend::Hidden }),
+        Panel::new("shed at the carrier [mm]", shed).with_legend(Legend::Auto),
+        Panel::new("carrier across the reed [m]", carrier).with_legend(Legend::Auto),
     ];
     let title = format!(
         "{} — {} picks, window {:.1}° ({:.1}° to {:.1}°), max {:.0} rpm",

@@ -1,0 +1,564 @@
+//! Where everything goes, in SVG pixels: axes and their ticks, plot rectangles, notes, legends.
+
+use super::raster::text_width;
+use super::{Dash, Figure, Legend, Panel, RuleAxis, Scale, panel_weight};
+
+pub(crate) const FONT_TITLE: f64 = 20.0;
+pub(crate) const FONT_LABEL: f64 = 15.0;
+pub(crate) const FONT_TICK: f64 = 13.0;
+pub(crate) const FONT_LEGEND: f64 = 13.5;
+pub(crate) const FONT_NOTE: f64 = 12.5;
+pub(crate) const FONT_BAND: f64 = 12.0;
+/// Height of one legend row.
+pub(crate) const ROW: f64 = 19.0;
+/// Inner margin of the legend box.
+pub(crate) const PAD: f64 = 7.0;
+/// Length of a legend swatch (long enough to show a dash-dot pattern twice).
+pub(crate) const SWATCH: f64 = 34.0;
+/// Marker radius.
+pub(crate) const MARKER_R: f64 = 4.0;
+/// Strip above a plot holding the labels of its shaded intervals.
+const BAND_STRIP: f64 = 17.0;
+
+/// Colours of successive series (a palette readable on white and by most colour-blind readers).
+pub(crate) const PALETTE: [[u8; 3]; 8] = [
+    [0, 114, 178],
+    [213, 94, 0],
+    [0, 158, 115],
+    [204, 121, 167],
+    [230, 159, 0],
+    [86, 180, 233],
+    [0, 0, 0],
+    [120, 120, 120],
+];
+
+/// An axis-aligned rectangle, `y` downwards.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Rect {
+    pub x0: f64,
+    pub y0: f64,
+    pub x1: f64,
+    pub y1: f64,
+}
+
+impl Rect {
+    pub fn new(x0: f64, y0: f64, w: f64, h: f64) -> Self {
+        Self { x0, y0, x1: x0 + w, y1: y0 + h }
+    }
+    pub fn w(&self) -> f64 {
+        self.x1 - self.x0
+    }
+    pub fn h(&self) -> f64 {
+        self.y1 - self.y0
+    }
+    pub fn grow(&self, d: f64) -> Self {
+        Self { x0: self.x0 - d, y0: self.y0 - d, x1: self.x1 + d, y1: self.y1 + d }
+    }
+    pub fn intersects(&self, o: &Rect) -> bool {
+        self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
+    }
+    pub fn contains(&self, o: &Rect) -> bool {
+        o.x0 >= self.x0 && o.x1 <= self.x1 && o.y0 >= self.y0 && o.y1 <= self.y1
+    }
+    /// Whether the segment `a`–`b` has a point inside (Liang–Barsky clipping).
+    pub fn hit_by_segment(&self, a: (f64, f64), b: (f64, f64)) -> bool {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        for (p, q) in [(-dx, a.0 - self.x0), (dx, self.x1 - a.0), (-dy, a.1 - self.y0), (dy, self.y1 - a.1)] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return false;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+                if t0 > t1 {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// A scaled axis with its ticks.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Axis {
+    pub lo: f64,
+    pub hi: f64,
+    pub log: bool,
+    /// Labelled ticks.
+    pub ticks: Vec<f64>,
+    /// Tick labels.
+    pub labels: Vec<String>,
+    /// Grid lines without labels (the 2…9 of a decade).
+    pub minor: Vec<f64>,
+}
+
+impl Axis {
+    /// Position of `v` as a fraction of the axis (0 at `lo`, 1 at `hi`).
+    pub fn frac(&self, v: f64) -> f64 {
+        if self.log {
+            (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10())
+        } else {
+            (v - self.lo) / (self.hi - self.lo)
+        }
+    }
+}
+
+/// What a legend row shows before its text.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Swatch {
+    Line { color: [u8; 3], dash: Dash },
+    Marker { color: [u8; 3] },
+    Fill { color: [u8; 3] },
+}
+
+/// One legend row.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Entry {
+    pub swatch: Swatch,
+    pub text: String,
+}
+
+/// A note's dot and the box of its text.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct NoteLayout {
+    pub at: (f64, f64),
+    pub text: Rect,
+}
+
+/// One panel in pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PanelLayout {
+    pub plot: Rect,
+    pub x: Axis,
+    pub y: Axis,
+    pub x_label: String,
+    /// Each series' polylines in pixels (a series breaks where a point is not drawable).
+    pub curves: Vec<Vec<Vec<(f64, f64)>>>,
+    pub colors: Vec<[u8; 3]>,
+    pub notes: Vec<NoteLayout>,
+    pub entries: Vec<Entry>,
+    pub legend: Option<Rect>,
+    pub band_strip: bool,
+}
+
+impl PanelLayout {
+    pub fn px(&self, x: f64) -> f64 {
+        self.plot.x0 + self.x.frac(x) * self.plot.w()
+    }
+    pub fn py(&self, y: f64) -> f64 {
+        self.plot.y1 - self.y.frac(y) * self.plot.h()
+    }
+}
+
+/// The whole figure in pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Layout {
+    pub width: f64,
+    pub height: f64,
+    pub panels: Vec<PanelLayout>,
+}
+
+/// Whether a label names an angle in degrees.
+pub(crate) fn is_angle(label: &str) -> bool {
+    label.contains("[deg]") || label.contains("[°]")
+}
+
+pub(crate) fn layout(fig: &Figure) -> Layout {
+    let (w, h) = fig.pixel_size();
+    let (w, h) = (f64::from(w), f64::from(h));
+    let top = if fig.title.trim().is_empty() { 8.0 } else { 40.0 };
+    let total: f64 = fig.panels.iter().map(|p| panel_weight(p.weight)).sum();
+    let mut slots = Vec::new();
+    let mut y = top;
+    for p in &fig.panels {
+        let sh = (h - top - 4.0) * panel_weight(p.weight) / total;
+        slots.push(Rect::new(0.0, y, w, sh));
+        y += sh;
+    }
+    let entries: Vec<Vec<Entry>> = fig.panels.iter().map(legend_entries).collect();
+    let sizes: Vec<(f64, f64)> = entries.iter().map(|e| legend_size(e)).collect();
+    let mut outside: Vec<bool> =
+        fig.panels.iter().zip(&entries).map(|(p, e)| p.legend == Legend::Outside && !e.is_empty()).collect();
+    let mut panels = Vec::new();
+    for _ in 0..4 {
+        let right = outside.iter().zip(&sizes).filter(|(o, _)| **o).map(|(_, s)| s.0 + 30.0).fold(18.0, f64::max);
+        panels = place_panels(fig, &slots, right);
+        let mut changed = false;
+        for (i, (pl, p)) in panels.iter_mut().zip(&fig.panels).enumerate() {
+            pl.entries = entries[i].clone();
+            if p.legend == Legend::Hidden || entries[i].is_empty() {
+                continue;
+            }
+            let (lw, lh) = sizes[i];
+            if !outside[i] {
+                pl.legend = free_spot(pl, p, lw, lh);
+                if pl.legend.is_none() {
+                    outside[i] = true;
+                    changed = true;
+                }
+            }
+            if outside[i] {
+                pl.legend = Some(Rect::new(pl.plot.x1 + 14.0, pl.plot.y0, lw, lh));
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    Layout { width: w, height: h, panels }
+}
+
+fn legend_entries(p: &Panel) -> Vec<Entry> {
+    let mut out = Vec::new();
+    for (i, s) in p.series.iter().enumerate() {
+        if s.label.is_empty() {
+            continue;
+        }
+        let color = series_color(p, i);
+        let swatch = if s.markers { Swatch::Marker { color } } else { Swatch::Line { color, dash: s.dash } };
+        out.push(Entry { swatch, text: s.label.clone() });
+    }
+    for b in p.y_bands.iter().filter(|b| !b.label.is_empty()) {
+        out.push(Entry { swatch: Swatch::Fill { color: b.color }, text: b.label.clone() });
+    }
+    for r in p.rules.iter().filter(|r| !r.label.is_empty()) {
+        out.push(Entry { swatch: Swatch::Line { color: r.color, dash: r.dash }, text: r.label.clone() });
+    }
+    out
+}
+
+pub(crate) fn series_color(p: &Panel, i: usize) -> [u8; 3] {
+    p.series[i].color.unwrap_or(PALETTE[i % PALETTE.len()])
+}
+
+fn legend_size(e: &[Entry]) -> (f64, f64) {
+    let text = e.iter().map(|e| text_width(&e.text, FONT_LEGEND)).fold(0.0, f64::max);
+    (2.0 * PAD + SWATCH + 7.0 + text * 1.04, 2.0 * PAD + ROW * e.len() as f64 - 4.0)
+}
+
+/// Range of finite values with a margin; a single value gets a band around it.
+fn linear_bounds(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
+    let (lo, hi) =
+        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let span = hi - lo;
+    if span <= 1e-12 * (1.0 + lo.abs().max(hi.abs())) {
+        let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        return (lo - d, hi + d);
+    }
+    (lo - pad * span, hi + pad * span)
+}
+
+/// Decades around the positive values (at most 15 of them, counted down from the largest value).
+fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    if !lo.is_finite() {
+        return (0.1, 10.0);
+    }
+    let mut k_hi = hi.log10().ceil();
+    let mut k_lo = lo.log10().floor();
+    if k_hi <= k_lo {
+        k_hi = k_lo + 1.0;
+    }
+    k_lo = k_lo.max(k_hi - 15.0);
+    if k_hi - k_lo < 1.0 {
+        k_hi = k_lo + 1.0;
+    }
+    (10f64.powf(k_lo), 10f64.powf(k_hi))
+}
+
+/// A round step (1, 2 or 5 × 10^k) at least `raw`.
+fn nice_step(raw: f64) -> f64 {
+    let mag = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * mag).find(|s| *s >= raw * (1.0 - 1e-9)).unwrap_or(10.0 * mag)
+}
+
+/// Ticks at multiples of `step` inside `[lo, hi]`.
+fn multiples(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    let first = (lo / step - 1e-9).ceil() as i64;
+    let last = (hi / step + 1e-9).floor() as i64;
+    (first..=last).map(|k| if k == 0 { 0.0 } else { k as f64 * step }).collect()
+}
+
+/// A tick label with the decimals `step` needs: no `-0`, no trailing zeros.
+pub(crate) fn tick_label(v: f64, step: f64) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    if v.abs() < 1e-9 * step {
+        return "0".into();
+    }
+    let decimals = (-(step.log10() - 1e-9).floor()).clamp(0.0, 15.0) as usize;
+    let text = format!("{v:.decimals$}");
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text };
+    if text == "-0" { "0".into() } else { text.replace('-', "−") }
+}
+
+/// A decade's label: plain between 0.001 and 10 000, else `1e-5`.
+fn decade_label(k: i32) -> String {
+    if (-3..=4).contains(&k) { tick_label(10f64.powi(k), 10f64.powi(k)) } else { format!("1e{k}").replace('-', "−") }
+}
+
+/// Linear ticks at least `min_px` apart on an axis `len_px` long.
+fn linear_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
+    let n = (len_px / min_px).floor().max(2.0);
+    let step = nice_step((hi - lo) / n);
+    ticks_axis(lo, hi, step)
+}
+
+fn ticks_axis(lo: f64, hi: f64, step: f64) -> Axis {
+    let ticks = multiples(lo, hi, step);
+    let labels = ticks.iter().map(|&v| tick_label(v, step)).collect();
+    Axis { lo, hi, log: false, ticks, labels, minor: Vec::new() }
+}
+
+/// Angle ticks: every 30°, 45° or 90°, the first at least `min_px` apart (a longer multiple of
+/// 90° on a very long span; ordinary round steps below 60°).
+pub(crate) fn angle_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
+    let span = hi - lo;
+    if span < 60.0 {
+        return linear_axis(lo, hi, len_px, min_px);
+    }
+    let fits = |step: f64| len_px * step / span >= min_px;
+    let step = [30.0, 45.0, 90.0]
+        .into_iter()
+        .find(|s| fits(*s))
+        .unwrap_or_else(|| 90.0 * (span * min_px / len_px / 90.0).ceil().max(1.0));
+    ticks_axis(lo, hi, step)
+}
+
+/// Decade ticks (every k-th labelled if they would crowd) with 2…9 grid lines when few decades.
+pub(crate) fn log_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
+    let (k0, k1) = (lo.log10().round() as i32, hi.log10().round() as i32);
+    let every = ((f64::from(k1 - k0) * min_px / len_px).ceil() as i32).max(1);
+    let ks: Vec<i32> = (k0..=k1).filter(|k| (k - k0) % every == 0).collect();
+    let mut minor = Vec::new();
+    for k in k0..k1 {
+        if every == 1 && k1 - k0 <= 8 {
+            minor.extend((2..=9).map(|m| f64::from(m) * 10f64.powi(k)));
+        } else if every > 1 && (k - k0) % every != 0 {
+            minor.push(10f64.powi(k));
+        }
+    }
+    Axis {
+        lo,
+        hi,
+        log: true,
+        ticks: ks.iter().map(|&k| 10f64.powi(k)).collect(),
+        labels: ks.iter().map(|&k| decade_label(k)).collect(),
+        minor,
+    }
+}
+
+fn place_panels(fig: &Figure, slots: &[Rect], right: f64) -> Vec<PanelLayout> {
+    // Vertical axes first (they depend on heights only), so every plot can share one left edge.
+    let mut pre = Vec::new();
+    for (p, slot) in fig.panels.iter().zip(slots) {
+        let band_strip = p.x_bands.iter().any(|b| !b.label.is_empty());
+        let y0 = slot.y0 + 10.0 + if band_strip { BAND_STRIP } else { 0.0 };
+        let y1 = slot.y1 - 50.0;
+        let plot_h = (y1 - y0).max(20.0);
+        let ys = || {
+            p.series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|q| q.1))
+                .chain(p.notes.iter().map(|n| n.y))
+                .chain(p.rules.iter().filter(|r| r.axis == RuleAxis::Y).map(|r| r.value))
+                .chain(p.y_bands.iter().flat_map(|b| [b.from, b.to]))
+        };
+        let y_axis = if p.y_scale == Scale::Log {
+            let (lo, hi) = log_bounds(ys());
+            log_axis(lo, hi, plot_h, 26.0)
+        } else {
+            let (lo, hi) = linear_bounds(ys(), 0.06);
+            if is_angle(&p.y_label) { angle_axis(lo, hi, plot_h, 30.0) } else { linear_axis(lo, hi, plot_h, 28.0) }
+        };
+        pre.push((y0, y0 + plot_h, y_axis, band_strip));
+    }
+    let tick_w = pre.iter().flat_map(|p| p.2.labels.iter()).map(|l| text_width(l, FONT_TICK)).fold(0.0, f64::max);
+    let left = 12.0 + FONT_LABEL + 12.0 + tick_w + 8.0;
+    let width = slots.first().map_or(0.0, |s| s.w());
+    let x1 = (width - right).max(left + 40.0);
+    let mut out = Vec::new();
+    for (p, (y0, y1, mut y_axis, band_strip)) in fig.panels.iter().zip(pre) {
+        let plot = Rect { x0: left, y0, x1, y1 };
+        let x_label = p.x_label.clone().unwrap_or_else(|| fig.x_label.clone());
+        let xs = || {
+            p.series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|q| q.0))
+                .chain(p.notes.iter().map(|n| n.x))
+                .chain(p.rules.iter().filter(|r| r.axis == RuleAxis::X).map(|r| r.value))
+        };
+        let only_markers = p.series.iter().all(|s| s.markers || s.points.is_empty());
+        let (mut lo, mut hi) = linear_bounds(xs(), if only_markers || p.equal_aspect { 0.04 } else { 0.0 });
+        let x_axis = if p.equal_aspect && !y_axis.log {
+            let (ylo, yhi) = (y_axis.lo, y_axis.hi);
+            let scale = ((hi - lo) / plot.w()).max((yhi - ylo) / plot.h());
+            let (cx, cy) = ((lo + hi) / 2.0, (ylo + yhi) / 2.0);
+            (lo, hi) = (cx - scale * plot.w() / 2.0, cx + scale * plot.w() / 2.0);
+            let (a, b) = (cy - scale * plot.h() / 2.0, cy + scale * plot.h() / 2.0);
+            y_axis = linear_axis(a, b, plot.h(), 28.0);
+            linear_axis(lo, hi, plot.w(), 80.0)
+        } else if is_angle(&x_label) {
+            angle_axis(lo, hi, plot.w(), 44.0)
+        } else {
+            linear_axis(lo, hi, plot.w(), 80.0)
+        };
+        let mut pl = PanelLayout {
+            plot,
+            x: x_axis,
+            y: y_axis,
+            x_label,
+            curves: Vec::new(),
+            colors: (0..p.series.len()).map(|i| series_color(p, i)).collect(),
+            notes: Vec::new(),
+            entries: Vec::new(),
+            legend: None,
+            band_strip,
+        };
+        pl.curves = p.series.iter().map(|s| polylines(&pl, &s.points)).collect();
+        pl.notes = place_notes(&pl, p);
+        out.push(pl);
+    }
+    out
+}
+
+/// A series in pixels, split where a point cannot be drawn (not finite, or ≤ 0 on a log axis).
+fn polylines(pl: &PanelLayout, points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut run = Vec::new();
+    for &(x, y) in points {
+        let ok = x.is_finite() && y.is_finite() && (!pl.y.log || y > 0.0) && (!pl.x.log || x > 0.0);
+        if ok {
+            run.push((pl.px(x), pl.py(y)));
+        } else if !run.is_empty() {
+            out.push(std::mem::take(&mut run));
+        }
+    }
+    if !run.is_empty() {
+        out.push(run);
+    }
+    out
+}
+
+/// Whether a box meets a curve, a marker, a rule, a band edge or an earlier note of the panel.
+fn blocked(pl: &PanelLayout, p: &Panel, r: &Rect, notes: &[NoteLayout]) -> bool {
+    for (s, curve) in p.series.iter().zip(&pl.curves) {
+        for run in curve {
+            if s.markers {
+                if run
+                    .iter()
+                    .any(|&(x, y)| r.intersects(&Rect::new(x - MARKER_R, y - MARKER_R, 2.0 * MARKER_R, 2.0 * MARKER_R)))
+                {
+                    return true;
+                }
+            } else if run.len() == 1 {
+                if r.hit_by_segment(run[0], run[0]) {
+                    return true;
+                }
+            } else if run.windows(2).any(|w| r.hit_by_segment(w[0], w[1])) {
+                return true;
+            }
+        }
+    }
+    for rule in &p.rules {
+        let hit = match rule.axis {
+            RuleAxis::Y => {
+                let y = pl.py(rule.value);
+                r.hit_by_segment((pl.plot.x0, y), (pl.plot.x1, y))
+            }
+            RuleAxis::X => {
+                let x = pl.px(rule.value);
+                r.hit_by_segment((x, pl.plot.y0), (x, pl.plot.y1))
+            }
+        };
+        if hit {
+            return true;
+        }
+    }
+    for b in &p.y_bands {
+        for v in [b.from, b.to] {
+            let y = pl.py(v);
+            if r.hit_by_segment((pl.plot.x0, y), (pl.plot.x1, y)) {
+                return true;
+            }
+        }
+    }
+    notes.iter().any(|n| r.intersects(&n.text) || r.intersects(&Rect::new(n.at.0 - 4.0, n.at.1 - 4.0, 8.0, 8.0)))
+}
+
+fn place_notes(pl: &PanelLayout, p: &Panel) -> Vec<NoteLayout> {
+    let mut out: Vec<NoteLayout> = Vec::new();
+    for n in &p.notes {
+        if !(n.x.is_finite() && n.y.is_finite()) || (pl.y.log && n.y <= 0.0) {
+            continue;
+        }
+        let at = (pl.px(n.x), pl.py(n.y));
+        let (w, h) = (text_width(&n.text, FONT_NOTE) * 1.04 + 4.0, FONT_NOTE + 4.0);
+        let candidates = [
+            (at.0 + 6.0, at.1 - 6.0 - h),
+            (at.0 - 6.0 - w, at.1 - 6.0 - h),
+            (at.0 + 6.0, at.1 + 6.0),
+            (at.0 - 6.0 - w, at.1 + 6.0),
+            (at.0 + 9.0, at.1 - h / 2.0),
+            (at.0 - 9.0 - w, at.1 - h / 2.0),
+            (at.0 - w / 2.0, at.1 - 9.0 - h),
+            (at.0 - w / 2.0, at.1 + 9.0),
+        ];
+        let boxes: Vec<Rect> = candidates.iter().map(|&(x, y)| Rect::new(x, y, w, h)).collect();
+        let inside = |r: &Rect| pl.plot.contains(r);
+        let text = boxes
+            .iter()
+            .find(|r| inside(r) && !blocked(pl, p, r, &out))
+            .or_else(|| boxes.iter().find(|r| inside(r)))
+            .copied()
+            .unwrap_or_else(|| {
+                let x = (at.0 + 6.0).min(pl.plot.x1 - w).max(pl.plot.x0);
+                let y = (at.1 - 6.0 - h).max(pl.plot.y0).min(pl.plot.y1 - h);
+                Rect::new(x, y, w, h)
+            });
+        out.push(NoteLayout { at, text });
+    }
+    out
+}
+
+/// A place inside the plot for a `w` × `h` legend where nothing is drawn: the corners and edge
+/// middles first, then any free place on a 10-pixel grid (nearest the upper right first).
+fn free_spot(pl: &PanelLayout, p: &Panel, w: f64, h: f64) -> Option<Rect> {
+    let plot = pl.plot;
+    let m = 8.0;
+    if w + 2.0 * m > plot.w() || h + 2.0 * m > plot.h() {
+        return None;
+    }
+    let (l, r, t, b) = (plot.x0 + m, plot.x1 - m - w, plot.y0 + m, plot.y1 - m - h);
+    let (cx, cy) = ((l + r) / 2.0, (t + b) / 2.0);
+    let mut candidates = vec![(r, t), (l, t), (r, b), (l, b), (cx, t), (cx, b), (r, cy), (l, cy)];
+    let mut grid = Vec::new();
+    let mut y = t;
+    while y <= b {
+        let mut x = r;
+        while x >= l {
+            grid.push((x, y));
+            x -= 10.0;
+        }
+        y += 10.0;
+    }
+    grid.sort_by(|a, b| {
+        let d = |q: &(f64, f64)| (r - q.0).hypot(q.1 - t);
+        d(a).total_cmp(&d(b))
+    });
+    candidates.extend(grid);
+    candidates.into_iter().map(|(x, y)| Rect::new(x, y, w, h)).find(|rect| !blocked(pl, p, &rect.grow(3.0), &pl.notes))
+}

@@ -1,0 +1,466 @@
+//! Stacked line plots for reports, written as SVG and rasterised to PNG.
+//!
+//! A [`Figure`] is a column of [`Panel`]s; each panel overlays [`Series`] (lines in solid, dashed,
+//! dotted or dash-dot strokes, or markers) and marks what matters: shaded angle intervals
+//! ([`XBand`], e.g. dwell / rise / return), horizontal bands ([`YBand`], e.g. a threshold band),
+//! limit lines ([`Rule`]) and annotated points ([`Note`], e.g. a peak and its value). Axis labels
+//! are written `quantity [unit]`; an axis in degrees is ticked at 30°, 45° or 90° (whichever its
+//! length in pixels allows), a [`Scale::Log`] axis at decades.
+//!
+//! The legend is placed where no curve, limit line or note is: the first free corner or edge of
+//! the plot, else outside it on the right (all panels then share the narrower plot width, so
+//! stacked panels keep one horizontal scale). Its swatches draw each line's own dash pattern.
+//!
+//! The figure is written as SVG by this module; a PNG is that SVG rasterised by `resvg`
+//! (antialiased, with shaped text), scaled by the figure's DPI (96 = one pixel per SVG unit) and
+//! tagged with that DPI. The text font is Ubuntu Light (Ubuntu Font Licence 1.0), with Hack (MIT
+//! and Bitstream Vera licence) for glyphs it lacks, both embedded from the `epaint_default_fonts`
+//! crate, so plotting needs no system fonts and no C library.
+
+mod layout;
+mod raster;
+mod svg;
+
+use crate::IoError;
+use loomkin_units::{Range, RangeError};
+use std::path::Path;
+
+/// Stroke pattern of a line (drawn the same in the legend swatch).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Dash {
+    /// A continuous line.
+    #[default]
+    Solid,
+    /// Long dashes.
+    Dashed,
+    /// Dots.
+    Dotted,
+    /// Dash and dot.
+    DashDot,
+}
+
+impl Dash {
+    /// The SVG `stroke-dasharray` (`None` for a solid line).
+    pub(crate) fn dasharray(self) -> Option<&'static str> {
+        match self {
+            Dash::Solid => None,
+            Dash::Dashed => Some("9 5"),
+            Dash::Dotted => Some("2 4"),
+            Dash::DashDot => Some("10 4 2 4"),
+        }
+    }
+}
+
+/// One curve.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Series {
+    /// Legend text (none: not in the legend).
+    pub label: String,
+    /// Points `(x, y)`; a non-finite point breaks the line.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers at the points instead of a line.
+    pub markers: bool,
+    /// Colour as RGB; `None` takes the series' place in the palette.
+    pub color: Option<[u8; 3]>,
+    /// Stroke pattern.
+    pub dash: Dash,
+}
+
+impl Series {
+    /// A line through the points.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, ..Self::default() }
+    }
+
+    /// Markers at the points.
+    pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, markers: true, ..Self::default() }
+    }
+
+    /// The same series in a given colour.
+    pub fn with_color(mut self, rgb: [u8; 3]) -> Self {
+        self.color = Some(rgb);
+        self
+    }
+
+    /// The same series drawn dashed.
+    pub fn with_dashes(self) -> Self {
+        self.with_dash(Dash::Dashed)
+    }
+
+    /// The same series drawn with a stroke pattern.
+    pub fn with_dash(mut self, dash: Dash) -> Self {
+        self.dash = dash;
+        self
+    }
+}
+
+/// A shaded interval of the horizontal axis, labelled above the plot (a dwell, a rise, a window).
+#[derive(Debug, Clone, PartialEq)]
+pub struct XBand {
+    /// Start, in horizontal-axis units.
+    pub from: f64,
+    /// End.
+    pub to: f64,
+    /// Label over the band (left out where the band is too narrow for it).
+    pub label: String,
+    /// Fill colour (drawn translucent).
+    pub color: [u8; 3],
+}
+
+impl XBand {
+    /// Grey: nothing moves.
+    pub const DWELL: [u8; 3] = [150, 150, 150];
+    /// Green: a rise.
+    pub const RISE: [u8; 3] = [0, 158, 115];
+    /// Orange: a return.
+    pub const RETURN: [u8; 3] = [230, 159, 0];
+    /// Blue: a window (a time or angle where something must happen).
+    pub const WINDOW: [u8; 3] = [86, 180, 233];
+
+    /// A band from `from` to `to`.
+    pub fn new(from: f64, to: f64, label: impl Into<String>, color: [u8; 3]) -> Self {
+        Self { from, to, label: label.into(), color }
+    }
+}
+
+/// A shaded interval of the vertical axis, named in the legend (a threshold band).
+#[derive(Debug, Clone, PartialEq)]
+pub struct YBand {
+    /// Lower edge, in vertical-axis units.
+    pub from: f64,
+    /// Upper edge.
+    pub to: f64,
+    /// Legend text.
+    pub label: String,
+    /// Fill colour (drawn translucent).
+    pub color: [u8; 3],
+}
+
+impl YBand {
+    /// A band from `from` to `to`.
+    pub fn new(from: f64, to: f64, label: impl Into<String>, color: [u8; 3]) -> Self {
+        Self { from, to, label: label.into(), color }
+    }
+}
+
+/// Which axis a [`Rule`] gives a value of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RuleAxis {
+    /// A horizontal line at a vertical value (a torque or pressure-angle limit).
+    Y,
+    /// A vertical line at a horizontal value (an angle, a speed).
+    X,
+}
+
+/// A straight reference line across the plot (a limit), named in the legend.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rule {
+    /// The axis the value is on.
+    pub axis: RuleAxis,
+    /// The value.
+    pub value: f64,
+    /// Legend text.
+    pub label: String,
+    /// Colour.
+    pub color: [u8; 3],
+    /// Stroke pattern.
+    pub dash: Dash,
+}
+
+impl Rule {
+    /// Red, for a limit that must not be crossed.
+    pub const LIMIT: [u8; 3] = [200, 30, 30];
+
+    /// A horizontal limit line at `value`, red and dashed.
+    pub fn y(value: f64, label: impl Into<String>) -> Self {
+        Self { axis: RuleAxis::Y, value, label: label.into(), color: Self::LIMIT, dash: Dash::Dashed }
+    }
+
+    /// A vertical line at `value`, red and dashed.
+    pub fn x(value: f64, label: impl Into<String>) -> Self {
+        Self { axis: RuleAxis::X, value, label: label.into(), color: Self::LIMIT, dash: Dash::Dashed }
+    }
+
+    /// The same line in another colour.
+    pub fn with_color(mut self, rgb: [u8; 3]) -> Self {
+        self.color = rgb;
+        self
+    }
+
+    /// The same line with another stroke pattern.
+    pub fn with_dash(mut self, dash: Dash) -> Self {
+        self.dash = dash;
+        self
+    }
+}
+
+/// An annotated point: a dot and its text, placed beside it where no curve is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Note {
+    /// Horizontal position.
+    pub x: f64,
+    /// Vertical position.
+    pub y: f64,
+    /// The text (e.g. `peak 12.3 m/s² at 47°`).
+    pub text: String,
+}
+
+impl Note {
+    /// A note at `(x, y)`.
+    pub fn new(x: f64, y: f64, text: impl Into<String>) -> Self {
+        Self { x, y, text: text.into() }
+    }
+}
+
+/// Scale of the vertical axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scale {
+    /// Linear.
+    #[default]
+    Linear,
+    /// Logarithmic, ticked at decades; values ≤ 0 are not drawn.
+    Log,
+}
+
+/// Where a panel's legend goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Legend {
+    /// Inside the plot where nothing is drawn, else outside on the right.
+    #[default]
+    Auto,
+    /// Outside the plot, on the right.
+    Outside,
+    /// No legend on this panel.
+    Hidden,
+}
+
+/// One chart of a figure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    /// Vertical axis label, `quantity [unit]`.
+    pub y_label: String,
+    /// Horizontal axis label for this panel (defaults to the figure's).
+    pub x_label: Option<String>,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// Same scale on both axes (for drawings such as cam profiles).
+    pub equal_aspect: bool,
+    /// Where the legend goes.
+    pub legend: Legend,
+    /// Vertical scale.
+    pub y_scale: Scale,
+    /// Shaded intervals of the horizontal axis.
+    pub x_bands: Vec<XBand>,
+    /// Shaded intervals of the vertical axis.
+    pub y_bands: Vec<YBand>,
+    /// Reference lines.
+    pub rules: Vec<Rule>,
+    /// Annotated points.
+    pub notes: Vec<Note>,
+    /// Height relative to the other panels (1 by default).
+    pub weight: f64,
+}
+
+impl Default for Panel {
+    fn default() -> Self {
+        Self {
+            y_label: String::new(),
+            x_label: None,
+            series: Vec::new(),
+            equal_aspect: false,
+            legend: Legend::Auto,
+            y_scale: Scale::Linear,
+            x_bands: Vec::new(),
+            y_bands: Vec::new(),
+            rules: Vec::new(),
+            notes: Vec::new(),
+            weight: 1.0,
+        }
+    }
+}
+
+impl Panel {
+    /// A panel with a label and curves.
+    pub fn new(y_label: impl Into<String>, series: Vec<Series>) -> Self {
+        Self { y_label: y_label.into(), series, ..Self::default() }
+    }
+
+    /// The same panel with its legend placed otherwise (or hidden).
+    pub fn with_legend(mut self, legend: Legend) -> Self {
+        self.legend = legend;
+        self
+    }
+
+    /// The same panel with a logarithmic vertical axis.
+    pub fn with_log_y(mut self) -> Self {
+        self.y_scale = Scale::Log;
+        self
+    }
+
+    /// The same panel with its own horizontal label.
+    pub fn with_x_label(mut self, x_label: impl Into<String>) -> Self {
+        self.x_label = Some(x_label.into());
+        self
+    }
+
+    /// The same panel with shaded intervals added.
+    pub fn with_x_bands(mut self, bands: impl IntoIterator<Item = XBand>) -> Self {
+        self.x_bands.extend(bands);
+        self
+    }
+
+    /// The same panel with a horizontal band added.
+    pub fn with_y_band(mut self, band: YBand) -> Self {
+        self.y_bands.push(band);
+        self
+    }
+
+    /// The same panel with a reference line added.
+    pub fn with_rule(mut self, rule: Rule) -> Self {
+        self.rules.push(rule);
+        self
+    }
+
+    /// The same panel with annotated points added.
+    pub fn with_notes(mut self, notes: impl IntoIterator<Item = Note>) -> Self {
+        self.notes.extend(notes);
+        self
+    }
+
+    /// The same panel drawn `weight` times as tall as a panel of weight 1.
+    pub fn with_weight(mut self, weight: f64) -> Self {
+        self.weight = weight;
+        self
+    }
+}
+
+/// A column of panels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Title over the first panel.
+    pub title: String,
+    /// Horizontal axis label, `quantity [unit]`.
+    pub x_label: String,
+    /// The panels, top to bottom.
+    pub panels: Vec<Panel>,
+    /// Size in SVG pixels (1/96 in); `None` picks 1000 × (280 per panel + 50).
+    pub size: Option<(u32, u32)>,
+    /// Resolution of a PNG: 96 draws one PNG pixel per SVG pixel, 192 two.
+    pub dpi: f64,
+}
+
+/// Allowed figure width and height in SVG pixels.
+pub const SIZE_PX: Range = Range::closed(200.0, 8000.0, "px");
+/// Allowed PNG resolution.
+pub const DPI: Range = Range::closed(DPI_MIN, 1200.0, "dpi");
+const DPI_MIN: f64 = 24.0;
+/// Largest PNG drawn, in pixels (a 10 000 × 10 000 image takes 400 MB while drawn).
+pub const MAX_PNG_PIXELS: f64 = 1e8;
+/// Longest title, in characters.
+pub const MAX_TITLE_CHARS: usize = 200;
+
+/// Page settings a user gives for a figure: size, resolution and title (all optional).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Page {
+    /// Width in SVG pixels.
+    pub width: Option<f64>,
+    /// Height in SVG pixels.
+    pub height: Option<f64>,
+    /// PNG resolution.
+    pub dpi: Option<f64>,
+    /// Title replacing the figure's own.
+    pub title: Option<String>,
+}
+
+impl Page {
+    /// Checks each setting against its range: [`SIZE_PX`], [`DPI`], at most
+    /// [`MAX_TITLE_CHARS`] characters of title on one line.
+    pub fn check(&self) -> Result<(), IoError> {
+        for (field, v) in [("width", self.width), ("height", self.height)] {
+            if let Some(v) = v {
+                SIZE_PX.check(field, v)?;
+            }
+        }
+        if let Some(dpi) = self.dpi {
+            DPI.check("dpi", dpi)?;
+        }
+        if let Some(t) = &self.title {
+            let n = t.chars().count();
+            if n > MAX_TITLE_CHARS || t.contains(['\n', '\r']) {
+                return Err(IoError::Plot(format!(
+                    "title: {n} characters{}: allowed one line of at most {MAX_TITLE_CHARS}",
+                    if t.contains(['\n', '\r']) { " on several lines" } else { "" }
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Figure {
+    /// A figure with a title, a horizontal label and panels.
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, panels: Vec<Panel>) -> Self {
+        Self { title: title.into(), x_label: x_label.into(), panels, size: None, dpi: 96.0 }
+    }
+
+    /// The size in SVG pixels.
+    pub fn pixel_size(&self) -> (u32, u32) {
+        let weights: f64 = self.panels.iter().map(|p| panel_weight(p.weight)).sum();
+        self.size.unwrap_or((1000, (280.0 * weights.max(1.0)).round() as u32 + 50))
+    }
+
+    /// The same figure with a user's page settings applied (checked first, see [`Page::check`]).
+    /// The PNG's pixel count (size × DPI / 96, squared) must stay within [`MAX_PNG_PIXELS`].
+    pub fn with_page(mut self, page: &Page) -> Result<Self, IoError> {
+        page.check()?;
+        let (w, h) = self.pixel_size();
+        let (w, h) = (page.width.map_or(w, |v| v.round() as u32), page.height.map_or(h, |v| v.round() as u32));
+        self.size = Some((w, h));
+        if let Some(dpi) = page.dpi {
+            self.dpi = dpi;
+        }
+        if let Some(t) = &page.title {
+            self.title = t.clone();
+        }
+        let px = f64::from(w) * f64::from(h) * (self.dpi / 96.0).powi(2);
+        if px > MAX_PNG_PIXELS {
+            let most = 96.0 * (MAX_PNG_PIXELS / (f64::from(w) * f64::from(h))).sqrt();
+            let range = Range::closed(DPI_MIN, most.floor().max(DPI_MIN), "dpi");
+            return Err(RangeError::new("dpi", self.dpi, range).into());
+        }
+        Ok(self)
+    }
+
+    /// Renders to `path`; the extension (`.svg` or `.png`) chooses the format.
+    pub fn save(&self, path: &Path) -> Result<(), IoError> {
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let bytes = match ext.as_deref() {
+            Some("svg") => self.to_svg()?.into_bytes(),
+            Some("png") => self.to_png()?,
+            _ => return Err(IoError::PlotFormat { path: path.display().to_string() }),
+        };
+        std::fs::write(path, bytes).map_err(|cause| IoError::File { path: path.display().to_string(), cause })
+    }
+
+    /// Renders to an SVG document.
+    pub fn to_svg(&self) -> Result<String, IoError> {
+        if self.panels.is_empty() {
+            return Err(IoError::Plot("a figure needs at least one panel".into()));
+        }
+        let lay = layout::layout(self);
+        Ok(svg::write(self, &lay))
+    }
+
+    /// Renders to a PNG file's bytes (the SVG rasterised, antialiased, at the figure's DPI).
+    pub fn to_png(&self) -> Result<Vec<u8>, IoError> {
+        raster::png(&self.to_svg()?, self.pixel_size(), self.dpi)
+    }
+}
+
+fn panel_weight(w: f64) -> f64 {
+    if w.is_finite() && w > 0.0 { w.clamp(0.1, 10.0) } else { 1.0 }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,237 @@
+use super::layout::{Rect, angle_axis, layout, log_axis, tick_label};
+use super::*;
+
+fn sine(n: usize, x1: f64, amp: f64) -> Vec<(f64, f64)> {
+    (0..=n).map(|i| i as f64 * x1 / n as f64).map(|x| (x, amp * (x * std::f64::consts::TAU / x1).sin())).collect()
+}
+
+#[test]
+fn svg_has_labels_legend_and_dash_swatches() {
+    let fig = Figure::new(
+        "test",
+        "x [-]",
+        vec![Panel::new(
+            "s [-]",
+            vec![
+                Series::line("one", vec![(0.0, 0.0), (1.0, 1.0)]),
+                Series::line("two", vec![(0.0, 1.0), (1.0, 0.0)]).with_dash(Dash::DashDot).with_color([1, 2, 3]),
+            ],
+        )],
+    );
+    let svg = fig.to_svg().unwrap();
+    assert!(svg.contains("#010203"), "the chosen colour is used");
+    for text in ["x [-]", "s [-]", "one", "two", "test"] {
+        assert!(svg.contains(&format!(">{text}<")), "{text} missing");
+    }
+    // The dash-dot pattern appears twice: on the curve and on its legend swatch.
+    assert_eq!(svg.matches(r#"stroke-dasharray="10 4 2 4""#).count(), 2);
+}
+
+#[test]
+fn tick_labels_are_compact() {
+    assert_eq!(tick_label(-1e-17, 2.0), "0");
+    assert_eq!(tick_label(250.0, 50.0), "250");
+    assert_eq!(tick_label(0.1, 0.1), "0.1");
+    assert_eq!(tick_label(-0.0005, 0.0005), "−0.0005");
+    assert_eq!(tick_label(0.30000000000000004, 0.1), "0.3");
+}
+
+#[test]
+fn angle_ticks_are_multiples_of_30_45_or_90() {
+    for (lo, hi, len) in [
+        (0.0, 360.0, 900.0),
+        (0.0, 360.0, 400.0),
+        (0.0, 360.0, 150.0),
+        (-20.0, 300.0, 700.0),
+        (0.0, 7200.0, 500.0),
+        (10.0, 190.0, 300.0),
+    ] {
+        let a = angle_axis(lo, hi, len, 44.0);
+        let step = a.ticks[1] - a.ticks[0];
+        assert!([30.0, 45.0, 90.0].contains(&step) || (step % 90.0 == 0.0), "{lo}..{hi} on {len} px: step {step}");
+        assert!(a.ticks.iter().all(|t| (t / step).fract().abs() < 1e-9 && *t >= lo && *t <= hi));
+        assert!(a.ticks.len() >= 2);
+        // Labels at least 44 px apart.
+        assert!(len * step / (hi - lo) >= 44.0 - 1e-9);
+    }
+    assert_eq!(angle_axis(0.0, 360.0, 900.0, 44.0).ticks.len(), 13, "a long 360° axis every 30°");
+}
+
+#[test]
+fn log_ticks_are_decades() {
+    let a = log_axis(1e-6, 1e2, 300.0, 26.0);
+    assert!(a.log);
+    for t in &a.ticks {
+        let k = t.log10();
+        assert!((k - k.round()).abs() < 1e-12, "{t} is not a decade");
+    }
+    assert!(a.ticks.len() >= 3);
+    assert_eq!(a.labels.last().map(String::as_str), Some("100"));
+    // A spectrum spanning 1e-12 … 1: the axis stops at 15 decades, labels thinned, still decades.
+    let fig = Figure::new(
+        "",
+        "f [Hz]",
+        vec![
+            Panel::new(
+                "|X| [m]",
+                vec![Series::line("", (1..200).map(|i| (i as f64, 10f64.powf(-(i as f64) / 16.0))).collect())],
+            )
+            .with_log_y(),
+        ],
+    );
+    let lay = layout(&fig);
+    let y = &lay.panels[0].y;
+    assert!(y.lo >= 1e-15 * y.hi * 0.999 && y.hi == 1.0, "{} … {}", y.lo, y.hi);
+    assert!(y.ticks.iter().all(|t| (t.log10() - t.log10().round()).abs() < 1e-12));
+}
+
+/// Whether a polyline enters the rectangle anywhere.
+fn crosses(r: &Rect, run: &[(f64, f64)]) -> bool {
+    run.windows(2).any(|w| r.hit_by_segment(w[0], w[1]))
+}
+
+#[test]
+fn legend_avoids_every_curve() {
+    // Curves that fill the corners: the legend must find a free place or go outside.
+    let cases = vec![
+        vec![Series::line("sine", sine(200, 360.0, 1.0)), Series::line("cosine", sine(200, 360.0, -1.0)).with_dashes()],
+        vec![
+            Series::line("ramp up", vec![(0.0, 0.0), (1.0, 1.0)]),
+            Series::line("ramp down", vec![(0.0, 1.0), (1.0, 0.0)]),
+            Series::line("top", vec![(0.0, 1.0), (1.0, 1.0)]),
+            Series::line("bottom", vec![(0.0, 0.0), (1.0, 0.0)]),
+            Series::line("middle", vec![(0.0, 0.5), (1.0, 0.5)]),
+        ],
+        vec![Series::markers("points", (0..40).map(|i| (i as f64, ((i * 7) % 11) as f64)).collect())],
+    ];
+    let mut outside = 0;
+    for series in cases {
+        let fig = Figure::new("t", "x [deg]", vec![Panel::new("y [m]", series).with_rule(Rule::y(0.9, "limit"))]);
+        let lay = layout(&fig);
+        let pl = &lay.panels[0];
+        let legend = pl.legend.expect("a legend");
+        for curve in &pl.curves {
+            for run in curve {
+                assert!(!crosses(&legend, run), "legend {legend:?} on a curve");
+                assert!(!run.iter().any(|&(x, y)| legend.grow(2.0).contains(&Rect::new(x, y, 0.0, 0.0))));
+            }
+        }
+        let ry = pl.py(0.9);
+        assert!(!legend.hit_by_segment((pl.plot.x0, ry), (pl.plot.x1, ry)), "legend on the limit line");
+        if legend.x0 >= pl.plot.x1 {
+            outside += 1;
+        } else {
+            assert!(pl.plot.contains(&legend));
+        }
+    }
+    assert!(outside >= 1, "the crossing ramps leave no room inside");
+}
+
+#[test]
+fn stacked_panels_share_the_plot_width_when_a_legend_goes_outside() {
+    let full = vec![
+        Series::line("a", vec![(0.0, 0.0), (1.0, 1.0)]),
+        Series::line("b", vec![(0.0, 1.0), (1.0, 0.0)]),
+        Series::line("c", vec![(0.0, 0.5), (1.0, 0.5)]),
+    ];
+    let fig =
+        Figure::new("", "x", vec![Panel::new("y", full), Panel::new("z", vec![Series::line("d", sine(50, 1.0, 1.0))])]);
+    let lay = layout(&fig);
+    assert_eq!(lay.panels[0].plot.x1, lay.panels[1].plot.x1);
+    assert_eq!(lay.panels[0].plot.x0, lay.panels[1].plot.x0);
+}
+
+#[test]
+fn notes_stay_in_the_plot_and_off_the_curves() {
+    let pts = sine(400, 360.0, 2.0);
+    let fig = Figure::new(
+        "",
+        "angle [deg]",
+        vec![
+            Panel::new("a [m/s²]", vec![Series::line("a", pts)])
+                .with_notes([Note::new(90.0, 2.0, "peak 2 m/s² at 90°"), Note::new(270.0, -2.0, "−2 m/s² at 270°")]),
+        ],
+    );
+    let lay = layout(&fig);
+    let pl = &lay.panels[0];
+    assert_eq!(pl.notes.len(), 2);
+    for n in &pl.notes {
+        assert!(pl.plot.contains(&n.text));
+        for run in &pl.curves[0] {
+            assert!(!crosses(&n.text, run));
+        }
+    }
+}
+
+#[test]
+fn page_settings_are_checked_and_applied() {
+    let fig = || Figure::new("own", "x", vec![Panel::new("y", vec![Series::line("", vec![(0.0, 0.0), (1.0, 1.0)])])]);
+    let f = fig()
+        .with_page(&Page { width: Some(640.0), height: Some(480.0), dpi: Some(150.0), title: Some("mine".into()) })
+        .unwrap();
+    assert_eq!(f.pixel_size(), (640, 480));
+    assert_eq!(f.dpi, 150.0);
+    assert_eq!(f.title, "mine");
+    let err = |p: Page| fig().with_page(&p).unwrap_err().to_string();
+    assert_eq!(
+        err(Page { width: Some(50.0), ..Page::default() }),
+        "width = 50 is out of range: allowed 200 ≤ width ≤ 8000 px"
+    );
+    assert_eq!(err(Page { dpi: Some(0.0), ..Page::default() }), "dpi = 0 is out of range: allowed 24 ≤ dpi ≤ 1200 dpi");
+    assert!(err(Page { height: Some(f64::NAN), ..Page::default() }).starts_with("height is not a finite number"));
+    assert!(err(Page { title: Some("a\nb".into()), ..Page::default() }).contains("one line"));
+    // 8000 × 8000 at 1200 dpi would be 10¹⁰ pixels: the message names the largest DPI allowed.
+    let big = err(Page { width: Some(8000.0), height: Some(8000.0), dpi: Some(1200.0), ..Page::default() });
+    assert!(big.starts_with("dpi = 1200 is out of range: allowed 24 ≤ dpi ≤ 120 dpi"), "{big}");
+    assert!(!big.contains('\n'));
+}
+
+#[test]
+fn png_is_antialiased_sized_by_dpi_and_tagged() {
+    let fig =
+        Figure::new("t", "x [deg]", vec![Panel::new("y [m]", vec![Series::line("cycloidal", sine(60, 360.0, 1.0))])])
+            .with_page(&Page { width: Some(320.0), height: Some(220.0), dpi: Some(144.0), title: None })
+            .unwrap();
+    let bytes = fig.to_png().unwrap();
+    let pix = resvg::tiny_skia::Pixmap::decode_png(&bytes).unwrap();
+    assert_eq!((pix.width(), pix.height()), (480, 330));
+    // Antialiased edges: many grey levels between white and the darkest line pixel, not two.
+    let mut levels = std::collections::BTreeSet::new();
+    for p in pix.pixels() {
+        let c = p.demultiply();
+        levels.insert(c.red() / 4 * 4);
+    }
+    assert!(levels.len() > 30, "only {} levels of red", levels.len());
+    // The resolution chunk: 144 dpi = 5669 pixels per metre, unit metre, with a valid CRC.
+    let i = bytes.windows(4).position(|w| w == b"pHYs").unwrap();
+    assert_eq!(&bytes[i + 4..i + 13], &[0, 0, 0x16, 0x25, 0, 0, 0x16, 0x25, 1]);
+    let crc = u32::from_be_bytes(bytes[i + 13..i + 17].try_into().unwrap());
+    assert_eq!(crc, super::raster::crc32(&bytes[i..i + 13]));
+}
+
+#[test]
+fn crc32_matches_the_check_value() {
+    // The standard check value of CRC-32 over "123456789".
+    assert_eq!(super::raster::crc32(b"123456789"), 0xCBF4_3926);
+}
+
+#[test]
+fn text_is_measured_with_the_embedded_font() {
+    let w = super::raster::text_width("cycloidal", 15.0);
+    assert!(w > 40.0 && w < 80.0, "{w}");
+    assert!(super::raster::text_width("ii", 15.0) < super::raster::text_width("MM", 15.0));
+}
+
+#[test]
+fn save_writes_both_formats_and_refuses_others() {
+    let dir = std::env::temp_dir().join(format!("loomkin-io-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fig = Figure::new("t", "x", vec![Panel::new("y", vec![Series::line("", vec![(0.0, 2.0), (1.0, 2.0)])])]);
+    fig.save(&dir.join("a.png")).unwrap();
+    assert_eq!(&std::fs::read(dir.join("a.png")).unwrap()[1..4], b"PNG");
+    fig.save(&dir.join("a.svg")).unwrap();
+    assert!(std::fs::read_to_string(dir.join("a.svg")).unwrap().starts_with("<svg"));
+    assert!(matches!(fig.save(&dir.join("a.pdf")), Err(IoError::PlotFormat { .. })));
+    assert!(Figure::new("t", "x", vec![]).to_svg().is_err());
+    std::fs::remove_dir_all(dir).ok();
+}
