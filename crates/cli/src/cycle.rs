@@ -4,8 +4,8 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::Args;
-use loomkin_io::plot::{Figure, Panel, Series};
-use loomkin_laws::Cycle;
+use loomkin_io::plot::{Figure, Note, Panel, Series, XBand, sig4};
+use loomkin_laws::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
 use loomkin_units::{Budget, Cost, ShaftSpeed};
 use std::path::PathBuf;
 
@@ -83,18 +83,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     }
     let samples = if a.output.is_some() { cycle.sample(a.points, rpm) } else { Vec::new() };
     if let Some(out) = a.output {
-        let [su, vs, as_, js] = cycle.unit.si_units();
-        let col = |f: fn(&loomkin_laws::Kinematics) -> f64| {
-            samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect::<Vec<_>>()
-        };
-        let panels = vec![
-            Panel::new(format!("position [{su}]"), vec![Series::line("", col(|k| k.s))]),
-            Panel::new(format!("velocity [{vs}]"), vec![Series::line("", col(|k| k.v))]),
-            Panel::new(format!("acceleration [{as_}]"), vec![Series::line("", col(|k| k.a))]),
-            Panel::new(format!("jerk [{js}]"), vec![Series::line("", col(|k| k.j))]),
-        ];
-        let title = format!("{} at {rpm} rpm", util::file_name(&a.file));
-        return output::figure(&Figure::new(title, "main-shaft angle [deg]", panels), &out, &a.plot);
+        return output::figure(&cycle_figure(&cycle, &samples, speed, &a.file), &out, &a.plot);
     }
     let [su, vs, as_, _] = cycle.unit.si_units();
     outln!(
@@ -140,3 +129,55 @@ const PLOT_BYTES_PER_POINT: f64 = 48.0 + 4.0 * 16.0;
 /// Seconds per point of a plot (drawing four polylines): not measured by a bench; taken as four
 /// CSV rows.
 const PLOT_S_PER_POINT: f64 = 4.0 * CSV_S_PER_ROW;
+
+/// The cycle's position (in the file's unit: mm or deg), velocity, acceleration and jerk over one
+/// turn, its dwells, rises and returns shaded, the extremes of velocity and acceleration marked.
+fn cycle_figure(cycle: &Cycle, samples: &[CyclePoint], speed: ShaftSpeed, file: &std::path::Path) -> Figure {
+    let [_, vs, as_, js] = cycle.unit.si_units();
+    let (pos_unit, pos_scale) = match cycle.unit {
+        StrokeUnit::Mm => ("mm", 1e3),
+        StrokeUnit::Deg => ("deg", 180.0 / std::f64::consts::PI),
+    };
+    let col = |f: &dyn Fn(&loomkin_laws::Kinematics) -> f64| samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect();
+    let bands: Vec<XBand> = cycle
+        .segments
+        .iter()
+        .map(|s| {
+            let from = s.start_rad.to_degrees();
+            let to = (s.start_rad + s.length_rad).to_degrees();
+            let (color, kind) = match s.kind {
+                SegmentKind::Dwell => (XBand::DWELL, "dwell"),
+                SegmentKind::Rise => (XBand::RISE, "rise"),
+                SegmentKind::Return => (XBand::RETURN, "return"),
+            };
+            let label = match &s.law {
+                Some((spec, _)) => format!("{kind} · {}", spec.label()),
+                None => kind.to_string(),
+            };
+            XBand::new(from, to, label, color)
+        })
+        .collect();
+    let unlabelled = || bands.iter().map(|b| XBand { label: String::new(), ..b.clone() }).collect::<Vec<_>>();
+    let mut v_notes = Vec::new();
+    let mut a_notes = Vec::new();
+    if let Some(e) = cycle.extremes(speed) {
+        let (d, v) = e.velocity;
+        v_notes.push(Note::new(d, v, format!("|v| max {} {vs} at {d:.1}°", sig4(v.abs()))));
+        for ((d, acc), what) in [(e.acceleration_max, "max"), (e.acceleration_min, "min")] {
+            a_notes.push(Note::new(d, acc, format!("{what} {} {as_} at {d:.1}°", sig4(acc))));
+        }
+    }
+    let panels = vec![
+        Panel::new(format!("position [{pos_unit}]"), vec![Series::line("", col(&|k| k.s * pos_scale))])
+            .with_x_bands(bands.clone()),
+        Panel::new(format!("velocity [{vs}]"), vec![Series::line("", col(&|k| k.v))])
+            .with_x_bands(unlabelled())
+            .with_notes(v_notes),
+        Panel::new(format!("acceleration [{as_}]"), vec![Series::line("", col(&|k| k.a))])
+            .with_x_bands(unlabelled())
+            .with_notes(a_notes),
+        Panel::new(format!("jerk [{js}]"), vec![Series::line("", col(&|k| k.j))]).with_x_bands(unlabelled()),
+    ];
+    let title = format!("{} at {} rpm", util::file_name(file), speed.rpm());
+    Figure::new(title, "main-shaft angle [deg]", panels)
+}

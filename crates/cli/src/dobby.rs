@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Dash, Figure, Legend, Note, Panel, Rule, Series};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
     Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
@@ -592,6 +592,38 @@ fn law_panels(states: &[ModulatorState], w2: f64) -> Vec<Panel> {
     ]
 }
 
+/// Pressure angles at the output (μ6) and at the rollers (μB on Γ, μC on Γ′) with the limit line
+/// and each one's maximum (as the analysis located it) marked.
+fn pressure_panel(g: &ModulatorGeometry, states: &[ModulatorState], c: &loomkin_mech::CamChecks, limit: f64) -> Panel {
+    let pts = |f: &dyn Fn(&ModulatorState) -> f64| -> Vec<(f64, f64)> {
+        states.iter().map(|s| (s.phi2.to_degrees(), f(s))).collect()
+    };
+    let mut notes = Vec::new();
+    let mut max_text = Vec::new();
+    for (v, at) in [
+        (c.mu_out_max_deg, c.mu_out_max_at_phi2_deg),
+        (c.mu_b_max_deg, c.mu_b_max_at_phi2_deg),
+        (c.mu_c_max_deg, c.mu_c_max_at_phi2_deg),
+    ] {
+        if v.is_finite() && at.is_finite() {
+            notes.push(Note::new(at.rem_euclid(360.0), v, ""));
+            max_text.push(format!(": max {v:.1}° at {:.1}°", at.rem_euclid(360.0)));
+        } else {
+            max_text.push(String::new());
+        }
+    }
+    Panel::new(
+        "pressure angle [deg]",
+        vec![
+            Series::line(format!("output μ6 (slot){}", max_text[0]), pts(&|s| s.mu_out_deg())),
+            Series::line(format!("roller B on Γ, μB{}", max_text[1]), pts(&|s| s.mu_b_deg(g))).with_dash(Dash::Dashed),
+            Series::line(format!("roller C on Γ', μC{}", max_text[2]), pts(&|s| s.mu_c_deg(g))).with_dash(Dash::Dotted),
+        ],
+    )
+    .with_rule(Rule::y(limit, format!("limit {limit}° (--pressure-limit-deg)")))
+    .with_notes(notes)
+}
+
 fn xy(p: &[[f64; 2]], close: bool) -> Vec<(f64, f64)> {
     let mut v: Vec<(f64, f64)> = p.iter().map(|q| (q[0], q[1])).collect();
     if close && let Some(f) = v.first().copied() {
@@ -636,24 +668,29 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
     loomkin_units::Range::closed(-360.0, 360.0, "deg").check("--at-deg", a.at_deg)?;
     let g = a.geometry.geometry()?;
     let w2 = a.geometry.speed_rad_s()?;
-    let (states, gamma, gamma_p, title) = match a.task {
+    let (states, gamma, gamma_p, title, checks) = match a.task {
         TaskArg::Analyze => {
             let cam = a.cam.cam()?;
             let r = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
             warn(&r.warnings);
             let gamma = r.cam_profile(a.roller_m.unwrap_or(0.0));
-            (r.states, gamma, r.counter_cam, format!("Modulator, task 1: cam {}, α = {}°", cam.label(), g.alpha_deg))
+            let title = format!("Modulator, task 1: cam {}, α = {}°", cam.label(), g.alpha_deg);
+            (r.states, gamma, r.counter_cam, title, r.summary.checks)
         }
         TaskArg::Synthesize => {
             let law = a.law.spec()?;
             let r = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m.unwrap_or(0.03))?)?;
             warn(&r.warnings);
             let title = format!("Modulator, task 2: {}, α = {}°", r.summary.law, g.alpha_deg);
-            (r.states, r.cam, r.counter_cam, title)
+            (r.states, r.cam, r.counter_cam, title, r.summary.checks)
         }
     };
     let fig = match a.what {
-        WhatArg::Law => Figure::new(title, "input angle φ2 [deg]", law_panels(&states, w2)),
+        WhatArg::Law => {
+            let mut panels = law_panels(&states, w2);
+            panels.push(pressure_panel(&g, &states, &checks, a.geometry.pressure_limit_deg));
+            Figure::new(title, "input angle φ2 [deg]", panels)
+        }
         WhatArg::Cams => {
             let st = nearest_state(&states, a.at_deg).context("no state to draw")?;
             let mut f = Figure::new(title, "x [m]", vec![cams_panel(&g, &gamma, &gamma_p, st)]);

@@ -6,12 +6,12 @@ use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
-    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history, simulate,
-    sweep_observed,
+    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history,
+    required_velocity_crossings, simulate, sweep_observed,
 };
 use loomkin_units::{Budget, Cost};
 use std::path::PathBuf;
@@ -453,7 +453,8 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         ));
     }
     if let Some(path) = &a.output {
-        return output::figure(&sweep_figure(&s), path, &a.plot);
+        let crossings = required_velocity_crossings(&mech, &st, &s, method).map_err(lib_err)?;
+        return output::figure(&sweep_figure(&s, &crossings), path, &a.plot);
     }
     if a.format.csv {
         return output::csv_shard(&sweep_table(&s)?, a.shard.get());
@@ -492,30 +493,54 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     Ok(())
 }
 
-fn sweep_figure(s: &Sweep) -> Figure {
+/// The sweep's end-of-pick values; where the velocity is below the required V_r the setting range
+/// is shaded red, its ends (located on the model) marked.
+fn sweep_figure(s: &Sweep, crossings: &[f64]) -> Figure {
     let pts = |f: &dyn Fn(&Outcome) -> f64| s.rows.iter().map(|r| (r.value, f(&r.outcome))).collect::<Vec<_>>();
+    let unit = s.setting.unit();
+    // The intervals of the swept range between crossings where the margin V − V_r is negative.
+    let mut edges = vec![s.rows.first().map_or(0.0, |r| r.value)];
+    edges.extend_from_slice(crossings);
+    edges.push(s.rows.last().map_or(0.0, |r| r.value));
+    let below: Vec<XBand> = edges
+        .windows(2)
+        .filter(|w| w[1] > w[0])
+        .filter(|w| {
+            let mid = 0.5 * (w[0] + w[1]);
+            let near = s.rows.iter().min_by(|a, b| (a.value - mid).abs().total_cmp(&(b.value - mid).abs()));
+            near.is_some_and(|r| r.outcome.velocity_m_s < r.outcome.required_velocity_m_s)
+        })
+        .map(|w| XBand::new(w[0], w[1], "V below V_r", [200, 30, 30]))
+        .collect();
+    let unlabelled = || below.iter().map(|b| XBand { label: String::new(), ..b.clone() }).collect::<Vec<_>>();
+    let notes = crossings.iter().filter_map(|&x| {
+        let near = s.rows.iter().min_by(|a, b| (a.value - x).abs().total_cmp(&(b.value - x).abs()))?;
+        Some(Note::new(x, near.outcome.required_velocity_m_s, format!("V = V_r at {} {unit}", sig4(x))))
+    });
     let panels = vec![
         Panel::new(
             "velocity [m/s]",
             vec![
                 Series::line("shuttle velocity at the end of the pick", pts(&|o| o.velocity_m_s)),
-                Series::line("required velocity V_r", pts(&|o| o.required_velocity_m_s)),
+                Series::line("required velocity V_r", pts(&|o| o.required_velocity_m_s)).with_dashes(),
             ],
         )
-        .with_legend(Legend::Auto),
-        Panel::new("distance [cm]", vec![Series::line("path of the pick X", pts(&|o| o.distance_m * 100.0))]),
+        .with_x_bands(below.clone())
+        .with_notes(notes),
+        Panel::new("distance [cm]", vec![Series::line("path of the pick X", pts(&|o| o.distance_m * 100.0))])
+            .with_x_bands(unlabelled()),
         Panel::new(
             "acceleration [m/s²]",
             vec![
                 Series::line("at the end of the pick", pts(&|o| o.accel_end_m_s2)),
-                Series::line("peak during the pick", pts(&|o| o.accel_peak_m_s2)),
+                Series::line("peak during the pick", pts(&|o| o.accel_peak_m_s2)).with_dashes(),
             ],
         )
-        .with_legend(Legend::Auto),
+        .with_x_bands(unlabelled()),
     ];
     Figure::new(
         format!("Effect of the {} on the end of the pick", s.setting.description()),
-        format!("{} [{}]", s.setting.description(), s.setting.unit()),
+        format!("{} [{unit}]", s.setting.description()),
         panels,
     )
 }

@@ -5,7 +5,7 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, Panel, Series, sig4};
 use loomkin_laws::Metrics;
 use loomkin_servo::{
     Drive, ExportFormat, InterpolationError, Objective, OptimizeOptions, SplineEnd, SplineLaw, TorqueSummary,
@@ -629,9 +629,23 @@ fn plot(a: PlotArgs) -> Result<()> {
         unit.series.push(style(Series::line(*name, s), PALETTE[i]));
         for (k, &rpm) in a.speed_rpm.iter().enumerate() {
             let c = torque_curve(sl.law(), &d, rpm, 1441)?;
-            let line =
-                Series::line(format!("{name}, {rpm} rpm"), c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect());
-            torque.series.push(style(line, PALETTE[k % PALETTE.len()]));
+            // The peak located on the closed form; its sign read from the nearest drawn point.
+            let peak = loomkin_servo::summary(sl.law(), &d, rpm)?;
+            let near = c.iter().min_by(|p, q| {
+                (p.angle_deg - peak.peak_torque_angle_deg)
+                    .abs()
+                    .total_cmp(&(q.angle_deg - peak.peak_torque_angle_deg).abs())
+            });
+            let signed = peak.peak_torque_nm.copysign(near.map_or(1.0, |p| p.torque_nm));
+            torque.notes.push(Note::new(peak.peak_torque_angle_deg, signed, ""));
+            let label = format!(
+                "{name}, {rpm} rpm: |M| max {} N·m at {:.1}°",
+                sig4(peak.peak_torque_nm),
+                peak.peak_torque_angle_deg
+            );
+            let line = Series::line(label, c.iter().map(|p| (p.angle_deg, p.torque_nm)).collect());
+            // Every law and speed its own colour; the compared law dashed as well.
+            torque.series.push(style(line, PALETTE[(i * a.speed_rpm.len() + k) % PALETTE.len()]));
         }
     }
     let fig = Figure::new(

@@ -45,7 +45,53 @@ pub struct CycleReport {
     pub samples: Vec<CyclePoint>,
 }
 
+/// Where a cycle's velocity and acceleration reach their extremes at one speed: main-shaft angle
+/// (deg) and value (SI), each at the location its law's metrics root-found (not on a grid).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleExtremes {
+    /// Largest |velocity|: angle and signed value.
+    pub velocity: (f64, f64),
+    /// Largest acceleration: angle and value.
+    pub acceleration_max: (f64, f64),
+    /// Smallest (most negative) acceleration: angle and value.
+    pub acceleration_min: (f64, f64),
+}
+
 impl Cycle {
+    /// The extremes of velocity and acceleration over the cycle at `speed`, `None` for a cycle of
+    /// dwells only. Each moving segment is evaluated at its law's `x_cv`, `x_ca_pos`, `x_ca_neg`.
+    pub fn extremes(&self, speed: ShaftSpeed) -> Option<CycleExtremes> {
+        let omega = speed.rpm() * std::f64::consts::TAU / 60.0;
+        let mut out: Option<CycleExtremes> = None;
+        for seg in &self.segments {
+            let Some((_, law)) = &seg.law else { continue };
+            let m = law.metrics();
+            let r = omega / seg.length_rad;
+            let h = seg.stroke_si;
+            let at = |x: f64| {
+                let k = law.eval(x);
+                ((seg.start_rad + x * seg.length_rad).to_degrees(), h * k.v * r, h * k.a * r * r)
+            };
+            let (dv, v, _) = at(m.x_cv);
+            let (dp, _, ap) = at(m.x_ca_pos);
+            let (dn, _, an) = at(m.x_ca_neg);
+            // A return has the stroke's sign reversed: the law's largest positive acceleration is the
+            // cycle's most negative one.
+            let (hi, lo) = if ap >= an { ((dp, ap), (dn, an)) } else { ((dn, an), (dp, ap)) };
+            let e = out.get_or_insert(CycleExtremes { velocity: (dv, v), acceleration_max: hi, acceleration_min: lo });
+            if v.abs() > e.velocity.1.abs() {
+                e.velocity = (dv, v);
+            }
+            if hi.1 > e.acceleration_max.1 {
+                e.acceleration_max = hi;
+            }
+            if lo.1 < e.acceleration_min.1 {
+                e.acceleration_min = lo;
+            }
+        }
+        out
+    }
+
     /// Per-segment peaks at `speed_rpm` from each law's exact metrics (Cv, Ca, Cj) and the chain
     /// rule; dwells have zero peaks.
     pub fn segment_peaks(&self, speed: ShaftSpeed) -> Vec<SegmentPeaks> {
@@ -223,6 +269,16 @@ to_deg = 360
         assert_eq!(v["unit"], "m");
         assert_eq!(v["segments"][1]["law"], "-");
         assert!(v["segments"][0]["peak_acceleration_m_s2"].is_f64());
+        // The located extremes agree with the per-segment peaks and with the densest sample.
+        let e = c.extremes(speed).unwrap();
+        let vmax = r.segments.iter().map(|p| p.peak_velocity).fold(0.0, f64::max);
+        assert!((e.velocity.1.abs() - vmax).abs() < 1e-12 * vmax);
+        let amax = r.samples.iter().map(|s| s.kin.a).fold(f64::NEG_INFINITY, f64::max);
+        let amin = r.samples.iter().map(|s| s.kin.a).fold(f64::INFINITY, f64::min);
+        assert!(e.acceleration_max.1 >= amax && e.acceleration_max.1 < amax + 1e-3 * amax.abs());
+        assert!(e.acceleration_min.1 <= amin && e.acceleration_min.1 > amin - 1e-3 * amin.abs());
+        let sampled = c.eval(e.velocity.0.to_radians(), 400.0);
+        assert!((sampled.v - e.velocity.1).abs() < 1e-9 * vmax, "the angle is where the value is");
         assert!(v["samples"][0]["j_m_s3"].is_f64());
         assert!((v["cycle_time_s"].as_f64().unwrap() - 0.15).abs() < 1e-15);
         // The streamed report is the same text, and counts its samples.

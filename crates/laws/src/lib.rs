@@ -38,7 +38,7 @@ mod shape;
 pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue, RAMP};
 pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
-pub use cycle_report::{CycleReport, SegmentPeaks, StreamedReport};
+pub use cycle_report::{CycleExtremes, CycleReport, SegmentPeaks, StreamedReport};
 pub use error::{LawError, Result, compact};
 pub use extrema::{refine_root, refine_root_from};
 pub use kinematics::{Kinematics, MotionLaw};

@@ -61,4 +61,7 @@ pub use required::RequiredVelocity;
 pub use scenario::{MAX_CYCLES, MAX_NATURAL_1_S};
 pub use settings::{Setting, Settings, StartRule};
 pub use simulate::{History, Method, Outcome, PickEnd, Sample, closed_form_constants, history, simulate};
-pub use sweep::{RowReport, SettingValue, Sweep, SweepReport, SweepRow, sweep, sweep_items, sweep_observed};
+pub use sweep::{
+    RowReport, SettingValue, Sweep, SweepReport, SweepRow, required_velocity_crossings, sweep, sweep_items,
+    sweep_observed,
+};

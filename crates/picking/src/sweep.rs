@@ -158,3 +158,55 @@ pub fn sweep_observed(
         .collect::<Result<Vec<_>>>()?;
     Ok(Sweep { setting, rows })
 }
+
+/// Values of the swept setting where the shuttle's velocity at the end of the pick equals the
+/// required velocity V_r, in order: each one between two rows of the sweep whose margin
+/// `V − V_r` changes sign, located by bisection on the model itself (not interpolated between
+/// rows) until the bracket is 1e-12 of the value wide. `base` and `method` must be those the
+/// sweep was run with.
+pub fn required_velocity_crossings(
+    mechanism: &Mechanism,
+    base: &Settings,
+    sweep: &Sweep,
+    method: Method,
+) -> Result<Vec<f64>> {
+    // A margin within 1e-12 of V_r is an equality (the designed setting meets V_r exactly, and
+    // its closed form leaves a rounding residue of either sign).
+    let margin = |o: &Outcome| {
+        let m = o.velocity_m_s - o.required_velocity_m_s;
+        if m.abs() <= 1e-12 * o.required_velocity_m_s.abs() { 0.0 } else { m }
+    };
+    let mut out = Vec::new();
+    for w in sweep.rows.windows(2) {
+        let (fa, fb) = (margin(&w[0].outcome), margin(&w[1].outcome));
+        if fa == 0.0 {
+            if out.last() != Some(&w[0].value) {
+                out.push(w[0].value);
+            }
+            continue;
+        }
+        if fb == 0.0 || fa.signum() == fb.signum() || !(fa.is_finite() && fb.is_finite()) {
+            continue;
+        }
+        let (mut lo, mut hi, mut f_lo) = (w[0].value, w[1].value, fa);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if (hi - lo).abs() <= 1e-12 * (1.0 + mid.abs()) || mid == lo || mid == hi {
+                break;
+            }
+            let fm = margin(&simulate(mechanism, &sweep.setting.apply(*base, mid), method)?);
+            if fm == 0.0 {
+                (lo, hi) = (mid, mid);
+            } else if fm.signum() == f_lo.signum() {
+                (lo, f_lo) = (mid, fm);
+            } else {
+                hi = mid;
+            }
+        }
+        out.push(0.5 * (lo + hi));
+    }
+    if let Some(last) = sweep.rows.last().filter(|r| margin(&r.outcome) == 0.0) {
+        out.push(last.value);
+    }
+    Ok(out)
+}

@@ -1,7 +1,7 @@
 //! Jederán's published figures: those that the model reproduces, and checks of the reasons why
 //! the others cannot be (see docs/notes/issue-4.md for the full list).
 
-use loomkin_picking::{Mechanism, Method, Outcome, Setting, Settings, simulate, sweep};
+use loomkin_picking::{Mechanism, Method, Outcome, Setting, Settings, required_velocity_crossings, simulate, sweep};
 use std::f64::consts::FRAC_PI_2;
 
 fn run(st: Settings) -> Outcome {
@@ -126,4 +126,28 @@ fn fig7_shuttle_weight() {
     assert!(b.velocity_m_s > a.velocity_m_s && b.distance_m < a.distance_m);
     assert!(((a.distance_m - b.distance_m) / 0.22 - 0.043).abs() < 0.002);
     assert!((b.velocity_m_s - a.velocity_m_s - 0.44).abs() < 0.01);
+}
+
+/// Where the velocity falls below V_r over a play sweep: located on the model (the margin there is
+/// zero to rounding), bracketed by the sweep's own rows, and the same as a 10× denser sweep's
+/// linear interpolation to that grid's accuracy.
+#[test]
+fn play_sweep_crossing_of_the_required_velocity() {
+    let m = Mechanism::paper_default();
+    let s = sweep(&m, &designed(), Setting::Play, 0.0, 60.0, 13, Method::Closed).unwrap();
+    let margin = |o: &Outcome| o.velocity_m_s - o.required_velocity_m_s;
+    let xs = required_velocity_crossings(&m, &designed(), &s, Method::Closed).unwrap();
+    let changes =
+        s.rows.windows(2).filter(|w| margin(&w[0].outcome).signum() != margin(&w[1].outcome).signum()).count();
+    assert_eq!(xs.len(), changes);
+    assert!(!xs.is_empty(), "the play sweep crosses V_r");
+    let dense = sweep(&m, &designed(), Setting::Play, 0.0, 60.0, 121, Method::Closed).unwrap();
+    for x in xs {
+        let o = simulate(&m, &Setting::Play.apply(designed(), x), Method::Closed).unwrap();
+        assert!(margin(&o).abs() < 1e-9 * o.required_velocity_m_s, "margin {} at {x}", margin(&o));
+        let w = dense.rows.windows(2).find(|w| w[0].value <= x && x <= w[1].value).unwrap();
+        let (fa, fb) = (margin(&w[0].outcome), margin(&w[1].outcome));
+        let lin = w[0].value + (w[1].value - w[0].value) * fa / (fa - fb);
+        assert!((lin - x).abs() < 0.5 * (w[1].value - w[0].value), "{lin} vs {x}");
+    }
 }

@@ -506,17 +506,26 @@ fn place_notes(pl: &PanelLayout, p: &Panel) -> Vec<NoteLayout> {
             continue;
         }
         let at = (pl.px(n.x), pl.py(n.y));
+        if n.text.is_empty() {
+            out.push(NoteLayout { at, text: Rect::new(at.0, at.1, 0.0, 0.0) });
+            continue;
+        }
         let (w, h) = (text_width(&n.text, FONT_NOTE) * 1.04 + 4.0, FONT_NOTE + 4.0);
-        let candidates = [
-            (at.0 + 6.0, at.1 - 6.0 - h),
-            (at.0 - 6.0 - w, at.1 - 6.0 - h),
-            (at.0 + 6.0, at.1 + 6.0),
-            (at.0 - 6.0 - w, at.1 + 6.0),
-            (at.0 + 9.0, at.1 - h / 2.0),
-            (at.0 - 9.0 - w, at.1 - h / 2.0),
-            (at.0 - w / 2.0, at.1 - 9.0 - h),
-            (at.0 - w / 2.0, at.1 + 9.0),
-        ];
+        // Beside the dot first, then farther out (the dot stays where the value is).
+        let mut candidates = Vec::new();
+        for k in [1.0, 2.5, 4.5] {
+            let d = 6.0 * k;
+            candidates.extend([
+                (at.0 + d, at.1 - d - h),
+                (at.0 - d - w, at.1 - d - h),
+                (at.0 + d, at.1 + d),
+                (at.0 - d - w, at.1 + d),
+                (at.0 + 1.5 * d, at.1 - h / 2.0),
+                (at.0 - 1.5 * d - w, at.1 - h / 2.0),
+                (at.0 - w / 2.0, at.1 - 1.5 * d - h),
+                (at.0 - w / 2.0, at.1 + 1.5 * d),
+            ]);
+        }
         let boxes: Vec<Rect> = candidates.iter().map(|&(x, y)| Rect::new(x, y, w, h)).collect();
         let inside = |r: &Rect| pl.plot.contains(r);
         let text = boxes

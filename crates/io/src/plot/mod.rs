@@ -195,7 +195,8 @@ impl Rule {
     }
 }
 
-/// An annotated point: a dot and its text, placed beside it where no curve is.
+/// An annotated point: a dot and its text, placed beside it where no curve is (an empty text
+/// draws the dot only, for a value given in the legend).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Note {
     /// Horizontal position.
@@ -456,6 +457,32 @@ impl Figure {
     pub fn to_png(&self) -> Result<Vec<u8>, IoError> {
         raster::png(&self.to_svg()?, self.pixel_size(), self.dpi)
     }
+}
+
+/// A value for a note or a title: four significant digits, no trailing zeros (`12.35`, `0.001235`,
+/// `1.235e-7`, `−3`).
+pub fn sig4(v: f64) -> String {
+    if !v.is_finite() {
+        return if v.is_nan() {
+            "not-a-number".into()
+        } else if v > 0.0 {
+            "∞".into()
+        } else {
+            "−∞".into()
+        };
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor();
+    let text = if (-3.0..6.0).contains(&mag) {
+        let decimals = (3.0 - mag).max(0.0) as usize;
+        let t = format!("{v:.decimals$}");
+        if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t }
+    } else {
+        format!("{v:.3e}")
+    };
+    text.replace('-', "−")
 }
 
 fn panel_weight(w: f64) -> f64 {

@@ -175,6 +175,10 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
     }
     s.push_str("</g>\n");
     for (n, nl) in p.notes.iter().zip(&pl.notes) {
+        if n.text.is_empty() {
+            let _ = writeln!(s, r##"<circle cx="{:.2}" cy="{:.2}" r="3.5" fill="#222222"/>"##, nl.at.0, nl.at.1);
+            continue;
+        }
         let _ = writeln!(
             s,
             r##"<circle cx="{:.2}" cy="{:.2}" r="3.5" fill="#222222"/><text x="{:.2}" y="{:.2}" font-size="{FONT_NOTE}" fill="#222222" stroke="#ffffff" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text>"##,

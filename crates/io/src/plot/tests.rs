@@ -106,14 +106,17 @@ fn legend_avoids_every_curve() {
     ];
     let mut outside = 0;
     for series in cases {
+        let markers = series[0].markers;
         let fig = Figure::new("t", "x [deg]", vec![Panel::new("y [m]", series).with_rule(Rule::y(0.9, "limit"))]);
         let lay = layout(&fig);
         let pl = &lay.panels[0];
         let legend = pl.legend.expect("a legend");
         for curve in &pl.curves {
             for run in curve {
-                assert!(!crosses(&legend, run), "legend {legend:?} on a curve");
-                assert!(!run.iter().any(|&(x, y)| legend.grow(2.0).contains(&Rect::new(x, y, 0.0, 0.0))));
+                // Lines must not cross the box; markers (r = 4 px) must not touch it.
+                assert!(markers || !crosses(&legend, run), "legend {legend:?} on a curve");
+                let keep = if markers { 4.0 } else { 2.0 };
+                assert!(!run.iter().any(|&(x, y)| legend.grow(keep).contains(&Rect::new(x, y, 0.0, 0.0))));
             }
         }
         let ry = pl.py(0.9);
@@ -234,4 +237,14 @@ fn save_writes_both_formats_and_refuses_others() {
     assert!(matches!(fig.save(&dir.join("a.pdf")), Err(IoError::PlotFormat { .. })));
     assert!(Figure::new("t", "x", vec![]).to_svg().is_err());
     std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn note_values_have_four_significant_digits() {
+    assert_eq!(sig4(12.3456), "12.35");
+    assert_eq!(sig4(-0.0012346), "−0.001235");
+    assert_eq!(sig4(128_000.0), "128000");
+    assert_eq!(sig4(2.5e-7), "2.500e−7");
+    assert_eq!(sig4(3.0), "3");
+    assert_eq!(sig4(0.0), "0");
 }
