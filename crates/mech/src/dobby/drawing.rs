@@ -111,9 +111,10 @@ impl Synthesis {
         let bore = 1e-3 * Range::closed(0.0, 1e4, "mm").check("bore_mm", bore_mm)?;
         let mut out = Vec::new();
         let mut least = f64::INFINITY;
+        let [draw_cam, draw_counter_cam] = self.dense_profiles();
         for (names, p) in [
-            (["CAM_CENTRE", "CAM_WALL_LEFT", "CAM_WALL_RIGHT"], &self.draw_cam),
-            (["COUNTER_CAM_CENTRE", "COUNTER_CAM_WALL_LEFT", "COUNTER_CAM_WALL_RIGHT"], &self.draw_counter_cam),
+            (["CAM_CENTRE", "CAM_WALL_LEFT", "CAM_WALL_RIGHT"], draw_cam),
+            (["COUNTER_CAM_CENTRE", "COUNTER_CAM_WALL_LEFT", "COUNTER_CAM_WALL_RIGHT"], draw_counter_cam),
         ] {
             for (layer, curve) in names.into_iter().zip([&p.centre, &p.wall_left, &p.wall_right]) {
                 if curve.is_empty() {
@@ -145,7 +146,7 @@ impl Synthesis {
                 shape: DobbyShape::Circle { centre: [0.0, 0.0], radius: 0.5 * bore },
             });
         }
-        let (b0, c0) = (self.draw_cam.centre[0], self.draw_counter_cam.centre[0]);
+        let (b0, c0) = (draw_cam.centre[0], draw_counter_cam.centre[0]);
         out.push(DobbyLayered { layer: "PHASE_0", shape: DobbyShape::Line { from: [0.0, 0.0], to: b0 } });
         let r = self.summary.roller_m;
         if r > 0.0 {
@@ -158,7 +159,7 @@ impl Synthesis {
 
     /// The least distance of the cam curves from the crank centre O (m).
     pub fn least_radius_m(&self) -> f64 {
-        [&self.draw_cam, &self.draw_counter_cam]
+        self.dense_profiles()
             .iter()
             .flat_map(|p| p.centre.iter().chain(&p.wall_left).chain(&p.wall_right))
             .map(|q| q[0].hypot(q[1]))

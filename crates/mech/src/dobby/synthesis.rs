@@ -8,12 +8,13 @@ use super::analysis::{check_common, input_grid};
 use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fold_at, slot_deviation};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
-use super::law::{OutputLawSpec, max_dwell_deg};
+use super::law::{OutputLaw, OutputLawSpec, max_dwell_deg};
 use super::refine::{Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
 use crate::planar::{Vec2, wrap_pi};
 use crate::{MechError, Result};
 use serde::Serialize;
+use std::sync::OnceLock;
 
 /// Settings of a synthesis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -148,13 +149,40 @@ pub struct Synthesis {
     /// Full states, parallel to `rows`.
     #[serde(skip)]
     pub states: Vec<ModulatorState>,
-    /// Cam Γ every 0.05° of input, whatever the step: the drawing's dense curves
-    /// ([`Synthesis::drawing`]).
+    /// The drawing's dense curves, computed when first asked for ([`Synthesis::dense_profiles`]).
     #[serde(skip)]
-    pub draw_cam: CamProfile,
-    /// Counter-cam Γ′ every 0.05° of input.
-    #[serde(skip)]
-    pub draw_counter_cam: CamProfile,
+    dense: DenseCurves,
+}
+
+/// What the drawing's dense curves are computed from: the law and the turn of φ3 on the check
+/// grid. They are computed on demand (7200 states, more than the rest of a synthesis at 0.1°) and
+/// kept once computed.
+#[derive(Debug, Clone)]
+struct DenseCurves {
+    law: OutputLaw,
+    refs: Vec<f64>,
+    curves: OnceLock<[CamProfile; 2]>,
+}
+
+/// Equal when computed from the same law and turns, whether or not the curves were asked for yet.
+impl PartialEq for DenseCurves {
+    fn eq(&self, other: &Self) -> bool {
+        self.law == other.law && self.refs == other.refs
+    }
+}
+
+/// The state at input angle `x` (rad) from the law in closed form, φ3 on the turn of the nearest
+/// check-grid point (`cx`, turns `refs`).
+fn law_state(
+    g: &ModulatorGeometry,
+    arms: &ArmAngles,
+    out: &OutputLaw,
+    cx: &[f64],
+    refs: &[f64],
+    x: f64,
+) -> ModulatorState {
+    let o = out.eval(x);
+    state_from_phi6(g, arms, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(cx, x)])
 }
 
 /// What `loomkin dobby synthesize --json` prints of a [`Synthesis`]: the rows, summary and
@@ -173,6 +201,28 @@ impl Synthesis {
     /// The report of this synthesis ([`SynthesisReport`]).
     pub fn report(&self) -> SynthesisReport<'_> {
         SynthesisReport { summary: &self.summary, warnings: &self.warnings, rows: &self.rows }
+    }
+
+    /// Cam Γ and counter-cam Γ′ every 0.05° of input, whatever the step: the drawing's dense
+    /// curves ([`Synthesis::drawing`]), in closed form from the law; computed on the first call.
+    pub fn dense_profiles(&self) -> &[CamProfile; 2] {
+        self.dense.curves.get_or_init(|| {
+            let g = &self.summary.geometry;
+            let arms = ArmAngles::new(g);
+            let cx = check_grid(0.0);
+            let (dxs, _) = input_grid(0.0, super::drawing::DRAW_STEP_DEG);
+            let draw: Vec<ModulatorState> = dxs[..dxs.len() - 1]
+                .iter()
+                .map(|&x| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x))
+                .collect();
+            let path =
+                |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> { draw.iter().map(f).collect() };
+            let r = self.summary.roller_m;
+            [
+                CamProfile::from_path(&path(&|s| (s.b[0], s.b[1])), r),
+                CamProfile::from_path(&path(&|s| (s.c[0], s.c[1])), r),
+            ]
+        })
     }
 }
 
@@ -241,10 +291,7 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
         fine.push(s);
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
-    let at = |x: f64| {
-        let o = out.eval(x);
-        state_from_phi6(g, &arms, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(&cx, x)])
-    };
+    let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x);
     let states: Vec<ModulatorState> = xs.iter().map(|&x| at(x)).collect();
     let rev = Revolution { xs: cx.clone(), states: fine, eval: Box::new(|x| Some(at(x))) };
 
@@ -302,13 +349,6 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
             });
         }
     }
-    // The drawing's curves every 0.05° (closed form, whatever the step): between those points the
-    // curves deviate from their chords by a few tenths of a micrometre at most.
-    let (dxs, _) = input_grid(0.0, super::drawing::DRAW_STEP_DEG);
-    let draw: Vec<ModulatorState> = dxs[..dxs.len() - 1].iter().map(|&x| at(x)).collect();
-    let draw_path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> { draw.iter().map(f).collect() };
-    let draw_cam = CamProfile::from_path(&draw_path(&|s| (s.b[0], s.b[1])), opts.roller_m);
-    let draw_counter_cam = CamProfile::from_path(&draw_path(&|s| (s.c[0], s.c[1])), opts.roller_m);
     let rows = states.iter().map(|s| SynthesisRow::new(g, s, w2)).collect();
     let summary = SynthesisSummary {
         law: law_label(law),
@@ -327,5 +367,37 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
         wall_self_intersections_c: wc,
         checks,
     };
-    Ok(Synthesis { rows, summary, warnings, cam, counter_cam, states, draw_cam, draw_counter_cam })
+    // The drawing's curves every 0.05° (closed form, whatever the step; between those points the
+    // curves deviate from their chords by a few tenths of a micrometre at most) are left for
+    // `dense_profiles` to compute when a drawing asks for them.
+    drop(rev);
+    let dense = DenseCurves { law: out, refs, curves: OnceLock::new() };
+    Ok(Synthesis { rows, summary, warnings, cam, counter_cam, states, dense })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dense curves, computed on demand, are the closed-form curves: at 0.1° every second
+    /// dense point is the table's point (same input angle, bit for bit), walls included; a clone
+    /// and an equal synthesis compare equal whether or not their curves were computed yet.
+    #[test]
+    fn dense_curves_on_demand_pass_through_the_table_points() {
+        let g = ModulatorGeometry::PAPER;
+        let o = SynthesisOptions { step_deg: 0.1, ..Default::default() };
+        let s = synthesize(&g, &OutputLawSpec::default(), &o).unwrap();
+        let fresh = s.clone();
+        let [cam, counter] = s.dense_profiles();
+        assert_eq!(cam.centre.len(), 7200);
+        for (dense, table) in [(cam, &s.cam), (counter, &s.counter_cam)] {
+            for (i, p) in table.centre.iter().enumerate() {
+                assert_eq!(dense.centre[2 * i], *p, "point {i}");
+                assert_eq!(dense.wall_left[2 * i], table.wall_left[i]);
+                assert_eq!(dense.wall_right[2 * i], table.wall_right[i]);
+            }
+        }
+        assert_eq!(s, fresh);
+        assert_eq!(fresh.dense_profiles(), s.dense_profiles());
+    }
 }
