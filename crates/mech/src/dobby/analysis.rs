@@ -97,8 +97,9 @@ pub struct AnalysisRow {
 }
 
 impl AnalysisRow {
-    pub(crate) fn new(g: &ModulatorGeometry, s: &ModulatorState, cam_param: f64, t_s: f64, w2: f64) -> Self {
-        let mu_bc = s.mu_bc_deg(g);
+    /// The row of state `s`, whose crank pin is `a` ([`ModulatorState::a`]).
+    pub(crate) fn new(s: &ModulatorState, a: Vec2, cam_param: f64, t_s: f64, w2: f64) -> Self {
+        let mu_bc = s.mu_bc_deg_at(a);
         Self {
             phi2_deg: s.phi2.to_degrees(),
             t_s,
@@ -239,7 +240,8 @@ struct CamLoop<'a> {
 }
 
 impl CamLoop<'_> {
-    fn step(&self, from: &LoopState<2>, x1: f64) -> Option<LoopState<2>> {
+    /// The state at input `x1` and `e(x1)`, or `None` (declined).
+    fn step(&self, from: &LoopState<2>, x1: f64) -> Option<(LoopState<2>, Vec2)> {
         let h = x1 - from.input;
         let pred = from.q + from.dq * h + from.ddq * (h * h / 2.0);
         let ea = e(x1);
@@ -289,7 +291,7 @@ impl CamLoop<'_> {
             return None;
         }
         let (dq, ddq) = (SVector::<f64, 2>::new(p1, phi3_1), SVector::<f64, 2>::new(p2, phi3_2));
-        [p1, phi3_1, p2, phi3_2].iter().all(|v| v.is_finite()).then_some(LoopState { input: x1, q, dq, ddq, det })
+        [p1, phi3_1, p2, phi3_2].iter().all(|v| v.is_finite()).then_some((LoopState { input: x1, q, dq, ddq, det }, ea))
     }
 }
 
@@ -426,17 +428,23 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     };
     let p0 = sys.solve_position(cx[0], SVector::<f64, 2>::new(q0[0], q0[1]), newton).map_err(fail)?;
     let mut traced = vec![sys.rates(cx[0], p0.q).map_err(fail)?];
+    // e(φ2) of each traced state, which loop (3) and the checks reuse.
+    let mut traced_e2 = vec![e(traced[0].input)];
     let fast =
         CamLoop { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha: g.alpha_rad(), tol: newton.residual_tol };
-    // One continuation step: the scalar form where it applies, the general solver otherwise.
+    // One continuation step: the scalar form where it applies, the general solver otherwise; with
+    // e(φ2) of the new state.
     let advance = |from: &LoopState<2>, x: f64| match fast.step(from, x) {
         Some(st) => Ok(st),
-        None => sys.advance(from, x, newton),
+        None => sys.advance(from, x, newton).map(|st| (st, e(st.input))),
     };
     for &x in &cx[1..] {
         let last = traced[traced.len() - 1];
         match advance(&last, x) {
-            Ok(st) => traced.push(st),
+            Ok((st, e2)) => {
+                traced.push(st);
+                traced_e2.push(e2);
+            }
             Err(_) => return Err(locate_fold(g, cam, &sys, &last, x, newton)),
         }
     }
@@ -448,8 +456,8 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     let dev_of = |st: &LoopState<2>| wrap_pi(st.q[1] - st.input);
     let dvals: Vec<f64> = traced.iter().map(dev_of).collect();
     let neg: Vec<f64> = dvals.iter().map(|d| -d).collect();
-    let dmax = refined_max(&cx, &dvals, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| dev_of(&st)));
-    let dmin = refined_max(&cx, &neg, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| -dev_of(&st)));
+    let dmax = refined_max(&cx, &dvals, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| dev_of(&st.0)));
+    let dmin = refined_max(&cx, &neg, &|x| loop_at(x).map_or(f64::NEG_INFINITY, |st| -dev_of(&st.0)));
     let dev = [Extreme { value: -dmin.value, at: dmin.at }, dmax];
     let worst = if dmax.value.abs() >= dmin.value.abs() { dev[1] } else { dev[0] };
     let (eta_min, eta_max) = (dev[0].value + g.alpha_rad(), dev[1].value + g.alpha_rad());
@@ -500,8 +508,8 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     }
 
     let arms = ArmAngles::new(g);
-    let close3 = |st: &LoopState<2>, phi6_ref: f64| {
-        state_from_phi3(g, &arms, st.input, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
+    let close3 = |st: &LoopState<2>, e2: Vec2, phi6_ref: f64| {
+        state_from_phi3(g, &arms, st.input, e2, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
             MechError::CannotBuild {
                 phi2_deg: st.input.to_degrees(),
                 condition: format!("loop (3) cannot close: {e}"),
@@ -512,8 +520,8 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     };
     let mut fine = Vec::with_capacity(traced.len());
     let mut phi6_ref = traced[0].input;
-    for st in &traced {
-        let s = close3(st, phi6_ref)?;
+    for (st, &e2) in traced.iter().zip(&traced_e2) {
+        let s = close3(st, e2, phi6_ref)?;
         phi6_ref = s.phi6[0];
         fine.push(s);
     }
@@ -524,15 +532,19 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     let mut rows = Vec::with_capacity(xs.len());
     for &x in &xs {
         let j = Revolution::nearest(&cx, x);
-        let st = advance(&traced[j], x)?;
-        let s = close3(&st, refs[j])?;
-        rows.push(AnalysisRow::new(g, &s, st.q[0], (x - xs[0]) / w2, w2));
+        let (st, e2) = advance(&traced[j], x)?;
+        let s = close3(&st, e2, refs[j])?;
+        rows.push(AnalysisRow::new(&s, g.l2_m * e2, st.q[0], (x - xs[0]) / w2, w2));
         states.push(s);
     }
     let rev = Revolution {
         xs: cx.clone(),
         states: fine,
-        eval: Box::new(|x| close3(&loop_at(x)?, refs[Revolution::nearest(&cx, x)]).ok()),
+        pins: traced_e2.iter().map(|&e2| g.l2_m * e2).collect(),
+        eval: Box::new(|x| {
+            let (st, e2) = loop_at(x)?;
+            close3(&st, e2, refs[Revolution::nearest(&cx, x)]).ok()
+        }),
     };
     let mut warnings = Vec::new();
     let theta_range = [dev[1].value.to_degrees().max(0.0), (180.0 + dev[0].value.to_degrees()).min(180.0)];
@@ -646,7 +658,8 @@ mod tests {
             let mut fast_steps = 0;
             for &x in &xs[1..] {
                 let slow = sys.advance(&st, x, &newton).unwrap();
-                if let Some(f) = fast.step(&st, x) {
+                if let Some((f, ea)) = fast.step(&st, x) {
+                    assert_eq!(ea, e(x));
                     fast_steps += 1;
                     assert!((f.q - slow.q).amax() < 1e-11, "{x}: q {:?} vs {:?}", f.q, slow.q);
                     assert!((f.dq - slow.dq).amax() < 1e-9 * slow.dq.amax().max(1.0), "{x}: q′");

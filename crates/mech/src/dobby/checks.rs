@@ -123,8 +123,20 @@ pub struct Crossing {
 
 /// Proper crossings of a polyline with itself (closed: the last point joins the first), at most
 /// `limit`. Neighbouring segments are not compared. A sweep over the segments sorted by their
-/// leftmost x keeps the cost near `n log n` for cam-like curves.
+/// leftmost x keeps the cost near `n log n` for cam-like curves; a closed polyline that winds once
+/// about the origin with every segment turning the same way is
+/// simple and needs no sweep.
 pub fn self_intersections(points: &[Vec2], closed: bool, limit: usize) -> Vec<Crossing> {
+    let n = points.len();
+    let nseg = if closed { n } else { n.saturating_sub(1) };
+    if nseg < 3 || (closed && winds_once_about_origin(points)) {
+        return Vec::new();
+    }
+    sweep(points, closed, limit)
+}
+
+/// The sweep of [`self_intersections`].
+fn sweep(points: &[Vec2], closed: bool, limit: usize) -> Vec<Crossing> {
     let n = points.len();
     let nseg = if closed { n } else { n.saturating_sub(1) };
     if nseg < 3 {
@@ -164,6 +176,43 @@ pub fn self_intersections(points: &[Vec2], closed: bool, limit: usize) -> Vec<Cr
     out
 }
 
+/// Whether the closed polyline `points` is star-shaped about the origin O: seen from O, every
+/// segment `pᵢpᵢ₊₁` turns the same way by a clear margin, `±(pᵢ × pᵢ₊₁) > 10⁻¹²·|pᵢ||pᵢ₊₁|` (far
+/// above the rounding of the cross product, so the sign is exact), and the polyline goes round O
+/// exactly once. Then each segment lies in its own angular sector `[θᵢ, θᵢ₊₁]` (less than a half
+/// turn, O excluded), the sectors tile the turn once, and segments that are not neighbours lie in
+/// disjoint sectors: the polyline does not cross itself. The turns are counted exactly from the
+/// signs of y: turning anticlockwise by less than a half turn, a segment leaves the upper half
+/// plane (y ≥ 0) for the lower one only across the negative x axis (clockwise: the reverse).
+/// The roller-centre curves of a modulator go round O (cam Γ and Γ′ surround the crank axis), so
+/// this answers for them in one pass; anything else is left to the sweep.
+pub(crate) fn winds_once_about_origin(points: &[Vec2]) -> bool {
+    let n = points.len();
+    if n < 3 {
+        return false;
+    }
+    let (mut sign, mut wraps) = (0.0f64, 0usize);
+    for i in 0..n {
+        let (p, q) = (points[i], points[(i + 1) % n]);
+        let c = cross(p, q);
+        let margin = 1e-12 * (p.norm() * q.norm());
+        if c.abs().partial_cmp(&margin) != Some(std::cmp::Ordering::Greater) {
+            return false;
+        }
+        let s = c.signum();
+        if sign == 0.0 {
+            sign = s;
+        } else if s != sign {
+            return false;
+        }
+        let (upper_p, upper_q) = (p.y >= 0.0, q.y >= 0.0);
+        if (sign > 0.0 && upper_p && !upper_q) || (sign < 0.0 && !upper_p && upper_q) {
+            wraps += 1;
+        }
+    }
+    wraps == 1
+}
+
 /// The proper crossing point of segments `ab` and `cd`, if any.
 fn segment_crossing(a: Vec2, b: Vec2, c: Vec2, d: Vec2) -> Option<Vec2> {
     if a.y.max(b.y) < c.y.min(d.y) || c.y.max(d.y) < a.y.min(b.y) {
@@ -198,6 +247,71 @@ mod tests {
         assert!(x[0].x_m.abs() < 1e-3 && x[0].y_m.abs() < 1e-3);
         let circle: Vec<Vec2> = (0..n).map(|i| e(std::f64::consts::TAU * i as f64 / n as f64)).collect();
         assert!(self_intersections(&circle, true, 10).is_empty());
+    }
+
+    /// Independent route for the star-shaped shortcut: the sweep. Random closed polylines (most
+    /// cross themselves) never pass the winding test while the sweep finds a crossing; random
+    /// star-shaped ones (sorted angles, any radii, either direction) pass it; a curve going twice
+    /// round O crosses itself and does not pass.
+    #[test]
+    fn winding_once_about_the_origin_means_no_crossing() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        let mut runner = TestRunner::new(Config { cases: 400, ..Config::default() });
+        // Points round O with jittered angles: some out of order (crossing), some not.
+        let jittered = prop::collection::vec((-0.8f64..0.8, 0.2f64..1.0), 3..40);
+        let (passed, crossed) = (std::cell::Cell::new(0), std::cell::Cell::new(0));
+        runner
+            .run(&jittered, |p| {
+                let n = p.len() as f64;
+                let p: Vec<Vec2> = p
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(jit, r))| r * e(std::f64::consts::TAU * (k as f64 + jit) / n))
+                    .collect();
+                let found = sweep(&p, true, 1000);
+                crossed.set(crossed.get() + usize::from(!found.is_empty()));
+                if winds_once_about_origin(&p) {
+                    passed.set(passed.get() + 1);
+                    prop_assert!(found.is_empty(), "{p:?}");
+                }
+                Ok(())
+            })
+            .unwrap();
+        assert!(passed.get() > 10 && crossed.get() > 10, "{} passed, {} crossed", passed.get(), crossed.get());
+        let star = (prop::collection::vec((0.0f64..1.0, 0.2f64..1.0), 3..200), any::<bool>());
+        runner
+            .run(&star, |(mut p, ccw)| {
+                p.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let mut q: Vec<Vec2> = p
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(_, r))| r * e(std::f64::consts::TAU * (k as f64 + 0.5) / p.len() as f64 + 0.1))
+                    .collect();
+                if !ccw {
+                    q.reverse();
+                }
+                prop_assert!(winds_once_about_origin(&q));
+                prop_assert!(sweep(&q, true, 1000).is_empty());
+                Ok(())
+            })
+            .unwrap();
+        let twice: Vec<Vec2> = (0..400)
+            .map(|i| {
+                let t = 2.0 * std::f64::consts::TAU * f64::from(i) / 400.0;
+                (1.0 + 0.3 * (0.5 * t).cos()) * e(t)
+            })
+            .collect();
+        assert!(!winds_once_about_origin(&twice));
+        assert!(!sweep(&twice, true, 1000).is_empty());
+        // A cam-like curve: the shortcut and the sweep agree (none).
+        let cam: Vec<Vec2> = (0..1440)
+            .map(|i| {
+                let t = std::f64::consts::TAU * f64::from(i) / 1440.0;
+                Vec2::new(0.366 * t.cos(), 0.577 * t.sin())
+            })
+            .collect();
+        assert!(winds_once_about_origin(&cam) && sweep(&cam, true, 1000).is_empty());
     }
 
     #[test]

@@ -57,9 +57,8 @@ impl ModulatorState {
     }
 
     /// Pressure angles at rollers B and C (deg), [`Self::mu_b_deg`] and [`Self::mu_c_deg`] with
-    /// the crank pin computed once.
-    pub(crate) fn mu_bc_deg(&self, g: &ModulatorGeometry) -> [f64; 2] {
-        let a = self.a(g);
+    /// the crank pin `a` = [`Self::a`] given (the caller has `e(φ2)`).
+    pub(crate) fn mu_bc_deg_at(&self, a: Vec2) -> [f64; 2] {
         [roller_pressure_angle_deg(self.b[1], self.b[0] - a), roller_pressure_angle_deg(self.c[1], self.c[0] - a)]
     }
 
@@ -181,29 +180,31 @@ pub(crate) fn slot_from_phi6(
     ([phi3, d3, dd3], [s, ds, dds], w0 / s)
 }
 
-/// The state at φ2 from the slot angle φ3 and its derivatives (analysis).
+/// The state at φ2 from the slot angle φ3 and its derivatives (analysis); `e2 = e(φ2)`, computed
+/// once by the caller (the cam-loop step has it).
 pub(crate) fn state_from_phi3(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
     phi2: f64,
+    e2: Vec2,
     phi3: [f64; 3],
     phi6_ref: f64,
 ) -> Result<ModulatorState> {
-    let (e2, e3) = (e(phi2), e(phi3[0]));
+    let e3 = e(phi3[0]);
     let (s53, phi6) = slot_from_phi3(g, phi2, e2, phi3, e3, phi6_ref)?;
     let (b, c) = lever_points(g, arms, e2, e3, phi3);
     Ok(ModulatorState { phi2, phi3, s53, phi6, b, c })
 }
 
-/// The state at φ2 from the output angle φ6 and its derivatives (synthesis).
+/// The state at φ2 from the output angle φ6 and its derivatives (synthesis); `e2 = e(φ2)`.
 pub(crate) fn state_from_phi6(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
     phi2: f64,
+    e2: Vec2,
     phi6: [f64; 3],
     phi3_ref: f64,
 ) -> ModulatorState {
-    let e2 = e(phi2);
     let (phi3, s53, e3) = slot_from_phi6(g, e2, phi6, phi3_ref);
     let (b, c) = lever_points(g, arms, e2, e3, phi3);
     ModulatorState { phi2, phi3, s53, phi6, b, c }

@@ -8,7 +8,9 @@
 //! fails) is bracketed on the grid and refined by bisection.
 
 use super::analysis::input_grid;
+use super::geometry::ModulatorGeometry;
 use super::kinematics::ModulatorState;
+use crate::planar::Vec2;
 
 /// Step of the check grid (deg): 1440 points per revolution, whatever the output step.
 pub(crate) const CHECK_STEP_DEG: f64 = 0.25;
@@ -210,6 +212,8 @@ pub(crate) struct Revolution<'a> {
     pub xs: Vec<f64>,
     /// States on the check grid.
     pub states: Vec<ModulatorState>,
+    /// Crank pin A of each state on the check grid (m), [`ModulatorState::a`].
+    pub pins: Vec<Vec2>,
     /// The state at any input angle within the revolution (`None` where it cannot be solved).
     pub eval: Box<dyn Fn(f64) -> Option<ModulatorState> + 'a>,
 }
@@ -230,6 +234,13 @@ impl Revolution<'_> {
     pub fn max(&self, q: &dyn Fn(&ModulatorState) -> f64) -> Extreme {
         let vals: Vec<f64> = self.states.iter().map(q).collect();
         refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s)))
+    }
+
+    /// [`Self::max`] of a quantity that also reads the crank pin A: on the grid from
+    /// [`Self::pins`], between grid points from the state ([`ModulatorState::a`], the same value).
+    pub fn max_with_pin(&self, g: &ModulatorGeometry, q: &dyn Fn(&ModulatorState, Vec2) -> f64) -> Extreme {
+        let vals: Vec<f64> = self.states.iter().zip(&self.pins).map(|(s, &a)| q(s, a)).collect();
+        refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s, s.a(g))))
     }
 
     /// Smallest value of `q` (as an [`Extreme`] whose value is the minimum).
@@ -316,7 +327,7 @@ mod tests {
                 .map(|i| {
                     let x = (at_deg + f64::from(i) * 1e-4).to_radians();
                     let o = out.eval(x);
-                    q(&state_from_phi6(&g, &ArmAngles::new(&g), x, [o.phi6, o.d1, o.d2], x))
+                    q(&state_from_phi6(&g, &ArmAngles::new(&g), x, crate::planar::e(x), [o.phi6, o.d1, o.d2], x))
                 })
                 .fold(f64::NEG_INFINITY, f64::max)
         };

@@ -1,7 +1,7 @@
 //! Checks over a traced revolution: extremes of rates, pressure angles, curvature, closure,
 //! self-intersection, undercut; shared by analysis and synthesis.
 
-use super::checks::{Warning, WarningCode, self_intersections};
+use super::checks::{Warning, WarningCode, roller_pressure_angle_deg, self_intersections};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::ModulatorState;
 use super::refine::{Extreme, Revolution};
@@ -114,8 +114,8 @@ pub(crate) fn check_states(
     let e6max = rev.max(&|s| s.phi6[2] * w2 * w2);
     let e6min = rev.min(&|s| s.phi6[2] * w2 * w2);
     let mo = rev.max(&|s| s.mu_out_deg());
-    let mb = rev.max(&|s| s.mu_b_deg(g));
-    let mc = rev.max(&|s| s.mu_c_deg(g));
+    let mb = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.b[1], s.b[0] - a));
+    let mc = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.c[1], s.c[0] - a));
     let kb = rev.max(&|s| s.kappa_b().abs());
     let kc = rev.max(&|s| s.kappa_c().abs());
     // A stationary point of C (|C′| = 0) is a cusp of Γ′.

@@ -11,7 +11,7 @@ use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
 use super::law::{OutputLaw, OutputLawSpec, max_dwell_deg};
 use super::refine::{Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
-use crate::planar::{Vec2, wrap_pi};
+use crate::planar::{Vec2, e, wrap_pi};
 use crate::{MechError, Result};
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -73,8 +73,9 @@ pub struct SynthesisRow {
 }
 
 impl SynthesisRow {
-    fn new(g: &ModulatorGeometry, s: &ModulatorState, w2: f64) -> Self {
-        let mu_bc = s.mu_bc_deg(g);
+    /// The row of state `s`, whose crank pin is `a` ([`ModulatorState::a`]).
+    fn new(s: &ModulatorState, a: Vec2, w2: f64) -> Self {
+        let mu_bc = s.mu_bc_deg_at(a);
         Self {
             phi2_deg: s.phi2.to_degrees(),
             phi6_deg: s.phi6[0].to_degrees(),
@@ -172,7 +173,7 @@ impl PartialEq for DenseCurves {
 }
 
 /// The state at input angle `x` (rad) from the law in closed form, φ3 on the turn of the nearest
-/// check-grid point (`cx`, turns `refs`).
+/// check-grid point (`cx`, turns `refs`); `e2 = e(x)`.
 fn law_state(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
@@ -180,9 +181,10 @@ fn law_state(
     cx: &[f64],
     refs: &[f64],
     x: f64,
+    e2: Vec2,
 ) -> ModulatorState {
     let o = out.eval(x);
-    state_from_phi6(g, arms, x, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(cx, x)])
+    state_from_phi6(g, arms, x, e2, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(cx, x)])
 }
 
 /// What `loomkin dobby synthesize --json` prints of a [`Synthesis`]: the rows, summary and
@@ -213,7 +215,7 @@ impl Synthesis {
             let (dxs, _) = input_grid(0.0, super::drawing::DRAW_STEP_DEG);
             let draw: Vec<ModulatorState> = dxs[..dxs.len() - 1]
                 .iter()
-                .map(|&x| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x))
+                .map(|&x| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x, e(x)))
                 .collect();
             let path =
                 |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> { draw.iter().map(f).collect() };
@@ -283,17 +285,28 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
     // The revolution on the check grid (φ3 kept continuous) and in closed form between its points.
     let arms = ArmAngles::new(g);
     let mut fine = Vec::with_capacity(cx.len());
+    let mut pins = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
     for &x in &cx {
         let o = out.eval(x);
-        let s = state_from_phi6(g, &arms, x, [o.phi6, o.d1, o.d2], phi3_ref);
+        let e2 = e(x);
+        let s = state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], phi3_ref);
         phi3_ref = s.phi3[0];
         fine.push(s);
+        pins.push(g.l2_m * e2);
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
-    let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x);
-    let states: Vec<ModulatorState> = xs.iter().map(|&x| at(x)).collect();
-    let rev = Revolution { xs: cx.clone(), states: fine, eval: Box::new(|x| Some(at(x))) };
+    let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x, e(x));
+    // The table: each state and its row share e(φ2).
+    let mut states = Vec::with_capacity(xs.len());
+    let mut rows = Vec::with_capacity(xs.len());
+    for &x in &xs {
+        let e2 = e(x);
+        let s = law_state(g, &arms, &out, &cx, &refs, x, e2);
+        rows.push(SynthesisRow::new(&s, g.l2_m * e2, w2));
+        states.push(s);
+    }
+    let rev = Revolution { xs: cx.clone(), states: fine, pins, eval: Box::new(|x| Some(at(x))) };
 
     // Folds: B′·(B − A) ∝ sin(α + δ), C′·(C − A) ∝ sin(θ − δ) with δ = φ3 − φ2.
     let dev = deviation_range(&rev);
@@ -349,7 +362,6 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
             });
         }
     }
-    let rows = states.iter().map(|s| SynthesisRow::new(g, s, w2)).collect();
     let summary = SynthesisSummary {
         law: law_label(law),
         geometry: *g,
