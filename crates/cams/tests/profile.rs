@@ -566,3 +566,119 @@ fn textbook_eccentric_flat_faced_cam() {
     assert!((f.face_min_mm + 25.0).abs() < 1e-9 && (f.face_max_mm - 25.0).abs() < 1e-9, "{f:?}");
     assert_eq!(f.least_prime_radius_mm, 0.0);
 }
+
+/// The circumcentre of three points.
+fn circumcentre(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> [f64; 2] {
+    let d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
+    let (a2, b2, c2) = (a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1], c[0] * c[0] + c[1] * c[1]);
+    [
+        (a2 * (b[1] - c[1]) + b2 * (c[1] - a[1]) + c2 * (a[1] - b[1])) / d,
+        (a2 * (c[0] - b[0]) + b2 * (a[0] - c[0]) + c2 * (b[0] - a[0])) / d,
+    ]
+}
+
+/// The circular-arc cam with a flat-faced follower, a cam "of specified contour" in the textbooks
+/// (S. S. Rattan, *Theory of Machines*, and R. S. Khurmi & J. K. Gupta, *Theory of Machines*, cams
+/// chapter: circular-arc cam, flat-faced follower). The cam is a base circle of radius r₁, two
+/// circular flanks of radius R and a nose of radius r₂; the textbooks state the follower's lift as
+/// `x = (R − r₁)(1 − cos θ)` while the face touches the flank and `x = d·cos(α − θ) + r₂ − r₁` while
+/// it touches the nose (d: cam centre to nose centre, α: angle of lift), velocity `ω(R − r₁) sin θ`
+/// on the flank. Here the two stated lifts are given to loomkin as a law (each piece a pure
+/// sinusoidal acceleration, integrated from rest), and the flat-faced cam loomkin synthesises from
+/// it must be that very cam: its profile over the flank a circle of radius R whose centre lies
+/// R − r₁ from the cam axis, over the nose a circle of radius r₂ centred d from the axis, its radius
+/// of curvature R and r₂ there, and the face reaching ±(R − r₁)·sin θ_f (the largest x′, at the
+/// flank–nose junction θ_f).
+///
+/// Geometry (triangle cam axis O, flank centre P, nose centre Q): OP = R − r₁, OQ = d = r₁ + L − r₂,
+/// PQ = R − r₂ (the nose touches the flank inside), ∠POQ = 180° − α, so
+/// `R = (r₁² + d² − r₂² − 2·d·r₁·cos α) / (2·(r₁ − r₂ − d·cos α))`, and at the junction the face is
+/// normal to PQ: `tan θ_f = d·sin α / (R − r₁ + d·cos α)`. Inputs: r₁ = 30 mm, lift L = 20 mm,
+/// r₂ = 5 mm, α = 75° (then R = 82.42 mm, θ_f = 34.15°).
+#[test]
+fn textbook_circular_arc_cam_flat_faced() {
+    use loomkin_laws::{AccelPiece, EndCondition, Law, Sine};
+    use std::f64::consts::FRAC_PI_2;
+    let (r1, lift, r2, alpha_deg) = (30.0f64, 20.0f64, 5.0f64, 75.0f64);
+    let alpha = alpha_deg.to_radians();
+    let d = r1 + lift - r2;
+    let big_r = (r1 * r1 + d * d - r2 * r2 - 2.0 * d * r1 * alpha.cos()) / (2.0 * (r1 - r2 - d * alpha.cos()));
+    let theta_f = (d * alpha.sin()).atan2(big_r - r1 + d * alpha.cos());
+    let xf = theta_f / alpha;
+    // Lift against x = θ/α ∈ [0, 1]: d²x/dx² = α²·d²x/dθ². Flank: (R − r₁)·cos θ; nose: −d·cos(α − θ).
+    let rise = Law::from_accel_pieces(
+        &[
+            AccelPiece::with_sine(
+                xf,
+                &[0.0],
+                Sine { amp: alpha * alpha * (big_r - r1), omega: alpha, phase: FRAC_PI_2 },
+            ),
+            AccelPiece::with_sine(
+                1.0 - xf,
+                &[0.0],
+                Sine { amp: -alpha * alpha * d, omega: alpha, phase: FRAC_PI_2 - alpha * (1.0 - xf) },
+            ),
+        ],
+        EndCondition::Rest,
+        "circular-arc rise",
+    )
+    .unwrap();
+    // The return is the rise mirrored (a symmetric cam): r(x) = 1 − rise(1 − x), nose first.
+    let back = Law::from_accel_pieces(
+        &[
+            AccelPiece::with_sine(1.0 - xf, &[0.0], Sine { amp: alpha * alpha * d, omega: alpha, phase: FRAC_PI_2 }),
+            AccelPiece::with_sine(
+                xf,
+                &[0.0],
+                Sine { amp: -alpha * alpha * (big_r - r1), omega: alpha, phase: FRAC_PI_2 - alpha * xf },
+            ),
+        ],
+        EndCondition::Rest,
+        "circular-arc return",
+    )
+    .unwrap();
+    // The stated lifts themselves, before any cam is made (the law is normalised to s(1) = 1).
+    for k in 0..=200 {
+        let th = alpha * k as f64 / 200.0;
+        let stated = if th <= theta_f { (big_r - r1) * (1.0 - th.cos()) } else { d * (alpha - th).cos() + r2 - r1 };
+        assert!((lift * rise.eval(th / alpha).s - stated).abs() < 1e-9, "lift at {th} rad");
+    }
+    let m = Motion::from_parts(
+        StrokeUnit::Mm,
+        &[
+            (0.0, alpha_deg, Some(&rise), 0.0, lift),
+            (alpha_deg, 2.0 * alpha_deg, Some(&back), lift, -lift),
+            (2.0 * alpha_deg, 360.0, None, 0.0, 0.0),
+        ],
+    )
+    .unwrap();
+    let cam = CamProfile::new(&m, &design(Follower::Flat, Closure::Single, 0.0, Size::PrimeRadiusMm(r1))).unwrap();
+    let tf = theta_f.to_degrees();
+    // One arc per contact region, on each side of the nose; its centre from three of its points.
+    let arcs = [
+        (0.0, tf, big_r, big_r - r1),
+        (tf, 2.0 * alpha_deg - tf, r2, d),
+        (2.0 * alpha_deg - tf, 2.0 * alpha_deg, big_r, big_r - r1),
+    ];
+    for (a, b, radius, centre_dist) in arcs {
+        let at = |f: f64| cam.point(Curve::Wall(0), a + f * (b - a));
+        let c = circumcentre(at(0.01), at(0.5), at(0.99));
+        assert!((c[0].hypot(c[1]) - centre_dist).abs() < 1e-9, "arc {a}…{b}°: centre {c:?}");
+        for k in 0..=100 {
+            let p = at(k as f64 / 100.0);
+            assert!(((p[0] - c[0]).hypot(p[1] - c[1]) - radius).abs() < 1e-9, "arc {a}…{b}° at {k}: {p:?}");
+            let q = cam.eval(0, a + (k as f64 / 100.0).clamp(1e-6, 1.0 - 1e-6) * (b - a));
+            assert!((1.0 / q.curvature_profile_per_mm - radius).abs() < 1e-8 * radius, "ρ at {}°", q.angle_deg);
+        }
+    }
+    // The base circle between the lifts.
+    for k in 0..=50 {
+        let p = cam.point(Curve::Wall(0), 2.0 * alpha_deg + (360.0 - 2.0 * alpha_deg) * k as f64 / 50.0);
+        assert!((p[0].hypot(p[1]) - r1).abs() < 1e-9);
+    }
+    let f = cam.flat_extremes_report().unwrap();
+    let reach = (big_r - r1) * theta_f.sin();
+    assert!((f.face_max_mm - reach).abs() < 1e-9 && (f.face_min_mm + reach).abs() < 1e-9, "{f:?} vs ±{reach}");
+    assert!((f.min_radius_profile_mm - r2).abs() < 1e-9, "{f:?}");
+    assert!((big_r - 82.42).abs() < 5e-3 && (tf - 34.15).abs() < 5e-3, "R = {big_r}, θ_f = {tf}");
+}
