@@ -2,8 +2,8 @@
 //! ellipse, analysis of a spline cam, synthesis of the default law; plus the vector-loop primitives.
 
 use loomkin_mech::{
-    AnalysisOptions, Cam, ModulatorGeometry, NewtonOptions, OutputLawSpec, SynthesisOptions, Vec2, analyze, cam_loop,
-    synthesize,
+    AnalysisOptions, Cam, ModulatorGeometry, NewtonOptions, OutputLawSpec, SynthesisOptions, Vec2, analyze,
+    analyze_into, cam_loop, synthesize, synthesize_into,
 };
 use nalgebra::SVector;
 
@@ -17,6 +17,18 @@ fn analyze_ellipse_0_1deg(bencher: divan::Bencher) {
     let (g, cam) = (ModulatorGeometry::PAPER, Cam::paper());
     let o = AnalysisOptions { step_deg: 0.1, ..AnalysisOptions::default() };
     bencher.counter(divan::counter::ItemsCount::new(3601usize)).bench_local(|| analyze(&g, &cam, &o).unwrap());
+}
+
+/// As `analyze_ellipse_0_1deg`, into the previous result (`analyze_into`, tables' memory reused),
+/// as a loop of analyses (sweep, tolerance study) runs it.
+#[divan::bench]
+fn analyze_ellipse_0_1deg_into(bencher: divan::Bencher) {
+    let (g, cam) = (ModulatorGeometry::PAPER, Cam::paper());
+    let o = AnalysisOptions { step_deg: 0.1, ..AnalysisOptions::default() };
+    let mut out = analyze(&g, &cam, &o).unwrap();
+    bencher
+        .counter(divan::counter::ItemsCount::new(3601usize))
+        .bench_local(|| analyze_into(&g, &cam, &o, &mut out).unwrap());
 }
 
 /// Task 1 with a synthesised cam given as 720 points (periodic spline).
@@ -37,6 +49,18 @@ fn synthesize_default_0_1deg(bencher: divan::Bencher) {
     let (g, law) = (ModulatorGeometry::PAPER, OutputLawSpec::default());
     let o = SynthesisOptions { step_deg: 0.1, ..SynthesisOptions::default() };
     bencher.counter(divan::counter::ItemsCount::new(3601usize)).bench_local(|| synthesize(&g, &law, &o).unwrap());
+}
+
+/// As `synthesize_default_0_1deg`, into the previous result (`synthesize_into`, tables' memory
+/// reused).
+#[divan::bench]
+fn synthesize_default_0_1deg_into(bencher: divan::Bencher) {
+    let (g, law) = (ModulatorGeometry::PAPER, OutputLawSpec::default());
+    let o = SynthesisOptions { step_deg: 0.1, ..SynthesisOptions::default() };
+    let mut out = synthesize(&g, &law, &o).unwrap();
+    bencher
+        .counter(divan::counter::ItemsCount::new(3601usize))
+        .bench_local(|| synthesize_into(&g, &law, &o, &mut out).unwrap());
 }
 
 /// The bare continuation of loop (2) over 3601 inputs (Newton + rates per step).

@@ -40,7 +40,7 @@ mod vloop;
 
 pub use curve::{CurvePoint, Ellipse, PlaneCurve};
 pub use dobby::analysis::{
-    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, analyze, assemble, cam_loop,
+    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, analyze, analyze_into, assemble, cam_loop,
     modulator_loops,
 };
 pub use dobby::cam::{Cam, parse_point_table};
@@ -54,7 +54,9 @@ pub use dobby::law::{OutputLaw, OutputLawSpec, OutputState, max_dwell_deg};
 pub use dobby::pose::{MechanismPose, nearest_state};
 pub use dobby::report::{CamChecks, CamProfile};
 pub use dobby::sweep::{SweepReport, SweepRow, alpha_sweep};
-pub use dobby::synthesis::{Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize};
+pub use dobby::synthesis::{
+    Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize, synthesize_into,
+};
 pub use dobby::tolerance;
 pub use dobby::tolerance::Tolerance;
 pub use dyad::{circle_circle, line_circle};

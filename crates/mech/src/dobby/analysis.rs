@@ -410,6 +410,26 @@ pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit
 /// to Γ (the cam cannot drive the lever); the slot misses the output crank
 /// (`|φ3 − φ2| > arcsin(l6/l2)`), with the admissible range of α for this cam.
 pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Result<Analysis> {
+    analyze_in(g, cam, opts, Vec::new(), Vec::new())
+}
+
+/// [`analyze`] into an earlier result `out`, whose tables' memory is reused (a loop of analyses
+/// then allocates, and the system maps, no fresh memory for them). The result is the same as
+/// [`analyze`]'s; on an error `out` is left with empty tables.
+pub fn analyze_into(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions, out: &mut Analysis) -> Result<()> {
+    let (rows, states) = (std::mem::take(&mut out.rows), std::mem::take(&mut out.states));
+    *out = analyze_in(g, cam, opts, rows, states)?;
+    Ok(())
+}
+
+/// [`analyze`] filling the (cleared) vectors `rows` and `states`.
+fn analyze_in(
+    g: &ModulatorGeometry,
+    cam: &Cam,
+    opts: &AnalysisOptions,
+    mut rows: Vec<AnalysisRow>,
+    mut states: Vec<ModulatorState>,
+) -> Result<Analysis> {
     g.validate()?;
     check_common(opts.step_deg, opts.input_speed_rad_s, opts.roller_m, opts.pressure_limit_deg)?;
     Range::closed(-360.0, 360.0, "°").check("start_deg", opts.start_deg)?;
@@ -528,8 +548,10 @@ pub fn analyze(g: &ModulatorGeometry, cam: &Cam, opts: &AnalysisOptions) -> Resu
     let refs: Vec<f64> = fine.iter().map(|s| s.phi6[0]).collect();
 
     let w2 = opts.input_speed_rad_s;
-    let mut states = Vec::with_capacity(xs.len());
-    let mut rows = Vec::with_capacity(xs.len());
+    states.clear();
+    rows.clear();
+    states.reserve(xs.len());
+    rows.reserve(xs.len());
     for &x in &xs {
         let j = Revolution::nearest(&cx, x);
         let (st, e2) = advance(&traced[j], x)?;
@@ -632,6 +654,23 @@ fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechErr
 mod tests {
     use super::*;
     use crate::{OutputLawSpec, SynthesisOptions, synthesize};
+
+    /// An analysis into an earlier result equals a fresh one, whatever the earlier result held
+    /// (another step, another cam); an error leaves empty tables.
+    #[test]
+    fn analysis_into_an_earlier_result_equals_a_fresh_one() {
+        let g = ModulatorGeometry::PAPER;
+        let fine = AnalysisOptions { step_deg: 0.5, ..Default::default() };
+        let coarse = AnalysisOptions { step_deg: 5.0, roller_m: Some(0.03), ..Default::default() };
+        let mut out = analyze(&g, &Cam::ellipse(0.36, 0.58).unwrap(), &fine).unwrap();
+        for o in [coarse, fine, coarse] {
+            analyze_into(&g, &Cam::paper(), &o, &mut out).unwrap();
+            assert_eq!(out, analyze(&g, &Cam::paper(), &o).unwrap());
+        }
+        let bad = ModulatorGeometry { alpha_deg: 10.0, ..g };
+        assert!(analyze_into(&bad, &Cam::paper(), &fine, &mut out).is_err());
+        assert!(out.rows.is_empty() && out.states.is_empty());
+    }
 
     /// Independent route for the scalar cam-loop step: the general Newton continuation of the
     /// vector loop ([`LoopSystem::advance`]) from the same states, over a revolution at 0.25°, for

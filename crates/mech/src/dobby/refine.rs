@@ -150,6 +150,29 @@ pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
     best
 }
 
+/// The grid's local maxima (`≥` both neighbours; a plateau counts at every point) in decreasing
+/// order of value, equal values in grid order, each dropped when it neighbours the last one kept;
+/// the first [`CANDIDATES`] of them. Only the best `3·CANDIDATES` maxima are ordered: a kept
+/// maximum drops at most its two neighbours, so the first [`CANDIDATES`] kept are among them (a
+/// plateau, e.g. a dwell, has hundreds of local maxima, and sorting them all cost more than the
+/// refinement).
+fn best_local_maxima(vals: &[f64]) -> Vec<usize> {
+    let n = vals.len();
+    let v = |k: usize| finite_or_neg_inf(vals[k]);
+    let order = |i: &usize, j: &usize| v(*j).total_cmp(&v(*i)).then(i.cmp(j));
+    let mut cands: Vec<usize> =
+        (0..n).filter(|&k| (k == 0 || v(k) >= v(k - 1)) && (k + 1 == n || v(k) >= v(k + 1))).collect();
+    let keep = 3 * CANDIDATES;
+    if cands.len() > keep {
+        cands.select_nth_unstable_by(keep - 1, order);
+        cands.truncate(keep);
+    }
+    cands.sort_by(order);
+    cands.dedup_by(|a, b| a.abs_diff(*b) <= 1);
+    cands.truncate(CANDIDATES);
+    cands
+}
+
 /// Largest value of a quantity given on the grid `xs` (values `vals`) and continuously by `f`:
 /// the [`CANDIDATES`] best local maxima of the grid are each refined on their two neighbouring
 /// intervals. Of maxima equal to rounding (1e-12 relative), the first over the grid is reported.
@@ -159,10 +182,7 @@ pub(crate) fn refined_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64) -> E
         return Extreme { value: f64::NEG_INFINITY, at: 0.0 };
     }
     let v = |k: usize| finite_or_neg_inf(vals[k]);
-    let mut cands: Vec<usize> =
-        (0..n).filter(|&k| (k == 0 || v(k) >= v(k - 1)) && (k + 1 == n || v(k) >= v(k + 1))).collect();
-    cands.sort_by(|&i, &j| v(j).total_cmp(&v(i)).then(i.cmp(&j)));
-    cands.dedup_by(|a, b| a.abs_diff(*b) <= 1);
+    let cands = best_local_maxima(vals);
     // Equal maxima (a law repeated over the turn gives several) are told apart by rounding alone:
     // values within 1e-12 (relative) of the best count as equal, and the first over the turn wins.
     let better = |e: &Extreme, best: &Extreme| {
@@ -226,7 +246,7 @@ impl Revolution<'_> {
             return 0;
         }
         let h = (xs[n - 1] - xs[0]) / (n - 1) as f64;
-        let k = ((x - xs[0]) / h).round();
+        let k = crate::planar::round((x - xs[0]) / h);
         if k.is_finite() { (k.max(0.0) as usize).min(n - 1) } else { 0 }
     }
 
@@ -301,6 +321,33 @@ mod tests {
         // A kink in the same bracket is still located to 1e-12.
         let e = golden_max(&|x: f64| 1.0 - (x - 1.234_567_891_2).abs(), 1.234 - h, 1.234 + h);
         assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
+    }
+
+    /// Independent route for the partial ordering of candidates: every local maximum sorted,
+    /// then the neighbours of kept ones dropped, on grids with plateaus and repeated values.
+    #[test]
+    fn best_local_maxima_match_a_full_sort() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        let full = |vals: &[f64]| {
+            let v = |k: usize| finite_or_neg_inf(vals[k]);
+            let n = vals.len();
+            let mut c: Vec<usize> =
+                (0..n).filter(|&k| (k == 0 || v(k) >= v(k - 1)) && (k + 1 == n || v(k) >= v(k + 1))).collect();
+            c.sort_by(|&i, &j| v(j).total_cmp(&v(i)).then(i.cmp(&j)));
+            c.dedup_by(|a, b| a.abs_diff(*b) <= 1);
+            c.truncate(CANDIDATES);
+            c
+        };
+        // Few distinct levels make long plateaus and many equal maxima; NaN counts as −∞.
+        let grid = prop::collection::vec(prop_oneof![0u8..4, Just(9)], 1..300);
+        TestRunner::new(Config { cases: 500, ..Config::default() })
+            .run(&grid, |g| {
+                let vals: Vec<f64> = g.iter().map(|&k| if k == 9 { f64::NAN } else { f64::from(k) }).collect();
+                prop_assert_eq!(best_local_maxima(&vals), full(&vals));
+                Ok(())
+            })
+            .unwrap();
     }
 
     #[test]

@@ -72,7 +72,12 @@ pub struct CamProfile {
 impl CamProfile {
     /// The profile of a path `(point, tangent)` for roller radius `r_m` (0 gives empty walls).
     pub(crate) fn from_path(path: &[(Vec2, Vec2)], r_m: f64) -> Self {
-        let mut out = CamProfile::default();
+        let walls = if r_m > 0.0 { path.len() } else { 0 };
+        let mut out = CamProfile {
+            centre: Vec::with_capacity(path.len()),
+            wall_left: Vec::with_capacity(walls),
+            wall_right: Vec::with_capacity(walls),
+        };
         let mut last_n = Vec2::new(0.0, 1.0);
         for (p, t) in path {
             let n = t.norm();

@@ -246,6 +246,31 @@ fn law_label(spec: &OutputLawSpec) -> String {
 /// normal to its cam), with the admissible range of α or θ. Undercut, high pressure angles and
 /// crossing walls are warnings.
 pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOptions) -> Result<Synthesis> {
+    synthesize_in(g, law, opts, Vec::new(), Vec::new())
+}
+
+/// [`synthesize`] into an earlier result `out`, whose tables' memory is reused (a loop of
+/// syntheses then allocates, and the system maps, no fresh memory for them). The result is the
+/// same as [`synthesize`]'s; on an error `out` is left with empty tables.
+pub fn synthesize_into(
+    g: &ModulatorGeometry,
+    law: &OutputLawSpec,
+    opts: &SynthesisOptions,
+    out: &mut Synthesis,
+) -> Result<()> {
+    let (rows, states) = (std::mem::take(&mut out.rows), std::mem::take(&mut out.states));
+    *out = synthesize_in(g, law, opts, rows, states)?;
+    Ok(())
+}
+
+/// [`synthesize`] filling the (cleared) vectors `rows` and `states`.
+fn synthesize_in(
+    g: &ModulatorGeometry,
+    law: &OutputLawSpec,
+    opts: &SynthesisOptions,
+    mut rows: Vec<SynthesisRow>,
+    mut states: Vec<ModulatorState>,
+) -> Result<Synthesis> {
     g.validate()?;
     check_common(opts.step_deg, opts.input_speed_rad_s, Some(opts.roller_m), opts.pressure_limit_deg)?;
     let out = law.build()?;
@@ -298,8 +323,10 @@ pub fn synthesize(g: &ModulatorGeometry, law: &OutputLawSpec, opts: &SynthesisOp
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
     let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x, e(x));
     // The table: each state and its row share e(φ2).
-    let mut states = Vec::with_capacity(xs.len());
-    let mut rows = Vec::with_capacity(xs.len());
+    states.clear();
+    rows.clear();
+    states.reserve(xs.len());
+    rows.reserve(xs.len());
     for &x in &xs {
         let e2 = e(x);
         let s = law_state(g, &arms, &out, &cx, &refs, x, e2);
@@ -394,6 +421,22 @@ mod tests {
     /// The dense curves, computed on demand, are the closed-form curves: at 0.1° every second
     /// dense point is the table's point (same input angle, bit for bit), walls included; a clone
     /// and an equal synthesis compare equal whether or not their curves were computed yet.
+    /// A synthesis into an earlier result equals a fresh one, whatever the earlier result held.
+    #[test]
+    fn synthesis_into_an_earlier_result_equals_a_fresh_one() {
+        let g = ModulatorGeometry::PAPER;
+        let law = OutputLawSpec::default();
+        let other = OutputLawSpec { dwell_deg: 30.0, rise: loomkin_laws::LawSpec::ModifiedSine, ..law.clone() };
+        let (fine, coarse) = (SynthesisOptions { step_deg: 0.5, ..Default::default() }, SynthesisOptions::default());
+        let mut out = synthesize(&g, &other, &fine).unwrap();
+        for o in [coarse, fine, coarse] {
+            synthesize_into(&g, &law, &o, &mut out).unwrap();
+            let fresh = synthesize(&g, &law, &o).unwrap();
+            assert_eq!(out, fresh);
+            assert_eq!(out.dense_profiles(), fresh.dense_profiles());
+        }
+    }
+
     #[test]
     fn dense_curves_on_demand_pass_through_the_table_points() {
         let g = ModulatorGeometry::PAPER;
