@@ -30,7 +30,7 @@ impl AccelPiece {
 
 /// The pieces with their acceleration multiplied by a power of two (exact) that brings its
 /// largest coefficient near 1, when that coefficient is beyond 2^±500; otherwise unchanged.
-fn rescaled(pieces: &[AccelPiece]) -> Vec<AccelPiece> {
+fn rescaled(pieces: &[AccelPiece]) -> std::borrow::Cow<'_, [AccelPiece]> {
     let peak = pieces
         .iter()
         .flat_map(|p| p.poly.iter().copied().chain(p.sine.map(|s| s.amp)))
@@ -39,7 +39,7 @@ fn rescaled(pieces: &[AccelPiece]) -> Vec<AccelPiece> {
         .fold(0.0, f64::max);
     let e = if peak > 0.0 { peak.log2().round() as i32 } else { 0 };
     if e.abs() <= 500 {
-        return pieces.to_vec();
+        return std::borrow::Cow::Borrowed(pieces);
     }
     // Two factors, each representable (2^1074 is not, for a peak of 5e-324).
     let (f1, f2) = (2f64.powi(-e / 2), 2f64.powi(-e + e / 2));
@@ -50,7 +50,8 @@ fn rescaled(pieces: &[AccelPiece]) -> Vec<AccelPiece> {
             poly: p.poly.iter().map(|c| c * f1 * f2).collect(),
             sine: p.sine.map(|s| Sine { amp: s.amp * f1 * f2, ..s }),
         })
-        .collect()
+        .collect::<Vec<_>>()
+        .into()
 }
 
 /// How [`Law::from_accel_pieces`] treats the end of the integrated motion.
@@ -115,8 +116,12 @@ impl Law {
             return Err(LawError::NotARise { field: field.into(), reason: "no acceleration segments given".into() });
         }
         let mut sum = 0.0;
+        let widths = Range::open_closed(0.0, 1.0, "");
         for (i, p) in pieces.iter().enumerate() {
-            Range::open_closed(0.0, 1.0, "").check(&format!("{field}[{i}].length"), p.width)?;
+            // The field name is formatted only for the error (the optimisers build laws in a loop).
+            if !widths.contains(p.width) {
+                widths.check(&format!("{field}[{i}].length"), p.width)?;
+            }
             sum += p.width;
         }
         if (sum - 1.0).abs() > 1e-9 {
@@ -159,7 +164,7 @@ impl Law {
             });
         }
         let k = 1.0 / s;
-        let segs: Vec<Segment> = segs.iter().map(|g| g.scaled(k)).collect();
+        segs.iter_mut().for_each(|g| *g = g.scaled(k));
         // Every metric must be finite: max |s|, |v|, |a|, |j| (and the two derivatives used to
         // locate them) are bounded by the coefficient sums, and Cm = max v·a and Ca,rms = √∫a² by
         // the products of those bounds. A net displacement tiny against the acceleration (its

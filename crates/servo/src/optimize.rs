@@ -1,7 +1,7 @@
 //! Moving the free definition points to minimise the motor torque: multi-start Nelder–Mead.
 
 use crate::drive::CYCLE_DEG;
-use crate::torque::{PhaseModel, models, stats};
+use crate::torque::{PhaseModel, models, stats_above};
 use crate::{Drive, Result, ServoError, SplineLaw, TorqueSummary, summaries};
 use loomkin_units::Range;
 use rayon::prelude::*;
@@ -220,13 +220,16 @@ impl Mapping {
 }
 
 /// The objective at every speed: worst peak or RMS torque (N·m); `+∞` for invalid points.
+///
+/// Only the worst value counts, so each speed's peak search is told the worst so far (a segment
+/// whose torque bound is below it is not searched), and the RMS objective searches no peak at all;
+/// the value is the same, bit for bit, as the maximum of the full [`crate::summary`] figures.
 fn objective_value(law: &SplineLaw, ms: &[([PhaseModel; 4], f64)], obj: Objective) -> f64 {
     let mut worst = 0.0f64;
     for (m, cycle_s) in ms {
-        let s = stats(law.law(), m, *cycle_s, false, obj == Objective::Rms);
         worst = worst.max(match obj {
-            Objective::Peak => s.peak_torque_nm,
-            Objective::Rms => s.rms_torque_nm,
+            Objective::Peak => stats_above(law.law(), m, *cycle_s, false, false, worst).peak_torque_nm,
+            Objective::Rms => stats_above(law.law(), m, *cycle_s, false, true, f64::INFINITY).rms_torque_nm,
         });
     }
     worst

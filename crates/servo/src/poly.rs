@@ -52,10 +52,9 @@ pub(crate) fn shift(p: &[f64], x0: f64) -> Vec<f64> {
     q
 }
 
-/// Coefficients of `q(τ) = p(h − τ)` (a local polynomial read backwards from the far end).
-pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
-    let n = p.len();
-    let mut q = vec![0.0; n];
+/// Coefficients of `q(τ) = p(h − τ)` (a local polynomial read backwards from the far end), added
+/// into `q` (zeroed, as long as `p`).
+pub(crate) fn reflect_into(p: &[f64], h: f64, q: &mut [f64]) {
     for (k, &c) in p.iter().enumerate() {
         // c·(h − τ)^k = c·Σ_m C(k, m) h^(k−m) (−τ)^m
         let mut binom = 1.0;
@@ -65,30 +64,53 @@ pub(crate) fn reflect(p: &[f64], h: f64) -> Vec<f64> {
             binom = binom * (k - m) as f64 / (m + 1) as f64;
         }
     }
-    q
 }
 
 /// Largest `|p(t)|` on `[0, w]` and where it occurs (see [`abs_max_by`]).
+///
+/// The polynomials of the torque models (up to 16 coefficients) go to a kernel of their exact
+/// length, where the Horner loops have a fixed trip count (unrolled, no slice iterators); the
+/// arithmetic is the same as [`eval`]'s (a Horner sum started from the leading coefficient equals
+/// one started from 0), so the results are bit-identical to the general path.
 pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
-    // The two derivatives on the stack for the degrees the torque models have (≤ 16), as `deriv`
-    // computes them; the heap beyond.
-    let (mut d1, mut d2) = ([0.0; 16], [0.0; 16]);
-    let (heap1, heap2);
-    let (dp, ddp): (&[f64], &[f64]) = if p.len() <= 17 {
-        let n1 = p.len().saturating_sub(1);
-        for k in 1..p.len() {
-            d1[k - 1] = k as f64 * p[k];
+    macro_rules! by_length {
+        ($($len:literal)*) => {
+            match p.len() {
+                $($len => abs_max_fixed::<$len>(p.try_into().expect("length matched"), w, n),)*
+                _ => abs_max_slice(p, w, n),
+            }
+        };
+    }
+    by_length!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+}
+
+/// `Σ_{k<len} c_k t^k` by Horner, for a fixed `len ≤ N` (the same sums as [`eval`]).
+#[inline(always)]
+fn horner_fixed<const N: usize>(c: &[f64; N], len: usize, t: f64) -> f64 {
+    let mut acc = 0.0;
+    for k in (0..N).rev() {
+        if k < len {
+            acc = if k + 1 == len { c[k] } else { acc * t + c[k] };
         }
-        for k in 1..n1 {
-            d2[k - 1] = k as f64 * d1[k];
-        }
-        (&d1[..n1], &d2[..n1.saturating_sub(1)])
-    } else {
-        heap1 = deriv(p);
-        heap2 = deriv(&heap1);
-        (&heap1, &heap2)
-    };
-    let (g0, mut d0) = (eval(p, 0.0), eval(dp, 0.0));
+    }
+    acc
+}
+
+/// [`abs_max`] for a polynomial of exactly `N` coefficients.
+fn abs_max_fixed<const N: usize>(p: &[f64; N], w: f64, n: usize) -> (f64, f64) {
+    // p' (N − 1 coefficients) and p'' (N − 2), as `deriv` computes them.
+    let (mut dp, mut ddp) = ([0.0; N], [0.0; N]);
+    for k in 1..N {
+        dp[k - 1] = k as f64 * p[k];
+    }
+    for k in 1..N.saturating_sub(1) {
+        ddp[k - 1] = k as f64 * dp[k];
+    }
+    let (l1, l2) = (N - 1, N.saturating_sub(2));
+    let g = |t: f64| horner_fixed(p, N, t);
+    let d = |t: f64| horner_fixed(&dp, l1, t);
+    let dd = |t: f64| horner_fixed(&ddp, l2, t);
+    let (g0, mut d0) = (g(0.0), d(0.0));
     let mut best = (g0.abs(), 0.0);
     let mut take = |v: f64, t: f64| {
         if v.abs() > best.0 {
@@ -100,17 +122,67 @@ pub(crate) fn abs_max(p: &[f64], w: f64, n: usize) -> (f64, f64) {
     let mut t0 = 0.0;
     for i in 1..=n {
         let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = (eval(p, t1), eval(dp, t1));
+        let (g1, d1) = (g(t1), d(t1));
         take(g1, t1);
         if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
             // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
-            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(dp, t), eval(ddp, t)));
+            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (d(t), dd(t)));
+            take(g(t), t);
+        }
+        t0 = t1;
+        d0 = d1;
+    }
+    best
+}
+
+/// [`abs_max`] for any length, on the heap.
+fn abs_max_slice(p: &[f64], w: f64, n: usize) -> (f64, f64) {
+    let dp = deriv(p);
+    let ddp = deriv(&dp);
+    let (g0, mut d0) = (eval(p, 0.0), eval(&dp, 0.0));
+    let mut best = (g0.abs(), 0.0);
+    let mut take = |v: f64, t: f64| {
+        if v.abs() > best.0 {
+            best = (v.abs(), t);
+        }
+    };
+    let n = n.max(1);
+    let h = w / n as f64;
+    let mut t0 = 0.0;
+    for i in 1..=n {
+        let t1 = if i == n { w } else { i as f64 * h };
+        let (g1, d1) = (eval(p, t1), eval(&dp, t1));
+        take(g1, t1);
+        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
+            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t)));
             take(eval(p, t), t);
         }
         t0 = t1;
         d0 = d1;
     }
     best
+}
+
+/// An upper bound of `|p(t)|` on `[0, w]` that covers the rounding of [`abs_max`]'s sums, for `p`
+/// of at most 8 coefficients (zeros past its degree): the Taylor coefficients `q_k` at the middle
+/// `c = w/2` give `|p(c + τ)| ≤ Σ |q_k| (w/2)^k`, plus `1e-13·Σ |p_k| w^k`, far above the rounding
+/// of the shift, of this sum and of a Horner sum of `p` on `[0, w]` (each below `32·ε·Σ |p_k| w^k`
+/// for 8 coefficients). `+∞` or NaN when a sum is not finite.
+pub(crate) fn abs_bound(p: &[f64; 8], w: f64) -> f64 {
+    let c = 0.5 * w;
+    let mut q = *p;
+    // Repeated synthetic division by (t − c): q becomes the coefficients in τ = t − c.
+    for i in 0..7 {
+        for j in (i..7).rev() {
+            q[j] += c * q[j + 1];
+        }
+    }
+    let (mut taylor, mut scale) = (0.0, 0.0);
+    for k in (0..8).rev() {
+        taylor = taylor * c + q[k].abs();
+        scale = scale * w + p[k].abs();
+    }
+    taylor + 1e-13 * scale
 }
 
 /// Largest `|g(t)|` on `[0, w]` and where it occurs, for `f(t) = (g(t), g'(t))`.
@@ -185,7 +257,8 @@ mod tests {
     fn shift_and_reflect_agree_with_direct_evaluation() {
         let p = [0.3, -1.2, 2.5, 0.7, -0.4, 1.1];
         let q = shift(&p, 0.37);
-        let r = reflect(&p, 0.21);
+        let mut r = [0.0; 6];
+        reflect_into(&p, 0.21, &mut r);
         for &x in &[0.0, 0.4, 0.8, 1.0] {
             assert!((eval(&q, x) - eval(&p, x - 0.37)).abs() < 1e-13);
             assert!((eval(&r, x) - eval(&p, 0.21 - x)).abs() < 1e-13);
@@ -228,6 +301,40 @@ mod tests {
         assert!((v - 0.5).abs() < 1e-14 && (t - 0.3).abs() < 1e-7, "{v} {t}");
         let (v, t) = abs_max(&p, 2.0, 8);
         assert!((v - (1.7f64.powi(2) - 0.5)).abs() < 1e-12 && t == 2.0);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
+        /// The bound holds over every value `abs_max` reports and a dense grid, for polynomials
+        /// with large cancelling coefficients (as narrow spline segments have).
+        #[test]
+        fn abs_bound_is_an_upper_bound(
+            p in proptest::collection::vec(-1e4f64..1e4, 1..=8),
+            w in 1e-3f64..1.0,
+        ) {
+            let mut q = [0.0; 8];
+            q[..p.len()].copy_from_slice(&p);
+            let bound = abs_bound(&q, w);
+            let (peak, _) = abs_max(&p, w, 2 * p.len());
+            proptest::prop_assert!(bound >= peak, "{bound} < {peak}");
+            for i in 0..=1000 {
+                let t = w * i as f64 / 1000.0;
+                proptest::prop_assert!(bound >= eval(&p, t).abs());
+            }
+        }
+    }
+
+    /// The fixed-length kernels equal the slice path bit for bit.
+    #[test]
+    fn abs_max_fixed_and_slice_paths_agree() {
+        for len in 1..=16 {
+            let p: Vec<f64> = (0..len).map(|k| ((k * 5 % 7) as f64 - 3.0) * 1.7f64.powi(k as i32 % 4)).collect();
+            for w in [0.05, 0.7, 1.3] {
+                let a = abs_max(&p, w, 2 * len + 2);
+                let b = abs_max_slice(&p, w, 2 * len + 2);
+                assert_eq!((a.0.to_bits(), a.1.to_bits()), (b.0.to_bits(), b.1.to_bits()), "len {len} w {w}");
+            }
+        }
     }
 
     /// The stack path (degree ≤ 16) and the heap path give the same peak: the same polynomial

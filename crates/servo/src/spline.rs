@@ -164,7 +164,9 @@ impl SplineLaw {
         }
         for (p, c) in points.windows(2).zip(&local).rev() {
             let h = p[1][0] - p[0][0];
-            let mirrored: Vec<f64> = poly::reflect(c, h).iter().map(|v| -v).collect();
+            let mut mirrored = [0.0; 4];
+            poly::reflect_into(c, h, &mut mirrored);
+            mirrored.iter_mut().for_each(|v| *v = -*v);
             pieces.push(AccelPiece::poly(h, &mirrored));
         }
         let raw_half = half_displacement(&points, &local);

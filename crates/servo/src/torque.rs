@@ -134,23 +134,52 @@ pub(crate) fn models(drive: &Drive, speed_rpm: f64) -> Result<[PhaseModel; 4]> {
     }))
 }
 
-/// Extremes and ∫M² dx of one phase model on one law segment:
-/// `(peak |M|, its local t, peak |P|, its local t, ∫M² dt_local)`.
-fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool) -> (f64, f64, f64, f64, f64) {
+/// `M(t) = α·s'' + β·s' + γ·s + ε` of one phase model on a polynomial segment, as one polynomial in
+/// the local coordinate (lowest power first), and its degree.
+fn torque_poly(seg: &Segment, m: &PhaseModel) -> ([f64; 8], usize) {
+    let p = seg.displacement_poly();
+    let mut mp = [0.0; 8];
+    for k in 0..8 {
+        let v = if k < 7 { (k + 1) as f64 * p[k + 1] } else { 0.0 };
+        let a = if k < 6 { ((k + 1) * (k + 2)) as f64 * p[k + 2] } else { 0.0 };
+        mp[k] = m.gamma * p[k] + m.beta * v + m.alpha * a;
+    }
+    mp[0] += m.eps;
+    let deg = mp.iter().rposition(|&c| c != 0.0).unwrap_or(0);
+    (mp, deg)
+}
+
+/// Sub-intervals of [`poly::abs_max`]'s scan for a torque polynomial of degree `deg`.
+fn torque_scan(deg: usize) -> usize {
+    2 * deg + 2
+}
+
+/// Peak |M| of one phase model on one law segment with a sinusoid, and its local t.
+fn segment_peak(seg: &Segment, m: &PhaseModel) -> (f64, f64) {
+    poly::abs_max_by(seg.width(), sine_scan(seg), |t| {
+        let k = seg.eval_local(t);
+        (m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps, m.alpha * k.j + m.beta * k.a + m.gamma * k.v)
+    })
+}
+
+/// Sub-intervals of the torque peak scan of a segment with a sinusoid.
+fn sine_scan(seg: &Segment) -> usize {
+    2 * (seg.degree() + 1) + 4 * sine_half_periods(seg) + 4
+}
+
+/// Half periods of the sinusoid over the segment (rounded up).
+fn sine_half_periods(seg: &Segment) -> usize {
+    seg.sine().map_or(0.0, |s| (s.omega.abs() * seg.width() / PI).ceil()) as usize
+}
+
+/// Peak |P| (and its local t) and ∫M² dt_local of one phase model on one law segment; each 0 when
+/// not asked for.
+fn segment_power_rms(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool) -> (f64, f64, f64) {
     let w = seg.width();
     if seg.sine().is_none() {
-        // M(t) = α·s'' + β·s' + γ·s + ε as one polynomial in the local coordinate.
         let p = seg.displacement_poly();
-        let mut mp = [0.0; 8];
-        for k in 0..8 {
-            let v = if k < 7 { (k + 1) as f64 * p[k + 1] } else { 0.0 };
-            let a = if k < 6 { ((k + 1) * (k + 2)) as f64 * p[k + 2] } else { 0.0 };
-            mp[k] = m.gamma * p[k] + m.beta * v + m.alpha * a;
-        }
-        mp[0] += m.eps;
-        let deg = mp.iter().rposition(|&c| c != 0.0).unwrap_or(0);
+        let (mp, deg) = torque_poly(seg, m);
         let mp = &mp[..=deg];
-        let (pm, tm) = poly::abs_max(mp, w, 2 * deg + 2);
         let (pp, tp) = if with_power {
             let mut v = [0.0; 7];
             for (k, c) in v.iter_mut().enumerate() {
@@ -164,22 +193,23 @@ fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool
             (0.0, 0.0)
         };
         let m2 = if with_rms { poly::integral(&poly::mul(mp, mp), w) } else { 0.0 };
-        return (pm, tm, pp, tp, m2);
+        return (pp, tp, m2);
     }
-    let osc = seg.sine().map_or(0.0, |s| (s.omega.abs() * w / PI).ceil()) as usize;
-    let n = 2 * (seg.degree() + 1) + 4 * osc + 4;
-    let (pm, tm) = poly::abs_max_by(w, n, |t| {
-        let k = seg.eval_local(t);
-        (m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps, m.alpha * k.j + m.beta * k.a + m.gamma * k.v)
-    });
-    let (pp, tp) = poly::abs_max_by(w, 2 * n, |t| {
-        let k = seg.eval_local(t);
-        let mm = m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps;
-        let dm = m.alpha * k.j + m.beta * k.a + m.gamma * k.v;
-        (m.kappa * mm * k.v, m.kappa * (dm * k.v + mm * k.a))
-    });
+    let (pp, tp) = if with_power {
+        poly::abs_max_by(w, 2 * sine_scan(seg), |t| {
+            let k = seg.eval_local(t);
+            let mm = m.alpha * k.a + m.beta * k.v + m.gamma * k.s + m.eps;
+            let dm = m.alpha * k.j + m.beta * k.a + m.gamma * k.v;
+            (m.kappa * mm * k.v, m.kappa * (dm * k.v + mm * k.a))
+        })
+    } else {
+        (0.0, 0.0)
+    };
+    if !with_rms {
+        return (pp, tp, 0.0);
+    }
     let rule = gl8();
-    let panels = 1 + 2 * osc;
+    let panels = 1 + 2 * sine_half_periods(seg);
     let hp = w / panels as f64;
     let mut acc = 0.0;
     for i in 0..panels {
@@ -190,7 +220,7 @@ fn segment_stats(seg: &Segment, m: &PhaseModel, with_power: bool, with_rms: bool
             acc += 0.5 * hp * wt * mm * mm;
         }
     }
-    (pm, tm, pp, tp, acc)
+    (pp, tp, acc)
 }
 
 fn gl8() -> &'static [(f64, f64)] {
@@ -237,27 +267,72 @@ pub(crate) struct Stats {
 }
 
 pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: bool, with_rms: bool) -> Stats {
-    let (mut pk_m, mut pk_m_deg, mut pk_p, mut m2) = (0.0f64, 0.0, 0.0f64, 0.0);
+    stats_above(law, ms, cycle_s, with_power, with_rms, 0.0)
+}
+
+/// The largest |M| over the turn and its angle, where a peak not above `floor` need not be found:
+/// `max(floor, value)` is that of the full scan, and so is the angle when `floor = 0`.
+///
+/// The scan reports the largest value, the first of equal maxima in turn order (phases, then
+/// segments, then each segment's own first maximum). A polynomial segment whose upper bound of |M|
+/// ([`poly::abs_bound`]) is below the floor or below the best value found so far is not searched:
+/// it cannot hold that peak.
+fn peak_torque(law: &Law, ms: &[PhaseModel; 4], floor: f64) -> (f64, f64) {
+    let (mut pk_m, mut pk_m_deg) = (0.0f64, 0.0);
     for m in ms {
         if !m.moving {
             if m.eps.abs() > pk_m && m.length_deg > 0.0 {
                 pk_m = m.eps.abs();
                 pk_m_deg = m.start_deg;
             }
-            m2 += m.eps * m.eps * m.duration_s;
             continue;
         }
-        let mut int = 0.0;
         for seg in law.segments() {
-            let (a, ta, p, _, i2) = segment_stats(seg, m, with_power, with_rms);
+            let (a, ta) = if seg.sine().is_none() {
+                let (mp, deg) = torque_poly(seg, m);
+                if poly::abs_bound(&mp, seg.width()) < floor.max(pk_m) {
+                    continue;
+                }
+                poly::abs_max(&mp[..=deg], seg.width(), torque_scan(deg))
+            } else {
+                segment_peak(seg, m)
+            };
             if a > pk_m {
                 pk_m = a;
                 pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
             }
-            pk_p = pk_p.max(p);
-            int += i2;
         }
-        m2 += int * m.duration_s;
+    }
+    (pk_m, pk_m_deg)
+}
+
+/// [`stats`], where a peak torque not above `floor` need not be found: `max(floor, peak_torque_nm)`
+/// is the same as with [`stats`], bit for bit, and so is everything else when `floor = 0`
+/// (`floor = +∞` skips the peak search, for the RMS alone).
+pub(crate) fn stats_above(
+    law: &Law,
+    ms: &[PhaseModel; 4],
+    cycle_s: f64,
+    with_power: bool,
+    with_rms: bool,
+    floor: f64,
+) -> Stats {
+    let (pk_m, pk_m_deg) = if floor == f64::INFINITY { (0.0, 0.0) } else { peak_torque(law, ms, floor) };
+    let (mut pk_p, mut m2) = (0.0f64, 0.0);
+    if with_power || with_rms {
+        for m in ms {
+            if !m.moving {
+                m2 += m.eps * m.eps * m.duration_s;
+                continue;
+            }
+            let mut int = 0.0;
+            for seg in law.segments() {
+                let (p, _, i2) = segment_power_rms(seg, m, with_power, with_rms);
+                pk_p = pk_p.max(p);
+                int += i2;
+            }
+            m2 += int * m.duration_s;
+        }
     }
     Stats {
         peak_torque_nm: pk_m,
@@ -314,5 +389,100 @@ fn point(law: &Law, m: &PhaseModel, drive: &Drive, angle: f64, deg_per_s: f64) -
         a_m_s2: m.stroke_m * k.a / (t * t),
         torque_nm: torque,
         power_w: torque * v * drive.motor_rad_per_m(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{SplineEnd, SplineLaw};
+    use loomkin_laws::LawSpec;
+    use proptest::prelude::*;
+
+    /// The peak search of every segment in turn order, no bound: the scan `peak_torque` must
+    /// reproduce bit for bit.
+    fn plain_peak(law: &Law, ms: &[PhaseModel; 4]) -> (f64, f64) {
+        let (mut pk_m, mut pk_m_deg) = (0.0f64, 0.0);
+        for m in ms {
+            if !m.moving {
+                if m.eps.abs() > pk_m && m.length_deg > 0.0 {
+                    pk_m = m.eps.abs();
+                    pk_m_deg = m.start_deg;
+                }
+                continue;
+            }
+            for seg in law.segments() {
+                let (a, ta) = if seg.sine().is_none() {
+                    let (mp, deg) = torque_poly(seg, m);
+                    poly::abs_max(&mp[..=deg], seg.width(), torque_scan(deg))
+                } else {
+                    segment_peak(seg, m)
+                };
+                if a > pk_m {
+                    pk_m = a;
+                    pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
+                }
+            }
+        }
+        (pk_m, pk_m_deg)
+    }
+
+    fn drive(damping: f64, spring: f64, force: f64) -> Drive {
+        Drive { damping_n_s_m: damping, spring_n_m: spring, constant_force_n: force, ..Drive::needle_rack_default() }
+    }
+
+    /// Spline laws from random points, drives with and without spring, damping and a constant
+    /// force (the dwell torque then competes with the moving phases), and random floors.
+    fn check_law(law: &Law, d: &Drive, speed: f64, floor: f64) {
+        let ms = models(d, speed).unwrap();
+        let plain = plain_peak(law, &ms);
+        let bounded = peak_torque(law, &ms, 0.0);
+        assert_eq!(bounded.0.to_bits(), plain.0.to_bits(), "peak {bounded:?} vs {plain:?}");
+        assert_eq!(bounded.1.to_bits(), plain.1.to_bits(), "angle {bounded:?} vs {plain:?}");
+        let above = peak_torque(law, &ms, floor);
+        assert_eq!(above.0.max(floor).to_bits(), plain.0.max(floor).to_bits(), "floor {floor}");
+        let s = stats(law, &ms, 0.1, true, true);
+        assert_eq!((s.peak_torque_nm, s.peak_torque_angle_deg), plain);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+        #[test]
+        fn bounded_peak_search_is_the_plain_scan(
+            ys in proptest::collection::vec(0.05f64..1.0, 5),
+            gaps in proptest::collection::vec(0.3f64..1.0, 6),
+            damping in 0.0f64..40.0,
+            spring in prop_oneof![Just(0.0), 0.0f64..4000.0],
+            force in prop_oneof![Just(0.0), -60.0f64..60.0],
+            speed in 100.0f64..900.0,
+            floor_frac in 0.0f64..1.5,
+        ) {
+            let total: f64 = gaps.iter().sum();
+            let mut x = 0.0;
+            let mut pts = vec![[0.0, 0.0]];
+            for (g, y) in gaps.iter().zip(&ys) {
+                x += 0.5 * g / total;
+                pts.push([x, *y]);
+            }
+            pts.push([0.5, 0.0]);
+            let Ok(law) = SplineLaw::new(&pts, SplineEnd::Natural) else { return Ok(()) };
+            let d = drive(damping, spring, force);
+            let full = plain_peak(law.law(), &models(&d, speed).unwrap()).0;
+            check_law(law.law(), &d, speed, floor_frac * full);
+        }
+    }
+
+    #[test]
+    fn bounded_peak_search_on_catalogue_laws() {
+        // Sinusoid segments (cycloidal, modified sine) are searched in full; polynomial ones
+        // (3-4-5, trapezoid) bounded; a constant force makes the dwells hold the peak.
+        for name in ["cycloidal", "poly345", "modified-trapezoid", "modified-sine", "constant-acceleration"] {
+            let law = LawSpec::parse::<&str, &str>(name, &[]).unwrap().build().unwrap();
+            for (damping, spring, force) in [(5.0, 0.0, 0.0), (20.0, 1500.0, 10.0), (0.0, 0.0, 400.0)] {
+                for speed in [300.0, 600.0] {
+                    check_law(&law, &drive(damping, spring, force), speed, 0.0);
+                }
+            }
+        }
     }
 }
