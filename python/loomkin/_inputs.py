@@ -17,3 +17,35 @@ def text_of(source: Optional[PathOrDict]) -> Optional[str]:
         return json.dumps(source)
     with open(os.fspath(source), encoding="utf-8") as f:
         return f.read()
+
+
+def study_text(study: Any) -> str:
+    """A study file's text: a path is read, a dict written as TOML."""
+    from collections.abc import Mapping
+
+    if isinstance(study, Mapping):
+        return _toml_of(study)
+    return text_of(study)
+
+
+def _toml_of(d: Any, prefix: str = "") -> str:
+    """A dict of a study file (numbers, strings, lists of numbers, inline tables of numbers and
+    strings, one level of tables) as TOML text."""
+    import json
+    from collections.abc import Mapping
+
+    def value(v: Any) -> str:
+        if isinstance(v, Mapping):
+            return "{ " + ", ".join(f"{k} = {value(x)}" for k, x in v.items()) + " }"
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        if isinstance(v, str):
+            return json.dumps(v)
+        return repr(float(v)) if isinstance(v, float) else str(v)
+
+    top = [f"{k} = {value(v)}" for k, v in d.items() if not isinstance(v, Mapping)]
+    tables = [f"\n[{k}]\n" + "\n".join(f"{kk} = {value(vv)}" for kk, vv in v.items())
+              for k, v in d.items() if isinstance(v, Mapping)]
+    return "\n".join(top) + "\n" + "\n".join(tables) + "\n"

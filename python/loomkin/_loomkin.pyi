@@ -60,7 +60,14 @@ class Cycle:
     def period_deg(self) -> float: ...
     @property
     def speed_rpm(self) -> Optional[float]: ...
+    def laws(self) -> List["tuple[int, Law]"]:
+        """The law of each rise and return (dimensionless), with the segment's index."""
+    def to_toml(self) -> str:
+        """The cycle as a cycle file's TOML text (from_toml reads it back to the same cycle)."""
     def report(self, speed_rpm: Optional[float] = None, points: int = 721) -> Dict[str, Any]: ...
+    def sample(self, speed_rpm: Optional[float] = None, points: int = 721) -> Columns:
+        """angle_deg, time_s (s) and s, v, a, j in SI units with the unit in the key (s_m, v_m_s,
+        a_m_s2, j_m_s3 or s_rad, v_rad_s, ...), points evenly spaced over the cycle."""
     def segments(self, speed_rpm: Optional[float] = None) -> List[Dict[str, Any]]: ...
     def __call__(self, angle_deg: npt.ArrayLike, speed_rpm: Optional[float] = None) -> Columns: ...
 
@@ -96,7 +103,12 @@ def pick_simulate(**kw: Any) -> Dict[str, Any]: ...
 def pick_history(points: int = 201, **kw: Any) -> "tuple[Columns, Dict[str, Any]]": ...
 def pick_sweep(setting: str, start: float, stop: float, points: int, **kw: Any) -> Dict[str, Any]: ...
 
+def pick_montecarlo(study_toml: str, **model: Any) -> Dict[str, Any]:
+    """`loomkin pick montecarlo STUDY --json` (units in the keys) and `per_draw`, the `--csv` Columns."""
+
 # dobby
+def dobby_tolerance(study_toml: str) -> Dict[str, Any]:
+    """`loomkin dobby tolerance STUDY --json` (m, deg in the keys) and `per_draw`, the `--csv` Columns."""
 def dobby_analyze(
     alpha_deg: Optional[float] = None,
     theta_deg: Optional[float] = None,
@@ -169,10 +181,48 @@ def dyn_response(
     points: int = 721,
 ) -> Dict[str, Any]: ...
 
-# cam tables
+# cams
 def cam_table(
-    cycle: Cycle, format: str, step_deg: Optional[float] = None, tolerance: Optional[float] = None, source: str = ""
-) -> Dict[str, Any]: ...
+    cycle: Optional[Cycle],
+    format: str,
+    step_deg: Optional[float] = None,
+    tolerance: Optional[float] = None,
+    source: str = "",
+    law: Optional[str] = None,
+    params: Optional[Dict[str, Union[float, str]]] = None,
+    stroke_mm: Optional[float] = None,
+    stroke_deg: Optional[float] = None,
+    motion_deg: Optional[float] = None,
+) -> Dict[str, Any]:
+    """`loomkin cam table --json` plus `text`; step_deg (deg) or tolerance (slave unit: mm or
+    deg); a cycle, or a law's single rise of stroke_mm (mm) or stroke_deg (deg) over motion_deg (deg)."""
+def rise_return_cycle(
+    law: str,
+    params: Optional[Dict[str, Union[float, str]]] = None,
+    stroke_mm: Optional[float] = None,
+    stroke_deg: Optional[float] = None,
+    motion_deg: Optional[float] = None,
+) -> Cycle:
+    """Rise over motion_deg (deg), dwell, return, dwell over one turn; stroke in mm or deg."""
+def cam_profile(
+    cycle: Cycle,
+    follower: str,
+    prime_radius_mm: Optional[float] = None,
+    max_pressure_deg: Optional[float] = None,
+    roller_radius_mm: float = 0.0,
+    offset_mm: float = 0.0,
+    arm_mm: Optional[float] = None,
+    pivot_mm: Optional[float] = None,
+    closure: str = "single",
+    step_deg: float = 1.0,
+    source: str = "",
+    dxf: bool = False,
+    chord_tol_mm: float = 0.01,
+    bore_mm: Optional[float] = None,
+) -> Dict[str, Any]:
+    """`loomkin cam profile --json`: lengths in mm, angles in deg, curvature in 1/mm; points
+    (and counter_points) as Columns; `dxf` text (mm) when dxf=True."""
+
 def dyn_sweep(
     cycle: Cycle,
     speed_rpm: npt.ArrayLike,
@@ -185,3 +235,46 @@ def dyn_sweep(
     force_n: float = 0.0,
     steady: bool = False,
 ) -> Dict[str, Any]: ...
+def dyn_spectrum(law: Law, ratio: npt.ArrayLike, damping_ratio: float = 0.0) -> npt.NDArray[np.float64]:
+    """Residual amplitude after a rise (% of stroke) at each ratio T·f_n (motion time / natural
+    period, dimensionless); damping_ratio dimensionless, 0 <= zeta < 1."""
+def dyn_compensate(
+    cycle: Cycle,
+    natural_hz: float,
+    damping_ratio: float = 0.0,
+    mass_kg: Optional[float] = None,
+    return_spring_n_m: float = 0.0,
+    preload_n: float = 0.0,
+    weight: bool = False,
+    force_n: float = 0.0,
+    speed_rpm: Optional[float] = None,
+    points: int = 721,
+) -> Dict[str, Any]:
+    """Compensated input (polydyne): classes, period_s (s), pieces (SI coefficients, t in s) and
+    samples (angle_deg, x_mm, s_mm, s_velocity_m_s, s_acceleration_m_s2 or the deg/rad forms)."""
+def dyn_optimize(
+    cycle: Cycle,
+    natural_hz: float,
+    damping_ratio: float = 0.0,
+    mass_kg: Optional[float] = None,
+    return_spring_n_m: float = 0.0,
+    preload_n: float = 0.0,
+    weight: bool = False,
+    force_n: float = 0.0,
+    speed_rpm: Optional[float] = None,
+    band_pct: float = 10.0,
+) -> Dict[str, Any]:
+    """`loomkin dyn optimize --json` (natural_hz in Hz, speed_rpm in rpm, band_pct in %, residuals
+    in the cycle's unit) and cycle_toml."""
+def dyn_two_mass(
+    cycle: Cycle,
+    drive_mass_kg: float,
+    drive_stiffness_n_m: float,
+    frame_mass_kg: float,
+    frame_stiffness_n_m: float,
+    damping_ratio: float = 0.0,
+    speed_rpm: Optional[float] = None,
+    steady: bool = False,
+) -> Dict[str, Any]:
+    """`loomkin dyn two-mass --json`: natural_hz (Hz), peak errors in the cycle's unit and where
+    (deg), frame residual bound, rigidity ratio."""

@@ -13,9 +13,10 @@ from typing import Any, Dict, Optional, Sequence, Union
 import numpy as np
 
 from . import _loomkin as _m
+from ._inputs import study_text
 from ._table import Table
 
-__all__ = ["analyze", "synthesize"]
+__all__ = ["analyze", "synthesize", "tolerance"]
 
 
 def _wrap(r: Dict[str, Any]) -> Dict[str, Any]:
@@ -49,3 +50,16 @@ def synthesize(dwell_deg: float = 40.0, dwell_centre_deg: float = 90.0, cycles: 
     arrays centre_m, wall_left_m, wall_right_m (the roller-centre curve and the groove walls)."""
     return _wrap(_m.dobby_synthesize(float(dwell_deg), float(dwell_centre_deg), cycles, law, params, float(roller_m),
                                      float(step_deg), **geometry))
+
+
+def tolerance(study: Any) -> Dict[str, Any]:
+    """``loomkin dobby tolerance STUDY --json``: the modulator's dimensions drawn from the study
+    file's distributions (``study``: a TOML path or a dict with draws, seed, step_deg,
+    ``dimensions`` in m and deg, ``limits``): draws, seed, step_deg, not_assembled, failing,
+    fail_share, ``dimensions`` and ``results`` (output_angle_error_deg, pressure_angle_deg,
+    dead_point_margin_deg: mean, sd, percentiles, histogram, limit, count failing). ``per_draw`` is the
+    per-draw :class:`Table` of ``--csv``. The draws run in parallel with the GIL released; Ctrl-C
+    stops the study."""
+    r = _m.dobby_tolerance(study_text(study))
+    r["per_draw"] = Table(r["per_draw"])
+    return r

@@ -10,7 +10,7 @@ from . import _loomkin as _m
 from ._table import Table
 from .cycles import _cycle
 
-__all__ = ["response", "sweep"]
+__all__ = ["response", "sweep", "spectrum", "compensate", "optimize", "two_mass"]
 
 
 def response(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
@@ -34,3 +34,94 @@ def sweep(cycle: Any, speed_rpm: Any, natural_hz: float, **kw: Any) -> Dict[str,
     r = _m.dyn_sweep(_cycle(cycle), speed_rpm, float(natural_hz), **kw)
     r["points"] = Table(r["points"])
     return r
+
+
+def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = 0.0) -> Table:
+    """``loomkin dyn spectrum LAW … --csv``: the residual vibration a rise leaves, in % of the
+    stroke, against the ratio of motion time to natural period T·f_n (dimensionless).
+
+    ``laws``: one or a list of catalogue names (``"cycloidal"``, ``"NAME:KEY=VALUE"`` as the CLI
+    takes them), :class:`loomkin.Law` objects, or cycles (a :class:`loomkin.Cycle`, a TOML path
+    ending in ``.toml`` or a dict: each of its rises and returns). ``ratio``: an array of ratios
+    (each 0 < r < 1e4; default the CLI's 0.5:10:0.01). ``damping_ratio``: one ζ or a list
+    (0 ≤ ζ < 1). Returns a :class:`Table`: ``motion_time_over_natural_period`` and one column
+    ``residual_pct_of_stroke_<law>_zeta_<ζ>`` per law and ζ (cycle laws as ``<law>_seg<i>``).
+    Runs with the GIL released; Ctrl-C stops it."""
+    import numpy as np
+
+    from ._loomkin import Law
+
+    if ratio is None:
+        # The CLI's span 0.5:10:0.01: from + i·step, the last snapped onto `to`.
+        lo, hi, step = 0.5, 10.0, 0.01
+        n = int(np.floor((hi - lo) / step + 1e-9)) + 1
+        v = lo + np.arange(n) * step
+        ratio = np.where(np.abs(v - hi) <= 1e-9 * step, hi, np.minimum(v, hi))
+    ratio = np.ascontiguousarray(ratio, dtype=np.float64)
+    zetas = list(damping_ratio) if isinstance(damping_ratio, (list, tuple, np.ndarray)) else [damping_ratio]
+    items = laws if isinstance(laws, (list, tuple)) else [laws]
+    named = []
+    for item in items:
+        if isinstance(item, Law):
+            named.append((item.name, item))
+        elif isinstance(item, str) and not item.endswith(".toml"):
+            name, _, kv = item.partition(":")
+            params = {}
+            if kv:
+                k, _, v = kv.partition("=")
+                params[k.strip()] = v.strip()
+            law = Law(name, **params)
+            named.append((law.name, law))
+        else:
+            for i, law in _cycle(item).laws():
+                named.append((f"{law.name}_seg{i}", law))
+    cols = {"motion_time_over_natural_period": ratio}
+    for key, law in named:
+        for z in zetas:
+            cols[f"residual_pct_of_stroke_{key}_zeta_{_compact(float(z))}"] = _m.dyn_spectrum(law, ratio, float(z))
+    return Table(cols)
+
+
+def _compact(x: float) -> str:
+    """A number as the CLI names it in a column (shortest round-trip form, no trailing .0)."""
+    r = float(f"{x:.11e}") + 0.0
+    s = repr(r)
+    return s[:-2] if s.endswith(".0") else s
+
+
+def compensate(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
+    """``loomkin dyn compensate FILE --natural-hz F``: the input law (polydyne) that makes the
+    follower (natural_hz in Hz, damping_ratio, optional mass_kg …) follow the cycle exactly.
+
+    designed_class, input_class (continuity: the highest continuous derivative), period_s (s),
+    speed_rpm, ``pieces`` (the ``.toml`` output: t0 and duration in s, from_deg, to_deg, poly: SI
+    coefficients of t^k, t in s from the piece's start; sine [b_s, b_c, Ω in rad/s] or None; exp
+    [C, a in 1/s] or None) and ``samples`` (the ``.csv`` output, a :class:`Table`): angle_deg,
+    x_mm (designed), s_mm (input), s_velocity_m_s, s_acceleration_m_s2 (or the deg, rad/s forms).
+    Keywords: damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n, speed_rpm,
+    points. A cycle whose input would jump raises :class:`loomkin.LoomkinError` (field cycle)."""
+    r = _m.dyn_compensate(_cycle(cycle), float(natural_hz), **kw)
+    r["samples"] = Table(r["samples"])
+    return r
+
+
+def optimize(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
+    """``loomkin dyn optimize FILE --natural-hz F --json``: every rise and return reshaped for the
+    least residual vibration across ``speed_rpm·(1 ± band_pct/100)`` (rpm, %), peak acceleration
+    at most 110 % of the modified sine's. The report (residual amplitudes in the cycle's unit,
+    improvement_factor, peak_acceleration_ratio, per-segment figures) and ``cycle_toml``, the
+    optimised cycle file (``loomkin.cycles.Cycle.from_toml`` reads it). Keywords as
+    :func:`response` plus band_pct (default 10). Takes seconds with the GIL released; Ctrl-C
+    returns at once."""
+    return _m.dyn_optimize(_cycle(cycle), float(natural_hz), **kw)
+
+
+def two_mass(cycle: Any, drive_mass_kg: float, drive_stiffness_n_m: float, frame_mass_kg: float,
+             frame_stiffness_n_m: float, **kw: Any) -> Dict[str, Any]:
+    """``loomkin dyn two-mass FILE --json``: the cycle drives the drive's output mass (kg) through
+    a stiffness (N/m), which drives the heald frame (kg) through the frame stiffness (N/m).
+    natural_hz (both modes, Hz), peak_drive_error and peak_frame_error in the cycle's unit with
+    where (deg), frame_residual_bound (dwells), rigidity_ratio (f₁/f_shaft). Keywords:
+    damping_ratio (both modes), speed_rpm, steady."""
+    return _m.dyn_two_mass(_cycle(cycle), float(drive_mass_kg), float(drive_stiffness_n_m), float(frame_mass_kg),
+                           float(frame_stiffness_n_m), **kw)

@@ -13,10 +13,10 @@ from __future__ import annotations
 from typing import Any, Dict, Optional, Tuple, Union
 
 from . import _loomkin as _m
-from ._inputs import text_of
+from ._inputs import study_text, text_of
 from ._table import Table
 
-__all__ = ["design", "simulate", "history", "sweep", "SETTINGS"]
+__all__ = ["design", "simulate", "history", "sweep", "montecarlo", "SETTINGS"]
 
 #: Settings :func:`sweep` can vary (``loomkin pick sweep SETTING``).
 SETTINGS = ("speed", "play", "strap", "shuttle", "checking")
@@ -54,3 +54,17 @@ def sweep(setting: str, start: float, stop: float, points: int, mechanism: Optio
     r = _m.pick_sweep(setting, float(start), float(stop), points, **_kw(mechanism, kw))
     r["rows"] = Table(r["rows"])
     return r
+
+
+def montecarlo(study: Any, mechanism: Optional[Any] = None, **kw: Any) -> Dict[str, Any]:
+    """``loomkin pick montecarlo STUDY --json``: loom settings drawn from the study file's
+    distributions (``study``: a TOML path or a dict with draws, seed, ``settings``, ``limits``), the
+    end-of-pick results as distributions: draws, seed, method, failing and fail_share, ``inputs`` and
+    ``results`` (per quantity, units in the name: mean, sd, percentiles, histogram, limit, count
+    failing). ``per_draw`` is the per-draw :class:`Table` of ``--csv`` (draw, the settings drawn,
+    simulated 1/0, velocity_m_s, distance_m, …). Mechanism keywords as :func:`design`. The draws run
+    in parallel with the GIL released; Ctrl-C stops the study."""
+    r = _m.pick_montecarlo(study_text(study), **_kw(mechanism, kw))
+    r["per_draw"] = Table(r["per_draw"])
+    return r
+

@@ -2,7 +2,7 @@
 //! keys the CLI's `--json` uses (both go through the same `Serialize` impls), and columns of numbers
 //! into numpy arrays.
 
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods, PyReadwriteArray1};
 use pyo3::IntoPyObjectExt;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -52,6 +52,49 @@ pub fn columns<'py, K: AsRef<str>>(py: Python<'py>, cols: Vec<(K, Vec<f64>)>) ->
         d.set_item(k.as_ref(), PyArray1::from_vec(py, v))?;
     }
     Ok(d)
+}
+
+/// `n` rows of named float64 columns written straight into new numpy arrays: the arrays are
+/// allocated (zeroed) with the GIL held, then `fill` writes every column's buffer with the GIL
+/// released. No intermediate copy of the data is made, whatever `n`.
+pub fn fill_columns<'py, K: AsRef<str>>(
+    py: Python<'py>,
+    names: &[K],
+    n: usize,
+    fill: impl FnOnce(&mut [&mut [f64]]) + Send,
+) -> PyResult<Bound<'py, PyDict>> {
+    let arrays: Vec<Bound<'py, PyArray1<f64>>> = names.iter().map(|_| PyArray1::zeros(py, n, false)).collect();
+    {
+        // Exclusive borrows of the new arrays (numpy's borrow checker: nothing else holds them).
+        let mut guards: Vec<PyReadwriteArray1<'py, f64>> = arrays.iter().map(|a| a.readwrite()).collect();
+        let mut slices: Vec<&mut [f64]> = guards
+            .iter_mut()
+            .map(|g| g.as_slice_mut())
+            .collect::<Result<_, _>>()
+            .map_err(|e| PyRuntimeError::new_err(format!("internal: {e}")))?;
+        py.detach(|| fill(&mut slices));
+    }
+    let d = PyDict::new(py);
+    for (k, a) in names.iter().zip(arrays) {
+        d.set_item(k.as_ref(), a)?;
+    }
+    Ok(d)
+}
+
+/// `points` evenly spaced samples of a law from x = 0 to 1 as arrays x, s, v, a, j, written
+/// straight into the arrays a block at a time ([`loomkin_laws::Law::samples`], bit-identical to
+/// `loomkin law sample`) with the GIL released.
+pub fn law_samples<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
+    fill_columns(py, &["x", "s", "v", "a", "j"], points, |c| {
+        let [x, s, v, a, j] = c else { return };
+        for (i, (xi, k)) in law.samples(points).enumerate() {
+            x[i] = xi;
+            s[i] = k.s;
+            v[i] = k.v;
+            a[i] = k.a;
+            j[i] = k.j;
+        }
+    })
 }
 
 /// A list of records (serialised structs of numbers) as a dict of numpy arrays, one per key; a key

@@ -1,6 +1,6 @@
 //! Machine cycles in SI units at a speed, from a TOML file's text or a dict (as JSON text).
 
-use crate::convert::{columns, to_py, value_records_to_columns};
+use crate::convert::{columns, fill_columns, to_py};
 use crate::errors::{OrRaise, check_count};
 use loomkin_laws::{CycleSpec, LawError};
 use loomkin_units::{Range, ShaftSpeed};
@@ -27,9 +27,46 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 #[pyclass(module = "loomkin", frozen)]
 pub struct Cycle {
     pub(crate) inner: loomkin_laws::Cycle,
+    /// The checked file's keys (what `to_toml` writes and `dyn optimize` reshapes).
+    pub(crate) spec: CycleSpec,
 }
 
 impl Cycle {
+    /// A cycle of a spec, checked.
+    pub(crate) fn from_spec(spec: CycleSpec) -> PyResult<Self> {
+        Ok(Self { inner: loomkin_laws::Cycle::new(&spec).or_raise()?, spec })
+    }
+
+    /// The spec as a cycle file's TOML text.
+    pub(crate) fn toml_text(&self) -> PyResult<String> {
+        toml::to_string(&self.spec).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("internal: {e}")))
+    }
+
+    /// `points` samples over the cycle at `speed` as arrays angle_deg, time_s and s, v, a, j named
+    /// with their SI units (`s_m`, `v_m_s`, … or `s_rad`, …), written straight into the arrays.
+    fn sample_arrays<'py>(&self, py: Python<'py>, speed: ShaftSpeed, points: usize) -> PyResult<Bound<'py, PyDict>> {
+        let [pu, vu, au, ju] = self.inner.unit.key_units();
+        let names = [
+            "angle_deg".to_string(),
+            "time_s".into(),
+            format!("s_{pu}"),
+            format!("v_{vu}"),
+            format!("a_{au}"),
+            format!("j_{ju}"),
+        ];
+        let inner = &self.inner;
+        fill_columns(py, &names, points, |c| {
+            let [th, t, s, v, a, j] = c else { return };
+            for (i, p) in inner.samples(points, speed.rpm()).enumerate() {
+                th[i] = p.angle_deg;
+                t[i] = p.time_s;
+                s[i] = p.kin.s;
+                v[i] = p.kin.v;
+                a[i] = p.kin.a;
+                j[i] = p.kin.j;
+            }
+        })
+    }
     pub(crate) fn speed(&self, speed_rpm: Option<f64>) -> PyResult<ShaftSpeed> {
         let rpm = speed_rpm.or(self.inner.speed_rpm).unwrap_or(DEFAULT_RPM);
         ShaftSpeed::from_rpm_field("speed_rpm", rpm).or_raise()
@@ -44,7 +81,16 @@ impl Cycle {
     /// Reads and checks a cycle file's TOML text (the format of `loomkin cycle FILE.toml`).
     #[staticmethod]
     fn from_toml(text: &str) -> PyResult<Self> {
-        Ok(Self { inner: loomkin_laws::Cycle::from_toml(text).or_raise()? })
+        let inner = loomkin_laws::Cycle::from_toml(text).or_raise()?;
+        // The text parsed above, so it parses here too.
+        let spec: CycleSpec = toml::from_str(text).map_err(|e| {
+            crate::errors::raise(LawError::Parse {
+                field: "cycle file".into(),
+                text: e.message().into(),
+                expected: "TOML".into(),
+            })
+        })?;
+        Ok(Self { inner, spec })
     }
 
     /// from_json(text) -> Cycle
@@ -62,7 +108,29 @@ impl Cycle {
                     .into(),
             })
             .or_raise()?;
-        Ok(Self { inner: loomkin_laws::Cycle::new(&spec).or_raise()? })
+        Self::from_spec(spec)
+    }
+
+    /// laws() -> list[tuple[int, Law]]
+    /// --
+    ///
+    /// The law of each rise and return, with the segment's index.
+    fn laws(&self) -> Vec<(usize, crate::laws::Law)> {
+        let mut out = Vec::new();
+        for (i, seg) in self.inner.segments.iter().enumerate() {
+            if let Some((spec, law)) = &seg.law {
+                out.push((i, crate::laws::Law::wrap(spec.name(), spec.label(), spec.param_values(), law.clone())));
+            }
+        }
+        out
+    }
+
+    /// to_toml() -> str
+    /// --
+    ///
+    /// The cycle as a cycle file's TOML text (`Cycle.from_toml` reads it back to the same cycle).
+    fn to_toml(&self) -> PyResult<String> {
+        self.toml_text()
     }
 
     /// The unit of the file's strokes: "mm" (translating follower) or "deg" (swinging).
@@ -98,12 +166,23 @@ impl Cycle {
     fn report(&self, py: Python<'_>, speed_rpm: Option<f64>, points: usize) -> PyResult<Py<PyAny>> {
         let speed = self.speed(speed_rpm)?;
         check_count("points", points, CYCLE_POINTS)?;
-        let r = py.detach(|| serde_json::to_value(self.inner.report(speed, points)));
-        let mut value = r.map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("internal: {e}")))?;
-        let samples = value.as_object_mut().and_then(|o| o.remove("samples")).unwrap_or_default();
-        let out = crate::convert::value_to_py(py, &value)?;
-        out.bind(py).set_item("samples", value_records_to_columns(py, &samples)?)?;
+        // The report's head without samples, then the samples straight into numpy arrays.
+        let out = to_py(py, &self.inner.report(speed, 0))?;
+        out.bind(py).set_item("samples", self.sample_arrays(py, speed, points)?)?;
         Ok(out)
+    }
+
+    /// sample(speed_rpm=None, points=721) -> dict[str, numpy.ndarray]
+    /// --
+    ///
+    /// The samples of `report` alone (angle_deg, time_s, s_m, v_m_s, a_m_s2, j_m_s3 or the rad
+    /// forms; `points` evenly spaced over the cycle, both ends included), written straight into
+    /// the arrays with the GIL released.
+    #[pyo3(signature = (speed_rpm=None, points=721))]
+    fn sample<'py>(&self, py: Python<'py>, speed_rpm: Option<f64>, points: usize) -> PyResult<Bound<'py, PyDict>> {
+        let speed = self.speed(speed_rpm)?;
+        check_count("points", points, CYCLE_POINTS)?;
+        self.sample_arrays(py, speed, points)
     }
 
     /// segments(speed_rpm=None) -> list[dict]

@@ -32,6 +32,7 @@ impl Fault for MechError {
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dobby_analyze, m)?)?;
     m.add_function(wrap_pyfunction!(dobby_synthesize, m)?)?;
+    m.add_function(wrap_pyfunction!(dobby_tolerance, m)?)?;
     Ok(())
 }
 
@@ -201,4 +202,19 @@ fn dobby_synthesize<'py>(
     out.set_item("cam", profile(py, &res.cam)?)?;
     out.set_item("counter_cam", profile(py, &res.counter_cam)?)?;
     Ok(out)
+}
+
+/// dobby_tolerance(study_toml) -> dict
+/// --
+///
+/// `loomkin dobby tolerance STUDY --json` for the study file's text (draws, seed, step_deg,
+/// `[dimensions]` distributions in m and deg, `[limits]`): draws, seed, step_deg, not_assembled,
+/// failing, fail_share, dimensions and results (output-angle error in deg, pressure angle in
+/// deg, dead-point margin in deg: mean, sd, percentiles, histogram, limit, count failing), and
+/// `per_draw`, the per-draw table of `--csv` as a dict of arrays. The draws run in parallel with the
+/// GIL released, a piece at a time: Ctrl-C stops the study between pieces.
+#[pyfunction]
+fn dobby_tolerance<'py>(py: Python<'py>, study_toml: &str) -> PyResult<Bound<'py, PyDict>> {
+    let t = loomkin_mech::Tolerance::from_toml(study_toml).or_raise()?;
+    crate::study::run_study(py, t.draws, |items| t.run(items, loomkin_study::Progress::Hidden), |d| t.report(d))
 }

@@ -29,6 +29,10 @@ const POINTS: Range = Range::closed(2.0, 1e6, "");
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dyn_response, m)?)?;
     m.add_function(wrap_pyfunction!(dyn_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_compensate, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_optimize, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_two_mass, m)?)?;
     Ok(())
 }
 
@@ -162,4 +166,191 @@ fn dyn_sweep<'py>(
     out.set_item("start", if steady { "steady" } else { "rest" })?;
     out.set_item("points", columns(py, cols)?)?;
     Ok(out)
+}
+
+/// Ratios of motion time to natural period a spectrum takes (as the CLI's `--ratio`).
+const RATIO: Range = Range::open(0.0, 1e4, "");
+/// The most ratios of one spectrum (as the CLI).
+const RATIOS: Range = Range::closed(1.0, 1e6, "");
+
+/// dyn_spectrum(law, ratio, damping_ratio=0) -> numpy.ndarray
+/// --
+///
+/// The residual-vibration spectrum of a law (`loomkin dyn spectrum` for one law and one damping
+/// ratio): the residual amplitude after a rise from rest, in % of the stroke, at each ratio of
+/// motion time to natural period T·f_n of the array `ratio` (each 0 < r < 1e4, at most 1e6 of
+/// them). Exact (closed-form response per segment). Runs with the GIL released; Ctrl-C stops it.
+#[pyfunction]
+#[pyo3(signature = (law, ratio, damping_ratio=0.0))]
+fn dyn_spectrum<'py>(
+    py: Python<'py>,
+    law: PyRef<'py, crate::laws::Law>,
+    ratio: PyArrayLike1<'py, f64, AllowTypeChange>,
+    damping_ratio: f64,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let z = Follower::DAMPING_RATIO.check("damping_ratio", damping_ratio).or_raise()?;
+    let ratios: Vec<f64> = ratio.as_array().iter().copied().collect();
+    check_count("ratio", ratios.len(), RATIOS)?;
+    for &r in &ratios {
+        RATIO.check("ratio", r).or_raise()?;
+    }
+    let law = law.inner.clone();
+    let pct = crate::interrupt::detached(py, move || {
+        loomkin_dynamics::spectrum(&law, z, &ratios).into_iter().map(|v| 100.0 * v).collect::<Vec<f64>>()
+    })?;
+    Ok(numpy::PyArray1::from_vec(py, pct))
+}
+
+/// dyn_compensate(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
+/// preload_n=0, weight=False, force_n=0, speed_rpm=None, points=721) -> dict
+/// --
+///
+/// `loomkin dyn compensate FILE`: the input law (polydyne) that makes the follower follow the
+/// cycle exactly. designed_class and input_class (continuity: highest continuous derivative),
+/// period_s, pieces (each t0 and duration in s, from_deg, to_deg, poly: SI coefficients of t^k with
+/// t in s from the piece's start, sine: [b_s, b_c, Ω rad/s] or None, exp: [C, a 1/s] or None —
+/// the `.toml` output's pieces) and samples (the `.csv` output): arrays angle_deg, x_<P> (the
+/// designed motion), s_<P> (the input), s_velocity and s_acceleration in SI (m/s, m/s² or rad/s,
+/// rad/s²), P the cycle's unit. A cycle whose input would jump raises LoomkinError (field cycle).
+#[pyfunction]
+#[pyo3(signature = (cycle, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0, preload_n=0.0,
+    weight=false, force_n=0.0, speed_rpm=None, points=721))]
+fn dyn_compensate<'py>(
+    py: Python<'py>,
+    cycle: PyRef<'py, Cycle>,
+    natural_hz: f64,
+    damping_ratio: f64,
+    mass_kg: Option<f64>,
+    return_spring_n_m: f64,
+    preload_n: f64,
+    weight: bool,
+    force_n: f64,
+    speed_rpm: Option<f64>,
+    points: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let speed = cycle.speed(speed_rpm)?;
+    let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
+    check_count("points", points, POINTS)?;
+    let exc = loomkin_dynamics::Excitation::from_cycle(&cycle.inner, speed);
+    let (comp, samples) = py
+        .detach(|| -> Result<_, DynError> {
+            let comp = loomkin_dynamics::compensate(&exc, &follower)?;
+            let samples = comp.samples(&exc, points);
+            Ok((comp, samples))
+        })
+        .or_raise()?;
+    let u = Units::of(cycle.inner.unit);
+    let p = u.pos;
+    let (vel, acc) = if p == "mm" { ("m_s", "m_s2") } else { ("rad_s", "rad_s2") };
+    let out = PyDict::new(py);
+    out.set_item("designed_class", comp.designed_class)?;
+    out.set_item("input_class", comp.input_class)?;
+    out.set_item("period_s", comp.period_s)?;
+    out.set_item("speed_rpm", speed.rpm())?;
+    out.set_item("natural_hz", follower.natural_hz())?;
+    out.set_item("damping_ratio", follower.damping_ratio())?;
+    let pieces = pyo3::types::PyList::empty(py);
+    for piece in &comp.pieces {
+        let d = to_py(py, piece)?.into_bound(py).cast_into::<PyDict>()?;
+        d.set_item("from_deg", exc.angle_deg(piece.t0))?;
+        d.set_item("to_deg", exc.angle_deg(piece.t0 + piece.duration))?;
+        pieces.append(d)?;
+    }
+    out.set_item("pieces", pieces)?;
+    let col = |i: usize, k: f64| samples.iter().map(|s| s[i] * k).collect::<Vec<f64>>();
+    let cols = vec![
+        ("angle_deg".to_string(), col(0, 1.0)),
+        (format!("x_{p}"), col(1, u.scale)),
+        (format!("s_{p}"), col(2, u.scale)),
+        (format!("s_velocity_{vel}"), col(3, 1.0)),
+        (format!("s_acceleration_{acc}"), col(4, 1.0)),
+    ];
+    out.set_item("samples", columns(py, cols)?)?;
+    Ok(out)
+}
+
+/// dyn_optimize(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
+/// preload_n=0, weight=False, force_n=0, speed_rpm=None, band_pct=10) -> dict
+/// --
+///
+/// `loomkin dyn optimize FILE --json`: every rise and return of the cycle shaped for the least
+/// residual vibration across speed_rpm·(1 ± band_pct/100), peak acceleration at most 110 % of the
+/// modified sine's. speed_rpm, band_pct, natural_hz, damping_ratio, residual_amplitude_<P> and
+/// modified_sine_residual_amplitude_<P> (largest dwell residual over the band, P the cycle's unit),
+/// improvement_factor, peak_acceleration_ratio, segments (per moving segment: ratio_band, residual
+/// fractions of the stroke, ca_ratio), and cycle_toml (the optimised cycle file `-o` writes).
+/// Runs with the GIL released (seconds); Ctrl-C stops waiting for it.
+#[pyfunction]
+#[pyo3(signature = (cycle, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0, preload_n=0.0,
+    weight=false, force_n=0.0, speed_rpm=None, band_pct=10.0))]
+fn dyn_optimize<'py>(
+    py: Python<'py>,
+    cycle: PyRef<'py, Cycle>,
+    natural_hz: f64,
+    damping_ratio: f64,
+    mass_kg: Option<f64>,
+    return_spring_n_m: f64,
+    preload_n: f64,
+    weight: bool,
+    force_n: f64,
+    speed_rpm: Option<f64>,
+    band_pct: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let speed = cycle.speed(speed_rpm)?;
+    let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
+    let text = cycle.toml_text()?;
+    let opt =
+        crate::interrupt::detached(py, move || loomkin_dynamics::optimize_cycle(&text, speed, band_pct, &follower))?
+            .or_raise()?;
+    let report = loomkin_dynamics::OptimizeReport {
+        optimized: &opt,
+        units: Units::of(cycle.inner.unit),
+        speed_rpm: speed.rpm(),
+        band_pct,
+        natural_hz: follower.natural_hz(),
+        damping_ratio: follower.damping_ratio(),
+    };
+    let out = to_py(py, &report)?.into_bound(py).cast_into::<PyDict>()?;
+    out.set_item("cycle_toml", &opt.cycle_toml)?;
+    Ok(out)
+}
+
+/// dyn_two_mass(cycle, drive_mass_kg, drive_stiffness_n_m, frame_mass_kg, frame_stiffness_n_m,
+/// damping_ratio=0, speed_rpm=None, steady=False) -> dict
+/// --
+///
+/// `loomkin dyn two-mass FILE --json`: the cycle drives a drive mass (kg) through a stiffness
+/// (N/m), which drives the heald frame (kg) through a second stiffness (N/m), both modes damped by
+/// damping_ratio. natural_hz (both modes, Hz), peak_drive_error_<P> and peak_frame_error_<P> with
+/// where (…_at_deg), frame_residual_bound_<P> (in the dwells), rigidity_ratio (f₁/f_shaft),
+/// speed_rpm, damping_ratio, start; P the cycle's unit. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (cycle, drive_mass_kg, drive_stiffness_n_m, frame_mass_kg, frame_stiffness_n_m,
+    damping_ratio=0.0, speed_rpm=None, steady=false))]
+#[allow(clippy::too_many_arguments)]
+fn dyn_two_mass(
+    py: Python<'_>,
+    cycle: PyRef<'_, Cycle>,
+    drive_mass_kg: f64,
+    drive_stiffness_n_m: f64,
+    frame_mass_kg: f64,
+    frame_stiffness_n_m: f64,
+    damping_ratio: f64,
+    speed_rpm: Option<f64>,
+    steady: bool,
+) -> PyResult<Py<PyAny>> {
+    let speed = cycle.speed(speed_rpm)?;
+    let tm = loomkin_dynamics::TwoMass::new(
+        drive_mass_kg,
+        drive_stiffness_n_m,
+        frame_mass_kg,
+        frame_stiffness_n_m,
+        damping_ratio,
+    )
+    .or_raise()?;
+    let start = if steady { Start::Steady } else { Start::Rest };
+    let exc = loomkin_dynamics::Excitation::from_cycle(&cycle.inner, speed);
+    let u = Units::of(cycle.inner.unit);
+    let r = py.detach(|| tm.report(&exc, speed, start, u)).or_raise()?;
+    to_py(py, &r)
 }

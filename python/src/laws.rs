@@ -143,14 +143,6 @@ impl Law {
     }
 }
 
-fn sample_columns(law: &loomkin_laws::Law, n: usize) -> Vec<(&'static str, Vec<f64>)> {
-    let mut k = vec![Kinematics::default(); n];
-    law.sample_into(&mut k);
-    let h = 1.0 / (n - 1) as f64;
-    let x: Vec<f64> = (0..n).map(|i| if i + 1 == n { 1.0 } else { i as f64 * h }).collect();
-    kin_columns(x, &k)
-}
-
 fn kin_columns(x: Vec<f64>, k: &[Kinematics]) -> Vec<(&'static str, Vec<f64>)> {
     vec![
         ("x", x),
@@ -165,8 +157,7 @@ fn kin_columns(x: Vec<f64>, k: &[Kinematics]) -> Vec<(&'static str, Vec<f64>)> {
 /// GIL is released while they are computed.
 pub fn sample_dict<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
     check_count("points", points, SAMPLE_POINTS)?;
-    let cols = py.detach(|| sample_columns(law, points));
-    columns(py, cols)
+    crate::convert::law_samples(py, law, points)
 }
 
 #[pymethods]

@@ -15,11 +15,13 @@ mod cycles;
 mod dobby;
 mod dynamics;
 mod errors;
+mod interrupt;
 mod laws;
 mod loom;
 mod picking;
 mod servo;
 mod shed;
+mod study;
 
 use pyo3::prelude::*;
 

@@ -37,6 +37,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pick_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(pick_history, m)?)?;
     m.add_function(wrap_pyfunction!(pick_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(pick_montecarlo, m)?)?;
     Ok(())
 }
 
@@ -273,4 +274,39 @@ fn pick_sweep(
     let out = value_to_py(py, &report)?;
     out.bind(py).set_item("rows", value_records_to_columns(py, &rows)?)?;
     Ok(out)
+}
+
+/// pick_montecarlo(study_toml, **model) -> dict
+/// --
+///
+/// `loomkin pick montecarlo STUDY --json` for the study file's text (draws, seed, `[settings]`
+/// distributions, `[limits]`) and the mechanism keywords of `pick_design`: draws, seed, method,
+/// ode_draws, not_simulated, separation_draws, failing, fail_share, inputs and results (each
+/// quantity's mean, sd, percentiles, histogram, limit and count failing), and `per_draw`, the
+/// per-draw table of `--csv` as a dict of arrays (draw, the settings drawn, simulated 1/0, the
+/// end-of-pick results, flags 1/0). The draws run in parallel with the GIL released, a piece at
+/// a time: Ctrl-C stops the study between pieces.
+#[pyfunction]
+#[pyo3(signature = (study_toml, **model))]
+fn pick_montecarlo<'py>(
+    py: Python<'py>,
+    study_toml: &str,
+    model: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let call = Model::from_kw(model)?;
+    if let Some((s, _)) = call.set.first() {
+        return Err(parse_err(
+            s.name(),
+            "given",
+            "the loom settings of a Monte-Carlo study come from its file ([settings]); give only mechanism keywords",
+        ));
+    }
+    let mc = loomkin_picking::MonteCarlo::from_toml(study_toml).or_raise()?;
+    let mech = call.model.build()?;
+    crate::study::run_study(
+        py,
+        mc.draws,
+        |items| mc.run(&mech, items, loomkin_study::Progress::Hidden),
+        |d| mc.report(d),
+    )
 }

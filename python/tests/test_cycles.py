@@ -52,3 +52,31 @@ def test_bad_cycles_raise():
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.cycles.load(FILE).report(speed_rpm=-5)
     assert e.value.field == "speed_rpm"
+
+
+def test_sample_matches_cycle_csv(cli):
+    import csv
+    import io
+
+    text = cli("cycle", "examples/sley-cycle.toml", "--speed-rpm", "450", "--points", "1001", "--csv", text=True)
+    rows = list(csv.DictReader(io.StringIO(text)))
+    s = loomkin.cycles.sample(REPO / "examples" / "sley-cycle.toml", speed_rpm=450, points=1001)
+    assert isinstance(s, loomkin.Table) and list(s) == list(rows[0])
+    for k in s:
+        assert s[k].dtype == np.float64 and s[k].flags["C_CONTIGUOUS"] and s[k].flags["WRITEABLE"]
+        np.testing.assert_array_equal(s[k], [float(row[k]) for row in rows])
+
+
+def test_to_toml_and_laws():
+    c = loomkin.cycles.load(FILE)
+    back = loomkin.Cycle.from_toml(c.to_toml())
+    same(back.report(points=91), c.report(points=91))
+    laws = c.laws()
+    assert [i for i, _ in laws] == [1, 3]
+    assert all(isinstance(law, loomkin.Law) for _, law in laws)
+    # The segment's law sampled as a law is the cycle's motion there, scaled.
+    _, rise = laws[0]
+    x = np.linspace(0, 1, 11)
+    seg = c.segments()[1]
+    ang = seg["from_deg"] + x * (seg["to_deg"] - seg["from_deg"])
+    np.testing.assert_allclose(c(ang[:-1])["s"], seg["stroke_m"] * rise(x[:-1])["s"], rtol=0, atol=1e-15)

@@ -1,10 +1,13 @@
 """Dobby: parity with `loomkin dobby analyze|synthesize --json`, errors."""
 
+import csv
+import io
+
 import numpy as np
 import pytest
 
 import loomkin
-from conftest import records, same
+from conftest import REPO, records, same
 
 
 def test_analyze_matches_dobby_analyze(cli):
@@ -49,3 +52,31 @@ def test_dobby_errors():
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.dobby.synthesize(law="no-such-law")
     assert e.value.field == "law"
+
+
+def test_tolerance_matches_dobby_tolerance(cli, tmp_path):
+    tomllib = pytest.importorskip("tomllib")
+
+    from loomkin._inputs import study_text
+
+    d = tomllib.loads((REPO / "examples" / "dobby-tolerance.toml").read_text())
+    d["draws"], d["step_deg"] = 60, 4
+    path = tmp_path / "tol.toml"
+    path.write_text(study_text(d))
+    ref = cli("dobby", "tolerance", path, "--json")
+    text = cli("dobby", "tolerance", path, "--csv", text=True)
+    r = loomkin.dobby.tolerance(d)
+    draws = r.pop("per_draw")
+    same(r, ref)
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert list(draws) == list(rows[0])
+    for k in draws:
+        np.testing.assert_array_equal(draws[k], [float(row[k]) for row in rows])
+    # The drawn dimensions keep their truncation bounds.
+    assert draws["cam_a_m"].min() >= 0.3657 and draws["cam_a_m"].max() <= 0.3663
+
+
+def test_tolerance_errors():
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.dobby.tolerance({"draws": 10, "seed": 1, "dimensions": {"l2_m": {"dist": "normal", "mean": 0.66}}})
+    assert e.value.field is not None

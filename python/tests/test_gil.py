@@ -1,10 +1,16 @@
 """Long computations release the GIL: another Python thread keeps running meanwhile; an interrupt
 (Ctrl-C) stops an optimisation."""
 
+import os
+import signal
 import threading
 import time
 
+import numpy as np
+import pytest
+
 import loomkin
+from conftest import REPO
 
 
 def ticks_during(call):
@@ -54,9 +60,6 @@ class Interrupted(Exception):
 
 
 def test_optimisation_stops_on_an_interrupt():
-    import os
-    import signal
-
     def handler(signum, frame):
         raise Interrupted()
 
@@ -76,3 +79,63 @@ def test_optimisation_stops_on_an_interrupt():
         timer.cancel()
         signal.signal(signal.SIGINT, old)
     assert elapsed < 5.0, f"stopped only after {elapsed:.2f} s"
+
+
+def _study(name, **changes):
+    tomllib = pytest.importorskip("tomllib")
+    d = tomllib.loads((REPO / "examples" / name).read_text())
+    d.update(changes)
+    return d
+
+
+HEALD = REPO / "examples" / "heald-frame-cycle.toml"
+
+LONG_CALLS = {
+    "dyn-optimize": lambda: loomkin.dynamics.optimize(HEALD, 54, damping_ratio=0.05, speed_rpm=600),
+    "dyn-spectrum": lambda: loomkin.dynamics.spectrum(["cycloidal", "modified-sine"], np.linspace(0.5, 10, 40_000)),
+    "pick-montecarlo": lambda: loomkin.picking.montecarlo(_study("pick-montecarlo.toml", draws=4000)),
+    "dobby-tolerance": lambda: loomkin.dobby.tolerance(_study("dobby-tolerance.toml", draws=200)),
+    "cycle-samples": lambda: [loomkin.cycles.sample(HEALD, points=1_000_000) for _ in range(5)],
+}
+
+
+@pytest.mark.parametrize("name", LONG_CALLS)
+def test_long_calls_release_the_gil(name):
+    seconds, gap, out = ticks_during(LONG_CALLS[name])
+    assert out is not None
+    assert seconds > 0.02, "the call is too short to tell"
+    assert gap < 0.5 * seconds, f"the other thread stalled {gap:.3f} s of a {seconds:.3f} s call"
+
+
+def interrupted_after(call, delay=0.3):
+    """Sends SIGINT `delay` s into `call`; returns how long the call took to raise
+    KeyboardInterrupt (fails if it returned normally)."""
+    timer = threading.Timer(delay, lambda: os.kill(os.getpid(), signal.SIGINT))
+    t0 = time.perf_counter()
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            call()
+    finally:
+        timer.cancel()
+    return time.perf_counter() - t0
+
+
+def test_montecarlo_stops_on_an_interrupt():
+    # 10⁶ draws take minutes; the study stops between two pieces of draws.
+    study = _study("pick-montecarlo.toml", draws=1_000_000)
+    elapsed = interrupted_after(lambda: loomkin.picking.montecarlo(study))
+    assert elapsed < 5.0, f"stopped only after {elapsed:.2f} s"
+
+
+def test_tolerance_stops_on_an_interrupt():
+    study = _study("dobby-tolerance.toml", draws=100_000)
+    elapsed = interrupted_after(lambda: loomkin.dobby.tolerance(study))
+    assert elapsed < 5.0, f"stopped only after {elapsed:.2f} s"
+
+
+def test_spectrum_returns_on_an_interrupt():
+    # 3·10⁵ ratios of a 20-segment law take seconds; the call returns at once.
+    law = loomkin.Law("piecewise", segments=",".join(["0.05:constant:1"] * 10 + ["0.05:constant:-1"] * 10))
+    elapsed = interrupted_after(lambda: loomkin.dynamics.spectrum(law, np.linspace(0.5, 10, 300_000)), 0.2)
+    assert elapsed < 2.0, f"returned only after {elapsed:.2f} s"

@@ -1,10 +1,13 @@
 """Picking: parity with `loomkin pick … --json`, histories, errors."""
 
+import csv
+import io
+
 import numpy as np
 import pytest
 
 import loomkin
-from conftest import records, same
+from conftest import REPO, records, same
 
 
 def test_design_matches_pick_design(cli):
@@ -52,3 +55,47 @@ def test_picking_errors():
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.picking.simulate(method="euler")
     assert e.value.field == "method"
+
+
+def _study(tmp_path, name, draws):
+    """The example study with fewer draws: as a dict (the package's input) and as a file (the CLI's)."""
+    tomllib = pytest.importorskip("tomllib")
+
+    from loomkin._inputs import study_text
+
+    d = tomllib.loads((REPO / "examples" / name).read_text())
+    d["draws"] = draws
+    path = tmp_path / name
+    path.write_text(study_text(d))
+    return d, path
+
+
+def test_montecarlo_matches_pick_montecarlo(cli, tmp_path):
+    d, path = _study(tmp_path, "pick-montecarlo.toml", 300)
+    ref = cli("pick", "montecarlo", path, "--json")
+    text = cli("pick", "montecarlo", path, "--csv", text=True)
+    r = loomkin.picking.montecarlo(d)
+    draws = r.pop("per_draw")
+    same(r, ref)
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert list(draws) == list(rows[0])
+    for k in draws:
+        np.testing.assert_array_equal(draws[k], [float(row[k]) for row in rows])
+    # The file gives the same study as the dict; the report's mean is the draws' mean.
+    same(loomkin.picking.montecarlo(path)["results"], ref["results"])
+    ok = draws["simulated"] == 1
+    v = next(q for q in r["results"] if q["name"] == "velocity_m_s")
+    assert v["mean"] == pytest.approx(draws["velocity_m_s"][ok].mean(), rel=1e-12)
+    assert r["failing"] == int(((draws["velocity_m_s"] < 16.5) | (draws["velocity_m_s"] > 19.5)
+                                | (draws["distance_m"] < 0.2) | ~ok).sum())
+
+
+def test_montecarlo_errors(tmp_path):
+    d, _ = _study(tmp_path, "pick-montecarlo.toml", 0)
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.picking.montecarlo(d)
+    assert e.value.field is not None
+    d["draws"] = 10
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.picking.montecarlo(d, speed_rpm=210)
+    assert e.value.field == "speed" and "settings" in e.value.allowed

@@ -644,14 +644,8 @@ fn compensate_cmd(a: CompensateArgs) -> Result<()> {
         format!("s_velocity_{vel}"),
         format!("s_acceleration_{acc}"),
     ]);
-    let n = a.points;
-    for i in 0..n {
-        let time = exc.period_s * i as f64 / (n - 1) as f64;
-        let k = exc.piece_at(time.min(exc.period_s * (1.0 - 1e-15)));
-        let piece = &exc.pieces[k];
-        let x = piece.derivs((time - piece.t0).clamp(0.0, piece.duration))[0];
-        let s = comp.eval(time);
-        t.push(vec![exc.angle_deg(time), x * u.scale, s[0] * u.scale, s[1], s[2]])?;
+    for [angle, x, s, v, acc] in comp.samples(&exc, a.points) {
+        t.push(vec![angle, x * u.scale, s * u.scale, v, acc])?;
     }
     let mut text = Vec::new();
     t.write_csv(&mut text).map_err(util::failure)?;

@@ -78,6 +78,23 @@ impl Compensation {
         let p = &self.pieces[i];
         p.derivs((t - p.t0).clamp(0.0, p.duration))
     }
+
+    /// `n ≥ 2` samples over the cycle `exc` this input compensates, both ends included, each
+    /// `[angle (deg), designed x, input s, s', s'']` in SI units (`loomkin dyn compensate`'s CSV
+    /// before its unit scaling).
+    pub fn samples(&self, exc: &Excitation, n: usize) -> Vec<[f64; 5]> {
+        let n = n.max(2);
+        (0..n)
+            .map(|i| {
+                let time = exc.period_s * i as f64 / (n - 1) as f64;
+                let k = exc.piece_at(time.min(exc.period_s * (1.0 - 1e-15)));
+                let piece = &exc.pieces[k];
+                let x = piece.derivs((time - piece.t0).clamp(0.0, piece.duration))[0];
+                let s = self.eval(time);
+                [exc.angle_deg(time), x, s[0], s[1], s[2]]
+            })
+            .collect()
+    }
 }
 
 /// The first derivative order (0…4) that jumps at some joint of the cycle (wrap-around included), with

@@ -128,6 +128,9 @@ pub enum PickError {
     /// A Monte-Carlo study file that cannot be run (the message names the key).
     #[error("Monte-Carlo study: {reason}")]
     Study {
+        /// The key of the study file at fault (`draws`, `bins`, `settings.speed_rpm`, …; `study`
+        /// when the file is not TOML).
+        field: String,
         /// What is wrong.
         reason: String,
     },
@@ -151,6 +154,7 @@ impl FieldError for PickError {
             Self::CheckingBeyondReach { .. } => Some("checking_kgf"),
             Self::StrapTooLow { .. } => Some("strap_cm"),
             Self::UnknownSetting { .. } => Some("setting"),
+            Self::Study { field, .. } => Some(field),
             Self::Law(e) => e.field(),
             _ => None,
         }

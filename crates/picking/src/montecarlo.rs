@@ -101,7 +101,8 @@ pub struct MonteCarlo {
 }
 
 fn study_err(e: loomkin_study::StudyError) -> PickError {
-    PickError::Study { reason: e.to_string() }
+    use loomkin_units::FieldError;
+    PickError::Study { field: e.field().unwrap_or("study").to_string(), reason: e.to_string() }
 }
 
 /// Wall seconds per draw on the reference machine (2 cores, both busy with other builds: load
@@ -124,8 +125,8 @@ impl MonteCarlo {
 
     /// Reads and checks a study file.
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: StudyFile =
-            toml::from_str(text).map_err(|e| PickError::Study { reason: crate::mechanism::toml_reason(text, &e) })?;
+        let f: StudyFile = toml::from_str(text)
+            .map_err(|e| PickError::Study { field: "study".into(), reason: crate::mechanism::toml_reason(text, &e) })?;
         let (bins, percentiles) =
             loomkin_study::check_plan(f.draws, MAX_DRAWS, f.bins, f.percentiles).map_err(study_err)?;
         let s = &f.settings;
