@@ -27,5 +27,5 @@ def test_the_worked_example_runs(tmp_path, monkeypatch):
     for i, cell in enumerate(code):
         exec(compile(cell, f"{DOC}:cell{i}", "exec"), namespace)
     for figure in ["laws.png", "cycle.png", "servo.png", "pick.png", "dobby.png", "front.png", "loom.png",
-                   "response.png"]:
+                   "response.png", "cam.png", "spectrum.png", "montecarlo.png"]:
         assert os.path.getsize(figure) > 10_000, figure
