@@ -241,7 +241,11 @@ impl Segment {
     /// [`Segment::eval_local`]'s polynomial part because the skipped leading terms are exact zeros.
     /// The sinusoid follows an exact angle-addition recurrence in four interleaved lanes (each lane
     /// rotates by 4h, so the four rotation chains run in parallel instead of one serial chain),
-    /// re-seeded from `sin_cos` every [`RUN_CHUNK`] points so rounding cannot accumulate.
+    /// re-seeded from `sin_cos` every [`RUN_CHUNK`] points so rounding cannot accumulate (at most
+    /// 32 rotations per lane: the error stays within a few ulps of the direct `sin_cos`, checked
+    /// over 10⁷ points in `tests/sampling.rs`). Four points are computed together, each quantity
+    /// as a `[f64; 4]`, so that every step is one operation on four independent lanes (packed
+    /// vector instructions; 2 lanes per instruction in the portable x86-64 build).
     pub(crate) fn eval_run(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
         self.eval_run_from(t0, h, 0, out);
     }
@@ -262,36 +266,72 @@ impl Segment {
 
     #[inline(always)]
     fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
-        let Some(sn) = self.sine else {
-            for (i, k) in out.iter_mut().enumerate() {
-                *k = c.kin::<D>(t0 + (first + i) as f64 * h);
-            }
-            return;
-        };
-        // One rotation by h, 2h, 3h seeds the lanes; each lane then rotates by 4h.
-        let rot = |m: f64| (sn.omega * h * m).sin_cos();
+        match self.sine {
+            None => self.run_lanes::<D, false>(c, t0, h, first, out),
+            Some(_) => self.run_lanes::<D, true>(c, t0, h, first, out),
+        }
+    }
+
+    /// The run in groups of four points held lane by lane (`[f64; 4]` per quantity), so that each
+    /// step is one operation on four independent values, which the compiler packs into vector
+    /// instructions; the points are the same sums as [`Segment::eval_local`]'s, lane by lane.
+    #[inline(always)]
+    fn run_lanes<const D: usize, const SINE: bool>(
+        &self,
+        c: &DerivCoeffs,
+        t0: f64,
+        h: f64,
+        first: usize,
+        out: &mut [Kinematics],
+    ) {
+        // The sinusoid's factors as `add_sine` forms them, and rotations by h, 2h, 3h (lane seeds)
+        // and 4h (each lane's step).
+        let sn = self.sine.unwrap_or(Sine { amp: 0.0, omega: 1.0, phase: 0.0 });
+        let w = sn.omega;
+        let (ks, kv, ka, kj) = (sn.amp / (w * w), sn.amp / w, sn.amp, sn.amp * w);
+        let rot = |m: f64| if SINE { (w * h * m).sin_cos() } else { (0.0, 1.0) };
         let (r1, r2, r3, (s4, c4)) = (rot(1.0), rot(2.0), rot(3.0), rot(4.0));
-        for (ci, chunk) in out.chunks_mut(RUN_CHUNK).enumerate() {
-            let i0 = first + ci * RUN_CHUNK;
-            let (s0, c0) = (sn.omega * (t0 + i0 as f64 * h) + sn.phase).sin_cos();
-            let mut sin = [s0, s0 * r1.1 + c0 * r1.0, s0 * r2.1 + c0 * r2.0, s0 * r3.1 + c0 * r3.0];
-            let mut cos = [c0, c0 * r1.1 - s0 * r1.0, c0 * r2.1 - s0 * r2.0, c0 * r3.1 - s0 * r3.0];
+        // Without a sinusoid there is nothing to re-seed: one chunk.
+        let chunk_len = if SINE { RUN_CHUNK } else { out.len().max(1) };
+        for (ci, chunk) in out.chunks_mut(chunk_len).enumerate() {
+            let i0 = first + ci * chunk_len;
+            let (mut sin, mut cos) = ([0.0; 4], [0.0; 4]);
+            if SINE {
+                let (s0, c0) = (w * (t0 + i0 as f64 * h) + sn.phase).sin_cos();
+                sin = [s0, s0 * r1.1 + c0 * r1.0, s0 * r2.1 + c0 * r2.0, s0 * r3.1 + c0 * r3.0];
+                cos = [c0, c0 * r1.1 - s0 * r1.0, c0 * r2.1 - s0 * r2.0, c0 * r3.1 - s0 * r3.0];
+            }
+            // Point indices as floats: integers below 2^53, so `+ 4.0` is exact and equals the
+            // conversion `(i + l) as f64`.
+            let mut idx: [f64; 4] = std::array::from_fn(|l| (i0 + l) as f64);
+            let i = i0 + (chunk.len() & !3);
             let mut quads = chunk.chunks_exact_mut(4);
-            let mut i = i0;
             for quad in &mut quads {
-                for l in 0..4 {
-                    let mut kin = c.kin::<D>(t0 + (i + l) as f64 * h);
-                    add_sine(&mut kin, sn, sin[l], cos[l]);
-                    quad[l] = kin;
-                    let ns = sin[l] * c4 + cos[l] * s4;
-                    cos[l] = cos[l] * c4 - sin[l] * s4;
-                    sin[l] = ns;
+                let t: [f64; 4] = std::array::from_fn(|l| t0 + idx[l] * h);
+                let [mut s, mut v, mut a, mut j] = c.kin4::<D>(&t);
+                if SINE {
+                    for l in 0..4 {
+                        s[l] -= ks * sin[l];
+                        v[l] -= kv * cos[l];
+                        a[l] += ka * sin[l];
+                        j[l] += kj * cos[l];
+                    }
+                    for l in 0..4 {
+                        let ns = sin[l] * c4 + cos[l] * s4;
+                        cos[l] = cos[l] * c4 - sin[l] * s4;
+                        sin[l] = ns;
+                    }
                 }
-                i += 4;
+                for l in 0..4 {
+                    quad[l] = Kinematics { s: s[l], v: v[l], a: a[l], j: j[l] };
+                    idx[l] += 4.0;
+                }
             }
             for (l, k) in quads.into_remainder().iter_mut().enumerate() {
                 let mut kin = c.kin::<D>(t0 + (i + l) as f64 * h);
-                add_sine(&mut kin, sn, sin[l], cos[l]);
+                if SINE {
+                    add_sine(&mut kin, sn, sin[l], cos[l]);
+                }
                 *k = kin;
             }
         }
@@ -318,6 +358,18 @@ impl DerivCoeffs {
             c.j[k] = if k + 3 < NC { FALLING[3][k + 3] * p[k + 3] } else { 0.0 };
         }
         c
+    }
+
+    /// s, v, a, j at four points `t` for a polynomial of degree at most `D`, lane by lane the same
+    /// sums as [`DerivCoeffs::kin`].
+    #[inline(always)]
+    fn kin4<const D: usize>(&self, t: &[f64; 4]) -> [[f64; 4]; 4] {
+        [
+            horner4::<D, 0>(&self.s, t),
+            horner4::<D, 1>(&self.v, t),
+            horner4::<D, 2>(&self.a, t),
+            horner4::<D, 3>(&self.j, t),
+        ]
     }
 
     /// s, v, a, j at `t` for a polynomial of degree at most `D`.
@@ -355,6 +407,23 @@ fn horner_below<const D: usize, const N: usize>(c: &[f64; NC], t: f64) -> f64 {
     while k > 0 {
         k -= 1;
         acc = acc * t + c[k];
+    }
+    acc
+}
+
+/// [`horner_below`] at four points.
+#[inline(always)]
+fn horner4<const D: usize, const N: usize>(c: &[f64; NC], t: &[f64; 4]) -> [f64; 4] {
+    if N > D {
+        return [0.0; 4];
+    }
+    let mut acc = [c[D - N]; 4];
+    let mut k = D - N;
+    while k > 0 {
+        k -= 1;
+        for l in 0..4 {
+            acc[l] = acc[l] * t[l] + c[k];
+        }
     }
     acc
 }
