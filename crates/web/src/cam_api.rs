@@ -9,7 +9,7 @@ use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
-use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
+use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, ProfileReport, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_laws::{Cycle, CycleSpec, StrokeUnit};
 use loomkin_units::{Range, compact};
@@ -390,6 +390,9 @@ pub struct CamProfileResponse {
     pub counter: Option<CamCurves>,
     /// The drawing.
     pub drawing: CamDrawing,
+    /// The library's report of the cam, keyed as `loomkin cam profile --json` (and the Python
+    /// package's `loomkin.cams.profile`), without its points: `cam` and `counter` carry the curves.
+    pub profile_report: ProfileReport,
 }
 
 fn closure_name(c: Closure) -> &'static str {
@@ -534,6 +537,9 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
         phase_point: cam.phase_point(),
     };
     let roller = d.roller_radius_mm;
+    let mut profile_report = cam.report(report.source.clone(), step);
+    profile_report.points.clear();
+    profile_report.counter_points = None;
     Ok(CamProfileResponse {
         report,
         pressure_limit_deg: limit,
@@ -542,6 +548,7 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
         cam: curves(&cam, &pts, motion.unit()),
         counter: counter.map(|c| curves(&cam, &c, motion.unit())),
         drawing,
+        profile_report,
     })
 }
 
@@ -739,6 +746,14 @@ mod tests {
         let cam = CamProfile::new(&motion, &d).unwrap();
         assert_eq!(r.report.prime_radius_mm, cam.prime_radius_mm());
         assert_eq!(r.report.max_pressure_angle_deg, cam.max_pressure_angle().0);
+        // The embedded library report is the CLI's `--json` without its points; the web's own
+        // keys agree with it.
+        let mut cli = cam.report(r.report.source.clone(), 1.0);
+        cli.points.clear();
+        cli.counter_points = None;
+        assert_eq!(r.profile_report, cli);
+        assert_eq!(r.profile_report.base_radius_mm, r.report.base_radius_mm);
+        assert_eq!(r.profile_report.roller_max_mm, r.report.roller_max_mm);
         // Sized for 30°: the largest pressure angle is the limit drawn.
         assert!((r.report.max_pressure_angle_deg - 30.0).abs() < 1e-9);
         assert_eq!(r.pressure_limit_deg, 30.0);
