@@ -124,8 +124,7 @@ pub struct Crossing {
 /// Proper crossings of a polyline with itself (closed: the last point joins the first), at most
 /// `limit`. Neighbouring segments are not compared. A sweep over the segments sorted by their
 /// leftmost x keeps the cost near `n log n` for cam-like curves; a closed polyline that winds once
-/// about the origin with every segment turning the same way is
-/// simple and needs no sweep.
+/// about the origin with every segment turning the same way is simple and needs no sweep.
 pub fn self_intersections(points: &[Vec2], closed: bool, limit: usize) -> Vec<Crossing> {
     let n = points.len();
     let nseg = if closed { n } else { n.saturating_sub(1) };
