@@ -153,6 +153,38 @@ impl LawArgs {
     }
 }
 
+/// The radius of both rollers (groove walls, undercut check), in mm as the workbench and `cam
+/// profile --roller-radius-mm`, or in m (`--roller-m`, the first flag, kept).
+#[derive(Debug, Args)]
+pub struct RollerArgs {
+    /// Roller radius, mm (default 30 mm where the cams are synthesised; none for a given cam).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, conflicts_with = "roller_m")]
+    roller_mm: Option<f64>,
+    /// Roller radius, m (as --roller-mm).
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    roller_m: Option<f64>,
+}
+
+impl RollerArgs {
+    /// The roller radius in m, if given. A `--roller-mm` outside 0…10 000 mm is refused here,
+    /// naming the flag and the range in mm; `--roller-m` is checked by the library (0…10 m).
+    fn metres(&self) -> Result<Option<f64>> {
+        if let Some(mm) = self.roller_mm {
+            loomkin_units::Range::closed(0.0, 10_000.0, "mm").check("--roller-mm", mm)?;
+            return Ok(Some(loomkin_units::m_from_mm(mm)));
+        }
+        Ok(self.roller_m)
+    }
+
+    /// The roller radius in m, 30 mm unless given (the cams are synthesised with a roller).
+    fn metres_or_default(&self) -> Result<f64> {
+        Ok(self.metres()?.unwrap_or(DEFAULT_ROLLER_M))
+    }
+}
+
+/// The roller of a synthesis when none is given, m.
+const DEFAULT_ROLLER_M: f64 = 0.03;
+
 /// `dobby analyze`.
 #[derive(Debug, Args)]
 pub struct AnalyzeArgs {
@@ -163,9 +195,8 @@ pub struct AnalyzeArgs {
     /// Input step, deg (0.01…30).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     step_deg: f64,
-    /// Roller radius for the undercut check of Γ and the derived Γ′, m.
-    #[arg(long, allow_hyphen_values = true)]
-    roller_m: Option<f64>,
+    #[command(flatten)]
+    roller: RollerArgs,
     #[command(flatten)]
     format: Format,
 }
@@ -177,9 +208,8 @@ pub struct SynthesizeArgs {
     geometry: GeometryArgs,
     #[command(flatten)]
     law: LawArgs,
-    /// Roller radius of both rollers (groove walls, undercut check), m.
-    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
-    roller_m: f64,
+    #[command(flatten)]
+    roller: RollerArgs,
     /// Input step, deg (0.01…30).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     step_deg: f64,
@@ -248,9 +278,8 @@ pub struct PlotArgs {
     cam: CamArgs,
     #[command(flatten)]
     law: LawArgs,
-    /// Roller radius (groove walls), m; task 2 default 0.03, task 1 none.
-    #[arg(long, allow_hyphen_values = true)]
-    roller_m: Option<f64>,
+    #[command(flatten)]
+    roller: RollerArgs,
     /// Input step, deg.
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     step_deg: f64,
@@ -279,9 +308,8 @@ pub struct SweepArgs {
     cam: CamArgs,
     #[command(flatten)]
     law: LawArgs,
-    /// Roller radius for the synthesis, m.
-    #[arg(long, default_value_t = 0.03, allow_hyphen_values = true)]
-    roller_m: f64,
+    #[command(flatten)]
+    roller: RollerArgs,
     /// Input step, deg.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     step_deg: f64,
@@ -428,7 +456,7 @@ fn synthesis_table(s: &Synthesis) -> Result<Table> {
 fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
     let g = a.geometry.geometry()?;
     let cam = a.cam.cam()?;
-    let res = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+    let res = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller.metres()?)?)?;
     warn(&res.warnings);
     if a.format.csv {
         return output::csv(&analysis_table(&res)?);
@@ -497,7 +525,7 @@ fn print_checks(c: &loomkin_mech::CamChecks) -> Result<()> {
 fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     let g = a.geometry.geometry()?;
     let law = a.law.spec()?;
-    let res = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+    let res = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller.metres_or_default()?)?)?;
     warn(&res.warnings);
     // As `cam profile`: an undercut cam is reported (the warning above names the angle and the
     // admissible roller) but never drawn; with --dxf the report is printed, then exit 2.
@@ -529,7 +557,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
         let s = &res.summary;
         outln!("rotary-dobby modulator, task 2 (synthesis): {}", s.law)?;
         print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
-        outln!("  roller radius        {} m", s.roller_m)?;
+        outln!("  roller radius        {} mm", loomkin_units::compact(loomkin_units::mm_from_m(s.roller_m)))?;
         outln!(
             "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
             s.checks.omega6_max_rad_s,
@@ -542,7 +570,10 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
             "  undercut             Γ {}, Γ′ {}; largest roller without undercut {}",
             yes_no(s.undercut_b),
             yes_no(s.undercut_c),
-            s.checks.roller_max_m.map(|r| format!("{r:.5} m")).unwrap_or_else(|| "any".into())
+            s.checks
+                .roller_max_m
+                .map(|r| format!("{:.2} mm", loomkin_units::mm_from_m(r)))
+                .unwrap_or_else(|| "any".into())
         )?;
         outln!(
             "  admissible α         ({:.3}°, {:.3}°) for this law (no fold at roller B)",
@@ -671,15 +702,16 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
     let (states, gamma, gamma_p, title, checks) = match a.task {
         TaskArg::Analyze => {
             let cam = a.cam.cam()?;
-            let r = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, a.roller_m)?)?;
+            let roller_m = a.roller.metres()?;
+            let r = analyze(&g, &cam, &analysis_options(&a.geometry, a.step_deg, roller_m)?)?;
             warn(&r.warnings);
-            let gamma = r.cam_profile(a.roller_m.unwrap_or(0.0));
+            let gamma = r.cam_profile(roller_m.unwrap_or(0.0));
             let title = format!("Modulator, task 1: cam {}, α = {}°", cam.label(), g.alpha_deg);
             (r.states, gamma, r.counter_cam, title, r.summary.checks)
         }
         TaskArg::Synthesize => {
             let law = a.law.spec()?;
-            let r = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller_m.unwrap_or(0.03))?)?;
+            let r = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller.metres_or_default()?)?)?;
             warn(&r.warnings);
             let title = format!("Modulator, task 2: {}, α = {}°", r.summary.law, g.alpha_deg);
             (r.states, r.cam, r.counter_cam, title, r.summary.checks)
@@ -727,7 +759,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         &a.law.spec()?,
         &alphas,
         &analysis_options(&a.geometry, a.step_deg, None)?,
-        &synthesis_options(&a.geometry, a.step_deg, a.roller_m)?,
+        &synthesis_options(&a.geometry, a.step_deg, a.roller.metres_or_default()?)?,
     )
     .map_err(|e: MechError| anyhow::Error::from(e))?;
     if a.format.json && a.shard.given() {

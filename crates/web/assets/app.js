@@ -64,10 +64,11 @@ function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCom
   range.addEventListener("input", () => { field.value = range.value; field.classList.remove("bad"); onInput(+range.value); });
   range.addEventListener("change", () => { if (onCommit) onCommit(+range.value); });
   field.addEventListener("change", () => {
-    const v = +field.value;
-    if (!isFinite(v) || field.value === "" || v < min || v > max) {
+    // The bounds as the slider has them now (a view may change its range, e.g. a 720° cycle).
+    const v = +field.value, lo = +range.min, hi = +range.max;
+    if (!isFinite(v) || field.value === "" || v < lo || v > hi) {
       field.classList.add("bad");
-      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${min} … ${max} ${unit}`, true);
+      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${lo} … ${hi} ${unit}`, true);
       return;
     }
     field.classList.remove("bad");
@@ -76,7 +77,9 @@ function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCom
     if (onCommit) onCommit(v);
   });
   const set = (v) => { range.value = String(v); field.value = String(v); field.classList.remove("bad"); };
-  return { label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "num-slider" }, range, field)), range, field, set };
+  // A new upper bound for both (the field's own check follows the slider's).
+  const setMax = (v) => { range.max = String(v); field.max = String(v); };
+  return { setMax, label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "num-slider" }, range, field)), range, field, set };
 }
 
 // Marks the inputs a refused request names (error.field, a JSON path such as
@@ -1109,6 +1112,7 @@ async function initDynamics() {
   const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); }, commit);
   const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); }, commit);
   const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); }, commit);
+  dyn.speedW = speed; dyn.fnW = fn; dyn.zetaW = zeta;
   const steady = el("input", { type: "checkbox", id: "dyn-steady" });
   steady.addEventListener("change", () => { changed(); commit(); });
   dyn.steady = steady;
@@ -1140,10 +1144,20 @@ async function initDynamics() {
   dyn.pos = new Chart(charts, { id: "dyn-pos", title: "Position", height: 220, x: ax, y: { label: "position", unit: "mm" } });
   dyn.err = new Chart(charts, { id: "dyn-err", title: "Dynamic error x − s (dwells shaded)", height: 220, x: ax, y: { label: "x − s", unit: "mm" } });
   dyn.acc = new Chart(charts, { id: "dyn-acc", title: "Acceleration of the frame", height: 220, x: ax, y: { label: "x''", unit: "m/s²" } });
-  dyn.sweep = new Chart(charts, { id: "dyn-sweep", title: "Speed sweep: residual vibration in the dwells", height: 220, x: { label: "main-shaft speed", unit: "rpm" }, y: { label: "amplitude", unit: "mm", includeZero: true } });
+  dyn.sweep = new Chart(charts, { id: "dyn-sweep", title: "Speed sweep: residual vibration", height: 220, x: { label: "main-shaft speed", unit: "rpm" }, y: { label: "amplitude", unit: "mm", includeZero: true } });
   Object.assign(loomkin.charts, { dyn_pos: dyn.pos, dyn_err: dyn.err, dyn_acc: dyn.acc, dyn_sweep: dyn.sweep });
   respond();
   dyn.history.ready();
+}
+
+// The input a refused dynamics request names.
+function dynField(path) {
+  const map = [["speed_rpm", dyn.speedW.field, "main-shaft speed"], ["natural_hz", dyn.fnW.field, "natural frequency"],
+    ["damping_ratio", dyn.zetaW.field, "damping ratio"], ["law.stroke_mm", dyn.stroke, "stroke"], ["law.motion_deg", dyn.motion, "motion angle"],
+    ["law.law", dyn.law, "law"], ["sweep.from_rpm", dyn.from, "sweep from"], ["sweep.to_rpm", dyn.to, "sweep to"], ["sweep", dyn.from, "sweep"],
+    ["cycle_toml", dyn.source, "cycle file"]];
+  const hit = map.find(([k]) => path === k || path.startsWith(k + ".") || path.startsWith(k + "["));
+  return hit ? { inputs: [hit[1]], label: hit[2] } : null;
 }
 
 function dynRequest() {
@@ -1161,6 +1175,7 @@ function respond() {
   api("/dynamics/response", q)
     .then((r) => {
       if (q.sweep) dyn.sweepDirty = false;
+      clearFieldErrors();
       const c = r.curves, u = r.unit, rep = r.report;
       for (const ch of [dyn.pos, dyn.err]) ch.opts.y.unit = u;
       dyn.acc.opts.y.unit = r.acceleration_unit;
@@ -1183,7 +1198,7 @@ function respond() {
       $("#dyn-summary tbody").replaceChildren(...rows.map(([k, v, id]) => el("tr", {}, el("th", { textContent: k }), el("td", { textContent: v, id: id || "" }))));
       status(`response at ${num(rep.speed_rpm)} rpm`);
     })
-    .catch((e) => status("dynamics: " + e.message, true))
+    .catch((e) => showFieldError("dynamics", e, dynField))
     .finally(() => { dyn.inflight = false; if (dyn.queued) { dyn.queued = false; respond(); } });
 }
 

@@ -6,6 +6,7 @@
 
 const { Chart, Scene, PALETTE } = window.LoomkinCharts;
 const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
+const { sliderWithNumber, viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
 
 const cam = { inflight: false, queued: false, result: null, fileText: null };
 
@@ -107,15 +108,17 @@ async function initCam() {
   root.append(top);
   cam.scene = new Scene(top, { id: "cam-scene", title: "Cam (cam frame)", height: 420, unit: "mm", scale: 1 });
   top.append(table);
-  const angle = el("input", { type: "range", min: "0", max: "360", step: "0.5", value: "0", id: "cam-angle" });
-  const angleOut = el("output", { textContent: "0°" });
-  root.append(el("label", { className: "slider" }, el("span", { textContent: "main-shaft angle (the follower's contact on the drawing and the charts)" }), el("div", { className: "row" }, angle, angleOut)));
+  // The angle: a slider and a numeric field (any angle of the cycle, e.g. 123.25°).
+  const angleW = sliderWithNumber("cam-angle", "main-shaft angle: the follower's contact on the drawing and the charts", "°", 0, 360, 0.5, 0,
+    (v) => { cam.angleDeg = v; drawAngle(v); }, () => cam.history.commit());
+  cam.angleDeg = 0;
+  root.append(angleW.label);
   const grid = el("div", { className: "grid-charts" });
   root.append(grid);
   const ax = () => ({ label: "main-shaft angle", unit: "°", range: [0, cam.period || 360], step: (cam.period || 360) > 360 ? 90 : 30 });
   cam.lift = new Chart(grid, { id: "cam-lift", title: "Follower motion", height: 200, x: ax(), y: { label: "lift", unit: "mm", includeZero: true } });
   cam.pressure = new Chart(grid, { id: "cam-pressure", title: "Pressure angle (limit dashed)", height: 220, x: ax(), y: { label: "pressure angle", unit: "°", includeZero: true } });
-  cam.curv = new Chart(grid, { id: "cam-curvature", title: "Curvature, convex > 0 (undercut above 1/r, dashed)", height: 220, x: ax(), y: { label: "curvature", unit: "1/mm", includeZero: true } });
+  cam.curv = new Chart(grid, { id: "cam-curvature", title: "Curvature, convex > 0", height: 220, x: ax(), y: { label: "curvature", unit: "1/mm", includeZero: true } });
   Object.assign(loomkin.charts, { cam_lift: cam.lift, cam_pressure: cam.pressure, cam_curvature: cam.curv });
 
   cam.inputs = { source, law, stroke, motion, preset, shedStroke, shedMotion, follower, closure, sizeBy, pressure, prime, roller, offset, arm, pivot, tol, bore, format, spacing, spacingValue };
@@ -131,24 +134,62 @@ async function initCam() {
     spacingValue.title = spacing.value === "step" ? "master step, deg (points also on every joint)" : "largest re-interpolation error, slave unit";
   };
   cam.layout = layout;
-  const changed = () => { layout(); compute(); };
+  // Every edit is recorded for undo and written into the address (#cam/<state>).
+  const commit = () => cam.history.commit();
+  const changed = () => { layout(); compute(); commit(); };
   source.addEventListener("change", () => {
     if (source.value === "example:sley-cycle.toml" && follower.value !== "oscillating") { follower.value = "oscillating"; sizeBy.value = "pressure"; pressure.value = "40"; roller.value = "10"; }
     if (source.value === "file" && !cam.fileText) { layout(); file.click(); return; }
     changed();
   });
   for (const e of [law, stroke, motion, preset, shedStroke, shedMotion, follower, closure, sizeBy, pressure, prime, roller, offset, arm, pivot]) e.addEventListener("change", changed);
-  spacing.addEventListener("change", () => { spacingValue.value = spacing.value === "step" ? "1" : "0.001"; layout(); });
+  // The download settings are part of the state too (no recomputation).
+  for (const e of [tol, bore, format, spacingValue]) e.addEventListener("change", commit);
+  spacing.addEventListener("change", () => { spacingValue.value = spacing.value === "step" ? "1" : "0.001"; layout(); commit(); });
   file.addEventListener("change", async () => {
     const f = file.files[0]; if (!f) return;
     cam.fileText = await f.text(); cam.fileName = f.name; fileName.textContent = f.name; source.value = "file"; changed();
   });
-  angle.addEventListener("input", () => { angleOut.textContent = `${angle.value}°`; drawAngle(+angle.value); });
-  cam.angle = angle; cam.angleOut = angleOut;
+  cam.angleW = angleW;
   dxfBtn.addEventListener("click", downloadDxf);
   tableBtn.addEventListener("click", downloadTable);
+  // The state: every field of the panel and the angle. A loaded cycle file stays in the page only
+  // (not in the address): a state naming it without the file shows the first example.
+  const firstExample = "example:" + ex.cycles[0].name;
+  cam.history = viewHistory("cam", () => {
+    const st = {};
+    for (const [k, e] of Object.entries(cam.inputs)) st[k] = e.value;
+    if (st.source === "file" && !cam.fileText) st.source = firstExample;
+    st.angle_deg = cam.angleDeg;
+    return st;
+  }, (st) => {
+    for (const [k, e] of Object.entries(cam.inputs)) if (st[k] !== undefined) e.value = st[k];
+    const known = [...source.options].some((o) => o.value === source.value);
+    if (!known || (source.value === "file" && !cam.fileText)) source.value = firstExample;
+    if (st.angle_deg !== undefined) { angleW.set(st.angle_deg); cam.angleDeg = st.angle_deg; }
+    layout();
+    compute();
+  });
   layout();
   compute();
+  cam.history.ready();
+}
+
+// The input a refused request names (its JSON path), with the label the panel gives it.
+function camField(path) {
+  const i = cam.inputs;
+  const map = [
+    ["source.law.stroke_mm", i.stroke, "stroke"], ["source.law.stroke_deg", i.stroke, "swing"], ["source.law.motion_deg", i.motion, "motion angle"],
+    ["source.law", i.law, "law"], ["source.shed.stroke_mm", i.shedStroke, "frame stroke"], ["source.shed.motion_deg", i.shedMotion, "motion angle"],
+    ["source.shed", i.preset, "preset"], ["source", i.source, "source"],
+    ["design.roller_radius_mm", i.roller, "roller radius"], ["design.offset_mm", i.offset, "offset ε"], ["design.arm_mm", i.arm, "arm length L"],
+    ["design.pivot_mm", i.pivot, "pivot distance d"], ["design.max_pressure_deg", i.pressure, "largest pressure angle"],
+    ["design.prime_radius_mm", i.prime, "prime circle radius"], ["design.follower", i.follower, "follower"], ["design.closure", i.closure, "closure"],
+    ["design", i.follower, "follower"], ["chord_tol_mm", i.tol, "chord tolerance"], ["bore_mm", i.bore, "bore"],
+    ["step_deg", i.spacingValue, "table step"], ["tolerance", i.spacingValue, "table tolerance"], ["format", i.format, "table format"],
+  ];
+  const hit = map.find(([k]) => path === k || path.startsWith(k + ".") || path.startsWith(k + "["));
+  return hit ? { inputs: [hit[1]], label: hit[2] } : null;
 }
 
 function camSource() {
@@ -187,8 +228,8 @@ function compute() {
   const q = loomkin.camRequest();
   const t0 = performance.now();
   api("/cam/profile", q)
-    .then((r) => { cam.result = r; render(r); status(`cam computed in ${(performance.now() - t0).toFixed(0)} ms`); })
-    .catch((e) => { cam.result = null; status("cam: " + e.message, true); })
+    .then((r) => { clearFieldErrors(); cam.result = r; render(r); status(`cam computed in ${(performance.now() - t0).toFixed(0)} ms`); })
+    .catch((e) => { cam.result = null; showFieldError("cam", e, camField); })
     .finally(() => { cam.inflight = false; if (cam.queued) { cam.queued = false; compute(); } });
 }
 
@@ -202,7 +243,8 @@ function render(r) {
   for (const ch of [cam.lift, cam.pressure, cam.curv]) {
     ch.opts.x.range = [0, cam.period]; ch.opts.x.step = cam.period > 360 ? 90 : 30;
   }
-  cam.angle.max = String(cam.period);
+  cam.angleW.setMax(cam.period);
+  if (cam.angleDeg > cam.period) { cam.angleW.set(0); cam.angleDeg = 0; }
   cam.lift.opts.y.unit = u;
   cam.lift.setSeries([{ label: "lift s", x: c.angle_deg, y: c.lift, color: PALETTE[0] }]);
   const A = r.pressure_limit_deg;
@@ -213,7 +255,7 @@ function render(r) {
   const cu = [{ label: "pitch curve", x: c.angle_deg, y: c.curvature_pitch_per_mm, color: PALETTE[0], dash: [4, 3] },
     { label: "profile", x: c.angle_deg, y: c.curvature_profile_per_mm, color: "#111827" }];
   if (r.counter) cu.push({ label: "counter pitch", x: r.counter.angle_deg, y: r.counter.curvature_pitch_per_mm, color: PALETTE[1], dash: [4, 3] });
-  if (r.curvature_limit_per_mm !== undefined) cu.push(limitLine(`1/r = ${num(r.curvature_limit_per_mm, 4)}`, cam.period, r.curvature_limit_per_mm, "#dc2626"));
+  if (r.curvature_limit_per_mm !== undefined) cu.push(limitLine(`undercut above 1/r = ${num(r.curvature_limit_per_mm, 4)}`, cam.period, r.curvature_limit_per_mm, "#dc2626"));
   cam.curv.setSeries(cu);
   cam.curv.opts.y.range = curvatureRange(cu);
   cam.curv.draw();
@@ -239,7 +281,7 @@ function render(r) {
     if (id === "cam-undercut" && rep.undercut) td.style.color = "#b91c1c";
     return el("tr", {}, el("th", { textContent: k }), td);
   }));
-  drawAngle(+cam.angle.value);
+  drawAngle(cam.angleDeg);
 }
 
 // The curvature axis: the curves and the limit, but not a spike to ±∞ at a near-cusp.
@@ -248,7 +290,7 @@ function curvatureRange(series) {
   if (!v.length) return undefined;
   const q = (p) => v[Math.min(v.length - 1, Math.max(0, Math.round(p * (v.length - 1))))];
   let lo = Math.min(q(0.01), 0), hi = Math.max(q(0.99), 0);
-  const lim = series.find((s) => s.label && s.label.startsWith("1/r"));
+  const lim = series.find((s) => s.label && s.label.startsWith("undercut above 1/r"));
   if (lim) hi = Math.max(hi, lim.y[0] * 1.15);
   const span = hi - lo || 1;
   return [lo - 0.05 * span, hi + 0.05 * span];
@@ -294,7 +336,7 @@ async function downloadDxf() {
     download(r.filename, r.text, r.media_type);
     document.querySelector("#cam-download-note").textContent = `${r.filename}: ${r.note}`;
     status(`exported ${r.filename}`);
-  } catch (e) { status("DXF: " + e.message, true); }
+  } catch (e) { showFieldError("DXF", e, camField); }
 }
 
 async function downloadTable() {
@@ -306,7 +348,7 @@ async function downloadTable() {
     download(r.file.filename, r.file.text, r.file.media_type);
     document.querySelector("#cam-download-note").textContent = `${r.file.filename}: ${r.file.note}`;
     status(`exported ${r.file.filename}`);
-  } catch (e) { status("cam table: " + e.message, true); }
+  } catch (e) { showFieldError("cam table", e, camField); }
 }
 
 register("cam", "Cam", initCam);

@@ -848,5 +848,5 @@ class Scene {
   }
 }
 
-window.LoomkinCharts = { Chart, Scene, PALETTE, fmtValue, interp, niceTicks, download, addTools, SvgContext };
+window.LoomkinCharts = { Chart, Scene, PALETTE, fmtValue, interp, niceTicks, download, addTools, SvgContext, renderSVG };
 })();

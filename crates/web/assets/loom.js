@@ -4,8 +4,9 @@
 (() => {
 "use strict";
 
-const { Chart, PALETTE } = window.LoomkinCharts;
+const { Chart, PALETTE, addTools } = window.LoomkinCharts;
 const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
+const { viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
 
 const loom = { inflight: false, queued: false, result: null, stagger: null, loomText: null, patternText: null, patternKind: null };
 // Colours for up to 24 frames (front frame first).
@@ -55,6 +56,11 @@ async function initLoom() {
   const gridWrap = el("div", { className: "chart", id: "loom-grid" });
   const gridCanvas = el("canvas", { role: "img", ariaLabel: "weave pattern: picks by frames, raised frames filled" });
   gridWrap.append(gridCanvas);
+  // The pattern grid saves as the charts do: PNG, SVG (drawn by the same code) and CSV (0/1 per frame).
+  loom.gridChart = { wrap: gridWrap, canvas: gridCanvas, ctx: gridCanvas.getContext("2d"), hoverX: null,
+    draw: () => drawGrid(), resetView: () => drawGrid(), fileStem: () => "loom-pattern",
+    toSVG: () => window.LoomkinCharts.renderSVG(loom.gridChart), toCSV: patternCSV };
+  addTools(loom.gridChart, ["png", "svg", "csv"]);
   root.append(el("div", { className: "results" }, summary, gridWrap));
   const charts = el("div", { className: "charts" });
   root.append(charts);
@@ -68,33 +74,75 @@ async function initLoom() {
   if (window.ResizeObserver) new ResizeObserver(() => drawGrid()).observe(gridCanvas);
   loom.inputs = { loomSel, patSel, fromPick, picks, objective, apply };
 
+  // Every edit is recorded for undo and written into the address (#loom/<state>).
+  const commit = () => loom.history.commit();
   loomSel.addEventListener("change", () => {
     document.querySelector("#loom-upload-label").hidden = loomSel.value !== "upload";
     if (loomSel.value === "upload" && !loom.loomText) { loomFile.click(); return; }
-    resetStagger(); evaluate();
+    resetStagger(); evaluate(); commit();
   });
   patSel.addEventListener("change", () => {
     document.querySelector("#loom-pattern-upload-label").hidden = patSel.value !== "upload";
     if (patSel.value === "upload" && !loom.patternText) { patFile.click(); return; }
-    resetStagger(); evaluate();
+    resetStagger(); evaluate(); commit();
   });
   loomFile.addEventListener("change", async () => {
     const f = loomFile.files[0]; if (!f) return;
     loom.loomText = await f.text(); loomName.textContent = f.name; loomSel.value = "upload";
-    document.querySelector("#loom-upload-label").hidden = false; resetStagger(); evaluate();
+    document.querySelector("#loom-upload-label").hidden = false; resetStagger(); evaluate(); commit();
   });
   patFile.addEventListener("change", async () => {
     const f = patFile.files[0]; if (!f) return;
     loom.patternText = await f.text(); loom.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(loom.patternText) ? "wif" : "lift_plan";
     patName.textContent = f.name; patSel.value = "upload";
-    document.querySelector("#loom-pattern-upload-label").hidden = false; resetStagger(); evaluate();
+    document.querySelector("#loom-pattern-upload-label").hidden = false; resetStagger(); evaluate(); commit();
   });
-  for (const e of [fromPick, picks]) e.addEventListener("change", evaluate);
-  apply.addEventListener("change", evaluate);
+  for (const e of [fromPick, picks]) e.addEventListener("change", () => { evaluate(); commit(); });
+  apply.addEventListener("change", () => { evaluate(); commit(); });
+  objective.addEventListener("change", commit);
   optimise.addEventListener("click", runStagger);
   save.addEventListener("click", () => { if (loom.stagger) download("loom-staggered.toml", loom.stagger.loom_toml, "text/plain"); });
   loom.save = save;
+  // The state: loom, pattern, the timing picks, the objective and whether the optimised stagger
+  // is drawn. Loaded files stay in the page only: a state naming one without it shows the first
+  // example; the stagger is kept while the loom and pattern stay (it is computed, not stored).
+  const firstLoom = ex.looms[0].name;
+  loom.history = viewHistory("loom", () => ({
+    loom: loomSel.value === "upload" && !loom.loomText ? firstLoom : loomSel.value,
+    pattern: patSel.value === "upload" && !loom.patternText ? "plain-default" : patSel.value,
+    from_pick: fromPick.value, picks: picks.value, objective: objective.value, stagger_drawn: apply.checked,
+  }), (st) => {
+    const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
+    const before = loomSel.value + "\n" + patSel.value;
+    pick(loomSel, st.loom, !!loom.loomText, firstLoom);
+    pick(patSel, st.pattern, !!loom.patternText, "plain-default");
+    document.querySelector("#loom-upload-label").hidden = loomSel.value !== "upload";
+    document.querySelector("#loom-pattern-upload-label").hidden = patSel.value !== "upload";
+    if (loomSel.value + "\n" + patSel.value !== before) resetStagger();
+    fromPick.value = st.from_pick; picks.value = st.picks; objective.value = st.objective;
+    apply.checked = !!st.stagger_drawn && !!loom.stagger;
+    evaluate();
+  });
   evaluate();
+  loom.history.ready();
+}
+
+// The pattern as CSV: one row per pick, 1 where the frame is raised (frames front first).
+function patternCSV() {
+  const g = loom.result && loom.result.pattern;
+  if (!g) return "pick\n";
+  const lines = [["pick", ...Array.from({ length: g.shafts }, (_, i) => `frame ${i + 1} raised (0/1)`)].join(",")];
+  g.rows.forEach((row, p) => lines.push([p + 1, ...row.map((b) => (b ? 1 : 0))].join(",")));
+  return lines.join("\n") + "\n";
+}
+
+// The input a refused request names.
+function loomField(path) {
+  const i = loom.inputs;
+  const map = [["picks", i.picks, "picks"], ["from_pick", i.fromPick, "first pick"], ["pattern", i.patSel, "weave pattern"],
+    ["loom_toml", i.loomSel, "loom file"], ["stagger_deg", i.apply, "stagger"], ["objective", i.objective, "objective"]];
+  const hit = map.find(([k]) => path === k || path.startsWith(k + ".") || path.startsWith(k + "["));
+  return hit ? { inputs: [hit[1]], label: hit[2] } : null;
 }
 
 function source() {
@@ -116,10 +164,12 @@ function resetStagger() {
   document.querySelector("#loom-stagger-note").textContent = "";
 }
 
+// The first pick is counted from 1 here (as the pattern grid numbers them), from 0 by the API;
+// the number of picks goes as typed: the API refuses what it cannot draw, naming the field.
 loomkin.loomRequest = () => {
   const i = loom.inputs, q = source();
-  q.from_pick = Math.max(0, (parseInt(i.fromPick.value, 10) || 1) - 1);
-  q.picks = Math.min(8, Math.max(1, parseInt(i.picks.value, 10) || 2));
+  q.from_pick = +i.fromPick.value - 1;
+  q.picks = i.picks.value.trim() === "" ? NaN : +i.picks.value;
   q.step_deg = 1;
   if (i.apply.checked && loom.stagger) q.stagger_deg = loom.stagger.result.best.stagger_deg;
   return q;
@@ -127,11 +177,21 @@ loomkin.loomRequest = () => {
 
 function evaluate() {
   if (loom.inflight) { loom.queued = true; return; }
+  const q = loomkin.loomRequest();
+  // A first pick that is no pick number is refused here, in the page's numbering.
+  if (!Number.isInteger(q.from_pick) || q.from_pick < 0) {
+    showFieldError("loom", new Error(`${loom.inputs.fromPick.value || "(empty)"} is not a pick number: a whole number from 1`), () => ({ inputs: [loom.inputs.fromPick], label: "first pick" }));
+    return;
+  }
+  if (!Number.isInteger(q.picks)) {
+    showFieldError("loom", new Error(`${loom.inputs.picks.value || "(empty)"} is not a whole number: allowed 1 … 8`), () => ({ inputs: [loom.inputs.picks], label: "picks" }));
+    return;
+  }
   loom.inflight = true;
   const t0 = performance.now();
-  api("/loom/evaluate", loomkin.loomRequest())
-    .then((r) => { loom.result = r; render(r); status(`loom evaluated in ${(performance.now() - t0).toFixed(0)} ms`); })
-    .catch((e) => status("loom: " + e.message, true))
+  api("/loom/evaluate", q)
+    .then((r) => { clearFieldErrors(); loom.result = r; render(r); status(`loom evaluated in ${(performance.now() - t0).toFixed(0)} ms`); })
+    .catch((e) => showFieldError("loom", e, loomField))
     .finally(() => { loom.inflight = false; if (loom.queued) { loom.queued = false; evaluate(); } });
 }
 
@@ -200,8 +260,8 @@ function drawGrid() {
   const h = 34 + cell * maxRows + 6;
   cv.style.height = h + "px";
   const dpr = window.devicePixelRatio || 1;
-  cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr);
-  const c = cv.getContext("2d");
+  const c = loom.gridChart.ctx;
+  if (c === cv.getContext("2d")) { cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr); }
   c.setTransform(dpr, 0, 0, dpr, 0, 0);
   c.clearRect(0, 0, w, h);
   c.font = "600 13px system-ui, sans-serif"; c.fillStyle = "#111827"; c.textBaseline = "middle";
@@ -239,7 +299,8 @@ async function runStagger() {
       `${s.note}; window ${b.window_kept ? "kept" : "LOST"} (least clearance ${num(b.min_clearance_mm, 2)} mm). Stagger (°, front first): ${b.stagger_deg.map((v) => num(v, 2)).join(", ")}`;
     status("stagger optimised");
     evaluate();
-  } catch (e) { status("stagger: " + e.message, true); }
+    loom.history.commit();
+  } catch (e) { showFieldError("stagger", e, loomField); }
   btn.disabled = false;
 }
 

@@ -236,3 +236,38 @@ fn an_undercut_cam_is_reported_but_never_drawn() {
     assert!(!dxf.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_roller_in_mm_is_the_roller_in_m() {
+    // `--roller-mm` (the workbench's unit) and `--roller-m` (the first flag) give the same report,
+    // for the synthesis, the analysis, the sweep and the plot; both at once is a usage error.
+    let mm = stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5", "--roller-mm", "40"]);
+    let m = stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5", "--roller-m", "0.04"]);
+    assert_eq!(mm, m);
+    assert_eq!(num(&mm["summary"], "roller_m"), 0.04);
+    let default = stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5"]);
+    let thirty = stdout_json(&["dobby", "synthesize", "--json", "--step-deg", "5", "--roller-mm", "30"]);
+    assert_eq!(default, thirty, "the default roller is 30 mm");
+    let a_mm = stdout_json(&["dobby", "analyze", "--json", "--step-deg", "5", "--roller-mm", "25"]);
+    let a_m = stdout_json(&["dobby", "analyze", "--json", "--step-deg", "5", "--roller-m", "0.025"]);
+    assert_eq!(a_mm, a_m);
+    let s_mm = stdout_json(&["dobby", "sweep", "--json", "--step-deg", "5", "--by", "15", "--roller-mm", "20"]);
+    let s_m = stdout_json(&["dobby", "sweep", "--json", "--step-deg", "5", "--by", "15", "--roller-m", "0.02"]);
+    assert_eq!(s_mm, s_m);
+    let text = loomkin().args(["dobby", "synthesize", "--step-deg", "5", "--roller-mm", "40"]).output().unwrap();
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("roller radius        40 mm"), "{text}");
+    for cmd in ["analyze", "synthesize", "sweep"] {
+        usage_error(&["dobby", cmd, "--roller-mm", "30", "--roller-m", "0.03"], &["cannot be used with"]);
+    }
+    usage_error(
+        &["dobby", "plot", "--roller-mm", "30", "--roller-m", "0.03", "-o", "never.svg"],
+        &["cannot be used with"],
+    );
+    for v in ["nan", "inf", "-1", "1e300"] {
+        for cmd in ["analyze", "synthesize", "sweep"] {
+            usage_error(&["dobby", cmd, "--roller-mm", v], &["--roller-mm", "mm"]);
+        }
+        usage_error(&["dobby", "plot", "--roller-mm", v, "-o", "never.svg"], &["--roller-mm"]);
+    }
+}
