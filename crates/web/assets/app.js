@@ -202,7 +202,22 @@ function updateHistoryButtons() {
 
 function undo() {
   const h = histories[currentView];
-  if (h) h.undo();
+  if (!h) return;
+  // A value the page refused before recording it (a numeric field out of range) is undone first:
+  // the state shown is put back, then the next Ctrl+Z steps back through the history.
+  const view = document.querySelector("#view-" + currentView);
+  if (view && view.querySelector("input.bad:not(.bad-api)") && h.at >= 0) { h.apply(); return; }
+  h.undo();
+}
+
+// A length the page takes in mm while the API takes m: checked here, so that a refusal names
+// the field in the unit it is typed in (the API's message would give metres).
+function mmRefused(prefix, input, label, value, lo, hi, loOpen) {
+  if (isFinite(value) && (loOpen ? value > lo : value >= lo) && value <= hi) return false;
+  const e = new Error(`${input.value || "(empty)"} mm is out of range: allowed ${lo} ${loOpen ? "<" : "≤"} ${label} ≤ ${hi} mm`);
+  e.field = label;
+  showFieldError(prefix, e, () => ({ inputs: [input], label }));
+  return true;
 }
 
 function redo() {
@@ -830,6 +845,8 @@ function shedField(path) {
 
 async function computePareto(chosen) {
   const i = shed.inputs;
+  // 0 < h ≤ 1 m, as the library's Conditions.
+  if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value, 0, 1000, true)) return;
   const motions_deg = i.motions.value.split(/[,;\s]+/).filter((t) => t).map(Number);
   status("evaluating the grid…");
   const req = { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() };
@@ -1012,6 +1029,8 @@ async function exportDobby(format) {
 }
 
 async function synthesizeDobby() {
+  // 0 ≤ r ≤ 0.2 m, as /api/dobby/synthesize.
+  if (mmRefused("dobby", dobby.inputs.roller, "roller radius", +dobby.inputs.roller.value, 0, 200, false)) return;
   const r = dobbyRequest();
   dobby.req = r;
   try {

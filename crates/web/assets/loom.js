@@ -179,14 +179,13 @@ function evaluate() {
   if (loom.inflight) { loom.queued = true; return; }
   const q = loomkin.loomRequest();
   // A first pick that is no pick number is refused here, in the page's numbering.
-  if (!Number.isInteger(q.from_pick) || q.from_pick < 0) {
-    showFieldError("loom", new Error(`${loom.inputs.fromPick.value || "(empty)"} is not a pick number: a whole number from 1`), () => ({ inputs: [loom.inputs.fromPick], label: "first pick" }));
-    return;
-  }
-  if (!Number.isInteger(q.picks)) {
-    showFieldError("loom", new Error(`${loom.inputs.picks.value || "(empty)"} is not a whole number: allowed 1 … 8`), () => ({ inputs: [loom.inputs.picks], label: "picks" }));
-    return;
-  }
+  const refuse = (input, label, text) => {
+    const e = new Error(`${input.value || "(empty)"} ${text}`);
+    e.field = label;
+    showFieldError("loom", e, () => ({ inputs: [input], label }));
+  };
+  if (!Number.isInteger(q.from_pick) || q.from_pick < 0) { refuse(loom.inputs.fromPick, "first pick", "is not a pick number: a whole number from 1"); return; }
+  if (!Number.isInteger(q.picks)) { refuse(loom.inputs.picks, "picks", "is not a whole number: allowed 1 … 8"); return; }
   loom.inflight = true;
   const t0 = performance.now();
   api("/loom/evaluate", q)

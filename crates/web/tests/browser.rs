@@ -586,6 +586,15 @@ fn the_workbench_in_a_real_browser() {
         "return loomkin.charts.shed_pareto.L.yt.log === true && document.querySelector('#shed-log').checked",
     );
     d.shot("shed-log");
+    // A stroke out of range is refused in the unit it is typed in (mm), marked; Ctrl+Z takes it back.
+    d.type_into("#shed-stroke", "-5");
+    d.wait_for("the refused stroke", "return document.querySelector('#shed-stroke').classList.contains('bad')");
+    assert!(d.text("#status").contains("allowed 0 < stroke h ≤ 1000 mm"), "{}", d.text("#status"));
+    d.ctrl("z");
+    d.wait_for(
+        "undo of the refused stroke",
+        "return document.querySelector('#shed-stroke').value === '100' && !document.querySelector('#shed-stroke').classList.contains('bad')",
+    );
     lap("shedding jerk and log axis");
 
     // 11. Dobby: the cams are closed curves; DXF and CSV of the cams; the angle typed in.
@@ -663,9 +672,12 @@ fn the_workbench_in_a_real_browser() {
         "return document.querySelector('#cam-angle').classList.contains('bad')",
     );
     assert!(d.text("#status").contains("0 … 360 °"), "{}", d.text("#status"));
-    // Ctrl+Z undoes the angle (the refused value was never recorded), then the offset.
+    // Ctrl+Z first puts back the angle shown before the refused value (never recorded), then
+    // undoes the angle, then the offset.
     d.ctrl("z");
-    d.wait_for("undo of the angle", "return document.querySelector('#cam-angle').value === '0' && !document.querySelector('#cam-angle').classList.contains('bad')");
+    d.wait_for("the refused angle undone", "return document.querySelector('#cam-angle').value === '123.25' && !document.querySelector('#cam-angle').classList.contains('bad')");
+    d.ctrl("z");
+    d.wait_for("undo of the angle", "return document.querySelector('#cam-angle').value === '0'");
     assert_eq!(d.script("return location.hash"), offset_10, "undo writes the state it shows into the address");
     d.ctrl("z");
     d.wait_for(
@@ -788,6 +800,10 @@ fn the_workbench_in_a_real_browser() {
     assert!(d.text("#status").starts_with("loom: picks"), "{}", d.text("#status"));
     assert!(d.text("#status").contains('8'), "{}", d.text("#status"));
     d.shot("loom-invalid");
+    d.type_into("#loom-from-pick", "0");
+    d.wait_for("the refused first pick", "return document.querySelector('#loom-from-pick').classList.contains('bad')");
+    assert!(d.text("#status").starts_with("loom: first pick: 0 is not a pick number"), "{}", d.text("#status"));
+    d.type_into("#loom-from-pick", "1");
     d.type_into("#loom-picks", "3");
     d.wait_for(
         "three picks",
