@@ -109,6 +109,8 @@ def pick_montecarlo(study_toml: str, **model: Any) -> Dict[str, Any]:
 # dobby
 def dobby_tolerance(study_toml: str) -> Dict[str, Any]:
     """`loomkin dobby tolerance STUDY --json` (m, deg in the keys) and `per_draw`, the `--csv` Columns."""
+def dobby_sweep(alpha_deg: Sequence[float], **kw: Any) -> Dict[str, Any]:
+    """`loomkin dobby sweep --json` at lever angles alpha_deg (deg): rows (m, deg, rad/s in the keys)."""
 def dobby_analyze(
     alpha_deg: Optional[float] = None,
     theta_deg: Optional[float] = None,

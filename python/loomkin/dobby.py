@@ -16,7 +16,7 @@ from . import _loomkin as _m
 from ._inputs import study_text
 from ._table import Table
 
-__all__ = ["analyze", "synthesize", "tolerance"]
+__all__ = ["analyze", "synthesize", "tolerance", "sweep"]
 
 
 def _wrap(r: Dict[str, Any]) -> Dict[str, Any]:
@@ -63,3 +63,19 @@ def tolerance(study: Any) -> Dict[str, Any]:
     r = _m.dobby_tolerance(study_text(study))
     r["per_draw"] = Table(r["per_draw"])
     return r
+
+
+def sweep(alpha_deg: Any, cam: Union[str, Sequence[Sequence[float]], None] = None, **kw: Any) -> Dict[str, Any]:
+    """``loomkin dobby sweep --json`` (the paper's α sweep) at the lever angles ``alpha_deg`` (an
+    array, deg; α = θ): ``rows``, a :class:`Table` with per α the analysis of ``cam`` (as
+    :func:`analyze`) and the synthesis of the law (keywords of :func:`synthesize`: dwell_deg,
+    dwell_centre_deg, cycles, law, params, roller_m, step_deg, and the geometry l2_m … in m,
+    speed_rpm, pressure_limit_deg in deg); an_ok / syn_ok and the error texts as lists."""
+    spec, text = None, None
+    if isinstance(cam, str):
+        spec = cam
+    elif cam is not None:
+        pts = np.asarray(cam, dtype=float)
+        text = "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
+    alphas = [float(a) for a in np.atleast_1d(np.asarray(alpha_deg, dtype=float))]
+    return _wrap(_m.dobby_sweep(alphas, cam_spec=spec, cam_points_text=text, **kw))

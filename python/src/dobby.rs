@@ -33,6 +33,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dobby_analyze, m)?)?;
     m.add_function(wrap_pyfunction!(dobby_synthesize, m)?)?;
     m.add_function(wrap_pyfunction!(dobby_tolerance, m)?)?;
+    m.add_function(wrap_pyfunction!(dobby_sweep, m)?)?;
     Ok(())
 }
 
@@ -217,4 +218,61 @@ fn dobby_synthesize<'py>(
 fn dobby_tolerance<'py>(py: Python<'py>, study_toml: &str) -> PyResult<Bound<'py, PyDict>> {
     let t = loomkin_mech::Tolerance::from_toml(study_toml).or_raise()?;
     crate::study::run_study(py, t.draws, |items| t.run(items, loomkin_study::Progress::Hidden), |d| t.report(d))
+}
+
+/// The most lever angles of one sweep (as the CLI).
+const SWEEP_ALPHAS: loomkin_units::Range = loomkin_units::Range::closed(1.0, 1000.0, "");
+
+/// dobby_sweep(alpha_deg, dwell_deg=40, dwell_centre_deg=90, cycles=2, law="cycloidal", params=None,
+/// roller_m=0.03, step_deg=1, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
+/// pressure_limit_deg=60, cam_spec=None, cam_points_text=None) -> dict
+/// --
+///
+/// `loomkin dobby sweep --json` (the paper's α sweep) at the lever angles of an array (deg, α = θ):
+/// `rows`, per α the analysis of the given cam (an_ok, an_omega6_min/max_rad_s, pressure angles in
+/// deg, …) and the synthesis of the law (syn_ok, …), as a dict of columns (numbers as numpy arrays,
+/// errors and flags as lists). Lengths in m, angles in deg. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (alpha_deg, dwell_deg=40.0, dwell_centre_deg=90.0, cycles=2, law="cycloidal", params=None,
+    roller_m=0.03, step_deg=1.0, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
+    pressure_limit_deg=60.0, cam_spec=None, cam_points_text=None))]
+#[allow(clippy::too_many_arguments)]
+fn dobby_sweep<'py>(
+    py: Python<'py>,
+    alpha_deg: Vec<f64>,
+    dwell_deg: f64,
+    dwell_centre_deg: f64,
+    cycles: u32,
+    law: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    roller_m: f64,
+    step_deg: f64,
+    l2_m: f64,
+    l3_m: f64,
+    l3p_m: f64,
+    l6_m: f64,
+    speed_rpm: Option<f64>,
+    pressure_limit_deg: f64,
+    cam_spec: Option<&str>,
+    cam_points_text: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    crate::errors::check_count("alpha_deg", alpha_deg.len(), SWEEP_ALPHAS)?;
+    let geo = Geometry { alpha_deg: None, theta_deg: None, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
+    let g = geo.build()?;
+    let c = cam(cam_spec, cam_points_text)?;
+    let rise = LawSpec::parse(law, &crate::convert::params(params)?).or_raise()?;
+    let spec = OutputLawSpec { cycles, dwell_deg, dwell_centre_deg, rise };
+    let speed = geo.speed_rad_s()?;
+    let an = AnalysisOptions {
+        step_deg,
+        input_speed_rad_s: speed,
+        roller_m: None,
+        pressure_limit_deg,
+        ..AnalysisOptions::default()
+    };
+    let syn = SynthesisOptions { step_deg, input_speed_rad_s: speed, roller_m, pressure_limit_deg };
+    let rows = py.detach(|| loomkin_mech::alpha_sweep(&g, &c, &spec, &alpha_deg, &an, &syn)).or_raise()?;
+    let out = PyDict::new(py);
+    out.set_item("rows", crate::convert::records_to_columns(py, &rows)?)?;
+    Ok(out.into_any().unbind())
 }

@@ -80,3 +80,17 @@ def test_tolerance_errors():
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.dobby.tolerance({"draws": 10, "seed": 1, "dimensions": {"l2_m": {"dist": "normal", "mean": 0.66}}})
     assert e.value.field is not None
+
+
+def test_sweep_matches_dobby_sweep(cli):
+    ref = cli("dobby", "sweep", "--from", "40", "--to", "50", "--by", "5", "--step-deg", "2", "--json")
+    r = loomkin.dobby.sweep([40, 45, 50], step_deg=2)
+    assert isinstance(r["rows"], loomkin.Table)
+    same(records(r["rows"]), ref["rows"])
+    # A row of the sweep is the analysis at that α (the two entry points agree).
+    one = loomkin.dobby.analyze(alpha_deg=45, step_deg=2)["summary"]
+    for k in ("omega6_min_rad_s", "omega6_max_rad_s", "mu_out_max_deg", "mu_b_max_deg", "rho_c_min_m"):
+        assert r["rows"]["an_" + k][1] == one[k], k
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.dobby.sweep(np.arange(0.5, 180, 0.1))
+    assert e.value.field == "alpha_deg" and e.value.high == 1000
