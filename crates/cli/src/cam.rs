@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_units::{Range, compact};
 use std::path::PathBuf;
 
@@ -392,17 +392,61 @@ fn profile_figure(cam: &CamProfile, points: &[CamPoint], counter: Option<&[CamPo
             Series::line("counter-cam profile", series(c, |p| p.curvature_profile_per_mm)).with_color([213, 94, 0]),
         );
     }
-    let (pmax, pat, _) = cam.max_pressure_angle();
+    let (pmax, pat, psigned) = cam.max_pressure_angle();
+    // Pressure angle: the design's limit both ways (when the cam was sized by it), the maximum noted.
+    let mut pa_panel = Panel::new("pressure angle [deg]", pa).with_notes([Note::new(
+        pat,
+        psigned,
+        format!("max {}° at {}°", sig4(pmax), sig4(pat)),
+    )]);
+    if let Size::MaxPressureDeg(limit) = cam.design().size {
+        pa_panel = pa_panel
+            .with_rule(Rule::y(limit, format!("pressure-angle limit ±{}°", sig4(limit))))
+            .with_rule(Rule::y(-limit, ""));
+    }
+    // Curvature: the least convex radius of the pitch curve (and of the profile, a roller's radius
+    // less) noted; a roller undercuts where the pitch curvature passes 1/r.
+    let (rmin, rat) = cam.min_convex_radius_pitch();
+    let r = cam.design().roller_radius_mm;
+    let mut notes = Vec::new();
+    // The undercut line 1/r is drawn when it is near the data (within twice the largest
+    // curvature); farther out the margin is given in the note instead of squashing the curves.
+    let kmax = cu.iter().flat_map(|s| s.points.iter().map(|p| p.1.abs())).filter(|v| v.is_finite()).fold(0.0, f64::max);
+    let line = r > 0.0 && 1.0 / r <= 2.0 * kmax;
+    if rmin.is_finite() && rmin > 0.0 {
+        let margin = if r > 0.0 && !line && cam.undercut_at_deg().is_none() {
+            format!(" (roller {} mm: no undercut)", sig4(r))
+        } else {
+            String::new()
+        };
+        notes.push(Note::new(rat, 1.0 / rmin, format!("pitch ρ min {} mm at {}°{margin}", sig4(rmin), sig4(rat))));
+        if r > 0.0 && rmin > r {
+            notes.push(Note::new(
+                rat,
+                1.0 / (rmin - r),
+                format!("profile ρ min {} mm at {}°", sig4(rmin - r), sig4(rat)),
+            ));
+        }
+    }
+    if let Some(f) = cam.flat_extremes_report() {
+        let (rho, at) = (f.min_radius_profile_mm, f.min_radius_profile_at_deg);
+        if rho.is_finite() && rho > 0.0 {
+            notes.push(Note::new(at, 1.0 / rho, format!("profile ρ min {} mm at {}°", sig4(rho), sig4(at))));
+        }
+    }
+    let mut cu_panel = Panel::new("curvature (convex > 0) [1/mm]", cu).with_notes(notes);
+    if line {
+        cu_panel = cu_panel.with_rule(Rule::y(1.0 / r, format!("1/r, roller {} mm: undercut above", sig4(r))));
+    }
+    if let Some(at) = cam.undercut_at_deg() {
+        cu_panel = cu_panel.with_rule(Rule::x(at, format!("undercut at {}°", sig4(at))).with_color([120, 0, 160]));
+    }
     let name = std::path::Path::new(source).file_name().map_or(source.into(), |n| n.to_string_lossy());
     let title = format!(
         "Cam of {name}: prime radius {:.2} mm, max pressure angle {pmax:.2}° at {pat:.1}°",
         cam.prime_radius_mm()
     );
-    let mut fig = Figure::new(
-        title,
-        "main-shaft angle [deg]",
-        vec![d, Panel::new("pressure angle [deg]", pa), Panel::new("curvature (convex > 0) [1/mm]", cu)],
-    );
+    let mut fig = Figure::new(title, "main-shaft angle [deg]", vec![d, pa_panel, cu_panel]);
     fig.size = Some((1000, 1500));
     fig
 }

@@ -132,19 +132,15 @@ const PLOT_S_PER_POINT: f64 = 4.0 * CSV_S_PER_ROW;
 
 /// The cycle's position (in the file's unit: mm or deg), velocity, acceleration and jerk over one
 /// turn, its dwells, rises and returns shaded, the extremes of velocity and acceleration marked.
-fn cycle_figure(cycle: &Cycle, samples: &[CyclePoint], speed: ShaftSpeed, file: &std::path::Path) -> Figure {
-    let [_, vs, as_, js] = cycle.unit.si_units();
-    let (pos_unit, pos_scale) = match cycle.unit {
-        StrokeUnit::Mm => ("mm", 1e3),
-        StrokeUnit::Deg => ("deg", 180.0 / std::f64::consts::PI),
-    };
-    let col = |f: &dyn Fn(&loomkin_laws::Kinematics) -> f64| samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect();
-    let bands: Vec<XBand> = cycle
+/// The cycle's segments as shaded intervals (dwell grey, rise green, return orange), labelled
+/// with their law, shifted by `offset_deg`.
+pub(crate) fn cycle_bands(cycle: &Cycle, offset_deg: f64) -> Vec<XBand> {
+    cycle
         .segments
         .iter()
         .map(|s| {
-            let from = s.start_rad.to_degrees();
-            let to = (s.start_rad + s.length_rad).to_degrees();
+            let from = s.start_rad.to_degrees() + offset_deg;
+            let to = (s.start_rad + s.length_rad).to_degrees() + offset_deg;
             let (color, kind) = match s.kind {
                 SegmentKind::Dwell => (XBand::DWELL, "dwell"),
                 SegmentKind::Rise => (XBand::RISE, "rise"),
@@ -156,7 +152,17 @@ fn cycle_figure(cycle: &Cycle, samples: &[CyclePoint], speed: ShaftSpeed, file: 
             };
             XBand::new(from, to, label, color)
         })
-        .collect();
+        .collect()
+}
+
+fn cycle_figure(cycle: &Cycle, samples: &[CyclePoint], speed: ShaftSpeed, file: &std::path::Path) -> Figure {
+    let [_, vs, as_, js] = cycle.unit.si_units();
+    let (pos_unit, pos_scale) = match cycle.unit {
+        StrokeUnit::Mm => ("mm", 1e3),
+        StrokeUnit::Deg => ("deg", 180.0 / std::f64::consts::PI),
+    };
+    let col = |f: &dyn Fn(&loomkin_laws::Kinematics) -> f64| samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect();
+    let bands = cycle_bands(cycle, 0.0);
     let unlabelled = || bands.iter().map(|b| XBand { label: String::new(), ..b.clone() }).collect::<Vec<_>>();
     let mut v_notes = Vec::new();
     let mut a_notes = Vec::new();

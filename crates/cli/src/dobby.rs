@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
-use loomkin_io::plot::{Dash, Figure, Legend, Note, Panel, Rule, Series};
+use loomkin_io::plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
     Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
@@ -638,7 +638,7 @@ fn pressure_panel(g: &ModulatorGeometry, states: &[ModulatorState], c: &loomkin_
     ] {
         if v.is_finite() && at.is_finite() {
             notes.push(Note::new(at.rem_euclid(360.0), v, ""));
-            max_text.push(format!(": max {v:.1}° at {:.1}°", at.rem_euclid(360.0)));
+            max_text.push(format!(" {v:.1}° at {:.1}°", at.rem_euclid(360.0)));
         } else {
             max_text.push(String::new());
         }
@@ -646,13 +646,54 @@ fn pressure_panel(g: &ModulatorGeometry, states: &[ModulatorState], c: &loomkin_
     Panel::new(
         "pressure angle [deg]",
         vec![
-            Series::line(format!("output μ6 (slot){}", max_text[0]), pts(&|s| s.mu_out_deg())),
-            Series::line(format!("roller B on Γ, μB{}", max_text[1]), pts(&|s| s.mu_b_deg(g))).with_dash(Dash::Dashed),
-            Series::line(format!("roller C on Γ', μC{}", max_text[2]), pts(&|s| s.mu_c_deg(g))).with_dash(Dash::Dotted),
+            Series::line(format!("μ6 slot, max{}", max_text[0]), pts(&|s| s.mu_out_deg())),
+            Series::line(format!("μB roller B, max{}", max_text[1]), pts(&|s| s.mu_b_deg(g))).with_dash(Dash::Dashed),
+            Series::line(format!("μC roller C, max{}", max_text[2]), pts(&|s| s.mu_c_deg(g))).with_dash(Dash::Dotted),
         ],
     )
-    .with_rule(Rule::y(limit, format!("limit {limit}° (--pressure-limit-deg)")))
+    .with_rule(Rule::y(limit, format!("limit {limit}°")))
     .with_notes(notes)
+}
+
+/// Curvature of the roller-centre curves of Γ and Γ′ at every state (from the states' exact
+/// derivatives, [`loomkin_mech::cam_curvature`]), each least radius (as the checks located it)
+/// noted, and ±1/r of the roller: a groove wall is undercut where |κ| passes it.
+fn curvature_panel(states: &[ModulatorState], c: &loomkin_mech::CamChecks, roller_m: Option<f64>) -> Panel {
+    let k = loomkin_mech::cam_curvature(states);
+    let mut notes = Vec::new();
+    type Kappa = fn(&loomkin_mech::CamCurvaturePoint) -> f64;
+    let (kb, kc): (Kappa, Kappa) = (|p| p.kappa_b_per_m, |p| p.kappa_c_per_m);
+    for (rho, at, curve, cam) in
+        [(c.rho_b_min_m, c.rho_b_min_at_phi2_deg, kb, "Γ"), (c.rho_c_min_m, c.rho_c_min_at_phi2_deg, kc, "Γ'")]
+    {
+        let Some(rho) = rho.filter(|r| r.is_finite() && *r > 0.0) else { continue };
+        // The sign of κ at the located angle, from the nearest state.
+        let at = at.rem_euclid(360.0);
+        let sign = k
+            .iter()
+            .min_by(|p, q| {
+                (p.phi2_deg.rem_euclid(360.0) - at).abs().total_cmp(&(q.phi2_deg.rem_euclid(360.0) - at).abs())
+            })
+            .map_or(1.0, |p| curve(p).signum());
+        notes.push(Note::new(at, sign / rho, format!("{cam}: ρ min {} m at {}°", sig4(rho), sig4(at))));
+    }
+    let pts = |f: &dyn Fn(&loomkin_mech::CamCurvaturePoint) -> f64| -> Vec<(f64, f64)> {
+        k.iter().map(|p| (p.phi2_deg, f(p))).collect()
+    };
+    let mut panel = Panel::new(
+        "curvature κ [1/m]",
+        vec![
+            Series::line("cam Γ (roller centre B)", pts(&|p| p.kappa_b_per_m)),
+            Series::line("counter-cam Γ' (roller centre C)", pts(&|p| p.kappa_c_per_m)).with_dash(Dash::Dashed),
+        ],
+    )
+    .with_notes(notes);
+    if let Some(r) = roller_m.filter(|r| *r > 0.0) {
+        panel = panel
+            .with_rule(Rule::y(1.0 / r, format!("±1/r, roller {} m: undercut beyond", sig4(r))))
+            .with_rule(Rule::y(-1.0 / r, ""));
+    }
+    panel
 }
 
 fn xy(p: &[[f64; 2]], close: bool) -> Vec<(f64, f64)> {
@@ -721,7 +762,17 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
         WhatArg::Law => {
             let mut panels = law_panels(&states, w2);
             panels.push(pressure_panel(&g, &states, &checks, a.geometry.pressure_limit_deg));
-            Figure::new(title, "input angle φ2 [deg]", panels)
+            let roller = match a.task {
+                TaskArg::Analyze => a.roller_m,
+                TaskArg::Synthesize => Some(a.roller_m.unwrap_or(0.03)),
+            };
+            panels.push(curvature_panel(&states, &checks, roller));
+            // The pressure angles fill their panel, so its legend goes beside it: a wider page
+            // keeps the plots as wide as a figure without one.
+            let mut f = Figure::new(title, "input angle φ2 [deg]", panels);
+            let (_, h) = f.pixel_size();
+            f.size = Some((1250, h));
+            f
         }
         WhatArg::Cams => {
             let st = nearest_state(&states, a.at_deg).context("no state to draw")?;

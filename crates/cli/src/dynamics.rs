@@ -10,7 +10,7 @@ use loomkin_dynamics::{
     sweep_row,
 };
 use loomkin_io::Table;
-use loomkin_io::plot::{Figure, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_laws::Cycle;
 use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
 use std::path::{Path, PathBuf};
@@ -218,6 +218,10 @@ pub struct SweepArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
+    /// Residual amplitude a design accepts, % of the stroke (0 < L ≤ 100): drawn on the plot, the
+    /// speeds above it shaded as speeds to avoid.
+    #[arg(long, default_value_t = 1.0, value_name = "L")]
+    residual_limit_pct: f64,
     #[command(flatten)]
     plot: crate::util::PlotOpts,
 }
@@ -311,6 +315,20 @@ fn response(a: ResponseArgs) -> Result<()> {
                 .collect()
         };
         let acc_unit = u.acc_text();
+        // Dwell / rise / return of every computed cycle, and the located peaks (their sign read
+        // from the samples: the peak is of |x − s| and |x''|).
+        let cycles = if a.steady { 1 } else { a.cycles };
+        let period = cycle.period_rad.to_degrees();
+        let bands: Vec<XBand> =
+            (0..cycles).flat_map(|k| crate::cycle::cycle_bands(&cycle, k as f64 * period)).collect();
+        let unlabelled = || bands.iter().map(|b| XBand { label: String::new(), ..b.clone() }).collect::<Vec<_>>();
+        let signed = |at: f64, v: f64, col: usize| {
+            let near = samples.iter().min_by(|p, q| (p[0] - at).abs().total_cmp(&(q[0] - at).abs()));
+            if near.is_some_and(|p| p[col] < 0.0) { -v } else { v }
+        };
+        let (e, acc) = (summary.peak_dynamic_error, summary.peak_acceleration);
+        let e_val = signed(e.angle_deg, e.value * u.scale, 3);
+        let a_val = signed(acc.angle_deg, acc.value, 4);
         let panels = vec![
             Panel::new(
                 format!("position [{}]", u.pos),
@@ -318,16 +336,29 @@ fn response(a: ResponseArgs) -> Result<()> {
                     Series::line("input s", col(1, u.scale)),
                     Series::line("follower x", col(2, u.scale)).with_dashes(),
                 ],
-            ),
-            Panel::new(format!("dynamic error x − s [{}]", u.pos), vec![Series::line("x − s", col(3, u.scale))]),
+            )
+            .with_x_bands(bands.clone()),
+            Panel::new(format!("dynamic error x − s [{}]", u.pos), vec![Series::line("x − s", col(3, u.scale))])
+                .with_x_bands(unlabelled())
+                .with_notes([Note::new(
+                    e.angle_deg,
+                    e_val,
+                    format!("|x − s| max {} {} at {}°", sig4(e_val.abs()), u.pos, sig4(e.angle_deg)),
+                )]),
             Panel::new(
                 format!("acceleration [{acc_unit}]"),
                 vec![Series::line("input s''", acc_in), Series::line("follower x''", col(4, 1.0))],
-            ),
+            )
+            .with_x_bands(unlabelled())
+            .with_notes([Note::new(
+                acc.angle_deg,
+                a_val,
+                format!("|x''| max {} {acc_unit} at {}°", sig4(a_val.abs()), sig4(acc.angle_deg)),
+            )]),
         ];
         let title = format!(
             "{} at {} rpm, f_n {} Hz, ζ {}{}: residual {:.4} {} ({:.3} % of stroke)",
-            a.file.display(),
+            util::file_name(&a.file),
             loomkin_units::compact(speed.rpm()),
             loomkin_units::compact(follower.natural_hz()),
             loomkin_units::compact(follower.damping_ratio()),
@@ -432,32 +463,65 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         });
     }
     if let Some(out) = a.output {
+        loomkin_units::Range::open_closed(0.0, 100.0, "%").check("residual_limit_pct", a.residual_limit_pct)?;
         let col = |f: &dyn Fn(&loomkin_dynamics::SweepPoint) -> f64| {
             pts.iter().map(|q| (q.speed_rpm, f(q))).collect::<Vec<_>>()
         };
+        // The speeds to avoid: residual above the limit, their ends located on the model.
+        let stroke_si = cycle.segments.iter().map(|s| s.stroke_si.abs()).fold(0.0, f64::max);
+        let level_si = a.residual_limit_pct / 100.0 * stroke_si;
+        let avoid = loomkin_dynamics::speeds_above(&cycle, &follower, &pts, start, level_si)?;
+        let bands: Vec<XBand> = avoid.iter().map(|&[from, to]| XBand::new(from, to, "avoid", [200, 30, 30])).collect();
+        let limit = Rule::y(
+            level_si * u.scale,
+            format!("limit {} % of stroke = {} {p}", sig4(a.residual_limit_pct), sig4(level_si * u.scale)),
+        );
+        // VDI 2149 Blatt 1 accepts the rigid model while f_n/f_shaft ≥ 10, i.e. up to 6·f_n rpm.
+        let vdi_rpm = 60.0 * follower.natural_hz() / loomkin_dynamics::VDI_2149_MIN_RATIO;
+        let (lo, hi) = (speeds[0], speeds[speeds.len() - 1]);
+        let vdi = (vdi_rpm > lo.min(hi) && vdi_rpm < lo.max(hi)).then(|| {
+            Rule::x(vdi_rpm, format!("f_n/f_shaft = 10 at {} rpm (VDI 2149)", sig4(vdi_rpm)))
+                .with_color([90, 90, 90])
+                .with_dash(loomkin_io::plot::Dash::DashDot)
+        });
+        let with_vdi = |p: Panel| match &vdi {
+            Some(r) => p.with_rule(r.clone()),
+            None => p,
+        };
         let mut panels = vec![
-            Panel::new(
-                format!("residual amplitude [{p}]"),
-                vec![Series::line("", col(&|q| q.residual_amplitude_si * u.scale))],
+            with_vdi(
+                Panel::new(
+                    format!("residual amplitude [{p}]"),
+                    vec![Series::line("residual amplitude", col(&|q| q.residual_amplitude_si * u.scale))],
+                )
+                .with_x_bands(bands.clone())
+                .with_rule(limit),
             ),
-            Panel::new(
-                format!("peak |x − s| [{p}]"),
-                vec![Series::line("", col(&|q| q.peak_dynamic_error_si * u.scale))],
+            with_vdi(
+                Panel::new(
+                    format!("peak |x − s| [{p}]"),
+                    vec![Series::line("", col(&|q| q.peak_dynamic_error_si * u.scale))],
+                )
+                .with_legend(Legend::Hidden)
+                .with_x_bands(bands.iter().map(|b| XBand { label: String::new(), ..b.clone() })),
             ),
         ];
         if forces {
-            panels.push(Panel::new(
-                "train force [N]",
-                vec![
-                    Series::line("peak |F|", col(&|q| q.peak_force_n.unwrap_or(0.0))),
-                    Series::line("smallest contact force", col(&|q| q.min_contact_force_n.unwrap_or(0.0)))
-                        .with_dashes(),
-                ],
+            panels.push(with_vdi(
+                Panel::new(
+                    "train force [N]",
+                    vec![
+                        Series::line("peak |F|", col(&|q| q.peak_force_n.unwrap_or(0.0))),
+                        Series::line("smallest contact force", col(&|q| q.min_contact_force_n.unwrap_or(0.0)))
+                            .with_dashes(),
+                    ],
+                )
+                .with_x_bands(bands.iter().map(|b| XBand { label: String::new(), ..b.clone() })),
             ));
         }
         let title = format!(
             "{}: f_n {} Hz, ζ {}{}",
-            a.file.display(),
+            util::file_name(&a.file),
             loomkin_units::compact(follower.natural_hz()),
             loomkin_units::compact(follower.damping_ratio()),
             if a.steady { ", steady state" } else { ", one cycle from rest" }
@@ -552,18 +616,24 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
         } else {
             "residual vibration after a rise".to_string()
         };
+        // The log panel starts five decades under the largest value: the exact zeros of the
+        // residual (and the rounding noise around them) are not drawn, nor raised to a floor.
+        let top = series.iter().flat_map(|s| s.3.iter().copied()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+        let floor = if top > 0.0 { 10f64.powf(top.log10().floor() - 5.0) } else { 1e-6 };
         let logs = series
             .iter()
             .map(|(label, _, z, pct)| {
                 let name =
                     if zetas.len() > 1 { format!("{label}, ζ {}", loomkin_units::compact(*z)) } else { label.clone() };
-                let pts = ratios.iter().zip(pct).map(|(&r, &p)| (r, (p / 100.0).max(1e-8).log10())).collect();
-                Series::line(name, pts)
+                Series::line(name, ratios.iter().copied().zip(pct.iter().copied()).collect())
             })
             .collect();
+        let title = format!("{title}; log panel from {} % (5 decades under the largest)", sig4(floor));
         let panels = vec![
             Panel::new("residual amplitude [% of stroke]", lines),
-            Panel::new("log₁₀(residual amplitude / stroke) [-]", logs),
+            Panel::new("residual amplitude, log [% of stroke]", logs)
+                .with_log_y_floor(floor)
+                .with_legend(Legend::Hidden),
         ];
         return output::figure(&Figure::new(title, "motion time / natural period  T·f_n [-]", panels), &out, &a.plot);
     }

@@ -3,7 +3,7 @@
 use crate::{output, util};
 use anyhow::Result;
 use clap::Args;
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_servo::{Axis, check_axis, envelope_lines, operating_points};
 use std::path::PathBuf;
 
@@ -68,11 +68,22 @@ pub fn run(a: CheckArgs) -> Result<()> {
             r.inertia_ratio,
             if r.pass { "pass" } else { "FAIL" }
         );
-        let fig = Figure::new(
-            title,
-            "motor speed [rpm]",
-            vec![Panel::new("motor torque [N·m]", series).with_legend(Legend::Auto)],
-        );
+        // The peak torque at the operating point where the check located it, and the RMS torque
+        // against the rated (S1) torque it is judged by.
+        let at = loomkin_servo::operating_point_at(&axis, &cycle, rpm, r.peak_torque_at_deg)?;
+        let panel = Panel::new("motor torque [N·m]", series)
+            .with_legend(Legend::Auto)
+            .with_notes([Note::new(
+                at.motor_speed_rpm,
+                at.torque_nm,
+                format!("peak {} N·m at {}°", sig4(at.torque_nm), sig4(r.peak_torque_at_deg)),
+            )])
+            .with_rule(
+                Rule::y(r.rms_torque_nm, format!("RMS torque {} N·m", sig4(r.rms_torque_nm)))
+                    .with_color([30, 120, 30])
+                    .with_dash(Dash::Dotted),
+            );
+        let fig = Figure::new(title, "motor speed [rpm]", vec![panel]);
         output::figure(&fig, path, &a.plot)?;
     }
     if a.json {

@@ -4,7 +4,7 @@ use crate::output::{self, outln};
 use crate::util::{self, failure};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, PALETTE, Panel, Series, XBand, YBand, sig4};
 use loomkin_shed::{
     Conditions, Criteria, DesignKind, Family, GridSpec, LoomRequirement, PRESETS, Progress, ShedLaw, Study, StudyRow,
     StudyTable, Template, evaluate, preset, preset_table, preset_table_in,
@@ -260,6 +260,8 @@ pub struct PlotArgs {
     /// Points per curve.
     #[arg(long, default_value_t = 1441)]
     points: usize,
+    #[command(flatten)]
+    threshold: Threshold,
     #[command(flatten)]
     physical: Physical,
 }
@@ -704,12 +706,34 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             .iter()
             .map(|r| (r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2))
             .collect();
+        // The two ends of the front, annotated: the least acceleration and the largest window.
+        let mut notes = Vec::new();
+        if let (Some(lo), Some(hi)) = (
+            line.iter().min_by(|p, q| p.1.total_cmp(&q.1)).copied(),
+            line.iter().max_by(|p, q| p.0.total_cmp(&q.0)).copied(),
+        ) {
+            notes.push(Note::new(lo.0, lo.1, format!("{} m/s², window {}°", sig4(lo.1), sig4(lo.0))));
+            if hi != lo {
+                notes.push(Note::new(hi.0, hi.1, format!("{} m/s², window {}°", sig4(hi.1), sig4(hi.0))));
+            }
+        }
         let mut series = vec![Series { markers: true, ..Series::line("Pareto front", line) }];
         for p in PRESETS {
             let c = evaluate(&p.law()?, &cond)?;
             series.push(Series::markers(p.name, vec![(c.window_deg, c.peak_accel_m_s2)]));
         }
-        let panel = Panel::new("peak frame acceleration [m/s²]", series).with_legend(Legend::Auto);
+        let (lo, hi) = series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+        let mut panel =
+            Panel::new("peak frame acceleration [m/s²]", series).with_legend(Legend::Auto).with_notes(notes);
+        // A front spanning more than two decades (the lead-trapezoid family reaches 10⁵ m/s²) is
+        // read on a log axis: on a linear one everything but its steep end sits on the floor.
+        if hi > 100.0 * lo {
+            panel = panel.with_log_y();
+        }
         let fig = Figure::new(
             format!(
                 "Pareto front: window vs peak acceleration (T = {}, stroke {} mm, {} rpm)",
@@ -822,7 +846,7 @@ fn plot(a: PlotArgs) -> Result<()> {
     if a.points < 2 || a.points > 100_000 {
         bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
     }
-    let cond = conditions(&a.physical, loomkin_shed::TABLE3_THRESHOLD)?;
+    let cond = conditions(&a.physical, a.threshold.threshold)?;
     let mut laws = Vec::new();
     for n in &a.laws {
         laws.push(load(Some(n), None)?);
@@ -830,21 +854,83 @@ fn plot(a: PlotArgs) -> Result<()> {
     for s in &a.spec {
         laws.push(load(None, Some(s))?);
     }
-    let mut s_series = Vec::new();
-    let mut a_series = Vec::new();
-    for (name, law) in &laws {
+    let one = laws.len() == 1;
+    let (mut s_series, mut a_series, mut windows, mut notes) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut edges = Vec::new();
+    let h = a.physical.stroke_mm;
+    let mut band_mm = 0.0;
+    for (i, (name, law)) in laws.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
         let pts = loomkin_shed::cycle_curve(law, &cond, a.points)?;
-        let label = format!("{name} ({}°)", law.motion_deg());
-        s_series.push(Series::line(label.clone(), pts.iter().map(|p| (p.angle_deg, p.s_m * 1000.0)).collect()));
-        a_series.push(Series::line(label, pts.iter().map(|p| (p.angle_deg, p.a_m_s2)).collect()));
+        let marks = loomkin_shed::cycle_marks(law, &cond)?;
+        let window = evaluate(law, &cond)?.window_deg;
+        band_mm = marks.band_m * 1000.0;
+        let (amax, amin) = (marks.accel_max, marks.accel_min);
+        // One law: the window shaded and labelled, the peaks noted with their values; several:
+        // each law's window edges marked on the band in its colour (shaded windows would pile
+        // up), its peaks dotted and given in the legend.
+        let label = if one {
+            format!("{name} ({}°)", law.motion_deg())
+        } else {
+            format!("{name} {}°: window {}°, |a| {} m/s²", law.motion_deg(), sig4(window), sig4(amax.1.max(-amin.1)))
+        };
+        s_series.push(
+            Series::line(label.clone(), pts.iter().map(|p| (p.angle_deg, p.s_m * 1000.0)).collect()).with_color(color),
+        );
+        a_series.push(Series::line(label, pts.iter().map(|p| (p.angle_deg, p.a_m_s2)).collect()).with_color(color));
+        if one {
+            windows.extend(
+                marks
+                    .windows_deg
+                    .iter()
+                    .filter(|w| w[1] > w[0])
+                    .map(|&[from, to]| XBand::new(from, to, format!("window {}°", sig4(window)), XBand::WINDOW)),
+            );
+        } else {
+            // A window starts where the frame enters the band around an extreme and ends where it
+            // leaves it: the windows are bottom, top, bottom (see `cycle_marks`); the top band's
+            // edge is T·h, the bottom band's (1 − T)·h. The cuts at 0° and 720° are no edges.
+            let pts: Vec<(f64, f64)> = marks
+                .windows_deg
+                .iter()
+                .enumerate()
+                .flat_map(|(k, w)| {
+                    let level = if k == 1 { h - band_mm } else { band_mm };
+                    w.iter().map(move |&e| (e, level))
+                })
+                .filter(|p| p.0 > 0.0 && p.0 < 720.0)
+                .collect();
+            edges.push(Series::markers("", pts).with_color(color));
+        }
+        for (at, v) in [amax, amin] {
+            notes.push(Note::new(
+                at,
+                v,
+                if one { format!("{} m/s² at {}°", sig4(v), sig4(at)) } else { String::new() },
+            ));
+        }
     }
+    s_series.extend(edges);
+    let t = a.threshold.threshold;
+    let band = |from: f64, to: f64, label: &str| YBand::new(from, to, label, [200, 30, 30]);
+    let band_text = format!("threshold band T = {t}: within {} mm of an end", sig4(band_mm));
+    let s_panel = Panel::new("frame position [mm]", s_series)
+        .with_legend(Legend::Auto)
+        .with_x_bands(windows.clone())
+        .with_y_band(band(h - band_mm, h, &band_text))
+        .with_y_band(band(0.0, band_mm, ""));
+    let a_panel = Panel::new("frame acceleration [m/s²]", a_series)
+        .with_legend(Legend::Hidden)
+        .with_x_bands(windows.into_iter().map(|b| XBand { label: String::new(), ..b }))
+        .with_notes(notes);
     let fig = Figure::new(
-        format!("Heald frame over two picks (stroke {} mm, {} rpm)", a.physical.stroke_mm, a.physical.speed_rpm),
+        format!(
+            "Heald frame over two picks (stroke {h} mm, {} rpm, T = {t}){}",
+            a.physical.speed_rpm,
+            if one { "" } else { "; dots: window edges" }
+        ),
         "main-shaft angle [deg]",
-        vec![
-            Panel::new("frame position [mm]", s_series).with_legend(Legend::Auto),
-            Panel::new("frame acceleration [m/s²]", a_series).with_legend(Legend::Hidden),
-        ],
+        vec![s_panel, a_panel],
     );
     output::figure(&fig, &a.output, &a.plot)
 }

@@ -70,6 +70,6 @@ pub use report::{
 };
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
 pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};
-pub use sweep::{SweepPoint, sweep, sweep_point};
+pub use sweep::{SweepPoint, speeds_above, sweep, sweep_point};
 pub use trajectory::{Channel, Solved, Start, steady_state, trajectory};
 pub use twomass::TwoMass;

@@ -62,6 +62,60 @@ pub fn sweep(cycle: &Cycle, follower: &Follower, speeds_rpm: &[f64], start: Star
     speeds_rpm.par_iter().map(|&rpm| sweep_point(cycle, follower, ShaftSpeed::from_rpm(rpm)?, start)).collect()
 }
 
+/// The speed ranges of a sweep over which the residual amplitude exceeds `level_si` (the speeds
+/// to avoid), `[from_rpm, to_rpm]` each. `points` is a sweep in increasing speed; where the
+/// residual crosses the level between two of its speeds the crossing is found by bisection on the
+/// model itself ([`sweep_point`] at the midpoint, to 1e-9 of the speed), not interpolated. A range
+/// that starts or ends with the sweep starts or ends at its first or last speed.
+pub fn speeds_above(
+    cycle: &Cycle,
+    follower: &Follower,
+    points: &[SweepPoint],
+    start: Start,
+    level_si: f64,
+) -> Result<Vec<[f64; 2]>> {
+    let above = |p: &SweepPoint| p.residual_amplitude_si > level_si;
+    let crossing = |lo: f64, hi: f64, lo_above: bool| -> Result<f64> {
+        let (mut a, mut b) = (lo, hi);
+        while b - a > 1e-9 * b.abs().max(1.0) {
+            let m = 0.5 * (a + b);
+            if m <= a || m >= b {
+                break;
+            }
+            let q = sweep_point(cycle, follower, ShaftSpeed::from_rpm(m)?, start)?;
+            if above(&q) == lo_above {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        Ok(0.5 * (a + b))
+    };
+    let mut out = Vec::new();
+    let mut open: Option<f64> = None;
+    for (i, p) in points.iter().enumerate() {
+        let now = above(p);
+        if i == 0 {
+            if now {
+                open = Some(p.speed_rpm);
+            }
+            continue;
+        }
+        let prev = &points[i - 1];
+        if now != above(prev) {
+            let x = crossing(prev.speed_rpm, p.speed_rpm, above(prev))?;
+            match open.take() {
+                Some(from) => out.push([from, x]),
+                None => open = Some(x),
+            }
+        }
+    }
+    if let (Some(from), Some(last)) = (open, points.last()) {
+        out.push([from, last.speed_rpm]);
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod finite_tests {
     use super::*;
@@ -81,5 +135,43 @@ mod finite_tests {
         assert!(soft.iter().all(|p| p.residual_amplitude_si.is_finite() && p.peak_dynamic_error_si.is_finite()));
         let ok = sweep(&cycle, &Follower::new(80.0, 0.05).unwrap(), &[200.0], Start::Rest).unwrap();
         assert!(ok[0].residual_amplitude_si.is_finite());
+    }
+}
+
+#[cfg(test)]
+mod above_tests {
+    use super::*;
+
+    /// Every sweep speed inside a reported range is above the level and every one outside is not;
+    /// at each inner edge the model itself gives the level (the crossing is located, not
+    /// interpolated between the sweep's speeds).
+    #[test]
+    fn speeds_above_a_level_are_bracketed_by_located_crossings() {
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml"))
+                .unwrap();
+        let cycle = Cycle::from_toml(&text).unwrap();
+        let f = Follower::new(54.0, 0.05).unwrap();
+        let speeds: Vec<f64> = (0..=80).map(|i| 200.0 + 10.0 * f64::from(i)).collect();
+        let pts = sweep(&cycle, &f, &speeds, Start::Rest).unwrap();
+        // The residual rises above 4 mm near 470 rpm, falls below it near 560 and rises again.
+        let level = 4e-3;
+        let ranges = speeds_above(&cycle, &f, &pts, Start::Rest, level).unwrap();
+        assert!(ranges.len() >= 2, "the heald example crosses 4 mm several times: {ranges:?}");
+        for p in &pts {
+            let inside = ranges.iter().any(|[a, b]| p.speed_rpm >= *a && p.speed_rpm <= *b);
+            assert_eq!(inside, p.residual_amplitude_si > level, "at {} rpm", p.speed_rpm);
+        }
+        let (lo, hi) = (speeds[0], speeds[speeds.len() - 1]);
+        for edge in ranges.iter().flatten().filter(|e| **e != lo && **e != hi) {
+            let q = sweep_point(&cycle, &f, ShaftSpeed::from_rpm(*edge).unwrap(), Start::Rest).unwrap();
+            assert!(
+                (q.residual_amplitude_si - level).abs() < 1e-6 * level,
+                "{} at {edge} rpm",
+                q.residual_amplitude_si
+            );
+            // Not a sweep speed: the edge lies strictly between two of them.
+            assert!(speeds.iter().all(|s| (s - edge).abs() > 1e-6));
+        }
     }
 }

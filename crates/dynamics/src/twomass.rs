@@ -17,6 +17,12 @@ use crate::trajectory::{Channel, Solved, Start, trajectory};
 use crate::{Oscillator, Result};
 use loomkin_units::{Range, ShaftSpeed};
 
+/// Highest natural frequency of either mode, Hz (the single-mass model's bound,
+/// [`crate::Follower::NATURAL_HZ`]).
+const MAX_HZ: f64 = 1e6;
+/// Largest mass, kg.
+const MAX_KG: f64 = 1e6;
+
 /// A two-mass follower.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoMass {
@@ -33,16 +39,34 @@ pub struct TwoMass {
 impl TwoMass {
     /// From the masses (kg), stiffnesses (N/m) and the modal damping ratio (0 ≤ ζ < 1).
     pub fn new(m1: f64, k1: f64, m2: f64, k2: f64, zeta: f64) -> Result<Self> {
-        let mass = Range::open(0.0, 1e6, "kg");
+        let mass = Range::open(0.0, MAX_KG, "kg");
         let stiff = Range::open(0.0, 1e13, "N/m");
         let (m1, m2) = (mass.check("drive_mass_kg", m1)?, mass.check("frame_mass_kg", m2)?);
         let (k1, k2) = (stiff.check("drive_stiffness_n_m", k1)?, stiff.check("frame_stiffness_n_m", k2)?);
         let zeta = crate::Follower::DAMPING_RATIO.check("damping_ratio", zeta)?;
-        let b = m1 * k2 + m2 * (k1 + k2);
-        let disc = (b * b - 4.0 * m1 * m2 * k1 * k2).max(0.0).sqrt();
-        // Both roots without cancellation: λ₂ = (b + √·)/(2m₁m₂), λ₁ = k₁k₂/(m₁m₂λ₂).
-        let l2 = (b + disc) / (2.0 * m1 * m2);
-        let l1 = k1 * k2 / (m1 * m2 * l2);
+        let (l1, l2) = Self::eigenvalues(m1, k1, m2, k2);
+        // The second mode within the single-mass model's frequency range: a mass too light for its
+        // stiffness is refused by name, with the least mass that keeps f₂ ≤ 10⁶ Hz.
+        let top = (std::f64::consts::TAU * MAX_HZ).powi(2);
+        if !(l2 <= top) {
+            let drive = (k1 + k2) / m1 >= k2 / m2;
+            let (field, m) = if drive { ("drive_mass_kg", m1) } else { ("frame_mass_kg", m2) };
+            let l2_of =
+                |x: f64| if drive { Self::eigenvalues(x, k1, m2, k2).1 } else { Self::eigenvalues(m1, k1, x, k2).1 };
+            // λ₂ falls as either mass grows: bisection on log m for λ₂ = (2π·10⁶ Hz)².
+            let (mut lo, mut hi) = (m.ln(), MAX_KG.ln());
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if l2_of(mid.exp()) <= top { hi = mid } else { lo = mid }
+            }
+            let least = hi.exp();
+            return Err(loomkin_units::RangeError::new(
+                field,
+                m,
+                Range::closed_open(least, MAX_KG, "kg (a lighter mass puts the second natural frequency above 10⁶ Hz)"),
+            )
+            .into());
+        }
         let mut out = Self { omega: [0.0; 2], phi2: [0.0; 2], gamma: [0.0; 2], zeta };
         for (i, l) in [l1, l2].into_iter().enumerate() {
             let p2 = k2 / (k2 - l * m2);
@@ -52,6 +76,15 @@ impl TwoMass {
             out.gamma[i] = (m1 + m2 * p2) / mu;
         }
         Ok(out)
+    }
+
+    /// The eigenvalues `λ₁ ≤ λ₂` (ω², rad²/s²), both roots without cancellation:
+    /// `λ₂ = (b + √(b² − 4m₁m₂k₁k₂))/(2m₁m₂)`, `λ₁ = k₁k₂/(m₁m₂λ₂)`, `b = m₁k₂ + m₂(k₁ + k₂)`.
+    fn eigenvalues(m1: f64, k1: f64, m2: f64, k2: f64) -> (f64, f64) {
+        let b = m1 * k2 + m2 * (k1 + k2);
+        let disc = (b * b - 4.0 * m1 * m2 * k1 * k2).max(0.0).sqrt();
+        let l2 = (b + disc) / (2.0 * m1 * m2);
+        (k1 * k2 / (m1 * m2 * l2), l2)
     }
 
     /// The modal channels.
@@ -159,5 +192,29 @@ impl TwoMass {
             worst = worst.max(bound);
         }
         worst
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::*;
+
+    /// A mass too light for its stiffness is refused by name; the least mass the message gives is
+    /// the boundary: just above it is accepted with f₂ ≤ 10⁶ Hz, just below it is refused.
+    #[test]
+    fn a_too_light_mass_is_refused_with_the_least_allowed() {
+        for (light_drive, (m1, m2)) in [(true, (1e-300, 10.0)), (false, (10.0, 1e-12))] {
+            let e = TwoMass::new(m1, 1e6, m2, 1e6, 0.0).unwrap_err().to_string();
+            let field = if light_drive { "drive_mass_kg" } else { "frame_mass_kg" };
+            assert!(e.starts_with(&format!("{field} = ")) && !e.contains('\n'), "{e}");
+            // The least mass from the message: "allowed L ≤ field < 1000000 kg …".
+            let least: f64 = e.split("allowed ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+            let with = |m: f64| {
+                if light_drive { TwoMass::new(m, 1e6, m2, 1e6, 0.0) } else { TwoMass::new(m1, 1e6, m, 1e6, 0.0) }
+            };
+            let ok = with(least * 1.001).expect("just above the least mass");
+            assert!(ok.omega[1] / std::f64::consts::TAU <= MAX_HZ);
+            assert!(with(least * 0.99).is_err());
+        }
     }
 }

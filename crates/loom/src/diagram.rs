@@ -1,7 +1,7 @@
 //! Figures: the classic loom timing diagram and the torque over the repeat.
 
 use crate::{Drive, Loom, Motion, Pattern, Result, Timing, TimingReport, crossing_offset_deg};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
 use serde::Serialize;
 
 /// The numbers behind the timing diagram over picks `from_pick … from_pick + picks` of the repeat
@@ -172,9 +172,17 @@ pub fn torque_figure(loom: &Loom, pattern: &Pattern, step_deg: f64) -> Result<Fi
         peak.angle_deg,
         rms
     );
-    let panels = vec![Panel::new(
-        "torque [N·m]",
-        vec![Series::line("torque", pts), Series::markers("peak", vec![(peak.angle_deg, peak.torque_n_m)])],
-    )];
-    Ok(Figure::new(title, "main-shaft angle [deg]", panels))
+    let mut panel = Panel::new("torque [N·m]", vec![Series::line("torque", pts)]).with_notes([Note::new(
+        peak.angle_deg,
+        peak.torque_n_m,
+        format!("peak {} N·m at {}°", sig4(peak.torque_n_m), sig4(peak.angle_deg)),
+    )]);
+    // The motor's limit both ways (the drive brakes the frames as well as lifting them).
+    if let Some(limit) = loom.motor_torque_n_m {
+        let over = if peak.torque_n_m.abs() > limit { ": exceeded" } else { "" };
+        panel = panel
+            .with_rule(Rule::y(limit, format!("motor torque limit ±{} N·m{over}", sig4(limit))))
+            .with_rule(Rule::y(-limit, ""));
+    }
+    Ok(Figure::new(title, "main-shaft angle [deg]", vec![panel]))
 }

@@ -19,6 +19,7 @@ struct LoomFile {
     name: Option<String>,
     speed_rpm: f64,
     efficiency: Option<f64>,
+    motor_torque_n_m: Option<f64>,
     geometry: GeometryFile,
     frames: FramesFile,
     warp: Option<WarpFile>,
@@ -233,6 +234,9 @@ pub struct Loom {
     pub speed: ShaftSpeed,
     /// Efficiency of the shedding drive (torque = power / (ω·η)).
     pub efficiency: f64,
+    /// Torque the shedding drive's motor may give at the main shaft, N·m (`motor_torque_n_m`,
+    /// optional): the limit line of the torque plot.
+    pub motor_torque_n_m: Option<f64>,
     /// The shed geometry.
     pub geometry: Geometry,
     /// The frames, front first.
@@ -278,6 +282,10 @@ impl Loom {
         })?;
         let speed = ShaftSpeed::from_rpm(f.speed_rpm)?;
         let efficiency = Range::open_closed(0.0, 1.0, "").check("efficiency", f.efficiency.unwrap_or(1.0))?;
+        let motor_torque_n_m = match f.motor_torque_n_m {
+            Some(t) => Some(Range::open_closed(0.0, 1e7, "N·m").check("motor_torque_n_m", t)?),
+            None => None,
+        };
         let g = &f.geometry;
         let back = Range::open_closed(0.0, 20_000.0, "mm").check("geometry.back_rest_mm", g.back_rest_mm)?;
         let distances = match (&g.frame_distances_mm, g.first_frame_mm, g.frame_pitch_mm, g.frames) {
@@ -410,7 +418,7 @@ impl Loom {
         if name.chars().count() > 200 {
             return Err(LoomError::field("name", "longer than 200 characters"));
         }
-        Ok(Self { name, speed, efficiency, geometry, frames, warp, shedding, insertion, beat_up_deg })
+        Ok(Self { name, speed, efficiency, motor_torque_n_m, geometry, frames, warp, shedding, insertion, beat_up_deg })
     }
 
     /// Number of heald frames.

@@ -47,6 +47,7 @@ pub use dobby::cam::{Cam, parse_point_table};
 pub use dobby::checks::{
     Crossing, Warning, WarningCode, output_pressure_angle_deg, roller_pressure_angle_deg, self_intersections,
 };
+pub use dobby::curvature::{CamCurvaturePoint, cam_curvature};
 pub use dobby::drawing::{DOBBY_CHORD_TOL_RANGE, DobbyLayered, DobbyShape};
 pub use dobby::geometry::ModulatorGeometry;
 pub use dobby::kinematics::ModulatorState;

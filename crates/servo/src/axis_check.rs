@@ -224,24 +224,25 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
 pub fn operating_points(axis: &Axis, cycle: &Cycle, speed_rpm: f64, n: usize) -> Result<Vec<OperatingPoint>> {
     axis.validate(cycle.unit)?;
     let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
+    Ok(cycle.sample(n.max(2), speed_rpm).into_iter().map(|p| operating_point(axis, p.angle_deg, &p.kin)).collect())
+}
+
+/// The operating point at one main-shaft angle (deg), e.g. where [`check_axis`] located the peak
+/// torque (the same model as [`operating_points`]).
+pub fn operating_point_at(axis: &Axis, cycle: &Cycle, speed_rpm: f64, angle_deg: f64) -> Result<OperatingPoint> {
+    axis.validate(cycle.unit)?;
+    let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
+    Ok(operating_point(axis, angle_deg, &cycle.eval(angle_deg.to_radians(), speed_rpm)))
+}
+
+fn operating_point(axis: &Axis, angle_deg: f64, q: &loomkin_laws::Kinematics) -> OperatingPoint {
     let k = axis.motor_rad_per_unit();
     let ke = k * axis.load.efficiency;
     let l = &axis.load;
     let a_eff = (axis.motor.rotor_inertia_kg_m2 + l.extra_inertia_kg_m2) * k + axis.load_mass() / ke;
-    Ok(cycle
-        .sample(n.max(2), speed_rpm)
-        .into_iter()
-        .map(|p| {
-            let q = p.kin;
-            let fric = if q.v == 0.0 { 0.0 } else { l.friction_n * q.v.signum() };
-            let t = a_eff * q.a + (l.viscous_n_s_m * q.v + fric + l.spring_n_m * q.s + l.constant_force_n) / ke;
-            OperatingPoint {
-                angle_deg: p.angle_deg,
-                motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(k * q.v),
-                torque_nm: t,
-            }
-        })
-        .collect())
+    let fric = if q.v == 0.0 { 0.0 } else { l.friction_n * q.v.signum() };
+    let t = a_eff * q.a + (l.viscous_n_s_m * q.v + fric + l.spring_n_m * q.s + l.constant_force_n) / ke;
+    OperatingPoint { angle_deg, motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(k * q.v), torque_nm: t }
 }
 
 /// A polyline of (speed in rpm, torque in N·m).

@@ -43,7 +43,9 @@ mod spline;
 mod torque;
 
 pub use axis::{Axis, Limits, Load, Motor};
-pub use axis_check::{AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_points};
+pub use axis_check::{
+    AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
+};
 pub use camtable::{
     CamPoint, CamTable, Interpolation, InterpolationError, Poly5Segment, poly5_csv, poly5_segments, quintic_hermite,
     slave_at,

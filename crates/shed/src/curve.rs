@@ -53,6 +53,55 @@ pub fn cycle_curve(law: &ShedLaw, conditions: &Conditions, points: usize) -> Res
         .collect())
 }
 
+/// What a plot of the frame's cycle ([`cycle_curve`]) marks, all located on the closed form (root
+/// finding and the law's metrics, not the samples).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CycleMarks {
+    /// The threshold `T`.
+    pub threshold: f64,
+    /// Width of the threshold band, m: the frame counts as still within `(1 − T)·h` of an extreme,
+    /// i.e. below `(1 − T)·h` or above `T·h`.
+    pub band_m: f64,
+    /// The angles (deg, within 0 … 720) over which the frame is in the band around an extreme:
+    /// the weft-insertion window of each pick, `[φ_m·x_arrive, 360° + φ_m·x_depart]` around the
+    /// top dwell and the same 360° later around the bottom dwell (cut at 0° and 720°). Each
+    /// pick's window is `window_deg` of [`crate::Criteria`] long.
+    pub windows_deg: Vec<[f64; 2]>,
+    /// Largest frame acceleration over the cycle: angle (deg) and value (m/s²).
+    pub accel_max: (f64, f64),
+    /// Most negative frame acceleration over the cycle: angle (deg) and value (m/s²).
+    pub accel_min: (f64, f64),
+}
+
+/// The threshold band, the windows and the acceleration peaks of a law over the two picks of
+/// [`cycle_curve`] at `conditions` (its threshold, stroke and speed).
+///
+/// The rise's extremes `a_max` at `φ_m·x_a+`, `a_min` at `φ_m·x_a−` come from the law's exact
+/// metrics; the return runs `1 − s`, so its extremes are `−a_min` at `360° + φ_m·x_a−` and
+/// `−a_max` at `360° + φ_m·x_a+`. The largest of the cycle is reported (the rise's on a tie).
+pub fn cycle_marks(law: &ShedLaw, conditions: &Conditions) -> Result<CycleMarks> {
+    crate::criteria::check_scales(law.motion_deg(), conditions)?;
+    let built = law.build()?;
+    let phi = law.motion_deg();
+    let t = conditions.threshold();
+    let d = crate::Dimensionless::of_law(&built, t)?;
+    let m = built.metrics();
+    let sa = conditions.scale(phi, 2);
+    let (arrive, depart) = (phi * d.x_arrive, phi * d.x_depart);
+    let windows_deg = vec![[0.0, depart], [arrive, 360.0 + depart], [360.0 + arrive, 720.0]];
+    let rise_max = (phi * m.x_ca_pos, sa * m.ca_pos);
+    let return_max = (360.0 + phi * m.x_ca_neg, -sa * m.ca_neg);
+    let rise_min = (phi * m.x_ca_neg, sa * m.ca_neg);
+    let return_min = (360.0 + phi * m.x_ca_pos, -sa * m.ca_pos);
+    Ok(CycleMarks {
+        threshold: t,
+        band_m: (1.0 - t) * conditions.stroke_m(),
+        windows_deg,
+        accel_max: if return_max.1 > rise_max.1 { return_max } else { rise_max },
+        accel_min: if return_min.1 < rise_min.1 { return_min } else { rise_min },
+    })
+}
+
 /// The steps of the frame acceleration over the two picks of [`cycle_curve`]: at the joints of
 /// the law's segments and at its ends against the dwells, where the law's acceleration jumps
 /// (by more than rounding, 1e-9 of the unit law's peak). On the way down (the second pick) the
@@ -106,6 +155,53 @@ mod tests {
             checked += 1;
         }
         assert!(checked > n / 2);
+    }
+
+    /// The windows hold exactly the angles at which the frame is within the band (checked on a
+    /// dense sample, away from the located edges), each pick's window is the criteria's
+    /// `window_deg`, and the located peaks bound the sampled acceleration and are reached by it.
+    #[test]
+    fn marks_agree_with_the_sampled_cycle() {
+        for (t, lengths, thr) in [
+            (Template::trapezoid(), vec![0.25, 0.5, 0.25], 0.95),
+            (Template::trapezoid(), vec![0.1, 0.3, 0.6], 0.85),
+            (Template::trapezoid(), vec![0.0, 0.6, 0.4], 0.9),
+        ] {
+            let cond = Conditions::new(thr, 0.08, 450.0).expect("conditions");
+            let l = law(&t, &lengths);
+            let marks = cycle_marks(&l, &cond).expect("marks");
+            let crit = crate::evaluate(&l, &cond).expect("criteria");
+            let w = &marks.windows_deg;
+            let total: f64 = w.iter().map(|[a, b]| b - a).sum();
+            assert!((total - 2.0 * crit.window_deg).abs() < 1e-9, "{total} vs 2 × {}", crit.window_deg);
+            assert!((marks.band_m - (1.0 - thr) * 0.08).abs() < 1e-15);
+            let n = 144_001;
+            let c = cycle_curve(&l, &cond, n).expect("curve");
+            let (h, band) = (cond.stroke_m(), marks.band_m);
+            let (mut amax, mut amin) = (f64::NEG_INFINITY, f64::INFINITY);
+            for p in &c {
+                amax = amax.max(p.a_m_s2);
+                amin = amin.min(p.a_m_s2);
+                let edge = w.iter().flatten().any(|e| (p.angle_deg - e).abs() < 0.02);
+                if edge {
+                    continue;
+                }
+                let still = p.s_m <= band || p.s_m >= h - band;
+                let inside = w.iter().any(|[a, b]| p.angle_deg >= *a && p.angle_deg <= *b);
+                assert_eq!(still, inside, "at {}°: s = {} m, band {band} m", p.angle_deg, p.s_m);
+            }
+            let scale = marks.accel_max.1.abs().max(marks.accel_min.1.abs());
+            assert!(marks.accel_max.1 >= amax - 1e-12 * scale && marks.accel_max.1 - amax < 1e-4 * scale);
+            assert!(marks.accel_min.1 <= amin + 1e-12 * scale && amin - marks.accel_min.1 < 1e-4 * scale);
+            assert!((marks.accel_max.1.max(-marks.accel_min.1) - crit.peak_accel_m_s2).abs() < 1e-9 * scale);
+            // The value at the reported angle is the reported value (a one-point cycle evaluation).
+            for (at, v) in [marks.accel_max, marks.accel_min] {
+                let (pick, local) = if at < 360.0 { (1.0, at) } else { (-1.0, at - 360.0) };
+                let k = l.build().expect("law").eval(local / l.motion_deg());
+                let a = pick * k.a * cond.scale(l.motion_deg(), 2);
+                assert!((a - v).abs() < 1e-9 * scale, "{a} vs {v} at {at}°");
+            }
+        }
     }
 
     /// Every step reported is the difference of the acceleration just after and just before its

@@ -44,7 +44,7 @@ mod template;
 
 pub use conditions::{Conditions, TABLE3_THRESHOLD, THRESHOLD_RANGE, check_threshold};
 pub use criteria::{Criteria, Dimensionless, evaluate};
-pub use curve::{AccelJump, CurvePoint, cycle_accel_jumps, cycle_curve};
+pub use curve::{AccelJump, CurvePoint, CycleMarks, cycle_accel_jumps, cycle_curve, cycle_marks};
 pub use error::{Result, ShedError};
 pub use experiment::{
     CRITERIA_COLUMNS, DesignKind, Family, GridSpec, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW, Study, StudyEstimate,

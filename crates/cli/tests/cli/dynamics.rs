@@ -173,3 +173,28 @@ fn two_mass_with_a_rigid_drive_is_the_single_mass_frame() {
     assert!((two["natural_hz"][0].as_f64().unwrap() - fn_hz).abs() < 1e-4 * fn_hz);
     assert!(two["peak_drive_error_mm"].as_f64().unwrap() < 1e-3 * b);
 }
+
+/// A mass so light that the second mode leaves the model's frequency range is refused by name,
+/// in one line, with the least mass allowed for the stiffnesses given.
+#[test]
+fn a_tiny_two_mass_mass_is_named() {
+    let run = |m1: &str, m2: &str| {
+        vec![
+            "dyn".to_string(),
+            "two-mass".into(),
+            HEALD.into(),
+            "--drive-mass-kg".into(),
+            m1.into(),
+            "--drive-stiffness-n-m".into(),
+            "1e6".into(),
+            "--frame-mass-kg".into(),
+            m2.into(),
+            "--frame-stiffness-n-m".into(),
+            "1e6".into(),
+        ]
+    };
+    let args = run("1e-300", "10");
+    usage_error(&args.iter().map(String::as_str).collect::<Vec<_>>(), &["drive_mass_kg = 1e-300", "allowed", "10⁶ Hz"]);
+    let args = run("10", "1e-12");
+    usage_error(&args.iter().map(String::as_str).collect::<Vec<_>>(), &["frame_mass_kg = ", "allowed", "kg"]);
+}

@@ -21,7 +21,7 @@ pub(crate) const MARKER_R: f64 = 4.0;
 const BAND_STRIP: f64 = 17.0;
 
 /// Colours of successive series (a palette readable on white and by most colour-blind readers).
-pub(crate) const PALETTE: [[u8; 3]; 8] = [
+pub const PALETTE: [[u8; 3]; 8] = [
     [0, 114, 178],
     [213, 94, 0],
     [0, 158, 115],
@@ -258,8 +258,9 @@ fn linear_bounds(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     (lo - pad * span, hi + pad * span)
 }
 
-/// Decades around the positive values (at most 15 of them, counted down from the largest value).
-fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// Decades around the positive values (at most 15 of them, counted down from the largest value;
+/// from the decade of `floor` when one is given).
+pub(crate) fn log_bounds(values: impl Iterator<Item = f64>, floor: Option<f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && *v > 0.0)
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
@@ -272,6 +273,9 @@ fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
         k_hi = k_lo + 1.0;
     }
     k_lo = k_lo.max(k_hi - 15.0);
+    if let Some(f) = floor.filter(|f| f.is_finite() && *f > 0.0) {
+        k_lo = f.log10().floor().min(k_hi - 1.0);
+    }
     if k_hi - k_lo < 1.0 {
         k_hi = k_lo + 1.0;
     }
@@ -305,9 +309,17 @@ pub(crate) fn tick_label(v: f64, step: f64) -> String {
     if text == "-0" { "0".into() } else { text.replace('-', "−") }
 }
 
-/// A decade's label: plain between 0.001 and 10 000, else `1e-5`.
-fn decade_label(k: i32) -> String {
-    if (-3..=4).contains(&k) { tick_label(10f64.powi(k), 10f64.powi(k)) } else { format!("1e{k}").replace('-', "−") }
+/// A decade's label, `10ᵏ` with a superscript exponent (`10⁻⁵`, `10⁰`, `10³`).
+pub(crate) fn decade_label(k: i32) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::from("10");
+    if k < 0 {
+        s.push('⁻');
+    }
+    for d in k.unsigned_abs().to_string().bytes() {
+        s.push(SUP[usize::from(d - b'0')]);
+    }
+    s
 }
 
 /// Linear ticks at least `min_px` apart on an axis `len_px` long.
@@ -323,18 +335,20 @@ fn ticks_axis(lo: f64, hi: f64, step: f64) -> Axis {
     Axis { lo, hi, log: false, ticks, labels, minor: Vec::new() }
 }
 
-/// Angle ticks: every 30°, 45° or 90°, the first at least `min_px` apart (a longer multiple of
-/// 90° on a very long span; ordinary round steps below 60°).
+/// Angle ticks: every 30°, 45° or 90°, the first at least `min_px` apart (180° or a round number
+/// of turns on a long span; ordinary round steps below 60°).
 pub(crate) fn angle_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     let span = hi - lo;
     if span < 60.0 {
         return linear_axis(lo, hi, len_px, min_px);
     }
     let fits = |step: f64| len_px * step / span >= min_px;
-    let step = [30.0, 45.0, 90.0]
+    // Beyond 90°: 180°, then whole turns in round numbers (360°, 720°, 1800°, 3600°, …), so that a
+    // pattern repeat of many picks is ticked at picks, not at 1170°.
+    let step = [30.0, 45.0, 90.0, 180.0, 360.0]
         .into_iter()
         .find(|s| fits(*s))
-        .unwrap_or_else(|| 90.0 * (span * min_px / len_px / 90.0).ceil().max(1.0));
+        .unwrap_or_else(|| 360.0 * nice_step(span * min_px / len_px / 360.0));
     ticks_axis(lo, hi, step)
 }
 
@@ -378,7 +392,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64) -> Vec<PanelLayout> {
                 .chain(p.y_bands.iter().flat_map(|b| [b.from, b.to]))
         };
         let y_axis = if p.y_scale == Scale::Log {
-            let (lo, hi) = log_bounds(ys());
+            let (lo, hi) = log_bounds(ys(), p.y_floor);
             log_axis(lo, hi, plot_h, 26.0)
         } else {
             let (lo, hi) = linear_bounds(ys(), 0.06);

@@ -21,6 +21,8 @@ mod layout;
 mod raster;
 mod svg;
 
+pub use layout::PALETTE;
+
 use crate::IoError;
 use loomkin_units::{Range, RangeError};
 use std::path::Path;
@@ -220,7 +222,9 @@ pub enum Scale {
     /// Linear.
     #[default]
     Linear,
-    /// Logarithmic, ticked at decades; values ≤ 0 are not drawn.
+    /// Logarithmic, ticked at decades and labelled `10ᵏ`; values ≤ 0 are not drawn (the line
+    /// breaks there) and no value is moved: a value below the axis floor (see
+    /// [`Panel::with_log_y_floor`]) runs off the bottom of the plot where it is.
     Log,
 }
 
@@ -251,6 +255,9 @@ pub struct Panel {
     pub legend: Legend,
     /// Vertical scale.
     pub y_scale: Scale,
+    /// Lowest value of a logarithmic vertical axis (rounded down to a decade); `None`: the
+    /// decade of the smallest positive value, at most 15 decades below the largest.
+    pub y_floor: Option<f64>,
     /// Shaded intervals of the horizontal axis.
     pub x_bands: Vec<XBand>,
     /// Shaded intervals of the vertical axis.
@@ -272,6 +279,7 @@ impl Default for Panel {
             equal_aspect: false,
             legend: Legend::Auto,
             y_scale: Scale::Linear,
+            y_floor: None,
             x_bands: Vec::new(),
             y_bands: Vec::new(),
             rules: Vec::new(),
@@ -296,6 +304,16 @@ impl Panel {
     /// The same panel with a logarithmic vertical axis.
     pub fn with_log_y(mut self) -> Self {
         self.y_scale = Scale::Log;
+        self
+    }
+
+    /// The same panel with a logarithmic vertical axis starting at the decade of `floor` (> 0):
+    /// for values that reach exact zeros (a residual-vibration spectrum), whose decades below a
+    /// few under the largest value say nothing. Points below the floor are drawn where they are
+    /// (clipped by the plot), never raised to it.
+    pub fn with_log_y_floor(mut self, floor: f64) -> Self {
+        self.y_scale = Scale::Log;
+        self.y_floor = (floor.is_finite() && floor > 0.0).then_some(floor);
         self
     }
 

@@ -208,6 +208,12 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
             esc(l)
         );
     }
+    if pl.y.log {
+        // Short unlabelled ticks at the 2…9 of each decade.
+        for v in &pl.y.minor {
+            hline(s, pl.py(*v), r.x0 - 3.0, r.x0, "#777777");
+        }
+    }
     for (v, l) in pl.y.ticks.iter().zip(&pl.y.labels) {
         let y = pl.py(*v);
         hline(s, y, r.x0 - 5.0, r.x0, "#777777");

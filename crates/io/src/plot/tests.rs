@@ -55,6 +55,9 @@ fn angle_ticks_are_multiples_of_30_45_or_90() {
         assert!(len * step / (hi - lo) >= 44.0 - 1e-9);
     }
     assert_eq!(angle_axis(0.0, 360.0, 900.0, 44.0).ticks.len(), 13, "a long 360° axis every 30°");
+    // A pattern repeat of 48 picks: ticked at a round number of turns (5 turns = 1800°).
+    let a = angle_axis(0.0, 17_280.0, 900.0, 44.0);
+    assert_eq!(a.ticks[1] - a.ticks[0], 1800.0);
 }
 
 #[test]
@@ -66,7 +69,7 @@ fn log_ticks_are_decades() {
         assert!((k - k.round()).abs() < 1e-12, "{t} is not a decade");
     }
     assert!(a.ticks.len() >= 3);
-    assert_eq!(a.labels.last().map(String::as_str), Some("100"));
+    assert_eq!(a.labels.last().map(String::as_str), Some("10²"));
     // A spectrum spanning 1e-12 … 1: the axis stops at 15 decades, labels thinned, still decades.
     let fig = Figure::new(
         "",
@@ -247,4 +250,94 @@ fn note_values_have_four_significant_digits() {
     assert_eq!(sig4(2.5e-7), "2.500e−7");
     assert_eq!(sig4(3.0), "3");
     assert_eq!(sig4(0.0), "0");
+}
+
+#[test]
+fn decade_labels_are_powers_of_ten() {
+    use super::layout::decade_label;
+    assert_eq!(decade_label(-5), "10⁻⁵");
+    assert_eq!(decade_label(0), "10⁰");
+    assert_eq!(decade_label(3), "10³");
+    assert_eq!(decade_label(12), "10¹²");
+    assert_eq!(decade_label(-10), "10⁻¹⁰");
+}
+
+/// A spectrum with exact zeros and values far below the floor: the axis starts at the floor's
+/// decade, is ticked at decades, and the drawn polylines are exactly the positive data points
+/// (none raised to the floor, no point invented), broken at the zeros.
+#[test]
+fn log_floor_moves_no_point_and_breaks_at_zeros() {
+    // |sin πr| / (πr |r² − 1|), the cycloid's residual, with its exact zeros at r = 2, 3, … put in
+    // as zeros (1/2 at r = 1), and a tiny value (1e-13) that must stay where it is.
+    let mut pts: Vec<(f64, f64)> = (50..=600)
+        .map(|i| {
+            let r = f64::from(i) / 100.0;
+            let v = if i % 100 == 0 && i > 100 {
+                0.0
+            } else if i == 100 {
+                0.5
+            } else {
+                (std::f64::consts::PI * r).sin().abs() / (std::f64::consts::PI * r * (r * r - 1.0).abs())
+            };
+            (r, v)
+        })
+        .collect();
+    pts[300].1 = 1e-13;
+    let floor = 1e-4;
+    let fig = Figure::new(
+        "",
+        "T·f_n [-]",
+        vec![Panel::new("A/h [-]", vec![Series::line("cycloidal", pts.clone())]).with_log_y_floor(floor)],
+    );
+    let lay = layout(&fig);
+    let pl = &lay.panels[0];
+    assert!(pl.y.log);
+    assert!((pl.y.lo - 1e-4).abs() < 1e-18, "axis floor {}", pl.y.lo);
+    assert!(pl.y.ticks.iter().all(|t| (t.log10() - t.log10().round()).abs() < 1e-12));
+    assert_eq!(pl.y.ticks.first().copied(), Some(pl.y.lo));
+    // Minor ticks at 2…9 × 10ᵏ inside the axis.
+    assert!(pl.y.minor.iter().any(|m| (m / 2e-4 - 1.0).abs() < 1e-12));
+    // Every drawn point is a positive data point, in order; the zeros break the line.
+    let drawn: Vec<(f64, f64)> = pl.curves[0].iter().flatten().copied().collect();
+    let positive: Vec<(f64, f64)> = pts.iter().filter(|p| p.1 > 0.0).map(|&(x, y)| (pl.px(x), pl.py(y))).collect();
+    assert_eq!(drawn, positive);
+    // One run per stretch of positive values between the zeros (the last point is a zero).
+    let runs = pts.iter().enumerate().filter(|(i, p)| p.1 > 0.0 && (*i == 0 || pts[i - 1].1 == 0.0)).count();
+    assert_eq!(runs, 5);
+    assert_eq!(pl.curves[0].len(), runs, "the line breaks at every zero");
+    // Below the floor only data points: the 1e-13 point is drawn at its own (off-plot) height.
+    let floor_px = pl.py(floor);
+    let below: Vec<_> = drawn.iter().filter(|p| p.1 > floor_px + 1e-9).collect();
+    assert!(!below.is_empty());
+    for b in below {
+        assert!(positive.contains(b));
+    }
+    assert!(drawn.contains(&(pl.px(pts[300].0), pl.py(1e-13))));
+    // The decade labels are written as 10ᵏ in the SVG.
+    let svg = fig.to_svg().unwrap();
+    assert!(svg.contains(">10⁻⁴<") && svg.contains(">10⁰<"), "decade labels");
+}
+
+/// The shaded intervals and bands are drawn at their data coordinates.
+#[test]
+fn bands_are_drawn_at_their_data_coordinates() {
+    let fig = Figure::new(
+        "",
+        "angle [deg]",
+        vec![
+            Panel::new("s [mm]", vec![Series::line("s", sine(100, 720.0, 50.0))])
+                .with_x_bands([XBand::new(100.0, 460.0, "window", XBand::WINDOW)])
+                .with_y_band(YBand::new(45.0, 50.0, "threshold band", [200, 30, 30])),
+        ],
+    );
+    let lay = layout(&fig);
+    let pl = &lay.panels[0];
+    let svg = fig.to_svg().unwrap();
+    let rect =
+        |x: f64, y: f64, w: f64, h: f64| format!(r#"<rect x="{x:.2}" y="{y:.2}" width="{w:.2}" height="{h:.2}""#);
+    let (xa, xz) = (pl.px(100.0), pl.px(460.0));
+    assert!(svg.contains(&rect(xa, pl.plot.y0, xz - xa, pl.plot.h())), "window rectangle");
+    let (ya, yz) = (pl.py(45.0), pl.py(50.0));
+    assert!(svg.contains(&rect(pl.plot.x0, yz, pl.plot.w(), ya - yz)), "threshold band rectangle");
+    assert!(svg.contains(">window<") && svg.contains(">threshold band<"));
 }

@@ -4,6 +4,7 @@
 pub(crate) mod analysis;
 pub(crate) mod cam;
 pub(crate) mod checks;
+pub(crate) mod curvature;
 pub(crate) mod drawing;
 pub(crate) mod geometry;
 pub(crate) mod kinematics;
