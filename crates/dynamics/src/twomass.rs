@@ -48,7 +48,7 @@ impl TwoMass {
         // The second mode within the single-mass model's frequency range: a mass too light for its
         // stiffness is refused by name, with the least mass that keeps f₂ ≤ 10⁶ Hz.
         let top = (std::f64::consts::TAU * MAX_HZ).powi(2);
-        if !(l2 <= top) {
+        if l2.is_nan() || l2 > top {
             let drive = (k1 + k2) / m1 >= k2 / m2;
             let (field, m) = if drive { ("drive_mass_kg", m1) } else { ("frame_mass_kg", m2) };
             let l2_of =
