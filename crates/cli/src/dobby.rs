@@ -763,8 +763,8 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
             let mut panels = law_panels(&states, w2);
             panels.push(pressure_panel(&g, &states, &checks, a.geometry.pressure_limit_deg));
             let roller = match a.task {
-                TaskArg::Analyze => a.roller_m,
-                TaskArg::Synthesize => Some(a.roller_m.unwrap_or(0.03)),
+                TaskArg::Analyze => a.roller.metres()?,
+                TaskArg::Synthesize => Some(a.roller.metres_or_default()?),
             };
             panels.push(curvature_panel(&states, &checks, roller));
             // The pressure angles fill their panel, so its legend goes beside it: a wider page
