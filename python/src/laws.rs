@@ -3,12 +3,11 @@
 
 use crate::convert::{self, columns, to_py};
 use crate::errors::{OrRaise, check_count};
-use loomkin_laws::{CATALOGUE, Continuity, Joint, Kinematics, LawSpec, Metrics, ParamValue};
+use loomkin_laws::{ContinuityReport, InfoReport, Kinematics, LawSpec, ListedLaw, ParamValue};
 use loomkin_units::Range;
 use numpy::{AllowTypeChange, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// Samples of one law: 2 ≤ points ≤ 10⁸ (800 MB of float64 columns at the top).
@@ -20,84 +19,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// Which of s, v, a, j are continuous at a joint (the CLI's `continuous`).
-#[derive(Serialize)]
-struct Flags {
-    s: bool,
-    v: bool,
-    a: bool,
-    j: bool,
-}
-
-/// A joint of the continuity report, keyed as `loomkin law info --json`.
-#[derive(Serialize)]
-struct JointJson {
-    x: f64,
-    ds: f64,
-    dv: f64,
-    da: f64,
-    dj: f64,
-    continuous: Flags,
-    continuous_up_to: i32,
-}
-
-impl From<&Joint> for JointJson {
-    fn from(j: &Joint) -> Self {
-        let [s, v, a, jj] = j.flags();
-        Self {
-            x: j.x,
-            ds: j.ds,
-            dv: j.dv,
-            da: j.da,
-            dj: j.dj,
-            continuous: Flags { s, v, a, j: jj },
-            continuous_up_to: j.continuous_up_to,
-        }
-    }
-}
-
-/// The continuity report keyed as `loomkin law info --json`'s `continuity`.
-#[derive(Serialize)]
-pub struct ContinuityJson {
-    class: i32,
-    start: JointJson,
-    joints: Vec<JointJson>,
-    end: JointJson,
-}
-
-impl From<&Continuity> for ContinuityJson {
-    fn from(c: &Continuity) -> Self {
-        Self {
-            class: c.class,
-            start: (&c.start).into(),
-            joints: c.joints.iter().map(JointJson::from).collect(),
-            end: (&c.end).into(),
-        }
-    }
-}
-
-/// One law of `law list --json`.
-#[derive(Serialize)]
-struct ListedLaw {
-    name: &'static str,
-    description: &'static str,
-    params: &'static str,
-    #[serde(flatten)]
-    metrics: Metrics,
-    continuity_class: i32,
-}
-
-/// `law info --json`.
-#[derive(Serialize)]
-struct InfoJson<'a> {
-    law: &'a str,
-    params: &'a BTreeMap<String, ParamValue>,
-    #[serde(flatten)]
-    metrics: Metrics,
-    segments: usize,
-    continuity: ContinuityJson,
-}
-
 /// law_catalogue() -> list[dict]
 /// --
 ///
@@ -107,18 +28,7 @@ struct InfoJson<'a> {
 /// the motion angle) and continuity_class.
 #[pyfunction]
 fn law_catalogue(py: Python<'_>) -> PyResult<Py<PyAny>> {
-    let mut rows = Vec::new();
-    for e in CATALOGUE.iter().filter(|e| !e.required) {
-        let law = LawSpec::parse::<&str, &str>(e.name, &[]).and_then(|s| s.build()).or_raise()?;
-        rows.push(ListedLaw {
-            name: e.name,
-            description: e.description,
-            params: e.params,
-            metrics: law.metrics(),
-            continuity_class: law.continuity().class,
-        });
-    }
-    to_py(py, &rows)
+    to_py(py, &ListedLaw::catalogue().or_raise()?)
 }
 
 /// A normalised rise law: x ∈ [0, 1] (fraction of the motion angle) to s ∈ [0, 1] (fraction of
@@ -222,7 +132,7 @@ impl Law {
     /// dwell-rise-dwell cycle (2: C2, −1: s jumps). As `loomkin law info --json`'s `continuity`.
     fn continuity(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         let c = self.inner.continuity();
-        to_py(py, &ContinuityJson::from(&c))
+        to_py(py, &ContinuityReport::from(&c))
     }
 
     /// info() -> dict
@@ -231,18 +141,8 @@ impl Law {
     /// Everything `loomkin law info NAME --json` prints: law, params, the metrics (flattened),
     /// segments and continuity.
     fn info(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        let m = py.detach(|| self.inner.metrics());
-        let c = self.inner.continuity();
-        to_py(
-            py,
-            &InfoJson {
-                law: &self.name,
-                params: &self.params,
-                metrics: m,
-                segments: self.inner.segments().len(),
-                continuity: (&c).into(),
-            },
-        )
+        let r = py.detach(|| InfoReport::new(&self.name, self.params.clone(), &self.inner));
+        to_py(py, &r)
     }
 
     /// sample(points) -> dict[str, numpy.ndarray]

@@ -4,15 +4,14 @@
 use crate::convert::{records_to_columns, to_py};
 use crate::errors::{OrRaise, check_count, raise};
 use crate::laws::Law;
-use loomkin_laws::{Metrics, ParamValue};
+use loomkin_laws::ParamValue;
 use loomkin_servo::{
-    Drive, ExportFormat, InterpolationError, Objective, OptimizeOptions, ServoError, SplineEnd, SplineLaw,
-    TorqueSummary, format_points, parse_points, summaries, torque_curve,
+    Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, ServoError, SplineEnd, SplineLaw,
+    TorqueReport, format_points, parse_points, torque_curve,
 };
 use loomkin_units::{Range, ShaftSpeed};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde::Serialize;
 
 /// The CLI's default `--def` (the sine-shaped start of the paper), written as the CLI writes it so
 /// that a call without `def` gives the CLI's numbers bit for bit.
@@ -107,22 +106,6 @@ fn servo_spline_law(def_points: Option<&Bound<'_, PyAny>>, end: &str) -> PyResul
     Ok(Law::wrap("servo-spline", label, params, sl.into_law()))
 }
 
-/// `servo law --json`.
-#[derive(Serialize)]
-struct LawJson<'a> {
-    def_points: &'a [[f64; 2]],
-    end: SplineEnd,
-    units: &'static str,
-    d: f64,
-    d_unit: f64,
-    scale: f64,
-    #[serde(flatten)]
-    metrics: Metrics,
-    continuity_class: i32,
-    intervals: usize,
-    spline_b: Vec<[f64; 4]>,
-}
-
 /// servo_law(def_points=None, end="natural") -> dict
 /// --
 ///
@@ -133,61 +116,8 @@ struct LawJson<'a> {
 #[pyo3(signature = (def_points=None, end="natural"))]
 fn servo_law(py: Python<'_>, def_points: Option<&Bound<'_, PyAny>>, end: &str) -> PyResult<Py<PyAny>> {
     let sl = spline(def_points, end)?;
-    let law = sl.law();
-    let m = py.detach(|| law.metrics());
-    to_py(
-        py,
-        &LawJson {
-            def_points: sl.points(),
-            end: sl.end(),
-            units: "d: slope of the acceleration image f (through the points) at x = 0.5; \
-                    d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
-                    per unit stroke and unit motion angle (dimensionless)",
-            d: sl.d(),
-            d_unit: sl.d() * sl.scale(),
-            scale: sl.scale(),
-            metrics: m,
-            continuity_class: law.continuity().class,
-            intervals: law.segments().len(),
-            spline_b: sl.spline_coefficients(),
-        },
-    )
-}
-
-#[derive(Serialize)]
-struct LayoutJson {
-    rise: f64,
-    dwell_after_rise: f64,
-    #[serde(rename = "return")]
-    return_: f64,
-    dwell_after_return: f64,
-}
-
-#[derive(Serialize)]
-struct DriveJson<'a> {
-    #[serde(flatten)]
-    drive: &'a Drive,
-    layout_deg: LayoutJson,
-}
-
-impl<'a> DriveJson<'a> {
-    fn of(d: &'a Drive) -> Result<Self, ServoError> {
-        let lay = d.layout()?;
-        let layout_deg = LayoutJson {
-            rise: lay.rise_deg,
-            dwell_after_rise: lay.dwell_after_rise_deg,
-            return_: lay.return_deg,
-            dwell_after_return: lay.dwell_after_return_deg,
-        };
-        Ok(Self { drive: d, layout_deg })
-    }
-}
-
-#[derive(Serialize)]
-struct TorqueJson<'a> {
-    def_points: &'a [[f64; 2]],
-    drive: DriveJson<'a>,
-    results: &'a [TorqueSummary],
+    let report = py.detach(|| LawReport::of(&sl));
+    to_py(py, &report)
 }
 
 /// servo_torque(speed_rpm=(600, 750), def_points=None, end="natural", drive=None) -> dict
@@ -209,9 +139,8 @@ fn servo_torque(
     speeds(&speed_rpm)?;
     let sl = spline(def_points, end)?;
     let d = drive(drive_text)?;
-    let res = py.detach(|| summaries(sl.law(), &d, &speed_rpm)).or_raise()?;
-    let dj = DriveJson::of(&d).or_raise()?;
-    to_py(py, &TorqueJson { def_points: sl.points(), drive: dj, results: &res })
+    let report = py.detach(|| TorqueReport::compute(&sl, &d, &speed_rpm)).or_raise()?;
+    to_py(py, &report)
 }
 
 /// servo_torque_curve(speed_rpm=600, points=721, def_points=None, end="natural", drive=None) -> dict
@@ -235,33 +164,6 @@ fn servo_torque_curve(
     let d = drive(drive_text)?;
     let curve = py.detach(|| torque_curve(sl.law(), &d, speed_rpm, points)).or_raise()?;
     records_to_columns(py, &curve)
-}
-
-#[derive(Serialize)]
-struct Worst<'a> {
-    peak_torque_nm: f64,
-    rms_torque_nm: f64,
-    per_speed: &'a [TorqueSummary],
-}
-
-impl<'a> Worst<'a> {
-    fn of(v: &'a [TorqueSummary]) -> Self {
-        let peak_torque_nm = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
-        let rms_torque_nm = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
-        Self { peak_torque_nm, rms_torque_nm, per_speed: v }
-    }
-}
-
-#[derive(Serialize)]
-struct OptimizeJson<'a> {
-    objective: Objective,
-    speeds_rpm: &'a [f64],
-    before: Worst<'a>,
-    after: Worst<'a>,
-    def_points: &'a [[f64; 2]],
-    def: String,
-    end: SplineEnd,
-    evaluations: usize,
 }
 
 /// servo_optimize(speed_rpm=(600,), objective="peak", starts=6, fixed_x=False, def_points=None,
@@ -297,20 +199,7 @@ fn servo_optimize(
         ..OptimizeOptions::default()
     };
     let r = interruptible(py, || opts.stop.stop(), || loomkin_servo::optimize(&sl, &d, &opts))?.or_raise()?;
-    let pts = r.law.points();
-    to_py(
-        py,
-        &OptimizeJson {
-            objective,
-            speeds_rpm: &speed_rpm,
-            before: Worst::of(&r.before),
-            after: Worst::of(&r.after),
-            def_points: pts,
-            def: format_points(pts),
-            end: r.law.end(),
-            evaluations: r.evaluations,
-        },
-    )
+    to_py(py, &r.summary(&speed_rpm))
 }
 
 /// Runs `work` on a scoped thread with the GIL released, and on the calling thread checks Python's
@@ -343,33 +232,6 @@ fn interruptible<T: Send>(py: Python<'_>, stop: impl FnOnce(), work: impl FnOnce
             }
         }
     })
-}
-
-#[derive(Serialize)]
-struct ReinterpolationJson {
-    interpolation: &'static str,
-    step_deg: f64,
-    max_position_error_m: f64,
-    max_velocity_error_m_per_deg: f64,
-    max_accel_error_m_per_deg2: f64,
-    rel_position_error: f64,
-    rel_velocity_error: f64,
-    rel_accel_error: f64,
-}
-
-impl From<&InterpolationError> for ReinterpolationJson {
-    fn from(e: &InterpolationError) -> Self {
-        Self {
-            interpolation: e.mode.name(),
-            step_deg: e.step_deg,
-            max_position_error_m: e.max_position_error_m,
-            max_velocity_error_m_per_deg: e.max_velocity_error_m_per_deg,
-            max_accel_error_m_per_deg2: e.max_accel_error_m_per_deg2,
-            rel_position_error: e.rel_position_error,
-            rel_velocity_error: e.rel_velocity_error,
-            rel_accel_error: e.rel_accel_error,
-        }
-    }
 }
 
 fn export_format(name: &str) -> PyResult<ExportFormat> {
@@ -419,7 +281,7 @@ fn servo_export<'py>(
     if let Some(t) = file.table {
         out.set_item("points", t.points)?;
         out.set_item("step_deg", t.step_deg)?;
-        let rows: Vec<ReinterpolationJson> = t.reinterpolation.iter().map(ReinterpolationJson::from).collect();
+        let rows: Vec<ReinterpolationRow> = t.reinterpolation.iter().map(ReinterpolationRow::from).collect();
         out.set_item("reinterpolation", to_py(py, &rows)?)?;
     }
     Ok(out)

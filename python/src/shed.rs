@@ -4,13 +4,12 @@
 use crate::convert::{to_py, value_records_to_columns};
 use crate::errors::{Fault, OrRaise};
 use loomkin_shed::{
-    Conditions, Criteria, DesignKind, Family, GridSpec, PRESETS, Progress, ShedError, ShedLaw, Study, StudyRow,
-    StudyTable, Template, evaluate, preset, preset_table_in,
+    BestReport, BestSearch, Conditions, DesignKind, Family, GridSpec, LawReport, PRESETS, PresetReport, Progress,
+    RowReport, ShedError, ShedLaw, Study, StudyTable, Template, evaluate, preset, preset_table_in,
 };
 use loomkin_study::StudyError;
 use loomkin_units::{Range, RangeError};
 use pyo3::prelude::*;
-use serde::Serialize;
 
 impl Fault for StudyError {
     fn range(&self) -> Option<&RangeError> {
@@ -57,51 +56,6 @@ fn conditions(threshold: f64, stroke_mm: f64, speed_rpm: f64) -> PyResult<Condit
     Conditions::new(threshold, stroke_mm / 1000.0, speed_rpm).or_raise()
 }
 
-#[derive(Serialize)]
-struct CriteriaJson<'a> {
-    #[serde(flatten)]
-    criteria: &'a Criteria,
-    stroke_mm: f64,
-    speed_rpm: f64,
-}
-
-impl<'a> CriteriaJson<'a> {
-    fn of(criteria: &'a Criteria, cond: &Conditions) -> Self {
-        Self { criteria, stroke_mm: cond.stroke_m() * 1000.0, speed_rpm: cond.speed_rpm() }
-    }
-}
-
-#[derive(Serialize)]
-struct DefinitionJson {
-    motion_deg: f64,
-    symmetric: bool,
-    positive_fraction: f64,
-    positive: String,
-    negative: String,
-}
-
-impl DefinitionJson {
-    fn of(law: &ShedLaw) -> Self {
-        Self {
-            motion_deg: law.motion_deg(),
-            symmetric: law.is_symmetric(),
-            positive_fraction: law.positive_fraction(),
-            positive: law.positive_text(),
-            negative: law.negative_text(),
-        }
-    }
-}
-
-#[derive(Serialize)]
-struct PresetJson {
-    name: &'static str,
-    name_ru: &'static str,
-    motion_deg: f64,
-    dwell_deg: f64,
-    table_shape: &'static str,
-    positive: &'static str,
-}
-
 /// shed_presets() -> list[dict]
 /// --
 ///
@@ -109,27 +63,7 @@ struct PresetJson {
 /// shaft), table_shape and the positive phase of the acceleration.
 #[pyfunction]
 fn shed_presets(py: Python<'_>) -> PyResult<Py<PyAny>> {
-    let laws: Vec<PresetJson> = PRESETS
-        .iter()
-        .map(|p| PresetJson {
-            name: p.name,
-            name_ru: p.name_ru,
-            motion_deg: p.motion_deg,
-            dwell_deg: 360.0 - p.motion_deg,
-            table_shape: p.table_shape,
-            positive: p.positive,
-        })
-        .collect();
-    to_py(py, &laws)
-}
-
-#[derive(Serialize)]
-struct LawJson<'a> {
-    law: String,
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    definition: DefinitionJson,
-    segments: String,
+    to_py(py, &PresetReport::all())
 }
 
 /// shed_law(name=None, spec_toml=None, motion_deg=None, threshold=0.95, stroke_mm=100, speed_rpm=300) -> dict
@@ -161,15 +95,7 @@ fn shed_law(
     }
     let cond = conditions(threshold, stroke_mm, speed_rpm)?;
     let c = evaluate(&law, &cond).or_raise()?;
-    to_py(
-        py,
-        &LawJson {
-            law: name,
-            criteria: CriteriaJson::of(&c, &cond),
-            definition: DefinitionJson::of(&law),
-            segments: law.positive_text(),
-        },
-    )
+    to_py(py, &LawReport::new(name, &law, &c, &cond))
 }
 
 /// The CLI's design flags.
@@ -213,30 +139,64 @@ fn study(kind: DesignKind, d: &DesignArgs, g: GridSpec) -> PyResult<Study> {
     Study::new(kind, template(d)?, grid).or_raise()
 }
 
-#[derive(Serialize)]
-struct RowJson<'a> {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    law: Option<&'a str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    row: Option<usize>,
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    lengths: &'a [f64],
-}
-
-fn row_json<'a>(r: &'a StudyRow, cond: &Conditions) -> RowJson<'a> {
-    RowJson {
-        law: r.law.as_deref(),
-        row: r.law.is_none().then_some(r.candidate.row),
-        criteria: CriteriaJson::of(&r.candidate.criteria, cond),
-        lengths: &r.candidate.lengths,
-    }
-}
-
 fn rows_columns(py: Python<'_>, t: &StudyTable, cond: &Conditions) -> PyResult<Py<PyAny>> {
-    let rows: Vec<RowJson> = t.rows.iter().map(|r| row_json(r, cond)).collect();
+    let rows: Vec<RowReport> = t.rows.iter().map(|r| r.report(cond)).collect();
     let v = serde_json::to_value(&rows).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
     value_records_to_columns(py, &v)
+}
+
+/// Which table [`study_rows`] builds.
+#[derive(Clone, Copy)]
+enum Build {
+    /// `shed table`: every law of the design (at motion angles `motion_deg`, default 300).
+    Table,
+    /// `shed pareto`: the laws not dominated over the motion angles (default 180:360:10).
+    Pareto,
+}
+
+/// The rows of `shed table` or `shed pareto` as columns, for the presets or a design, at the
+/// threshold, stroke (mm) and speed (rpm).
+fn study_rows(
+    py: Python<'_>,
+    build: Build,
+    design: &str,
+    d: &DesignArgs,
+    motion_deg: Option<&str>,
+    (threshold, stroke_mm, speed_rpm): (f64, f64, f64),
+) -> PyResult<Py<PyAny>> {
+    let kind = design_kind(design)?;
+    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
+    let motions = |default: &str| loomkin_shed::parse_motion_angles(motion_deg.unwrap_or(default)).or_raise();
+    let t = match (build, kind == DesignKind::Presets) {
+        (Build::Table, true) => {
+            if d.family.is_some() || d.shapes.is_some() || motion_deg.is_some() || d.step.is_some() {
+                return Err(parse_err("design", "design presets takes no family, shapes, step or motion_deg".into()));
+            }
+            py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?
+        }
+        (Build::Table, false) => {
+            let s = study(kind, d, GridSpec::TABLE)?;
+            let motions = motions("300")?;
+            py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, 0..s.design.len())).or_raise()?
+        }
+        (Build::Pareto, presets) => {
+            // The angles are checked whatever the design (as the CLI does).
+            let motions = motions("180:360:10")?;
+            if presets {
+                let all = py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?;
+                let pts: Vec<[f64; 2]> = all
+                    .rows
+                    .iter()
+                    .map(|r| [r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2])
+                    .collect();
+                all.select(&loomkin_shed::pareto_indices(&pts).or_raise()?)
+            } else {
+                let s = study(kind, d, GridSpec::TABLE)?;
+                py.detach(|| s.pareto(&motions, &cond, Progress::Hidden)).or_raise()?
+            }
+        }
+    };
+    rows_columns(py, &t, &cond)
 }
 
 /// shed_table(design="presets", ...) -> dict[str, array]
@@ -261,20 +221,8 @@ fn shed_table(
     stroke_mm: f64,
     speed_rpm: f64,
 ) -> PyResult<Py<PyAny>> {
-    let kind = design_kind(design)?;
     let d = DesignArgs { family, shapes, step, min_k, max_k };
-    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
-    let t = if kind == DesignKind::Presets {
-        if family.is_some() || shapes.is_some() || motion_deg.is_some() || step.is_some() {
-            return Err(parse_err("design", "design presets takes no family, shapes, step or motion_deg".into()));
-        }
-        py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?
-    } else {
-        let s = study(kind, &d, GridSpec::TABLE)?;
-        let motions = loomkin_shed::parse_motion_angles(motion_deg.unwrap_or("300")).or_raise()?;
-        py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, 0..s.design.len())).or_raise()?
-    };
-    rows_columns(py, &t, &cond)
+    study_rows(py, Build::Table, design, &d, motion_deg, (threshold, stroke_mm, speed_rpm))
 }
 
 /// shed_pareto(design="grid", ...) -> dict[str, array]
@@ -299,34 +247,8 @@ fn shed_pareto(
     stroke_mm: f64,
     speed_rpm: f64,
 ) -> PyResult<Py<PyAny>> {
-    let kind = design_kind(design)?;
     let d = DesignArgs { family, shapes, step, min_k, max_k };
-    let cond = conditions(threshold, stroke_mm, speed_rpm)?;
-    let motions = loomkin_shed::parse_motion_angles(motion_deg.unwrap_or("180:360:10")).or_raise()?;
-    let front = if kind == DesignKind::Presets {
-        let all = py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?;
-        let pts: Vec<[f64; 2]> =
-            all.rows.iter().map(|r| [r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2]).collect();
-        all.select(&loomkin_shed::pareto_indices(&pts).or_raise()?)
-    } else {
-        let s = study(kind, &d, GridSpec::TABLE)?;
-        py.detach(|| s.pareto(&motions, &cond, Progress::Hidden)).or_raise()?
-    };
-    rows_columns(py, &front, &cond)
-}
-
-#[derive(Serialize)]
-struct BestJson<'a> {
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    required_window_deg: f64,
-    family: &'a str,
-    lengths: &'a [f64],
-    segments: String,
-    definition: DefinitionJson,
-    laws_searched: usize,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    max_jerk_m_s3: Option<f64>,
+    study_rows(py, Build::Pareto, design, &d, motion_deg, (threshold, stroke_mm, speed_rpm))
 }
 
 /// shed_best(window_deg, threshold=0.95, max_jerk_m_s3=None, design="grid", ...) -> dict
@@ -383,17 +305,12 @@ fn shed_best(
         ));
     };
     let law = s.template.law(b.criteria.motion_deg, &b.lengths).or_raise()?;
-    to_py(
-        py,
-        &BestJson {
-            criteria: CriteriaJson::of(&b.criteria, &cond),
-            required_window_deg: window_deg,
-            family: s.template.name(),
-            lengths: &b.lengths,
-            segments: law.positive_text(),
-            definition: DefinitionJson::of(&law),
-            laws_searched: s.design.len(),
-            max_jerk_m_s3,
-        },
-    )
+    let search = BestSearch {
+        template: &s.template,
+        laws_searched: s.design.len(),
+        required_window_deg: window_deg,
+        max_jerk_m_s3,
+        loom: None,
+    };
+    to_py(py, &BestReport::new(search, &b, &law, &cond))
 }

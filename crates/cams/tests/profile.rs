@@ -481,36 +481,13 @@ proptest! {
 /// the curve against the polyline's segments).
 #[test]
 fn dxf_drawing_is_closed_within_tolerance_and_in_mm() {
-    use loomkin_cams::profile::Shape;
-    use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, dxf_text};
     let cam = CamProfile::new(
         &heald(),
         &design(Follower::Translating { offset_mm: 8.0 }, Closure::Conjugate, 12.0, Size::PrimeRadiusMm(85.0)),
     )
     .unwrap();
     for tol in [0.01, 0.001] {
-        let layers = cam.drawing(tol, 30.0).unwrap();
-        let shapes: Vec<DxfShape> = layers
-            .iter()
-            .map(|l| match &l.shape {
-                Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
-                    layer: l.layer.into(),
-                    points: points.iter().map(|p| [p[0] * 1e-3, p[1] * 1e-3]).collect(),
-                    closed: *closed,
-                }),
-                Shape::Circle { centre, radius } => DxfShape::Circle {
-                    layer: l.layer.into(),
-                    centre: [centre[0] * 1e-3, centre[1] * 1e-3],
-                    radius: radius * 1e-3,
-                },
-                Shape::Line { from, to } => DxfShape::Line {
-                    layer: l.layer.into(),
-                    from: [from[0] * 1e-3, from[1] * 1e-3],
-                    to: [to[0] * 1e-3, to[1] * 1e-3],
-                },
-            })
-            .collect();
-        let text = dxf_text(&shapes, DxfUnit::Millimetre).unwrap();
+        let text = cam.dxf(tol, 30.0).unwrap();
         let back = dxf::Drawing::load(&mut text.as_bytes()).unwrap();
         assert_eq!(back.header.default_drawing_units, dxf::enums::Units::Millimeters);
         let curves = [

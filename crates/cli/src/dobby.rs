@@ -531,7 +531,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     // admissible roller) but never drawn; with --dxf the report is printed, then exit 2.
     let refused = a.dxf.is_some() && res.summary.undercut;
     if let Some(path) = a.dxf.as_ref().filter(|_| !refused) {
-        let shapes: Vec<DxfShape> = loomkin_io::dobby_export::synthesis_shapes(&res, a.chord_tol_mm, a.bore_mm)?;
+        let shapes: Vec<DxfShape> = loomkin_mech::dobby_export::synthesis_shapes(&res, a.chord_tol_mm, a.bore_mm)?;
         let unit = match a.dxf_unit {
             UnitArg::Mm => DxfUnit::Millimetre,
             UnitArg::M => DxfUnit::Metre,
@@ -541,7 +541,7 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     }
     if let Some(path) = &a.points_csv {
         let mut f = loomkin_io::create_file(path).map_err(util::failure)?;
-        loomkin_io::dobby_export::synthesis_points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
+        loomkin_mech::dobby_export::synthesis_points_table(&res)?.write_csv(&mut f).map_err(util::failure)?;
         output::note(format_args!("wrote {}", path.display()));
     }
     let report = || -> Result<()> {

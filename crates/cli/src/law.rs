@@ -5,10 +5,9 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::plot::{Figure, Legend, Panel, Series};
-use loomkin_laws::{CATALOGUE, Continuity, Joint, Kinematics, Law, LawSpec, Metrics, ParamValue};
+use loomkin_laws::{CATALOGUE, InfoReport, Kinematics, Law, LawSpec, ListedLaw};
 use loomkin_units::{Budget, Cost, Shard};
 use serde::Serialize;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin law`.
@@ -105,27 +104,14 @@ pub fn build(name: &str, params: &[(String, String)]) -> Result<(LawSpec, Law)> 
 }
 
 fn list(a: ListArgs) -> Result<()> {
-    let mut rows = Vec::new();
-    for e in CATALOGUE.iter().filter(|e| !e.required) {
-        let (_, law) = build(e.name, &[])?;
-        rows.push((e, law.metrics(), law.continuity().class));
-    }
+    let laws = ListedLaw::catalogue()?;
     if a.json {
-        let laws = rows
-            .iter()
-            .map(|(e, m, c)| ListedLaw {
-                name: e.name,
-                description: e.description,
-                params: e.params,
-                metrics: *m,
-                continuity_class: *c,
-            })
-            .collect();
         return output::json(&ListJson { laws });
     }
     outln!("Normalised rise laws (x: fraction of the motion angle, s: fraction of the stroke; values dimensionless)")?;
     outln!("{:<22} {:>8} {:>8} {:>9} {:>8} {:>8} {:>5}  description", "law", "Cv", "Ca", "Cj", "Cm", "Ca_rms", "C^k")?;
-    for (e, m, c) in &rows {
+    for l in &laws {
+        let (e, m) = (l, &l.metrics);
         let params = if e.params.is_empty() { String::new() } else { format!(" [{}]", e.params) };
         outln!(
             "{:<22} {:>8.4} {:>8.4} {:>9.3} {:>8.4} {:>8.4} {:>5}  {}{}",
@@ -135,7 +121,7 @@ fn list(a: ListArgs) -> Result<()> {
             m.cj,
             m.cm,
             m.ca_rms,
-            class_text(*c),
+            class_text(l.continuity_class),
             e.description,
             params
         )?;
@@ -168,103 +154,19 @@ fn class_text(c: i32) -> String {
     if c < 0 { "none".into() } else { format!("C{c}") }
 }
 
-/// One law of `law list --json`.
-#[derive(Serialize)]
-struct ListedLaw {
-    name: &'static str,
-    description: &'static str,
-    params: &'static str,
-    #[serde(flatten)]
-    metrics: Metrics,
-    continuity_class: i32,
-}
-
 /// `law list --json`.
 #[derive(Serialize)]
 struct ListJson {
     laws: Vec<ListedLaw>,
 }
 
-/// Which of s, v, a, j are continuous at a joint.
-#[derive(Serialize)]
-struct Flags {
-    s: bool,
-    v: bool,
-    a: bool,
-    j: bool,
-}
-
-/// A joint of the continuity report.
-#[derive(Serialize)]
-struct JointJson {
-    x: f64,
-    ds: f64,
-    dv: f64,
-    da: f64,
-    dj: f64,
-    continuous: Flags,
-    continuous_up_to: i32,
-}
-
-impl From<&Joint> for JointJson {
-    fn from(j: &Joint) -> Self {
-        let [s, v, a, jj] = j.flags();
-        Self {
-            x: j.x,
-            ds: j.ds,
-            dv: j.dv,
-            da: j.da,
-            dj: j.dj,
-            continuous: Flags { s, v, a, j: jj },
-            continuous_up_to: j.continuous_up_to,
-        }
-    }
-}
-
-/// The continuity report in JSON.
-#[derive(Serialize)]
-pub struct ContinuityJson {
-    class: i32,
-    start: JointJson,
-    joints: Vec<JointJson>,
-    end: JointJson,
-}
-
-impl From<&Continuity> for ContinuityJson {
-    fn from(c: &Continuity) -> Self {
-        Self {
-            class: c.class,
-            start: (&c.start).into(),
-            joints: c.joints.iter().map(JointJson::from).collect(),
-            end: (&c.end).into(),
-        }
-    }
-}
-
-/// `law info --json`: parameters typed (`"ramp": 0.1`).
-#[derive(Serialize)]
-struct InfoJson {
-    law: &'static str,
-    params: BTreeMap<String, ParamValue>,
-    #[serde(flatten)]
-    metrics: Metrics,
-    segments: usize,
-    continuity: ContinuityJson,
-}
-
 fn info(a: InfoArgs) -> Result<()> {
     let (spec, law) = build(&a.law, &a.params.params)?;
-    let m = law.metrics();
-    let c = law.continuity();
+    let r = InfoReport::new(spec.name(), spec.param_values(), &law);
     if a.json {
-        return output::json(&InfoJson {
-            law: spec.name(),
-            params: spec.param_values(),
-            metrics: m,
-            segments: law.segments().len(),
-            continuity: (&c).into(),
-        });
+        return output::json(&r);
     }
+    let (m, c) = (r.metrics, law.continuity());
     outln!("law {}", spec.label())?;
     outln!("  values per unit stroke and unit motion angle (dimensionless)")?;
     outln!("  Cv   = max v       = {:.10}   at x = {:.6}", m.cv, m.x_cv)?;

@@ -6,10 +6,9 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::plot::{Figure, Legend, Note, Panel, Series, sig4};
-use loomkin_laws::Metrics;
 use loomkin_servo::{
-    Drive, ExportFormat, InterpolationError, Objective, OptimizeOptions, SplineEnd, SplineLaw, TorqueSummary,
-    format_points, parse_points, summaries, torque_curve,
+    Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, SplineEnd, SplineLaw, TorqueReport,
+    format_points, parse_points, torque_curve,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -211,22 +210,6 @@ struct SamplesJson<'a> {
     points: output::Streamed<'a, Sample>,
 }
 
-/// `servo law --json`.
-#[derive(Serialize)]
-struct LawJson<'a> {
-    def_points: &'a [[f64; 2]],
-    end: SplineEnd,
-    units: &'static str,
-    d: f64,
-    d_unit: f64,
-    scale: f64,
-    #[serde(flatten)]
-    metrics: Metrics,
-    continuity_class: i32,
-    intervals: usize,
-    spline_b: Vec<[f64; 4]>,
-}
-
 fn law(a: LawArgs) -> Result<()> {
     let sl = a.def.build()?;
     let law = sl.law();
@@ -254,27 +237,14 @@ fn law(a: LawArgs) -> Result<()> {
         progress.finish();
         return Ok(());
     }
-    let m = law.metrics();
-    let c = law.continuity();
     if a.format.csv {
         bail!("--csv needs --sample N (the metrics are printed as text or --json)");
     }
+    let r = LawReport::of(&sl);
     if a.format.json {
-        return output::json(&LawJson {
-            def_points: sl.points(),
-            end: sl.end(),
-            units: "d: slope of the acceleration image f (through the points) at x = 0.5; \
-                    d_unit = d·scale, jerk of the unit law there; cv, ca, cj, cm, ca_rms: the core's metrics \
-                    per unit stroke and unit motion angle (dimensionless)",
-            d: sl.d(),
-            d_unit: sl.d() * sl.scale(),
-            scale: sl.scale(),
-            metrics: m,
-            continuity_class: c.class,
-            intervals: law.segments().len(),
-            spline_b: sl.spline_coefficients(),
-        });
+        return output::json(&r);
     }
+    let m = r.metrics;
     outln!(
         "servo law through {} definition points ({} start), unit stroke on x = 0…1",
         sl.points().len(),
@@ -296,105 +266,9 @@ fn law(a: LawArgs) -> Result<()> {
     outln!("  Cj   = max |j|   = {:.10}   at x = {:.6}", m.cj, m.x_cj)?;
     outln!("  Cm   = max v·a   = {:.10}   at x = {:.6}", m.cm, m.x_cm)?;
     outln!("  Ca_rms = √∫a²dx  = {:.10}", m.ca_rms)?;
-    let ck = if c.class < 0 { "none".to_string() } else { format!("C{}", c.class) };
+    let ck = if r.continuity_class < 0 { "none".to_string() } else { format!("C{}", r.continuity_class) };
     outln!("  continuity in a dwell-rise-dwell cycle: {ck}")?;
     Ok(())
-}
-
-/// The drive's turn in degrees of the main shaft (`layout_deg` of the drive in JSON).
-#[derive(Serialize)]
-struct LayoutJson {
-    rise: f64,
-    dwell_after_rise: f64,
-    #[serde(rename = "return")]
-    return_: f64,
-    dwell_after_return: f64,
-}
-
-/// A drive and its turn in JSON.
-#[derive(Serialize)]
-struct DriveJson<'a> {
-    #[serde(flatten)]
-    drive: &'a Drive,
-    layout_deg: LayoutJson,
-}
-
-impl<'a> DriveJson<'a> {
-    fn of(d: &'a Drive) -> Result<Self> {
-        let lay = d.layout()?;
-        let layout_deg = LayoutJson {
-            rise: lay.rise_deg,
-            dwell_after_rise: lay.dwell_after_rise_deg,
-            return_: lay.return_deg,
-            dwell_after_return: lay.dwell_after_return_deg,
-        };
-        Ok(Self { drive: d, layout_deg })
-    }
-}
-
-/// `servo torque --json`.
-#[derive(Serialize)]
-struct TorqueJson<'a> {
-    def_points: &'a [[f64; 2]],
-    drive: DriveJson<'a>,
-    results: &'a [TorqueSummary],
-}
-
-/// The worst peak and RMS torque over the speeds, and the summaries per speed.
-#[derive(Serialize)]
-struct Worst<'a> {
-    peak_torque_nm: f64,
-    rms_torque_nm: f64,
-    per_speed: &'a [TorqueSummary],
-}
-
-impl<'a> Worst<'a> {
-    fn of(v: &'a [TorqueSummary]) -> Self {
-        let peak_torque_nm = v.iter().map(|s| s.peak_torque_nm).fold(0.0, f64::max);
-        let rms_torque_nm = v.iter().map(|s| s.rms_torque_nm).fold(0.0, f64::max);
-        Self { peak_torque_nm, rms_torque_nm, per_speed: v }
-    }
-}
-
-/// `servo optimize --json`.
-#[derive(Serialize)]
-struct OptimizeJson<'a> {
-    objective: Objective,
-    speeds_rpm: &'a [f64],
-    before: Worst<'a>,
-    after: Worst<'a>,
-    def_points: &'a [[f64; 2]],
-    def: String,
-    end: SplineEnd,
-    evaluations: usize,
-}
-
-/// One re-interpolation row of `servo export --json`.
-#[derive(Serialize)]
-struct ReinterpolationJson {
-    interpolation: &'static str,
-    step_deg: f64,
-    max_position_error_m: f64,
-    max_velocity_error_m_per_deg: f64,
-    max_accel_error_m_per_deg2: f64,
-    rel_position_error: f64,
-    rel_velocity_error: f64,
-    rel_accel_error: f64,
-}
-
-impl From<&InterpolationError> for ReinterpolationJson {
-    fn from(e: &InterpolationError) -> Self {
-        Self {
-            interpolation: e.mode.name(),
-            step_deg: e.step_deg,
-            max_position_error_m: e.max_position_error_m,
-            max_velocity_error_m_per_deg: e.max_velocity_error_m_per_deg,
-            max_accel_error_m_per_deg2: e.max_accel_error_m_per_deg2,
-            rel_position_error: e.rel_position_error,
-            rel_velocity_error: e.rel_velocity_error,
-            rel_accel_error: e.rel_accel_error,
-        }
-    }
 }
 
 /// `servo export --json` (cam tables): the re-interpolation report.
@@ -402,7 +276,7 @@ impl From<&InterpolationError> for ReinterpolationJson {
 struct ExportJson {
     format: ExportFormat,
     points: usize,
-    reinterpolation: Vec<ReinterpolationJson>,
+    reinterpolation: Vec<ReinterpolationRow>,
 }
 
 fn print_drive(d: &Drive) -> Result<()> {
@@ -435,9 +309,9 @@ fn torque(a: TorqueArgs) -> Result<()> {
     check_speeds(&a.speed_rpm)?;
     let sl = a.def.build()?;
     let d = a.drive.load()?;
-    let res = summaries(sl.law(), &d, &a.speed_rpm)?;
+    let report = TorqueReport::compute(&sl, &d, &a.speed_rpm)?;
     if a.json {
-        return output::json(&TorqueJson { def_points: sl.points(), drive: DriveJson::of(&d)?, results: &res });
+        return output::json(&report);
     }
     print_drive(&d)?;
     outln!(
@@ -449,7 +323,7 @@ fn torque(a: TorqueArgs) -> Result<()> {
         "peak power W",
         "motor max rpm"
     )?;
-    for s in &res {
+    for s in &report.results {
         outln!(
             "{:>12.1} {:>16.4} {:>14.2} {:>14.4} {:>14.1} {:>16.0}",
             s.speed_rpm,
@@ -502,16 +376,7 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     output::note(format_args!("loomkin: optimised in {elapsed:.3} s"));
     let pts = r.law.points();
     if a.json {
-        return output::json(&OptimizeJson {
-            objective: opts.objective,
-            speeds_rpm: &a.speed_rpm,
-            before: Worst::of(&r.before),
-            after: Worst::of(&r.after),
-            def_points: pts,
-            def: format_points(pts),
-            end: r.law.end(),
-            evaluations: r.evaluations,
-        });
+        return output::json(&r.summary(&a.speed_rpm));
     }
     print_drive(&d)?;
     outln!(
@@ -556,7 +421,7 @@ fn export(a: ExportArgs) -> Result<()> {
         let report = ExportJson {
             format: a.format,
             points: table.points,
-            reinterpolation: table.reinterpolation.iter().map(ReinterpolationJson::from).collect(),
+            reinterpolation: table.reinterpolation.iter().map(ReinterpolationRow::from).collect(),
         };
         if a.output == "-" {
             // The table went to stdout: keep it clean, the report goes to stderr.

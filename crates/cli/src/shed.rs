@@ -6,8 +6,9 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_io::plot::{Figure, Legend, Note, PALETTE, Panel, Series, XBand, YBand, sig4};
 use loomkin_shed::{
-    Conditions, Criteria, DesignKind, Family, GridSpec, LoomRequirement, PRESETS, Progress, ShedLaw, Study, StudyRow,
-    StudyTable, Template, evaluate, preset, preset_table, preset_table_in,
+    BestReport, BestSearch, Conditions, Criteria, DesignKind, Family, GridSpec, LawReport, LoomRequirement, PRESETS,
+    PresetReport, Progress, ShedLaw, Study, StudyRow, StudyTable, Template, WindowReport, evaluate, preset,
+    preset_table, preset_table_in,
 };
 use loomkin_units::{Budget, Cost};
 use serde::Serialize;
@@ -291,123 +292,15 @@ fn load(name: Option<&str>, spec: Option<&PathBuf>) -> Result<(String, ShedLaw)>
     }
 }
 
-/// Criteria with the stroke and speed they were evaluated at.
-#[derive(Serialize)]
-struct CriteriaJson<'a> {
-    #[serde(flatten)]
-    criteria: &'a Criteria,
-    stroke_mm: f64,
-    speed_rpm: f64,
-}
-
-impl<'a> CriteriaJson<'a> {
-    fn of(criteria: &'a Criteria, cond: &Conditions) -> Self {
-        Self { criteria, stroke_mm: cond.stroke_m() * 1000.0, speed_rpm: cond.speed_rpm() }
-    }
-}
-
-/// A law's definition in JSON.
-#[derive(Serialize)]
-struct DefinitionJson {
-    motion_deg: f64,
-    symmetric: bool,
-    positive_fraction: f64,
-    positive: String,
-    negative: String,
-}
-
-impl DefinitionJson {
-    fn of(law: &ShedLaw) -> Self {
-        Self {
-            motion_deg: law.motion_deg(),
-            symmetric: law.is_symmetric(),
-            positive_fraction: law.positive_fraction(),
-            positive: law.positive_text(),
-            negative: law.negative_text(),
-        }
-    }
-}
-
-/// One preset of `shed list --json`.
-#[derive(Serialize)]
-struct PresetJson {
-    name: &'static str,
-    name_ru: &'static str,
-    motion_deg: f64,
-    dwell_deg: f64,
-    table_shape: &'static str,
-    positive: &'static str,
-}
-
 /// `shed list --json`.
 #[derive(Serialize)]
 struct ListJson {
-    laws: Vec<PresetJson>,
-}
-
-/// `shed law --json`.
-#[derive(Serialize)]
-struct LawJson<'a> {
-    law: String,
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    definition: DefinitionJson,
-    segments: String,
-}
-
-/// One row of `shed table | pareto --json`: the preset's name or the design row, and the lengths.
-#[derive(Serialize)]
-struct RowJson<'a> {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    law: Option<&'a str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    row: Option<usize>,
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    lengths: &'a [f64],
-}
-
-/// `shed best --json`.
-#[derive(Serialize)]
-struct BestJson<'a> {
-    #[serde(flatten)]
-    criteria: CriteriaJson<'a>,
-    required_window_deg: f64,
-    family: &'a str,
-    lengths: &'a [f64],
-    segments: String,
-    definition: DefinitionJson,
-    laws_searched: usize,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    max_jerk_m_s3: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    loom: Option<&'a LoomRequirement>,
-}
-
-/// `shed window --json`.
-#[derive(Serialize)]
-struct WindowJson<'a> {
-    #[serde(flatten)]
-    loom: &'a LoomRequirement,
-    flight_deg: f64,
-    required_window_deg: f64,
-    threshold: f64,
-    threshold_both_sheets: f64,
+    laws: Vec<PresetReport>,
 }
 
 fn list(a: ListArgs) -> Result<()> {
     if a.json {
-        let laws = PRESETS
-            .iter()
-            .map(|p| PresetJson {
-                name: p.name,
-                name_ru: p.name_ru,
-                motion_deg: p.motion_deg,
-                dwell_deg: 360.0 - p.motion_deg,
-                table_shape: p.table_shape,
-                positive: p.positive,
-            })
-            .collect();
+        let laws = PresetReport::all();
         return output::json(&ListJson { laws });
     }
     outln!("{:<12} {:>10} {:>9}  positive phase of the acceleration", "law", "motion_deg", "dwell_deg")?;
@@ -428,12 +321,7 @@ fn law(a: LawArgs) -> Result<()> {
         emit_cycle(&law, &a.physical, path, &format!("loomkin shed law {name}"))?;
     }
     if a.json {
-        return output::json(&LawJson {
-            law: name,
-            criteria: CriteriaJson::of(&c, &cond),
-            definition: DefinitionJson::of(&law),
-            segments: law.positive_text(),
-        });
+        return output::json(&LawReport::new(name, &law, &c, &cond));
     }
     outln!("law {name}: motion {} deg, positive phase {}", law.motion_deg(), law.positive_text())?;
     print_criteria(&c, &cond)?;
@@ -524,21 +412,12 @@ fn study_design(kind: DesignKind, d: &DesignArgs, g: GridSpec) -> Result<Study> 
     Ok(Study::new(kind, template(d)?, grid_of(d, g))?)
 }
 
-fn row_json<'a>(r: &'a StudyRow, cond: &Conditions) -> RowJson<'a> {
-    RowJson {
-        law: r.law.as_deref(),
-        row: r.law.is_none().then_some(r.candidate.row),
-        criteria: CriteriaJson::of(&r.candidate.criteria, cond),
-        lengths: &r.candidate.lengths,
-    }
-}
-
 /// One row of `shed table | pareto --json`, owned (rows are made as they are printed).
 struct RowOut<'c>(StudyRow, &'c Conditions);
 
 impl Serialize for RowOut<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        row_json(&self.0, self.1).serialize(s)
+        self.0.report(self.1).serialize(s)
     }
 }
 
@@ -789,17 +668,14 @@ fn best(a: BestArgs) -> Result<()> {
         emit_cycle(&law, &a.physical, path, &format!("loomkin shed best --window-deg {w} (family {})", tpl.name()))?;
     }
     if a.json {
-        return output::json(&BestJson {
-            criteria: CriteriaJson::of(&b.criteria, &cond),
-            required_window_deg: w,
-            family: tpl.name(),
-            lengths: &b.lengths,
-            segments: law.positive_text(),
-            definition: DefinitionJson::of(&law),
+        let search = BestSearch {
+            template: tpl,
             laws_searched: design.len(),
+            required_window_deg: w,
             max_jerk_m_s3: a.max_jerk_m_s3,
             loom: req.as_ref(),
-        });
+        };
+        return output::json(&BestReport::new(search, &b, &law, &cond));
     }
     outln!(
         "least peak acceleration with a window ≥ {w:.3} deg ({} laws of the family '{}' searched{})",
@@ -824,13 +700,7 @@ fn window(a: WindowArgs) -> Result<()> {
     };
     let w = r.required_window_deg()?;
     if a.json {
-        return output::json(&WindowJson {
-            loom: &r,
-            flight_deg: r.flight_deg(),
-            required_window_deg: w,
-            threshold: r.threshold(),
-            threshold_both_sheets: r.threshold_both_sheets(),
-        });
+        return output::json(&WindowReport::of(&r)?);
     }
     outln!("flight in the warp   φ_flight = 6n(L_cloth + l_carrier)/v = {:.3} deg", r.flight_deg())?;
     outln!("required window      φ_req = φ_flight + D_crossing      = {w:.3} deg")?;

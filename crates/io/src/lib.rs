@@ -20,7 +20,7 @@
 #![deny(missing_docs)]
 
 pub mod csv;
-pub mod dobby_export;
+pub mod drawing;
 pub mod dxf;
 mod error;
 mod output;

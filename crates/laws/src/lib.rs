@@ -32,6 +32,7 @@ mod law;
 mod metrics;
 mod polynomial;
 mod quadrature;
+mod report;
 mod segment;
 mod shape;
 
@@ -46,5 +47,6 @@ pub use law::{AccelPiece, EndCondition, Law, Samples};
 pub use metrics::Metrics;
 pub use polynomial::{MAX_ACCEL_DEGREE, PolySegment, format_poly_segments, parse_poly_segments, poly_segments_of};
 pub use quadrature::gauss_legendre;
+pub use report::{ContinuityReport, ContinuousFlags, InfoReport, JointReport, ListedLaw};
 pub use segment::{MAX_DEGREE, Segment, Sine};
 pub use shape::{Shape, ShapeSegment, format_segments, parse_segments};

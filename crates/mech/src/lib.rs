@@ -48,7 +48,8 @@ pub use dobby::checks::{
     Crossing, Warning, WarningCode, output_pressure_angle_deg, roller_pressure_angle_deg, self_intersections,
 };
 pub use dobby::curvature::{CamCurvaturePoint, cam_curvature};
-pub use dobby::drawing::{DOBBY_CHORD_TOL_RANGE, DobbyLayered, DobbyShape};
+pub use dobby::drawing::DOBBY_CHORD_TOL_RANGE;
+pub use dobby::export as dobby_export;
 pub use dobby::geometry::ModulatorGeometry;
 pub use dobby::kinematics::ModulatorState;
 pub use dobby::law::{OutputLaw, OutputLawSpec, OutputState, max_dwell_deg};

@@ -2,7 +2,8 @@
 //! against exact curve points of an independent synthesis at a 0.01° step (five times denser than
 //! the dense curves the vertices are chosen from); marks where they belong.
 
-use loomkin_mech::{DobbyShape, ModulatorGeometry, OutputLawSpec, SynthesisOptions, synthesize};
+use loomkin_io::drawing::Shape;
+use loomkin_mech::{ModulatorGeometry, OutputLawSpec, SynthesisOptions, synthesize};
 
 fn dist_to_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> f64 {
     let n = poly.len();
@@ -29,7 +30,7 @@ fn the_polylines_stay_within_the_chord_tolerance_whatever_the_step() {
         let poly = |layer: &str| -> Vec<[f64; 2]> {
             d.iter()
                 .find_map(|l| match (&l.shape, l.layer == layer) {
-                    (DobbyShape::Polyline { points, closed: true }, true) => Some(points.clone()),
+                    (Shape::Polyline { points, closed: true }, true) => Some(points.clone()),
                     _ => None,
                 })
                 .unwrap_or_else(|| panic!("no closed polyline on {layer}"))
@@ -53,7 +54,7 @@ fn the_polylines_stay_within_the_chord_tolerance_whatever_the_step() {
         s.drawing(tol, 0.0)
             .unwrap()
             .iter()
-            .map(|l| if let DobbyShape::Polyline { points, .. } = &l.shape { points.len() } else { 0 })
+            .map(|l| if let Shape::Polyline { points, .. } = &l.shape { points.len() } else { 0 })
             .sum()
     };
     assert!(count(0.1) < count(0.01));
@@ -61,10 +62,10 @@ fn the_polylines_stay_within_the_chord_tolerance_whatever_the_step() {
     let d = s.drawing(0.01, 20.0).unwrap();
     let b0 = exact.cam.centre[0];
     let r = s.summary.roller_m;
-    assert!(d.iter().any(|l| l.layer == "PHASE_0" && l.shape == DobbyShape::Line { from: [0.0, 0.0], to: b0 }));
-    assert!(d.iter().any(|l| l.layer == "BORE" && l.shape == DobbyShape::Circle { centre: [0.0, 0.0], radius: 0.01 }));
+    assert!(d.iter().any(|l| l.layer == "PHASE_0" && l.shape == Shape::Line { from: [0.0, 0.0], to: b0 }));
+    assert!(d.iter().any(|l| l.layer == "BORE" && l.shape == Shape::Circle { centre: [0.0, 0.0], radius: 0.01 }));
     assert_eq!(d.iter().filter(|l| l.layer == "ROLLER").count(), 2);
-    assert!(d.iter().any(|l| l.layer == "ROLLER" && l.shape == DobbyShape::Circle { centre: b0, radius: r }));
+    assert!(d.iter().any(|l| l.layer == "ROLLER" && l.shape == Shape::Circle { centre: b0, radius: r }));
     assert_eq!(d.iter().filter(|l| l.layer == "CENTRE").count(), 2);
     // Bad input names the field.
     assert!(s.drawing(0.0, 0.0).unwrap_err().to_string().contains("chord_tol_mm"));

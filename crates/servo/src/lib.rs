@@ -39,6 +39,7 @@ mod export_file;
 mod optimize;
 mod points;
 mod poly;
+mod report;
 mod spline;
 mod torque;
 
@@ -61,5 +62,8 @@ pub use export::{
 pub use export_file::{Export, ExportFormat, TableReport, export};
 pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
 pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
+pub use report::{
+    DriveReport, LAW_UNITS, LawReport, LayoutDeg, OptimizeSummary, ReinterpolationRow, TorqueReport, WorstTorque,
+};
 pub use spline::{SplineEnd, SplineLaw, slope_at_middle};
 pub use torque::{DrivePoint, Phase, TorqueSummary, summaries, summary, torque_curve};

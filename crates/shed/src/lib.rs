@@ -37,6 +37,7 @@ mod fast;
 mod frame_cycle;
 mod paper;
 mod presets;
+mod report;
 mod requirement;
 mod shedlaw;
 mod study;
@@ -53,6 +54,9 @@ pub use experiment::{
 pub use frame_cycle::{FRAME_PERIOD_DEG, frame_cycle, frame_cycle_toml};
 pub use paper::{TABLE3, Table3Check, Table3Row, table3, table3_minimax_threshold};
 pub use presets::{PRESETS, Preset, preset, preset_names};
+pub use report::{
+    BestReport, BestSearch, CriteriaReport, Definition, LawReport, PresetReport, RowReport, WindowReport,
+};
 pub use requirement::LoomRequirement;
 pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{

@@ -6,8 +6,8 @@ use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
-use loomkin_io::dobby_export::{DEFAULT_CHORD_TOL_MM, synthesis_points_table, synthesis_shapes};
 use loomkin_io::dxf::{DxfUnit, write_shapes};
+use loomkin_mech::dobby_export::{DEFAULT_CHORD_TOL_MM, synthesis_points_table, synthesis_shapes};
 use loomkin_mech::{
     CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, Synthesis, SynthesisOptions,
     SynthesisSummary, Warning, synthesize,

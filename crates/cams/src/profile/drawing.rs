@@ -3,43 +3,8 @@
 use super::cam::{CamProfile, Curve};
 use super::design::Closure;
 use crate::Result;
+use loomkin_io::drawing::{Layered, Shape};
 use loomkin_units::Range;
-
-/// A drawn shape (mm, cam frame: the cam centre at the origin, the follower at main-shaft angle
-/// 0° along the phase mark).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Shape {
-    /// A polyline; `closed` joins the last point to the first.
-    Polyline {
-        /// The vertices (mm).
-        points: Vec<[f64; 2]>,
-        /// Closed.
-        closed: bool,
-    },
-    /// A circle.
-    Circle {
-        /// Centre (mm).
-        centre: [f64; 2],
-        /// Radius (mm).
-        radius: f64,
-    },
-    /// A line segment.
-    Line {
-        /// Start (mm).
-        from: [f64; 2],
-        /// End (mm).
-        to: [f64; 2],
-    },
-}
-
-/// A shape on a named layer.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Layered {
-    /// Layer name.
-    pub layer: &'static str,
-    /// The shape.
-    pub shape: Shape,
-}
 
 /// Allowed chord tolerance (mm).
 pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
@@ -47,7 +12,8 @@ pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
 pub const BORE_RANGE: Range = Range::closed(0.0, 1e5, "mm");
 
 impl CamProfile {
-    /// The drawing of the cam: layers `CAM_PITCH`, `CAM_PROFILE` (and `COUNTER_PITCH`,
+    /// The drawing of the cam (mm, cam frame: the cam centre at the origin, the follower at
+    /// main-shaft angle 0° along the phase mark): layers `CAM_PITCH`, `CAM_PROFILE` (and `COUNTER_PITCH`,
     /// `COUNTER_PROFILE` for a conjugate pair — the counter-cam on its own layers, same centre and
     /// phase — or `GROOVE_OUTER` for a groove cam), `BASE_CIRCLE`, `CENTRE` (a cross), `BORE`
     /// (`bore_mm` diameter; none when 0) and `PHASE_0` (from the centre to the pitch point at
@@ -94,24 +60,9 @@ impl CamProfile {
     /// (`loomkin_io::dxf`: AutoCAD 2000, every section, byte-identical for identical input) — the
     /// one route of `cam profile --dxf` and of the workbench's download.
     pub fn dxf(&self, tol_mm: f64, bore_mm: f64) -> Result<String> {
-        use loomkin_io::dxf::{DxfPolyline, DxfShape, DxfUnit, dxf_text};
-        // The writer takes metres.
-        let m = |p: [f64; 2]| [p[0] * 1e-3, p[1] * 1e-3];
-        let shapes: Vec<DxfShape> = self
-            .drawing(tol_mm, bore_mm)?
-            .into_iter()
-            .map(|l| match l.shape {
-                Shape::Polyline { points, closed } => DxfShape::Polyline(DxfPolyline {
-                    layer: l.layer.into(),
-                    points: points.into_iter().map(m).collect(),
-                    closed,
-                }),
-                Shape::Circle { centre, radius } => {
-                    DxfShape::Circle { layer: l.layer.into(), centre: m(centre), radius: radius * 1e-3 }
-                }
-                Shape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from: m(from), to: m(to) },
-            })
-            .collect();
+        use loomkin_io::dxf::{DxfUnit, dxf_text};
+        // The drawing is in mm, the writer takes metres.
+        let shapes = loomkin_io::drawing::into_dxf(&self.drawing(tol_mm, bore_mm)?, 1e-3);
         dxf_text(&shapes, DxfUnit::Millimetre)
             .map_err(|e| crate::CamError::Usage { field: "dxf".into(), reason: e.to_string() })
     }

@@ -20,9 +20,12 @@ mod track;
 
 pub use cam::{CamPoint, CamProfile, Curve, FlatExtremes, TrackExtremes, Wall};
 pub use design::{CamDesign, Closure, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE, Size};
-pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE, Layered, Shape};
+pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE};
 pub use extremes::Extremes;
 pub use jet::Jet;
 pub use lift::Lift;
+/// The drawing's shapes (here in mm, cam frame: the cam centre at the origin, the follower at
+/// main-shaft angle 0° along the phase mark), the one drawing type of loomkin-io.
+pub use loomkin_io::drawing::{Layered, Shape};
 pub use report::{PointReport, ProfileReport};
 pub use track::{Track, TrackJets, curvature, offset};

@@ -4,42 +4,8 @@
 
 use super::synthesis::Synthesis;
 use crate::{MechError, Result};
+use loomkin_io::drawing::{Layered, Shape};
 use loomkin_units::Range;
-
-/// A drawn shape (m, the crank centre O at the origin).
-#[derive(Debug, Clone, PartialEq)]
-pub enum DobbyShape {
-    /// A polyline; `closed` joins the last point to the first.
-    Polyline {
-        /// Vertices (m).
-        points: Vec<[f64; 2]>,
-        /// Closed.
-        closed: bool,
-    },
-    /// A circle.
-    Circle {
-        /// Centre (m).
-        centre: [f64; 2],
-        /// Radius (m).
-        radius: f64,
-    },
-    /// A line segment.
-    Line {
-        /// Start (m).
-        from: [f64; 2],
-        /// End (m).
-        to: [f64; 2],
-    },
-}
-
-/// A shape on a named layer.
-#[derive(Debug, Clone, PartialEq)]
-pub struct DobbyLayered {
-    /// Layer name.
-    pub layer: &'static str,
-    /// The shape.
-    pub shape: DobbyShape,
-}
 
 /// Allowed chord tolerance (mm).
 pub const DOBBY_CHORD_TOL_RANGE: Range = Range::closed(1e-3, 1.0, "mm");
@@ -106,7 +72,7 @@ impl Synthesis {
     /// within `chord_tol_mm` of the curves whatever the table step; `CENTRE` (a cross at the crank
     /// centre O), `BORE` (`bore_mm` diameter about O; none when 0), `PHASE_0` (from O to roller B at
     /// input angle 0°) and `ROLLER` (both rollers at 0°).
-    pub fn drawing(&self, chord_tol_mm: f64, bore_mm: f64) -> Result<Vec<DobbyLayered>> {
+    pub fn drawing(&self, chord_tol_mm: f64, bore_mm: f64) -> Result<Vec<Layered>> {
         let tol = 1e-3 * DOBBY_CHORD_TOL_RANGE.check("chord_tol_mm", chord_tol_mm)?;
         let bore = 1e-3 * Range::closed(0.0, 1e4, "mm").check("bore_mm", bore_mm)?;
         let mut out = Vec::new();
@@ -122,7 +88,7 @@ impl Synthesis {
                 }
                 least = curve.iter().map(|q| q[0].hypot(q[1])).fold(least, f64::min);
                 let points = chord_indices(curve, tol)?.into_iter().map(|k| curve[k]).collect();
-                out.push(DobbyLayered { layer, shape: DobbyShape::Polyline { points, closed: true } });
+                out.push(Layered { layer, shape: Shape::Polyline { points, closed: true } });
             }
         }
         if bore > 0.0 && 0.5 * bore >= least {
@@ -138,20 +104,17 @@ impl Synthesis {
             });
         }
         let arm = 0.15 * least;
-        out.push(DobbyLayered { layer: "CENTRE", shape: DobbyShape::Line { from: [-arm, 0.0], to: [arm, 0.0] } });
-        out.push(DobbyLayered { layer: "CENTRE", shape: DobbyShape::Line { from: [0.0, -arm], to: [0.0, arm] } });
+        out.push(Layered { layer: "CENTRE", shape: Shape::Line { from: [-arm, 0.0], to: [arm, 0.0] } });
+        out.push(Layered { layer: "CENTRE", shape: Shape::Line { from: [0.0, -arm], to: [0.0, arm] } });
         if bore > 0.0 {
-            out.push(DobbyLayered {
-                layer: "BORE",
-                shape: DobbyShape::Circle { centre: [0.0, 0.0], radius: 0.5 * bore },
-            });
+            out.push(Layered { layer: "BORE", shape: Shape::Circle { centre: [0.0, 0.0], radius: 0.5 * bore } });
         }
         let (b0, c0) = (draw_cam.centre[0], draw_counter_cam.centre[0]);
-        out.push(DobbyLayered { layer: "PHASE_0", shape: DobbyShape::Line { from: [0.0, 0.0], to: b0 } });
+        out.push(Layered { layer: "PHASE_0", shape: Shape::Line { from: [0.0, 0.0], to: b0 } });
         let r = self.summary.roller_m;
         if r > 0.0 {
             for c in [b0, c0] {
-                out.push(DobbyLayered { layer: "ROLLER", shape: DobbyShape::Circle { centre: c, radius: r } });
+                out.push(Layered { layer: "ROLLER", shape: Shape::Circle { centre: c, radius: r } });
             }
         }
         Ok(out)

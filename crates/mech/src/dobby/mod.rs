@@ -6,6 +6,7 @@ pub(crate) mod cam;
 pub(crate) mod checks;
 pub(crate) mod curvature;
 pub(crate) mod drawing;
+pub mod export;
 pub(crate) mod geometry;
 pub(crate) mod kinematics;
 pub(crate) mod law;

@@ -1,30 +1,21 @@
 //! The rotary-dobby modulator's cams for a workshop: both cams as DXF polylines and their point
 //! table, the same for `loomkin dobby synthesize --dxf/--points-csv` and the workbench's buttons.
 
-use crate::dxf::{DxfPolyline, DxfShape};
-use crate::{IoError, Table};
-use loomkin_mech::{DobbyLayered, DobbyShape, MechError, Synthesis};
+use super::synthesis::Synthesis;
+use crate::MechError;
+use loomkin_io::dxf::DxfShape;
+use loomkin_io::{IoError, Table};
 
 /// The default chord tolerance of the drawing, mm (`dobby synthesize --chord-tol-mm`).
 pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
-
-/// A shape of the dobby drawing (m) as a DXF shape (m).
-pub fn dxf_shape(l: DobbyLayered) -> DxfShape {
-    match l.shape {
-        DobbyShape::Polyline { points, closed } => {
-            DxfShape::Polyline(DxfPolyline { layer: l.layer.into(), points, closed })
-        }
-        DobbyShape::Circle { centre, radius } => DxfShape::Circle { layer: l.layer.into(), centre, radius },
-        DobbyShape::Line { from, to } => DxfShape::Line { layer: l.layer.into(), from, to },
-    }
-}
 
 /// The drawing of both cams as DXF shapes ([`Synthesis::drawing`]: closed polylines within
 /// `chord_tol_mm` of the curves, centre, bore, 0° phase and rollers); the bore defaults to 0.4 ×
 /// the cams' least radius.
 pub fn synthesis_shapes(s: &Synthesis, chord_tol_mm: f64, bore_mm: Option<f64>) -> Result<Vec<DxfShape>, MechError> {
     let bore_mm = bore_mm.unwrap_or(400.0 * s.least_radius_m());
-    Ok(s.drawing(chord_tol_mm, bore_mm)?.into_iter().map(dxf_shape).collect())
+    // The drawing is in metres, as the writer takes it.
+    Ok(loomkin_io::drawing::into_dxf(&s.drawing(chord_tol_mm, bore_mm)?, 1.0))
 }
 
 /// The cam point table, one row per input angle: centre curve and walls of Γ (`b_…`) and Γ′
