@@ -154,10 +154,15 @@ proptest! {
         let Ok(a) = SplineLaw::new(&pts, SplineEnd::Natural) else { return Ok(()) };
         let scaled: Vec<[f64; 2]> = pts.iter().map(|p| [p[0], k * p[1]]).collect();
         let b = SplineLaw::new(&scaled, SplineEnd::Natural).unwrap();
+        // Displacement is compared relative to the law's own size: where the normalising integral
+        // F(1) nearly cancels, the law swings far past [0, 1] (a regression case reaches |s| = 53
+        // with scale 4e4) and the rounding of k·Y, amplified alike, moved s by 5e-12 = 1e-13 of
+        // that size. The acceleration was already compared relative to its value.
+        let size = 1.0 + (0..=20).map(|i| a.law().eval(i as f64 / 20.0).s.abs()).fold(0.0, f64::max);
         for i in 0..=20 {
             let x = i as f64 / 20.0;
             let (p, q) = (a.law().eval(x), b.law().eval(x));
-            prop_assert!((p.s - q.s).abs() < 1e-12 && (p.a - q.a).abs() < 1e-9 * (1.0 + p.a.abs()));
+            prop_assert!((p.s - q.s).abs() < 1e-12 * size && (p.a - q.a).abs() < 1e-9 * (1.0 + p.a.abs()));
         }
     }
 }
