@@ -308,24 +308,23 @@ fn integral_t2(seg: &Segment, a: f64, b: f64, g: impl Fn(f64) -> f64) -> f64 {
 /// Largest `|g|` on `[a, b]` and where, for `f(t) = (g, g', g'')`: the ends and every root of `g'`
 /// bracketed on `n` sub-intervals and refined by safeguarded Newton.
 fn abs_max(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64, f64) {
-    let (g0, mut d0, _) = f(a);
-    let mut best = (g0.abs(), a);
-    let h = (b - a) / n as f64;
-    let mut x0 = a;
-    for i in 1..=n {
-        let x1 = if i == n { b } else { a + i as f64 * h };
-        let (g1, d1, _) = f(x1);
-        take(&mut best, g1.abs(), x1);
-        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            let r = loomkin_laws::refine_root(x0, x1, d0 < 0.0, |x| {
+    let gd = |t: f64| {
+        let (g, d, _) = f(t);
+        (g, d)
+    };
+    crate::poly::scan(
+        a,
+        b,
+        n,
+        gd,
+        |t| f(t).0,
+        |x0, x1, d0, _| {
+            loomkin_laws::refine_root(x0, x1, d0 < 0.0, |x| {
                 let (_, d, dd) = f(x);
                 (d, dd)
-            });
-            take(&mut best, f(r).0.abs(), r);
-        }
-        (x0, d0) = (x1, d1);
-    }
-    best
+            })
+        },
+    )
 }
 
 /// Largest `q` on `[a, b]` and where, for `f(t) = (q, q')` (q' may jump): the ends and every sign

@@ -110,57 +110,22 @@ fn abs_max_fixed<const N: usize>(p: &[f64; N], w: f64, n: usize) -> (f64, f64) {
     let g = |t: f64| horner_fixed(p, N, t);
     let d = |t: f64| horner_fixed(&dp, l1, t);
     let dd = |t: f64| horner_fixed(&ddp, l2, t);
-    let (g0, mut d0) = (g(0.0), d(0.0));
-    let mut best = (g0.abs(), 0.0);
-    let mut take = |v: f64, t: f64| {
-        if v.abs() > best.0 {
-            best = (v.abs(), t);
-        }
-    };
-    let n = n.max(1);
-    let h = w / n as f64;
-    let mut t0 = 0.0;
-    for i in 1..=n {
-        let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = (g(t1), d(t1));
-        take(g1, t1);
-        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
-            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (d(t), dd(t)));
-            take(g(t), t);
-        }
-        t0 = t1;
-        d0 = d1;
-    }
-    best
+    // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
+    scan(0.0, w, n, |t| (g(t), d(t)), g, |t0, t1, d0, _| loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (d(t), dd(t))))
 }
 
 /// [`abs_max`] for any length, on the heap.
 fn abs_max_slice(p: &[f64], w: f64, n: usize) -> (f64, f64) {
     let dp = deriv(p);
     let ddp = deriv(&dp);
-    let (g0, mut d0) = (eval(p, 0.0), eval(&dp, 0.0));
-    let mut best = (g0.abs(), 0.0);
-    let mut take = |v: f64, t: f64| {
-        if v.abs() > best.0 {
-            best = (v.abs(), t);
-        }
-    };
-    let n = n.max(1);
-    let h = w / n as f64;
-    let mut t0 = 0.0;
-    for i in 1..=n {
-        let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = (eval(p, t1), eval(&dp, t1));
-        take(g1, t1);
-        if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t)));
-            take(eval(p, t), t);
-        }
-        t0 = t1;
-        d0 = d1;
-    }
-    best
+    scan(
+        0.0,
+        w,
+        n,
+        |t| (eval(p, t), eval(&dp, t)),
+        |t| eval(p, t),
+        |t0, t1, d0, _| loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t))),
+    )
 }
 
 /// An upper bound of `|p(t)|` on `[0, w]` that covers the rounding of [`abs_max`]'s sums, for `p`
@@ -191,23 +156,43 @@ pub(crate) fn abs_bound(p: &[f64; 8], w: f64) -> f64 {
 /// rounding (at most 60 halvings); both ends are included. `n` must be large enough to separate
 /// the roots of `g'` (more than the polynomial degree; more for oscillating terms).
 pub(crate) fn abs_max_by(w: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
-    let (g0, mut d0) = f(0.0);
-    let mut best = (g0.abs(), 0.0);
+    scan(0.0, w, n, &f, |t| f(t).0, |t0, t1, d0, d1| root_illinois(t0, t1, d0, d1, |t| f(t).1))
+}
+
+/// Largest `|g(t)|` on `[a, b]` and where it occurs (the first of equal maxima): both ends, and
+/// every sign change of `g'` between the ends of `n` equal sub-intervals, located by
+/// `root(t0, t1, g'(t0), g'(t1))` and `g` taken there. `gd(t) = (g(t), g'(t))`; `n = 0` counts
+/// as 1.
+///
+/// The one scan behind [`abs_max`], [`abs_max_by`] and the servo axis check: the callers pass in
+/// their evaluators and root finder, so each is compiled with its own (the fixed-length kernels
+/// keep their unrolled Horner sums).
+#[inline(always)]
+pub(crate) fn scan(
+    a: f64,
+    b: f64,
+    n: usize,
+    gd: impl Fn(f64) -> (f64, f64),
+    g: impl Fn(f64) -> f64,
+    mut root: impl FnMut(f64, f64, f64, f64) -> f64,
+) -> (f64, f64) {
+    let (g0, mut d0) = gd(a);
+    let mut best = (g0.abs(), a);
     let mut take = |v: f64, t: f64| {
         if v.abs() > best.0 {
             best = (v.abs(), t);
         }
     };
     let n = n.max(1);
-    let h = w / n as f64;
-    let mut t0 = 0.0;
+    let h = (b - a) / n as f64;
+    let mut t0 = a;
     for i in 1..=n {
-        let t1 = if i == n { w } else { i as f64 * h };
-        let (g1, d1) = f(t1);
+        let t1 = if i == n { b } else { a + i as f64 * h };
+        let (g1, d1) = gd(t1);
         take(g1, t1);
         if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            let t = root_illinois(t0, t1, d0, d1, |t| f(t).1);
-            take(f(t).0, t);
+            let t = root(t0, t1, d0, d1);
+            take(g(t), t);
         }
         t0 = t1;
         d0 = d1;
