@@ -278,6 +278,17 @@ pub(crate) fn stats(law: &Law, ms: &[PhaseModel; 4], cycle_s: f64, with_power: b
 /// ([`poly::abs_bound`]) is below the floor or below the best value found so far is not searched:
 /// it cannot hold that peak.
 fn peak_torque(law: &Law, ms: &[PhaseModel; 4], floor: f64) -> (f64, f64) {
+    peak_walk(law, ms, |seg, m, best| segment_peak_above(seg, m, floor.max(best)))
+}
+
+/// The walk of the peak search: the dwells' constant |M|, then each moving phase's segments in
+/// turn, keeping the first of equal maxima. `seg_peak(seg, m, best)` gives a segment's largest
+/// |M| and its local t, or `None` when it cannot exceed the best value found so far.
+fn peak_walk(
+    law: &Law,
+    ms: &[PhaseModel; 4],
+    mut seg_peak: impl FnMut(&Segment, &PhaseModel, f64) -> Option<(f64, f64)>,
+) -> (f64, f64) {
     let (mut pk_m, mut pk_m_deg) = (0.0f64, 0.0);
     for m in ms {
         if !m.moving {
@@ -288,15 +299,7 @@ fn peak_torque(law: &Law, ms: &[PhaseModel; 4], floor: f64) -> (f64, f64) {
             continue;
         }
         for seg in law.segments() {
-            let (a, ta) = if seg.sine().is_none() {
-                let (mp, deg) = torque_poly(seg, m);
-                if poly::abs_bound(&mp, seg.width()) < floor.max(pk_m) {
-                    continue;
-                }
-                poly::abs_max(&mp[..=deg], seg.width(), torque_scan(deg))
-            } else {
-                segment_peak(seg, m)
-            };
+            let Some((a, ta)) = seg_peak(seg, m, pk_m) else { continue };
             if a > pk_m {
                 pk_m = a;
                 pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
@@ -304,6 +307,19 @@ fn peak_torque(law: &Law, ms: &[PhaseModel; 4], floor: f64) -> (f64, f64) {
         }
     }
     (pk_m, pk_m_deg)
+}
+
+/// Largest |M| of one phase model on one law segment and its local t; `None` for a polynomial
+/// segment whose upper bound of |M| ([`poly::abs_bound`]) is below `above` (it is not searched).
+fn segment_peak_above(seg: &Segment, m: &PhaseModel, above: f64) -> Option<(f64, f64)> {
+    if seg.sine().is_some() {
+        return Some(segment_peak(seg, m));
+    }
+    let (mp, deg) = torque_poly(seg, m);
+    if poly::abs_bound(&mp, seg.width()) < above {
+        return None;
+    }
+    Some(poly::abs_max(&mp[..=deg], seg.width(), torque_scan(deg)))
 }
 
 /// [`stats`], where a peak torque not above `floor` need not be found: `max(floor, peak_torque_nm)`
@@ -399,32 +415,10 @@ mod tests {
     use loomkin_laws::LawSpec;
     use proptest::prelude::*;
 
-    /// The peak search of every segment in turn order, no bound: the scan `peak_torque` must
-    /// reproduce bit for bit.
+    /// The peak search of every segment in turn order (`peak_torque`'s walk), none skipped by its
+    /// bound: the bounded scan must reproduce it bit for bit.
     fn plain_peak(law: &Law, ms: &[PhaseModel; 4]) -> (f64, f64) {
-        let (mut pk_m, mut pk_m_deg) = (0.0f64, 0.0);
-        for m in ms {
-            if !m.moving {
-                if m.eps.abs() > pk_m && m.length_deg > 0.0 {
-                    pk_m = m.eps.abs();
-                    pk_m_deg = m.start_deg;
-                }
-                continue;
-            }
-            for seg in law.segments() {
-                let (a, ta) = if seg.sine().is_none() {
-                    let (mp, deg) = torque_poly(seg, m);
-                    poly::abs_max(&mp[..=deg], seg.width(), torque_scan(deg))
-                } else {
-                    segment_peak(seg, m)
-                };
-                if a > pk_m {
-                    pk_m = a;
-                    pk_m_deg = m.start_deg + m.length_deg * (seg.x0() + ta);
-                }
-            }
-        }
-        (pk_m, pk_m_deg)
+        peak_walk(law, ms, |seg, m, _| segment_peak_above(seg, m, f64::NEG_INFINITY))
     }
 
     fn drive(damping: f64, spring: f64, force: f64) -> Drive {
