@@ -9,7 +9,9 @@ use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
-use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, ProfileReport, Size};
+use loomkin_cams::profile::{
+    CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, ProfileExtremes, ProfileReport, Size,
+};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_laws::{Cycle, CycleSpec, StrokeUnit};
 use loomkin_units::{Range, compact};
@@ -298,16 +300,10 @@ pub struct CamReport {
     /// The pressure angle asked for when sizing (deg), else absent.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sized_for_pressure_deg: Option<f64>,
-    /// Largest |pressure angle| of every track (deg).
-    pub max_pressure_angle_deg: f64,
-    /// Where (main-shaft deg).
-    pub max_pressure_angle_at_deg: f64,
-    /// Least radius of curvature where the pitch curve is convex (mm).
-    pub min_convex_radius_pitch_mm: f64,
-    /// Where (deg).
-    pub min_convex_radius_pitch_at_deg: f64,
-    /// The profile is undercut (a roller too large, or a flat face's cusp).
-    pub undercut: bool,
+    /// The extremes and the undercut, as the library's report states them (a non-finite least
+    /// convex radius as 0).
+    #[serde(flatten)]
+    pub extremes: ProfileExtremes,
     /// Where the undercut begins (deg).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub undercut_at_deg: Option<f64>,
@@ -403,17 +399,6 @@ fn closure_name(c: Closure) -> &'static str {
     }
 }
 
-fn follower_name(d: &CamDesign) -> String {
-    match d.follower {
-        Follower::Translating { offset_mm: 0.0 } => "radial translating roller follower".into(),
-        Follower::Translating { offset_mm } => format!("translating roller follower offset {} mm", compact(offset_mm)),
-        Follower::Oscillating { arm_mm, pivot_mm } => {
-            format!("oscillating roller follower (arm {} mm, pivot {} mm)", compact(arm_mm), compact(pivot_mm))
-        }
-        Follower::Flat => "flat-faced translating follower".into(),
-    }
-}
-
 /// The profile, refusing a sampling step that would answer more than [`MAX_CAM_POINTS`] angles.
 fn build(source: &CamSource, design: &CamDesignRequest) -> Result<(CamProfile, CamDesign, Motion, String), ApiError> {
     let d = design.design()?;
@@ -489,36 +474,36 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
         close(&mut c);
         c
     });
-    let (pmax, pat, _) = cam.max_pressure_angle();
-    let (rmin, rat) = cam.min_convex_radius_pitch();
-    let flat = cam.flat_extremes_report();
     let (sized, limit) = match d.size {
         Size::MaxPressureDeg(p) => (Some(p), p),
         Size::PrimeRadiusMm(_) => (None, 30.0),
     };
+    let mut profile_report = cam.report(source, step);
+    profile_report.points.clear();
+    profile_report.counter_points = None;
+    let pr = &profile_report;
     let report = CamReport {
-        source,
-        follower: follower_name(&d),
+        source: pr.source.clone(),
+        follower: pr.follower.clone(),
         closure: closure_name(d.closure),
         unit: if motion.unit() == StrokeUnit::Deg { "deg" } else { "mm" },
         stroke: cam.stroke(),
-        prime_radius_mm: cam.prime_radius_mm(),
-        base_radius_mm: cam.base_radius_mm(),
-        roller_radius_mm: if d.follower == Follower::Flat { 0.0 } else { d.roller_radius_mm },
+        prime_radius_mm: pr.prime_radius_mm,
+        base_radius_mm: pr.base_radius_mm,
+        roller_radius_mm: pr.roller_radius_mm,
         sized_for_pressure_deg: sized,
-        max_pressure_angle_deg: pmax,
-        max_pressure_angle_at_deg: pat,
-        min_convex_radius_pitch_mm: finite(rmin),
-        min_convex_radius_pitch_at_deg: rat,
-        undercut: cam.undercut_at_deg().is_some(),
-        undercut_at_deg: cam.undercut_at_deg(),
+        extremes: ProfileExtremes {
+            min_convex_radius_pitch_mm: finite(pr.extremes.min_convex_radius_pitch_mm),
+            ..pr.extremes
+        },
+        undercut_at_deg: pr.undercut_at_deg,
         undercut_message: undercut_message(&cam, &d),
-        roller_max_mm: cam.roller_max_mm().map(finite),
-        counter_max_pressure_angle_deg: counter.as_ref().map(|_| cam.track_extremes_all()[1].max_pressure_angle_deg),
-        min_radius_profile_mm: flat.map(|f| f.min_radius_profile_mm),
-        least_prime_radius_no_cusp_mm: flat.map(|f| f.least_prime_radius_mm),
-        face_min_mm: flat.map(|f| f.face_min_mm),
-        face_max_mm: flat.map(|f| f.face_max_mm),
+        roller_max_mm: pr.roller_max_mm.map(finite),
+        counter_max_pressure_angle_deg: pr.counter_max_pressure_angle_deg,
+        min_radius_profile_mm: pr.min_radius_profile_mm,
+        least_prime_radius_no_cusp_mm: pr.least_prime_radius_no_cusp_mm,
+        face_min_mm: pr.face_min_mm,
+        face_max_mm: pr.face_max_mm,
     };
     let wall = |name: &str| cam.walls().iter().position(|w| w.name == name);
     let counter_profile = match d.closure {
@@ -537,9 +522,6 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
         phase_point: cam.phase_point(),
     };
     let roller = d.roller_radius_mm;
-    let mut profile_report = cam.report(report.source.clone(), step);
-    profile_report.points.clear();
-    profile_report.counter_points = None;
     Ok(CamProfileResponse {
         report,
         pressure_limit_deg: limit,
@@ -745,7 +727,7 @@ mod tests {
         let d = design().design().unwrap();
         let cam = CamProfile::new(&motion, &d).unwrap();
         assert_eq!(r.report.prime_radius_mm, cam.prime_radius_mm());
-        assert_eq!(r.report.max_pressure_angle_deg, cam.max_pressure_angle().0);
+        assert_eq!(r.report.extremes.max_pressure_angle_deg, cam.max_pressure_angle().0);
         // The embedded library report is the CLI's `--json` without its points; the web's own
         // keys agree with it.
         let mut cli = cam.report(r.report.source.clone(), 1.0);
@@ -755,14 +737,14 @@ mod tests {
         assert_eq!(r.profile_report.base_radius_mm, r.report.base_radius_mm);
         assert_eq!(r.profile_report.roller_max_mm, r.report.roller_max_mm);
         // Sized for 30°: the largest pressure angle is the limit drawn.
-        assert!((r.report.max_pressure_angle_deg - 30.0).abs() < 1e-9);
+        assert!((r.report.extremes.max_pressure_angle_deg - 30.0).abs() < 1e-9);
         assert_eq!(r.pressure_limit_deg, 30.0);
         assert_eq!(r.curvature_limit_per_mm, Some(1.0 / 15.0));
         // 0 … 360 inclusive, closed.
         assert_eq!(r.cam.angle_deg.len(), 361);
         assert_eq!(r.cam.angle_deg[360], 360.0);
         // No sampled pressure angle exceeds the located maximum.
-        assert!(r.cam.pressure_angle_deg.iter().all(|p| p.abs() <= r.report.max_pressure_angle_deg + 1e-9));
+        assert!(r.cam.pressure_angle_deg.iter().all(|p| p.abs() <= r.report.extremes.max_pressure_angle_deg + 1e-9));
         let dxf = cam_dxf(&CamDxfRequest {
             source: CamSource::default(),
             design: design(),
@@ -833,7 +815,7 @@ mod tests {
         assert!(rmax < 70.0, "{rmax}");
         big.roller_radius_mm = rmax + 1.0;
         let r = cam_profile(&CamProfileRequest { source: steep.clone(), design: big.clone(), step_deg: 1.0 }).unwrap();
-        assert!(r.report.undercut && r.report.undercut_at_deg.is_some());
+        assert!(r.report.extremes.undercut && r.report.undercut_at_deg.is_some());
         let e = cam_dxf(&CamDxfRequest { source: steep, design: big, chord_tol_mm: 0.01, bore_mm: None }).unwrap_err();
         assert_eq!(e.field(), "design.roller_radius_mm", "{e}");
         assert!(e.to_string().contains("largest roller"), "{e}");

@@ -67,6 +67,22 @@ impl From<&CamPoint> for PointReport {
     }
 }
 
+/// The extremes every report of a cam states (keys of `loomkin cam profile --json`, flattened into
+/// [`ProfileReport`] and the web's cam report).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ProfileExtremes {
+    /// Largest |pressure angle| of every track (deg).
+    pub max_pressure_angle_deg: f64,
+    /// Where it occurs (main-shaft deg).
+    pub max_pressure_angle_at_deg: f64,
+    /// Least radius of curvature of the pitch curve where it is convex (mm).
+    pub min_convex_radius_pitch_mm: f64,
+    /// Where it occurs (main-shaft deg).
+    pub min_convex_radius_pitch_at_deg: f64,
+    /// Whether the profile is undercut (or has a cusp).
+    pub undercut: bool,
+}
+
 /// A cam profile's report: the design, the sizes and extremes, and the points of each track.
 /// Keys that apply to one kind of follower or closure only are left out elsewhere.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -83,16 +99,9 @@ pub struct ProfileReport {
     pub base_radius_mm: f64,
     /// Roller radius (mm; 0 for a flat face).
     pub roller_radius_mm: f64,
-    /// Largest |pressure angle| (deg).
-    pub max_pressure_angle_deg: f64,
-    /// Where it occurs (main-shaft deg).
-    pub max_pressure_angle_at_deg: f64,
-    /// Least radius of curvature of the pitch curve where it is convex (mm).
-    pub min_convex_radius_pitch_mm: f64,
-    /// Where it occurs (main-shaft deg).
-    pub min_convex_radius_pitch_at_deg: f64,
-    /// Whether the profile is undercut (or has a cusp).
-    pub undercut: bool,
+    /// The pressure angle's and the pitch curve's extremes, and the undercut.
+    #[serde(flatten)]
+    pub extremes: ProfileExtremes,
     /// Oscillating follower: arm length (mm).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub arm_mm: Option<f64>,
@@ -170,11 +179,13 @@ impl CamProfile {
             prime_radius_mm: self.prime_radius_mm(),
             base_radius_mm: self.base_radius_mm(),
             roller_radius_mm: if design.follower == Follower::Flat { 0.0 } else { r },
-            max_pressure_angle_deg: pmax,
-            max_pressure_angle_at_deg: pat,
-            min_convex_radius_pitch_mm: rmin,
-            min_convex_radius_pitch_at_deg: rat,
-            undercut: self.undercut_at_deg().is_some(),
+            extremes: ProfileExtremes {
+                max_pressure_angle_deg: pmax,
+                max_pressure_angle_at_deg: pat,
+                min_convex_radius_pitch_mm: rmin,
+                min_convex_radius_pitch_at_deg: rat,
+                undercut: self.undercut_at_deg().is_some(),
+            },
             arm_mm: arm,
             pivot_mm: pivot,
             offset_mm: offset,
