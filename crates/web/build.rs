@@ -12,12 +12,16 @@ fn find(env: &str, names: &[&str], extra: &[&str]) -> bool {
     let path = std::env::var_os("PATH").unwrap_or_default();
     let mut found = std::env::split_paths(&path).any(|dir| names.iter().any(|n| dir.join(n).is_file()));
     found |= extra.iter().any(|p| PathBuf::from(p).is_file());
-    for n in names {
-        // Installing the program later (same PATH) runs this script again.
-        println!("cargo::rerun-if-changed=/usr/bin/{n}");
+    // Watch only paths that exist: cargo takes a missing path as changed, so watching one would run
+    // this script, and rebuild this crate and every crate above it, on every build. Installing a
+    // program into /usr/bin later changes that directory, which runs the script again.
+    for p in names.iter().map(|n| format!("/usr/bin/{n}")).chain(extra.iter().map(|p| p.to_string())) {
+        if PathBuf::from(&p).exists() {
+            println!("cargo::rerun-if-changed={p}");
+        }
     }
-    for p in extra {
-        println!("cargo::rerun-if-changed={p}");
+    if PathBuf::from("/usr/bin").is_dir() {
+        println!("cargo::rerun-if-changed=/usr/bin");
     }
     found
 }

@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
-use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_units::{Range, compact};
 use std::path::PathBuf;
 

@@ -10,7 +10,7 @@ use loomkin_dynamics::{
     sweep_row,
 };
 use loomkin_io::Table;
-use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_laws::Cycle;
 use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
 use std::path::{Path, PathBuf};
@@ -482,7 +482,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         let vdi = (vdi_rpm > lo.min(hi) && vdi_rpm < lo.max(hi)).then(|| {
             Rule::x(vdi_rpm, format!("f_n/f_shaft = 10 at {} rpm (VDI 2149)", sig4(vdi_rpm)))
                 .with_color([90, 90, 90])
-                .with_dash(loomkin_io::plot::Dash::DashDot)
+                .with_dash(loomkin_plot::Dash::DashDot)
         });
         let with_vdi = |p: Panel| match &vdi {
             Some(r) => p.with_rule(r.clone()),

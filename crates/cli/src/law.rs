@@ -4,7 +4,7 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::plot::{Figure, Legend, Panel, Series};
+use loomkin_plot::{Figure, Legend, Panel, Series};
 use loomkin_laws::{CATALOGUE, InfoReport, Kinematics, Law, LawSpec, ListedLaw};
 use loomkin_units::{Budget, Cost, Shard};
 use serde::Serialize;

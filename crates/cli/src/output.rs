@@ -273,7 +273,7 @@ where
 }
 
 /// Saves a figure with the user's size, resolution and title, naming the file in the error.
-pub fn figure(fig: &loomkin_io::plot::Figure, path: &Path, opts: &crate::util::PlotOpts) -> anyhow::Result<()> {
+pub fn figure(fig: &loomkin_plot::Figure, path: &Path, opts: &crate::util::PlotOpts) -> anyhow::Result<()> {
     let fig = fig.clone().with_page(&opts.page()?).map_err(crate::util::page_error)?;
     match fig.save(path) {
         Ok(()) => {

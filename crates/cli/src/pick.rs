@@ -6,7 +6,7 @@ use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_io::plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{

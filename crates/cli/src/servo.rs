@@ -5,7 +5,7 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::plot::{Figure, Legend, Note, Panel, Series, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Series, sig4};
 use loomkin_servo::{
     Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, SplineEnd, SplineLaw, TorqueReport,
     format_points, parse_points, torque_curve,

@@ -3,7 +3,7 @@
 use crate::{output, util};
 use anyhow::Result;
 use clap::Args;
-use loomkin_io::plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_servo::{Axis, check_axis, envelope_lines, operating_points};
 use std::path::PathBuf;
 

@@ -4,7 +4,7 @@ use crate::output::{self, outln};
 use crate::util::{self, failure};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_io::plot::{Figure, Legend, Note, PALETTE, Panel, Series, XBand, YBand, sig4};
+use loomkin_plot::{Figure, Legend, Note, PALETTE, Panel, Series, XBand, YBand, sig4};
 use loomkin_shed::{
     BestReport, BestSearch, Conditions, Criteria, DesignKind, Family, GridSpec, LawReport, LoomRequirement, PRESETS,
     PresetReport, Progress, ShedLaw, Study, StudyRow, StudyTable, Template, WindowReport, evaluate, preset,

@@ -220,9 +220,9 @@ pub struct PlotOpts {
 
 impl PlotOpts {
     /// The settings as the plotting library takes them, checked (one-line error naming the flag).
-    pub fn page(&self) -> anyhow::Result<loomkin_io::plot::Page> {
+    pub fn page(&self) -> anyhow::Result<loomkin_plot::Page> {
         let page =
-            loomkin_io::plot::Page { width: self.width, height: self.height, dpi: self.dpi, title: self.title.clone() };
+            loomkin_plot::Page { width: self.width, height: self.height, dpi: self.dpi, title: self.title.clone() };
         page.check().map_err(page_error)?;
         Ok(page)
     }

@@ -1,10 +1,9 @@
-//! # loomkin-io — tables, files and plots
+//! # loomkin-io — tables, files and drawings
 //!
 //! Shared output plumbing of the loomkin tools: numeric [`Table`]s written as CSV or JSON (headers
 //! carry units, non-finite numbers are refused rather than printed), [`open_output`] where `-`
-//! means standard output, every CSV file's framing ([`csv`]), and (feature `plot`, on by default)
-//! stacked line `plot::Figure`s rendered to SVG or PNG with an embedded font (no system fonts or C
-//! libraries needed). The libraries that only write CSV use it without `plot`.
+//! means standard output, every CSV file's framing ([`csv`]), and drawings written as DXF
+//! ([`drawing`], [`dxf`]). Plots live in `loomkin-plot`, which reports its errors as [`IoError`].
 //!
 //! ```
 //! use loomkin_io::Table;
@@ -24,8 +23,6 @@ pub mod drawing;
 pub mod dxf;
 mod error;
 mod output;
-#[cfg(feature = "plot")]
-pub mod plot;
 mod table;
 
 pub use error::IoError;

@@ -1,7 +1,7 @@
 //! Figures: the classic loom timing diagram and the torque over the repeat.
 
 use crate::{Drive, Loom, Motion, Pattern, Result, Timing, TimingReport, crossing_offset_deg};
-use loomkin_io::plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
 use serde::Serialize;
 
 /// The numbers behind the timing diagram over picks `from_pick … from_pick + picks` of the repeat

@@ -1,4 +1,4 @@
-//! Stacked line plots for reports, written as SVG and rasterised to PNG.
+//! # loomkin-plot — stacked line plots for reports, written as SVG and rasterised to PNG
 //!
 //! A [`Figure`] is a column of [`Panel`]s; each panel overlays [`Series`] (lines in solid, dashed,
 //! dotted or dash-dot strokes, or markers) and marks what matters: shaded angle intervals
@@ -11,7 +11,7 @@
 //! the plot, else outside it on the right (all panels then share the narrower plot width, so
 //! stacked panels keep one horizontal scale). Its swatches draw each line's own dash pattern.
 //!
-//! The figure is written as SVG by this module; a PNG is that SVG rasterised by `resvg`
+//! The figure is written as SVG by this crate; a PNG is that SVG rasterised by `resvg`
 //! (antialiased, with shaped text), scaled by the figure's DPI (96 = one pixel per SVG unit) and
 //! tagged with that DPI. The text font is Ubuntu Light (Ubuntu Font Licence 1.0), with Hack (MIT
 //! and Bitstream Vera licence) for glyphs it lacks, both embedded from the `epaint_default_fonts`
@@ -23,7 +23,7 @@ mod svg;
 
 pub use layout::PALETTE;
 
-use crate::IoError;
+use loomkin_io::IoError;
 use loomkin_units::{Range, RangeError};
 use std::path::Path;
 

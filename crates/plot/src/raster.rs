@@ -1,6 +1,6 @@
 //! Text metrics of the embedded font, and the SVG rasterised to PNG.
 
-use crate::IoError;
+use loomkin_io::IoError;
 use epaint_default_fonts::{HACK_REGULAR, UBUNTU_LIGHT};
 use resvg::{tiny_skia, usvg};
 use skrifa::instance::{LocationRef, Size};
