@@ -4,8 +4,8 @@ use crate::output::{self, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::Args;
-use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
 use loomkin_laws::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
+use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
 use loomkin_units::{Budget, Cost, ShaftSpeed};
 use std::path::PathBuf;
 

@@ -7,12 +7,12 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
 use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
-use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
     Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
     SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
 };
+use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin dobby`.

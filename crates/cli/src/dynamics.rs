@@ -10,8 +10,8 @@ use loomkin_dynamics::{
     sweep_row,
 };
 use loomkin_io::Table;
-use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_laws::Cycle;
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
 use std::path::{Path, PathBuf};
 

@@ -6,13 +6,13 @@ use crate::util::{self, Format};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
     History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history,
     required_velocity_crossings, simulate, sweep_observed,
 };
+use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
 use loomkin_units::{Budget, Cost};
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! Text metrics of the embedded font, and the SVG rasterised to PNG.
 
-use loomkin_io::IoError;
 use epaint_default_fonts::{HACK_REGULAR, UBUNTU_LIGHT};
+use loomkin_io::IoError;
 use resvg::{tiny_skia, usvg};
 use skrifa::instance::{LocationRef, Size};
 use skrifa::{FontRef, MetadataProvider};
