@@ -20,7 +20,7 @@ def text_of(source: Optional[PathOrDict]) -> Optional[str]:
 
 
 def study_text(study: Any) -> str:
-    """A study file's text: a path is read, a dict written as TOML."""
+    """A TOML file's text (a study, a servo axis): a path is read, a dict written as TOML."""
     from collections.abc import Mapping
 
     if isinstance(study, Mapping):

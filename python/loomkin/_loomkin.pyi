@@ -96,6 +96,8 @@ def servo_optimize(
 def servo_export(
     format: str, step_deg: float = 1.0, def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
 ) -> Dict[str, Any]: ...
+def servo_check(axis_toml: str, cycle: Cycle, speed_rpm: Optional[float] = None) -> Dict[str, Any]:
+    """`loomkin servo check AXIS --json`: peak and RMS torque (N·m), speeds (rpm), ratios, checks, pass."""
 
 # picking (keywords as loomkin.picking documents them)
 def pick_design(**model: Any) -> Dict[str, Any]: ...
@@ -157,6 +159,16 @@ def shed_law(
 def shed_table(**kw: Any) -> Dict[str, Any]: ...
 def shed_pareto(**kw: Any) -> Dict[str, Any]: ...
 def shed_best(window_deg: float, **kw: Any) -> Dict[str, Any]: ...
+def shed_window(
+    carrier_speed_m_s: float,
+    reed_width_m: float,
+    cloth_width_m: Optional[float] = None,
+    carrier_length_m: float = 0.0,
+    crossing_range_deg: float = 0.0,
+    shed_excess: float = 0.05,
+    speed_rpm: float = 300.0,
+) -> Dict[str, Any]:
+    """`loomkin shed window --json`: the loom data, flight_deg, required_window_deg (deg), thresholds."""
 
 # the loom (texts of the loom file and the weave)
 def loom_check(loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None) -> Dict[str, Any]: ...

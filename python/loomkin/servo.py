@@ -9,14 +9,17 @@ power in W, rack motion in m, m/s, m/s².
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Union
 
 from . import _loomkin as _m
-from ._inputs import PathOrDict, text_of
+from ._inputs import PathOrDict, study_text, text_of
 from ._loomkin import Law
 from ._table import Table
 
-__all__ = ["spline_law", "law", "torque", "torque_curve", "optimize", "export", "EXPORT_FORMATS"]
+__all__ = ["spline_law", "law", "torque", "torque_curve", "optimize", "export", "check", "EXPORT_FORMATS"]
+
+if TYPE_CHECKING:
+    from .cams import CycleLike
 
 DefPoints = Union[str, Sequence[Sequence[float]], None]
 
@@ -79,3 +82,34 @@ def export(format: str, step_deg: float = 1.0, def_points: DefPoints = None, end
     the cam tables (csv, xyva) also points, step_deg (deg) and reinterpolation (worst errors of
     linear, cubic-spline and quintic-Hermite re-interpolation: m, m/deg, m/deg², relative)."""
     return _m.servo_export(format, float(step_deg), def_points, end, _drive(drive))
+
+
+def check(axis: PathOrDict, cycle: Optional["CycleLike"] = None, *, speed_rpm: Optional[float] = None,
+          law: Optional[str] = None, params: Optional[Dict[str, Union[float, str]]] = None,
+          stroke_mm: Optional[float] = None, stroke_deg: Optional[float] = None,
+          motion_deg: Optional[float] = None) -> Dict[str, Any]:
+    """``loomkin servo check AXIS --cycle CYCLE --json``: a servo axis moving a cycle.
+
+    ``axis``: the axis file (a path, or a dict of its tables: ``motor`` with rated_torque_nm,
+    peak_torque_nm, rated_speed_rpm, max_speed_rpm, rotor_inertia_kg_m2; ``load`` with
+    moving_mass_kg and travel_mm_per_rev, or load_inertia_kg_m2 and gear_ratio, and the friction,
+    spring and force keys; optional ``limits`` with max_inertia_ratio). ``cycle``: a
+    :class:`loomkin.Cycle`, a path or a dict; or ``cycle=None`` and ``law`` (``params``),
+    ``stroke_mm`` or ``stroke_deg`` and ``motion_deg``: the rise, dwell, return, dwell of
+    :func:`loomkin.cams.rise_return`, as ``--law`` does. ``speed_rpm``: given here, else the
+    cycle's, else 300 rpm.
+
+    Returns speed_rpm, cycle_time_s, the peak motor torque (N·m) and where (deg), the RMS torque,
+    the peak motor speed (rpm) and where, the envelope ratio (|T| over the peak-torque line) and
+    where, the inertia ratio, ``checks`` (name, value, limit, unit, margin, pass) and ``pass``."""
+    from .cams import _usage, rise_return
+    from .cycles import _cycle
+
+    if cycle is None:
+        c = rise_return(law if law is not None else "cycloidal", params, stroke_mm=stroke_mm,
+                        stroke_deg=stroke_deg, motion_deg=motion_deg)
+    elif law is not None:
+        raise _usage("law", "give a cycle or a law, not both")
+    else:
+        c = _cycle(cycle)
+    return _m.servo_check(study_text(axis), c, None if speed_rpm is None else float(speed_rpm))

@@ -17,7 +17,7 @@ from . import _loomkin as _m
 from ._inputs import text_of
 from ._table import Table
 
-__all__ = ["presets", "law", "table", "pareto", "best"]
+__all__ = ["presets", "law", "table", "pareto", "best", "window"]
 
 
 def presets() -> List[Dict[str, Any]]:
@@ -50,3 +50,17 @@ def best(window_deg: float, **kw: Any) -> Dict[str, Any]:
     """``loomkin shed best --window-deg W --json``: the law with the least peak acceleration
     among those with a window ≥ window_deg."""
     return _m.shed_best(float(window_deg), **kw)
+
+
+def window(carrier_speed_m_s: float, reed_width_m: float, *, cloth_width_m: Optional[float] = None,
+           carrier_length_m: float = 0.0, crossing_range_deg: float = 0.0, shed_excess: float = 0.05,
+           speed_rpm: float = 300.0) -> Dict[str, Any]:
+    """``loomkin shed window --carrier-speed-m-s V --reed-width-m L --json``: the window a loom
+    needs. The loom data (the weft carrier's mean speed in m/s; reed width, cloth width (default:
+    the reed's) and carrier length in m; the crossing-point range in deg; the shed-height excess as
+    a fraction; the main-shaft speed in rpm) with flight_deg (the carrier's flight through the
+    warp), required_window_deg (flight plus crossing range, deg of the main shaft), threshold
+    (T = 1/(1 + excess)) and threshold_both_sheets."""
+    return _m.shed_window(float(carrier_speed_m_s), float(reed_width_m),
+                          None if cloth_width_m is None else float(cloth_width_m), float(carrier_length_m),
+                          float(crossing_range_deg), float(shed_excess), float(speed_rpm))

@@ -2,12 +2,13 @@
 //! the controller exports, keyed as `loomkin servo … --json`.
 
 use crate::convert::{records_to_columns, to_py};
+use crate::cycles::Cycle;
 use crate::errors::{OrRaise, check_count, raise};
 use crate::laws::Law;
 use loomkin_laws::ParamValue;
 use loomkin_servo::{
-    Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, ServoError, SplineEnd, SplineLaw,
-    TorqueReport, format_points, parse_points, torque_curve,
+    Axis, Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, ServoError, SplineEnd,
+    SplineLaw, TorqueReport, check_axis, format_points, parse_points, torque_curve,
 };
 use loomkin_units::{Range, ShaftSpeed};
 use pyo3::prelude::*;
@@ -30,6 +31,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(servo_torque_curve, m)?)?;
     m.add_function(wrap_pyfunction!(servo_optimize, m)?)?;
     m.add_function(wrap_pyfunction!(servo_export, m)?)?;
+    m.add_function(wrap_pyfunction!(servo_check, m)?)?;
     Ok(())
 }
 
@@ -285,4 +287,27 @@ fn servo_export<'py>(
         out.set_item("reinterpolation", to_py(py, &rows)?)?;
     }
     Ok(out)
+}
+
+/// servo_check(axis_toml, cycle, speed_rpm=None) -> dict
+/// --
+///
+/// `loomkin servo check AXIS --cycle CYCLE --json`: a servo axis (the axis file's text: [motor],
+/// [load], optional [limits]) moving the cycle at speed_rpm (default: the cycle's, else 300 rpm).
+/// Peak torque (N·m) and its angle (deg), RMS torque, peak motor speed (rpm), the envelope ratio,
+/// the inertia ratio, each check (name, value, limit, unit, margin, pass) and pass. Runs with the
+/// GIL released.
+#[pyfunction]
+#[pyo3(signature = (axis_toml, cycle, speed_rpm=None))]
+fn servo_check(
+    py: Python<'_>,
+    axis_toml: &str,
+    cycle: PyRef<'_, Cycle>,
+    speed_rpm: Option<f64>,
+) -> PyResult<Py<PyAny>> {
+    let c = &cycle.inner;
+    let axis = Axis::from_toml(axis_toml, c.unit).or_raise()?;
+    let rpm = speed_rpm.or(c.speed_rpm).unwrap_or(300.0);
+    let report = py.detach(|| check_axis(&axis, c, rpm)).or_raise()?;
+    to_py(py, &report)
 }

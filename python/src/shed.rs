@@ -4,8 +4,9 @@
 use crate::convert::{to_py, value_records_to_columns};
 use crate::errors::{Fault, OrRaise};
 use loomkin_shed::{
-    BestReport, BestSearch, Conditions, DesignKind, Family, GridSpec, LawReport, PRESETS, PresetReport, Progress,
-    RowReport, ShedError, ShedLaw, Study, StudyTable, Template, evaluate, preset, preset_table_in,
+    BestReport, BestSearch, Conditions, DesignKind, Family, GridSpec, LawReport, LoomRequirement, PRESETS,
+    PresetReport, Progress, RowReport, ShedError, ShedLaw, Study, StudyTable, Template, WindowReport, evaluate, preset,
+    preset_table_in,
 };
 use loomkin_study::StudyError;
 use loomkin_units::{Range, RangeError};
@@ -43,6 +44,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shed_table, m)?)?;
     m.add_function(wrap_pyfunction!(shed_pareto, m)?)?;
     m.add_function(wrap_pyfunction!(shed_best, m)?)?;
+    m.add_function(wrap_pyfunction!(shed_window, m)?)?;
     Ok(())
 }
 
@@ -313,4 +315,38 @@ fn shed_best(
         loom: None,
     };
     to_py(py, &BestReport::new(search, &b, &law, &cond))
+}
+
+/// shed_window(carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=0,
+/// crossing_range_deg=0, shed_excess=0.05, speed_rpm=300) -> dict
+/// --
+///
+/// `loomkin shed window --carrier-speed-m-s V --reed-width-m L --json`: the loom data (the
+/// carrier's mean speed in m/s, reed and cloth width and carrier length in m, the crossing-point
+/// range in deg, the shed-height excess as a fraction, the speed in rpm), the carrier's flight
+/// through the warp and the window it needs (deg of the main shaft), and the dwell threshold
+/// T = 1/(1 + excess) with the one for both sheets moving.
+#[pyfunction]
+#[pyo3(signature = (carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=0.0,
+    crossing_range_deg=0.0, shed_excess=0.05, speed_rpm=300.0))]
+fn shed_window(
+    py: Python<'_>,
+    carrier_speed_m_s: f64,
+    reed_width_m: f64,
+    cloth_width_m: Option<f64>,
+    carrier_length_m: f64,
+    crossing_range_deg: f64,
+    shed_excess: f64,
+    speed_rpm: f64,
+) -> PyResult<Py<PyAny>> {
+    let loom = LoomRequirement {
+        carrier_speed_m_s,
+        reed_width_m,
+        cloth_width_m: cloth_width_m.unwrap_or(reed_width_m),
+        carrier_length_m,
+        crossing_range_deg,
+        shed_excess,
+        speed_rpm,
+    };
+    to_py(py, &WindowReport::of(&loom).or_raise()?)
 }

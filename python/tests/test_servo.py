@@ -86,3 +86,49 @@ def test_servo_errors():
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.servo.optimize(600, starts=0)
     assert e.value.field == "starts"
+
+
+AXIS = "examples/servo-axis.toml"
+
+
+def test_check_matches_servo_check(cli):
+    from conftest import REPO
+
+    ref = cli("servo", "check", AXIS, "--cycle", "examples/needle-rack-cycle.toml", "--json")
+    r = loomkin.servo.check(REPO / AXIS, REPO / "examples/needle-rack-cycle.toml")
+    same(r, ref)
+    assert r["pass"] == all(c["pass"] for c in r["checks"])
+    ref = cli("servo", "check", AXIS, "--law", "cycloidal", "--stroke-mm", "80", "--motion-deg", "150",
+              "--speed-rpm", "750", "--json")
+    same(loomkin.servo.check(REPO / AXIS, law="cycloidal", stroke_mm=80, motion_deg=150, speed_rpm=750), ref)
+
+
+def test_check_axis_as_dict_and_cycle_object():
+    from conftest import REPO
+
+    tomllib = pytest.importorskip("tomllib")
+    axis = tomllib.loads((REPO / AXIS).read_text())
+    cycle = loomkin.cycles.load(REPO / "examples/needle-rack-cycle.toml")
+    same(loomkin.servo.check(axis, cycle, speed_rpm=500),
+         loomkin.servo.check(REPO / AXIS, REPO / "examples/needle-rack-cycle.toml", speed_rpm=500))
+
+
+def test_check_errors():
+    from conftest import REPO
+
+    axis = str(REPO / AXIS)
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.servo.check(axis, law="cycloidal", stroke_mm=80, motion_deg=150, speed_rpm=0)
+    assert e.value.field == "speed_rpm" and e.value.unit == "rpm"
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.servo.check({"motor": {"rated_torque_nm": 3.2, "peak_torque_nm": 1.0, "rated_speed_rpm": 3000,
+                                       "max_speed_rpm": 4500, "rotor_inertia_kg_m2": 1e-4},
+                             "load": {"moving_mass_kg": 0.45, "travel_mm_per_rev": 157.08}},
+                            law="cycloidal", stroke_mm=80, motion_deg=150)
+    assert e.value.field == "motor.peak_torque_nm" and e.value.low == 3.2
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.servo.check(axis, REPO / "examples/needle-rack-cycle.toml", law="cycloidal")
+    assert e.value.field == "law"
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.servo.check({"motor": {}}, law="cycloidal", stroke_mm=80, motion_deg=150)
+    assert e.value.field == "axis file" and "[motor]" in e.value.allowed

@@ -62,3 +62,31 @@ def test_shed_errors():
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.shed.law("dobby", stroke_mm=0)
     assert e.value.field == "stroke_mm"
+
+
+LOOM = ["--carrier-speed-m-s", "24", "--reed-width-m", "1.8", "--carrier-length-m", "0.09",
+        "--crossing-range-deg", "15", "--speed-rpm", "250"]
+
+
+def test_window_matches_shed_window(cli):
+    r = loomkin.shed.window(24, 1.8, carrier_length_m=0.09, crossing_range_deg=15, speed_rpm=250)
+    same(r, cli("shed", "window", *LOOM, "--json"))
+    # Closed form: the flight 6n(L_cloth + l)/v deg, plus the crossing range; T = 1/(1 + excess).
+    assert r["flight_deg"] == pytest.approx(6 * 250 * (1.8 + 0.09) / 24, rel=1e-14)
+    assert r["required_window_deg"] == pytest.approx(r["flight_deg"] + 15, rel=1e-14)
+    assert r["threshold"] == pytest.approx(1 / 1.05, rel=1e-14)
+    same(loomkin.shed.window(30, 2.2, cloth_width_m=1.9, shed_excess=0.1),
+         cli("shed", "window", "--carrier-speed-m-s", "30", "--reed-width-m", "2.2", "--cloth-width-m", "1.9",
+             "--shed-excess", "0.1", "--json"))
+
+
+def test_window_errors():
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.shed.window(24, 0)
+    assert e.value.field == "reed_width_m" and e.value.low == 0 and not e.value.low_inclusive
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.shed.window(24, 1.8, cloth_width_m=2.0)
+    assert e.value.field == "cloth_width_m" and e.value.high == 1.8 and e.value.unit == "m"
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.shed.window(24, 1.8, speed_rpm=-5)
+    assert e.value.field == "speed_rpm"
