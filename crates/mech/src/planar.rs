@@ -19,6 +19,13 @@ pub fn e_perp(a: f64) -> Vec2 {
     Vec2::new(-s, c)
 }
 
+/// `u` turned by the angle of the unit vector `by`: `e(φ + β)` from `e(φ)` and `e(β)` (angle
+/// addition).
+#[inline]
+pub(crate) fn rotate(u: Vec2, by: Vec2) -> Vec2 {
+    Vec2::new(u.x * by.x - u.y * by.y, u.x * by.y + u.y * by.x)
+}
+
 /// The vector turned a quarter turn anticlockwise: `(x, y) ↦ (−y, x)`.
 #[inline]
 pub fn perp(v: Vec2) -> Vec2 {

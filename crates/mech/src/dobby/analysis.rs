@@ -8,7 +8,7 @@ use super::cam::Cam;
 use super::checks::{Warning, counter_cam_fold};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ArmAngles, ModulatorState, state_from_phi3};
-use super::refine::{Extreme, Revolution, check_grid, refined_max};
+use super::refine::{CHECK_STEP_DEG, Extreme, Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, undercut};
 use crate::newton::{LoopState, NewtonOptions};
 use crate::planar::{Vec2, e, wrap_pi};
@@ -231,20 +231,29 @@ pub fn modulator_loops(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<4>
 /// It accepts a step under the same conditions as [`LoopSystem::advance`] (residual, no jump to
 /// another branch, det J_q keeping its sign) and declines anything else, which the caller then
 /// hands to the general solver (step halving, fold location, messages).
+///
+/// The slot direction comes with the state: `w = l3·e(φ3 + α)`, so `e(φ3) = w/|w|` turned by −α
+/// (no `sin_cos` of φ3).
 struct CamLoop<'a> {
     curve: &'a dyn crate::curve::PlaneCurve,
     l2: f64,
     l3: f64,
     alpha: f64,
+    /// `e(−α)`.
+    minus_alpha: Vec2,
     tol: f64,
 }
 
-impl CamLoop<'_> {
-    /// The state at input `x1` and `e(x1)`, or `None` (declined).
-    fn step(&self, from: &LoopState<2>, x1: f64) -> Option<(LoopState<2>, Vec2)> {
+impl<'a> CamLoop<'a> {
+    fn new(g: &ModulatorGeometry, cam: &'a Cam, tol: f64) -> Self {
+        let alpha = g.alpha_rad();
+        Self { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha, minus_alpha: e(-alpha), tol }
+    }
+
+    /// The state at input `x1`, given `ea = e(x1)`, and `e(φ3)`; or `None` (declined).
+    fn step(&self, from: &LoopState<2>, x1: f64, ea: Vec2) -> Option<(LoopState<2>, Vec2)> {
         let h = x1 - from.input;
         let pred = from.q + from.dq * h + from.ddq * (h * h / 2.0);
-        let ea = e(x1);
         let (a0, a1) = (self.l2 * ea, self.l2 * crate::planar::perp(ea));
         let a2 = -a0;
         let mut p = pred[0];
@@ -278,6 +287,7 @@ impl CamLoop<'_> {
         }
         let ww = w.norm_squared();
         let phi3 = pred[1] + wrap_pi(w.y.atan2(w.x) - self.alpha - pred[1]);
+        let e3 = crate::planar::rotate(w / ww.sqrt(), self.minus_alpha);
         let p1 = w.dot(&a1) / det;
         let w1 = a1 - c.d1 * p1;
         let p2 = (w1.norm_squared() + w.dot(&(a2 - c.d2 * (p1 * p1)))) / det;
@@ -291,7 +301,7 @@ impl CamLoop<'_> {
             return None;
         }
         let (dq, ddq) = (SVector::<f64, 2>::new(p1, phi3_1), SVector::<f64, 2>::new(p2, phi3_2));
-        [p1, phi3_1, p2, phi3_2].iter().all(|v| v.is_finite()).then_some((LoopState { input: x1, q, dq, ddq, det }, ea))
+        [p1, phi3_1, p2, phi3_2].iter().all(|v| v.is_finite()).then_some((LoopState { input: x1, q, dq, ddq, det }, e3))
     }
 }
 
@@ -394,6 +404,35 @@ pub(crate) fn input_grid(start_deg: f64, step_deg: f64) -> (Vec<f64>, f64) {
     ((0..=n).map(|i| (start_deg + i as f64 * h).to_radians()).collect(), h)
 }
 
+/// Spacing (deg) of the exact anchors of [`grid_units`].
+const ANCHOR_DEG: f64 = 5.0;
+
+/// `e(xᵢ)` for the points `xᵢ = (start_deg + i·h_deg)` (deg, as rad) of an [`input_grid`] of
+/// `len` points, without a `sin_cos` per point: every `K ≈ 5°/h`-th point (an anchor) is `e(x)`
+/// itself, and the points after it are the anchor turned by the offsets `e(k·h)`, `k < K`, each
+/// computed once (`e(a + b)` by angle addition). One rotation of two correctly rounded unit
+/// vectors: within 1e-15 of `e(xᵢ)` (a few units in the last place, not accumulated along the
+/// grid), the rounding of xᵢ itself being of the same order.
+///
+/// The anchors sit at whole multiples of 5° from the start whenever 5° is a whole number of steps,
+/// so two grids whose steps are in a whole ratio (0.1° and 0.05°) give the same bits at the same
+/// angle.
+pub(crate) fn grid_units(start_deg: f64, h_deg: f64, len: usize) -> Vec<Vec2> {
+    let k = crate::planar::round(ANCHOR_DEG / h_deg).clamp(1.0, len.max(1) as f64) as usize;
+    let offsets: Vec<Vec2> = (0..k).map(|j| e((j as f64 * h_deg).to_radians())).collect();
+    let mut out = Vec::with_capacity(len);
+    let mut i = 0;
+    while i < len {
+        let anchor = e((start_deg + i as f64 * h_deg).to_radians());
+        out.push(anchor);
+        for off in &offsets[1..k.min(len - i)] {
+            out.push(crate::planar::rotate(anchor, *off));
+        }
+        i += k;
+    }
+    out
+}
+
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
     Range::closed(0.01, 30.0, "°").check("step_deg", step_deg)?;
     Range::closed(1e-6, 1e4, "rad/s").check("input_speed_rad_s", speed)?;
@@ -437,6 +476,7 @@ fn analyze_in(
     // The cam loop is traced on the check grid, whatever the output step, and solved between its
     // points by continuation from the nearest traced state.
     let cx = check_grid(opts.start_deg);
+    let cx_e2 = grid_units(opts.start_deg, CHECK_STEP_DEG, cx.len());
     let q0 = assemble(g, cam, cx[0])?;
     let sys = cam_loop(g, cam)?;
     let newton = &opts.newton;
@@ -448,27 +488,30 @@ fn analyze_in(
     };
     let p0 = sys.solve_position(cx[0], SVector::<f64, 2>::new(q0[0], q0[1]), newton).map_err(fail)?;
     let mut traced = vec![sys.rates(cx[0], p0.q).map_err(fail)?];
-    // e(φ2) of each traced state, which loop (3) and the checks reuse.
-    let mut traced_e2 = vec![e(traced[0].input)];
-    let fast =
-        CamLoop { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha: g.alpha_rad(), tol: newton.residual_tol };
-    // One continuation step: the scalar form where it applies, the general solver otherwise; with
-    // e(φ2) of the new state.
-    let advance = |from: &LoopState<2>, x: f64| match fast.step(from, x) {
+    // e(φ3) of each traced state, which loop (3) and the checks reuse with e(φ2) of the grid.
+    let mut traced_e3 = vec![e(traced[0].q[1])];
+    let fast = CamLoop::new(g, cam, newton.residual_tol);
+    // One continuation step to input x, `ea = e(x)`: the scalar form where it applies, the general
+    // solver otherwise; with e(φ3) of the new state.
+    let advance = |from: &LoopState<2>, x: f64, ea: Vec2| match fast.step(from, x, ea) {
         Some(st) => Ok(st),
-        None => sys.advance(from, x, newton).map(|st| (st, e(st.input))),
+        None => sys.advance(from, x, newton).map(|st| (st, e(st.q[1]))),
     };
-    for &x in &cx[1..] {
+    for (&x, &ea) in cx[1..].iter().zip(&cx_e2[1..]) {
         let last = traced[traced.len() - 1];
-        match advance(&last, x) {
-            Ok((st, e2)) => {
+        match advance(&last, x, ea) {
+            Ok((st, e3)) => {
                 traced.push(st);
-                traced_e2.push(e2);
+                traced_e3.push(e3);
             }
             Err(_) => return Err(locate_fold(g, cam, &sys, &last, x, newton)),
         }
     }
-    let loop_at = |x: f64| advance(&traced[Revolution::nearest(&cx, x)], x).ok();
+    // The state at any input x with e(x) and e(φ3).
+    let loop_at = |x: f64| {
+        let ea = e(x);
+        advance(&traced[Revolution::nearest(&cx, x)], x, ea).ok().map(|(st, e3)| (st, ea, e3))
+    };
 
     // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
     // The extremes of δ = φ3 − φ2 are refined between the points of the check grid.
@@ -528,8 +571,8 @@ fn analyze_in(
     }
 
     let arms = ArmAngles::new(g);
-    let close3 = |st: &LoopState<2>, e2: Vec2, phi6_ref: f64| {
-        state_from_phi3(g, &arms, st.input, e2, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
+    let close3 = |st: &LoopState<2>, e2: Vec2, e3: Vec2, phi6_ref: f64| {
+        state_from_phi3(g, &arms, st.input, e2, e3, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
             MechError::CannotBuild {
                 phi2_deg: st.input.to_degrees(),
                 condition: format!("loop (3) cannot close: {e}"),
@@ -540,8 +583,8 @@ fn analyze_in(
     };
     let mut fine = Vec::with_capacity(traced.len());
     let mut phi6_ref = traced[0].input;
-    for (st, &e2) in traced.iter().zip(&traced_e2) {
-        let s = close3(st, e2, phi6_ref)?;
+    for ((st, &e2), &e3) in traced.iter().zip(&cx_e2).zip(&traced_e3) {
+        let s = close3(st, e2, e3, phi6_ref)?;
         phi6_ref = s.phi6[0];
         fine.push(s);
     }
@@ -552,20 +595,26 @@ fn analyze_in(
     rows.clear();
     states.reserve(xs.len());
     rows.reserve(xs.len());
-    for &x in &xs {
+    let xs_e2 = grid_units(opts.start_deg, step, xs.len());
+    for (&x, &e2) in xs.iter().zip(&xs_e2) {
         let j = Revolution::nearest(&cx, x);
-        let (st, e2) = advance(&traced[j], x)?;
-        let s = close3(&st, e2, refs[j])?;
-        rows.push(AnalysisRow::new(&s, g.l2_m * e2, st.q[0], (x - xs[0]) / w2, w2));
+        // A row on a point of the check grid is its traced state.
+        let (s, p, e2) = if x.to_bits() == cx[j].to_bits() {
+            (fine[j], traced[j].q[0], cx_e2[j])
+        } else {
+            let (st, e3) = advance(&traced[j], x, e2)?;
+            (close3(&st, e2, e3, refs[j])?, st.q[0], e2)
+        };
+        rows.push(AnalysisRow::new(&s, g.l2_m * e2, p, (x - xs[0]) / w2, w2));
         states.push(s);
     }
     let rev = Revolution {
         xs: cx.clone(),
         states: fine,
-        pins: traced_e2.iter().map(|&e2| g.l2_m * e2).collect(),
+        pins: cx_e2.iter().map(|&e2| g.l2_m * e2).collect(),
         eval: Box::new(|x| {
-            let (st, e2) = loop_at(x)?;
-            close3(&st, e2, refs[Revolution::nearest(&cx, x)]).ok()
+            let (st, e2, e3) = loop_at(x)?;
+            close3(&st, e2, e3, refs[Revolution::nearest(&cx, x)]).ok()
         }),
     };
     let mut warnings = Vec::new();
@@ -672,6 +721,43 @@ mod tests {
         assert!(out.rows.is_empty() && out.states.is_empty());
     }
 
+    /// Independent route for the grid's unit vectors: `sin_cos` of every grid angle, over a whole
+    /// revolution, for steps that divide 5° and steps that do not, from several starts; anchors
+    /// are exact, and a 0.05° grid repeats a 0.1° grid's bits at the shared angles.
+    #[test]
+    fn grid_unit_vectors_match_sin_cos() {
+        let mut worst = 0.0f64;
+        for start in [0.0, 12.5, -90.0, 359.0] {
+            for step in [0.01, 0.05, 0.07, 0.1, 0.25, 0.3, 1.0, 7.3, 30.0] {
+                let (xs, h) = input_grid(start, step);
+                let units = grid_units(start, h, xs.len());
+                assert_eq!(units.len(), xs.len());
+                for (&x, u) in xs.iter().zip(&units) {
+                    let d = (u - e(x)).amax();
+                    // The grid angle, its anchor and its offset are each rounded in degrees and in
+                    // radians (½ ulp of |x| each: 2ε|x| in all, the same order as the rounding
+                    // of xᵢ that direct sin_cos carries), then three unit components and one
+                    // rotation (4ε).
+                    let tol = f64::EPSILON * (2.0 * x.abs() + 4.0);
+                    assert!(d <= tol, "start {start}°, step {step}°, x = {x}: {u:?} vs {:?}", e(x));
+                    if start == 0.0 {
+                        worst = worst.max(d);
+                    }
+                }
+                assert_eq!(units[0], e(xs[0]));
+            }
+        }
+        // Over the turn from 0° (|x| ≤ 2π): within 1.6e-15 (the rounding of x there is 4.4e-16).
+        assert!(worst > 0.0 && worst <= 1.6e-15, "{worst:e}");
+        let (coarse, h) = input_grid(0.0, 0.1);
+        let (fine, hf) = input_grid(0.0, 0.05);
+        let (uc, uf) = (grid_units(0.0, h, coarse.len()), grid_units(0.0, hf, fine.len()));
+        for i in 0..coarse.len() {
+            assert_eq!(coarse[i].to_bits(), fine[2 * i].to_bits());
+            assert_eq!(uc[i], uf[2 * i], "point {i}");
+        }
+    }
+
     /// Independent route for the scalar cam-loop step: the general Newton continuation of the
     /// vector loop ([`LoopSystem::advance`]) from the same states, over a revolution at 0.25°, for
     /// the paper's ellipse and for a point-table cam.
@@ -684,21 +770,18 @@ mod tests {
         for cam in [Cam::paper(), Cam::from_points(&pts).unwrap()] {
             let sys = cam_loop(&g, &cam).unwrap();
             let newton = NewtonOptions::default();
-            let fast = CamLoop {
-                curve: cam.curve().as_ref(),
-                l2: g.l2_m,
-                l3: g.l3_m,
-                alpha: g.alpha_rad(),
-                tol: newton.residual_tol,
-            };
+            let fast = CamLoop::new(&g, &cam, newton.residual_tol);
             let xs = check_grid(0.0);
             let q0 = assemble(&g, &cam, xs[0]).unwrap();
             let mut st = sys.rates(xs[0], SVector::<f64, 2>::new(q0[0], q0[1])).unwrap();
             let mut fast_steps = 0;
             for &x in &xs[1..] {
                 let slow = sys.advance(&st, x, &newton).unwrap();
-                if let Some((f, ea)) = fast.step(&st, x) {
-                    assert_eq!(ea, e(x));
+                if let Some((f, e3)) = fast.step(&st, x, e(x)) {
+                    // e(φ3) from the loop vector against sin_cos of φ3: φ3 carries the rounding of
+                    // atan2, of α and of its own value (ε|φ3| each), w its components' rounding.
+                    let tol = f64::EPSILON * (2.0 * f.q[1].abs() + 8.0);
+                    assert!((e3 - e(f.q[1])).amax() <= tol, "{x}: e(φ3) {e3:?} vs {:?}", e(f.q[1]));
                     fast_steps += 1;
                     assert!((f.q - slow.q).amax() < 1e-11, "{x}: q {:?} vs {:?}", f.q, slow.q);
                     assert!((f.dq - slow.dq).amax() < 1e-9 * slow.dq.amax().max(1.0), "{x}: q′");

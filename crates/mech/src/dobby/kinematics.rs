@@ -8,7 +8,7 @@
 use super::checks::{output_pressure_angle_deg, roller_pressure_angle_deg};
 use super::geometry::ModulatorGeometry;
 use crate::dyad::line_circle;
-use crate::planar::{Vec2, cross, curvature, e, perp};
+use crate::planar::{Vec2, cross, curvature, e, perp, rotate};
 use crate::{MechError, Result};
 use std::f64::consts::PI;
 
@@ -85,12 +85,6 @@ impl ArmAngles {
     pub(crate) fn new(g: &ModulatorGeometry) -> Self {
         Self { ab: e(g.alpha_rad()), ac: e(PI - g.theta_rad()) }
     }
-}
-
-/// `e(φ + β)` from `e(φ)` and `e(β)` (angle addition).
-#[inline]
-fn rotate(u: Vec2, by: Vec2) -> Vec2 {
-    Vec2::new(u.x * by.x - u.y * by.y, u.x * by.y + u.y * by.x)
 }
 
 /// B = A − l3·e(φ3 + α) and C = A + l3′·e(φ3 + π − θ) with their first two φ2-derivatives:
@@ -180,17 +174,17 @@ pub(crate) fn slot_from_phi6(
     ([phi3, d3, dd3], [s, ds, dds], w0 / s)
 }
 
-/// The state at φ2 from the slot angle φ3 and its derivatives (analysis); `e2 = e(φ2)`, computed
-/// once by the caller (the cam-loop step has it).
+/// The state at φ2 from the slot angle φ3 and its derivatives (analysis); `e2 = e(φ2)` and
+/// `e3 = e(φ3)` come from the caller (the input grid and the cam-loop step have them).
 pub(crate) fn state_from_phi3(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
     phi2: f64,
     e2: Vec2,
+    e3: Vec2,
     phi3: [f64; 3],
     phi6_ref: f64,
 ) -> Result<ModulatorState> {
-    let e3 = e(phi3[0]);
     let (s53, phi6) = slot_from_phi3(g, phi2, e2, phi3, e3, phi6_ref)?;
     let (b, c) = lever_points(g, arms, e2, e3, phi3);
     Ok(ModulatorState { phi2, phi3, s53, phi6, b, c })

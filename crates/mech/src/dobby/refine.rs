@@ -60,7 +60,14 @@ fn finite_or_neg_inf(v: f64) -> f64 {
 /// if the function is smooth there, i.e. falls off quadratically on both sides (the drop at
 /// 2·10⁻⁵ rad more than three times the drop at 10⁻⁵ rad; a kink gives twice). The value is then
 /// exact to rounding, since it errs by f″·(1e-9)²; at a kink the search goes on to 1e-13 rad.
+#[cfg(test)]
 pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
+    golden_max_from(f, (a, f(a)), (b, f(b)))
+}
+
+/// [`golden_max`] on the bracket `[a, b]` whose end values `f(a)`, `f(b)` are known (`(a, f(a))`
+/// and `(b, f(b))`: the grid's values, not evaluated again).
+pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)) -> Extreme {
     const GOLD: f64 = 0.381_966_011_250_105_2; // (3 − √5)/2
     const TOL: f64 = 2.5e-14;
     let mut best = Extreme { value: f64::NEG_INFINITY, at: a };
@@ -71,9 +78,9 @@ pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
         // Minimise the negated value; a value that could not be computed is the worst.
         -v
     };
-    let (mut lo, mut hi) = if a <= b { (a, b) } else { (b, a) };
-    keep(lo, finite_or_neg_inf(f(lo)));
-    keep(hi, finite_or_neg_inf(f(hi)));
+    let ((mut lo, flo), (mut hi, fhi)) = if a <= b { ((a, fa), (b, fb)) } else { ((b, fb), (a, fa)) };
+    keep(lo, finite_or_neg_inf(flo));
+    keep(hi, finite_or_neg_inf(fhi));
     // x: best interior point so far, w: second best, v: the previous w.
     let mut x = lo + GOLD * (hi - lo);
     let mut fx = keep(x, finite_or_neg_inf(f(x)));
@@ -195,9 +202,9 @@ pub(crate) fn refined_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64) -> E
         if better(&grid, &best) {
             best = grid;
         }
-        let (lo, hi) = (xs[k.saturating_sub(1)], xs[(k + 1).min(n - 1)]);
-        if hi > lo {
-            let e = golden_max(f, lo, hi);
+        let (lo, hi) = (k.saturating_sub(1), (k + 1).min(n - 1));
+        if xs[hi] > xs[lo] {
+            let e = golden_max_from(f, (xs[lo], vals[lo]), (xs[hi], vals[hi]));
             if better(&e, &best) {
                 best = e;
             }

@@ -4,12 +4,12 @@
 //! Everything is closed form: `S53·e(φ3) = l2·e(φ2) − l6·e(φ6)` gives φ3 and S53, then
 //! `B = A − l3·e(φ3 + α)` and `C = A + l3′·e(φ3 + π − θ)` (eqs. (2), (8), (9)).
 
-use super::analysis::{check_common, input_grid};
+use super::analysis::{check_common, grid_units, input_grid};
 use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fold_at, slot_deviation};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
 use super::law::{OutputLaw, OutputLawSpec, max_dwell_deg};
-use super::refine::{Revolution, check_grid, refined_max};
+use super::refine::{CHECK_STEP_DEG, Revolution, check_grid, refined_max};
 use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::{MechError, Result};
@@ -212,10 +212,12 @@ impl Synthesis {
             let g = &self.summary.geometry;
             let arms = ArmAngles::new(g);
             let cx = check_grid(0.0);
-            let (dxs, _) = input_grid(0.0, super::drawing::DRAW_STEP_DEG);
+            let (dxs, h) = input_grid(0.0, super::drawing::DRAW_STEP_DEG);
+            let units = grid_units(0.0, h, dxs.len());
             let draw: Vec<ModulatorState> = dxs[..dxs.len() - 1]
                 .iter()
-                .map(|&x| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x, e(x)))
+                .zip(&units)
+                .map(|(&x, &e2)| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x, e2))
                 .collect();
             let path =
                 |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> { draw.iter().map(f).collect() };
@@ -312,9 +314,8 @@ fn synthesize_in(
     let mut fine = Vec::with_capacity(cx.len());
     let mut pins = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
-    for &x in &cx {
+    for (&x, &e2) in cx.iter().zip(&grid_units(0.0, CHECK_STEP_DEG, cx.len())) {
         let o = out.eval(x);
-        let e2 = e(x);
         let s = state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], phi3_ref);
         phi3_ref = s.phi3[0];
         fine.push(s);
@@ -327,8 +328,7 @@ fn synthesize_in(
     rows.clear();
     states.reserve(xs.len());
     rows.reserve(xs.len());
-    for &x in &xs {
-        let e2 = e(x);
+    for (&x, &e2) in xs.iter().zip(&grid_units(0.0, step, xs.len())) {
         let s = law_state(g, &arms, &out, &cx, &refs, x, e2);
         rows.push(SynthesisRow::new(&s, g.l2_m * e2, w2));
         states.push(s);
