@@ -38,21 +38,29 @@ pub struct Warning {
 
 /// Pressure angle (deg, 0…90) at a roller: the angle between the cam normal (the line of the
 /// contact force) and the roller centre's velocity relative to the input crank, which is normal to
-/// the lever arm. `cos μ = |t̂ · û|` with `t̂` the cam tangent and `û` the arm direction. A
-/// stationary tangent (cusp) gives 90°.
+/// the lever arm. `cos μ = |t̂ · û|` with `t̂` the cam tangent and `û` the arm direction; below
+/// 45° computed as `μ = arcsin |t̂ × û|` (the arccosine loses digits near 0°, where `cos μ` is
+/// flat; the arcsine near 90°), so that μ is exact to rounding at every size. A stationary tangent
+/// (cusp) gives 90°.
 pub fn roller_pressure_angle_deg(tangent: Vec2, arm: Vec2) -> f64 {
     let (nt, na) = (tangent.norm(), arm.norm());
     let usable = nt > 1e-300 && na > 1e-300 && nt.is_finite() && na.is_finite();
     if !usable {
         return 90.0;
     }
-    (tangent.dot(&arm).abs() / (nt * na)).min(1.0).acos().to_degrees()
+    let n = nt * na;
+    let (c, s) = (tangent.dot(&arm).abs() / n, cross(tangent, arm).abs() / n);
+    if s < c { s.asin() } else { c.min(1.0).acos() }.to_degrees()
 }
 
 /// Pressure angle (deg, 0…90) at the output: the slot pushes slider 5 normal to the slot,
-/// direction `e⊥(φ3)`, while D moves along `e⊥(φ6)`: `μ6 = arccos |cos(φ3 − φ6)|`.
+/// direction `e⊥(φ3)`, while D moves along `e⊥(φ6)`: `μ6 = arccos |cos(φ3 − φ6)|`, the distance
+/// from `φ3 − φ6` to the nearest multiple of π, computed as that distance (no cosine and
+/// arccosine of it).
 pub fn output_pressure_angle_deg(phi3: f64, phi6: f64) -> f64 {
-    (phi3 - phi6).cos().abs().min(1.0).acos().to_degrees()
+    let d = phi3 - phi6;
+    let r = d - PI * crate::planar::round(d / PI);
+    r.abs().min(std::f64::consts::FRAC_PI_2).to_degrees()
 }
 
 /// The slot deviation `δ = φ3 − φ2` (rad, wrapped to (−π, π]) of a state.
@@ -311,6 +319,42 @@ mod tests {
             })
             .collect();
         assert!(winds_once_about_origin(&cam) && sweep(&cam, true, 1000).is_empty());
+    }
+
+    /// Independent route for the pressure angles: the arccosine forms they stand for, where those
+    /// are well conditioned (μ away from 0°: the arccosine's error there is ε/sin μ), and known
+    /// small angles, which the arccosine loses and these keep to rounding.
+    #[test]
+    fn pressure_angles_match_the_arccosine_forms() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        let acos_roller = |t: Vec2, u: Vec2| (t.dot(&u).abs() / (t.norm() * u.norm())).min(1.0).acos().to_degrees();
+        let acos_out = |a: f64, b: f64| (a - b).cos().abs().min(1.0).acos().to_degrees();
+        let angle = -20.0f64..20.0;
+        TestRunner::new(Config { cases: 2000, ..Config::default() })
+            .run(&(angle.clone(), angle, 1e-3f64..10.0, 1e-3f64..10.0), |(a, b, lt, lu)| {
+                let (t, u) = (lt * e(a), lu * e(b));
+                for (new, old) in [
+                    (roller_pressure_angle_deg(t, u), acos_roller(t, u)),
+                    (output_pressure_angle_deg(a, b), acos_out(a, b)),
+                ] {
+                    prop_assert!((0.0..=90.0).contains(&new));
+                    // The arccosine's own error: ε·|a − b|-sized rounding of the cosine over sin μ.
+                    let tol = 1e-13
+                        + (4.0 * f64::EPSILON * (1.0 + a.abs() + b.abs()) / new.to_radians().sin().max(1e-300))
+                            .to_degrees();
+                    prop_assert!((new - old).abs() <= tol, "{new} vs {old} (a = {a}, b = {b})");
+                }
+                Ok(())
+            })
+            .unwrap();
+        // Small angles: μ = 1e-9 rad exactly between a tangent and an arm, and between slot and crank.
+        let t = Vec2::new(1.0, 0.0);
+        let u = Vec2::new(1e-9f64.cos(), 1e-9f64.sin());
+        let mu = roller_pressure_angle_deg(t, u).to_radians();
+        assert!((mu - 1e-9).abs() < 1e-24, "{mu:e}");
+        assert!((output_pressure_angle_deg(1e-9, 0.0).to_radians() - 1e-9).abs() < 1e-24);
+        assert!((output_pressure_angle_deg(PI + 1e-9, -PI).to_radians() - 1e-9).abs() < 1e-15);
     }
 
     #[test]
