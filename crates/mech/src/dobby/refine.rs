@@ -67,6 +67,12 @@ pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
 
 /// [`golden_max`] on the bracket `[a, b]` whose end values `f(a)`, `f(b)` are known (`(a, f(a))`
 /// and `(b, f(b))`: the grid's values, not evaluated again).
+///
+/// A flat bracket ends the search early: when both ends and the first two probes (at 0.38 and
+/// about 0.62 of the bracket) have the same value to the bit, the function is taken as constant
+/// there (a dwell of the output law) and the left end returned. That is what the full search
+/// returns on a constant function (only a strictly larger value replaces the best point), where it
+/// spent ~50 evaluations closing in on one point of the plateau.
 pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)) -> Extreme {
     const GOLD: f64 = 0.381_966_011_250_105_2; // (3 − √5)/2
     const TOL: f64 = 2.5e-14;
@@ -88,7 +94,13 @@ pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, f
     // d: the last step, e: the step before it.
     let (mut d, mut e) = (0.0f64, 0.0f64);
     let (mut small, mut checked) = (0, false);
+    // Interior probes so far, while every value equals both ends'.
+    let level = (flo == fhi && flo.is_finite()).then_some(-flo);
+    let mut flat = usize::from(level == Some(fx));
     for _ in 0..200 {
+        if flat >= 2 {
+            break;
+        }
         let m = 0.5 * (lo + hi);
         if hi - lo <= 4.0 * TOL {
             break;
@@ -134,6 +146,7 @@ pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, f
         }
         let u = if d.abs() >= TOL { x + d } else { x + TOL.copysign(d) };
         let fu = keep(u, finite_or_neg_inf(f(u)));
+        flat = if flat > 0 && level == Some(fu) { flat + 1 } else { 0 };
         if fu <= fx {
             if u < x {
                 hi = x;
@@ -325,6 +338,20 @@ mod tests {
         let e = golden_max(&g, 1.234 - h, 1.234 + h);
         assert!((e.value - 47.0).abs() < 1e-13 && (e.at - 1.234_567).abs() < 1e-7, "{e:?}");
         assert!(calls.get() <= 16, "{} evaluations", calls.get());
+        let count = |v: f64| {
+            calls.set(calls.get() + 1);
+            v
+        };
+        // A constant bracket costs two evaluations and returns its left end, as the full search
+        // did.
+        calls.set(0);
+        let e = golden_max_from(&|_| count(5.0), (1.0, 5.0), (2.0, 5.0));
+        assert_eq!((e.value, e.at, calls.get()), (5.0, 1.0, 2));
+        // Ends that differ in the last bit: the full search, which finds the maximum at the end.
+        calls.set(0);
+        let e = golden_max_from(&|_| count(5.0), (1.0, 5.0), (2.0, 5.0 + 1e-15));
+        assert_eq!((e.value, e.at), (5.0 + 1e-15, 2.0));
+        assert!(calls.get() > 20, "{}", calls.get());
         // A kink in the same bracket is still located to 1e-12.
         let e = golden_max(&|x: f64| 1.0 - (x - 1.234_567_891_2).abs(), 1.234 - h, 1.234 + h);
         assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
