@@ -616,6 +616,7 @@ fn analyze_in(
             let (st, e2, e3) = loop_at(x)?;
             close3(&st, e2, e3, refs[Revolution::nearest(&cx, x)]).ok()
         }),
+        output: None,
     };
     let mut warnings = Vec::new();
     let theta_range = [dev[1].value.to_degrees().max(0.0), (180.0 + dev[0].value.to_degrees()).min(180.0)];

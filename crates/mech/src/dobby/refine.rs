@@ -256,6 +256,9 @@ pub(crate) struct Revolution<'a> {
     pub pins: Vec<Vec2>,
     /// The state at any input angle within the revolution (`None` where it cannot be solved).
     pub eval: Box<dyn Fn(f64) -> Option<ModulatorState> + 'a>,
+    /// φ6 and its first two derivatives at any input angle, where they come cheaper than the
+    /// whole state (synthesis: the output law itself); `None`: from [`Self::eval`].
+    pub output: Option<Box<dyn Fn(f64) -> [f64; 3] + 'a>>,
 }
 
 impl Revolution<'_> {
@@ -286,6 +289,22 @@ impl Revolution<'_> {
     /// Smallest value of `q` (as an [`Extreme`] whose value is the minimum).
     pub fn min(&self, q: &dyn Fn(&ModulatorState) -> f64) -> Extreme {
         let e = self.max(&|s| -q(s));
+        Extreme { value: -e.value, at: e.at }
+    }
+
+    /// [`Self::max`] of a quantity of φ6 and its derivatives alone, between grid points from
+    /// [`Self::output`] where given (the same values as the states' `phi6`).
+    pub fn max_output(&self, q: &dyn Fn([f64; 3]) -> f64) -> Extreme {
+        let vals: Vec<f64> = self.states.iter().map(|s| q(s.phi6)).collect();
+        match &self.output {
+            Some(out) => refined_max(&self.xs, &vals, &|x| q(out(x))),
+            None => refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(s.phi6))),
+        }
+    }
+
+    /// Smallest value of a quantity of φ6 ([`Self::max_output`]).
+    pub fn min_output(&self, q: &dyn Fn([f64; 3]) -> f64) -> Extreme {
+        let e = self.max_output(&|p| -q(p));
         Extreme { value: -e.value, at: e.at }
     }
 }

@@ -114,10 +114,10 @@ pub(crate) fn check_states(
     warnings: &mut Vec<Warning>,
 ) -> CamChecks {
     let states = &rev.states;
-    let w6max = rev.max(&|s| s.phi6[1] * w2);
-    let w6min = rev.min(&|s| s.phi6[1] * w2);
-    let e6max = rev.max(&|s| s.phi6[2] * w2 * w2);
-    let e6min = rev.min(&|s| s.phi6[2] * w2 * w2);
+    let w6max = rev.max_output(&|p| p[1] * w2);
+    let w6min = rev.min_output(&|p| p[1] * w2);
+    let e6max = rev.max_output(&|p| p[2] * w2 * w2);
+    let e6min = rev.min_output(&|p| p[2] * w2 * w2);
     let mo = rev.max(&|s| s.mu_out_deg());
     let mb = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.b[1], s.b[0] - a));
     let mc = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.c[1], s.c[0] - a));

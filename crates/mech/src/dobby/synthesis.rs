@@ -333,7 +333,18 @@ fn synthesize_in(
         rows.push(SynthesisRow::new(&s, g.l2_m * e2, w2));
         states.push(s);
     }
-    let rev = Revolution { xs: cx.clone(), states: fine, pins, eval: Box::new(|x| Some(at(x))) };
+    // The output rates' extremes need the law alone, not the state.
+    let law_output = |x: f64| {
+        let o = out.eval(x);
+        [o.phi6, o.d1, o.d2]
+    };
+    let rev = Revolution {
+        xs: cx.clone(),
+        states: fine,
+        pins,
+        eval: Box::new(|x| Some(at(x))),
+        output: Some(Box::new(law_output)),
+    };
 
     // Folds: B′·(B − A) ∝ sin(α + δ), C′·(C − A) ∝ sin(θ − δ) with δ = φ3 − φ2.
     let dev = deviation_range(&rev);
