@@ -976,7 +976,7 @@ async function initDobby() {
   const mk = (id, title, label, unit, step) => new Chart(side, { id, title, height: 150, x: { label: "input angle φ2", unit: "°", range: [0, 360], step: 30 }, y: { label, unit, step } });
   dobby.phi = mk("dobby-phi", "Output angle", "φ6", "°", 90);
   dobby.omega = mk("dobby-omega", "Output speed and acceleration at ω2 = 1 rad/s", "ω6, ε6", "rad/s, rad/s²");
-  dobby.mu = mk("dobby-mu", "Pressure angles", "μ", "°");
+  dobby.mu = mk("dobby-mu", "Pressure angles (limit dashed)", "μ", "°");
   Object.assign(loomkin.charts, { dobby_phi: dobby.phi, dobby_omega: dobby.omega, dobby_mu: dobby.mu });
   dobby.inputs = inputs; dobby.angle = angle; dobby.angleW = angleW;
   $("#dobby-dxf").addEventListener("click", () => exportDobby("dxf"));
@@ -1040,7 +1040,10 @@ async function synthesizeDobby() {
     const c = res.curves;
     dobby.phi.setSeries([{ label: "φ6", x: c.phi2_deg, y: c.phi6_deg }]);
     dobby.omega.setSeries([{ label: "ω6 (rad/s)", x: c.phi2_deg, y: c.omega6_rad_s }, { label: "ε6 (rad/s²)", x: c.phi2_deg, y: c.eps6_rad_s2 }]);
-    dobby.mu.setSeries([{ label: "roller B", x: c.phi2_deg, y: c.mu_b_deg }, { label: "roller C", x: c.phi2_deg, y: c.mu_c_deg }, { label: "output", x: c.phi2_deg, y: c.mu_out_deg }]);
+    // The limit as a dashed series across the turn (in the legend and inside the axis range).
+    const lim = res.pressure_limit_deg;
+    dobby.mu.setSeries([{ label: "roller B", x: c.phi2_deg, y: c.mu_b_deg }, { label: "roller C", x: c.phi2_deg, y: c.mu_c_deg }, { label: "output", x: c.phi2_deg, y: c.mu_out_deg },
+      { label: `limit ${num(lim)}°`, x: [0, 360], y: [lim, lim], dash: [6, 4], color: "#dc2626", width: 1.4, hover: false }]);
     const all = [...res.cam.wall_left, ...res.cam.wall_right, ...res.counter_cam.wall_left, ...res.counter_cam.wall_right, ...res.cam.centre, ...res.counter_cam.centre, ...res.poses.flatMap((p) => [p.a, p.b, p.c, p.d])];
     const xs = all.map((p) => p[0]), ys = all.map((p) => p[1]);
     const pad = 0.04;

@@ -102,6 +102,8 @@ pub struct DobbyResponse {
     pub curves: DobbyCurves,
     /// Joint positions at every input angle of `curves` (m).
     pub poses: Vec<MechanismPose>,
+    /// The pressure angle the checks warn above (deg), drawn as the limit line of the pressure plot.
+    pub pressure_limit_deg: f64,
 }
 
 /// Maps an error of the mechanisms crate to the request field it concerns: the library's own
@@ -125,9 +127,15 @@ fn mech_error(e: MechError) -> ApiError {
     }
 }
 
-fn synthesis(req: &DobbyRequest) -> Result<Synthesis, ApiError> {
+/// The options of a synthesis: the request's step and roller, the library's other defaults.
+fn options(req: &DobbyRequest) -> Result<SynthesisOptions, ApiError> {
     let step = Range::closed(0.25, 10.0, "deg").check("step_deg", req.step_deg)?;
     let roller = Range::closed(0.0, 0.2, "m").check("roller_m", req.roller_m)?;
+    Ok(SynthesisOptions { step_deg: step, roller_m: roller, ..SynthesisOptions::default() })
+}
+
+fn synthesis(req: &DobbyRequest) -> Result<Synthesis, ApiError> {
+    let opts = options(req)?;
     Range::closed(1.0, 6.0, "").check("law.cycles", f64::from(req.law.cycles))?;
     let rise = req.law.rise.spec().map_err(|e| ApiError::invalid("law.rise", e))?;
     let spec = OutputLawSpec {
@@ -136,13 +144,13 @@ fn synthesis(req: &DobbyRequest) -> Result<Synthesis, ApiError> {
         dwell_centre_deg: req.law.dwell_centre_deg,
         rise,
     };
-    let opts = SynthesisOptions { step_deg: step, roller_m: roller, ..SynthesisOptions::default() };
     synthesize(&req.geometry, &spec, &opts).map_err(mech_error)
 }
 
 /// Synthesises the cams and samples the mechanism.
 pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
     let s = synthesis(req)?;
+    let pressure_limit_deg = options(req)?.pressure_limit_deg;
     let col = |f: &dyn Fn(&loomkin_mech::SynthesisRow) -> f64| s.rows.iter().map(|r| finite(f(r))).collect::<Vec<_>>();
     let curves = DobbyCurves {
         phi2_deg: col(&|r| r.phi2_deg),
@@ -161,6 +169,7 @@ pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
         counter_cam: s.counter_cam,
         curves,
         poses,
+        pressure_limit_deg,
     })
 }
 

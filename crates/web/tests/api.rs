@@ -503,6 +503,14 @@ async fn dobby_default_and_synthesis() {
     assert_eq!(s, StatusCode::OK, "{r}");
     assert_eq!(r["poses"].as_array().unwrap().len(), 73);
     assert_eq!(r["curves"]["phi2_deg"].as_array().unwrap().len(), 73);
+    // The limit the checks used: a warning names a pressure angle only above it.
+    let limit = r["pressure_limit_deg"].as_f64().unwrap();
+    assert_eq!(limit, loomkin_mech::SynthesisOptions::default().pressure_limit_deg);
+    let summary = &r["summary"];
+    let checks = if summary["checks"].is_object() { &summary["checks"] } else { summary };
+    let worst = ["mu_b_max_deg", "mu_c_max_deg", "mu_out_max_deg"].map(|k| checks[k].as_f64().unwrap());
+    let warned = r["warnings"].as_array().unwrap().iter().any(|w| w["code"] == "pressure-angle");
+    assert_eq!(worst.iter().any(|&m| m > limit), warned, "{worst:?} against {limit}: {}", r["warnings"]);
     assert!(!r["cam"]["centre"].as_array().unwrap().is_empty());
     let mut bad = req.clone();
     bad["geometry"]["l6_m"] = json!(-1.0);
