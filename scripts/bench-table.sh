@@ -31,6 +31,10 @@ rows=(
   "picking, ODE (15.5 mm play)|loomkin-picking|picking|scenario_play|Ode|200|us"
   "dobby analysis, 3601 angles|loomkin-mech|dobby|analyze_ellipse_0_1deg|analyze_ellipse_0_1deg|500|us"
   "dobby synthesis with checks, 3601 angles|loomkin-mech|dobby|synthesize_default_0_1deg|synthesize_default_0_1deg|500|us"
+  # Reference rows: the same work into an earlier result's tables (`analyze_into`/`synthesize_into`,
+  # what the workbench and a sweep do), without the fresh allocation of ~1.6 MB per call.
+  "dobby analysis into an earlier result|loomkin-mech|dobby|analyze_ellipse_0_1deg_into|analyze_ellipse_0_1deg_into|500|us"
+  "dobby synthesis into an earlier result|loomkin-mech|dobby|synthesize_default_0_1deg_into|synthesize_default_0_1deg_into|500|us"
   "servo optimisation, peak torque, 7 points, 2 speeds|loomkin-servo|servo|optimize_peak|2|30|ms"
   "Pareto front of 10^6 points|loomkin-study|pareto|front_1m_two_objectives|front_1m_two_objectives|50|ms"
 )
