@@ -8,7 +8,7 @@ input), ``pressure_limit_deg`` (60). Lengths in m, angles in deg.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -24,6 +24,17 @@ def _wrap(r: Dict[str, Any]) -> Dict[str, Any]:
     return r
 
 
+def _cam_args(cam: Union[str, Sequence[Sequence[float]], None]) -> Tuple[Optional[str], Optional[str]]:
+    """The module's (cam_spec, cam_points_text) for ``cam``: a spec string, or an (N, 2) array of
+    points in m written as the text of a point file (``--cam-file``); None for the paper's cam."""
+    if isinstance(cam, str):
+        return cam, None
+    if cam is None:
+        return None, None
+    pts = np.asarray(cam, dtype=float)
+    return None, "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
+
+
 def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: float = 1.0,
             roller_m: Optional[float] = None, **geometry: Any) -> Dict[str, Any]:
     """``loomkin dobby analyze --json``: summary (checks: output speed and acceleration range,
@@ -31,12 +42,7 @@ def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: f
 
     ``cam``: None (the paper's elliptic cam), ``"ellipse:a=A,b=B"`` (semi-axes in m) or an (N, 2)
     array of the cam's points in m (a closed curve, as ``--cam-file``)."""
-    spec, text = None, None
-    if isinstance(cam, str):
-        spec = cam
-    elif cam is not None:
-        pts = np.asarray(cam, dtype=float)
-        text = "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
+    spec, text = _cam_args(cam)
     return _wrap(_m.dobby_analyze(cam_spec=spec, cam_points_text=text, step_deg=float(step_deg),
                                   roller_m=roller_m, **geometry))
 
@@ -71,11 +77,6 @@ def sweep(alpha_deg: Any, cam: Union[str, Sequence[Sequence[float]], None] = Non
     :func:`analyze`) and the synthesis of the law (keywords of :func:`synthesize`: dwell_deg,
     dwell_centre_deg, cycles, law, params, roller_m, step_deg, and the geometry l2_m … in m,
     speed_rpm, pressure_limit_deg in deg); an_ok / syn_ok and the error texts as lists."""
-    spec, text = None, None
-    if isinstance(cam, str):
-        spec = cam
-    elif cam is not None:
-        pts = np.asarray(cam, dtype=float)
-        text = "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
+    spec, text = _cam_args(cam)
     alphas = [float(a) for a in np.atleast_1d(np.asarray(alpha_deg, dtype=float))]
     return _wrap(_m.dobby_sweep(alphas, cam_spec=spec, cam_points_text=text, **kw))

@@ -45,15 +45,7 @@ impl Cycle {
     /// `points` samples over the cycle at `speed` as arrays angle_deg, time_s and s, v, a, j named
     /// with their SI units (`s_m`, `v_m_s`, … or `s_rad`, …), written straight into the arrays.
     fn sample_arrays<'py>(&self, py: Python<'py>, speed: ShaftSpeed, points: usize) -> PyResult<Bound<'py, PyDict>> {
-        let [pu, vu, au, ju] = self.inner.unit.key_units();
-        let names = [
-            "angle_deg".to_string(),
-            "time_s".into(),
-            format!("s_{pu}"),
-            format!("v_{vu}"),
-            format!("a_{au}"),
-            format!("j_{ju}"),
-        ];
+        let names = self.inner.unit.sample_keys();
         let inner = &self.inner;
         fill_columns(py, &names, points, |c| {
             let [th, t, s, v, a, j] = c else { return };

@@ -50,7 +50,6 @@ pub fn run(a: CycleArgs) -> Result<()> {
         Cost::default()
     };
     Budget::DEFAULT.check("points", a.points, cost)?;
-    let [pu, vu, au, ju] = cycle.unit.key_units();
     if a.format.csv || a.format.json {
         // Checked finite first (evaluating is cheap beside printing), so the streamed output
         // never stops half-way.
@@ -64,14 +63,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
         if a.format.json {
             output::json_streamed(&cycle.report_streamed(speed, a.points, || progress.inc(1)))?;
         } else {
-            let columns = [
-                "angle_deg".to_string(),
-                "time_s".into(),
-                format!("s_{pu}"),
-                format!("v_{vu}"),
-                format!("a_{au}"),
-                format!("j_{ju}"),
-            ];
+            let columns = cycle.unit.sample_keys();
             let rows = cycle
                 .samples(a.points, rpm)
                 .inspect(|_| progress.inc(1))

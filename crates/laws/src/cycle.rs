@@ -40,6 +40,21 @@ impl StrokeUnit {
             StrokeUnit::Deg => ["rad", "rad_s", "rad_s2", "rad_s3"],
         }
     }
+
+    /// The names of a sample's six values, as CSV headers, JSON keys and array names:
+    /// `angle_deg`, `time_s`, then s, v, a, j with their unit suffixes (`s_m`, `v_m_s`, … or
+    /// `s_rad`, …).
+    pub fn sample_keys(self) -> [String; 6] {
+        let [pu, vu, au, ju] = self.key_units();
+        [
+            "angle_deg".into(),
+            "time_s".into(),
+            format!("s_{pu}"),
+            format!("v_{vu}"),
+            format!("a_{au}"),
+            format!("j_{ju}"),
+        ]
+    }
 }
 
 /// What a cycle segment does.

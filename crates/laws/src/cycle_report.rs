@@ -158,19 +158,16 @@ impl Serialize for SegmentPeaks {
     }
 }
 
-/// One sample with unit-named keys.
-struct UnitPoint(CyclePoint, StrokeUnit);
+/// One sample with its keys ([`StrokeUnit::sample_keys`], made once per report).
+struct UnitPoint<'k>(CyclePoint, &'k [String; 6]);
 
-impl Serialize for UnitPoint {
+impl Serialize for UnitPoint<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let [pu, vu, au, ju] = self.1.key_units();
-        let (p, mut m) = (&self.0, s.serialize_map(Some(6))?);
-        m.serialize_entry("angle_deg", &p.angle_deg)?;
-        m.serialize_entry("time_s", &p.time_s)?;
-        m.serialize_entry(&format!("s_{pu}"), &p.kin.s)?;
-        m.serialize_entry(&format!("v_{vu}"), &p.kin.v)?;
-        m.serialize_entry(&format!("a_{au}"), &p.kin.a)?;
-        m.serialize_entry(&format!("j_{ju}"), &p.kin.j)?;
+        let (p, keys) = (&self.0, self.1);
+        let mut m = s.serialize_map(Some(6))?;
+        for (k, v) in keys.iter().zip([p.angle_deg, p.time_s, p.kin.s, p.kin.v, p.kin.a, p.kin.j]) {
+            m.serialize_entry(k, &v)?;
+        }
         m.end()
     }
 }
@@ -193,14 +190,15 @@ fn serialize_report<S: Serializer>(
     m.serialize_entry("cycle_time_s", &r.cycle_time_s)?;
     m.serialize_entry("unit", r.unit.si_units()[0])?;
     m.serialize_entry("segments", &r.segments)?;
-    m.serialize_entry("samples", &Points(std::cell::RefCell::new(Some(points.map(|p| UnitPoint(p, r.unit))))))?;
+    let keys = r.unit.sample_keys();
+    m.serialize_entry("samples", &Points(std::cell::RefCell::new(Some(points.map(|p| UnitPoint(p, &keys))))))?;
     m.end()
 }
 
 /// Samples serialised as an array as they are made (once).
 struct Points<I>(std::cell::RefCell<Option<I>>);
 
-impl<I: Iterator<Item = UnitPoint>> Serialize for Points<I> {
+impl<'k, I: Iterator<Item = UnitPoint<'k>>> Serialize for Points<I> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_seq(self.0.borrow_mut().take().into_iter().flatten())
     }

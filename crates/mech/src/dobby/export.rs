@@ -1,6 +1,7 @@
 //! The rotary-dobby modulator's cams for a workshop: both cams as DXF polylines and their point
 //! table, the same for `loomkin dobby synthesize --dxf/--points-csv` and the workbench's buttons.
 
+use super::report::CamProfile;
 use super::synthesis::Synthesis;
 use crate::MechError;
 use loomkin_io::dxf::DxfShape;
@@ -36,24 +37,15 @@ pub fn synthesis_points_table(s: &Synthesis) -> Result<Table, IoError> {
         "c_right_x_m",
         "c_right_y_m",
     ]);
-    let (b, c) = (&s.cam, &s.counter_cam);
-    for i in 0..b.centre.len() {
-        let w = |v: &Vec<[f64; 2]>, k: usize| v.get(i).map(|p| p[k]).unwrap_or(0.0);
-        t.push(vec![
-            s.rows[i].phi2_deg,
-            b.centre[i][0],
-            b.centre[i][1],
-            w(&b.wall_left, 0),
-            w(&b.wall_left, 1),
-            w(&b.wall_right, 0),
-            w(&b.wall_right, 1),
-            c.centre[i][0],
-            c.centre[i][1],
-            w(&c.wall_left, 0),
-            w(&c.wall_left, 1),
-            w(&c.wall_right, 0),
-            w(&c.wall_right, 1),
-        ])?;
+    for i in 0..s.cam.centre.len() {
+        // Centre and walls of one cam at row i (a wall absent without a roller: 0).
+        let cam = |p: &CamProfile| {
+            let wall = |v: &[[f64; 2]]| v.get(i).copied().unwrap_or([0.0; 2]);
+            [p.centre[i], wall(&p.wall_left), wall(&p.wall_right)]
+        };
+        let mut row = vec![s.rows[i].phi2_deg];
+        row.extend([cam(&s.cam), cam(&s.counter_cam)].iter().flatten().flatten());
+        t.push(row)?;
     }
     Ok(t)
 }
