@@ -33,6 +33,17 @@ fn sample_grid_10m(bencher: divan::Bencher, name: &str) {
     });
 }
 
+/// Tables of 10⁵ to 3·10⁶ points (3.2 to 96 MB): where the output leaves the caches and
+/// `sample_into` switches to non-temporal stores (at 4 MiB, 131 072 points).
+#[divan::bench(args = [100_000, 300_000, 1_000_000, 3_000_000], sample_count = 30)]
+fn sample_grid_sizes(bencher: divan::Bencher, n: usize) {
+    let law = LawSpec::Cycloidal.build().unwrap();
+    let mut out = vec![Kinematics::default(); n];
+    bencher.counter(divan::counter::ItemsCount::new(n)).bench_local(|| {
+        law.sample_into(divan::black_box(&mut out));
+    });
+}
+
 /// 10 000 pointwise evaluations through `Law::eval`.
 #[divan::bench(args = LAWS)]
 fn eval_pointwise_10k(bencher: divan::Bencher, name: &str) {

@@ -6,7 +6,11 @@ use serde::Serialize;
 ///
 /// For a normalised law these are dimensionless: `s` is the fraction of the stroke,
 /// `v = ds/dx`, `a = d²s/dx²`, `j = d³s/dx³`, with `x` the fraction of the motion angle.
+///
+/// The layout is `repr(C)`: four `f64` in the order s, v, a, j (the large-table sampler writes
+/// records in that order).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[repr(C)]
 pub struct Kinematics {
     /// Displacement s.
     pub s: f64,

@@ -246,6 +246,8 @@ impl Law {
             return;
         }
         let h = 1.0 / (n - 1) as f64;
+        // Tables far larger than the caches bypass them (non-temporal stores; same values).
+        let nontemporal = crate::nontemporal::worth_it(out);
         let mut i = 0;
         for (si, seg) in self.segments.iter().enumerate() {
             let last = si + 1 == self.segments.len();
@@ -261,9 +263,17 @@ impl Law {
                 }
             }
             if end > i {
-                seg.eval_run(i as f64 * h - seg.x0(), h, &mut out[i..end]);
+                let t0 = i as f64 * h - seg.x0();
+                if nontemporal {
+                    seg.eval_run_nontemporal(t0, h, &mut out[i..end]);
+                } else {
+                    seg.eval_run(t0, h, &mut out[i..end]);
+                }
             }
             i = end;
+        }
+        if nontemporal {
+            crate::nontemporal::fence();
         }
         // Make the last point land exactly on x = 1.
         out[n - 1] = self.eval(1.0);

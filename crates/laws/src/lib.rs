@@ -30,6 +30,7 @@ mod extrema;
 mod kinematics;
 mod law;
 mod metrics;
+mod nontemporal;
 mod polynomial;
 mod quadrature;
 mod report;

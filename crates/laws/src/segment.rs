@@ -250,6 +250,23 @@ impl Segment {
         self.eval_run_from(t0, h, 0, out);
     }
 
+    /// [`Segment::eval_run`] written with non-temporal stores where the target has them (for
+    /// tables far larger than the caches; see `nontemporal`): the same values, bit for bit. The caller
+    /// calls `nontemporal::fence` after the table's last run.
+    pub(crate) fn eval_run_nontemporal(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
+        let c = DerivCoeffs::new(&self.p);
+        match (self.deg, self.sine.is_some()) {
+            (0 | 1, false) => self.run_lanes::<1, false, true>(&c, t0, h, 0, out),
+            (0 | 1, true) => self.run_lanes::<1, true, true>(&c, t0, h, 0, out),
+            (2 | 3, false) => self.run_lanes::<3, false, true>(&c, t0, h, 0, out),
+            (2 | 3, true) => self.run_lanes::<3, true, true>(&c, t0, h, 0, out),
+            (4 | 5, false) => self.run_lanes::<5, false, true>(&c, t0, h, 0, out),
+            (4 | 5, true) => self.run_lanes::<5, true, true>(&c, t0, h, 0, out),
+            (_, false) => self.run_lanes::<7, false, true>(&c, t0, h, 0, out),
+            (_, true) => self.run_lanes::<7, true, true>(&c, t0, h, 0, out),
+        }
+    }
+
     /// Points `first, first + 1, …` of the run `t = t0 + i·h` into `out`: a piece of a longer
     /// run, bit-identical to the same points of [`Segment::eval_run`] over the whole run as long
     /// as `first` is a multiple of [`RUN_CHUNK`] (the recurrence is re-seeded at the same points).
@@ -267,16 +284,17 @@ impl Segment {
     #[inline(always)]
     fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
         match self.sine {
-            None => self.run_lanes::<D, false>(c, t0, h, first, out),
-            Some(_) => self.run_lanes::<D, true>(c, t0, h, first, out),
+            None => self.run_lanes::<D, false, false>(c, t0, h, first, out),
+            Some(_) => self.run_lanes::<D, true, false>(c, t0, h, first, out),
         }
     }
 
     /// The run in groups of four points held lane by lane (`[f64; 4]` per quantity), so that each
     /// step is one operation on four independent values, which the compiler packs into vector
     /// instructions; the points are the same sums as [`Segment::eval_local`]'s, lane by lane.
+    /// `NONTEMPORAL` writes the groups with non-temporal stores (`nontemporal::put4`).
     #[inline(always)]
-    fn run_lanes<const D: usize, const SINE: bool>(
+    fn run_lanes<const D: usize, const SINE: bool, const NONTEMPORAL: bool>(
         &self,
         c: &DerivCoeffs,
         t0: f64,
@@ -322,8 +340,14 @@ impl Segment {
                         sin[l] = ns;
                     }
                 }
+                if NONTEMPORAL {
+                    crate::nontemporal::put4(quad, s, v, a, j);
+                } else {
+                    for l in 0..4 {
+                        quad[l] = Kinematics { s: s[l], v: v[l], a: a[l], j: j[l] };
+                    }
+                }
                 for l in 0..4 {
-                    quad[l] = Kinematics { s: s[l], v: v[l], a: a[l], j: j[l] };
                     idx[l] += 4.0;
                 }
             }
