@@ -195,8 +195,7 @@ impl Analysis {
     /// for a roller of radius `roller_m` > 0, built as the counter-cam Γ′ is.
     pub fn cam_profile(&self, roller_m: f64) -> CamProfile {
         let n = self.states.len().saturating_sub(1);
-        let path: Vec<(Vec2, Vec2)> = self.states[..n].iter().map(|s| (s.b[0], s.b[1])).collect();
-        CamProfile::from_path(&path, roller_m)
+        CamProfile::from_points(self.states[..n].iter().map(|s| (s.b[0], s.b[1])), roller_m)
     }
 }
 
@@ -372,10 +371,16 @@ pub fn assemble(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> Result<[f64; 2]>
             for _ in 0..80 {
                 let mid = 0.5 * (lo + hi);
                 let fm = f(mid);
+                let before = (lo, hi);
                 if fm.signum() == flo.signum() {
                     (lo, flo) = (mid, fm);
                 } else {
                     hi = mid;
+                }
+                // Nothing moved (the ends are neighbouring floats): every further halving would
+                // repeat this one.
+                if (lo.to_bits(), hi.to_bits()) == (before.0.to_bits(), before.1.to_bits()) {
+                    break;
                 }
             }
             let p = 0.5 * (lo + hi);
@@ -418,19 +423,26 @@ const ANCHOR_DEG: f64 = 5.0;
 /// so two grids whose steps are in a whole ratio (0.1° and 0.05°) give the same bits at the same
 /// angle.
 pub(crate) fn grid_units(start_deg: f64, h_deg: f64, len: usize) -> Vec<Vec2> {
+    let mut out = Vec::with_capacity(len);
+    out.extend(grid_units_iter(start_deg, h_deg, len));
+    out
+}
+
+/// The points of [`grid_units`] one by one, without their table.
+pub(crate) fn grid_units_iter(start_deg: f64, h_deg: f64, len: usize) -> impl Iterator<Item = Vec2> {
     let k = crate::planar::round(ANCHOR_DEG / h_deg).clamp(1.0, len.max(1) as f64) as usize;
     let offsets: Vec<Vec2> = (0..k).map(|j| e((j as f64 * h_deg).to_radians())).collect();
-    let mut out = Vec::with_capacity(len);
-    let mut i = 0;
-    while i < len {
-        let anchor = e((start_deg + i as f64 * h_deg).to_radians());
-        out.push(anchor);
-        for off in &offsets[1..k.min(len - i)] {
-            out.push(crate::planar::rotate(anchor, *off));
-        }
-        i += k;
-    }
-    out
+    // (the current anchor, the offset index of the next point)
+    (0..len).scan((Vec2::zeros(), 0usize), move |(anchor, j), i| {
+        let u = if *j == 0 {
+            *anchor = e((start_deg + i as f64 * h_deg).to_radians());
+            *anchor
+        } else {
+            crate::planar::rotate(*anchor, offsets[*j])
+        };
+        *j = if *j + 1 == k { 0 } else { *j + 1 };
+        Some(u)
+    })
 }
 
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
@@ -487,9 +499,11 @@ fn analyze_in(
         other => other,
     };
     let p0 = sys.solve_position(cx[0], SVector::<f64, 2>::new(q0[0], q0[1]), newton).map_err(fail)?;
-    let mut traced = vec![sys.rates(cx[0], p0.q).map_err(fail)?];
+    let mut traced = Vec::with_capacity(cx.len());
+    traced.push(sys.rates(cx[0], p0.q).map_err(fail)?);
     // e(φ3) of each traced state, which loop (3) and the checks reuse with e(φ2) of the grid.
-    let mut traced_e3 = vec![e(traced[0].q[1])];
+    let mut traced_e3 = Vec::with_capacity(cx.len());
+    traced_e3.push(e(traced[0].q[1]));
     let fast = CamLoop::new(g, cam, newton.residual_tol);
     // One continuation step to input x, `ea = e(x)`: the scalar form where it applies, the general
     // solver otherwise; with e(φ3) of the new state.
@@ -595,8 +609,7 @@ fn analyze_in(
     rows.clear();
     states.reserve(xs.len());
     rows.reserve(xs.len());
-    let xs_e2 = grid_units(opts.start_deg, step, xs.len());
-    for (&x, &e2) in xs.iter().zip(&xs_e2) {
+    for (&x, e2) in xs.iter().zip(grid_units_iter(opts.start_deg, step, xs.len())) {
         let j = Revolution::nearest(&cx, x);
         // A row on a point of the check grid is its traced state.
         let (s, p, e2) = if x.to_bits() == cx[j].to_bits() {
@@ -626,8 +639,8 @@ fn analyze_in(
         Some(r) => undercut(&checks, r, &mut warnings),
         None => (false, false),
     };
-    let path: Vec<(Vec2, Vec2)> = states[..states.len() - 1].iter().map(|s| (s.c[0], s.c[1])).collect();
-    let counter_cam = CamProfile::from_path(&path, opts.roller_m.unwrap_or(0.0));
+    let path = states[..states.len() - 1].iter().map(|s| (s.c[0], s.c[1]));
+    let counter_cam = CamProfile::from_points(path, opts.roller_m.unwrap_or(0.0));
     let summary = AnalysisSummary {
         cam: cam.label().to_string(),
         geometry: *g,

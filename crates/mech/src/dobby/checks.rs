@@ -194,13 +194,18 @@ fn sweep(points: &[Vec2], closed: bool, limit: usize) -> Vec<Crossing> {
 /// The roller-centre curves of a modulator go round O (cam Γ and Γ′ surround the crank axis), so
 /// this answers for them in one pass; anything else is left to the sweep.
 pub(crate) fn winds_once_about_origin(points: &[Vec2]) -> bool {
-    let n = points.len();
+    winds_once_about(points.len(), |i| points[i])
+}
+
+/// [`winds_once_about_origin`] of the closed polyline `point(0..n)`.
+pub(crate) fn winds_once_about(n: usize, point: impl Fn(usize) -> Vec2) -> bool {
     if n < 3 {
         return false;
     }
     let (mut sign, mut wraps) = (0.0f64, 0usize);
+    let mut p = point(0);
     for i in 0..n {
-        let (p, q) = (points[i], points[(i + 1) % n]);
+        let q = point(if i + 1 == n { 0 } else { i + 1 });
         let c = cross(p, q);
         let margin = 1e-12 * (p.norm() * q.norm());
         if c.abs().partial_cmp(&margin) != Some(std::cmp::Ordering::Greater) {
@@ -216,6 +221,7 @@ pub(crate) fn winds_once_about_origin(points: &[Vec2]) -> bool {
         if (sign > 0.0 && upper_p && !upper_q) || (sign < 0.0 && !upper_p && upper_q) {
             wraps += 1;
         }
+        p = q;
     }
     wraps == 1
 }

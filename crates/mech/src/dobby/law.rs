@@ -89,7 +89,7 @@ impl OutputLaw {
     /// `φ6 = centre + kP + P·s(x)` (and `s = 0` inside the dwell), `dφ6/dφ2 = P·v(x)/(P − dwell)`, …
     pub fn eval(&self, phi2_rad: f64) -> OutputState {
         let u = phi2_rad - self.start;
-        let k = (u / self.period).floor();
+        let k = crate::planar::floor(u / self.period);
         let w = u - k * self.period;
         let base = self.centre + k * self.period;
         if w < self.dwell || !w.is_finite() {

@@ -1,7 +1,7 @@
 //! Checks over a traced revolution: extremes of rates, pressure angles, curvature, closure,
 //! self-intersection, undercut; shared by analysis and synthesis.
 
-use super::checks::{Warning, WarningCode, roller_pressure_angle_deg, self_intersections};
+use super::checks::{Crossing, Warning, WarningCode, roller_pressure_angle_deg, self_intersections, winds_once_about};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::ModulatorState;
 use super::refine::{Extreme, Revolution};
@@ -70,23 +70,21 @@ pub struct CamProfile {
 }
 
 impl CamProfile {
-    /// The profile of a path `(point, tangent)` for roller radius `r_m` (0 gives empty walls).
-    pub(crate) fn from_path(path: &[(Vec2, Vec2)], r_m: f64) -> Self {
+    /// The profile of a path `(point, tangent)` for roller radius `r_m` (0 gives empty walls), its
+    /// points taken as they come (no table of them first).
+    pub(crate) fn from_points(path: impl ExactSizeIterator<Item = (Vec2, Vec2)>, r_m: f64) -> Self {
         let walls = if r_m > 0.0 { path.len() } else { 0 };
         let mut out = CamProfile {
             centre: Vec::with_capacity(path.len()),
             wall_left: Vec::with_capacity(walls),
             wall_right: Vec::with_capacity(walls),
         };
-        let mut last_n = Vec2::new(0.0, 1.0);
+        let mut normals = WallNormals::default();
         for (p, t) in path {
-            let n = t.norm();
-            if n > 1e-12 {
-                last_n = perp(*t) / n;
-            }
+            let n = normals.next(t);
             out.centre.push([p.x, p.y]);
             if r_m > 0.0 {
-                let (l, r) = (p + r_m * last_n, p - r_m * last_n);
+                let (l, r) = (p + r_m * n, p - r_m * n);
                 out.wall_left.push([l.x, l.y]);
                 out.wall_right.push([r.x, r.y]);
             }
@@ -95,13 +93,42 @@ impl CamProfile {
     }
 }
 
-fn to_vec2(p: &[[f64; 2]]) -> Vec<Vec2> {
-    p.iter().map(|q| Vec2::new(q[0], q[1])).collect()
+/// The unit normals of the groove walls along a path: the left normal `perp(t)/|t|` of each tangent
+/// `t`, the last one kept where the tangent (nearly) vanishes.
+struct WallNormals(Vec2);
+
+impl Default for WallNormals {
+    fn default() -> Self {
+        Self(Vec2::new(0.0, 1.0))
+    }
 }
 
-/// Self-crossings of a closed polyline given as `[x, y]` pairs.
-pub(crate) fn crossings(p: &[[f64; 2]]) -> usize {
-    self_intersections(&to_vec2(p), true, 1000).len()
+impl WallNormals {
+    fn next(&mut self, t: Vec2) -> Vec2 {
+        let n = t.norm();
+        if n > 1e-12 {
+            self.0 = perp(t) / n;
+        }
+        self.0
+    }
+}
+
+/// Self-crossings of both groove walls of the closed path `(point, tangent)` for roller radius
+/// `r_m` (0: no walls, none), as [`CamProfile::from_points`] would draw them and
+/// [`self_intersections`] count them; each wall is formed in one table of points in turn.
+pub(crate) fn wall_crossings(path: &[(Vec2, Vec2)], r_m: f64) -> usize {
+    if r_m <= 0.0 {
+        return 0;
+    }
+    let mut wall = Vec::with_capacity(path.len());
+    let mut count = 0;
+    for side in [1.0, -1.0] {
+        let mut normals = WallNormals::default();
+        wall.clear();
+        wall.extend(path.iter().map(|&(p, t)| p + side * r_m * normals.next(t)));
+        count += self_intersections(&wall, true, 1000).len();
+    }
+    count
 }
 
 /// Runs every check over one revolution: each extreme is refined between the points of the check
@@ -129,12 +156,16 @@ pub(crate) fn check_states(
     let (first, last) = (states[0], states[states.len() - 1]);
     let rho = |k: &Extreme| (k.value.is_finite() && k.value > 0.0).then(|| 1.0 / k.value);
     let (rho_b, rho_c) = (rho(&kb), rho(&kc));
-    let pts = |f: &dyn Fn(&ModulatorState) -> Vec2| -> Vec<Vec2> {
-        states[..states.len() - 1].iter().map(f).collect::<Vec<_>>()
+    // The roller-centre curves on the check grid (the last state repeats the first).
+    let n = states.len() - 1;
+    let gather = |f: &dyn Fn(&ModulatorState) -> Vec2| -> Vec<Crossing> {
+        if winds_once_about(n, |i| f(&states[i])) {
+            return Vec::new();
+        }
+        let points: Vec<Vec2> = states[..n].iter().map(f).collect();
+        self_intersections(&points, true, 1000)
     };
-    let (pb, pc) = (pts(&|s| s.b[0]), pts(&|s| s.c[0]));
-    let xb = self_intersections(&pb, true, 1000);
-    let xc = self_intersections(&pc, true, 1000);
+    let (xb, xc) = (gather(&|s| s.b[0]), gather(&|s| s.c[0]));
     for (name, peak) in
         [("the output (slot on crank 6)", mo), ("roller B on cam Γ", mb), ("roller C on counter-cam Γ′", mc)]
     {

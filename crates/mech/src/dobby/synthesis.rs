@@ -4,13 +4,13 @@
 //! Everything is closed form: `S53·e(φ3) = l2·e(φ2) − l6·e(φ6)` gives φ3 and S53, then
 //! `B = A − l3·e(φ3 + α)` and `C = A + l3′·e(φ3 + π − θ)` (eqs. (2), (8), (9)).
 
-use super::analysis::{check_common, grid_units, input_grid};
+use super::analysis::{check_common, grid_units, grid_units_iter, input_grid};
 use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fold_at, slot_deviation};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
 use super::law::{OutputLaw, OutputLawSpec, max_dwell_deg};
 use super::refine::{CHECK_STEP_DEG, Revolution, check_grid, refined_max};
-use super::report::{CamChecks, CamProfile, check_states, crossings, undercut};
+use super::report::{CamChecks, CamProfile, check_states, undercut, wall_crossings};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::{MechError, Result};
 use serde::Serialize;
@@ -219,12 +219,10 @@ impl Synthesis {
                 .zip(&units)
                 .map(|(&x, &e2)| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x, e2))
                 .collect();
-            let path =
-                |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> { draw.iter().map(f).collect() };
             let r = self.summary.roller_m;
             [
-                CamProfile::from_path(&path(&|s| (s.b[0], s.b[1])), r),
-                CamProfile::from_path(&path(&|s| (s.c[0], s.c[1])), r),
+                CamProfile::from_points(draw.iter().map(|s| (s.b[0], s.b[1])), r),
+                CamProfile::from_points(draw.iter().map(|s| (s.c[0], s.c[1])), r),
             ]
         })
     }
@@ -314,7 +312,7 @@ fn synthesize_in(
     let mut fine = Vec::with_capacity(cx.len());
     let mut pins = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
-    for (&x, &e2) in cx.iter().zip(&grid_units(0.0, CHECK_STEP_DEG, cx.len())) {
+    for (&x, e2) in cx.iter().zip(grid_units_iter(0.0, CHECK_STEP_DEG, cx.len())) {
         let o = out.eval(x);
         let s = state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], phi3_ref);
         phi3_ref = s.phi3[0];
@@ -328,7 +326,7 @@ fn synthesize_in(
     rows.clear();
     states.reserve(xs.len());
     rows.reserve(xs.len());
-    for (&x, &e2) in xs.iter().zip(&grid_units(0.0, step, xs.len())) {
+    for (&x, e2) in xs.iter().zip(grid_units_iter(0.0, step, xs.len())) {
         let s = law_state(g, &arms, &out, &cx, &refs, x, e2);
         rows.push(SynthesisRow::new(&s, g.l2_m * e2, w2));
         states.push(s);
@@ -375,19 +373,15 @@ fn synthesize_in(
     counter_cam_fold(g, &rev, dev, theta_range, &mut warnings);
     let checks = check_states(g, &rev, w2, opts.pressure_limit_deg, &mut warnings);
     let (ub, uc) = undercut(&checks, opts.roller_m, &mut warnings);
-    let path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
-        states[..states.len() - 1].iter().map(f).collect()
-    };
-    let cam = CamProfile::from_path(&path(&|s| (s.b[0], s.b[1])), opts.roller_m);
-    let counter_cam = CamProfile::from_path(&path(&|s| (s.c[0], s.c[1])), opts.roller_m);
+    let n = states.len() - 1;
+    let cam = CamProfile::from_points(states[..n].iter().map(|s| (s.b[0], s.b[1])), opts.roller_m);
+    let counter_cam = CamProfile::from_points(states[..n].iter().map(|s| (s.c[0], s.c[1])), opts.roller_m);
     // Wall crossings are counted on the check grid, independent of the output step.
     let fine_path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
         rev.states[..rev.states.len() - 1].iter().map(f).collect()
     };
-    let fine_cam = CamProfile::from_path(&fine_path(&|s| (s.b[0], s.b[1])), opts.roller_m);
-    let fine_counter = CamProfile::from_path(&fine_path(&|s| (s.c[0], s.c[1])), opts.roller_m);
-    let wb = crossings(&fine_cam.wall_left) + crossings(&fine_cam.wall_right);
-    let wc = crossings(&fine_counter.wall_left) + crossings(&fine_counter.wall_right);
+    let wb = wall_crossings(&fine_path(&|s| (s.b[0], s.b[1])), opts.roller_m);
+    let wc = wall_crossings(&fine_path(&|s| (s.c[0], s.c[1])), opts.roller_m);
     for (name, n) in [("cam Γ", wb), ("counter-cam Γ′", wc)] {
         if n > 0 {
             warnings.push(Warning {
