@@ -6,7 +6,8 @@
 #
 # Figures are divan medians on this machine as it is: note the load average printed at the top and
 # run on an idle machine for figures to quote. The drag row runs the loopback example
-# (`drag_under_load`, 200 drags under eight heavy clients) and reads its p99.
+# (`drag_under_load`, 200 drags under eight heavy clients) and reads its p99. The Monte-Carlo row
+# runs the release CLI on examples/pick-montecarlo.toml with 10^6 draws on one thread (wall time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
@@ -90,6 +91,23 @@ for r in "${rows[@]}"; do
   fi
   printf '%-52s %12s %12s %12s  %s\n' "$work" "$(fmt "$fig" "$unit")" "$(fmt "$fast" "$unit")" "$goal_txt" "$met"
 done
+
+if wanted "picking Monte-Carlo montecarlo"; then
+  study="$(mktemp)"
+  sed 's/^draws = .*/draws = 1000000/' examples/pick-montecarlo.toml >"$study"
+  cargo build -q --release -p loomkin-cli 2>/dev/null || true
+  bin="$(cargo metadata -q --format-version 1 --no-deps 2>/dev/null |
+    sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')/release/loomkin"
+  start=$(date +%s.%N)
+  if RAYON_NUM_THREADS=1 "$bin" pick montecarlo "$study" --json >/dev/null 2>&1; then
+    s=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+    met=$(awk -v f="$s" 'BEGIN { print (f < 10) ? "yes" : "no" }')
+    printf '%-52s %12s %12s %12s  %s\n' "picking Monte-Carlo, 10^6 draws, closed form, 1 core" "$s s" "-" "< 10 s" "$met"
+  else
+    printf '%-52s %12s %12s %12s  %s\n' "picking Monte-Carlo, 10^6 draws, closed form, 1 core" "n/a" "-" "< 10 s" "not measured"
+  fi
+  rm -f "$study"
+fi
 
 if wanted "workbench drag update p99 web"; then
   line="$(cargo run -q --release -p loomkin-web --example drag_under_load -- 200 2>/dev/null | grep 'p99' || true)"

@@ -105,13 +105,16 @@ fn study_err(e: loomkin_study::StudyError) -> PickError {
     PickError::Study { field: e.field().unwrap_or("study").to_string(), reason: e.to_string() }
 }
 
-/// Wall seconds per draw on the reference machine (2 cores, both busy with other builds: load
-/// average 15), measured end to end with the release binary (`loomkin pick montecarlo
-/// examples/pick-montecarlo.toml`, 2000 draws, `/usr/bin/time`): 0.20 s by the closed form,
-/// 0.81 s with `method = "ode"`. Taken as measured under that load, without a further margin.
-pub const DRAW_S_CLOSED: f64 = 0.20 / 2000.0;
-/// See [`DRAW_S_CLOSED`]: the draw integrated numerically.
-pub const DRAW_S_ODE: f64 = 0.81 / 2000.0;
+/// Seconds per draw by the closed form: 9.5 µs measured on the reference machine (2 cores, load
+/// average 3) as the slope of `loomkin pick montecarlo examples/pick-montecarlo.toml` with
+/// `draws = 100000` on one thread (`RAYON_NUM_THREADS=1`, `/usr/bin/time`: 0.93–0.97 s; one draw
+/// alone: 0.00 s), doubled for a machine shared with one other job, as the other per-item costs
+/// (`loomkin_servo::EVAL_S_PER_POINT_SPEED`). 10⁶ draws are estimated at 19 s, inside the budget;
+/// larger studies shard (`--shard I/N`).
+pub const DRAW_S_CLOSED: f64 = 2.0 * 9.5e-6;
+/// See [`DRAW_S_CLOSED`]: the draw integrated numerically, 34 µs of CPU per draw measured the same
+/// way (`method = "ode"`, `draws = 10000`: 0.34 s user), doubled.
+pub const DRAW_S_ODE: f64 = 2.0 * 34e-6;
 
 impl MonteCarlo {
     /// What running the draws `items` costs, estimated before they run: each draw's time
