@@ -158,16 +158,35 @@ impl PaperConstants {
         }
     }
 
-    /// States at `t_end·i/n`, i = 0…n, appended to `out`: sin/cos of both phases advance by the
-    /// angle-addition recurrence and are re-seeded by `sin_cos` every [`RESEED`] points, so the
-    /// rounding drift stays within a few dozen ulps of the directly evaluated states.
-    pub(crate) fn scan_uniform(&self, t_end: f64, n: usize, out: &mut Vec<State>) {
+    /// States at `t_end·i/n`, i = 0…n, and at the sorted times `joints` (the cam's joints inside
+    /// the pick), merged in increasing order into `ts` and `states` (a time equal to the one before
+    /// it is not repeated). Sin/cos of both phases advance by the angle-addition recurrence and are
+    /// re-seeded by `sin_cos` every [`RESEED`] points, so the rounding drift stays within a few
+    /// dozen ulps of the directly evaluated states; the joints' states are evaluated directly.
+    pub(crate) fn scan_uniform(
+        &self,
+        t_end: f64,
+        n: usize,
+        joints: &[f64],
+        ts: &mut Vec<f64>,
+        states: &mut Vec<State>,
+    ) {
         let h = t_end / n as f64;
         let (sh, ch) = (self.psi * h).sin_cos();
         let (smh, cmh) = (self.mu_q * h).sin_cos();
         let (mut p, mut m) = ([0.0, 1.0], [0.0, 1.0]);
+        let mut jn = joints.iter().copied().peekable();
+        let mut push = |t: f64, st: State| {
+            if ts.last() != Some(&t) {
+                ts.push(t);
+                states.push(st);
+            }
+        };
         for i in 0..=n {
             let t = t_end * i as f64 / n as f64;
+            while let Some(tj) = jn.next_if(|&tj| tj < t) {
+                push(tj, self.state(tj));
+            }
             if i % RESEED == 0 {
                 let (s, c) = (self.psi * t).sin_cos();
                 p = [s, c];
@@ -176,9 +195,12 @@ impl PaperConstants {
                     m = [s, c];
                 }
             }
-            out.push(self.state_from(t, p, m));
+            push(t, self.state_from(t, p, m));
             p = [p[0] * ch + p[1] * sh, p[1] * ch - p[0] * sh];
             m = [m[0] * cmh + m[1] * smh, m[1] * cmh - m[0] * smh];
+        }
+        for tj in jn {
+            push(tj, self.state(tj));
         }
     }
 }
@@ -204,9 +226,10 @@ mod tests {
         for st in [Settings::designed(&m).with_play_mm(15.5), Settings::designed(&m).with_speed_rpm(230.0)] {
             let (sc, p) = constants(&st, &m);
             let n = 700;
-            let mut out = Vec::new();
-            p.scan_uniform(sc.t_cam_end, n, &mut out);
+            let (mut ts, mut out) = (Vec::new(), Vec::new());
+            p.scan_uniform(sc.t_cam_end, n, &[], &mut ts, &mut out);
             assert_eq!(out.len(), n + 1);
+            assert!(ts.iter().enumerate().all(|(i, &t)| t == sc.t_cam_end * i as f64 / n as f64));
             let direct: Vec<State> = (0..=n).map(|i| p.state(sc.t_cam_end * i as f64 / n as f64)).collect();
             // Errors against the scale of each quantity over the pick (x starts from 0 as the small
             // difference of terms of about 0.1 m, so a relative test at each point would ask too much).

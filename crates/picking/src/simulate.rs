@@ -155,37 +155,11 @@ fn scan(sc: &Scenario, route: &Route<'_>) -> Result<(Vec<f64>, Vec<State>)> {
     let uniform = |i: usize| sc.t_cam_end * i as f64 / n as f64;
     match route {
         Route::Closed(p) => {
-            let mut grid = Vec::with_capacity(n + 1);
-            p.scan_uniform(sc.t_cam_end, n, &mut grid);
             let mut joints = sc.joints.clone();
             joints.sort_by(f64::total_cmp);
-            // Merge the joints into the (increasing) uniform grid, dropping exact repeats.
             let mut ts = Vec::with_capacity(n + 1 + joints.len());
             let mut states = Vec::with_capacity(n + 1 + joints.len());
-            let mut jn = joints.iter().peekable();
-            for (i, g) in grid.into_iter().enumerate() {
-                let t = uniform(i);
-                while let Some(&&tj) = jn.peek() {
-                    if tj >= t {
-                        break;
-                    }
-                    if ts.last() != Some(&tj) {
-                        ts.push(tj);
-                        states.push(p.state(tj));
-                    }
-                    jn.next();
-                }
-                if ts.last() != Some(&t) {
-                    ts.push(t);
-                    states.push(g);
-                }
-            }
-            for &tj in jn {
-                if ts.last() != Some(&tj) {
-                    ts.push(tj);
-                    states.push(p.state(tj));
-                }
-            }
+            p.scan_uniform(sc.t_cam_end, n, &joints, &mut ts, &mut states);
             Ok((ts, states))
         }
         Route::Ode(o) => {
@@ -289,7 +263,11 @@ fn evaluate(
     // End of the pick: the cam's end, or the first downward crossing of the contact force.
     let contact = |s: &State| sc.shuttle_kg * s.a_m_s2 + sc.checking_n;
     let (mut t_end, mut end, mut n_used) = (sc.t_cam_end, PickEnd::CamEnd, ts.len());
+    // One pass over the scan up to the end of the pick: the crossing, and the extremes of the
+    // acceleration at the scan points before it (with the widest step between them).
     let mut armed = false;
+    let (mut a_min, mut a_max, mut h_max) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+    let mut scan_best = (t_end, f64::NEG_INFINITY);
     for i in 0..ts.len() {
         let f = contact(&states[i]);
         if armed && f <= 0.0 {
@@ -299,24 +277,27 @@ fn evaluate(
             break;
         }
         armed |= f > 0.0;
+        let a = states[i].a_m_s2;
+        (a_min, a_max) = (a_min.min(a), a_max.max(a));
+        if a > scan_best.1 {
+            scan_best = (ts[i], a);
+        }
+        if i > 0 {
+            h_max = h_max.max(ts[i] - ts[i - 1]);
+        }
     }
     let last = route.state(t_end)?;
+    if n_used > 0 {
+        h_max = h_max.max(t_end - ts[n_used - 1]);
+    }
+    (a_min, a_max) = (a_min.min(last.a_m_s2), a_max.max(last.a_m_s2));
     // Peak acceleration over [0, t_end]: every local maximum of the scan that may hide the
     // global one is refined. Between scan points h apart, an oscillation of amplitude a_osc at
     // ψ rises at most a_osc·(1 − cos(ψh/2)) above the nearer point, so any local maximum within
     // twice that of the best scan value is a candidate (many nearly equal peaks when the pick
-    // lasts many natural periods).
-    let mut best = (t_end, last.a_m_s2);
-    let (mut a_min, mut a_max, mut h_max) = (last.a_m_s2, last.a_m_s2, 0.0f64);
-    for i in 0..n_used {
-        let a = states[i].a_m_s2;
-        (a_min, a_max) = (a_min.min(a), a_max.max(a));
-        if a > best.1 {
-            best = (ts[i], a);
-        }
-        let next = if i + 1 < n_used { ts[i + 1] } else { t_end };
-        h_max = h_max.max(next - ts[i]);
-    }
+    // lasts many natural periods). The best point so far: the first largest scan value, or the
+    // end of the pick if no scan value exceeds it.
+    let mut best = if scan_best.1 > last.a_m_s2 { scan_best } else { (t_end, last.a_m_s2) };
     let half_phase = (0.5 * sc.psi() * h_max).min(std::f64::consts::PI);
     let slack = (1.0 - half_phase.cos()) * (a_max - a_min) + 1e-12 * best.1.abs();
     let grid_best = best.1;
