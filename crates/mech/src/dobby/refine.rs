@@ -56,10 +56,16 @@ fn finite_or_neg_inf(v: f64) -> f64 {
 /// On a smooth maximum the parabolic steps converge superlinearly; on a kink or a jump it falls
 /// back to the golden-section steps and their guaranteed reduction.
 ///
-/// Early end: after two successive parabolic steps below 1e-9 rad the maximum is taken as found
-/// if the function is smooth there, i.e. falls off quadratically on both sides (the drop at
-/// 2·10⁻⁵ rad more than three times the drop at 10⁻⁵ rad; a kink gives twice). The value is then
-/// exact to rounding, since it errs by f″·(1e-9)²; at a kink the search goes on to 1e-13 rad.
+/// Early end: at the first parabolic step below 1e-8 rad the function is probed at ±10⁻⁵ and
+/// ±2·10⁻⁵ rad from the best interior point x. If it falls off quadratically on both sides (the
+/// drop at 2·10⁻⁵ more than three times the drop at 10⁻⁵; a kink gives twice) the maximum is taken
+/// as found: the four drops fit `f* − c(t − t*)²` and give the vertex `t*` (the two one-sided drops
+/// differ by `4c·s·(x − t*)`, to ~1e-11 rad with values rounded at 1e-16), and where the value at x
+/// falls short of `f*` by more than its own rounding (`c(x − t*)² > ε|f(x)|`) the vertex is
+/// evaluated too. The value is then exact to rounding. Before this end, parabolic steps of ~1e-8 rad
+/// meet values that are flat to rounding, and Brent went on by golden steps (~20 evaluations) to
+/// 1e-13 rad without changing the value beyond its last bits. At a kink, or a maximum at an end
+/// of the bracket, the search goes on to 1e-13 rad.
 #[cfg(test)]
 pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
     golden_max_from(f, (a, f(a)), (b, f(b)))
@@ -93,7 +99,7 @@ pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, f
     let (mut w, mut fw, mut v, mut fv) = (x, fx, x, fx);
     // d: the last step, e: the step before it.
     let (mut d, mut e) = (0.0f64, 0.0f64);
-    let (mut small, mut checked) = (0, false);
+    let mut checked = false;
     // Interior probes so far, while every value equals both ends'.
     let level = (flo == fhi && flo.is_finite()).then_some(-flo);
     let mut flat = usize::from(level == Some(fx));
@@ -132,15 +138,26 @@ pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, f
             e = if x < m { hi - x } else { lo - x };
             d = GOLD * e;
         }
-        small = if parabolic && d.abs() <= 1e-9 { small + 1 } else { 0 };
-        if small >= 2 && !checked {
+        if parabolic && d.abs() <= 1e-8 && !checked {
             checked = true;
+            const S: f64 = 1e-5;
             let drop = |t: f64| -fx - finite_or_neg_inf(f(t));
-            let smooth = |s: f64| {
-                let (d1, d2) = (drop(x + s * 1e-5), drop(x + s * 2e-5));
-                d1 >= 0.0 && d2 > 3.0 * d1
+            // The drops at s and 2s on one side, if the fall-off there is quadratic.
+            let side = |sign: f64| {
+                let d1 = drop(x + sign * S);
+                (d1 >= 0.0).then(|| (d1, drop(x + sign * 2.0 * S))).filter(|&(d1, d2)| d2 > 3.0 * d1).map(|p| p.0)
             };
-            if smooth(-1.0) && smooth(1.0) {
+            if let Some(left) = side(-1.0)
+                && let Some(right) = side(1.0)
+            {
+                // f(x ± S) = f* − c(x ± S − t*)²: right + left = 2cS², right − left = 4cS(x − t*).
+                let sum = right + left;
+                let offset = S * (right - left) / (2.0 * sum);
+                let deficit = sum / (2.0 * S * S) * offset * offset;
+                let vertex = x - offset;
+                if deficit > f64::EPSILON * fx.abs() && vertex > lo && vertex < hi {
+                    keep(vertex, finite_or_neg_inf(f(vertex)));
+                }
                 break;
             }
         }
@@ -170,25 +187,35 @@ pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, f
     best
 }
 
-/// The grid's local maxima (`≥` both neighbours; a plateau counts at every point) in decreasing
+/// The best local maxima of a grid's values `vals`: the local maxima (`≥` both neighbours; a plateau counts at every point) in decreasing
 /// order of value, equal values in grid order, each dropped when it neighbours the last one kept;
 /// the first [`CANDIDATES`] of them. Only the best `3·CANDIDATES` maxima are ordered: a kept
 /// maximum drops at most its two neighbours, so the first [`CANDIDATES`] kept are among them (a
 /// plateau, e.g. a dwell, has hundreds of local maxima, and sorting them all cost more than the
 /// refinement).
-fn best_local_maxima(vals: &[f64]) -> Vec<usize> {
+///
+/// `periodic`: the grid is a whole turn whose last point repeats the first
+/// (n ≥ 3), so the last point is not a candidate of its own and the first one's neighbours are the
+/// second and the last but one.
+fn local_maxima(vals: &[f64], periodic: bool) -> Vec<usize> {
     let n = vals.len();
+    let periodic = periodic && n >= 3;
     let v = |k: usize| finite_or_neg_inf(vals[k]);
     let order = |i: &usize, j: &usize| v(*j).total_cmp(&v(*i)).then(i.cmp(j));
-    let mut cands: Vec<usize> =
-        (0..n).filter(|&k| (k == 0 || v(k) >= v(k - 1)) && (k + 1 == n || v(k) >= v(k + 1))).collect();
+    let before = |k: usize| if k == 0 { periodic.then(|| n - 2) } else { Some(k - 1) };
+    let after = |k: usize| if k + 1 == n { None } else { Some(k + 1) };
+    let points = if periodic { n - 1 } else { n };
+    let mut cands: Vec<usize> = (0..points)
+        .filter(|&k| before(k).is_none_or(|j| v(k) >= v(j)) && after(k).is_none_or(|j| v(k) >= v(j)))
+        .collect();
     let keep = 3 * CANDIDATES;
     if cands.len() > keep {
         cands.select_nth_unstable_by(keep - 1, order);
         cands.truncate(keep);
     }
     cands.sort_by(order);
-    cands.dedup_by(|a, b| a.abs_diff(*b) <= 1);
+    let neighbours = |a: usize, b: usize| a.abs_diff(b) <= 1 || (periodic && a.min(b) == 0 && a.max(b) == n - 2);
+    cands.dedup_by(|a, b| neighbours(*a, *b));
     cands.truncate(CANDIDATES);
     cands
 }
@@ -197,12 +224,27 @@ fn best_local_maxima(vals: &[f64]) -> Vec<usize> {
 /// the [`CANDIDATES`] best local maxima of the grid are each refined on their two neighbouring
 /// intervals. Of maxima equal to rounding (1e-12 relative), the first over the grid is reported.
 pub(crate) fn refined_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64) -> Extreme {
+    refined_max_in(xs, vals, f, false)
+}
+
+/// [`refined_max`] of a quantity periodic over the grid, a whole turn whose last point repeats the
+/// first: the joint of the turn (both ends) is one grid point, a local maximum when it is not below
+/// the second point and the last but one, and it is refined once, on the bracket from the last
+/// but one point (a turn early: `f` is evaluated before the start) to the second, as an interior
+/// maximum; its location is reported within `[xs₀, xs₀ + turn)`. On the grid as an interval each
+/// end was a candidate whenever it was not below its one neighbour, refined on its one-sided
+/// bracket by golden steps into the end (~50 evaluations each, twice for one maximum).
+pub(crate) fn refined_turn_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64) -> Extreme {
+    refined_max_in(xs, vals, f, true)
+}
+
+fn refined_max_in(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64, periodic: bool) -> Extreme {
     let n = xs.len().min(vals.len());
     if n == 0 {
         return Extreme { value: f64::NEG_INFINITY, at: 0.0 };
     }
     let v = |k: usize| finite_or_neg_inf(vals[k]);
-    let cands = best_local_maxima(vals);
+    let cands = local_maxima(&vals[..n], periodic);
     // Equal maxima (a law repeated over the turn gives several) are told apart by rounding alone:
     // values within 1e-12 (relative) of the best count as equal, and the first over the turn wins.
     let better = |e: &Extreme, best: &Extreme| {
@@ -210,10 +252,27 @@ pub(crate) fn refined_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64) -> E
         if tie { e.at < best.at } else { e.value > best.value }
     };
     let mut best = Extreme { value: f64::NEG_INFINITY, at: xs[0] };
+    let last = n - 1;
     for &k in cands.iter().take(CANDIDATES) {
         let grid = Extreme { value: v(k), at: xs[k] };
         if better(&grid, &best) {
             best = grid;
+        }
+        if periodic && n >= 3 && k == 0 {
+            // The joint of the turn: from the point before the end, a turn early, to the point
+            // after the start.
+            let turn = xs[last] - xs[0];
+            let before = xs[last - 1] - turn;
+            let mut e = golden_max_from(f, (before, vals[last - 1]), (xs[1], vals[1]));
+            if e.at == before {
+                e.at = xs[last - 1];
+            } else if e.at < xs[0] {
+                e.at += turn;
+            }
+            if better(&e, &best) {
+                best = e;
+            }
+            continue;
         }
         let (lo, hi) = (k.saturating_sub(1), (k + 1).min(n - 1));
         if xs[hi] > xs[lo] {
@@ -276,14 +335,14 @@ impl Revolution<'_> {
     /// Largest value of the quantity `q` over the revolution, refined between grid points.
     pub fn max(&self, q: &dyn Fn(&ModulatorState) -> f64) -> Extreme {
         let vals: Vec<f64> = self.states.iter().map(q).collect();
-        refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s)))
+        refined_turn_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s)))
     }
 
     /// [`Self::max`] of a quantity that also reads the crank pin A: on the grid from
     /// [`Self::pins`], between grid points from the state ([`ModulatorState::a`], the same value).
     pub fn max_with_pin(&self, g: &ModulatorGeometry, q: &dyn Fn(&ModulatorState, Vec2) -> f64) -> Extreme {
         let vals: Vec<f64> = self.states.iter().zip(&self.pins).map(|(s, &a)| q(s, a)).collect();
-        refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s, s.a(g))))
+        refined_turn_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s, s.a(g))))
     }
 
     /// Smallest value of `q` (as an [`Extreme`] whose value is the minimum).
@@ -297,8 +356,8 @@ impl Revolution<'_> {
     pub fn max_output(&self, q: &dyn Fn([f64; 3]) -> f64) -> Extreme {
         let vals: Vec<f64> = self.states.iter().map(|s| q(s.phi6)).collect();
         match &self.output {
-            Some(out) => refined_max(&self.xs, &vals, &|x| q(out(x))),
-            None => refined_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(s.phi6))),
+            Some(out) => refined_turn_max(&self.xs, &vals, &|x| q(out(x))),
+            None => refined_turn_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(s.phi6))),
         }
     }
 
@@ -376,6 +435,66 @@ mod tests {
         assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
     }
 
+    /// A maximum at the joint of a turn is refined once, across the joint: at the joint itself
+    /// it is reported there (its grid point ties with the refined one and comes first), just
+    /// before the joint at its place near the end of the turn, in few evaluations either way;
+    /// a slope falling from the last but one point through the joint is no candidate.
+    #[test]
+    fn maxima_at_the_joint_of_a_turn_are_refined_across_it() {
+        let xs: Vec<f64> = (0..=1440).map(|i| std::f64::consts::TAU * f64::from(i) / 1440.0).collect();
+        let calls = std::cell::Cell::new(0);
+        for (shift, at) in [(0.0, 0.0), (-1e-3, std::f64::consts::TAU - 1e-3), (1e-3, 1e-3)] {
+            let f = |x: f64| {
+                calls.set(calls.get() + 1);
+                2.0 * (x - shift).cos() + 0.5 * (3.0 * (x - shift)).cos()
+            };
+            let vals: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+            calls.set(0);
+            let e = refined_turn_max(&xs, &vals, &f);
+            assert!((e.value - 2.5).abs() < 1e-15 && (e.at - at).abs() < 1e-7, "shift {shift}: {e:?}");
+            assert!((0.0..std::f64::consts::TAU).contains(&e.at));
+            if shift == 0.0 {
+                assert_eq!(e.at, 0.0);
+            }
+            // Two candidates (the other maximum, of value 1.5, at π) of ≤ 16 evaluations each.
+            assert!(calls.get() <= 32, "shift {shift}: {} evaluations", calls.get());
+        }
+        // Rising towards 350° through the joint: the joint is no candidate of its own.
+        let f = |x: f64| (x - 350f64.to_radians()).cos();
+        let vals: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+        assert_eq!(local_maxima(&vals, true), vec![1400]);
+        let e = refined_turn_max(&xs, &vals, &f);
+        assert!((e.value - 1.0).abs() < 1e-15 && (e.at - 350f64.to_radians()).abs() < 1e-7, "{e:?}");
+    }
+
+    /// Independent route for the candidates of a turn: the candidates of the same values as an
+    /// interval, the last point dropped and the first one's neighbours taken from both sides.
+    #[test]
+    fn local_maxima_of_a_turn_match_a_full_sort() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        let full = |vals: &[f64]| {
+            let v = |k: usize| finite_or_neg_inf(vals[k]);
+            let m = vals.len() - 1;
+            let (prev, next) = (|k: usize| (k + m - 1) % m, |k: usize| (k + 1) % m);
+            let mut c: Vec<usize> = (0..m).filter(|&k| v(k) >= v(prev(k)) && v(k) >= v(next(k))).collect();
+            c.sort_by(|&i, &j| v(j).total_cmp(&v(i)).then(i.cmp(&j)));
+            c.dedup_by(|a, b| next(*a) == *b || next(*b) == *a);
+            c.truncate(CANDIDATES);
+            c
+        };
+        let grid = prop::collection::vec(prop_oneof![0u8..4, Just(9)], 3..300);
+        TestRunner::new(Config { cases: 500, ..Config::default() })
+            .run(&grid, |g| {
+                // A turn: the last point repeats the first.
+                let mut vals: Vec<f64> = g.iter().map(|&k| if k == 9 { f64::NAN } else { f64::from(k) }).collect();
+                vals.push(vals[0]);
+                prop_assert_eq!(local_maxima(&vals, true), full(&vals));
+                Ok(())
+            })
+            .unwrap();
+    }
+
     /// Independent route for the partial ordering of candidates: every local maximum sorted,
     /// then the neighbours of kept ones dropped, on grids with plateaus and repeated values.
     #[test]
@@ -397,7 +516,7 @@ mod tests {
         TestRunner::new(Config { cases: 500, ..Config::default() })
             .run(&grid, |g| {
                 let vals: Vec<f64> = g.iter().map(|&k| if k == 9 { f64::NAN } else { f64::from(k) }).collect();
-                prop_assert_eq!(best_local_maxima(&vals), full(&vals));
+                prop_assert_eq!(local_maxima(&vals, false), full(&vals));
                 Ok(())
             })
             .unwrap();

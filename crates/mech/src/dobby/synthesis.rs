@@ -9,7 +9,7 @@ use super::checks::{Warning, WarningCode, counter_cam_fold, deviation_range, fol
 use super::geometry::ModulatorGeometry;
 use super::kinematics::{ArmAngles, ModulatorState, state_from_phi6};
 use super::law::{OutputLaw, OutputLawSpec, max_dwell_deg};
-use super::refine::{CHECK_STEP_DEG, Revolution, check_grid, refined_max};
+use super::refine::{CHECK_STEP_DEG, Revolution, check_grid, refined_turn_max};
 use super::report::{CamChecks, CamProfile, check_states, undercut, wall_crossings};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::{MechError, Result};
@@ -283,7 +283,7 @@ fn synthesize_in(
     let cx = check_grid(0.0);
     let lag = |x: f64| wrap_pi(out.eval(x).phi6 - x).abs();
     let lag_vals: Vec<f64> = cx.iter().map(|&x| lag(x)).collect();
-    let worst_lag = refined_max(&cx, &lag_vals, &lag);
+    let worst_lag = refined_turn_max(&cx, &lag_vals, &lag);
     if worst_lag.value >= lag_limit {
         let dmax = max_dwell_deg(law, lag_limit.to_degrees())?;
         let admissible = match dmax {
