@@ -76,10 +76,10 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "FILE")]
     dxf: Option<PathBuf>,
     /// Chord tolerance of the DXF polylines in mm.
-    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true, requires = "dxf")]
     chord_tol_mm: f64,
     /// Bore diameter drawn in the DXF, mm (0: none; default 0.4 × base radius).
-    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
     bore_mm: Option<f64>,
     /// Main-shaft angle step of the printed points (deg).
     #[arg(long, value_name = "D", default_value_t = 1.0, allow_hyphen_values = true)]
@@ -131,6 +131,7 @@ pub fn run(cmd: CamCommand) -> Result<()> {
 
 fn motion(a: &TableArgs) -> Result<(Motion, String)> {
     if let Some(path) = &a.cycle {
+        a.rise.none_with_file()?;
         let cycle = util::read_cycle(path)?;
         return Ok((Motion::from_cycle(&cycle), path.display().to_string()));
     }

@@ -222,11 +222,11 @@ pub struct SynthesizeArgs {
     #[arg(long, value_enum, default_value_t = UnitArg::Mm)]
     dxf_unit: UnitArg,
     /// Chord tolerance of the DXF polylines, mm (the curves are drawn within it whatever --step-deg).
-    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true, requires = "dxf")]
     chord_tol_mm: f64,
     /// Bore diameter about the crank centre drawn in the DXF, mm (0: none; default 0.4 × the cams'
     /// least radius).
-    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
     bore_mm: Option<f64>,
     /// Write the cam point tables (centre curves and walls of Γ and Γ′) as CSV to this file.
     #[arg(long, value_name = "FILE")]
@@ -789,18 +789,19 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     if a.geometry.alpha_deg.is_some() || a.geometry.theta_deg.is_some() {
         bail!("--alpha-deg and --theta-deg do not apply to dobby sweep: it sweeps α = θ over --from … --to by --by");
     }
-    for (flag, v) in [("--from", a.from), ("--to", a.to), ("--by", a.by)] {
-        if !v.is_finite() {
-            bail!("{flag} is not a finite number: α values are in (0, 180) °");
-        }
-    }
-    if !(a.by > 0.0 && a.to >= a.from) {
+    // α = θ values: the sweep's ends inside the lever-angle range (so the count below is finite).
+    let alpha = loomkin_units::Range::open(0.0, 180.0, "°");
+    alpha.check("--from", a.from)?;
+    alpha.check("--to", a.to)?;
+    loomkin_units::Range::above(0.0, "°").check("--by", a.by)?;
+    if a.to < a.from {
         bail!("--from {} --to {} --by {}: need from ≤ to and by > 0", a.from, a.to, a.by);
     }
-    let n = ((a.to - a.from) / a.by + 1e-9).floor() as usize + 1;
-    if n > 1000 {
-        bail!("--by {} gives {n} values of α: allowed at most 1000", a.by);
+    let n = ((a.to - a.from) / a.by + 1e-9).floor() + 1.0;
+    if n > 1000.0 {
+        bail!("--by {} gives {} values of α: allowed at most 1000", a.by, loomkin_units::compact(n));
     }
+    let n = n as usize;
     a.shard.check(a.format)?;
     let alphas: Vec<f64> = a.shard.get().items(n).map(|i| a.from + i as f64 * a.by).collect();
     let g = a.geometry.geometry()?;

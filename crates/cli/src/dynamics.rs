@@ -418,6 +418,8 @@ const SWEEP_S_PER_SEGMENT: f64 = 2.0 * 5e-6;
 const SWEEP_BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    // Checked first, with or without a plot to draw it on (refused, not ignored).
+    loomkin_units::Range::open_closed(0.0, 100.0, "%").check("residual_limit_pct", a.residual_limit_pct)?;
     let cycle = read_cycle(&a.file)?;
     let follower = a.model.follower()?;
     let span = Span::parse("speed_rpm", &a.speed_rpm, ShaftSpeed::RANGE)?;
@@ -463,7 +465,6 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         });
     }
     if let Some(out) = a.output {
-        loomkin_units::Range::open_closed(0.0, 100.0, "%").check("residual_limit_pct", a.residual_limit_pct)?;
         let col = |f: &dyn Fn(&loomkin_dynamics::SweepPoint) -> f64| {
             pts.iter().map(|q| (q.speed_rpm, f(q))).collect::<Vec<_>>()
         };

@@ -101,8 +101,42 @@ fn negatives_allowed(cmd: clap::Command) -> clap::Command {
     names.into_iter().fold(cmd.allow_negative_numbers(true), |c, n| c.mut_subcommand(n, negatives_allowed))
 }
 
+/// A negative number with a negative exponent (`--speed-rpm -1e-300`) joined to the long option
+/// before it (`--speed-rpm=-1e-300`): clap takes `-1e-3` as a number but `-1e-300`'s second `-`
+/// makes it read as short flags (`unexpected argument '-1'`), so the value would not reach its
+/// range check.
+fn glue_negative_values(args: impl IntoIterator<Item = std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    for arg in args {
+        let glue = match (out.last().and_then(|p| p.to_str()), arg.to_str()) {
+            (Some(prev), Some(a)) => {
+                out.len() > 1
+                    && prev.starts_with("--")
+                    && prev.len() > 2
+                    && !prev.contains('=')
+                    && a.starts_with('-')
+                    && a[1..].contains('-')
+                    && a.parse::<f64>().is_ok()
+            }
+            _ => false,
+        };
+        if glue {
+            let prev = out.pop().unwrap_or_default();
+            let mut joined = prev;
+            joined.push("=");
+            joined.push(&arg);
+            out.push(joined);
+        } else {
+            out.push(arg);
+        }
+    }
+    out
+}
+
 fn main() -> ExitCode {
-    let cli = match negatives_allowed(Cli::command()).try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
+    let args = glue_negative_values(std::env::args_os());
+    let cli = match negatives_allowed(Cli::command()).try_get_matches_from(args).and_then(|m| Cli::from_arg_matches(&m))
+    {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // One line: clap's first line (the error itself), without its usage block and tips.

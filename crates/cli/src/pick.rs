@@ -238,7 +238,21 @@ pub(crate) fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
         spec.first_stage_m = m.first_stage_cm.map(|v| v * M_PER_CM).or(m.first_stage_m).unwrap_or(spec.first_stage_m);
         spec.speed_rpm = m.design_speed_rpm.unwrap_or(spec.speed_rpm);
         let required = *mech.required();
-        Mechanism::new(*mech.params(), spec).and_then(|n| n.with_required(required)).map_err(lib_err)?
+        // A range error names the flag the user typed, in its unit (not the library's `distance_m`
+        // for a `--distance-cm`, nor the setting `speed_rpm` for `--design-speed-rpm`).
+        let named = |e: PickError| match e {
+            PickError::Range(r) if r.field == "distance_m" && m.distance_cm.is_some() => {
+                PickError::Range(r.in_unit("distance_cm", 1.0 / M_PER_CM, "cm"))
+            }
+            PickError::Range(r) if r.field == "first_stage_m" && m.first_stage_cm.is_some() => {
+                PickError::Range(r.in_unit("first_stage_cm", 1.0 / M_PER_CM, "cm"))
+            }
+            PickError::Range(r) if r.field == "speed_rpm" && m.design_speed_rpm.is_some() => {
+                PickError::Range(r.renamed("design_speed_rpm"))
+            }
+            e => e,
+        };
+        Mechanism::new(*mech.params(), spec).and_then(|n| n.with_required(required)).map_err(named).map_err(lib_err)?
     } else {
         mech
     };
@@ -434,6 +448,21 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let output_bytes = if a.format.json { 1500.0 } else { 300.0 };
     let cost = Cost::items(n, SWEEP_BYTES_PER_POINT + output_bytes, per_point / util::cores());
     Budget::DEFAULT.check("points", a.points, cost)?;
+    // The swept setting's own flag would be overwritten by the sweep: refused, not ignored.
+    let own = [
+        (Setting::Speed, "--speed-rpm", a.settings.speed_rpm),
+        (Setting::Play, "--play-mm", a.settings.play_mm),
+        (Setting::Strap, "--strap-cm", a.settings.strap_cm),
+        (Setting::Shuttle, "--shuttle-g", a.settings.shuttle_g),
+        (Setting::Checking, "--checking-kgf", a.settings.checking_kgf),
+    ];
+    if let Some((_, flag, _)) = own.iter().find(|(s, _, v)| *s == setting && v.is_some()) {
+        bail!(
+            "{}: {flag} is what `pick sweep {}` varies (from --from to --to): leave it out",
+            flag.trim_start_matches("--").replace('-', "_"),
+            a.setting
+        );
+    }
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
     let progress = util::Progress::new(items.len() as u64, "points");

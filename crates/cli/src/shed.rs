@@ -167,28 +167,46 @@ pub struct LoomArgs {
     /// Cloth width in the reed, m (default: the reed width).
     #[arg(long, requires = "carrier_speed_m_s", allow_hyphen_values = true)]
     cloth_width_m: Option<f64>,
-    /// Carrier length, m.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    carrier_length_m: f64,
-    /// Range of the crossing-point (заступ) setting, deg.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    crossing_range_deg: f64,
-    /// Shed-height excess over the necessary opening, fraction (0.05 = 5 %); sets T = 1/(1 + excess).
-    #[arg(long, default_value_t = 0.05, allow_hyphen_values = true)]
-    shed_excess: f64,
+    /// Carrier length, m (default 0).
+    #[arg(long, allow_hyphen_values = true)]
+    carrier_length_m: Option<f64>,
+    /// Range of the crossing-point (заступ) setting, deg (default 0).
+    #[arg(long, allow_hyphen_values = true)]
+    crossing_range_deg: Option<f64>,
+    /// Shed-height excess over the necessary opening, fraction (0.05 = 5 %, the default); sets T = 1/(1 + excess).
+    #[arg(long, allow_hyphen_values = true)]
+    shed_excess: Option<f64>,
 }
 
 impl LoomArgs {
     fn requirement(&self, speed_rpm: f64) -> Result<Option<LoomRequirement>> {
-        let Some(v) = self.carrier_speed_m_s else { return Ok(None) };
+        let Some(v) = self.carrier_speed_m_s else {
+            // Loom data without the carrier speed set nothing: refused, not silently ignored
+            // (clap's `requires` does not fire while `--window-deg`, which conflicts with the
+            // carrier speed, is given).
+            let given = [
+                ("--reed-width-m", self.reed_width_m.is_some()),
+                ("--cloth-width-m", self.cloth_width_m.is_some()),
+                ("--carrier-length-m", self.carrier_length_m.is_some()),
+                ("--crossing-range-deg", self.crossing_range_deg.is_some()),
+                ("--shed-excess", self.shed_excess.is_some()),
+            ];
+            if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+                bail!(
+                    "{}: {flag} is loom data for the required window: it needs --carrier-speed-m-s (and then no --window-deg)",
+                    flag.trim_start_matches("--").replace('-', "_")
+                );
+            }
+            return Ok(None);
+        };
         let Some(reed) = self.reed_width_m else { bail!("--reed-width-m is needed with --carrier-speed-m-s") };
         let r = LoomRequirement {
             carrier_speed_m_s: v,
             reed_width_m: reed,
             cloth_width_m: self.cloth_width_m.unwrap_or(reed),
-            carrier_length_m: self.carrier_length_m,
-            crossing_range_deg: self.crossing_range_deg,
-            shed_excess: self.shed_excess,
+            carrier_length_m: self.carrier_length_m.unwrap_or(0.0),
+            crossing_range_deg: self.crossing_range_deg.unwrap_or(0.0),
+            shed_excess: self.shed_excess.unwrap_or(0.05),
             speed_rpm,
         };
         r.required_window_deg()?;
@@ -408,6 +426,9 @@ fn check_budget(
 fn study_design(kind: DesignKind, d: &DesignArgs, g: GridSpec) -> Result<Study> {
     if kind != DesignKind::Grid && (d.min_k.is_some() || d.max_k.is_some()) {
         bail!("--min-k and --max-k apply to --design grid only");
+    }
+    if matches!(kind, DesignKind::Presets | DesignKind::Table1) && d.step.is_some() {
+        bail!("step: --step applies to --design grid and fig1 only (the presets and Table 1 are fixed laws)");
     }
     Ok(Study::new(kind, template(d)?, grid_of(d, g))?)
 }

@@ -72,6 +72,25 @@ impl RiseArgs {
         Ok((law, stroke, unit, b))
     }
 
+    /// With a cycle file the rise flags have nothing to act on: refused, not silently ignored
+    /// (`cam table CYCLE --stroke-mm 50` does not scale the file's strokes).
+    pub fn none_with_file(&self) -> anyhow::Result<()> {
+        let given = [
+            ("--law", self.law.is_some()),
+            ("--param", !self.params.is_empty()),
+            ("--stroke-mm", self.stroke_mm.is_some()),
+            ("--stroke-deg", self.stroke_deg.is_some()),
+            ("--motion-deg", self.motion_deg.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+            anyhow::bail!(
+                "{}: {flag} describes a single rise and cannot be combined with a cycle file (the file sets the laws, strokes and angles)",
+                flag.trim_start_matches("--").replace('-', "_")
+            );
+        }
+        Ok(())
+    }
+
     /// The law's name (`cycloidal` when none is given).
     pub fn name(&self) -> &str {
         self.law.as_deref().unwrap_or("cycloidal")
@@ -81,6 +100,7 @@ impl RiseArgs {
     /// with where it came from (the file's name, or `law NAME (rise, dwell, return, dwell)`).
     pub fn cycle(&self, file: Option<&std::path::Path>) -> anyhow::Result<(Cycle, String)> {
         if let Some(path) = file {
+            self.none_with_file()?;
             let cycle = read_cycle(path)?;
             return Ok((cycle, path.display().to_string()));
         }
@@ -205,17 +225,38 @@ pub fn cores() -> f64 {
 #[derive(Debug, Clone, Args, Default)]
 pub struct PlotOpts {
     /// Plot width in pixels at 96 dpi (200 to 8000; default 1000).
-    #[arg(long, value_name = "PX", help_heading = "Plot")]
+    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_width, allow_hyphen_values = true)]
     pub width: Option<f64>,
     /// Plot height in pixels at 96 dpi (200 to 8000; default from the number of panels).
-    #[arg(long, value_name = "PX", help_heading = "Plot")]
+    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_height, allow_hyphen_values = true)]
     pub height: Option<f64>,
     /// PNG resolution in dots per inch (24 to 1200; 96 draws one pixel per SVG pixel).
-    #[arg(long, help_heading = "Plot")]
+    #[arg(long, help_heading = "Plot", value_parser = page_dpi, allow_hyphen_values = true)]
     pub dpi: Option<f64>,
     /// Plot title (default: the input's file name and the run's settings).
     #[arg(long, help_heading = "Plot")]
     pub title: Option<String>,
+}
+
+// The page settings are checked while the command line is read: before any computation (so a
+// bad `--dpi` is the one line on stderr, not a line after a run's warnings) and whether or not a
+// plot is written (a `--width nan` given without `-o` is refused, not ignored).
+fn page_value(text: &str, page: impl Fn(f64) -> loomkin_plot::Page) -> Result<f64, String> {
+    let v: f64 = text.trim().parse().map_err(|_| format!("'{text}' is not a number"))?;
+    page(v).check().map_err(|e| page_error(e).to_string())?;
+    Ok(v)
+}
+
+fn page_width(text: &str) -> Result<f64, String> {
+    page_value(text, |v| loomkin_plot::Page { width: Some(v), ..Default::default() })
+}
+
+fn page_height(text: &str) -> Result<f64, String> {
+    page_value(text, |v| loomkin_plot::Page { height: Some(v), ..Default::default() })
+}
+
+fn page_dpi(text: &str) -> Result<f64, String> {
+    page_value(text, |v| loomkin_plot::Page { dpi: Some(v), ..Default::default() })
 }
 
 impl PlotOpts {

@@ -138,6 +138,22 @@ impl RangeError {
         self.field = field.into();
         self
     }
+
+    /// The same error for a front end that takes the quantity in another unit (`--distance-cm`
+    /// for a length the library keeps in m): the value and the bounds multiplied by `factor`
+    /// (> 0, the size of the library's unit in the new one), under `field` and `unit`.
+    pub fn in_unit(self, field: impl Into<String>, factor: f64, unit: &'static str) -> Self {
+        let scale = |b: Bound| match b {
+            Bound::Unbounded => Bound::Unbounded,
+            Bound::Closed(v) => Bound::Closed(v * factor),
+            Bound::Open(v) => Bound::Open(v * factor),
+        };
+        Self {
+            field: field.into(),
+            value: self.value * factor,
+            range: Range { lo: scale(self.range.lo), hi: scale(self.range.hi), unit },
+        }
+    }
 }
 
 impl fmt::Display for RangeError {
@@ -169,6 +185,23 @@ impl FieldError for RangeError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_error_in_another_unit_scales_value_and_bounds() {
+        let e = Range::open_closed(0.0, 100.0, "m").check("distance_m", -0.01).unwrap_err();
+        let cm = e.in_unit("distance_cm", 100.0, "cm");
+        assert_eq!(cm.to_string(), "distance_cm = -1 is out of range: allowed 0 < distance_cm ≤ 10000 cm");
+        assert!(!cm.range.contains(cm.value));
+        // A one-sided range keeps its open side.
+        let e = Range::below(0.22, "m").check("first_stage_m", 0.3).unwrap_err();
+        assert_eq!(
+            e.in_unit("first_stage_cm", 100.0, "cm").to_string(),
+            "first_stage_cm = 30 is out of range: allowed first_stage_cm < 22 cm"
+        );
+        // Not a number stays not a number.
+        let e = Range::closed(0.0, 1.0, "m").check("x_m", f64::NAN).unwrap_err();
+        assert_eq!(e.in_unit("x_mm", 1e3, "mm").to_string(), "x_mm is not a finite number: allowed 0 ≤ x_mm ≤ 1000 mm");
+    }
 
     #[test]
     fn messages_name_field_range_and_unit() {

@@ -184,6 +184,11 @@ fn bad_input_is_one_line_with_exit_code_2() {
     }
     usage_error(&["dobby", "analyze", "--input-rpm", "nan"], &["--speed-rpm is not a finite number"]);
     usage_error(&["dobby", "sweep", "--by", "nan"], &["--by is not a finite number"]);
+    // Ends outside the lever-angle range are refused before the values are counted (an end of
+    // 1e308 overflowed the count and panicked).
+    usage_error(&["dobby", "sweep", "--to", "1e308"], &["--to = 1e308 is out of range", "0 < --to < 180"]);
+    usage_error(&["dobby", "sweep", "--from", "-1"], &["--from = -1 is out of range"]);
+    usage_error(&["dobby", "sweep", "--by", "1e-300"], &["values of α: allowed at most 1000"]);
     for v in ["nan", "inf", "1e300"] {
         usage_error(&["dobby", "plot", "--what", "cams", "--at-deg", v, "-o", "never.svg"], &["--at-deg"]);
     }

@@ -157,3 +157,82 @@ fn studies_of_too_many_draws_are_refused_with_the_estimate() {
         std::fs::remove_file(&path).unwrap();
     }
 }
+
+/// Found by the contract audit (docs/notes/contracts.md): values that reached no check.
+#[test]
+fn bad_values_are_refused_by_name_not_ignored() {
+    // A negative number with a negative exponent is a value, refused by its range, not the
+    // short flag `-1`.
+    usage_error(&["cycle", HEALD, "--speed-rpm", "-1e-300"], &["--speed-rpm = -1e-300 is out of range", "allowed"]);
+    usage_error(&["servo", "torque", "--speed-rpm", "-2.5e-3"], &["--speed-rpm = -0.0025 is out of range"]);
+    let v = stdout_json(&["cam", "profile", HEALD, "--follower", "translating", "--offset-mm", "-1.5e-1", "--json"]);
+    assert!(v["follower"].as_str().unwrap().contains("offset -0.15 mm"), "{v}");
+    // Page settings are read and checked before the run, with or without a plot to write.
+    usage_error(&["cycle", HEALD, "--width", "nan"], &["--width is not a finite number", "200 ≤ --width ≤ 8000"]);
+    usage_error(
+        &["pick", "sweep", "speed", "--from", "160", "--to", "240", "--points", "3", "--dpi", "nan"],
+        &["--dpi"],
+    );
+    usage_error(&["dobby", "plot", "--step-deg", "10", "--height", "0", "-o", "never.svg"], &["--height = 0"]);
+    // The rise flags with a cycle file would be ignored: refused.
+    // (`--law` itself conflicts with the file in clap.)
+    usage_error(&["cam", "table", HEALD, "--format", "csv", "-o", "never.csv", "--law", "harmonic"], &["--law"]);
+    for flag in [["--stroke-mm", "50"], ["--motion-deg", "120"], ["--stroke-deg", "20"]] {
+        let mut table = vec!["cam", "table", HEALD, "--format", "csv", "-o", "never.csv"];
+        table.extend(flag);
+        usage_error(&table, &[flag[0], "cannot be combined with a cycle file"]);
+        let mut profile = vec!["cam", "profile", HEALD, "--follower", "translating"];
+        profile.extend(flag);
+        usage_error(&profile, &[flag[0], "cannot be combined with a cycle file"]);
+    }
+    // Loom data without the carrier speed set no window: refused (with --window-deg clap's
+    // `requires` does not fire).
+    for flag in ["--reed-width-m", "--cloth-width-m", "--carrier-length-m", "--crossing-range-deg", "--shed-excess"] {
+        usage_error(&["shed", "best", "--window-deg", "120", flag, "0.5"], &[flag, "needs --carrier-speed-m-s"]);
+    }
+    let w = stdout_json(&[
+        "shed",
+        "best",
+        "--carrier-speed-m-s",
+        "20",
+        "--reed-width-m",
+        "1.9",
+        "--shed-excess",
+        "0.05",
+        "--json",
+    ]);
+    assert!(w["required_window_deg"].as_f64().unwrap() > 0.0, "{w}");
+}
+
+/// Options of an output that is not written are refused when given, not ignored.
+#[test]
+fn options_of_an_output_not_written_are_refused() {
+    for flag in [["--chord-tol-mm", "nan"], ["--bore-mm", "20"]] {
+        let mut dobby = vec!["dobby", "synthesize", "--step-deg", "10"];
+        dobby.extend(flag);
+        usage_error(&dobby, &["required", "--dxf"]);
+        let mut cam = vec!["cam", "profile", HEALD, "--follower", "translating"];
+        cam.extend(flag);
+        usage_error(&cam, &["required", "--dxf"]);
+    }
+    usage_error(
+        &["shed", "table", "--design", "table1", "--step", "nan"],
+        &["--step applies to --design grid and fig1"],
+    );
+    usage_error(
+        &[
+            "dyn",
+            "sweep",
+            HEALD,
+            "--natural-hz",
+            "54",
+            "--damping-ratio",
+            "0.05",
+            "--speed-rpm",
+            "500:700:100",
+            "--residual-limit-pct",
+            "nan",
+        ],
+        &["residual_limit_pct is not a finite number", "0 < residual_limit_pct ≤ 100 %"],
+    );
+}

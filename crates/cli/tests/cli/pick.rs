@@ -227,3 +227,28 @@ fn unfollowable_inputs_exit_2() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("oscillations"));
 }
+
+/// A design flag in cm or the design speed is named as typed, in its unit; the swept setting's own
+/// flag is refused (the sweep would overwrite it).
+#[test]
+fn design_errors_name_the_flag_as_typed() {
+    use crate::common::usage_error;
+    usage_error(
+        &["pick", "design", "--distance-cm", "-1"],
+        &["distance_cm = -1 is out of range", "0 < distance_cm", "cm"],
+    );
+    usage_error(
+        &["pick", "design", "--first-stage-cm", "30"],
+        &["first_stage_cm = 30 is out of range", "first_stage_cm < 22 cm"],
+    );
+    usage_error(&["pick", "design", "--distance-m", "-1"], &["distance_m = -1 is out of range"]);
+    usage_error(&["pick", "simulate", "--design-speed-rpm", "0"], &["design_speed_rpm = 0 is out of range"]);
+    usage_error(
+        &["pick", "sweep", "speed", "--from", "160", "--to", "240", "--points", "3", "--speed-rpm", "nan"],
+        &["--speed-rpm is what `pick sweep speed` varies"],
+    );
+    usage_error(
+        &["pick", "sweep", "play", "--from", "0", "--to", "10", "--points", "3", "--play-mm", "5"],
+        &["--play-mm is what `pick sweep play` varies"],
+    );
+}
