@@ -53,6 +53,15 @@ pub fn roller_pressure_angle_deg(tangent: Vec2, arm: Vec2) -> f64 {
     if s < c { s.asin() } else { c.min(1.0).acos() }.to_degrees()
 }
 
+/// `tan μ` of [`roller_pressure_angle_deg`] (+∞ where μ is 90°): `|t × u| / |t · u|`, in the order of
+/// μ and without its inverse sine or cosine, for choosing the grid's largest pressure angles.
+pub(crate) fn roller_pressure_order(tangent: Vec2, arm: Vec2) -> f64 {
+    let (nt, na) = (tangent.norm(), arm.norm());
+    let usable = nt > 1e-300 && na > 1e-300 && nt.is_finite() && na.is_finite();
+    let r = cross(tangent, arm).abs() / tangent.dot(&arm).abs();
+    if usable && !r.is_nan() { r } else { f64::INFINITY }
+}
+
 /// Pressure angle (deg, 0…90) at the output: the slot pushes slider 5 normal to the slot,
 /// direction `e⊥(φ3)`, while D moves along `e⊥(φ6)`: `μ6 = arccos |cos(φ3 − φ6)|`, the distance
 /// from `φ3 − φ6` to the nearest multiple of π, computed as that distance (no cosine and
@@ -361,6 +370,27 @@ mod tests {
         assert!((mu - 1e-9).abs() < 1e-24, "{mu:e}");
         assert!((output_pressure_angle_deg(1e-9, 0.0).to_radians() - 1e-9).abs() < 1e-24);
         assert!((output_pressure_angle_deg(PI + 1e-9, -PI).to_radians() - 1e-9).abs() < 1e-15);
+    }
+
+    /// The order of the roller pressure angles is tan μ: its arctangent is μ (to the rounding of
+    /// μ's own forms), a cusp or an unusable vector gives +∞ as μ gives 90°.
+    #[test]
+    fn roller_pressure_order_is_tan_mu() {
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        TestRunner::new(Config { cases: 2000, ..Config::default() })
+            .run(&(-20.0f64..20.0, -20.0f64..20.0, 1e-3f64..10.0, 1e-3f64..10.0), |(a, b, lt, lu)| {
+                let (t, u) = (lt * e(a), lu * e(b));
+                let (mu, r) = (roller_pressure_angle_deg(t, u), roller_pressure_order(t, u));
+                prop_assert!(r >= 0.0);
+                prop_assert!((r.atan().to_degrees() - mu).abs() <= 1e-12 * mu.max(1.0), "{mu} vs tan⁻¹ {r}");
+                Ok(())
+            })
+            .unwrap();
+        for (t, u) in [(Vec2::zeros(), Vec2::new(1.0, 0.0)), (Vec2::new(0.0, 2.0), Vec2::new(1.0, 0.0))] {
+            assert_eq!((roller_pressure_order(t, u), roller_pressure_angle_deg(t, u)), (f64::INFINITY, 90.0));
+        }
+        assert_eq!(roller_pressure_order(Vec2::new(f64::NAN, 1.0), Vec2::new(1.0, 0.0)), f64::INFINITY);
     }
 
     #[test]

@@ -239,12 +239,25 @@ pub(crate) fn refined_turn_max(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64)
 }
 
 fn refined_max_in(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64, periodic: bool) -> Extreme {
-    let n = xs.len().min(vals.len());
+    refined_max_ordered(xs, vals, &|k| vals[k], f, periodic)
+}
+
+/// [`refined_max_in`] with the grid's candidates chosen by `order`, values in the same order as
+/// the quantity's own (a strictly increasing function of them, cheaper to form), whose own values
+/// `value(k)` are formed only where the search reads them: at the candidates and the ends of their
+/// brackets.
+fn refined_max_ordered(
+    xs: &[f64],
+    order: &[f64],
+    value: &dyn Fn(usize) -> f64,
+    f: &dyn Fn(f64) -> f64,
+    periodic: bool,
+) -> Extreme {
+    let n = xs.len().min(order.len());
     if n == 0 {
         return Extreme { value: f64::NEG_INFINITY, at: 0.0 };
     }
-    let v = |k: usize| finite_or_neg_inf(vals[k]);
-    let cands = local_maxima(&vals[..n], periodic);
+    let cands = local_maxima(&order[..n], periodic);
     // Equal maxima (a law repeated over the turn gives several) are told apart by rounding alone:
     // values within 1e-12 (relative) of the best count as equal, and the first over the turn wins.
     let better = |e: &Extreme, best: &Extreme| {
@@ -254,7 +267,7 @@ fn refined_max_in(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64, periodic: bo
     let mut best = Extreme { value: f64::NEG_INFINITY, at: xs[0] };
     let last = n - 1;
     for &k in cands.iter().take(CANDIDATES) {
-        let grid = Extreme { value: v(k), at: xs[k] };
+        let grid = Extreme { value: finite_or_neg_inf(value(k)), at: xs[k] };
         if better(&grid, &best) {
             best = grid;
         }
@@ -263,7 +276,7 @@ fn refined_max_in(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64, periodic: bo
             // after the start.
             let turn = xs[last] - xs[0];
             let before = xs[last - 1] - turn;
-            let mut e = golden_max_from(f, (before, vals[last - 1]), (xs[1], vals[1]));
+            let mut e = golden_max_from(f, (before, value(last - 1)), (xs[1], value(1)));
             if e.at == before {
                 e.at = xs[last - 1];
             } else if e.at < xs[0] {
@@ -276,7 +289,7 @@ fn refined_max_in(xs: &[f64], vals: &[f64], f: &dyn Fn(f64) -> f64, periodic: bo
         }
         let (lo, hi) = (k.saturating_sub(1), (k + 1).min(n - 1));
         if xs[hi] > xs[lo] {
-            let e = golden_max_from(f, (xs[lo], vals[lo]), (xs[hi], vals[hi]));
+            let e = golden_max_from(f, (xs[lo], value(lo)), (xs[hi], value(hi)));
             if better(&e, &best) {
                 best = e;
             }
@@ -340,9 +353,23 @@ impl Revolution<'_> {
 
     /// [`Self::max`] of a quantity that also reads the crank pin A: on the grid from
     /// [`Self::pins`], between grid points from the state ([`ModulatorState::a`], the same value).
-    pub fn max_with_pin(&self, g: &ModulatorGeometry, q: &dyn Fn(&ModulatorState, Vec2) -> f64) -> Extreme {
-        let vals: Vec<f64> = self.states.iter().zip(&self.pins).map(|(s, &a)| q(s, a)).collect();
-        refined_turn_max(&self.xs, &vals, &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s, s.a(g))))
+    /// The grid's candidates are chosen by `order` (the same arguments), a strictly increasing
+    /// function of `q` that is cheaper to form; `q` itself is formed on the grid only where the
+    /// search reads it (the candidates and their neighbours).
+    pub fn max_with_pin_ordered(
+        &self,
+        g: &ModulatorGeometry,
+        order: &dyn Fn(&ModulatorState, Vec2) -> f64,
+        q: &dyn Fn(&ModulatorState, Vec2) -> f64,
+    ) -> Extreme {
+        let ord: Vec<f64> = self.states.iter().zip(&self.pins).map(|(s, &a)| order(s, a)).collect();
+        refined_max_ordered(
+            &self.xs,
+            &ord,
+            &|k| q(&self.states[k], self.pins[k]),
+            &|x| (self.eval)(x).map_or(f64::NEG_INFINITY, |s| q(&s, s.a(g))),
+            true,
+        )
     }
 
     /// Smallest value of `q` (as an [`Extreme`] whose value is the minimum).
@@ -465,6 +492,23 @@ mod tests {
         assert_eq!(local_maxima(&vals, true), vec![1400]);
         let e = refined_turn_max(&xs, &vals, &f);
         assert!((e.value - 1.0).abs() < 1e-15 && (e.at - 350f64.to_radians()).abs() < 1e-7, "{e:?}");
+    }
+
+    /// Candidates chosen by a strictly increasing function of the values (here `exp`) give the
+    /// same refined maxima as the values themselves, on a grid as an interval and as a turn.
+    #[test]
+    fn candidates_by_an_order_match_candidates_by_value() {
+        let f = |x: f64| (3.0 * x).sin() + 0.7 * (5.0 * x + 0.4).cos() + 0.2 * (11.0 * x).sin();
+        for n in [40usize, 360, 1440] {
+            let xs: Vec<f64> = (0..=n).map(|i| std::f64::consts::TAU * i as f64 / n as f64).collect();
+            let vals: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+            let ord: Vec<f64> = vals.iter().map(|v| v.exp()).collect();
+            for periodic in [false, true] {
+                let plain = refined_max_in(&xs, &vals, &f, periodic);
+                let ordered = refined_max_ordered(&xs, &ord, &|k| vals[k], &f, periodic);
+                assert_eq!(plain, ordered, "n = {n}, periodic {periodic}");
+            }
+        }
     }
 
     /// Independent route for the candidates of a turn: the candidates of the same values as an

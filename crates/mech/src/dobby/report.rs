@@ -1,7 +1,10 @@
 //! Checks over a traced revolution: extremes of rates, pressure angles, curvature, closure,
 //! self-intersection, undercut; shared by analysis and synthesis.
 
-use super::checks::{Crossing, Warning, WarningCode, roller_pressure_angle_deg, self_intersections, winds_once_about};
+use super::checks::{
+    Crossing, Warning, WarningCode, roller_pressure_angle_deg, roller_pressure_order, self_intersections,
+    winds_once_about,
+};
 use super::geometry::ModulatorGeometry;
 use super::kinematics::ModulatorState;
 use super::refine::{Extreme, Revolution};
@@ -146,8 +149,13 @@ pub(crate) fn check_states(
     let e6max = rev.max_output(&|p| p[2] * w2 * w2);
     let e6min = rev.min_output(&|p| p[2] * w2 * w2);
     let mo = rev.max(&|s| s.mu_out_deg());
-    let mb = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.b[1], s.b[0] - a));
-    let mc = rev.max_with_pin(g, &|s, a| roller_pressure_angle_deg(s.c[1], s.c[0] - a));
+    // The grid's largest roller pressure angles are chosen by tan μ, μ formed only where read.
+    let mb = rev.max_with_pin_ordered(g, &|s, a| roller_pressure_order(s.b[1], s.b[0] - a), &|s, a| {
+        roller_pressure_angle_deg(s.b[1], s.b[0] - a)
+    });
+    let mc = rev.max_with_pin_ordered(g, &|s, a| roller_pressure_order(s.c[1], s.c[0] - a), &|s, a| {
+        roller_pressure_angle_deg(s.c[1], s.c[0] - a)
+    });
     let kb = rev.max(&|s| s.kappa_b().abs());
     let kc = rev.max(&|s| s.kappa_c().abs());
     // A stationary point of C (|C′| = 0) is a cusp of Γ′.

@@ -282,7 +282,15 @@ fn synthesize_in(
     let lag_limit = (g.l6_m / g.l2_m).acos();
     let cx = check_grid(0.0);
     let lag = |x: f64| wrap_pi(out.eval(x).phi6 - x).abs();
-    let lag_vals: Vec<f64> = cx.iter().map(|&x| lag(x)).collect();
+    // The law on the check grid, evaluated once for the lag and for the states.
+    let grid_out: Vec<[f64; 3]> = cx
+        .iter()
+        .map(|&x| {
+            let o = out.eval(x);
+            [o.phi6, o.d1, o.d2]
+        })
+        .collect();
+    let lag_vals: Vec<f64> = cx.iter().zip(&grid_out).map(|(&x, o)| wrap_pi(o[0] - x).abs()).collect();
     let worst_lag = refined_turn_max(&cx, &lag_vals, &lag);
     if worst_lag.value >= lag_limit {
         let dmax = max_dwell_deg(law, lag_limit.to_degrees())?;
@@ -312,9 +320,8 @@ fn synthesize_in(
     let mut fine = Vec::with_capacity(cx.len());
     let mut pins = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
-    for (&x, e2) in cx.iter().zip(grid_units_iter(0.0, CHECK_STEP_DEG, cx.len())) {
-        let o = out.eval(x);
-        let s = state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], phi3_ref);
+    for ((&x, e2), &o) in cx.iter().zip(grid_units_iter(0.0, CHECK_STEP_DEG, cx.len())).zip(&grid_out) {
+        let s = state_from_phi6(g, &arms, x, e2, o, phi3_ref);
         phi3_ref = s.phi3[0];
         fine.push(s);
         pins.push(g.l2_m * e2);
