@@ -328,14 +328,21 @@ fn synthesize_in(
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
     let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x, e(x));
-    // The table: each state and its row share e(φ2).
+    // The table: each state and its row share e(φ2); a row on a point of the check grid is its
+    // state there (as in analysis).
     states.clear();
     rows.clear();
     states.reserve(xs.len());
     rows.reserve(xs.len());
     for (&x, e2) in xs.iter().zip(grid_units_iter(0.0, step, xs.len())) {
-        let s = law_state(g, &arms, &out, &cx, &refs, x, e2);
-        rows.push(SynthesisRow::new(&s, g.l2_m * e2, w2));
+        let j = Revolution::nearest(&cx, x);
+        let (s, a) = if x.to_bits() == cx[j].to_bits() {
+            (fine[j], pins[j])
+        } else {
+            let o = out.eval(x);
+            (state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], refs[j]), g.l2_m * e2)
+        };
+        rows.push(SynthesisRow::new(&s, a, w2));
         states.push(s);
     }
     // The output rates' extremes need the law alone, not the state.
