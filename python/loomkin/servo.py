@@ -80,7 +80,9 @@ def export(format: str, step_deg: float = 1.0, def_points: DefPoints = None, end
            drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
     """``loomkin servo export --format F``: text (the file's content), filename, media_type; for
     the cam tables (csv, xyva) also points, step_deg (deg) and reinterpolation (worst errors of
-    linear, cubic-spline and quintic-Hermite re-interpolation: m, m/deg, m/deg², relative)."""
+    linear, cubic-spline and quintic-Hermite re-interpolation: m, m/deg, m/deg², relative; the
+    same rows also as interpolation, the workbench API's key, each row naming its mode as
+    interpolation and as mode)."""
     return _m.servo_export(format, float(step_deg), def_points, end, _drive(drive))
 
 

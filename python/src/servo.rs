@@ -259,7 +259,8 @@ fn export_format(name: &str) -> PyResult<ExportFormat> {
 ///
 /// Every controller export of `loomkin servo export`: format one of coeffs, json, csv, xyva,
 /// poly5, cycle. Returns text (the file `-o` writes, byte for byte), filename, media_type and, for
-/// the cam tables (csv, xyva), points, step_deg and reinterpolation (the worst errors when the
+/// the cam tables (csv, xyva), points, step_deg and reinterpolation (also as interpolation, the
+/// workbench API's key; each row names its mode as interpolation and as mode: the worst errors when the
 /// controller interpolates: m, m/deg, m/deg²; as `--json` prints).
 #[pyfunction]
 #[pyo3(signature = (format, step_deg=1.0, def_points=None, end="natural", drive_text=None))]
@@ -285,6 +286,8 @@ fn servo_export<'py>(
         out.set_item("step_deg", t.step_deg)?;
         let rows: Vec<ReinterpolationRow> = t.reinterpolation.iter().map(ReinterpolationRow::from).collect();
         out.set_item("reinterpolation", to_py(py, &rows)?)?;
+        // The workbench API's key for the same rows (`servo export --json` writes both).
+        out.set_item("interpolation", to_py(py, &rows)?)?;
     }
     Ok(out)
 }

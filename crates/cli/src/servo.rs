@@ -271,12 +271,15 @@ fn law(a: LawArgs) -> Result<()> {
     Ok(())
 }
 
-/// `servo export --json` (cam tables): the re-interpolation report.
+/// `servo export --json` (cam tables): the re-interpolation report. The rows are given twice,
+/// as `reinterpolation` (this command's key since issue 3) and as `interpolation` (the key of
+/// `/api/servo/export`), so a script written against either front end reads this one.
 #[derive(Serialize)]
 struct ExportJson {
     format: ExportFormat,
     points: usize,
     reinterpolation: Vec<ReinterpolationRow>,
+    interpolation: Vec<ReinterpolationRow>,
 }
 
 fn print_drive(d: &Drive) -> Result<()> {
@@ -418,11 +421,9 @@ fn export(a: ExportArgs) -> Result<()> {
     // What a cam table loses when the controller interpolates between its points.
     let Some(table) = file.table else { return Ok(()) };
     if a.json {
-        let report = ExportJson {
-            format: a.format,
-            points: table.points,
-            reinterpolation: table.reinterpolation.iter().map(ReinterpolationRow::from).collect(),
-        };
+        let rows: Vec<ReinterpolationRow> = table.reinterpolation.iter().map(ReinterpolationRow::from).collect();
+        let report =
+            ExportJson { format: a.format, points: table.points, interpolation: rows.clone(), reinterpolation: rows };
         if a.output == "-" {
             // The table went to stdout: keep it clean, the report goes to stderr.
             output::note(format_args!("{}", serde_json::to_string_pretty(&report)?));

@@ -177,12 +177,17 @@ impl OptimizeReport {
     }
 }
 
-/// One re-interpolation row of a cam table's report (`servo export --json`): an
-/// [`InterpolationError`] with its mode named `interpolation`.
+/// One re-interpolation row of a cam table's report, the same in `servo export --json` (array
+/// `reinterpolation`), the workbench's `/api/servo/export` (array `interpolation`) and Python: an
+/// [`InterpolationError`] with its mode under both names it has been published with,
+/// `interpolation` (the CLI's) and `mode` (the API's), so a script written against either front
+/// end reads the other.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReinterpolationRow {
     /// The interpolation's kebab-case name.
     pub interpolation: &'static str,
+    /// The same name under the API's key.
+    pub mode: &'static str,
     /// Table step (deg).
     pub step_deg: f64,
     /// Largest position error (m).
@@ -203,6 +208,7 @@ impl From<&InterpolationError> for ReinterpolationRow {
     fn from(e: &InterpolationError) -> Self {
         Self {
             interpolation: e.mode.name(),
+            mode: e.mode.name(),
             step_deg: e.step_deg,
             max_position_error_m: e.max_position_error_m,
             max_velocity_error_m_per_deg: e.max_velocity_error_m_per_deg,

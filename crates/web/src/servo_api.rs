@@ -10,7 +10,7 @@ use axum::routing::{get, post};
 use loomkin_laws::Metrics;
 pub use loomkin_servo::ExportFormat;
 use loomkin_servo::{
-    Interpolation, InterpolationError, Objective, OptimizeOptions, TorqueSummary, optimize, summary, torque_curve,
+    Interpolation, Objective, OptimizeOptions, ReinterpolationRow, TorqueSummary, optimize, summary, torque_curve,
 };
 use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
@@ -255,9 +255,13 @@ pub struct ExportResponse {
     pub media_type: &'static str,
     /// The file's text.
     pub text: String,
-    /// For cam tables: what re-interpolating the table as a controller would loses.
+    /// For cam tables: what re-interpolating the table as a controller would loses (rows with the
+    /// mode as `mode` and as `interpolation`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub interpolation: Vec<InterpolationError>,
+    pub interpolation: Vec<ReinterpolationRow>,
+    /// The same rows under the key of `loomkin servo export --json`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reinterpolation: Vec<ReinterpolationRow>,
     /// A one-line summary for the status bar.
     pub note: String,
 }
@@ -287,7 +291,7 @@ pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
                 mode.name(),
                 worst
             );
-            (t.reinterpolation, note)
+            (t.reinterpolation.iter().map(ReinterpolationRow::from).collect::<Vec<_>>(), note)
         }
         None => (Vec::new(), String::new()),
     };
@@ -295,6 +299,7 @@ pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
         filename: file.filename.into(),
         media_type: file.media_type,
         text: file.text,
+        reinterpolation: interpolation.clone(),
         interpolation,
         note,
     })
@@ -323,6 +328,7 @@ pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
         media_type,
         text: design_text(&req.design, req.format)?,
         interpolation: Vec::new(),
+        reinterpolation: Vec::new(),
         note: String::new(),
     })
 }

@@ -330,6 +330,15 @@ async fn export_every_format() {
     // 91 rows over 0…360°: a 4° step; a header and 91 data lines.
     assert_eq!(r["text"].as_str().unwrap().lines().count(), 92);
     assert_eq!(r["interpolation"].as_array().unwrap().len(), 3);
+    // Both front ends' names: `interpolation[].mode` (this API's) and
+    // `reinterpolation[].interpolation` (`loomkin servo export --json`'s), the same rows.
+    assert_eq!(r["reinterpolation"], r["interpolation"]);
+    let modes: Vec<&str> = r["interpolation"].as_array().unwrap().iter().map(|e| e["mode"].as_str().unwrap()).collect();
+    assert_eq!(modes, ["linear", "cubic-spline", "quintic-hermite"]);
+    for row in r["interpolation"].as_array().unwrap() {
+        assert_eq!(row["interpolation"], row["mode"], "{row}");
+        assert!(row["max_position_error_m"].as_f64().unwrap() >= 0.0, "{row}");
+    }
     assert_refused(
         &post("/api/servo/export", json!({"design": design(), "format": "csv", "rows": 100_000_000})).await,
         StatusCode::UNPROCESSABLE_ENTITY,

@@ -116,6 +116,14 @@ fn export_writes_every_format() {
     assert_eq!(r.len(), 3);
     let q = r.iter().find(|e| e["interpolation"] == "quintic-hermite").unwrap();
     assert!(q["max_position_error_m"].as_f64().unwrap() < 1e-12);
+    // The workbench's names read the same rows: `interpolation[].mode` (the API's
+    // `/api/servo/export`) beside `reinterpolation[].interpolation` (this command's).
+    assert_eq!(v["interpolation"], v["reinterpolation"]);
+    for row in r {
+        assert_eq!(row["mode"], row["interpolation"], "{row}");
+    }
+    let modes: Vec<&str> = v["interpolation"].as_array().unwrap().iter().map(|e| e["mode"].as_str().unwrap()).collect();
+    assert_eq!(modes, ["linear", "cubic-spline", "quintic-hermite"]);
     let j = tmp("c.json");
     loomkin().args(["servo", "export", "--format", "json", "-o", j.to_str().unwrap()]).assert().success();
     let e: Value = serde_json::from_str(&std::fs::read_to_string(&j).unwrap()).unwrap();
