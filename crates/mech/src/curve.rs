@@ -34,6 +34,14 @@ pub trait PlaneCurve: std::fmt::Debug + Send + Sync {
     /// Period of the parameter (rad for an ellipse, m of chord length for a spline).
     fn period(&self) -> f64;
 
+    /// The positions `r(pᵢ)` at `pᵢ = period·i/n`, `i = 0..=n` (both ends), for scanning the
+    /// curve: each within a few units of rounding of `eval(pᵢ).r`, and cheaper where the curve can
+    /// step along a uniform grid of its parameter ([`Ellipse`]: no `sin_cos` per point).
+    fn scan(&self, n: usize) -> Vec<Vec2> {
+        let n = n.max(1);
+        (0..=n).map(|i| self.eval(self.period() * i as f64 / n as f64).r).collect()
+    }
+
     /// `n` points evenly spaced in the parameter over one period (the last one not repeated).
     fn points(&self, n: usize) -> Vec<Vec2> {
         let h = self.period() / n.max(1) as f64;
@@ -90,6 +98,31 @@ impl PlaneCurve for Ellipse {
     fn period(&self) -> f64 {
         TAU
     }
+
+    /// `(cos pᵢ, sin pᵢ)` from `sin_cos` at every 32nd point (an anchor), the points between
+    /// turned from it by a table of `e(2π·j/n)`, `j < 32` (one rotation, no accumulation).
+    fn scan(&self, n: usize) -> Vec<Vec2> {
+        const K: usize = 32;
+        let n = n.max(1);
+        let unit = |i: usize| {
+            let (s, c) = (TAU * i as f64 / n as f64).sin_cos();
+            Vec2::new(c, s)
+        };
+        let offsets: Vec<Vec2> = (0..K.min(n + 1)).map(unit).collect();
+        let mut out = Vec::with_capacity(n + 1);
+        let mut anchor = unit(0);
+        for i in 0..=n {
+            let j = i % K;
+            let u = if j == 0 {
+                anchor = unit(i);
+                anchor
+            } else {
+                crate::planar::rotate(anchor, offsets[j])
+            };
+            out.push(Vec2::new(self.cx_m + self.a_m * u.x, self.cy_m + self.b_m * u.y));
+        }
+        out
+    }
 }
 
 #[cfg(test)]
@@ -113,6 +146,26 @@ mod tests {
         assert!((k_top - el.b_m / (el.a_m * el.a_m)).abs() < 1e-12);
         let k_side = el.eval(0.0).curvature().unwrap();
         assert!((k_side - el.a_m / (el.b_m * el.b_m)).abs() < 1e-12);
+    }
+
+    /// Independent route for the scan: `eval` at every point, for point counts that are and are
+    /// not multiples of the anchor spacing; the anchors are `eval` itself.
+    #[test]
+    fn ellipse_scan_matches_eval() {
+        let el = Ellipse::with_centre(0.366, 0.577, 0.01, -0.02).unwrap();
+        for n in [1usize, 5, 31, 32, 100, 2048, 2049] {
+            let pts = el.scan(n);
+            assert_eq!(pts.len(), n + 1);
+            for (i, p) in pts.iter().enumerate() {
+                let r = el.eval(TAU * i as f64 / n as f64).r;
+                // The angle's own rounding (½ ulp of 2π), the anchor's and the offset's unit vector
+                // components and one rotation, times the semi-axes; centre added once.
+                assert!((p - r).amax() <= 4.0 * f64::EPSILON, "n = {n}, i = {i}: {p:?} vs {r:?}");
+                if i % 32 == 0 {
+                    assert_eq!(*p, r);
+                }
+            }
+        }
     }
 
     #[test]

@@ -361,11 +361,13 @@ pub fn assemble(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> Result<[f64; 2]>
     let n = 2048;
     let per = c.period();
     let f = |p: f64| (a - c.eval(p).r).norm_squared() - g.l3_m * g.l3_m;
+    // The scan's values (their signs bracket the roots; each root is then bisected on `f`).
+    let scan: Vec<f64> = c.scan(n).iter().map(|r| (a - r).norm_squared() - g.l3_m * g.l3_m).collect();
     let mut best: Option<(f64, [f64; 2])> = None;
-    let mut prev = f(0.0);
+    let mut prev = scan[0];
     for i in 1..=n {
         let (p0, p1) = (per * (i - 1) as f64 / n as f64, per * i as f64 / n as f64);
-        let cur = f(p1);
+        let cur = scan[i];
         if prev == 0.0 || prev.signum() != cur.signum() {
             let (mut lo, mut hi, mut flo) = (p0, p1, prev);
             for _ in 0..80 {
