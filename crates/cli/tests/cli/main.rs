@@ -2,6 +2,7 @@
 
 mod cam;
 mod common;
+mod contracts;
 mod dobby;
 mod docs;
 mod dynamics;
