@@ -600,9 +600,8 @@ fn analyze_in(
     let mut fine = Vec::with_capacity(traced.len());
     let mut phi6_ref = traced[0].input;
     for ((st, &e2), &e3) in traced.iter().zip(&cx_e2).zip(&traced_e3) {
-        let s = close3(st, e2, e3, phi6_ref)?;
-        phi6_ref = s.phi6[0];
-        fine.push(s);
+        fine.push(close3(st, e2, e3, phi6_ref)?);
+        phi6_ref = fine[fine.len() - 1].phi6[0];
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi6[0]).collect();
 
@@ -614,14 +613,16 @@ fn analyze_in(
     for (&x, e2) in xs.iter().zip(grid_units_iter(opts.start_deg, step, xs.len())) {
         let j = Revolution::nearest(&cx, x);
         // A row on a point of the check grid is its traced state.
-        let (s, p, e2) = if x.to_bits() == cx[j].to_bits() {
-            (fine[j], traced[j].q[0], cx_e2[j])
+        let (p, e2) = if x.to_bits() == cx[j].to_bits() {
+            states.push(fine[j]);
+            (traced[j].q[0], cx_e2[j])
         } else {
             let (st, e3) = advance(&traced[j], x, e2)?;
-            (close3(&st, e2, e3, refs[j])?, st.q[0], e2)
+            states.push(close3(&st, e2, e3, refs[j])?);
+            (st.q[0], e2)
         };
-        rows.push(AnalysisRow::new(&s, g.l2_m * e2, p, (x - xs[0]) / w2, w2));
-        states.push(s);
+        // The state went into its table first and the row reads it there (no copy in between).
+        rows.push(AnalysisRow::new(&states[states.len() - 1], g.l2_m * e2, p, (x - xs[0]) / w2, w2));
     }
     let rev = Revolution {
         xs: cx.clone(),

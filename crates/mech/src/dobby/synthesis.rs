@@ -321,9 +321,8 @@ fn synthesize_in(
     let mut pins = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
     for ((&x, e2), &o) in cx.iter().zip(grid_units_iter(0.0, CHECK_STEP_DEG, cx.len())).zip(&grid_out) {
-        let s = state_from_phi6(g, &arms, x, e2, o, phi3_ref);
-        phi3_ref = s.phi3[0];
-        fine.push(s);
+        fine.push(state_from_phi6(g, &arms, x, e2, o, phi3_ref));
+        phi3_ref = fine[fine.len() - 1].phi3[0];
         pins.push(g.l2_m * e2);
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
@@ -336,14 +335,16 @@ fn synthesize_in(
     rows.reserve(xs.len());
     for (&x, e2) in xs.iter().zip(grid_units_iter(0.0, step, xs.len())) {
         let j = Revolution::nearest(&cx, x);
-        let (s, a) = if x.to_bits() == cx[j].to_bits() {
-            (fine[j], pins[j])
+        // The state goes into its table first and the row reads it there (no copy in between).
+        let a = if x.to_bits() == cx[j].to_bits() {
+            states.push(fine[j]);
+            pins[j]
         } else {
             let o = out.eval(x);
-            (state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], refs[j]), g.l2_m * e2)
+            states.push(state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], refs[j]));
+            g.l2_m * e2
         };
-        rows.push(SynthesisRow::new(&s, a, w2));
-        states.push(s);
+        rows.push(SynthesisRow::new(&states[states.len() - 1], a, w2));
     }
     // The output rates' extremes need the law alone, not the state.
     let law_output = |x: f64| {
