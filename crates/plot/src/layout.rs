@@ -145,6 +145,8 @@ pub(crate) struct PanelLayout {
     pub notes: Vec<NoteLayout>,
     pub entries: Vec<Entry>,
     pub legend: Option<Rect>,
+    /// Where each entry of the legend goes: the left end of its swatch and its centre line.
+    pub legend_cells: Vec<(f64, f64)>,
     pub band_strip: bool,
 }
 
@@ -186,10 +188,15 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
     let sizes: Vec<(f64, f64)> = entries.iter().map(|e| legend_size(e)).collect();
     let mut outside: Vec<bool> =
         fig.panels.iter().zip(&entries).map(|(p, e)| p.legend == Legend::Outside && !e.is_empty()).collect();
+    // A legend with no free place inside its plot goes in rows above that plot (the panel gives
+    // up a little height) where that keeps most of the plot's height; else to the right, where
+    // every stacked panel gives up the legend's width.
+    let mut above = vec![false; fig.panels.len()];
+    let mut tops = vec![0.0; fig.panels.len()];
     let mut panels = Vec::new();
-    for _ in 0..4 {
+    for _ in 0..6 {
         let right = outside.iter().zip(&sizes).filter(|(o, _)| **o).map(|(_, s)| s.0 + 30.0).fold(18.0, f64::max);
-        panels = place_panels(fig, &slots, right);
+        panels = place_panels(fig, &slots, right, &tops);
         let mut changed = false;
         for (i, (pl, p)) in panels.iter_mut().zip(&fig.panels).enumerate() {
             pl.entries = entries[i].clone();
@@ -197,15 +204,37 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
                 continue;
             }
             let (lw, lh) = sizes[i];
+            if above[i] {
+                let (rw, rh, cells) = legend_rows(&entries[i], pl.plot.w());
+                if (tops[i] - (rh + LEGEND_GAP)).abs() > 0.5 {
+                    tops[i] = rh + LEGEND_GAP;
+                    changed = true;
+                }
+                let strip = if pl.band_strip { BAND_STRIP } else { 0.0 };
+                let rect = Rect::new(pl.plot.x0, pl.plot.y0 - strip - tops[i], rw, rh);
+                pl.legend_cells = cells.iter().map(|&(dx, dy)| (rect.x0 + dx, rect.y0 + dy)).collect();
+                pl.legend = Some(rect);
+                continue;
+            }
             if !outside[i] {
                 pl.legend = free_spot(pl, p, lw, lh);
                 if pl.legend.is_none() {
-                    outside[i] = true;
+                    let (_, rh, _) = legend_rows(&entries[i], pl.plot.w());
+                    if rh + LEGEND_GAP <= (1.0 - MAX_HEIGHT_FOR_LEGEND) * pl.plot.h() {
+                        above[i] = true;
+                    } else {
+                        outside[i] = true;
+                    }
                     changed = true;
+                    continue;
                 }
             }
             if outside[i] {
                 pl.legend = Some(Rect::new(pl.plot.x1 + 14.0, pl.plot.y0, lw, lh));
+            }
+            if let Some(rect) = pl.legend {
+                pl.legend_cells =
+                    (0..entries[i].len()).map(|k| (rect.x0 + PAD, rect.y0 + PAD + ROW * k as f64 + 7.0)).collect();
             }
         }
         if !changed {
@@ -213,6 +242,32 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
         }
     }
     Layout { width: w, height: h, panels }
+}
+
+/// Space between a legend in rows and the plot below it.
+const LEGEND_GAP: f64 = 8.0;
+/// Share of a plot's height a legend in rows above it may take; a larger legend goes to the right.
+const MAX_HEIGHT_FOR_LEGEND: f64 = 0.35;
+/// Space between two entries of a row.
+const ENTRY_GAP: f64 = 18.0;
+
+/// A legend laid out in rows across `width`: its width and height, and each entry's swatch start
+/// and centre line relative to the box.
+fn legend_rows(e: &[Entry], width: f64) -> (f64, f64, Vec<(f64, f64)>) {
+    let mut cells = Vec::new();
+    let (mut x, mut row, mut widest) = (0.0f64, 0usize, 0.0f64);
+    for entry in e {
+        let w = SWATCH + 7.0 + text_width(&entry.text, FONT_LEGEND) * 1.04;
+        if x > 0.0 && x + ENTRY_GAP + w > width - 2.0 * PAD {
+            row += 1;
+            x = 0.0;
+        }
+        let at = if x > 0.0 { x + ENTRY_GAP } else { 0.0 };
+        cells.push((PAD + at, PAD + ROW * row as f64 + 7.0));
+        x = at + w;
+        widest = widest.max(x);
+    }
+    (2.0 * PAD + widest, 2.0 * PAD + ROW * (row + 1) as f64 - 4.0, cells)
 }
 
 fn legend_entries(p: &Panel) -> Vec<Entry> {
@@ -375,12 +430,12 @@ pub(crate) fn log_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     }
 }
 
-fn place_panels(fig: &Figure, slots: &[Rect], right: f64) -> Vec<PanelLayout> {
+fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<PanelLayout> {
     // Vertical axes first (they depend on heights only), so every plot can share one left edge.
     let mut pre = Vec::new();
-    for (p, slot) in fig.panels.iter().zip(slots) {
+    for ((p, slot), top) in fig.panels.iter().zip(slots).zip(tops) {
         let band_strip = p.x_bands.iter().any(|b| !b.label.is_empty());
-        let y0 = slot.y0 + 10.0 + if band_strip { BAND_STRIP } else { 0.0 };
+        let y0 = slot.y0 + 10.0 + top + if band_strip { BAND_STRIP } else { 0.0 };
         let y1 = slot.y1 - 50.0;
         let plot_h = (y1 - y0).max(20.0);
         let ys = || {
@@ -440,6 +495,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64) -> Vec<PanelLayout> {
             notes: Vec::new(),
             entries: Vec::new(),
             legend: None,
+            legend_cells: Vec::new(),
             band_strip,
         };
         pl.curves = p.series.iter().map(|s| polylines(&pl, &s.points)).collect();

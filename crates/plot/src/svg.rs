@@ -1,8 +1,7 @@
 //! The figure as an SVG document.
 
 use super::layout::{
-    FONT_BAND, FONT_LABEL, FONT_LEGEND, FONT_NOTE, FONT_TICK, FONT_TITLE, Layout, MARKER_R, PAD, PanelLayout, ROW,
-    SWATCH, Swatch,
+    FONT_BAND, FONT_LABEL, FONT_LEGEND, FONT_NOTE, FONT_TICK, FONT_TITLE, Layout, MARKER_R, PanelLayout, SWATCH, Swatch,
 };
 use super::raster::text_width;
 use super::{Dash, Figure, Panel, RuleAxis};
@@ -247,9 +246,8 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
             box_.w(),
             box_.h()
         );
-        for (k, e) in pl.entries.iter().enumerate() {
-            let cy = box_.y0 + PAD + ROW * k as f64 + 7.0;
-            let (sx, tx) = (box_.x0 + PAD, box_.x0 + PAD + SWATCH + 7.0);
+        for (e, &(sx, cy)) in pl.entries.iter().zip(&pl.legend_cells) {
+            let tx = sx + SWATCH + 7.0;
             match &e.swatch {
                 Swatch::Line { color, dash } => {
                     let _ = writeln!(

@@ -124,13 +124,77 @@ fn legend_avoids_every_curve() {
         }
         let ry = pl.py(0.9);
         assert!(!legend.hit_by_segment((pl.plot.x0, ry), (pl.plot.x1, ry)), "legend on the limit line");
-        if legend.x0 >= pl.plot.x1 {
+        if legend.x0 >= pl.plot.x1 || legend.y1 <= pl.plot.y0 {
             outside += 1;
         } else {
             assert!(pl.plot.contains(&legend));
         }
     }
     assert!(outside >= 1, "the crossing ramps leave no room inside");
+}
+
+fn sine_series() -> Vec<Series> {
+    vec![Series::line("", sine(50, 1.0, 1.0))]
+}
+
+/// Curves through every corner and edge of a plot: no free place for a legend inside.
+fn crowded(n: usize, name: &str) -> Vec<Series> {
+    (0..n)
+        .map(|i| {
+            let k = i as f64 / n as f64;
+            Series::line(format!("{name} {i}"), vec![(0.0, k), (0.25, 1.0 - k), (0.5, k), (0.75, 1.0 - k), (1.0, k)])
+        })
+        .collect()
+}
+
+#[test]
+fn a_legend_with_no_room_inside_goes_in_rows_above_its_plot() {
+    let bare = |series: Vec<Series>| {
+        Figure::new("t", "x", vec![Panel::new("y", series).with_legend(Legend::Hidden), Panel::new("z", sine_series())])
+    };
+    let fig = Figure::new(
+        "t",
+        "x",
+        vec![Panel::new("y", crowded(10, "curve with a long name")), Panel::new("z", sine_series())],
+    );
+    let lay = layout(&fig);
+    let without = layout(&bare(crowded(10, "curve with a long name")));
+    let pl = &lay.panels[0];
+    let legend = pl.legend.expect("a legend");
+    // Above the plot, inside the figure, in rows: the plots keep the full width (no panel gives
+    // up width to a column on the right); only this panel gives up height.
+    assert!(legend.y1 <= pl.plot.y0 && legend.y0 >= 40.0, "{legend:?} {:?}", pl.plot);
+    assert!(legend.x0 >= pl.plot.x0 && legend.x1 <= lay.width, "{legend:?}");
+    assert_eq!(pl.plot.x1, without.panels[0].plot.x1);
+    assert_eq!(lay.panels[1].plot.x1, without.panels[1].plot.x1);
+    assert!(pl.plot.h() < without.panels[0].plot.h() && pl.plot.h() >= 0.65 * without.panels[0].plot.h());
+    assert_eq!(lay.panels[1].plot, without.panels[1].plot);
+    // More than one row, and no two entries on one spot.
+    let cells = &pl.legend_cells;
+    assert_eq!(cells.len(), 10);
+    assert!(cells.iter().any(|c| c.1 > cells[0].1), "one row only: {cells:?}");
+    for (i, a) in cells.iter().enumerate() {
+        assert!(legend.contains(&Rect::new(a.0, a.1, 0.0, 0.0)));
+        for b in &cells[i + 1..] {
+            assert!((a.1 - b.1).abs() > 1.0 || (a.0 - b.0).abs() > 40.0, "{a:?} {b:?}");
+        }
+    }
+    // The SVG draws every entry.
+    let svg = fig.to_svg().unwrap();
+    for i in 0..10 {
+        assert!(svg.contains(&format!(">curve with a long name {i}<")), "curve {i}");
+    }
+}
+
+#[test]
+fn a_legend_too_tall_for_rows_above_goes_to_the_right() {
+    // Forty long entries in a short panel would take most of its height in rows: a column on the
+    // right instead.
+    let fig = Figure::new("t", "x", vec![Panel::new("y", crowded(40, "a rather long curve name"))]);
+    let lay = layout(&fig);
+    let pl = &lay.panels[0];
+    let legend = pl.legend.expect("a legend");
+    assert!(legend.x0 >= pl.plot.x1, "{legend:?} {:?}", pl.plot);
 }
 
 #[test]
