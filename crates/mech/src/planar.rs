@@ -81,6 +81,23 @@ pub(crate) fn floor(x: f64) -> f64 {
     }
 }
 
+/// The angle of `v` (rad) as `reference + δ`, where `unit` = `e(reference)` and δ is the small angle
+/// from `unit` to `v`: `δ = atan(t)`, `t = (unit × v)/(unit · v)`, by its Maclaurin series while
+/// `|t| ≤ 10⁻²` (five terms; the next, t¹¹/11, is below 10⁻²³), so no `atan2`. `None` where δ is not
+/// that small (the caller takes `atan2`). The result carries the rounding of `reference` and of
+/// `unit`'s direction (a few 1e-16 rad), as an `atan2` unwrapped near `reference` carries its own.
+#[inline]
+pub(crate) fn angle_near(reference: f64, unit: Vec2, v: Vec2) -> Option<f64> {
+    let (c, d) = (cross(unit, v), unit.dot(&v));
+    if !(d > 0.0 && c.abs() <= 1e-2 * d) {
+        return None;
+    }
+    let t = c / d;
+    let t2 = t * t;
+    let series = t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0)))));
+    Some(reference + series)
+}
+
 /// The representative of `a + 2πk` nearest to `reference` (for unwrapping a continuous angle).
 #[inline]
 pub fn unwrap_near(a: f64, reference: f64) -> f64 {
@@ -183,6 +200,28 @@ mod tests {
                 Ok(())
             })
             .unwrap();
+    }
+
+    /// Independent route for the small-angle form: `atan2` unwrapped near the reference, for
+    /// references over several turns and small angles on both sides up to the series' limit;
+    /// beyond it (or behind the reference) the form declines.
+    #[test]
+    fn angle_near_matches_atan2() {
+        use proptest::prelude::*;
+        proptest::test_runner::TestRunner::new(proptest::test_runner::Config { cases: 5000, ..Default::default() })
+            .run(&(-20.0f64..20.0, -0.0099f64..0.0099, 1e-3f64..10.0), |(r, t, len)| {
+                let delta = t.atan();
+                let v = len * e(r + delta);
+                let near = angle_near(r, e(r), v).unwrap();
+                let direct = unwrap_near(v.y.atan2(v.x), r);
+                // Both carry the rounding of r + δ and of v's components (a few ε·|r|).
+                prop_assert!((near - direct).abs() <= 8.0 * f64::EPSILON * (r.abs() + 1.0), "{near} vs {direct}");
+                Ok(())
+            })
+            .unwrap();
+        assert_eq!(angle_near(1.0, e(1.0), e(1.0 + 0.02)), None);
+        assert_eq!(angle_near(1.0, e(1.0), -e(1.0)), None);
+        assert_eq!(angle_near(0.3, e(0.3), 2.0 * e(0.3)), Some(0.3));
     }
 
     #[test]

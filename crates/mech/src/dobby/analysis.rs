@@ -232,25 +232,29 @@ pub fn modulator_loops(g: &ModulatorGeometry, cam: &Cam) -> Result<LoopSystem<4>
 /// hands to the general solver (step halving, fold location, messages).
 ///
 /// The slot direction comes with the state: `w = l3·e(φ3 + α)`, so `e(φ3) = w/|w|` turned by −α
-/// (no `sin_cos` of φ3).
+/// (no `sin_cos` of φ3). Given `e(φ3)` of the state stepped from, φ3 is that state's φ3 plus the
+/// small angle between the two slot directions ([`crate::planar::angle_near`], no `atan2`).
 struct CamLoop<'a> {
     curve: &'a dyn crate::curve::PlaneCurve,
     l2: f64,
     l3: f64,
     alpha: f64,
-    /// `e(−α)`.
+    /// `e(−α)` and `e(α)`.
     minus_alpha: Vec2,
+    plus_alpha: Vec2,
     tol: f64,
 }
 
 impl<'a> CamLoop<'a> {
     fn new(g: &ModulatorGeometry, cam: &'a Cam, tol: f64) -> Self {
         let alpha = g.alpha_rad();
-        Self { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha, minus_alpha: e(-alpha), tol }
+        let (minus_alpha, plus_alpha) = (e(-alpha), e(alpha));
+        Self { curve: cam.curve().as_ref(), l2: g.l2_m, l3: g.l3_m, alpha, minus_alpha, plus_alpha, tol }
     }
 
     /// The state at input `x1`, given `ea = e(x1)`, and `e(φ3)`; or `None` (declined).
-    fn step(&self, from: &LoopState<2>, x1: f64, ea: Vec2) -> Option<(LoopState<2>, Vec2)> {
+    /// `from_e3`: `e(φ3)` of `from`, if φ3 is to be taken as a small angle from it.
+    fn step(&self, from: &LoopState<2>, from_e3: Option<Vec2>, x1: f64, ea: Vec2) -> Option<(LoopState<2>, Vec2)> {
         let h = x1 - from.input;
         let pred = from.q + from.dq * h + from.ddq * (h * h / 2.0);
         let (a0, a1) = (self.l2 * ea, self.l2 * crate::planar::perp(ea));
@@ -285,7 +289,10 @@ impl<'a> CamLoop<'a> {
             return None;
         }
         let ww = w.norm_squared();
-        let phi3 = pred[1] + wrap_pi(w.y.atan2(w.x) - self.alpha - pred[1]);
+        // The slot direction w is at φ3 + α; from `from`'s direction e(φ3 + α) by a small angle.
+        let phi3 = from_e3
+            .and_then(|u| crate::planar::angle_near(from.q[1], crate::planar::rotate(u, self.plus_alpha), w))
+            .unwrap_or_else(|| pred[1] + wrap_pi(w.y.atan2(w.x) - self.alpha - pred[1]));
         let e3 = crate::planar::rotate(w / ww.sqrt(), self.minus_alpha);
         let p1 = w.dot(&a1) / det;
         let w1 = a1 - c.d1 * p1;
@@ -509,13 +516,14 @@ fn analyze_in(
     let fast = CamLoop::new(g, cam, newton.residual_tol);
     // One continuation step to input x, `ea = e(x)`: the scalar form where it applies, the general
     // solver otherwise; with e(φ3) of the new state.
-    let advance = |from: &LoopState<2>, x: f64, ea: Vec2| match fast.step(from, x, ea) {
+    let advance = |from: &LoopState<2>, from_e3: Option<Vec2>, x: f64, ea: Vec2| match fast.step(from, from_e3, x, ea) {
         Some(st) => Ok(st),
         None => sys.advance(from, x, newton).map(|st| (st, e(st.q[1]))),
     };
     for (&x, &ea) in cx[1..].iter().zip(&cx_e2[1..]) {
         let last = traced[traced.len() - 1];
-        match advance(&last, x, ea) {
+        // (φ3 of the traced states by atan2, not by small angles from each other: no accumulation.)
+        match advance(&last, None, x, ea) {
             Ok((st, e3)) => {
                 traced.push(st);
                 traced_e3.push(e3);
@@ -526,7 +534,8 @@ fn analyze_in(
     // The state at any input x with e(x) and e(φ3).
     let loop_at = |x: f64| {
         let ea = e(x);
-        advance(&traced[Revolution::nearest(&cx, x)], x, ea).ok().map(|(st, e3)| (st, ea, e3))
+        let j = Revolution::nearest(&cx, x);
+        advance(&traced[j], Some(traced_e3[j]), x, ea).ok().map(|(st, e3)| (st, ea, e3))
     };
 
     // The slot must meet crank 6: |φ3 − φ2| ≤ arcsin(l6/l2). η = φ3 − φ2 + α does not depend on α.
@@ -587,8 +596,8 @@ fn analyze_in(
     }
 
     let arms = ArmAngles::new(g);
-    let close3 = |st: &LoopState<2>, e2: Vec2, e3: Vec2, phi6_ref: f64| {
-        state_from_phi3(g, &arms, st.input, e2, e3, [st.q[1], st.dq[1], st.ddq[1]], phi6_ref).map_err(|e| {
+    let close3 = |st: &LoopState<2>, e2: Vec2, e3: Vec2, near6: (f64, Option<Vec2>)| {
+        state_from_phi3(g, &arms, st.input, e2, e3, [st.q[1], st.dq[1], st.ddq[1]], near6).map_err(|e| {
             MechError::CannotBuild {
                 phi2_deg: st.input.to_degrees(),
                 condition: format!("loop (3) cannot close: {e}"),
@@ -600,10 +609,22 @@ fn analyze_in(
     let mut fine = Vec::with_capacity(traced.len());
     let mut phi6_ref = traced[0].input;
     for ((st, &e2), &e3) in traced.iter().zip(&cx_e2).zip(&traced_e3) {
-        fine.push(close3(st, e2, e3, phi6_ref)?);
+        // (φ6 of the grid states by atan2, not by small angles from each other: no accumulation.)
+        fine.push(close3(st, e2, e3, (phi6_ref, None))?);
         phi6_ref = fine[fine.len() - 1].phi6[0];
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi6[0]).collect();
+    // e(φ6) of the grid states, D/|D| as loop (3) forms it, for states solved near them.
+    let refs_e6: Vec<Vec2> = fine
+        .iter()
+        .zip(&cx_e2)
+        .zip(&traced_e3)
+        .map(|((s, &e2), &e3)| {
+            let d = g.l2_m * e2 - s.s53[0] * e3;
+            d / d.norm()
+        })
+        .collect();
+    let near6 = |j: usize| (refs[j], Some(refs_e6[j]));
 
     let w2 = opts.input_speed_rad_s;
     states.clear();
@@ -617,8 +638,8 @@ fn analyze_in(
             states.push(fine[j]);
             (traced[j].q[0], cx_e2[j])
         } else {
-            let (st, e3) = advance(&traced[j], x, e2)?;
-            states.push(close3(&st, e2, e3, refs[j])?);
+            let (st, e3) = advance(&traced[j], Some(traced_e3[j]), x, e2)?;
+            states.push(close3(&st, e2, e3, near6(j))?);
             (st.q[0], e2)
         };
         // The state went into its table first and the row reads it there (no copy in between).
@@ -630,7 +651,7 @@ fn analyze_in(
         pins: cx_e2.iter().map(|&e2| g.l2_m * e2).collect(),
         eval: Box::new(|x| {
             let (st, e2, e3) = loop_at(x)?;
-            close3(&st, e2, e3, refs[Revolution::nearest(&cx, x)]).ok()
+            close3(&st, e2, e3, near6(Revolution::nearest(&cx, x))).ok()
         }),
         output: None,
     };
@@ -794,7 +815,12 @@ mod tests {
             let mut fast_steps = 0;
             for &x in &xs[1..] {
                 let slow = sys.advance(&st, x, &newton).unwrap();
-                if let Some((f, e3)) = fast.step(&st, x, e(x)) {
+                if let Some((f, e3)) = fast.step(&st, None, x, e(x)) {
+                    // φ3 as a small angle from the state stepped from: atan2's value to rounding,
+                    // everything else the same bits.
+                    let (near, e3_near) = fast.step(&st, Some(e(st.q[1])), x, e(x)).unwrap();
+                    assert!((near.q[1] - f.q[1]).abs() <= 8.0 * f64::EPSILON * (f.q[1].abs() + 1.0), "{x}: φ3");
+                    assert_eq!((near.q[0], near.dq, near.ddq, e3_near), (f.q[0], f.dq, f.ddq, e3));
                     // e(φ3) from the loop vector against sin_cos of φ3: φ3 carries the rounding of
                     // atan2, of α and of its own value (ε|φ3| each), w its components' rounding.
                     let tol = f64::EPSILON * (2.0 * f.q[1].abs() + 8.0);

@@ -110,7 +110,9 @@ pub(crate) fn lever_points(
 /// Loop (3) from φ3 (analysis): D = A − S53·e(φ3) on the circle |D| = l6, the near intersection
 /// `S53 = l2 cos(φ2 − φ3) − √(l6² − l2² sin²(φ3 − φ2))`; then the rates from the differentiated loop
 /// `[l6 e⊥(φ6), e(φ3)]·(φ6′, S53′) = l2 e⊥(φ2) − S53 φ3′ e⊥(φ3)` and likewise for the second
-/// derivatives. `phi6_ref` picks the turn of φ6 (the result is within π of it). `e2 = e(φ2)`,
+/// derivatives. `near6 = (φ6_ref, unit)`: `φ6_ref` picks the turn of φ6 (the result is within π
+/// of it); with `unit = e(φ6_ref)` (a nearby state's `D/|D|`) φ6 is `φ6_ref` plus the small angle
+/// from it ([`crate::planar::angle_near`], no `atan2`) where that angle is small. `e2 = e(φ2)`,
 /// `e3 = e(φ3)`; `e(φ6)` is `D/|D|`.
 pub(crate) fn slot_from_phi3(
     g: &ModulatorGeometry,
@@ -118,7 +120,7 @@ pub(crate) fn slot_from_phi3(
     e2: Vec2,
     phi3: [f64; 3],
     e3: Vec2,
-    phi6_ref: f64,
+    (phi6_ref, phi6_unit): (f64, Option<Vec2>),
 ) -> Result<([f64; 3], [f64; 3])> {
     let a = g.l2_m * e2;
     let [s_near, _] = line_circle(a, -e3, Vec2::zeros(), g.l6_m, "slot 5 on output crank 6")?;
@@ -129,7 +131,9 @@ pub(crate) fn slot_from_phi3(
         });
     }
     let d = a - s_near * e3;
-    let phi6 = crate::planar::unwrap_near(d.y.atan2(d.x), phi6_ref);
+    let phi6 = phi6_unit
+        .and_then(|u| crate::planar::angle_near(phi6_ref, u, d))
+        .unwrap_or_else(|| crate::planar::unwrap_near(d.y.atan2(d.x), phi6_ref));
     let e6 = d / d.norm();
     let (c1, c2) = (g.l6_m * perp(e6), e3);
     let det = cross(c1, c2);
@@ -150,13 +154,15 @@ pub(crate) fn slot_from_phi3(
 /// Loop (3) from φ6 (synthesis): `w = A − D = S53·e(φ3)`, so `S53 = |w|`, `φ3 = atan2 w`,
 /// `φ3′ = (w × w′)/S²`, `S′ = (w·w′)/S`,
 /// `φ3″ = (w × w″)/S² − 2(w × w′)(w·w′)/S⁴`, `S″ = (|w′|² + w·w″)/S − (w·w′)²/S³`.
-/// `phi3_ref` picks the turn of φ3. S53 ≥ l2 − l6 > 0, so this never fails. Also returns
+/// `near3 = (φ3_ref, unit)`: `φ3_ref` picks the turn of φ3; with `unit = e(φ3_ref)` (a nearby
+/// state's `w/S`) φ3 is `φ3_ref` plus the small angle from it ([`crate::planar::angle_near`], no
+/// `atan2`) where that angle is small. S53 ≥ l2 − l6 > 0, so this never fails. Also returns
 /// `e(φ3) = w/S`.
 pub(crate) fn slot_from_phi6(
     g: &ModulatorGeometry,
     e2: Vec2,
     phi6: [f64; 3],
-    phi3_ref: f64,
+    (phi3_ref, phi3_unit): (f64, Option<Vec2>),
 ) -> ([f64; 3], [f64; 3], Vec2) {
     let e6 = e(phi6[0]);
     let p6 = perp(e6);
@@ -166,7 +172,9 @@ pub(crate) fn slot_from_phi6(
     let s2 = w0.norm_squared();
     let s = s2.sqrt();
     let (cr1, dt1) = (cross(w0, w1), w0.dot(&w1));
-    let phi3 = crate::planar::unwrap_near(w0.y.atan2(w0.x), phi3_ref);
+    let phi3 = phi3_unit
+        .and_then(|u| crate::planar::angle_near(phi3_ref, u, w0))
+        .unwrap_or_else(|| crate::planar::unwrap_near(w0.y.atan2(w0.x), phi3_ref));
     let d3 = cr1 / s2;
     let dd3 = cross(w0, w2) / s2 - 2.0 * cr1 * dt1 / (s2 * s2);
     let ds = dt1 / s;
@@ -175,7 +183,8 @@ pub(crate) fn slot_from_phi6(
 }
 
 /// The state at φ2 from the slot angle φ3 and its derivatives (analysis); `e2 = e(φ2)` and
-/// `e3 = e(φ3)` come from the caller (the input grid and the cam-loop step have them).
+/// `e3 = e(φ3)` come from the caller (the input grid and the cam-loop step have them); φ6 near
+/// `near6` ([`slot_from_phi3`]).
 pub(crate) fn state_from_phi3(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
@@ -183,25 +192,26 @@ pub(crate) fn state_from_phi3(
     e2: Vec2,
     e3: Vec2,
     phi3: [f64; 3],
-    phi6_ref: f64,
+    near6: (f64, Option<Vec2>),
 ) -> Result<ModulatorState> {
-    let (s53, phi6) = slot_from_phi3(g, phi2, e2, phi3, e3, phi6_ref)?;
+    let (s53, phi6) = slot_from_phi3(g, phi2, e2, phi3, e3, near6)?;
     let (b, c) = lever_points(g, arms, e2, e3, phi3);
     Ok(ModulatorState { phi2, phi3, s53, phi6, b, c })
 }
 
-/// The state at φ2 from the output angle φ6 and its derivatives (synthesis); `e2 = e(φ2)`.
+/// The state at φ2 from the output angle φ6 and its derivatives (synthesis), with `e(φ3)`;
+/// `e2 = e(φ2)`, φ3 near `near3` ([`slot_from_phi6`]).
 pub(crate) fn state_from_phi6(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
     phi2: f64,
     e2: Vec2,
     phi6: [f64; 3],
-    phi3_ref: f64,
-) -> ModulatorState {
-    let (phi3, s53, e3) = slot_from_phi6(g, e2, phi6, phi3_ref);
+    near3: (f64, Option<Vec2>),
+) -> (ModulatorState, Vec2) {
+    let (phi3, s53, e3) = slot_from_phi6(g, e2, phi6, near3);
     let (b, c) = lever_points(g, arms, e2, e3, phi3);
-    ModulatorState { phi2, phi3, s53, phi6, b, c }
+    (ModulatorState { phi2, phi3, s53, phi6, b, c }, e3)
 }
 
 #[cfg(test)]
@@ -213,9 +223,9 @@ mod tests {
     fn slot_closed_forms_are_inverse() {
         let g = ModulatorGeometry::PAPER;
         for (phi2, phi6) in [(1.2, [1.0, 0.7, -0.4]), (3.0, [3.3, 1.9, 2.1]), (5.5, [5.6, 0.0, 0.0])] {
-            let (phi3, s53, e3) = slot_from_phi6(&g, e(phi2), phi6, phi2);
+            let (phi3, s53, e3) = slot_from_phi6(&g, e(phi2), phi6, (phi2, None));
             assert!((e3 - e(phi3[0])).norm() < 1e-15);
-            let (s_back, phi6_back) = slot_from_phi3(&g, phi2, e(phi2), phi3, e(phi3[0]), phi6[0]).unwrap();
+            let (s_back, phi6_back) = slot_from_phi3(&g, phi2, e(phi2), phi3, e(phi3[0]), (phi6[0], None)).unwrap();
             for k in 0..3 {
                 assert!((phi6_back[k] - phi6[k]).abs() < 1e-9, "φ6 order {k}: {} vs {}", phi6_back[k], phi6[k]);
                 assert!((s_back[k] - s53[k]).abs() < 1e-9, "S53 order {k}");

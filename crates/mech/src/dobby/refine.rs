@@ -590,7 +590,15 @@ mod tests {
                 .map(|i| {
                     let x = (at_deg + f64::from(i) * 1e-4).to_radians();
                     let o = out.eval(x);
-                    q(&state_from_phi6(&g, &ArmAngles::new(&g), x, crate::planar::e(x), [o.phi6, o.d1, o.d2], x))
+                    q(&state_from_phi6(
+                        &g,
+                        &ArmAngles::new(&g),
+                        x,
+                        crate::planar::e(x),
+                        [o.phi6, o.d1, o.d2],
+                        (x, None),
+                    )
+                    .0)
                 })
                 .fold(f64::NEG_INFINITY, f64::max)
         };

@@ -173,18 +173,19 @@ impl PartialEq for DenseCurves {
 }
 
 /// The state at input angle `x` (rad) from the law in closed form, φ3 on the turn of the nearest
-/// check-grid point (`cx`, turns `refs`); `e2 = e(x)`.
+/// check-grid point (`cx`, turns `refs`), and with `units` (their `e(φ3)`) as a small angle from
+/// it; `e2 = e(x)`.
 fn law_state(
     g: &ModulatorGeometry,
     arms: &ArmAngles,
     out: &OutputLaw,
-    cx: &[f64],
-    refs: &[f64],
+    (cx, refs, units): (&[f64], &[f64], Option<&[Vec2]>),
     x: f64,
     e2: Vec2,
 ) -> ModulatorState {
     let o = out.eval(x);
-    state_from_phi6(g, arms, x, e2, [o.phi6, o.d1, o.d2], refs[Revolution::nearest(cx, x)])
+    let j = Revolution::nearest(cx, x);
+    state_from_phi6(g, arms, x, e2, [o.phi6, o.d1, o.d2], (refs[j], units.map(|u| u[j]))).0
 }
 
 /// What `loomkin dobby synthesize --json` prints of a [`Synthesis`]: the rows, summary and
@@ -217,7 +218,7 @@ impl Synthesis {
             let draw: Vec<ModulatorState> = dxs[..dxs.len() - 1]
                 .iter()
                 .zip(&units)
-                .map(|(&x, &e2)| law_state(g, &arms, &self.dense.law, &cx, &self.dense.refs, x, e2))
+                .map(|(&x, &e2)| law_state(g, &arms, &self.dense.law, (&cx, &self.dense.refs, None), x, e2))
                 .collect();
             let r = self.summary.roller_m;
             [
@@ -319,14 +320,19 @@ fn synthesize_in(
     let arms = ArmAngles::new(g);
     let mut fine = Vec::with_capacity(cx.len());
     let mut pins = Vec::with_capacity(cx.len());
+    // e(φ3) of the grid states, for states solved near them (φ3 of the grid states themselves by
+    // atan2, not by small angles from each other: no accumulation).
+    let mut units = Vec::with_capacity(cx.len());
     let mut phi3_ref = cx[0];
     for ((&x, e2), &o) in cx.iter().zip(grid_units_iter(0.0, CHECK_STEP_DEG, cx.len())).zip(&grid_out) {
-        fine.push(state_from_phi6(g, &arms, x, e2, o, phi3_ref));
+        let (s, e3) = state_from_phi6(g, &arms, x, e2, o, (phi3_ref, None));
+        fine.push(s);
+        units.push(e3);
         phi3_ref = fine[fine.len() - 1].phi3[0];
         pins.push(g.l2_m * e2);
     }
     let refs: Vec<f64> = fine.iter().map(|s| s.phi3[0]).collect();
-    let at = |x: f64| law_state(g, &arms, &out, &cx, &refs, x, e(x));
+    let at = |x: f64| law_state(g, &arms, &out, (&cx, &refs, Some(&units)), x, e(x));
     // The table: each state and its row share e(φ2); a row on a point of the check grid is its
     // state there (as in analysis).
     states.clear();
@@ -341,7 +347,7 @@ fn synthesize_in(
             pins[j]
         } else {
             let o = out.eval(x);
-            states.push(state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], refs[j]));
+            states.push(state_from_phi6(g, &arms, x, e2, [o.phi6, o.d1, o.d2], (refs[j], Some(units[j]))).0);
             g.l2_m * e2
         };
         rows.push(SynthesisRow::new(&states[states.len() - 1], a, w2));
