@@ -148,6 +148,8 @@ pub(crate) struct PanelLayout {
     /// Where each entry of the legend goes: the left end of its swatch and its centre line.
     pub legend_cells: Vec<(f64, f64)>,
     pub band_strip: bool,
+    /// The vertical axis label: its centre line and font size (it stays inside the panel's slot).
+    pub y_label_at: (f64, f64),
 }
 
 impl PanelLayout {
@@ -250,6 +252,24 @@ const LEGEND_GAP: f64 = 8.0;
 const MAX_HEIGHT_FOR_LEGEND: f64 = 0.35;
 /// Space between two entries of a row.
 const ENTRY_GAP: f64 = 18.0;
+
+/// Smallest font of a vertical axis label shortened to fit its panel.
+const MIN_FONT_LABEL: f64 = 10.0;
+
+/// Where a vertical axis label goes (its centre, down the page) and its font size: centred on the
+/// plot; when longer than the room about that centre (a short panel of a stacked figure), centred
+/// on the panel's slot, and, if still too long, in a smaller font (not below [`MIN_FONT_LABEL`]),
+/// so it does not run into the next panel's label.
+fn y_label_place(label: &str, slot: &Rect, plot: &Rect) -> (f64, f64) {
+    let len = text_width(label, FONT_LABEL);
+    let centre = (plot.y0 + plot.y1) / 2.0;
+    if len <= 2.0 * (centre - slot.y0).min(slot.y1 - centre) - 4.0 {
+        return (centre, FONT_LABEL);
+    }
+    let room = slot.h() - 4.0;
+    let font = if len <= room { FONT_LABEL } else { (FONT_LABEL * room / len).max(MIN_FONT_LABEL) };
+    ((slot.y0 + slot.y1) / 2.0, font)
+}
 
 /// A legend laid out in rows across `width`: its width and height, and each entry's swatch start
 /// and centre line relative to the box.
@@ -460,7 +480,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<P
     let width = slots.first().map_or(0.0, |s| s.w());
     let x1 = (width - right).max(left + 40.0);
     let mut out = Vec::new();
-    for (p, (y0, y1, mut y_axis, band_strip)) in fig.panels.iter().zip(pre) {
+    for ((p, slot), (y0, y1, mut y_axis, band_strip)) in fig.panels.iter().zip(slots).zip(pre) {
         let plot = Rect { x0: left, y0, x1, y1 };
         let x_label = p.x_label.clone().unwrap_or_else(|| fig.x_label.clone());
         let xs = || {
@@ -497,6 +517,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<P
             legend: None,
             legend_cells: Vec::new(),
             band_strip,
+            y_label_at: y_label_place(&p.y_label, slot, &plot),
         };
         pl.curves = p.series.iter().map(|s| polylines(&pl, &s.points)).collect();
         pl.notes = place_notes(&pl, p);

@@ -231,10 +231,14 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
         r.y1 + 40.0,
         esc(&pl.x_label)
     );
-    let (lx, ly) = (12.0 + FONT_LABEL - 2.0, (r.y0 + r.y1) / 2.0);
+    let (ly, font) = pl.y_label_at;
+    let lx = 12.0 + FONT_LABEL - 2.0;
+    // The usual size written as before (the SVG of a figure whose labels fit is unchanged).
+    let font = if font == FONT_LABEL { format!("{FONT_LABEL}") } else { format!("{font:.2}") };
     let _ = writeln!(
         s,
-        r##"<text x="{lx:.2}" y="{ly:.2}" font-size="{FONT_LABEL}" text-anchor="middle" fill="#111111" transform="rotate(-90 {lx:.2} {ly:.2})">{}</text>"##,
+        r##"<text x="{lx:.2}" y="{ly:.2}" font-size="{}" text-anchor="middle" fill="#111111" transform="rotate(-90 {lx:.2} {ly:.2})">{}</text>"##,
+        font,
         esc(&p.y_label)
     );
     if let Some(box_) = pl.legend {

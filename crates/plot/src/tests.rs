@@ -405,3 +405,35 @@ fn bands_are_drawn_at_their_data_coordinates() {
     assert!(svg.contains(&rect(pl.plot.x0, yz, pl.plot.w(), ya - yz)), "threshold band rectangle");
     assert!(svg.contains(">window<") && svg.contains(">threshold band<"));
 }
+
+#[test]
+fn vertical_labels_of_short_stacked_panels_do_not_overlap() {
+    use super::raster::text_width;
+    // Labels longer than a short panel at the usual size, short enough at 10 px (what the
+    // seven-law `law plot --width 700 --height 600` draws).
+    let label = |q: &str| format!("{q}: a = d²s/dx² [m/s²]");
+    let panels: Vec<Panel> =
+        ["first", "second", "third", "fourth"].iter().map(|q| Panel::new(label(q), sine_series())).collect();
+    let mut fig = Figure::new("t", "x", panels);
+    fig.size = Some((700, 600));
+    let lay = layout(&fig);
+    let extent = |i: usize| {
+        let (c, font) = lay.panels[i].y_label_at;
+        let half = text_width(&label(["first", "second", "third", "fourth"][i]), 15.0) * font / 15.0 / 2.0;
+        (c - half, c + half)
+    };
+    assert!(lay.panels[0].y_label_at.1 < 15.0, "the label was not long enough to test");
+    for i in 0..3 {
+        assert!(
+            extent(i).1 <= extent(i + 1).0,
+            "labels {i} and {} overlap: {:?} {:?}",
+            i + 1,
+            extent(i),
+            extent(i + 1)
+        );
+    }
+    // A label that fits stays centred on its plot at the usual size.
+    let tall = layout(&Figure::new("t", "x", vec![Panel::new("y [m]", sine_series())]));
+    let pl = &tall.panels[0];
+    assert_eq!(pl.y_label_at, ((pl.plot.y0 + pl.plot.y1) / 2.0, 15.0));
+}
