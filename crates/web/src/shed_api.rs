@@ -25,6 +25,9 @@ pub(crate) fn routes() -> Router {
     Router::new().route("/shed/pareto", post(post_pareto)).route("/shed/law", post(post_law))
 }
 
+/// Frame stroke when the request gives none (m): the CLI's `--stroke-mm` default, 100 mm.
+const DEFAULT_STROKE_M: f64 = 0.1;
+
 /// Evaluation conditions shared by both shedding requests.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -33,8 +36,11 @@ pub struct ShedConditions {
     #[serde(default = "default_threshold")]
     pub threshold: f64,
     /// Frame stroke h (m), default 0.1.
-    #[serde(default = "default_stroke")]
-    pub stroke_m: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke_m: Option<f64>,
+    /// The same in mm, the unit of `loomkin shed … --stroke-mm` and of the page (give one of the two).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke_mm: Option<f64>,
     /// Main-shaft speed n (1/min), default 300.
     #[serde(default = "default_speed")]
     pub speed_rpm: f64,
@@ -43,23 +49,38 @@ pub struct ShedConditions {
 fn default_threshold() -> f64 {
     0.95
 }
-fn default_stroke() -> f64 {
-    0.1
-}
 fn default_speed() -> f64 {
     300.0
 }
 
 impl Default for ShedConditions {
     fn default() -> Self {
-        Self { threshold: default_threshold(), stroke_m: default_stroke(), speed_rpm: default_speed() }
+        Self { threshold: default_threshold(), stroke_m: None, stroke_mm: None, speed_rpm: default_speed() }
     }
 }
 
 impl ShedConditions {
     fn build(&self) -> Result<Conditions, ApiError> {
-        // The library checks each value against its one range; the field goes under `conditions.`.
-        Conditions::new(self.threshold, self.stroke_m, self.speed_rpm)
+        // The library checks each value against its one range; the field goes under `conditions.`
+        // (a stroke given in mm is named and bounded in mm).
+        let stroke_m = match (self.stroke_m, self.stroke_mm) {
+            (Some(_), Some(_)) => {
+                return Err(ApiError::invalid(
+                    "conditions.stroke_mm",
+                    "give the stroke as stroke_m or as stroke_mm, not both",
+                ));
+            }
+            (Some(m), None) => m,
+            (None, Some(mm)) => loomkin_units::m_from_mm(mm),
+            (None, None) => DEFAULT_STROKE_M,
+        };
+        Conditions::new(self.threshold, stroke_m, self.speed_rpm)
+            .map_err(|e| match e {
+                ShedError::Range(r) if r.field == "stroke_m" && self.stroke_mm.is_some() => {
+                    ShedError::Range(r.in_unit("stroke_mm", 1e3, "mm"))
+                }
+                e => e,
+            })
             .map_err(|e| ApiError::from_library(&e, "threshold").within("conditions"))
     }
 }

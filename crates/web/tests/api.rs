@@ -487,6 +487,31 @@ async fn shedding_pareto_and_law() {
     assert!(
         (l["criteria"]["window_deg"].as_f64().unwrap() - pick["criteria"]["window_deg"].as_f64().unwrap()).abs() < 1e-6
     );
+    // The stroke in mm (the CLI's `--stroke-mm`, the page's unit) gives the same law as in m; one
+    // of the two only; a bad one is named and bounded in the unit it was given in.
+    let in_mm = |cond: serde_json::Value| {
+        json!({"family": "trapezoid", "lengths": pick["lengths"], "motion_deg": pick["criteria"]["motion_deg"],
+               "samples": 181, "conditions": cond})
+    };
+    let (_, m) = post("/api/shed/law", in_mm(json!({"stroke_m": 0.08}))).await;
+    let (s, mm) = post("/api/shed/law", in_mm(json!({"stroke_mm": 80}))).await;
+    assert_eq!(s, StatusCode::OK, "{mm}");
+    assert_eq!(m["criteria"], mm["criteria"]);
+    assert!(
+        (mm["criteria"]["peak_accel_m_s2"].as_f64().unwrap()
+            - 0.8 * l["criteria"]["peak_accel_m_s2"].as_f64().unwrap())
+        .abs()
+            < 1e-9 * l["criteria"]["peak_accel_m_s2"].as_f64().unwrap()
+    );
+    let both = in_mm(json!({"stroke_m": 0.08, "stroke_mm": 80}));
+    assert_refused(&post("/api/shed/law", both).await, StatusCode::UNPROCESSABLE_ENTITY, "conditions.stroke_mm");
+    let (s, e) = post("/api/shed/law", in_mm(json!({"stroke_mm": -5}))).await;
+    assert_eq!((s, e["field"].as_str()), (StatusCode::UNPROCESSABLE_ENTITY, Some("conditions.stroke_mm")), "{e}");
+    assert!(
+        e["error"].as_str().unwrap().contains("stroke_mm = -5 is out of range")
+            && e["error"].as_str().unwrap().contains("mm"),
+        "{e}"
+    );
     let fine = json!({"family": "lead-trapezoid", "step": 0.005, "motions_deg": [300]});
     assert_refused(&post("/api/shed/pareto", fine).await, StatusCode::UNPROCESSABLE_ENTITY, "step");
     let angles = json!({"family": "trapezoid", "step": 0.1, "motions_deg": vec![300; 13]});
