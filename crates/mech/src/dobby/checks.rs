@@ -213,10 +213,12 @@ pub(crate) fn winds_once_about(n: usize, point: impl Fn(usize) -> Vec2) -> bool 
     }
     let (mut sign, mut wraps) = (0.0f64, 0usize);
     let mut p = point(0);
+    let mut np = p.norm();
     for i in 0..n {
         let q = point(if i + 1 == n { 0 } else { i + 1 });
+        let nq = q.norm();
         let c = cross(p, q);
-        let margin = 1e-12 * (p.norm() * q.norm());
+        let margin = 1e-12 * (np * nq);
         if c.abs().partial_cmp(&margin) != Some(std::cmp::Ordering::Greater) {
             return false;
         }
@@ -230,7 +232,7 @@ pub(crate) fn winds_once_about(n: usize, point: impl Fn(usize) -> Vec2) -> bool 
         if (sign > 0.0 && upper_p && !upper_q) || (sign < 0.0 && !upper_p && upper_q) {
             wraps += 1;
         }
-        p = q;
+        (p, np) = (q, nq);
     }
     wraps == 1
 }

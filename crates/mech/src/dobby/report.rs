@@ -118,20 +118,19 @@ impl WallNormals {
 
 /// Self-crossings of both groove walls of the closed path `(point, tangent)` for roller radius
 /// `r_m` (0: no walls, none), as [`CamProfile::from_points`] would draw them and
-/// [`self_intersections`] count them; each wall is formed in one table of points in turn.
-pub(crate) fn wall_crossings(path: &[(Vec2, Vec2)], r_m: f64) -> usize {
+/// [`self_intersections`] count them; the two walls are formed in one pass (one normal a point).
+pub(crate) fn wall_crossings(path: impl ExactSizeIterator<Item = (Vec2, Vec2)>, r_m: f64) -> usize {
     if r_m <= 0.0 {
         return 0;
     }
-    let mut wall = Vec::with_capacity(path.len());
-    let mut count = 0;
-    for side in [1.0, -1.0] {
-        let mut normals = WallNormals::default();
-        wall.clear();
-        wall.extend(path.iter().map(|&(p, t)| p + side * r_m * normals.next(t)));
-        count += self_intersections(&wall, true, 1000).len();
+    let (mut left, mut right) = (Vec::with_capacity(path.len()), Vec::with_capacity(path.len()));
+    let mut normals = WallNormals::default();
+    for (p, t) in path {
+        let n = normals.next(t);
+        left.push(p + r_m * n);
+        right.push(p + (-r_m) * n);
     }
-    count
+    self_intersections(&left, true, 1000).len() + self_intersections(&right, true, 1000).len()
 }
 
 /// Runs every check over one revolution: each extreme is refined between the points of the check

@@ -398,11 +398,9 @@ fn synthesize_in(
     let cam = CamProfile::from_points(states[..n].iter().map(|s| (s.b[0], s.b[1])), opts.roller_m);
     let counter_cam = CamProfile::from_points(states[..n].iter().map(|s| (s.c[0], s.c[1])), opts.roller_m);
     // Wall crossings are counted on the check grid, independent of the output step.
-    let fine_path = |f: &dyn Fn(&ModulatorState) -> (Vec2, Vec2)| -> Vec<(Vec2, Vec2)> {
-        rev.states[..rev.states.len() - 1].iter().map(f).collect()
-    };
-    let wb = wall_crossings(&fine_path(&|s| (s.b[0], s.b[1])), opts.roller_m);
-    let wc = wall_crossings(&fine_path(&|s| (s.c[0], s.c[1])), opts.roller_m);
+    let fine = &rev.states[..rev.states.len() - 1];
+    let wb = wall_crossings(fine.iter().map(|s| (s.b[0], s.b[1])), opts.roller_m);
+    let wc = wall_crossings(fine.iter().map(|s| (s.c[0], s.c[1])), opts.roller_m);
     for (name, n) in [("cam Γ", wb), ("counter-cam Γ′", wc)] {
         if n > 0 {
             warnings.push(Warning {
