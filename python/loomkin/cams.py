@@ -33,6 +33,16 @@ def _usage(field: str, reason: str) -> Exception:
     return e
 
 
+def _no_rise_with(params: Any, stroke_mm: Any, stroke_deg: Any, motion_deg: Any) -> None:
+    """With a cycle the single-rise arguments have nothing to act on: refused, not ignored (as the
+    CLI refuses ``--stroke-mm`` with a cycle file)."""
+    for name, v in (("params", params), ("stroke_mm", stroke_mm), ("stroke_deg", stroke_deg),
+                    ("motion_deg", motion_deg)):
+        if v is not None:
+            raise _usage(name, f"{name} describes a single rise (with law=…) and cannot be combined with a cycle "
+                               "(the cycle sets the laws, strokes and angles)")
+
+
 def _source(cycle: CycleLike) -> str:
     return "" if isinstance(cycle, (Mapping, _m.Cycle)) else os.fspath(cycle)
 
@@ -63,6 +73,7 @@ def table(cycle: Optional[CycleLike], format: str, step_deg: Optional[float] = N
                             stroke_deg, motion_deg)
     if law is not None:
         raise _usage("law", "give a cycle or a law, not both")
+    _no_rise_with(params, stroke_mm, stroke_deg, motion_deg)
     return _m.cam_table(_cycle(cycle), format, step_deg, tolerance, _source(cycle))
 
 
@@ -108,6 +119,7 @@ def profile(cycle: Optional[CycleLike] = None, follower: str = "translating", *,
     elif law is not None:
         raise _usage("law", "give a cycle or a law, not both")
     else:
+        _no_rise_with(params, stroke_mm, stroke_deg, motion_deg)
         c, source = _cycle(cycle), _source(cycle)
     r = _points(_m.cam_profile(c, follower, prime_radius_mm, max_pressure_deg, roller_radius_mm, offset_mm,
                                arm_mm, pivot_mm, closure, step_deg, source, dxf, chord_tol_mm, bore_mm))

@@ -158,3 +158,16 @@ def test_profile_errors():
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.cams.table(None, "csv", law="cycloidal", motion_deg=100)
     assert e.value.field == "stroke_mm"
+
+
+def test_single_rise_arguments_with_a_cycle_are_refused():
+    # As `loomkin cam table|profile CYCLE --stroke-mm …` is: the cycle sets the strokes, a stroke
+    # given beside it would be ignored.
+    f = REPO / "examples" / "heald-frame-cycle.toml"
+    for kw in (dict(stroke_mm=50), dict(motion_deg=120), dict(stroke_deg=20), dict(params={"ramp": 0.1})):
+        with pytest.raises(loomkin.LoomkinError) as e:
+            loomkin.cams.table(f, "csv", **kw)
+        assert e.value.field == next(iter(kw)), kw
+        with pytest.raises(loomkin.LoomkinError) as e:
+            loomkin.cams.profile(f, "translating", **kw)
+        assert e.value.field == next(iter(kw)), kw
