@@ -133,11 +133,35 @@ fn glue_negative_values(args: impl IntoIterator<Item = std::ffi::OsString>) -> V
     out
 }
 
+/// One line for a command group given without its subcommand, from clap's help text: the
+/// group's path (its `Usage:` line) and the subcommands it takes.
+fn missing_subcommand(help: &str) -> String {
+    let path: Vec<&str> = help
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("Usage: "))
+        .map(|u| u.split_whitespace().take_while(|w| !w.starts_with(['<', '['])).collect())
+        .unwrap_or_default();
+    let mut cmd = Cli::command();
+    for name in path.iter().skip(1) {
+        match cmd.find_subcommand(name) {
+            Some(c) => cmd = c.clone(),
+            None => break,
+        }
+    }
+    let subs: Vec<&str> = cmd.get_subcommands().map(|c| c.get_name()).filter(|n| *n != "help").collect();
+    format!("`{}` needs a subcommand: one of {} (see --help)", path.join(" "), subs.join(", "))
+}
+
 fn main() -> ExitCode {
     let args = glue_negative_values(std::env::args_os());
     let cli = match negatives_allowed(Cli::command()).try_get_matches_from(args).and_then(|m| Cli::from_arg_matches(&m))
     {
         Ok(cli) => cli,
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // `loomkin law` without a subcommand: name the subcommands, not the group's description.
+            output::note(format_args!("loomkin: error: {}", missing_subcommand(&e.render().to_string())));
+            return ExitCode::from(2);
+        }
         Err(e) if e.use_stderr() => {
             // One line: clap's first line (the error itself), without its usage block and tips.
             let text = e.render().to_string();

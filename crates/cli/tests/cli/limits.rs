@@ -236,3 +236,13 @@ fn options_of_an_output_not_written_are_refused() {
         &["residual_limit_pct is not a finite number", "0 < residual_limit_pct ≤ 100 %"],
     );
 }
+
+/// A command group without its subcommand names the subcommands (clap's own message is the
+/// group's description, which reads as if it were the error).
+#[test]
+fn a_group_without_its_subcommand_names_the_subcommands() {
+    usage_error(&[], &["`loomkin` needs a subcommand: one of law, cycle,", "serve"]);
+    usage_error(&["law"], &["`loomkin law` needs a subcommand: one of list, info, sample, plot"]);
+    usage_error(&["dyn"], &["`loomkin dyn` needs a subcommand", "response", "two-mass"]);
+    usage_error(&["shed"], &["`loomkin shed` needs a subcommand", "best", "window"]);
+}
