@@ -103,6 +103,28 @@ fn every_documented_command_works_as_printed() {
                 let err = String::from_utf8_lossy(&out.stderr);
                 failures.push(format!("{} `{}`: exit {:?}: {}", q.place, q.line, code, err.trim()));
             }
+            // `--json` to standard output: it parses (JSON, or JSON Lines with --shard), and every
+            // number it carries names its unit or is listed as dimensionless (units.rs).
+            let words: Vec<&str> = q.line.split_whitespace().collect();
+            if ok && want_ok && words.contains(&"--json") && !q.line.contains(['>', '|']) {
+                let text = String::from_utf8_lossy(&out.stdout);
+                let docs: Result<Vec<serde_json::Value>, _> = if words.contains(&"--shard") {
+                    text.lines().filter(|l| !l.trim().is_empty()).map(serde_json::from_str).collect()
+                } else {
+                    serde_json::from_str(&text).map(|v| vec![v])
+                };
+                match docs {
+                    Ok(docs) => {
+                        for v in &docs {
+                            for key in crate::units::keys_without_unit(v) {
+                                failures
+                                    .push(format!("{} `{}`: the number under `{key}` names no unit", q.place, q.line));
+                            }
+                        }
+                    }
+                    Err(e) => failures.push(format!("{} `{}`: --json does not parse: {e}", q.place, q.line)),
+                }
+            }
         }
         let _ = std::fs::remove_dir_all(&scratch);
     }

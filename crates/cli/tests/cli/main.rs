@@ -16,3 +16,4 @@ mod servo;
 mod shard;
 mod shed;
 mod snapshots;
+mod units;
