@@ -82,18 +82,12 @@ pub fn fill_columns<'py, K: AsRef<str>>(
 }
 
 /// `points` evenly spaced samples of a law from x = 0 to 1 as arrays x, s, v, a, j, written
-/// straight into the arrays a block at a time ([`loomkin_laws::Law::samples`], bit-identical to
-/// `loomkin law sample`) with the GIL released.
+/// straight into the arrays a block at a time ([`loomkin_laws::Law::sample_columns`], bit-identical
+/// to `loomkin law sample`) with the GIL released.
 pub fn law_samples<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
     fill_columns(py, &["x", "s", "v", "a", "j"], points, |c| {
         let [x, s, v, a, j] = c else { return };
-        for (i, (xi, k)) in law.samples(points).enumerate() {
-            x[i] = xi;
-            s[i] = k.s;
-            v[i] = k.v;
-            a[i] = k.a;
-            j[i] = k.j;
-        }
+        law.sample_columns([x, s, v, a, j]);
     })
 }
 

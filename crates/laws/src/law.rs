@@ -318,6 +318,34 @@ impl Law {
     }
 }
 
+impl Law {
+    /// The samples of [`Law::samples`] written as five columns `[x, s, v, a, j]` — the layout of a
+    /// data frame or of numpy arrays — a block at a time: the same bits as `samples(n)` with `n` the
+    /// columns' length, and no table of records beside the columns. Columns of different lengths
+    /// are filled to the shortest one's length `n` (the points evenly spaced for that `n`); fewer
+    /// than two points write nothing. Returns `n` (0 when nothing was written).
+    pub fn sample_columns(&self, columns: [&mut [f64]; 5]) -> usize {
+        let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
+        if n < 2 {
+            return 0;
+        }
+        let [xs, ss, vs, as_, js] = columns;
+        let mut it = self.samples(n);
+        while it.refill() {
+            let (from, block) = (it.block_start, &it.block);
+            let to = from + block.len();
+            let rows = xs[from..to].iter_mut().zip(&mut ss[from..to]).zip(&mut vs[from..to]);
+            let rows = rows.zip(&mut as_[from..to]).zip(&mut js[from..to]).zip(block);
+            for (i, (((((x, s), v), a), j), k)) in (from..).zip(rows) {
+                // x as the iterator gives it: i·h, and exactly 1 at the last point.
+                *x = if i + 1 == n { 1.0 } else { i as f64 * it.h };
+                (*s, *v, *a, *j) = (k.s, k.v, k.a, k.j);
+            }
+        }
+        n
+    }
+}
+
 /// Points per block of [`Samples`] (a multiple of the segment recurrence's re-seed interval).
 const SAMPLE_BLOCK: usize = 64 * crate::segment::RUN_CHUNK;
 

@@ -172,3 +172,31 @@ fn large_tables_are_the_samples_bit_for_bit() {
         }
     }
 }
+
+/// `sample_columns` writes the block sampler's points, bit for bit, as five columns.
+#[test]
+fn columns_are_the_samples_bit_for_bit() {
+    for law in catalogue() {
+        for n in [2, 3, 127, 128, 129, 8191, 8192, 8193, 30_001] {
+            let mut cols = vec![vec![f64::NAN; n]; 5];
+            let [x, s, v, a, j] = &mut cols[..] else { unreachable!() };
+            assert_eq!(law.sample_columns([x, s, v, a, j]), n);
+            for (i, (y, q)) in law.samples(n).enumerate() {
+                let got = [cols[0][i], cols[1][i], cols[2][i], cols[3][i], cols[4][i]];
+                let want = [y, q.s, q.v, q.a, q.j];
+                assert!(got.iter().zip(want).all(|(g, w)| g.to_bits() == w.to_bits()), "n = {n}, point {i}");
+            }
+        }
+    }
+    // Shorter and empty columns.
+    let law = &catalogue()[2];
+    let (mut x, mut s, mut v, mut a, mut j) =
+        (vec![0.0; 10], vec![0.0; 5], vec![0.0; 10], vec![0.0; 10], vec![0.0; 10]);
+    assert_eq!(law.sample_columns([&mut x, &mut s, &mut v, &mut a, &mut j]), 5);
+    assert_eq!(x[4], 1.0);
+    assert_eq!(x[5], 0.0);
+    let mut one = [7.0];
+    let (mut b, mut c, mut d, mut e) = ([7.0], [7.0], [7.0], [7.0]);
+    assert_eq!(law.sample_columns([&mut one, &mut b, &mut c, &mut d, &mut e]), 0);
+    assert_eq!(one, [7.0]);
+}
