@@ -254,17 +254,7 @@ impl Segment {
     /// tables far larger than the caches; see `nontemporal`): the same values, bit for bit. The caller
     /// calls `nontemporal::fence` after the table's last run.
     pub(crate) fn eval_run_nontemporal(&self, t0: f64, h: f64, out: &mut [Kinematics]) {
-        let c = DerivCoeffs::new(&self.p);
-        match (self.deg, self.sine.is_some()) {
-            (0 | 1, false) => self.run_lanes::<1, false, true>(&c, t0, h, 0, out),
-            (0 | 1, true) => self.run_lanes::<1, true, true>(&c, t0, h, 0, out),
-            (2 | 3, false) => self.run_lanes::<3, false, true>(&c, t0, h, 0, out),
-            (2 | 3, true) => self.run_lanes::<3, true, true>(&c, t0, h, 0, out),
-            (4 | 5, false) => self.run_lanes::<5, false, true>(&c, t0, h, 0, out),
-            (4 | 5, true) => self.run_lanes::<5, true, true>(&c, t0, h, 0, out),
-            (_, false) => self.run_lanes::<7, false, true>(&c, t0, h, 0, out),
-            (_, true) => self.run_lanes::<7, true, true>(&c, t0, h, 0, out),
-        }
+        self.run_of_degree::<true>(t0, h, 0, out);
     }
 
     /// Points `first, first + 1, …` of the run `t = t0 + i·h` into `out`: a piece of a longer
@@ -272,20 +262,34 @@ impl Segment {
     /// as `first` is a multiple of [`RUN_CHUNK`] (the recurrence is re-seeded at the same points).
     pub(crate) fn eval_run_from(&self, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
         debug_assert_eq!(first % RUN_CHUNK, 0);
+        self.run_of_degree::<false>(t0, h, first, out);
+    }
+
+    /// The run with the kernel for the segment's degree and sinusoid, written with ordinary or
+    /// non-temporal stores.
+    #[inline(always)]
+    fn run_of_degree<const NONTEMPORAL: bool>(&self, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
         let c = DerivCoeffs::new(&self.p);
         match self.deg {
-            0 | 1 => self.run::<1>(&c, t0, h, first, out),
-            2 | 3 => self.run::<3>(&c, t0, h, first, out),
-            4 | 5 => self.run::<5>(&c, t0, h, first, out),
-            _ => self.run::<7>(&c, t0, h, first, out),
+            0 | 1 => self.run::<1, NONTEMPORAL>(&c, t0, h, first, out),
+            2 | 3 => self.run::<3, NONTEMPORAL>(&c, t0, h, first, out),
+            4 | 5 => self.run::<5, NONTEMPORAL>(&c, t0, h, first, out),
+            _ => self.run::<7, NONTEMPORAL>(&c, t0, h, first, out),
         }
     }
 
     #[inline(always)]
-    fn run<const D: usize>(&self, c: &DerivCoeffs, t0: f64, h: f64, first: usize, out: &mut [Kinematics]) {
+    fn run<const D: usize, const NONTEMPORAL: bool>(
+        &self,
+        c: &DerivCoeffs,
+        t0: f64,
+        h: f64,
+        first: usize,
+        out: &mut [Kinematics],
+    ) {
         match self.sine {
-            None => self.run_lanes::<D, false, false>(c, t0, h, first, out),
-            Some(_) => self.run_lanes::<D, true, false>(c, t0, h, first, out),
+            None => self.run_lanes::<D, false, NONTEMPORAL>(c, t0, h, first, out),
+            Some(_) => self.run_lanes::<D, true, NONTEMPORAL>(c, t0, h, first, out),
         }
     }
 
