@@ -152,8 +152,8 @@ impl Response {
         {
             let (y, v) = last.sol.end();
             // Across the joint x and x' are continuous (see `trajectory`).
-            let (l, r) = (self.exc.pieces[last.piece].derivs(last.sol.duration()), first.derivs(0.0));
-            let (y, v) = (y + l[0] - r[0], v + l[1] - r[1]);
+            let (ds, dv) = self.exc.joint_jump(last.piece);
+            let (y, v) = (y + ds, v + dv);
             let d = y - self.channel.rest(first.poly[0]);
             let t = last.t0 + last.sol.duration();
             out.push(DwellResidual {

@@ -68,15 +68,13 @@ fn one_cycle(
     mut y: (f64, f64),
     mut out: Option<&mut Vec<Solved>>,
 ) -> (f64, f64) {
-    let n = exc.pieces.len();
     for (i, (p, f)) in exc.pieces.iter().zip(forcings).enumerate() {
         let sol = ch.osc.solve(f, p.duration, y.0, y.1);
         y = sol.end();
         // x and x' are continuous; the error y = x − s takes any jump of s or s' at the joint (none for
         // a law's cycle; a compensated input may have a jump in s').
-        let next = &exc.pieces[(i + 1) % n];
-        let (l, r) = (p.derivs(p.duration), next.derivs(0.0));
-        y = (y.0 + l[0] - r[0], y.1 + l[1] - r[1]);
+        let (ds, dv) = exc.joint_jump(i);
+        y = (y.0 + ds, y.1 + dv);
         if let Some(o) = out.as_deref_mut() {
             o.push(Solved { piece: i, cycle, t0: cycle as f64 * exc.period_s + p.t0, sol });
         }

@@ -377,3 +377,39 @@ fn slow_frame_short_motions() {
     check(text, 839.763583748289, 5.0, 0.0, Start::Rest, 1);
     check(text, 1200.0, 0.5, 0.3, Start::Steady, 1);
 }
+
+/// A follower far stiffer than the shaft is fast: the vibration a cycloidal rise leaves, undamped, against
+/// Duhamel's closed form `A/h = |sin πr|/(π r |r² − 1|)` (r = f_n·T) at r = 600.25 and 20000.25 (and after
+/// the return, which adds the same vibration negated and delayed), where A is
+/// 1e-10 m and 3e-15 m on a 0.1 m stroke — at and below the rounding of `s` itself (1.4e-17 m). The two
+/// sides of the rise's end, evaluated from different pieces, differ by that rounding; the error y used to
+/// take the difference as a jump, which set a floor of ~2e-16 of the stroke under every residual (r = 600:
+/// 1e-7 off, r = 20000: 0.5 % off). And at 0.001 rpm on a 1 MHz follower the rounding jump rang at
+/// ω_n²·1e-17 m = 4e-4 m/s² against an input acceleration of 5e-10 m/s²: the follower must follow the input
+/// (their difference is s''''/ω_n², 1e-20 of it).
+#[test]
+fn stiff_follower_residual_matches_closed_form() {
+    let text = "unit = \"mm\"\nstroke = 100\n[[segment]]\nkind = \"dwell\"\nto_deg = 60\n[[segment]]\nkind = \"rise\"\n\
+                to_deg = 180\nlaw = \"cycloidal\"\n[[segment]]\nkind = \"dwell\"\nto_deg = 240\n[[segment]]\n\
+                kind = \"return\"\nto_deg = 360\nlaw = \"cycloidal\"\n";
+    let cycle = Cycle::from_toml(text).unwrap();
+    // 300 rpm: T = 120° / 1800 °/s = 1/15 s.
+    for r_ratio in [600.25, 20000.25] {
+        let follower = Follower::new(15.0 * r_ratio, 0.0).unwrap();
+        let r = Response::new(&cycle, ShaftSpeed::from_rpm(300.0).unwrap(), &follower, Start::Rest, 1).unwrap();
+        let d = r.dwell_residuals();
+        let rise = 0.1 * loomkin_dynamics::cycloidal_undamped(r_ratio);
+        // The return is the rise negated and started Δ = 0.1 s later: A·|1 − e^{iω_nΔ}| = 2A·|sin(1.5πr)|.
+        let both = 2.0 * rise * (1.5 * std::f64::consts::PI * r_ratio).sin().abs();
+        for (k, want) in [(1, rise), (2, both)] {
+            let got = d[k].amplitude_si;
+            assert!((got - want).abs() < 1e-9 * want, "r = {r_ratio}, dwell {k}: {got:e} vs {want:e}");
+        }
+    }
+    let follower = Follower::new(1e6, 0.0).unwrap();
+    let r = Response::new(&cycle, ShaftSpeed::from_rpm(0.001).unwrap(), &follower, Start::Rest, 1).unwrap();
+    let s = r.summary();
+    let (x2, s2) = (s.peak_acceleration.value, s.peak_input_acceleration.value);
+    assert!((x2 - s2).abs() < 1e-9 * s2, "|x''| = {x2:e}, |s''| = {s2:e}");
+    assert!(s.residual_amplitude_si < 1e-20 * 0.1, "{:e}", s.residual_amplitude_si);
+}
