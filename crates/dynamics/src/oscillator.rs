@@ -128,10 +128,17 @@ impl Oscillator {
     /// An oscillator of circular natural frequency `omega_n` (rad/s, > 0, finite) and damping ratio
     /// `zeta` (0 ≤ ζ < 1). The caller validates; here the values are only clamped into range so
     /// that nothing is ever NaN.
+    ///
+    /// Every ζ below 1 is kept as given, up to the largest double below 1 (1 − 2⁻⁵³), and
+    /// `1 − ζ² = (1 − ζ)(1 + ζ)` is formed without cancellation (1 − ζ is exact there): ω_d, and
+    /// with it the residual amplitude ∝ 1/ω_d, are then correct to a few ulps however close ζ is
+    /// to 1. (ζ was clamped to 1 − 10⁻¹² while the follower accepts any ζ < 1, so every ζ above
+    /// that was computed as 1 − 10⁻¹²: 95× too small a residual at ζ = 1 − 2⁻⁵³; and `1 − ζ·ζ`
+    /// is off by up to ε/(1 − ζ²) relative, 1.5e-9 at ζ = 1 − 3·10⁻⁹.)
     pub fn new(omega_n: f64, zeta: f64) -> Self {
         let omega_n = if omega_n.is_finite() && omega_n > 0.0 { omega_n } else { 1.0 };
-        let zeta = if zeta.is_finite() { zeta.clamp(0.0, 1.0 - 1e-12) } else { 0.0 };
-        Self { omega_n, zeta, omega_d: omega_n * (1.0 - zeta * zeta).sqrt() }
+        let zeta = if zeta.is_finite() { zeta.clamp(0.0, 1.0 - f64::EPSILON / 2.0) } else { 0.0 };
+        Self { omega_n, zeta, omega_d: omega_n * ((1.0 - zeta) * (1.0 + zeta)).sqrt() }
     }
 
     /// ω_n (rad/s).

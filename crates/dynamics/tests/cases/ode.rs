@@ -413,3 +413,26 @@ fn stiff_follower_residual_matches_closed_form() {
     assert!((x2 - s2).abs() < 1e-9 * s2, "|x''| = {x2:e}, |s''| = {s2:e}");
     assert!(s.residual_amplitude_si < 1e-20 * 0.1, "{:e}", s.residual_amplitude_si);
 }
+
+/// Damping at the top of its range (ζ < 1, up to the largest double below 1): the dwell residual
+/// `A = √(δ² + ((δ' + ζω_nδ)/ω_d)²)` from DOP853's state at the start of the dwell, with
+/// `ω_d = ω_n·√((1 − ζ)(1 + ζ))` formed in the test, against the closed form. The oscillator clamped ζ
+/// to 1 − 10⁻¹², so at ζ = 1 − 2⁻⁵³ it reported a residual 95× too small. (δ' + ζω_nδ does not cancel
+/// here: |δ'| is 0.63 of it.)
+#[test]
+fn damping_next_to_critical_keeps_its_residual() {
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    for zeta in [1.0 - 1e-9, 1.0 - f64::EPSILON / 2.0] {
+        let follower = Follower::new(54.0, zeta).unwrap();
+        let r = Response::new(&cycle, ShaftSpeed::from_rpm(300.0).unwrap(), &follower, Start::Rest, 1).unwrap();
+        let dwell = r.dwell_residuals()[1];
+        let t_dwell = r.pieces.iter().find(|p| r.exc.pieces[p.piece].segment == 2).unwrap().t0;
+        let steps = integrate(&r, &cycle, 0.0, 0.0, [0.0, 0.0]);
+        let (_, [d, dv]) = *steps.iter().find(|(t, _)| (*t - t_dwell).abs() < 1e-12).unwrap();
+        let w = std::f64::consts::TAU * 54.0;
+        let wd = w * ((1.0 - zeta) * (1.0 + zeta)).sqrt();
+        let want = d.hypot((dv + zeta * w * d) / wd);
+        let got = dwell.amplitude_si;
+        assert!((got - want).abs() < 1e-9 * want, "ζ = {zeta}: {got:e} vs {want:e}");
+    }
+}
