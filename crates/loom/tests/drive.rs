@@ -79,6 +79,29 @@ fn the_peak_is_refined_and_the_rms_exact() {
     }
 }
 
+/// A back frame 0.1 mm before the back rest: its warp pull `∂L/∂y` turns from −1 to +1 while
+/// the eye crosses the back rest's level, within a fraction of a degree. One 16-point rule per
+/// 20° panel missed the RMS by 1.4e-4; the halving quadrature meets a 0.01° rectangle sum (the
+/// torque is continuous and periodic, so the sum's error is O(h²) at the kinks) to 1e-6, and a
+/// scipy Gauss–Legendre sum on 0.02° panels (docs/notes/edges.md) to 1e-15.
+#[test]
+fn the_rms_follows_a_frame_at_the_back_rest() {
+    let text = edited(
+        &example("shuttle-loom.toml"),
+        "frame_distances_mm = [230, 250, 270, 290]",
+        "frame_distances_mm = [230, 250, 270, 899.9]",
+    );
+    let text = edited(&text, "front_stroke_mm = 100", "front_stroke_mm = 10");
+    let loom = Loom::from_toml(&text).unwrap();
+    let pat = wif("twill-2-2.wif");
+    let m = Motion::new(&loom, &pat).unwrap();
+    let d = Drive::new(&loom, &m, &pat);
+    let dense = d.torque_curve(0.01);
+    let sum: f64 = dense.iter().map(|(_, t)| t * t).sum::<f64>() / dense.len() as f64;
+    let rms = d.rms();
+    assert!((rms / sum.sqrt() - 1.0).abs() < 1e-6, "{rms} vs {}", sum.sqrt());
+}
+
 #[test]
 fn forces_have_the_expected_parts() {
     let loom = rapier();

@@ -50,7 +50,7 @@ mod sweep;
 pub mod units;
 
 pub use cam::Cam;
-pub use closed::{PaperConstants, RESONANCE_GAP};
+pub use closed::{CANCELLATION_LIMIT, PaperConstants, RESONANCE_GAP};
 pub use design::{Design, DesignSpec, Nominal, State};
 pub use error::{PickError, Result};
 pub use mechanism::{DesignReport, Mechanism};

@@ -43,7 +43,13 @@ proptest! {
             .with_shuttle_g(shuttle).with_checking_kgf(checking).with_start(start);
         match (simulate(&m, &st, Method::Closed), simulate(&m, &st, Method::Ode)) {
             (Ok(c), Ok(o)) => {
-                prop_assert_eq!(c.method, Method::Closed);
+                // The closed form answers itself, except for a pick so short against a natural
+                // period that its terms cancel (play at the edge of the cam's reach): then it says
+                // so and the numerical route answers (`CANCELLATION_LIMIT`).
+                if c.method != Method::Closed {
+                    prop_assert!(c.note.as_deref().is_some_and(|n| n.contains("terms cancel")), "{:?}", c.note);
+                    prop_assert!(c.t_end_s * o.natural_1_s < 0.5, "a long pick fell back: {c:?}");
+                }
                 assert_agree(&c, &o, 1e-7);
             }
             (Err(PickError::PlayBeyondReach { .. }), Err(PickError::PlayBeyondReach { .. })) => {}

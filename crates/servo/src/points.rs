@@ -7,7 +7,14 @@ use loomkin_units::compact;
 pub const MIN_POINTS: usize = 4;
 
 /// Smallest allowed gap between consecutive X (keeps the spline system well conditioned).
+///
+/// A gap written at the bound in decimals (`0.1:…,0.1001:…`) is accepted although its binary
+/// difference may fall a few ulps short of `1e-4`: the check allows a relative slack of 1e-9.
 pub const MIN_GAP: f64 = 1e-4;
+
+/// Relative slack of the [`MIN_GAP`] check, far above the rounding of a decimal difference
+/// (~1e-12 relative for X below 0.5) and far below any change in the spline's conditioning.
+const GAP_SLACK: f64 = 1e-9;
 
 /// Smallest allowed largest |Y|: the law is scale-free in Y (it is normalised to a unit
 /// stroke), so only a set of all-but-zero Y, whose normalisation would overflow, is refused.
@@ -76,7 +83,7 @@ pub fn check_points(points: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
     }
     for j in 1..n {
         let (prev, x) = (out[j - 1][0], out[j][0]);
-        if x < prev + MIN_GAP {
+        if x - prev < MIN_GAP * (1.0 - GAP_SLACK) {
             return Err(bad(
                 j,
                 format!("X must increase: it must be at least X{} + {MIN_GAP} = {}", j, compact(prev + MIN_GAP)),
@@ -162,6 +169,13 @@ mod tests {
         let e = check_points(&p).unwrap_err();
         assert!(matches!(e, ServoError::Point { index: 2, .. }) && e.to_string().contains("(0, 0.5)"), "{e}");
         assert!(matches!(parse_points("0:0,0.2"), Err(ServoError::Parse { .. })));
+        // A gap of exactly 1e-4 as written in decimals is at the bound and accepted (its binary
+        // difference 0.1001 − 0.1 is 0.99999999999999e-4); one just below it is refused.
+        let at_bound = [[0.0, 0.0], [0.1, 1.0], [0.1001, 0.5], [0.2, 1.0], [0.5, 0.0]];
+        const { assert!(0.1001f64 - 0.1 < MIN_GAP, "the case must exercise a difference short of 1e-4") };
+        assert_eq!(check_points(&at_bound).unwrap(), at_bound);
+        let below = [[0.0, 0.0], [0.1, 1.0], [0.10009999, 0.5], [0.2, 1.0], [0.5, 0.0]];
+        assert!(matches!(check_points(&below), Err(ServoError::Point { index: 3, .. })));
         let zero = [[0.0, 0.0], [0.1, 0.0], [0.3, 0.0], [0.5, 0.0]];
         assert!(matches!(check_points(&zero), Err(ServoError::NoRise { .. })));
     }
