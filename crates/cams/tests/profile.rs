@@ -659,3 +659,29 @@ fn textbook_circular_arc_cam_flat_faced() {
     assert!((f.min_radius_profile_mm - r2).abs() < 1e-9, "{f:?}");
     assert!((big_r - 82.42).abs() < 5e-3 && (tf - 34.15).abs() < 5e-3, "R = {big_r}, θ_f = {tf}");
 }
+
+/// An extreme next to a dwell joint, where the derivative of the pressure angle vanishes with s′ and s″:
+/// a translating follower offset 10 mm on a prime circle of 10.000001 mm has its largest |φ| 0.051°
+/// before the end of the heald cycle's return. Against the textbook formula
+/// `φ = arctan((s′ − ε)/(√(R_p² − ε²) + s))` evaluated from the law (`Cycle::eval`, at 1 rad/s so
+/// that the velocity is ds/dθ) and maximised by golden sections: the same value and place. (The
+/// rounded derivative at the joint hid the bracket: 89.97437655° at 0° was reported.)
+#[test]
+fn pressure_angle_peak_next_to_a_dwell_joint() {
+    let cycle = Cycle::from_toml(HEALD).unwrap();
+    let (eps, rp) = (10.0, 10.000001);
+    let d = design(Follower::Translating { offset_mm: eps }, Closure::Single, 0.0, Size::PrimeRadiusMm(rp));
+    let cam = CamProfile::new(&heald(), &d).unwrap();
+    let (pmax, pat, _) = cam.max_pressure_angle();
+    let y0 = (rp * rp - eps * eps).sqrt();
+    let rpm = 60.0 / std::f64::consts::TAU;
+    let phi = |deg: f64| {
+        let k = cycle.eval(deg.to_radians(), rpm);
+        ((k.v * 1e3 - eps) / (y0 + k.s * 1e3)).atan().to_degrees().abs()
+    };
+    let (at, want) = golden_max(phi, 359.95, 0.04);
+    assert!((pmax - want).abs() < 1e-9 * want, "{pmax} at {pat}° vs {want} at {at}°");
+    assert!((pat - at).abs() < 1e-4, "{pmax} at {pat}° vs {want} at {at}°");
+    let sampled = cam.sample(0, 0.001).iter().map(|p| p.pressure_angle_deg.abs()).fold(0.0, f64::max);
+    assert!(sampled <= pmax, "{sampled} sampled above the located {pmax}");
+}

@@ -42,6 +42,15 @@ impl Extremes {
 /// The extremes over a span of `f`, which returns `[q, q′, q″]` at a cam angle: the span's ends and
 /// every root of `q′` (bracketed on the span's grid, refined by Newton inside the bracket). On a
 /// dwell every quantity of the geometry is constant and only the ends are taken.
+///
+/// Where a motion meets a dwell, `s′ = s″ = 0`, and with them the derivative of the pressure angle,
+/// of the curvature and of most of the geometry vanishes at the span's end: its computed value is
+/// rounding of either sign. Its sign just inside the span is that of `q″` (after the start) or `−q″`
+/// (before the end), and a root of `q′` between the last grid point and such an end is bracketed
+/// against a point near the end where `q′` has that sign. (Judged by the rounded value alone, the
+/// bracket was missed: a translating follower offset 10 mm on a prime circle of 10.000001 mm, whose
+/// largest pressure angle lies 0.051° before the end of the heald cycle's return, had it reported
+/// at 0°, 2.3e-7° too small, below its own printed points.)
 pub(crate) fn extremes(sp: Span, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
     let mut ext = Extremes::empty();
     let fa = f(sp.a);
@@ -53,20 +62,50 @@ pub(crate) fn extremes(sp: Span, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
     }
     let n = sp.grid.max(2);
     let h = (sp.b - sp.a) / n as f64;
-    let (mut t0, mut d0) = (sp.a, fa[1]);
-    for i in 1..=n {
-        let t1 = if i == n { sp.b } else { sp.a + i as f64 * h };
-        let f1 = if i == n { fb } else { f(t1) };
-        ext.push(t1, f1[0]);
-        let d1 = f1[1];
-        if d0 != 0.0 && d1 != 0.0 && d0.signum() != d1.signum() {
-            let t = loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| {
+    let pts: Vec<(f64, [f64; 3])> = (0..=n)
+        .map(|i| match i {
+            0 => (sp.a, fa),
+            i if i == n => (sp.b, fb),
+            i => {
+                let t = sp.a + i as f64 * h;
+                (t, f(t))
+            }
+        })
+        .collect();
+    let scale = pts.iter().fold(0.0f64, |m, p| m.max(p.1[1].abs()));
+    let vanishes = |d: f64| d.abs() <= 1e-9 * scale;
+    let sign = |d: f64| {
+        if d > 0.0 {
+            1
+        } else if d < 0.0 {
+            -1
+        } else {
+            0
+        }
+    };
+    // A point between `end` and `other`, as close to `end` as needed, where q′ has the sign `want`.
+    let inside = |end: f64, other: f64, want: i32| {
+        (1..=40).map(|k| end + (other - end) * 0.5f64.powi(k)).find(|&t| sign(f(t)[1]) == want)
+    };
+    for w in pts.windows(2) {
+        let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+        ext.push(t1, v1[0]);
+        let at_start = t0 == sp.a && vanishes(v0[1]);
+        let at_end = t1 == sp.b && vanishes(v1[1]);
+        let s0 = if at_start { sign(v0[2]) } else { sign(v0[1]) };
+        let s1 = if at_end { -sign(v1[2]) } else { sign(v1[1]) };
+        if s0 == 0 || s1 == 0 || s0 == s1 {
+            continue;
+        }
+        let lo = if at_start { inside(t0, t1, s0) } else { Some(t0) };
+        let hi = if at_end { inside(t1, t0, s1) } else { Some(t1) };
+        if let (Some(lo), Some(hi)) = (lo, hi) {
+            let t = loomkin_laws::refine_root(lo, hi, s0 < 0, |t| {
                 let v = f(t);
                 (v[1], v[2])
             });
             ext.push(t, f(t)[0]);
         }
-        (t0, d0) = (t1, d1);
     }
     ext
 }
