@@ -374,10 +374,20 @@ impl Cycle {
         let start = self.segments[0].start_rad;
         let th = start + (theta_rad - start).rem_euclid(self.period_rad);
         let seg = self.segments.iter().rev().find(|s| th >= s.start_rad).unwrap_or(&self.segments[0]);
+        Self::eval_segment(seg, (th - seg.start_rad) / seg.length_rad, omega)
+    }
+
+    /// Kinematics in SI units at the end of the cycle, as the left limit: the last segment at its end.
+    pub fn eval_end(&self, speed_rpm: f64) -> Kinematics {
+        let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
+        Self::eval_segment(&self.segments[self.segments.len() - 1], 1.0, omega)
+    }
+
+    /// One segment at its fraction `x` (0…1), the shaft turning at `omega` rad/s.
+    fn eval_segment(seg: &CycleSegment, x: f64, omega: f64) -> Kinematics {
         let Some((_, law)) = &seg.law else {
             return Kinematics { s: seg.base_si, ..Kinematics::default() };
         };
-        let x = (th - seg.start_rad) / seg.length_rad;
         let k = law.eval(x);
         let r = omega / seg.length_rad; // dx/dt
         let h = seg.stroke_si;
@@ -397,9 +407,11 @@ impl Cycle {
         (0..n).map(move |i| {
             let f = i as f64 / (n - 1) as f64;
             let th = start + f * self.period_rad;
-            // The last sample is the cycle's end, evaluated as the left limit.
-            let eval_th = if i + 1 == n { th - 1e-12 * self.period_rad } else { th };
-            CyclePoint { angle_deg: th / DEG, time_s: (th - start) / omega, kin: self.eval(eval_th, speed_rpm) }
+            // The last sample is the cycle's end, evaluated as the left limit: the last segment at its end
+            // (evaluated 1e-12 of the period before it, the acceleration there was j·Δt, 3e-11 of the peak,
+            // where a law ends at rest with a = 0).
+            let kin = if i + 1 == n { self.eval_end(speed_rpm) } else { self.eval(th, speed_rpm) };
+            CyclePoint { angle_deg: th / DEG, time_s: (th - start) / omega, kin }
         })
     }
 }

@@ -147,6 +147,29 @@ impl Law {
                     ),
                 });
             }
+            // Places are the widths divided by their total, which may differ from 1 by up to 1e-9: the
+            // shapes are scaled with them (t → t·sum), so that their end values (a sine arc's zero, a
+            // ramp's level) fall on the joints. Left at their nominal widths, lengths summing to
+            // 1 + 9e-10 left a jump of 1.8e-8 in a at the joint of two sine arcs. (A place's own
+            // rounding is left alone: a shape keeps its exact width, and the continuity report allows
+            // for the rounding of the joint's position; so is a total off 1 by its own rounding.)
+            let scaled;
+            let p = if (sum - 1.0).abs() <= 4.0 * f64::EPSILON * pieces.len() as f64 {
+                p
+            } else {
+                let mut qk = 1.0;
+                let poly = p.poly.iter().map(|c| {
+                    let v = c * qk;
+                    qk *= sum;
+                    v
+                });
+                scaled = AccelPiece {
+                    width: p.width / sum,
+                    poly: poly.collect(),
+                    sine: p.sine.map(|sn| Sine { omega: sn.omega * sum, ..sn }),
+                };
+                &scaled
+            };
             let seg = Segment::from_accel(x, x1, &p.poly, p.sine, s, v).ok_or_else(|| LawError::NotARise {
                 field: format!("{field}[{i}]"),
                 reason: "acceleration must be finite, of polynomial degree ≤ 5, with a non-zero sine frequency".into(),

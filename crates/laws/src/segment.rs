@@ -170,6 +170,25 @@ impl Segment {
         out
     }
 
+    /// The magnitudes of the terms that make up s, v, a, j and the snap at local `t`:
+    /// `Σ |p_k·k!/(k−n)!·t^(k−n)| + |A|·|ω|^(n−2)` for order `n`. Evaluated values carry rounding of a
+    /// few ulps of these sums, however small the value itself is (a quarter sine's jerk at its flat
+    /// end is `A·ω·cos(π/2)`).
+    pub(crate) fn term_magnitudes(&self, t: f64) -> [f64; 5] {
+        let mut out = [0.0; 5];
+        for (order, o) in out.iter_mut().enumerate() {
+            let mut tk = 1.0;
+            for k in order..NC {
+                *o += (self.p[k] * FALLING[order][k] * tk).abs();
+                tk *= t.abs();
+            }
+            if let Some(sn) = self.sine {
+                *o += sn.amp.abs() * sn.omega.abs().powi(order as i32 - 2);
+            }
+        }
+        out
+    }
+
     /// The derivatives of orders 0 to 5 of the displacement at local `t`, with one `sin_cos`.
     pub fn derivs_local(&self, t: f64) -> [f64; 6] {
         let mut out = [0.0; 6];

@@ -186,3 +186,39 @@ fn a_nearly_cancelling_law_is_refused_not_infinite() {
     assert_eq!(loomkin_units::FieldError::field(&e), Some("segments[2]"));
     assert!(e.to_string().contains("too narrow"), "{e}");
 }
+
+fn piecewise(segments: &str) -> loomkin_laws::Law {
+    LawSpec::parse("piecewise", &[("segments", segments)]).unwrap().build().unwrap()
+}
+
+/// Narrow segments and lengths that sum to 1 only within the allowed 1e-9. Two half sine arcs of
+/// levels 1 and −1 are the cycloid, `a = sin 2πx` (Cv = 2, Ca = 2π, Cj = 4π², C2), however their
+/// lengths round: summing to 1 + 9e-10 they left a jump of 1.8e-8 in a at the joint (C1 reported),
+/// because each shape kept its nominal width on a place scaled by the sum. Half-cosine ramps of
+/// width w between constant levels ±1 make a law with j = 0 on both sides of every joint (C3),
+/// with Cj/Ca = π/(2w) exactly; at w = 1e-6 the jerk's rounding at the joints (1e-9) made it C2.
+/// A sine arc of width 1e-6 at the end has a = 2.8e-4 there (1.8e-10 of Ca, its place rounded): C1 was reported.
+#[test]
+fn narrow_and_rounded_segments_keep_their_shapes() {
+    let cyc = piecewise("0.5000000005:sine-arc:1,0.5000000004:sine-arc:-1");
+    let m = cyc.metrics();
+    close(m.cv, 2.0, "Cv");
+    close(m.ca, 2.0 * PI, "Ca");
+    close(m.cj, 4.0 * PI * PI, "Cj");
+    assert_eq!(cyc.continuity().class, 2);
+    for w in [1e-6, 1e-8] {
+        let p = 0.5 - 2.0 * w;
+        let law = piecewise(&format!(
+            "{w}:half-cosine:0:1,{p}:constant:1,{}:half-cosine:1:-1,{p}:constant:-1,{w}:half-cosine:-1:0",
+            2.0 * w
+        ));
+        let m = law.metrics();
+        close(m.cj / m.ca, PI / (2.0 * w), "Cj/Ca");
+        let c = law.continuity();
+        assert_eq!(c.class, 3, "w = {w}: {c:?}");
+    }
+    let law = piecewise("0.999999:sine-arc:1,0.000001:sine-arc:-999999");
+    let c = law.continuity();
+    assert_eq!(c.class, 2, "{c:?}");
+    assert!(c.end.da.abs() < 1e-9 * law.metrics().ca, "{c:?}");
+}

@@ -98,3 +98,23 @@ stroke = 20
     assert!((back.s - h * (1.0 - law.eval(x).s)).abs() < 1e-14);
     assert!(back.v < 0.0, "returning");
 }
+
+/// The last sample is the cycle's end as the left limit: the return's law at x = 1, scaled by the
+/// chain rule (h·a(1)·(ω/β)², h·j(1)·(ω/β)³) from the normalised law alone. A law ends at rest, so
+/// the acceleration there is rounding (the modified trapezoid's a(1) is −6e-16); evaluated 1e-12 of
+/// the period before the end it was j·Δt = 4.1e-9 m/s², 3e-11 of the peak.
+#[test]
+fn last_sample_is_the_left_limit_at_the_end() {
+    let c = Cycle::from_toml(CYCLE).unwrap();
+    let rpm = 300.0;
+    let r = rpm * 2.0 * PI / 60.0 / 120f64.to_radians();
+    let law = LawSpec::ModifiedTrapezoid { ramp: 0.125 }.build().unwrap().eval(1.0);
+    let end = c.sample(3, rpm)[2];
+    assert_eq!(end.angle_deg, 360.0);
+    let want = [0.1 - 0.1 * law.s, -0.1 * law.v * r, -0.1 * law.a * r * r, -0.1 * law.j * r.powi(3)];
+    let got = [end.kin.s, end.kin.v, end.kin.a, end.kin.j];
+    for (k, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!((g - w).abs() <= 1e-12 * w.abs().max(1e-3), "derivative {k}: {g:e} vs {w:e}");
+    }
+    assert!(end.kin.a.abs() < 1e-12, "{:e}", end.kin.a);
+}
