@@ -311,7 +311,9 @@ impl<'a> Drive<'a> {
             let m = 0.5 * (a + b);
             let (left, right) = (gl(a, m), gl(m, b));
             let tol = (1e-13 * first * (b - a) / repeat).max(1e-13 * (left + right));
-            if (left + right - whole).abs() <= tol || depth >= 30 {
+            // A sum that is not finite (a torque that overflows) is not refined further.
+            let settled = (left + right - whole).abs() <= tol || !(left + right).is_finite();
+            if settled || depth >= 30 {
                 sum += left + right;
             } else {
                 stack.push((a, m, left, depth + 1));

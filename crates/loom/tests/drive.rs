@@ -120,3 +120,18 @@ fn forces_have_the_expected_parts() {
     let up = loomkin_loom::FrameKin { y_m: 0.04, ..Default::default() };
     assert!(d.force(0, &up).warp_n > 0.0);
 }
+
+/// An efficiency at the bottom of its range (η = 1e-300) overflows the torque: the halving
+/// quadrature takes such a panel as it is (the RMS is then +∞, which the CLI refuses to print)
+/// instead of halving every panel to its depth limit (2³⁰ panels each: the command hung, and so
+/// would this test).
+#[test]
+fn an_overflowing_torque_does_not_stall_the_rms() {
+    let text = edited(&example("shuttle-loom.toml"), "speed_rpm = 200\n", "speed_rpm = 200\nefficiency = 1e-300\n");
+    let loom = Loom::from_toml(&text).unwrap();
+    let pat = wif("twill-2-2.wif");
+    let m = Motion::new(&loom, &pat).unwrap();
+    let d = Drive::new(&loom, &m, &pat);
+    let rms = d.rms();
+    assert!(rms.is_infinite(), "{rms}");
+}
