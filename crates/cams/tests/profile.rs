@@ -685,3 +685,37 @@ fn pressure_angle_peak_next_to_a_dwell_joint() {
     let sampled = cam.sample(0, 0.001).iter().map(|p| p.pressure_angle_deg.abs()).fold(0.0, f64::max);
     assert!(sampled <= pmax, "{sampled} sampled above the located {pmax}");
 }
+
+/// A steep cam: a 40 mm cycloidal rise over 0.01° on a 70 mm prime circle (ds/dψ up to 4.6e5 mm/rad).
+/// The pitch curve's sharpest convex bend lies 3e-4 of the motion before its end, between the law's
+/// grid points and next to a milder one the grid does see. Against the textbook radial-follower
+/// radius `ρ = (R² + s′²)^{3/2}/(R² + 2s′² − R·s″)`, R = R_p + s, from the law (`Cycle::eval` at 1 rad/s)
+/// on a 4000-point scan of the rise's last 5 % and golden sections: the same least radius and place.
+/// (The grid alone gave 0.0514 mm at 0.0098°; the least is 9.305e-5 mm at 0.009967°.)
+#[test]
+fn steep_cam_sharpest_bend_is_found() {
+    let spec = CycleSpec::rise_return(&LawSpec::Cycloidal, StrokeUnit::Mm, 40.0, 0.01).unwrap();
+    let cycle = Cycle::new(&spec).unwrap();
+    let cam = CamProfile::new(
+        &Motion::from_cycle(&cycle),
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, 0.0, Size::PrimeRadiusMm(70.0)),
+    )
+    .unwrap();
+    let (rmin, at) = cam.min_convex_radius_pitch();
+    let rpm = 60.0 / std::f64::consts::TAU;
+    let kappa = |deg: f64| {
+        let k = cycle.eval(deg.to_radians(), rpm);
+        let (s, d1, d2) = (k.s * 1e3, k.v * 1e3, k.a * 1e3);
+        let r = 70.0 + s;
+        (r * r + 2.0 * d1 * d1 - r * d2) / (r * r + d1 * d1).powf(1.5)
+    };
+    let (lo, hi) = (0.0095, 0.01);
+    let step = (hi - lo) / 4000.0;
+    let best = (0..4000).map(|i| lo + step * (i as f64 + 0.5)).max_by(|a, b| kappa(*a).total_cmp(&kappa(*b))).unwrap();
+    let (x, kmax) = golden_max(kappa, best, step);
+    let want = 1.0 / kmax;
+    // The return (from 180°) is the rise mirrored in time: the least radius is reached on both.
+    let at_rise = if at >= 180.0 { 0.01 - (at - 180.0) } else { at };
+    assert!((rmin - want).abs() < 1e-9 * want, "{rmin} mm at {at}° vs {want} mm at {x}°");
+    assert!((at_rise - x).abs() < 1e-7, "{rmin} mm at {at}° vs {want} mm at {x}°");
+}
