@@ -70,7 +70,13 @@ impl GeometryArgs {
     fn speed_rad_s(&self) -> Result<f64> {
         match self.speed_rpm {
             None => Ok(1.0),
-            Some(n) => Ok(loomkin_units::ShaftSpeed::from_rpm_field("--speed-rpm", n)?.rad_per_s()),
+            Some(n) => {
+                // The shaft's range, then the modulator's own bound on ω2, both on the flag as typed.
+                let w = loomkin_units::ShaftSpeed::from_rpm_field("--speed-rpm", n)?.rad_per_s();
+                let max_rpm = loomkin_mech::MAX_INPUT_SPEED_RAD_S * 60.0 / std::f64::consts::TAU;
+                loomkin_units::Range::closed(1e-3, max_rpm, "rpm").check("--speed-rpm", n)?;
+                Ok(w)
+            }
         }
     }
 }

@@ -10,7 +10,7 @@ use loomkin_shed::{
     PresetReport, Progress, ShedLaw, Study, StudyRow, StudyTable, Template, WindowReport, evaluate, preset,
     preset_table, preset_table_in,
 };
-use loomkin_units::{Budget, Cost};
+use loomkin_units::{Budget, Cost, compact};
 use serde::Serialize;
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -677,12 +677,15 @@ fn best(a: BestArgs) -> Result<()> {
             && loomkin_shed::best(design, &dims, motions.as_deref(), w, None, &cond)?.is_some()
         {
             bail!(
-                "no law of the family '{}' with a window of {w} deg at T = {t} keeps the peak jerk within \
-                 --max-jerk-m-s3 {j} (laws with that window exist without the jerk limit)",
-                tpl.name()
+                "no law of the family '{}' with a window of {} deg at T = {} keeps the peak jerk within \
+                 --max-jerk-m-s3 {} (laws with that window exist without the jerk limit)",
+                tpl.name(),
+                compact(w),
+                compact(t),
+                compact(j)
             );
         }
-        bail!("no law of the family '{}' gives a window of {w} deg at T = {t}", tpl.name());
+        bail!("no law of the family '{}' gives a window of {} deg at T = {}", tpl.name(), compact(w), compact(t));
     };
     let law = tpl.law(b.criteria.motion_deg, &b.lengths)?;
     if let Some(path) = &a.emit_cycle {

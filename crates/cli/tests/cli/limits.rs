@@ -38,6 +38,14 @@ fn extreme_inputs_inside_the_old_ranges_are_refused_by_name() {
         &["motion_deg", "allowed 1 ≤ motion_deg ≤ 360 deg"],
     );
     refused_both_ways(&["cycle", HEALD, "--speed-rpm", "5e-324"], &["speed-rpm", "0.001"]);
+    // Inside the shaft's range but above the modulator's bound on ω2 (1e4 rad/s): refused by the
+    // flag as typed, not by the derived input_speed_rad_s.
+    for cmd in ["analyze", "synthesize"] {
+        refused_both_ways(
+            &["dobby", cmd, "--speed-rpm", "100000"],
+            &["--speed-rpm = 100000 is out of range", "95492.96"],
+        );
+    }
 }
 
 #[test]
@@ -202,6 +210,10 @@ fn bad_values_are_refused_by_name_not_ignored() {
         "--json",
     ]);
     assert!(w["required_window_deg"].as_f64().unwrap() > 0.0, "{w}");
+    // A tiny jerk limit is named in short form, not as three hundred zeros.
+    let out = loomkin().args(["shed", "best", "--window-deg", "175", "--max-jerk-m-s3", "1e-300"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("--max-jerk-m-s3 1e-300 (laws") && err.len() < 300, "{err}");
 }
 
 /// Options of an output that is not written are refused when given, not ignored.

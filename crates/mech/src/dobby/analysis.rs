@@ -454,9 +454,12 @@ pub(crate) fn grid_units_iter(start_deg: f64, h_deg: f64, len: usize) -> impl It
     })
 }
 
+/// The largest input speed ω2 (rad/s) the analysis and the synthesis accept (95 493 rev/min).
+pub const MAX_INPUT_SPEED_RAD_S: f64 = 1e4;
+
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
     Range::closed(0.01, 30.0, "°").check("step_deg", step_deg)?;
-    Range::closed(1e-6, 1e4, "rad/s").check("input_speed_rad_s", speed)?;
+    Range::closed(1e-6, MAX_INPUT_SPEED_RAD_S, "rad/s").check("input_speed_rad_s", speed)?;
     Range::closed(0.0, 90.0, "°").check("pressure_limit_deg", limit)?;
     if let Some(r) = roller {
         Range::closed(0.0, 10.0, "m").check("roller_m", r)?;
