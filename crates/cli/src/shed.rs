@@ -77,7 +77,7 @@ pub struct LawArgs {
     /// A law defined in TOML (motion_deg, positive, optional negative and positive_fraction).
     #[arg(long, value_name = "FILE.toml")]
     spec: Option<PathBuf>,
-    /// Override the motion angle φ_дв, deg (0 < φ ≤ 360).
+    /// Override the motion angle φ_дв, deg (1 ≤ φ ≤ 360).
     #[arg(long, allow_hyphen_values = true)]
     motion_deg: Option<f64>,
     #[command(flatten)]

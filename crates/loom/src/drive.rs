@@ -281,14 +281,30 @@ impl<'a> Drive<'a> {
     /// is accepted when its two halves change its integral by at most 1e-13 of the first pass's
     /// whole integral scaled to the panel's share of the repeat, or by 1e-13 of its own integral
     /// (rounding), or after 30 halvings (2e-8° for a 20° panel); [`MAX_RMS_SPLITS`] halvings in all.
+    ///
+    /// A tiny efficiency (η below ~1e-150, inside its range) makes T² overflow while T itself is
+    /// finite: the integral is then taken of `(T·2^e)²`, 2^e the power of two at or below η (at
+    /// least 2^-1022; an exact scaling), and the root divided by 2^e, so the RMS is finite wherever the torque is.
     pub fn rms(&self) -> f64 {
+        let rms = self.rms_scaled(1.0);
+        let eta = self.loom.efficiency;
+        if rms.is_finite() || !(eta > 0.0 && eta < 1.0) {
+            return rms;
+        }
+        // At least 2^-1022: `powi` of a smaller power underflows to 0 (and T·0 would be NaN).
+        let k = 2f64.powi((eta.log2().floor() as i32).max(-1022));
+        self.rms_scaled(k) / k
+    }
+
+    /// [`Drive::rms`] of the torque times `k` (a power of two: exact).
+    fn rms_scaled(&self, k: f64) -> f64 {
         let joints = self.motion.joints();
         let rule = gauss_legendre(16);
         let gl = |a: f64, b: f64| -> f64 {
             let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
             rule.iter()
                 .map(|&(x, wt)| {
-                    let t = self.torque_at(mid + half * x);
+                    let t = self.torque_at(mid + half * x) * k;
                     half * wt * t * t
                 })
                 .sum()
