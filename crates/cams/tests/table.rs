@@ -170,7 +170,10 @@ fn bad_spacings_name_the_field() {
     let e = CamTable::new(m.clone(), Spacing::StepDeg(0.0)).unwrap_err().to_string();
     assert!(e.starts_with("step_deg = 0 is out of range"), "{e}");
     let e = CamTable::new(m.clone(), Spacing::Tolerance(-1.0)).unwrap_err().to_string();
-    assert!(e.starts_with("tolerance = -1 is out of range"), "{e}");
+    assert!(e.starts_with("tolerance = -1 is out of range") && e.ends_with("≤ 1000000 mm"), "{e}");
+    let swing = Motion::rise(&law, 30.0, 120.0, StrokeUnit::Deg).unwrap();
+    let e = CamTable::new(swing, Spacing::Tolerance(1e9)).unwrap_err().to_string();
+    assert!(e.ends_with("≤ tolerance ≤ 1000000 deg"), "the slave unit of a swinging follower: {e}");
     let e = Motion::rise(&law, 0.0, 120.0, StrokeUnit::Mm).unwrap_err().to_string();
     assert!(e.starts_with("stroke_mm = 0"), "{e}");
     let e = Format::parse("xyva").unwrap_err().to_string();

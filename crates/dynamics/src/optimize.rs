@@ -316,6 +316,21 @@ pub fn optimize_cycle(
     follower: &crate::Follower,
 ) -> Result<Optimized> {
     let band = loomkin_units::Range::open(0.0, 90.0, "%").check("band_pct", band_pct)? / 100.0;
+    // The band's ends are speeds the responses run at: both inside the shaft-speed range, said
+    // in the user's two inputs rather than as a speed they never typed.
+    let speeds = loomkin_units::ShaftSpeed::RANGE;
+    let (lo, hi) = (speed.rpm() * (1.0 - band), speed.rpm() * (1.0 + band));
+    if !speeds.contains(lo) || !speeds.contains(hi) {
+        return Err(DynError::Input {
+            field: "band_pct".into(),
+            reason: format!(
+                "the band speed_rpm·(1 ± band_pct/100) = {}…{} rpm leaves {}: narrow --band-pct or move --speed-rpm",
+                loomkin_units::compact(lo),
+                loomkin_units::compact(hi),
+                speeds.describe("speed_rpm")
+            ),
+        });
+    }
     let mut spec: loomkin_laws::CycleSpec =
         toml::from_str(text).map_err(|e| DynError::Input { field: "cycle file".into(), reason: e.message().into() })?;
     let original = loomkin_laws::Cycle::new(&spec)?;
@@ -388,6 +403,21 @@ pub fn optimize_cycle(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A band reaching past the shaft-speed range is refused up front, naming `band_pct` and the
+    /// band's ends (it was refused later naming a speed the user never gave); a band inside it runs.
+    #[test]
+    fn a_band_past_the_speed_range_names_the_band() {
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml"))
+                .unwrap();
+        let f = crate::Follower::new(40.0, 0.05).unwrap();
+        for (rpm, pct) in [(1e5, 50.0), (0.001, 5.0), (99_000.0, 2.0)] {
+            let e = optimize_cycle(&text, loomkin_units::ShaftSpeed::from_rpm(rpm).unwrap(), pct, &f).unwrap_err();
+            assert!(matches!(&e, DynError::Input { field, .. } if field == "band_pct"), "{rpm} rpm ± {pct} %: {e}");
+            assert!(e.to_string().contains("narrow --band-pct"), "{e}");
+        }
+    }
 
     /// The hat-function rows reproduce the residual of a law built from the same knots.
     #[test]

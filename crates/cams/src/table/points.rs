@@ -128,7 +128,12 @@ pub(crate) fn place(motion: &Motion, spacing: Spacing) -> Result<(Vec<CamPoint>,
             Ok((masters.iter().map(|&x| point_at(motion, x, &dec)).collect(), dec))
         }
         Spacing::Tolerance(t) => {
-            let t = TOLERANCE_RANGE.check("tolerance", t)?;
+            // The range in the slave unit the tolerance is given in (`TOLERANCE_RANGE` has none).
+            let unit = match motion.unit() {
+                loomkin_laws::StrokeUnit::Mm => "mm",
+                loomkin_laws::StrokeUnit::Deg => "deg",
+            };
+            let t = Range { unit, ..TOLERANCE_RANGE }.check("tolerance", t)?;
             let dec = Decimals::choose(&motion.joints(), motion.stroke(), peaks, Some(t));
             Ok((tolerance::greedy(motion, t, &dec)?, dec))
         }
