@@ -107,6 +107,21 @@ fn refine(lo: f64, hi: f64, glo: f64, gd: &impl Fn(f64) -> (f64, f64)) -> f64 {
     refine_root(lo, hi, glo < 0.0, gd)
 }
 
+/// The boundary in `[lo, hi]` between the points on `lo`'s side (`on_lo_side(t)`) and those on
+/// `hi`'s, by bisection down to adjacent doubles (at most 200 halvings): the midpoint of the last
+/// bracket. For roots with no derivative at hand (a level crossing of |n(t)|, an inverse found by
+/// its monotone forward function); with a derivative, [`refine_root`] takes fewer steps.
+pub fn bisect(mut lo: f64, mut hi: f64, on_lo_side: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if on_lo_side(mid) { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
 /// The root of `g` in a bracket `[lo, hi]` where `g` changes sign (`lo_negative`: `g(lo) < 0`),
 /// by Newton's method kept inside the shrinking bracket. A Newton step that would leave the bracket
 /// is replaced by a secant step between the bracket's ends (their values fetched once when not yet

@@ -42,7 +42,7 @@ pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
 pub use cycle_report::{CycleExtremes, CycleReport, SegmentPeaks, StreamedReport};
 pub use error::{LawError, Result, compact};
-pub use extrema::{refine_root, refine_root_from};
+pub use extrema::{bisect, refine_root, refine_root_from};
 pub use kinematics::{Kinematics, MotionLaw};
 pub use law::{AccelPiece, EndCondition, Law, Samples};
 pub use metrics::Metrics;

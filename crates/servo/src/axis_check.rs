@@ -295,19 +295,11 @@ fn envelope_cuts(seg: &Segment, a: f64, b: f64, speed: impl Fn(f64) -> f64, moto
     for w in mono.windows(2) {
         for level in [motor.rated_speed_rpm, motor.max_speed_rpm] {
             let g = |t: f64| speed(t) - level;
-            let (mut lo, mut hi) = (w[0], w[1]);
-            let (g_lo, g_hi) = (g(lo), g(hi));
+            let (g_lo, g_hi) = (g(w[0]), g(w[1]));
             if g_lo == 0.0 || g_hi == 0.0 || g_lo.signum() == g_hi.signum() {
                 continue;
             }
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                if g(mid).signum() == g_lo.signum() { lo = mid } else { hi = mid }
-            }
-            cuts.push(0.5 * (lo + hi));
+            cuts.push(loomkin_laws::bisect(w[0], w[1], |t| g(t).signum() == g_lo.signum()));
         }
         cuts.push(w[1]);
     }
@@ -381,15 +373,7 @@ fn max_by(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64)
         let (q1, d1) = f(x1);
         take(&mut best, q1, x1);
         if d0 > 0.0 && d1 < 0.0 {
-            let (mut lo, mut hi) = (x0, x1);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                if f(mid).1 > 0.0 { lo = mid } else { hi = mid }
-            }
-            let r = 0.5 * (lo + hi);
+            let r = loomkin_laws::bisect(x0, x1, |t| f(t).1 > 0.0);
             take(&mut best, f(r).0, r);
         }
         (x0, d0) = (x1, d1);

@@ -86,10 +86,11 @@ pub(crate) fn extremes(sp: Span, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
         let size = dq.abs().max(0.5 * (a.1[2].abs() + b.1[2].abs()) * (b.0 - a.0));
         (dq - trapezoid).abs() <= 0.1 * size || size == 0.0
     };
+    // Scratch reused across the grid's intervals (most are resolved at once and push nothing).
+    let (mut stack, mut inner) = (Vec::new(), Vec::new());
     for w in grid.windows(2) {
         pts.push(w[0]);
-        let mut stack = vec![(w[0], w[1], 0u32)];
-        let mut inner = Vec::new();
+        stack.push((w[0], w[1], 0u32));
         while let Some((a, b, depth)) = stack.pop() {
             if depth >= 40 || budget == 0 || resolved(&a, &b) {
                 inner.push(b);
@@ -104,7 +105,7 @@ pub(crate) fn extremes(sp: Span, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
         }
         // `inner` holds the right ends of the accepted intervals in order, the last being w[1].
         inner.pop();
-        pts.extend(inner);
+        pts.append(&mut inner);
     }
     pts.push(grid[grid.len() - 1]);
     let scale = pts.iter().fold(0.0f64, |m, p| m.max(p.1[1].abs()));

@@ -269,15 +269,7 @@ fn lag_at_output_pressure_angle(g: &ModulatorGeometry, mu: f64) -> f64 {
         let delta = cos.clamp(-1.0, 1.0).acos();
         delta.min(std::f64::consts::PI - delta)
     };
-    let (mut lo, mut hi) = (0.0, g.max_lag_deg().to_radians());
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if pressure(mid) < mu { lo = mid } else { hi = mid }
-    }
-    0.5 * (lo + hi)
+    loomkin_laws::bisect(0.0, g.max_lag_deg().to_radians(), |lag| pressure(lag) < mu)
 }
 
 /// φ6 (rad) and its first two derivatives with respect to φ2 at each row (the analysis runs at
