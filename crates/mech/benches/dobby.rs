@@ -74,3 +74,17 @@ fn trace_cam_loop_0_1deg(bencher: divan::Bencher) {
         .counter(divan::counter::ItemsCount::new(3601usize))
         .bench_local(|| sys.trace(&xs, SVector::<f64, 2>::new(q0[0], q0[1]), &NewtonOptions::default()).unwrap());
 }
+
+/// One draw of the tolerance study (examples/dobby-tolerance.toml) at its analysis step of 2° and at
+/// 0.1°: the figures behind the study's cost estimate (`Tolerance::cost`).
+#[divan::bench(args = [2.0, 0.1])]
+fn tolerance_draw(bencher: divan::Bencher, step_deg: f64) {
+    let text = include_str!("../../../examples/dobby-tolerance.toml")
+        .replace("step_deg = 2 ", &format!("step_deg = {step_deg} "));
+    let t = loomkin_mech::Tolerance::from_toml(&text).unwrap();
+    let mut i = 0u64;
+    bencher.bench_local(|| {
+        i = (i + 1) % t.draws;
+        t.draw(i)
+    });
+}

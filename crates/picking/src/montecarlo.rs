@@ -108,22 +108,21 @@ fn study_err(e: loomkin_study::StudyError) -> PickError {
 /// Seconds per draw by the closed form: 9.5 µs measured on the reference machine (2 cores, load
 /// average 3) as the slope of `loomkin pick montecarlo examples/pick-montecarlo.toml` with
 /// `draws = 100000` on one thread (`RAYON_NUM_THREADS=1`, `/usr/bin/time`: 0.93–0.97 s; one draw
-/// alone: 0.00 s), doubled for a machine shared with one other job, as the other per-item costs
-/// (`loomkin_servo::EVAL_S_PER_POINT_SPEED`). 10⁶ draws are estimated at 19 s, inside the budget;
-/// larger studies shard (`--shard I/N`).
-pub const DRAW_S_CLOSED: f64 = 2.0 * 9.5e-6;
+/// alone: 0.00 s), taken into estimates by [`loomkin_units::Cost::cpu_items`] as every per-item
+/// cost. 10⁶ draws are estimated at 19 s, inside the budget; larger studies shard (`--shard I/N`).
+pub const DRAW_S_CLOSED: f64 = 9.5e-6;
 /// See [`DRAW_S_CLOSED`]: the draw integrated numerically, 34 µs of CPU per draw measured the same
-/// way (`method = "ode"`, `draws = 10000`: 0.34 s user), doubled.
-pub const DRAW_S_ODE: f64 = 2.0 * 34e-6;
+/// way (`method = "ode"`, `draws = 10000`: 0.34 s user).
+pub const DRAW_S_ODE: f64 = 34e-6;
 
 impl MonteCarlo {
     /// What running the draws `items` costs, estimated before they run: each draw's time
-    /// ([`DRAW_S_CLOSED`], [`DRAW_S_ODE`]: the machine's cores included) and the draws held until
+    /// ([`DRAW_S_CLOSED`], [`DRAW_S_ODE`], by [`loomkin_units::Cost::cpu_items`]) and the draws held until
     /// the report (a [`Draw`] each, and the text of its CSV or JSON row).
     pub fn cost(&self, items: std::ops::Range<u64>) -> loomkin_units::Cost {
         let n = items.end.min(self.draws).saturating_sub(items.start) as f64;
         let per = if self.method == Method::Ode { DRAW_S_ODE } else { DRAW_S_CLOSED };
-        loomkin_units::Cost::items(n, std::mem::size_of::<Draw>() as f64 + 300.0, per)
+        loomkin_units::Cost::cpu_items(n, std::mem::size_of::<Draw>() as f64 + 300.0, per)
     }
 
     /// Reads and checks a study file.

@@ -136,8 +136,8 @@ impl Default for OptimizeOptions {
 /// points, then the exact torque extremes (or the RMS) at each speed. From the `optimize_eval`
 /// bench (release, fastest of 5, 200 evaluations): 1.04 µs at 7 points × 1 speed, 0.69 µs at
 /// 7 × 6, 1.12 µs at 33 × 1, 2.09 µs at 33 × 6 (the Nelder–Mead bookkeeping grows with the
-/// points); the largest, with a margin of 2.
-pub const EVAL_S_PER_POINT_SPEED: f64 = 2.0 * 2.1e-6;
+/// points); the largest, taken into estimates by [`loomkin_units::Cost::cpu_items`].
+pub const EVAL_S_PER_POINT_SPEED: f64 = 2.1e-6;
 
 impl OptimizeOptions {
     /// The cost of [`optimize`] with these options from `points` definition points, estimated
@@ -149,7 +149,7 @@ impl OptimizeOptions {
         let evals = (starts * self.max_evals_per_start) as f64;
         let per_eval = EVAL_S_PER_POINT_SPEED * points.max(1) as f64 * self.speeds_rpm.len().max(1) as f64;
         let threads = cores.clamp(1, starts) as f64;
-        loomkin_units::Cost::items(evals, 0.0, per_eval / threads)
+        loomkin_units::Cost::cpu_items(evals, 0.0, per_eval / threads)
     }
 }
 

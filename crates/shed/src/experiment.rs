@@ -176,8 +176,8 @@ impl Study {
 
 /// Seconds to evaluate one law of a design (its dwell and window roots, its exact extremes): the
 /// `criteria_generic_one_law` bench (release, fastest of 100: 6.9 µs; the closed-form path of the
-/// named families takes 0.51 µs) with a margin of 2.
-pub const STUDY_S_PER_LAW: f64 = 2.0 * 7e-6;
+/// named families takes 0.51 µs), taken into estimates by [`loomkin_units::Cost::cpu_items`].
+pub const STUDY_S_PER_LAW: f64 = 7e-6;
 /// Bytes held per law of a design: its criteria (an `Option<Dimensionless>`) besides its lengths.
 pub const STUDY_BYTES_PER_LAW: f64 = 112.0;
 
@@ -217,7 +217,7 @@ impl Study {
         // The design, the motion angles, the criteria of the evaluated laws, then the rows.
         let cost = loomkin_units::Cost::items(laws, p * 8.0, 0.0)
             .plus(loomkin_units::Cost::items(motions as f64, 8.0, 0.0))
-            .plus(loomkin_units::Cost::items(mine, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW / cores))
+            .plus(loomkin_units::Cost::cpu_items(mine, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW / cores))
             .plus(row.times(rows));
         StudyEstimate { laws, cost }
     }

@@ -43,6 +43,19 @@ impl Cost {
         Self { bytes: n * bytes_each, seconds: n * seconds_each }
     }
 
+    /// `n` items, each holding `bytes_each` until the end and taking `cpu_seconds_each` of one
+    /// core as a benchmark measures it on an idle reference machine: the time is taken as
+    /// [`Cost::SHARED`] times that, the machine shared with one other job. Every per-item time
+    /// measured by a bench enters an estimate through this one rule.
+    pub fn cpu_items(n: f64, bytes_each: f64, cpu_seconds_each: f64) -> Self {
+        Self::items(n, bytes_each, Self::SHARED * cpu_seconds_each)
+    }
+
+    /// How much longer than a benchmark's single-core figure an item is estimated to take: 2, the
+    /// reference machine (2 cores) shared with one other job. An estimate is a guard against runs
+    /// far beyond the budget, so it errs long by this factor and no more.
+    pub const SHARED: f64 = 2.0;
+
     /// Both costs added (two phases, or a fixed part and a part per item).
     pub fn plus(self, other: Cost) -> Self {
         Self { bytes: self.bytes + other.bytes, seconds: self.seconds + other.seconds }
