@@ -7,6 +7,9 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+# The libraries' field descriptors by the path of their const ("ShaftSpeed::SPEED"): name, range,
+# default, count, doc. Stubs write defaults as `...`: their values are the descriptors' (loomkin._fields).
+FIELDS: Dict[str, Dict[str, Any]]
 
 class LoomkinError(ValueError):
     """Bad input: `field` names the input at fault, `allowed` says what is accepted."""
@@ -153,7 +156,7 @@ def shed_law(
     motion_deg: Optional[float] = None,
     threshold: float = 0.95,
     stroke_mm: float = 100.0,
-    speed_rpm: float = 300.0,
+    speed_rpm: float = ...,
     label: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def shed_table(**kw: Any) -> Dict[str, Any]: ...
@@ -166,7 +169,7 @@ def shed_window(
     carrier_length_m: float = 0.0,
     crossing_range_deg: float = 0.0,
     shed_excess: float = 0.05,
-    speed_rpm: float = 300.0,
+    speed_rpm: float = ...,
 ) -> Dict[str, Any]:
     """`loomkin shed window --json`: the loom data, flight_deg, required_window_deg (deg), thresholds."""
 

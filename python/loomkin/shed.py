@@ -14,6 +14,7 @@ import os
 from typing import Any, Dict, List, Optional, Union
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._inputs import text_of
 from ._table import Table
 
@@ -54,7 +55,7 @@ def best(window_deg: float, **kw: Any) -> Dict[str, Any]:
 
 def window(carrier_speed_m_s: float, reed_width_m: float, *, cloth_width_m: Optional[float] = None,
            carrier_length_m: float = 0.0, crossing_range_deg: float = 0.0, shed_excess: float = 0.05,
-           speed_rpm: float = 300.0) -> Dict[str, Any]:
+           speed_rpm: float = _default("ShaftSpeed::SPEED")) -> Dict[str, Any]:
     """``loomkin shed window --carrier-speed-m-s V --reed-width-m L --json``: the window a loom
     needs. The loom data (the weft carrier's mean speed in m/s; reed width, cloth width (default:
     the reed's) and carrier length in m; the crossing-point range in deg; the shed-height excess as

@@ -10,8 +10,6 @@ use pyo3::types::PyDict;
 
 /// Samples of a cycle (as the CLI's `--points`).
 const CYCLE_POINTS: Range = Range::closed(2.0, 1e7, "");
-/// The speed when neither the call nor the file gives one (the CLI's default).
-const DEFAULT_RPM: f64 = 300.0;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Cycle>()?;
@@ -60,7 +58,7 @@ impl Cycle {
         })
     }
     pub(crate) fn speed(&self, speed_rpm: Option<f64>) -> PyResult<ShaftSpeed> {
-        let rpm = speed_rpm.or(self.inner.speed_rpm).unwrap_or(DEFAULT_RPM);
+        let rpm = self.inner.speed_rpm_or(speed_rpm);
         ShaftSpeed::from_rpm_field("speed_rpm", rpm).or_raise()
     }
 }

@@ -15,6 +15,7 @@ mod cycles;
 mod dobby;
 mod dynamics;
 mod errors;
+mod fields;
 mod interrupt;
 mod laws;
 mod loom;
@@ -30,6 +31,7 @@ use pyo3::prelude::*;
 fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     errors::register(m)?;
+    fields::register(m)?;
     laws::register(m)?;
     servo::register(m)?;
     cycles::register(m)?;

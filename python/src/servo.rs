@@ -310,7 +310,7 @@ fn servo_check(
 ) -> PyResult<Py<PyAny>> {
     let c = &cycle.inner;
     let axis = Axis::from_toml(axis_toml, c.unit).or_raise()?;
-    let rpm = speed_rpm.or(c.speed_rpm).unwrap_or(300.0);
+    let rpm = c.speed_rpm_or(speed_rpm);
     let report = py.detach(|| check_axis(&axis, c, rpm)).or_raise()?;
     to_py(py, &report)
 }

@@ -9,7 +9,7 @@ use loomkin_shed::{
     preset_table_in,
 };
 use loomkin_study::StudyError;
-use loomkin_units::{Range, RangeError};
+use loomkin_units::{Range, RangeError, ShaftSpeed};
 use pyo3::prelude::*;
 
 impl Fault for StudyError {
@@ -76,7 +76,7 @@ fn shed_presets(py: Python<'_>) -> PyResult<Py<PyAny>> {
 /// stroke (mm) and speed (rpm), with the law's definition.
 #[pyfunction]
 #[pyo3(signature = (name=None, spec_toml=None, motion_deg=None, threshold=loomkin_shed::TABLE3_THRESHOLD,
-    stroke_mm=100.0, speed_rpm=300.0, label=None))]
+    stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM, label=None))]
 fn shed_law(
     py: Python<'_>,
     name: Option<&str>,
@@ -209,7 +209,7 @@ fn study_rows(
 /// lengths (the relative lengths k of each law, a list per row). Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (design="presets", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
-    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=300.0))]
+    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_table(
     py: Python<'_>,
     design: &str,
@@ -235,7 +235,7 @@ fn shed_table(
 /// ("FROM:TO:STEP" or a list "A,B,…"; default 180:360:10). Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (design="grid", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
-    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=300.0))]
+    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_pareto(
     py: Python<'_>,
     design: &str,
@@ -262,7 +262,7 @@ fn shed_pareto(
 /// released.
 #[pyfunction]
 #[pyo3(signature = (window_deg, threshold=loomkin_shed::TABLE3_THRESHOLD, max_jerk_m_s3=None, design="grid",
-    family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None, stroke_mm=100.0, speed_rpm=300.0))]
+    family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_best(
     py: Python<'_>,
     window_deg: f64,
@@ -328,7 +328,7 @@ fn shed_best(
 /// T = 1/(1 + excess) with the one for both sheets moving.
 #[pyfunction]
 #[pyo3(signature = (carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=0.0,
-    crossing_range_deg=0.0, shed_excess=0.05, speed_rpm=300.0))]
+    crossing_range_deg=0.0, shed_excess=0.05, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_window(
     py: Python<'_>,
     carrier_speed_m_s: f64,

@@ -33,7 +33,7 @@ pub struct CycleArgs {
 pub fn run(a: CycleArgs) -> Result<()> {
     let text = util::read_input(&a.file)?;
     let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", a.file.display()))?;
-    let rpm = a.speed_rpm.or(cycle.speed_rpm).unwrap_or(300.0);
+    let rpm = cycle.speed_rpm_or(a.speed_rpm);
     let speed = ShaftSpeed::from_rpm_field("--speed-rpm", rpm)?;
     if a.points < 2 {
         bail!("--points {} is too few: allowed 2 ≤ N", a.points);

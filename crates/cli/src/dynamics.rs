@@ -248,7 +248,7 @@ fn read_cycle(path: &Path) -> Result<Cycle> {
 }
 
 fn speed_of(flag: Option<f64>, cycle: &Cycle) -> Result<ShaftSpeed> {
-    Ok(ShaftSpeed::from_rpm(flag.or(cycle.speed_rpm).unwrap_or(300.0))?)
+    Ok(ShaftSpeed::from_rpm(cycle.speed_rpm_or(flag))?)
 }
 
 fn rigidity_note(s: &loomkin_dynamics::Summary) {

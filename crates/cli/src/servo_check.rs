@@ -39,7 +39,7 @@ pub fn run(a: CheckArgs) -> Result<()> {
     let (cycle, _) = a.rise.cycle(a.cycle.as_deref())?;
     let text = util::read_input(&a.axis)?;
     let axis = Axis::from_toml(&text, cycle.unit).map_err(|e| anyhow::anyhow!("{}: {e}", a.axis.display()))?;
-    let rpm = a.speed_rpm.or(cycle.speed_rpm).unwrap_or(300.0);
+    let rpm = cycle.speed_rpm_or(a.speed_rpm);
     let r = check_axis(&axis, &cycle, rpm)?;
     if let Some(path) = &a.output {
         let pts = operating_points(&axis, &cycle, rpm, 1441)?;

@@ -10,7 +10,7 @@ use loomkin_shed::{
     PresetReport, Progress, ShedLaw, Study, StudyRow, StudyTable, Template, WindowReport, evaluate, preset,
     preset_table, preset_table_in,
 };
-use loomkin_units::{Budget, Cost, compact};
+use loomkin_units::{Budget, Cost, ShaftSpeed, compact};
 use serde::Serialize;
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -41,7 +41,7 @@ pub struct Physical {
     #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     stroke_mm: f64,
     /// Main-shaft speed, rpm (one pick per turn).
-    #[arg(long, default_value_t = 300.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ShaftSpeed::DEFAULT_RPM, allow_hyphen_values = true)]
     speed_rpm: f64,
 }
 
@@ -256,7 +256,7 @@ pub struct WindowArgs {
     #[command(flatten)]
     loom: LoomArgs,
     /// Main-shaft speed, rpm.
-    #[arg(long, default_value_t = 300.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ShaftSpeed::DEFAULT_RPM, allow_hyphen_values = true)]
     speed_rpm: f64,
     /// Print JSON.
     #[arg(long)]

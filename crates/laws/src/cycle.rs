@@ -119,7 +119,8 @@ pub struct CycleSpec {
     /// Default stroke of rises and returns in `unit`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke: Option<f64>,
-    /// Main-shaft speed in rpm (default 300; the CLI's `--speed-rpm` overrides it).
+    /// Main-shaft speed in rpm (default [`loomkin_units::ShaftSpeed::DEFAULT_RPM`], 300; the CLI's
+    /// `--speed-rpm` overrides it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub speed_rpm: Option<f64>,
     /// The segments, in order.
@@ -366,6 +367,13 @@ impl Cycle {
             });
         }
         Ok(Self { unit: spec.unit, period_rad: period * DEG, speed_rpm: spec.speed_rpm, segments })
+    }
+
+    /// The speed to run the cycle at, rpm: `given` (a front end's `speed_rpm`), else the file's,
+    /// else [`loomkin_units::ShaftSpeed::DEFAULT_RPM`]. Not checked: the caller checks it under its
+    /// own field name.
+    pub fn speed_rpm_or(&self, given: Option<f64>) -> f64 {
+        given.or(self.speed_rpm).unwrap_or(loomkin_units::ShaftSpeed::DEFAULT_RPM)
     }
 
     /// Kinematics in SI units at main-shaft angle `theta_rad` (wrapped into the cycle) and speed.

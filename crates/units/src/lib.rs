@@ -22,6 +22,7 @@
 
 mod budget;
 mod convert;
+mod field;
 mod format;
 mod range;
 mod speed;
@@ -29,7 +30,11 @@ mod sweep;
 
 pub use budget::{Budget, BudgetError, Cost, bytes_text, seconds_text};
 pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg, rad_per_s_from_rpm, rpm_from_rad_per_s};
+pub use field::{Field, FieldList};
 pub use format::compact;
 pub use range::{Bound, FieldError, Range, RangeError};
 pub use speed::ShaftSpeed;
 pub use sweep::{Shard, Span, SweepError};
+
+/// The descriptors this crate declares.
+pub const FIELDS: FieldList = field_list![ShaftSpeed::SPEED];

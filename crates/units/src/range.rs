@@ -72,7 +72,7 @@ impl Range {
     }
 
     /// Whether `v` is finite and inside the range.
-    pub fn contains(&self, v: f64) -> bool {
+    pub const fn contains(&self, v: f64) -> bool {
         let lo_ok = match self.lo {
             Bound::Unbounded => true,
             Bound::Closed(b) => v >= b,

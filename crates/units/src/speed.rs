@@ -4,6 +4,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
+use crate::field::Field;
 use crate::range::{Range, RangeError};
 
 /// A main-shaft (or input-shaft) speed. Loom speeds are given in rpm (revolutions per minute);
@@ -20,6 +21,20 @@ pub struct ShaftSpeed {
 impl ShaftSpeed {
     /// The allowed speeds.
     pub const RANGE: Range = Range::closed(1e-3, 1e5, "rpm");
+
+    /// The main-shaft speed as an input, `speed_rpm`: [`ShaftSpeed::RANGE`], and 300 rpm where a
+    /// command, a cycle file or a study leaves it out (a mid-range speed of a shuttle or rapier loom,
+    /// the speed the shedding tables and the dynamics examples are given at).
+    pub const SPEED: Field = Field::new(
+        "speed_rpm",
+        Self::RANGE,
+        "Main-shaft speed. 0.001 … 100000 rpm keeps every derived quantity finite (a cycle of at most \
+         6·10⁴ s, ω² at most about 1.1·10⁸ s⁻²); 300 rpm when left out.",
+    )
+    .with_default(300.0);
+
+    /// The default main-shaft speed, rpm ([`ShaftSpeed::SPEED`]'s).
+    pub const DEFAULT_RPM: f64 = Self::SPEED.default_value();
 
     /// A speed from rpm, checked against [`ShaftSpeed::RANGE`] under the field name `speed_rpm`.
     pub fn from_rpm(rpm: f64) -> Result<Self, RangeError> {
@@ -74,6 +89,13 @@ mod tests {
         assert_eq!(n.deg_per_s(), 4500.0);
         assert_eq!(n.cycle_time_s(), 0.08);
         assert!((n.time_of_deg_s(360.0) - n.cycle_time_s()).abs() < 1e-17);
+    }
+
+    #[test]
+    fn the_speed_field_is_the_range_and_300_rpm() {
+        assert_eq!(ShaftSpeed::SPEED.range, ShaftSpeed::RANGE);
+        assert_eq!(ShaftSpeed::DEFAULT_RPM, 300.0);
+        assert_eq!(ShaftSpeed::from_rpm(ShaftSpeed::DEFAULT_RPM).unwrap().cycle_time_s(), 0.2);
     }
 
     #[test]
