@@ -19,9 +19,6 @@ use crate::oscillator::{NCOEF, poly_derivs};
 use crate::{DynError, Result};
 use serde::Serialize;
 
-/// Relative size (of the largest value over the cycle) below which a jump of a derivative counts as none.
-pub const JUMP_TOL: f64 = 1e-9;
-
 /// The compensated input on one piece: `s(t) = Σ p_k t^k + Im(q·e^{iΩt}) + C·e^{−a t}`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct InputPiece {
@@ -97,58 +94,38 @@ impl Compensation {
     }
 }
 
-/// The first derivative order (0…4) that jumps at some joint of the cycle (wrap-around included), with
-/// the joint's time and the jump; `None` when derivatives 0…4 are all continuous.
-pub fn first_jump(exc: &Excitation) -> Option<(usize, f64, f64)> {
-    let n = exc.pieces.len();
-    let mut scale = [0.0f64; 5];
-    for p in &exc.pieces {
-        for t in [0.0, p.duration] {
-            let d = p.derivs(t);
-            for k in 0..5 {
-                scale[k] = scale[k].max(d[k].abs());
-            }
-        }
-    }
-    for order in 0..5 {
-        for i in 0..n {
-            let (l, r) = (&exc.pieces[i], &exc.pieces[(i + 1) % n]);
-            let jump = r.derivs(0.0)[order] - l.derivs(l.duration)[order];
-            if jump.abs() > JUMP_TOL * scale[order].max(f64::MIN_POSITIVE) {
-                let t = if i + 1 == n { 0.0 } else { r.t0 };
-                return Some((order, t, jump));
-            }
-        }
-    }
-    None
-}
-
 /// The compensated input for the designed cycle `exc` and the follower's model.
 ///
-/// Refuses (with the joint's angle and the jump) when the input would jump: undamped and `x''`
-/// discontinuous, or (damped) `x` or `x'` discontinuous.
+/// Refuses (with the joint's angle, the jump and the catalogue laws smooth enough to remove it) when
+/// the input would jump: undamped and `x''` discontinuous, or (damped) `x` or `x'` discontinuous, as
+/// [`Excitation::first_jump`] judges it (relative to each law's own peak).
 pub fn compensate(exc: &Excitation, follower: &Follower) -> Result<Compensation> {
     let ch = follower.channel();
     let osc = ch.osc;
     let (w, z) = (osc.omega_n(), osc.zeta());
     let kappa = w * w + ch.g_s; // g_s = −k_r/m
     let f0 = -ch.g_0;
-    let jump = first_jump(exc);
+    let jump = exc.first_jump();
     let designed_class = jump.map_or(4, |(k, _, _)| k.saturating_sub(1));
     let need = if z == 0.0 { 2 } else { 1 };
     if let Some((order, t, dj)) = jump
         && order <= need
     {
         let names = ["x", "x'", "x''"];
+        let what = ["a continuous position", "a continuous velocity", "a continuous acceleration"];
+        let laws: Vec<&str> = loomkin_laws::laws_of_class(need as i32).iter().map(|l| l.name()).collect();
         return Err(DynError::NoCompensation {
             field: "cycle".into(),
             reason: format!(
                 "the designed {} jumps by {} at {:.4}° of the cycle, so the input would jump there ({}); give the \
-                 designed law a continuous acceleration (e.g. cycloidal, modified sine, 3-4-5) or damping_ratio > 0",
+                 designed motion {}, with laws of class C{need} or higher ({}){}",
                 names[order],
                 loomkin_units::compact(dj),
                 exc.angle_deg(t),
-                if z == 0.0 { "undamped polydyne s = (x'' + ω²x + f₀)/κ" } else { "first-order input equation" }
+                if z == 0.0 { "undamped polydyne s = (x'' + ω²x + f₀)/κ" } else { "first-order input equation" },
+                what[need],
+                laws.join(", "),
+                if z == 0.0 { ", or damping_ratio > 0" } else { "" },
             ),
         });
     }

@@ -1,7 +1,7 @@
 //! The base excitation `s(t)`: a cycle (or one law) at a shaft speed, written as time pieces.
 
 use crate::oscillator::{Harmonic, NCOEF, poly_derivs};
-use loomkin_laws::{Cycle, Law, SegmentKind};
+use loomkin_laws::{Cycle, DerivativeScale, Law, SegmentKind};
 use loomkin_units::ShaftSpeed;
 
 /// One piece of the excitation in time: `s(t) = Σ p_k t^k − (A/Ω²)·sin(Ωt + φ)` for
@@ -43,23 +43,36 @@ impl TimePiece {
         out
     }
 
-    /// Bounds on the rounding error of `s` and `s'` as [`TimePiece::derivs`] evaluates them at `t`:
-    /// `32·ε` times the sum of the magnitudes of their terms (Horner's rule on degree ≤ 7 and the
-    /// sine stay within a few ε of that sum).
-    fn rounding(&self, t: f64) -> [f64; 2] {
-        let (mut m0, mut m1, mut tk) = (0.0, 0.0, 1.0);
-        for (k, p) in self.poly.iter().enumerate() {
-            m0 += (p * tk).abs();
-            if k + 1 < NCOEF {
-                m1 += ((k + 1) as f64 * self.poly[k + 1] * tk).abs();
+    /// The magnitudes of the terms that make up `s, s', …, s⁽⁵⁾` at local time `t`:
+    /// `Σ |p_k·k!/(k−n)!·t^(k−n)| + |A|·|Ω|^(n−2)` for order `n`. An evaluated derivative is within
+    /// a few ulps of its sum however small the value itself is (Horner's rule on degree ≤ 7 and the
+    /// sine stay within `32·ε` of it).
+    pub fn term_magnitudes(&self, t: f64) -> [f64; 6] {
+        let mut out = [0.0; 6];
+        for (n, o) in out.iter_mut().enumerate() {
+            let mut tk = 1.0;
+            for k in 0..NCOEF - n {
+                // (k + n)!/k! · p_{k+n} · t^k, the n-th derivative's k-th term.
+                let falling = ((k + 1)..=(k + n)).map(|m| m as f64).product::<f64>();
+                *o += (falling * self.poly[k + n] * tk).abs();
+                tk *= t;
             }
-            tk *= t;
+            if let Some(h) = self.accel_sine {
+                *o += match n {
+                    0 => (h.amp / (h.omega * h.omega)).abs(),
+                    1 => (h.amp / h.omega).abs(),
+                    _ => (h.amp * h.omega.powi(n as i32 - 2)).abs(),
+                };
+            }
         }
-        if let Some(h) = self.accel_sine {
-            m0 += (h.amp / (h.omega * h.omega)).abs();
-            m1 += (h.amp / h.omega).abs();
-        }
-        [32.0 * f64::EPSILON * m0, 32.0 * f64::EPSILON * m1]
+        out
+    }
+
+    /// Bounds on the rounding error of `s` and `s'` as [`TimePiece::derivs`] evaluates them at `t`:
+    /// `32·ε` times the sum of the magnitudes of their terms ([`TimePiece::term_magnitudes`]).
+    fn rounding(&self, t: f64) -> [f64; 2] {
+        let m = self.term_magnitudes(t);
+        [32.0 * f64::EPSILON * m[0], 32.0 * f64::EPSILON * m[1]]
     }
 }
 
@@ -179,6 +192,53 @@ impl Excitation {
             if d.abs() <= el[k] + er[k] { 0.0 } else { d }
         };
         (jump(0), jump(1))
+    }
+
+    /// The scale of each derivative (`s` … `s⁽⁴⁾`) of every cycle segment, indexed by
+    /// [`TimePiece::segment`]: the sampled peaks over its pieces ([`DerivativeScale`]), the scale a
+    /// jump at one of its joints is judged against.
+    pub fn segment_scales(&self) -> Vec<DerivativeScale<5>> {
+        let n = self.pieces.iter().map(|p| p.segment + 1).max().unwrap_or(0);
+        let mut out = vec![DerivativeScale::default(); n];
+        for p in &self.pieces {
+            out[p.segment] = out[p.segment].max(DerivativeScale::of_piece(p.duration, |t| p.derivs(t)));
+        }
+        out
+    }
+
+    /// The lowest derivative order (0…4) that jumps at some joint of the cycle (wrap-around
+    /// included), with the joint's time and the jump (right − left); `None` when `s` … `s⁽⁴⁾` are
+    /// all continuous.
+    ///
+    /// The one continuity judgement of the laws ([`DerivativeScale::first_jump`]): a difference is a
+    /// jump when it exceeds [`loomkin_laws::CONTINUITY_TOL`] of the peak of that derivative over the
+    /// motions on either side (the cycle segments' [`Excitation::segment_scales`]: a law's own scale,
+    /// not the values at the joints, which are zero where a law meets a dwell) plus the rounding of
+    /// the two evaluations: `32·ε` of their terms and `8·ε·t` of the next order's, `t` the joint's
+    /// time (each side's end is placed to an ulp of its position).
+    pub fn first_jump(&self) -> Option<(usize, f64, f64)> {
+        let n = self.pieces.len();
+        let scales = self.segment_scales();
+        let joints: Vec<_> = (0..n)
+            .map(|i| {
+                let (l, r) = (&self.pieces[i], &self.pieces[(i + 1) % n]);
+                let t = if i + 1 == n { self.period_s } else { r.t0 };
+                let (tl, tr) = (l.term_magnitudes(l.duration), r.term_magnitudes(0.0));
+                let rounding: [f64; 5] = std::array::from_fn(|k| {
+                    f64::EPSILON * (32.0 * (tl[k] + tr[k]) + 8.0 * t.abs() * tl[k + 1].max(tr[k + 1]))
+                });
+                let scale = scales[l.segment].max(scales[r.segment]);
+                // The wrap-around joint is at the cycle's start.
+                (if i + 1 == n { 0.0 } else { t }, l.derivs(l.duration), r.derivs(0.0), rounding, scale)
+            })
+            .collect();
+        (0..5).find_map(|order| {
+            joints.iter().find_map(|(t, left, right, rounding, scale)| {
+                scale
+                    .jumps(order, left[order], right[order], rounding[order])
+                    .then(|| (order, *t, right[order] - left[order]))
+            })
+        })
     }
 
     /// The main-shaft angle (deg) at time `t` from the start of the cycle.

@@ -58,7 +58,7 @@ mod sweep;
 mod trajectory;
 mod twomass;
 
-pub use compensate::{Compensation, InputPiece, JUMP_TOL, compensate, first_jump, input_excitation};
+pub use compensate::{Compensation, InputPiece, compensate, input_excitation};
 pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};

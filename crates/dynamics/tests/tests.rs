@@ -3,5 +3,7 @@
 
 #[path = "cases/compensate.rs"]
 mod compensate;
+#[path = "cases/continuity.rs"]
+mod continuity;
 #[path = "cases/ode.rs"]
 mod ode;

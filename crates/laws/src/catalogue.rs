@@ -149,6 +149,18 @@ pub const CATALOGUE: &[CatalogueEntry] = &[
     },
 ];
 
+/// The catalogue's laws that build without parameters (their defaults), in catalogue order, whose
+/// continuity class in a dwell-rise-dwell cycle ([`Law::continuity`]) is at least `class`: the laws
+/// that remove a jump of the derivative of order `class` (advice names them).
+pub fn laws_of_class(class: i32) -> Vec<LawSpec> {
+    CATALOGUE
+        .iter()
+        .filter(|e| !e.required)
+        .filter_map(|e| LawSpec::parse::<&str, &str>(e.name, &[]).ok())
+        .filter(|spec| spec.build().is_ok_and(|law| law.continuity().class >= class))
+        .collect()
+}
+
 fn names() -> String {
     CATALOGUE.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
 }

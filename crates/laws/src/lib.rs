@@ -37,8 +37,8 @@ mod report;
 mod segment;
 mod shape;
 
-pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue, RAMP};
-pub use continuity::{CONTINUITY_TOL, Continuity, Joint};
+pub use catalogue::{CATALOGUE, CatalogueEntry, LawSpec, ParamValue, RAMP, laws_of_class};
+pub use continuity::{CONTINUITY_TOL, Continuity, DerivativeScale, Joint, SCALE_SAMPLES};
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
 pub use cycle_report::{CycleExtremes, CycleReport, SegmentPeaks, StreamedReport};
 pub use error::{LawError, Result, compact};

@@ -222,3 +222,68 @@ fn narrow_and_rounded_segments_keep_their_shapes() {
     assert_eq!(c.class, 2, "{c:?}");
     assert!(c.end.da.abs() < 1e-9 * law.metrics().ca, "{c:?}");
 }
+
+/// The scale continuity is judged against: the sampled peaks of v, a, j agree with the exact
+/// metrics (Cv, Ca, Cj, found by root-finding) to a few per cent and never exceed them; the peak of
+/// s is the stroke. Every catalogue law, and the narrowest ramp.
+#[test]
+fn the_derivative_scale_is_the_laws_peaks() {
+    let mut specs: Vec<LawSpec> = loomkin_laws::laws_of_class(-1);
+    specs.push(LawSpec::ModifiedTrapezoid { ramp: 1e-6 });
+    assert!(specs.len() >= 7, "{specs:?}");
+    for spec in specs {
+        let law = spec.build().unwrap();
+        let (m, peak) = (law.metrics(), law.derivative_scale().peak);
+        assert!((peak[0] - 1.0).abs() < 1e-12, "{spec:?}: {peak:?}");
+        for (got, exact, name) in [(peak[1], m.cv, "Cv"), (peak[2], m.ca, "Ca"), (peak[3], m.cj, "Cj")] {
+            // Constant acceleration has no jerk inside its segments.
+            if exact == 0.0 {
+                assert_eq!(got, 0.0, "{spec:?} {name}");
+                continue;
+            }
+            assert!(got <= exact * (1.0 + 1e-12) && got >= 0.95 * exact, "{spec:?} {name}: {got} vs {exact}");
+        }
+    }
+}
+
+/// The laws advice names for a class are exactly those of that class or higher, judged by their own
+/// continuity report, with the classes derived from their formulas in `continuity_classes`.
+#[test]
+fn laws_of_class_lists_the_smooth_enough() {
+    let names = |c: i32| loomkin_laws::laws_of_class(c).iter().map(|l| l.name()).collect::<Vec<_>>();
+    assert_eq!(names(3), ["poly4567"]);
+    assert_eq!(names(2), ["cycloidal", "poly345", "poly4567", "modified-trapezoid", "modified-sine"]);
+    assert_eq!(names(1).len(), 7);
+}
+
+/// A real jump of a law is one however small, down to the tolerance (1e-9 of the law's peak): a
+/// cycloid (`a = sin 2πx` before normalisation) with a step of 1e-6 or 1e-8 of its peak added to
+/// `a` over the third quarter and taken off over the fourth is C1, with the jumps where the steps
+/// are; a step of 1e-11 is below the tolerance and, like rounding, counts as none.
+#[test]
+fn small_real_jumps_are_jumps() {
+    use loomkin_laws::{AccelPiece, EndCondition, Law, Sine};
+    let stepped = |step: f64| {
+        let arc = |phase: f64| Some(Sine { amp: 1.0, omega: 2.0 * PI, phase });
+        let pieces = [
+            AccelPiece { width: 0.5, poly: vec![], sine: arc(0.0) },
+            AccelPiece { width: 0.25, poly: vec![step], sine: arc(PI) },
+            AccelPiece { width: 0.25, poly: vec![-step], sine: arc(1.5 * PI) },
+        ];
+        Law::from_accel_pieces(&pieces, EndCondition::Rest, "test").unwrap()
+    };
+    for step in [1e-6, 1e-8] {
+        let law = stepped(step);
+        let (c, ca) = (law.continuity(), law.metrics().ca);
+        assert_eq!(c.class, 1, "{c:?}");
+        // Peak of the unnormalised a is 1 + step (just after ¾): the jumps relative to it.
+        let rel = step / (1.0 + step);
+        for (got, want) in [(c.joints[0].da, rel), (c.joints[1].da, -2.0 * rel), (c.end.da, rel)] {
+            assert!((got / ca - want).abs() < 1e-6 * rel, "{step:e}: {got} vs {want}");
+        }
+        assert!(c.joints.iter().chain([&c.start, &c.end]).all(|j| j.flags()[1]), "s and v stay continuous");
+        assert_eq!(c.start.continuous_up_to, 2, "the start is the cycloid's");
+    }
+    assert_eq!(stepped(0.0).continuity().class, 2);
+    assert_eq!(stepped(1e-11).continuity().class, 2);
+}

@@ -33,7 +33,8 @@ pub struct Dimensionless {
     /// RMS acceleration over the motion, √(∫₀¹ a² dx).
     pub ca_rms: f64,
     /// Largest jump of the acceleration, at a joint or against the dwells at `x = 0` and `x = 1`
-    /// (a jump means an unbounded jerk, which `cj` does not count).
+    /// (a jump means an unbounded jerk, which `cj` does not count); 0 where the law's continuity
+    /// judgement ([`loomkin_laws::DerivativeScale`]) finds none.
     pub a_jump: f64,
     /// End of the leading stretch at rest (`s ≡ 0`), fraction of the motion.
     pub lead: f64,
@@ -68,19 +69,27 @@ impl Dimensionless {
             cm: m.cm,
             ca_rms: m.ca_rms,
             a_jump: {
+                // Where the law's continuity judgement finds the acceleration continuous, the
+                // difference of the two sides is rounding, not a jump.
                 let c = law.continuity();
-                let jump = std::iter::once(&c.start)
+                std::iter::once(&c.start)
                     .chain(&c.joints)
                     .chain(std::iter::once(&c.end))
-                    .fold(0.0, |m: f64, j| m.max(j.da.abs()));
-                // Rounding at a continuous joint is not a jump.
-                if jump <= 1e-12 * (1.0 + m.ca) { 0.0 } else { jump }
+                    .filter(|j| !j.flags()[2])
+                    .fold(0.0, |m: f64, j| m.max(j.da.abs()))
             },
             lead: lead(law),
             tail: tail(law),
             x_depart,
             x_arrive,
         })
+    }
+
+    /// Whether the acceleration jumps somewhere: `a_jump` above [`loomkin_laws::CONTINUITY_TOL`]
+    /// of the law's peak acceleration `ca` (the continuity judgement's rule; the fast path's
+    /// `a_jump` is a difference of exact levels, this path's is already judged).
+    pub fn accel_jumps(&self) -> bool {
+        self.a_jump > loomkin_laws::CONTINUITY_TOL * self.ca
     }
 
     /// Fraction of the motion that lies inside the weft-insertion window (the frame within

@@ -104,7 +104,7 @@ pub fn cycle_marks(law: &ShedLaw, conditions: &Conditions) -> Result<CycleMarks>
 
 /// The steps of the frame acceleration over the two picks of [`cycle_curve`]: at the joints of
 /// the law's segments and at its ends against the dwells, where the law's acceleration jumps
-/// (by more than rounding, 1e-9 of the unit law's peak). On the way down (the second pick) the
+/// (as [`loomkin_laws::Law::continuity`] judges it). On the way down (the second pick) the
 /// motion is `1 − s`, so each step changes sign. Sorted by angle.
 pub fn cycle_accel_jumps(law: &ShedLaw, conditions: &Conditions) -> Result<Vec<AccelJump>> {
     crate::criteria::check_scales(law.motion_deg(), conditions)?;
@@ -113,10 +113,9 @@ pub fn cycle_accel_jumps(law: &ShedLaw, conditions: &Conditions) -> Result<Vec<A
     let sa = conditions.scale(phi, 2);
     let c = built.continuity();
     let joints: Vec<_> = std::iter::once(&c.start).chain(&c.joints).chain(std::iter::once(&c.end)).collect();
-    let peak = joints.iter().fold(1.0f64, |m, j| m.max(j.da.abs()));
     let mut out = Vec::new();
     for (offset, sign) in [(0.0, 1.0), (360.0, -1.0)] {
-        for j in joints.iter().filter(|j| j.da.abs() > 1e-9 * peak) {
+        for j in joints.iter().filter(|j| !j.flags()[2]) {
             out.push(AccelJump { angle_deg: offset + j.x * phi, jump_m_s2: sign * j.da * sa });
         }
     }

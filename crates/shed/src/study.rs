@@ -151,7 +151,7 @@ pub fn within_jerk_limit(
 ) -> bool {
     match max_jerk_m_s3 {
         None => true,
-        Some(j) => d.a_jump <= 1e-9 * d.ca && d.cj * conditions.scale(motion_deg, 3) <= j,
+        Some(j) => !d.accel_jumps() && d.cj * conditions.scale(motion_deg, 3) <= j,
     }
 }
 
@@ -242,9 +242,8 @@ pub fn best(
         Range::open_closed(0.0, f64::MAX, "m/s³").check("max_jerk_m_s3", j)?;
     }
     let jmax = max_jerk_m_s3.unwrap_or(f64::INFINITY);
-    let jerk_ok = |d: &Dimensionless, m: f64| {
-        jmax.is_infinite() || (d.a_jump <= 1e-9 * d.ca && d.cj * conditions.scale(m, 3) <= jmax)
-    };
+    let jerk_ok =
+        |d: &Dimensionless, m: f64| jmax.is_infinite() || (!d.accel_jumps() && d.cj * conditions.scale(m, 3) <= jmax);
     let h_w2 = conditions.scale(180.0, 2) * std::f64::consts::PI.powi(2);
     // Peak acceleration for a motion angle: h·Ca·ω²/Φ².
     let accel = |d: &Dimensionless, m: f64| d.ca * h_w2 / m.to_radians().powi(2);
