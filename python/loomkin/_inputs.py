@@ -19,6 +19,14 @@ def text_of(source: Optional[PathOrDict]) -> Optional[str]:
         return f.read()
 
 
+def bytes_of(source: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[bytes]:
+    """None stays None; a path is read as bytes (a file whose encoding the library decides)."""
+    if source is None:
+        return None
+    with open(os.fspath(source), "rb") as f:
+        return f.read()
+
+
 def study_text(study: Any) -> str:
     """A TOML file's text (a study, a servo axis): a path is read, a dict written as TOML."""
     from collections.abc import Mapping

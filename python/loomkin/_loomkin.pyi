@@ -174,12 +174,12 @@ def shed_window(
     """`loomkin shed window --json`: the loom data, flight_deg, required_window_deg (deg), thresholds."""
 
 # the loom (texts of the loom file and the weave)
-def loom_check(loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None) -> Dict[str, Any]: ...
+def loom_check(loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None) -> Dict[str, Any]: ...
 def loom_torque(
-    loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None, step_deg: float = 0.5
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, step_deg: float = 0.5
 ) -> Dict[str, Any]: ...
 def loom_stagger(
-    loom_toml: str, wif: Optional[str] = None, lift_plan: Optional[str] = None, objective: str = "peak"
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, objective: str = "peak"
 ) -> Dict[str, Any]: ...
 
 # dynamics

@@ -11,7 +11,7 @@ import os
 from typing import Any, Dict, Optional, Union
 
 from . import _loomkin as _m
-from ._inputs import text_of
+from ._inputs import bytes_of, text_of
 from ._table import Table
 
 __all__ = ["check", "torque", "stagger"]
@@ -20,7 +20,9 @@ Path = Union[str, "os.PathLike[str]"]
 
 
 def _texts(loom: Path, wif: Optional[Path], lift_plan: Optional[Path]):
-    return text_of(loom), text_of(wif), text_of(lift_plan)
+    # The WIF goes as its bytes: the library decodes it (UTF-8, else the Windows code page with a
+    # UserWarning), as the CLI and the workbench do.
+    return text_of(loom), bytes_of(wif), text_of(lift_plan)
 
 
 def check(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None) -> Dict[str, Any]:

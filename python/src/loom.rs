@@ -36,16 +36,32 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The loom file's text and the pattern (a WIF's text, a lift plan's text, or neither: plain
-/// weave over the loom's frames), as the CLI reads `LOOM.toml --wif | --lift-plan`.
-fn read(loom_toml: &str, wif: Option<&str>, lift_plan: Option<&str>) -> PyResult<(Loom, Pattern)> {
+/// A WIF as its text or as the file's bytes (decoded as every front end decodes a WIF:
+/// `Pattern::from_wif_bytes`).
+#[derive(FromPyObject)]
+enum Wif {
+    Text(String),
+    Bytes(Vec<u8>),
+}
+
+/// The loom file's text and the pattern (a WIF's text or bytes, a lift plan's text, or neither:
+/// plain weave over the loom's frames), as the CLI reads `LOOM.toml --wif | --lift-plan`. A WIF
+/// read in the Windows code page gives a `UserWarning` with the library's note.
+fn read(py: Python<'_>, loom_toml: &str, wif: Option<Wif>, lift_plan: Option<&str>) -> PyResult<(Loom, Pattern)> {
     let loom = Loom::from_toml(loom_toml).or_raise()?;
     let pattern = match (wif, lift_plan) {
-        (Some(w), _) => Pattern::from_wif(w),
-        (None, Some(l)) => Pattern::from_lift_plan(l),
-        (None, None) => Pattern::plain(loom.frame_count()),
-    }
-    .or_raise()?;
+        (Some(Wif::Text(w)), _) => Pattern::from_wif(&w).or_raise()?,
+        (Some(Wif::Bytes(w)), _) => {
+            let (pattern, note) = Pattern::from_wif_bytes(&w).or_raise()?;
+            if let Some(note) = note {
+                let message = std::ffi::CString::new(format!("wif: {note}")).expect("the note has no NUL");
+                PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 2)?;
+            }
+            pattern
+        }
+        (None, Some(l)) => Pattern::from_lift_plan(l).or_raise()?,
+        (None, None) => Pattern::plain(loom.frame_count()).or_raise()?,
+    };
     Ok((loom, pattern))
 }
 
@@ -57,8 +73,8 @@ fn read(loom_toml: &str, wif: Option<&str>, lift_plan: Option<&str>) -> PyResult
 /// repeat, the weft-insertion window (deg) and the least clearance (mm). Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (loom_toml, wif=None, lift_plan=None))]
-fn loom_check(py: Python<'_>, loom_toml: &str, wif: Option<&str>, lift_plan: Option<&str>) -> PyResult<Py<PyAny>> {
-    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+fn loom_check(py: Python<'_>, loom_toml: &str, wif: Option<Wif>, lift_plan: Option<&str>) -> PyResult<Py<PyAny>> {
+    let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     let r = py.detach(|| check(&loom, &pattern)).or_raise()?;
     to_py(py, &r)
 }
@@ -74,11 +90,11 @@ fn loom_check(py: Python<'_>, loom_toml: &str, wif: Option<&str>, lift_plan: Opt
 fn loom_torque<'py>(
     py: Python<'py>,
     loom_toml: &str,
-    wif: Option<&str>,
+    wif: Option<Wif>,
     lift_plan: Option<&str>,
     step_deg: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+    let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     STEP_DEG.check("step_deg", step_deg).map_err(raise)?;
     let (curve, peak, rms, repeat_deg) = py
         .detach(|| -> Result<_, LoomError> {
@@ -114,7 +130,7 @@ fn loom_torque<'py>(
 fn loom_stagger(
     py: Python<'_>,
     loom_toml: &str,
-    wif: Option<&str>,
+    wif: Option<Wif>,
     lift_plan: Option<&str>,
     objective: &str,
 ) -> PyResult<Py<PyAny>> {
@@ -128,7 +144,7 @@ fn loom_stagger(
             }));
         }
     };
-    let (loom, pattern) = read(loom_toml, wif, lift_plan)?;
+    let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     let r = py.detach(|| optimise_stagger(&loom, &pattern, objective)).or_raise()?;
     to_py(py, &r)
 }

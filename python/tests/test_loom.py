@@ -40,3 +40,17 @@ def test_loom_errors(tmp_path):
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.loom.stagger(EX / "shuttle-loom.toml", objective="mean")
     assert e.value.field == "objective"
+
+
+def test_a_wif_in_the_windows_code_page_reads_as_in_the_cli(cli, tmp_path):
+    # Issue 27: a WIF saved in Windows-1252 raised a raw UnicodeDecodeError. The library decodes it
+    # (UTF-8, else Windows-1252) with a note: a UserWarning here, a note on stderr in the CLI.
+    text = (EX / "twill-2-2.wif").read_text().replace("; 2/2 twill", "; Köper 2/2 — “twill”")
+    cp = tmp_path / "koeper.wif"
+    cp.write_bytes(text.encode("cp1252"))
+    utf8 = tmp_path / "koeper-utf8.wif"
+    utf8.write_text(text, encoding="utf-8")
+    with pytest.warns(UserWarning, match="Windows-1252"):
+        r = loomkin.loom.check(EX / "shuttle-loom.toml", wif=cp)
+    same(r, loomkin.loom.check(EX / "shuttle-loom.toml", wif=utf8))
+    same(r, cli("loom", "check", "examples/shuttle-loom.toml", "--wif", str(cp), "--json"))

@@ -129,10 +129,16 @@ fn read(path: &Path, p: &PatternArgs) -> Result<(Loom, Pattern)> {
 }
 
 fn read_pattern(loom: &Loom, p: &PatternArgs) -> Result<Pattern> {
-    let named = |path: &Path, r: loomkin_loom::Result<Pattern>| r.map_err(|e| anyhow!("{}: {e}", path.display()));
+    let named = |path: &Path, e: loomkin_loom::LoomError| anyhow!("{}: {e}", path.display());
     match (&p.wif, &p.lift_plan) {
-        (Some(w), _) => named(w, Pattern::from_wif(&util::read_input(w)?)),
-        (None, Some(l)) => named(l, Pattern::from_lift_plan(&util::read_input(l)?)),
+        (Some(w), _) => {
+            let (pattern, note) = Pattern::from_wif_bytes(&util::read_input_bytes(w)?).map_err(|e| named(w, e))?;
+            if let Some(note) = note {
+                output::note(format_args!("loomkin: note: {}: {note}", w.display()));
+            }
+            Ok(pattern)
+        }
+        (None, Some(l)) => Pattern::from_lift_plan(&util::read_input(l)?).map_err(|e| named(l, e)),
         (None, None) => Ok(Pattern::plain(loom.frame_count())?),
     }
 }

@@ -130,6 +130,13 @@ pub const MAX_INPUT_BYTES: u64 = 16 * 1024 * 1024;
 /// Reads a whole input file of at most [`MAX_INPUT_BYTES`], naming it in the error (a missing,
 /// unreadable, oversized or non-UTF-8 input is a usage error: exit 2).
 pub fn read_input(path: &std::path::Path) -> anyhow::Result<String> {
+    String::from_utf8(read_input_bytes(path)?).map_err(|e| {
+        anyhow::anyhow!("cannot read {}: not UTF-8 text (byte {})", path.display(), e.utf8_error().valid_up_to())
+    })
+}
+
+/// As [`read_input`], the bytes as they are (a WIF, whose encoding the library decides).
+pub fn read_input_bytes(path: &std::path::Path) -> anyhow::Result<Vec<u8>> {
     use std::io::Read;
     let name = path.display();
     let file = std::fs::File::open(path).with_context(|| format!("cannot read {name}"))?;
@@ -138,8 +145,7 @@ pub fn read_input(path: &std::path::Path) -> anyhow::Result<String> {
     if bytes.len() as u64 > MAX_INPUT_BYTES {
         anyhow::bail!("cannot read {name}: larger than the input limit of 16 MiB");
     }
-    String::from_utf8(bytes)
-        .map_err(|e| anyhow::anyhow!("cannot read {name}: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+    Ok(bytes)
 }
 
 /// A progress bar on standard error for a run that may take long: drawn only when standard error

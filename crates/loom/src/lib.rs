@@ -46,6 +46,6 @@ pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
-pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern};
+pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
 pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger};
 pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};

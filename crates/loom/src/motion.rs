@@ -6,7 +6,7 @@
 //! is the crossing angle taken into `[−180°, 180°)` (a crossing at 300° is 60° before the
 //! turn of pick `p` starts) and `σ_i` the frame's stagger.
 
-use crate::{FrameLaw, Loom, LoomError, Pattern, Result};
+use crate::{FrameLaw, Loom, Pattern, Result};
 use loomkin_laws::{CycleSpec, Kinematics, SegmentKind, SegmentSpec, StrokeUnit};
 
 /// A frame's height over mid-stroke and its derivatives with respect to the main-shaft angle.
@@ -56,15 +56,7 @@ impl Motion {
     /// frames beyond the pattern's shafts staying down).
     pub fn new(loom: &Loom, pattern: &Pattern) -> Result<Self> {
         let n = loom.frame_count();
-        if pattern.shafts() > n {
-            return Err(LoomError::pattern(
-                "pattern",
-                format!(
-                    "the draft has {} shafts but the loom has {n} frames (geometry.frame_distances_mm)",
-                    pattern.shafts()
-                ),
-            ));
-        }
+        crate::pattern::check_weavable(pattern, n)?;
         let picks = pattern.picks();
         let up = (0..n).map(|i| (0..picks).map(|p| pattern.is_up(p, i)).collect()).collect();
         let delta = crossing_offset_deg(loom.shedding.crossing_deg);

@@ -112,6 +112,16 @@ impl Pattern {
         Self::new(shafts, lifts)
     }
 
+    /// Reads a WIF file from its bytes as a file holds them: UTF-8 (a byte-order mark dropped), or,
+    /// when the bytes are not UTF-8, Windows-1252 — the code page of the Windows weaving programs
+    /// that write most WIF files (WIF 1.1 names no encoding; its examples are plain ASCII, which
+    /// both read alike). Returns the pattern and, when the fallback was taken, a note saying so
+    /// ([`WIF_CODE_PAGE_NOTE`]) for the front end to show. Every front end reads a WIF this way.
+    pub fn from_wif_bytes(bytes: &[u8]) -> Result<(Self, Option<&'static str>)> {
+        let (text, note) = wif_text(bytes);
+        Ok((Self::from_wif(&text)?, note))
+    }
+
     /// Reads a WIF 1.1 file. The lift at each pick comes from `[LIFTPLAN]` if the file has one,
     /// else from `[TREADLING]` through `[TIEUP]`; `Rising Shed=false` in `[WEAVING]` turns the
     /// listed shafts into the lowered ones. `[THREADING]`, if present, gives the ends per shaft.
@@ -144,7 +154,8 @@ impl Pattern {
             None => return Err(LoomError::pattern("[WEAVING]", "Shafts missing")),
         };
         let treadles = match ini.get("WEAVING", "treadles") {
-            Some((v, line)) => Some(parse_count(v, "[WEAVING]", line, "Treadles", 10 * MAX_SHAFTS)?),
+            // 0: a lift-plan draft with no treadles, as weaving programs write it.
+            Some((v, line)) => Some(parse_count_from(v, "[WEAVING]", line, "Treadles", 0, 10 * MAX_SHAFTS)?),
             None => None,
         };
         let rising = match weaving.iter().find(|(k, _, _)| k == "rising shed") {
@@ -242,6 +253,49 @@ impl Pattern {
     }
 }
 
+/// The note of a WIF read as Windows-1252 ([`Pattern::from_wif_bytes`]).
+pub const WIF_CODE_PAGE_NOTE: &str =
+    "the file is not UTF-8 text: read as Windows-1252, the code page Windows weaving programs write";
+
+/// A WIF file's text from its bytes: UTF-8 without its byte-order mark, else Windows-1252 with
+/// [`WIF_CODE_PAGE_NOTE`]. Every byte sequence decodes (Windows-1252 maps each byte to a character).
+pub fn wif_text(bytes: &[u8]) -> (std::borrow::Cow<'_, str>, Option<&'static str>) {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(text) => (std::borrow::Cow::Borrowed(text), None),
+        Err(_) => (encoding_rs::WINDOWS_1252.decode_without_bom_handling(bytes).0, Some(WIF_CODE_PAGE_NOTE)),
+    }
+}
+
+/// Checks that `pattern` can be woven on a loom of `frames` heald frames: it names no more shafts
+/// than the loom has frames, and every pick has warp above and below the carrier (some frame up,
+/// some down). The one check of a pattern against a loom: [`crate::Motion::new`] makes it, so every
+/// command and front end that moves the frames refuses the same patterns with the same message.
+pub fn check_weavable(pattern: &Pattern, frames: usize) -> Result<()> {
+    if pattern.shafts() > frames {
+        return Err(LoomError::pattern(
+            "pattern",
+            format!(
+                "the draft has {} shafts but the loom has {frames} frames (geometry.frame_distances_mm)",
+                pattern.shafts()
+            ),
+        ));
+    }
+    for (p, row) in pattern.rows().iter().enumerate() {
+        let ups = row.iter().filter(|u| **u).count();
+        if ups == 0 || ups == frames {
+            return Err(LoomError::pattern(
+                format!("pattern pick {}", p + 1),
+                format!(
+                    "{} of the loom's {frames} frames: a shed needs warp above and below the carrier",
+                    if ups == 0 { "raises none" } else { "raises all" }
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn is_true(v: &str) -> bool {
     matches!(v.trim().to_ascii_lowercase().as_str(), "true" | "yes" | "on" | "1")
 }
@@ -251,11 +305,15 @@ fn is_false(v: &str) -> bool {
 }
 
 fn parse_count(v: &str, section: &str, line: usize, key: &str, max: usize) -> Result<usize> {
+    parse_count_from(v, section, line, key, 1, max)
+}
+
+fn parse_count_from(v: &str, section: &str, line: usize, key: &str, min: usize, max: usize) -> Result<usize> {
     match v.trim().parse::<usize>() {
-        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        Ok(n) if (min..=max).contains(&n) => Ok(n),
         _ => Err(LoomError::pattern(
             section,
-            format!("line {line}: {key} = '{v}': expected a whole number from 1 to {max}"),
+            format!("line {line}: {key} = '{v}': expected a whole number from {min} to {max}"),
         )),
     }
 }

@@ -70,24 +70,13 @@ pub struct Timing<'a> {
 }
 
 impl<'a> Timing<'a> {
-    /// The timing of `loom` moving `motion` (weaving `pattern`). Every pick needs warp above and
-    /// below the carrier: a pick that raises no frame or every frame is refused, naming it.
+    /// The timing of `loom` moving `motion` (weaving `pattern`). The pattern must be weavable on
+    /// the loom ([`crate::check_weavable`], as [`Motion::new`] checks it).
     pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Result<Self> {
         let n = loom.frame_count();
+        crate::pattern::check_weavable(pattern, n)?;
         let upper: Vec<Vec<bool>> =
             (0..pattern.picks()).map(|p| (0..n).map(|i| pattern.is_up(p, i)).collect()).collect();
-        for (p, row) in upper.iter().enumerate() {
-            let ups = row.iter().filter(|u| **u).count();
-            if ups == 0 || ups == n {
-                return Err(LoomError::pattern(
-                    format!("pattern pick {}", p + 1),
-                    format!(
-                        "{} of the loom's {n} frames: a shed needs warp above and below the carrier",
-                        if ups == 0 { "raises none" } else { "raises all" }
-                    ),
-                ));
-            }
-        }
         let x_c = loom.geometry.reed_m - loom.insertion.carrier_width_m;
         Ok(Self { loom, motion, upper, delta: crossing_offset_deg(loom.shedding.crossing_deg), x_c })
     }

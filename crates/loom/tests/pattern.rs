@@ -157,3 +157,61 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_lift_plan_draft_without_treadles_reads() {
+    // Weaving programs write `Treadles=0` for a draft with a lift plan and no treadles (issue 27).
+    let text = example("point-24.wif");
+    let base = Pattern::from_wif(&text).unwrap();
+    let no_treadles = edited(&text, "Shafts=24\n", "Shafts=24\nTreadles=0\n");
+    assert_eq!(Pattern::from_wif(&no_treadles).unwrap(), base);
+    // A tie-up with no treadles to tie is still refused, naming the treadle.
+    let tied = edited(&example("twill-2-2.wif"), "Treadles=4", "Treadles=0");
+    assert!(wif_err(&tied).contains("treadle 1 beyond Treadles = 0"), "{}", wif_err(&tied));
+    assert!(wif_err(&edited(&text, "Shafts=24\n", "Shafts=24\nTreadles=-1\n")).contains("from 0 to 2560"));
+}
+
+#[test]
+fn a_wif_in_the_windows_code_page_reads_with_a_note() {
+    let text = example("twill-2-2.wif").replace("; 2/2 twill", "; Köper 2/2 — “twill”");
+    let utf8 = Pattern::from_wif_bytes(text.as_bytes()).unwrap();
+    assert_eq!(utf8.1, None);
+    // The same draft saved in Windows-1252, encoded here from the code page's table: ASCII as it is,
+    // ö (Latin-1) 0xF6, the em dash 0x97, the curly quotes 0x93 and 0x94.
+    let cp1252: Vec<u8> = text
+        .chars()
+        .map(|c| match c {
+            'ö' => 0xF6,
+            '—' => 0x97,
+            '“' => 0x93,
+            '”' => 0x94,
+            c if c.is_ascii() => c as u8,
+            c => panic!("{c} not in the test's table"),
+        })
+        .collect();
+    assert!(std::str::from_utf8(&cp1252).is_err());
+    let (pattern, note) = Pattern::from_wif_bytes(&cp1252).unwrap();
+    assert_eq!(note, Some(loomkin_loom::WIF_CODE_PAGE_NOTE));
+    assert_eq!(pattern, utf8.0);
+    // Decoded back character for character.
+    assert_eq!(loomkin_loom::wif_text(&cp1252).0, text);
+    // A UTF-8 byte-order mark is dropped.
+    let bom = [b"\xEF\xBB\xBF".as_slice(), text.as_bytes()].concat();
+    assert_eq!(Pattern::from_wif_bytes(&bom).unwrap(), utf8);
+}
+
+#[test]
+fn every_command_refuses_the_same_unweavable_pattern() {
+    // [WEFT] Threads beyond the treadling's rows: the picks past them raise nothing. Motion (behind
+    // torque, stagger, the diagrams) and timing refuse them with one message (issue 27: torque
+    // accepted what check refused).
+    let text = example("twill-2-2.wif").replace("[WEFT]\nThreads=4", "[WEFT]\nThreads=7");
+    let p = Pattern::from_wif(&text).unwrap();
+    assert_eq!(p.picks(), 7);
+    let loom = rapier();
+    let motion = loomkin_loom::Motion::new(&loom, &p).unwrap_err().to_string();
+    assert!(motion.contains("pattern pick 5: raises none of the loom's 24 frames"), "{motion}");
+    let check = loomkin_loom::check(&loom, &p).unwrap_err().to_string();
+    assert_eq!(check, motion);
+    assert_eq!(loomkin_loom::check_weavable(&p, 24).unwrap_err().to_string(), motion);
+}

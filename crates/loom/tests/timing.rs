@@ -64,9 +64,12 @@ fn a_carrier_taller_than_the_shed_is_refused() {
 fn a_pick_without_a_shed_is_refused() {
     let loom = shuttle();
     let pat = loomkin_loom::Pattern::from_lift_plan("1 2\n1 2 3 4\n").unwrap();
-    let m = Motion::new(&loom, &pat).unwrap();
-    let e = Timing::new(&loom, &m, &pat).unwrap_err().to_string();
+    // The one check of a pattern against a loom: the motion (behind every command) refuses it, and
+    // the timing of another motion refuses it alike.
+    let e = Motion::new(&loom, &pat).unwrap_err().to_string();
     assert_eq!(e, "pattern pick 2: raises all of the loom's 4 frames: a shed needs warp above and below the carrier");
+    let plain = Motion::new(&loom, &wif("twill-2-2.wif")).unwrap();
+    assert_eq!(Timing::new(&loom, &plain, &pat).unwrap_err().to_string(), e);
 }
 
 #[test]

@@ -142,3 +142,39 @@ fn bad_input_is_one_line_naming_the_field() {
     usage_error(&["loom", "torque", &ex("shuttle-loom.toml"), "--step-deg", "0"], &["--step-deg"]);
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn every_command_reads_and_refuses_drafts_alike() {
+    // Issue 27: `loom torque` accepted a draft (picks past the treadling raise nothing) that `loom
+    // check` and `loom timing` refused; a Windows-1252 WIF was refused as not UTF-8.
+    let dir = scratch("drafts");
+    let twill = std::fs::read_to_string(ex("twill-2-2.wif")).unwrap();
+    let long = dir.join("long.wif");
+    std::fs::write(&long, twill.replace("[WEFT]\nThreads=4", "[WEFT]\nThreads=7")).unwrap();
+    let long = long.to_str().unwrap();
+    let svg = dir.join("t.svg");
+    for args in [
+        vec!["loom", "check", &ex("shuttle-loom.toml"), "--wif", long],
+        vec!["loom", "torque", &ex("shuttle-loom.toml"), "--wif", long],
+        vec!["loom", "stagger", &ex("shuttle-loom.toml"), "--wif", long],
+        vec!["loom", "timing", &ex("shuttle-loom.toml"), "--wif", long, "-o", svg.to_str().unwrap()],
+    ] {
+        usage_error(&args, &["pattern pick 5: raises none of the loom's 4 frames"]);
+    }
+    // The same draft in the Windows code page: read, with one note on stderr, the same report.
+    let cp1252 = dir.join("koeper.wif");
+    let mut bytes = b"; K\xF6per 2/2 \x97 \x93twill\x94\n".to_vec();
+    bytes.extend_from_slice(twill.as_bytes());
+    std::fs::write(&cp1252, &bytes).unwrap();
+    let out = loomkin()
+        .args(["loom", "check", &ex("shuttle-loom.toml"), "--wif", cp1252.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("koeper.wif: the file is not UTF-8 text: read as Windows-1252"), "{err}");
+    let plain = stdout_json(&["loom", "check", &ex("shuttle-loom.toml"), "--wif", &ex("twill-2-2.wif"), "--json"]);
+    assert_eq!(serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap(), plain);
+    std::fs::remove_dir_all(dir).ok();
+}
