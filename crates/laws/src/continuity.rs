@@ -116,8 +116,7 @@ impl Joint {
         terms: [f64; 5],
     ) -> Self {
         let (l, r) = ([left.s, left.v, left.a, left.j], [right.s, right.v, right.a, right.j]);
-        let rounding: [f64; 4] =
-            std::array::from_fn(|k| f64::EPSILON * (32.0 * terms[k] + 8.0 * x.abs() * terms[k + 1]));
+        let rounding: [f64; 4] = std::array::from_fn(|k| joint_rounding(x, &terms, k));
         let continuous_up_to = scale.first_jump(&l, &r, &rounding).map_or(3, |k| k as i32 - 1);
         let d: [f64; 4] = std::array::from_fn(|k| r[k] - l[k]);
         Self { x, left_segment, ds: d[0], dv: d[1], da: d[2], dj: d[3], continuous_up_to }
@@ -130,6 +129,22 @@ impl Joint {
 }
 
 type Scale4 = DerivativeScale<4>;
+
+/// The rounding allowed for order `k` at a law's joint at `x`, `terms` the magnitudes of the terms
+/// of orders 0…4 on the two sides ([`Joint::new`] says why).
+pub(crate) fn joint_rounding(x: f64, terms: &[f64; 5], k: usize) -> f64 {
+    f64::EPSILON * (32.0 * terms[k] + 8.0 * x.abs() * terms[k + 1])
+}
+
+/// The scale of s, v, a, j and the snap over `segments` (a law's, [`Law::derivative_scale`]).
+pub(crate) fn segments_scale(segments: &[crate::Segment]) -> DerivativeScale<5> {
+    segments.iter().fold(DerivativeScale::default(), |acc, g| {
+        acc.max(DerivativeScale::of_piece(g.width(), |t| {
+            let d = g.derivs_local(t);
+            [d[0], d[1], d[2], d[3], d[4]]
+        }))
+    })
+}
 
 /// The smoothness report of a law.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -148,12 +163,7 @@ pub struct Continuity {
 impl Law {
     /// The scale of s, v, a, j and the snap over the law ([`DerivativeScale`]).
     pub fn derivative_scale(&self) -> DerivativeScale<5> {
-        self.segments().iter().fold(DerivativeScale::default(), |acc, g| {
-            acc.max(DerivativeScale::of_piece(g.width(), |t| {
-                let d = g.derivs_local(t);
-                [d[0], d[1], d[2], d[3], d[4]]
-            }))
-        })
+        segments_scale(self.segments())
     }
 
     /// The jumps of s, v, a, j at every joint and at both ends against dwells, judged against the

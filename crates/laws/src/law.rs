@@ -75,8 +75,8 @@ pub struct Law {
 
 impl Law {
     /// Builds a law from contiguous segments. The first must start at 0, the last end at 1, each
-    /// start where the previous ended (within 1e-12), and `s`, `v` be continuous at the joints
-    /// (within 1e-9).
+    /// start where the previous ended (within 1e-12), and `s`, `v` be continuous at the joints (as
+    /// [`crate::DerivativeScale`] judges it: within 1e-9 of their peaks over the segments).
     pub fn from_segments(segments: Vec<Segment>) -> Result<Self> {
         let field = "segments";
         let (Some(first), Some(last)) = (segments.first(), segments.last()) else {
@@ -88,6 +88,7 @@ impl Law {
                 reason: format!("segments cover [{}, {}], they must cover [0, 1]", first.x0(), last.x1()),
             });
         }
+        let scale = crate::continuity::segments_scale(&segments);
         for (i, w) in segments.windows(2).enumerate() {
             let (l, r) = (w[0].end(), w[1].start());
             if (w[0].x1() - w[1].x0()).abs() > 1e-12 {
@@ -96,8 +97,10 @@ impl Law {
                     reason: format!("starts at {} but segment {} ends at {}", w[1].x0(), i, w[0].x1()),
                 });
             }
-            let scale = 1.0 + l.s.abs().max(l.v.abs());
-            if (l.s - r.s).abs() > 1e-9 * scale || (l.v - r.v).abs() > 1e-9 * scale {
+            let (tl, tr) = (w[0].term_magnitudes(w[0].width()), w[1].term_magnitudes(0.0));
+            let terms = std::array::from_fn(|k| tl[k].max(tr[k]));
+            let round = |k| crate::continuity::joint_rounding(w[1].x0(), &terms, k);
+            if scale.jumps(0, l.s, r.s, round(0)) || scale.jumps(1, l.v, r.v, round(1)) {
                 return Err(LawError::NotARise {
                     field: format!("segments[{}]", i + 1),
                     reason: "displacement and velocity must be continuous at every joint".into(),
@@ -208,9 +211,15 @@ impl Law {
             });
         }
         if end == EndCondition::Rest {
+            // v must not jump against the dwell after the rise, as the law's continuity report judges
+            // it (against the peak velocity, sampled only where the ends' values do not settle it:
+            // the peak is at least the largest of them).
             let vmax = segs.iter().map(|g| g.start().v.abs().max(g.end().v.abs())).fold(0.0, f64::max);
             let v1 = v * k;
-            if v1.abs() > 1e-9 * vmax.max(1.0) {
+            let last = &segs[segs.len() - 1];
+            let rounding = crate::continuity::joint_rounding(1.0, &last.term_magnitudes(last.width()), 1);
+            let jumps = |scale: f64| v1.abs() > crate::CONTINUITY_TOL * scale + rounding;
+            if jumps(vmax) && crate::continuity::segments_scale(&segs).jumps(1, v1, 0.0, rounding) {
                 return Err(LawError::NotARise {
                     field: field.into(),
                     reason: format!(

@@ -200,3 +200,26 @@ fn columns_are_the_samples_bit_for_bit() {
     assert_eq!(law.sample_columns([&mut one, &mut b, &mut c, &mut d, &mut e]), 0);
     assert_eq!(one, [7.0]);
 }
+
+proptest! {
+    /// The continuity judgement against the shapes' definitions: in a random balanced piecewise law
+    /// `a` is continuous at a joint exactly where the two shapes' levels meet (and at the ends where
+    /// the level is 0), whatever the lengths; `s` and `v` are continuous everywhere, the end against
+    /// the dwell included (a rest law's build and its continuity report apply the same rule).
+    #[test]
+    fn accel_jumps_are_where_the_levels_differ(spec in piecewise()) {
+        let law = spec.build().unwrap();
+        let LawSpec::Piecewise { segments } = &spec else { unreachable!() };
+        let c = law.continuity();
+        let levels: Vec<(f64, f64)> = segments.iter().map(|g| g.shape.end_levels()).collect();
+        let mut sides = vec![(0.0, levels[0].0)];
+        sides.extend(levels.windows(2).map(|w| (w[0].1, w[1].0)));
+        sides.push((levels[levels.len() - 1].1, 0.0));
+        let joints: Vec<_> = std::iter::once(&c.start).chain(&c.joints).chain([&c.end]).collect();
+        prop_assert_eq!(joints.len(), sides.len());
+        for (j, (l, r)) in joints.iter().zip(&sides) {
+            prop_assert!(j.flags()[1], "s, v continuous at {}: {:?}", j.x, j);
+            prop_assert_eq!(j.flags()[2], l == r, "a at {}: levels {} → {}, {:?}", j.x, l, r, j);
+        }
+    }
+}
