@@ -48,12 +48,35 @@ async fn api_not_found(method: Method, OriginalUri(uri): OriginalUri) -> ApiErro
     ApiError::NotFound { field: "path".into(), message: format!("no endpoint {method} {}", uri.path()) }
 }
 
+/// Whether `authority` (a `Host` header, or an origin without its `http://`) is a loopback name
+/// with an optional port, read as RFC 3986 reads an authority: `host [":" port]`, the host an IP
+/// literal in brackets (`[::1]`) or a name (`127.0.0.1`, `localhost`, any case), the port digits
+/// only. The host must be one of the loopback names exactly: `localhost:80@evil.com`,
+/// `127.0.0.1.evil.com`, `localhost.` and a user part are refused (DNS-rebinding forms).
+fn is_loopback_authority(authority: &str) -> bool {
+    let (host, port) = match authority.strip_prefix('[') {
+        Some(rest) => match rest.split_once(']') {
+            Some((literal, after)) => (&authority[..literal.len() + 2], after),
+            None => return false,
+        },
+        None => authority.find(':').map_or((authority, ""), |i| authority.split_at(i)),
+    };
+    let port_ok = match port.strip_prefix(':') {
+        None => port.is_empty(),
+        Some(digits) => {
+            digits.len() <= 5
+                && digits.bytes().all(|b| b.is_ascii_digit())
+                && digits.parse::<u32>().map_or(digits.is_empty(), |p| p <= 65_535)
+        }
+    };
+    port_ok && (host == "127.0.0.1" || host.eq_ignore_ascii_case("localhost") || host == "[::1]")
+}
+
 /// Loopback host check, JSON bodies for the router's own refusals, security headers.
 async fn guard(req: Request, next: Next) -> Response {
     if let Some(host) = req.headers().get(header::HOST) {
         let host = host.to_str().unwrap_or("");
-        let name = host.rsplit_once(':').map_or(host, |(h, _)| h);
-        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+        if !is_loopback_authority(host) {
             let message = format!("the workbench answers only on 127.0.0.1, not on host '{host}'");
             return ApiError::Forbidden { field: "host".into(), message }.into_response();
         }
@@ -62,9 +85,7 @@ async fn guard(req: Request, next: Next) -> Response {
     // preflight); browsers name its origin, so refuse any origin but the loopback names.
     if let Some(origin) = req.headers().get(header::ORIGIN) {
         let origin = origin.to_str().unwrap_or("");
-        let host = origin.strip_prefix("http://").unwrap_or("");
-        let name = host.rsplit_once(':').map_or(host, |(h, _)| h);
-        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+        if !origin.strip_prefix("http://").is_some_and(is_loopback_authority) {
             let message = format!("the workbench answers only its own page, not a page from '{origin}'");
             return ApiError::Forbidden { field: "origin".into(), message }.into_response();
         }
@@ -291,7 +312,37 @@ fn has_display(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::has_display;
+    use super::{has_display, is_loopback_authority};
+
+    #[test]
+    fn only_the_loopback_names_pass_as_an_authority() {
+        for ok in ["127.0.0.1", "127.0.0.1:8765", "localhost", "LocalHost:80", "[::1]", "[::1]:8765", "localhost:"] {
+            assert!(is_loopback_authority(ok), "{ok} refused");
+        }
+        for bad in [
+            "localhost:80@evil.com",
+            "127.0.0.1@evil.com",
+            "user@localhost",
+            "localhost.evil.com",
+            "127.0.0.1.evil.com:8765",
+            "evil.com",
+            "localhost.",
+            "127.0.0.1:80:80",
+            "localhost:8o",
+            "localhost:65536",
+            "localhost:123456",
+            "[::1]evil",
+            "[::1",
+            "[::2]:8765",
+            "[0:0:0:0:0:0:0:1]x",
+            "",
+            ":8765",
+            "127.0.0.2",
+            "localhost/evil",
+        ] {
+            assert!(!is_loopback_authority(bad), "{bad} accepted");
+        }
+    }
     use std::ffi::OsString;
 
     #[test]

@@ -422,6 +422,18 @@ fn real_server_keeps_serving_after_bad_requests() {
     let r = common::request_with_host(addr, "GET", "/api/info", None, "evil.example:80").expect("answer");
     assert_eq!(r.status, 403);
     assert_eq!(r.json()["field"], "host");
+    // The Host read as an authority: a user part or a longer name is not a loopback name, and the
+    // names docs/web.md lists pass with or without a port (issue 27).
+    for (host, status) in [
+        ("localhost:80@evil.com", 403),
+        ("127.0.0.1.evil.com", 403),
+        ("[::1]", 200),
+        ("[::1]:8765", 200),
+        ("LOCALHOST", 200),
+    ] {
+        let r = common::request_with_host(addr, "GET", "/api/info", None, host).expect("answer");
+        assert_eq!(r.status, status, "Host: {host}: {}", r.body);
+    }
     // Wrong methods and unknown paths.
     for (method, path, status) in
         [("GET", "/api/servo/evaluate", 405), ("DELETE", "/api/info", 405), ("GET", "/api/x", 404), ("GET", "/x", 404)]
