@@ -107,8 +107,29 @@ fn spectrum_and_compensate() {
     .unwrap();
     usage_error(
         &["dyn", "compensate", harmonic.to_str().unwrap(), "--speed-rpm", "600", "--natural-hz", "54", "-o", "-"],
-        &["no compensating input", "x'' jumps", "60.0000°"],
+        &[
+            "no compensating input",
+            "x'' jumps",
+            "60.0000°",
+            "laws of class C2 or higher (cycloidal, poly345, poly4567, modified-trapezoid, modified-sine)",
+        ],
     );
+    // A 4-5-6-7 rise/dwell/return (C3) at 700 rpm, f_n 40 Hz, ζ 0: rounding at its joints is no jump
+    // (it was refused, "x' jumps by 8.7e-14 at 120°").
+    let poly4567 = std::env::temp_dir().join("loomkin-dyn-poly4567.toml");
+    std::fs::write(
+        &poly4567,
+        "unit = \"mm\"\nstroke = 50\n[[segment]]\nkind = \"rise\"\nto_deg = 120\nlaw = \"poly4567\"\n[[segment]]\nkind = \
+         \"dwell\"\nto_deg = 180\n[[segment]]\nkind = \"return\"\nto_deg = 300\nlaw = \"poly4567\"\n[[segment]]\nkind = \
+         \"dwell\"\nto_deg = 360\n",
+    )
+    .unwrap();
+    let out = loomkin()
+        .args(["dyn", "compensate", poly4567.to_str().unwrap(), "--speed-rpm", "700", "--natural-hz", "40", "-o", "-"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8(out.stderr).unwrap().contains("designed motion C3, compensated input C1"));
 }
 
 #[test]
