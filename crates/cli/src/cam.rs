@@ -4,10 +4,13 @@ use crate::output::outln;
 use crate::{output, util};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, Size};
-use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
+use loomkin_cams::profile::{
+    CamDesign, CamPoint, CamProfile, Closure, Curve, DEFAULT_CHORD_TOL_MM, DEFAULT_SAMPLE_STEP_DEG, Follower,
+    SAMPLE_STEP_RANGE, Size,
+};
+use loomkin_cams::table::{CamTable, DEFAULT_STEP_DEG, Format, Motion, Spacing};
 use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
-use loomkin_units::{Range, compact};
+use loomkin_units::compact;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin cam`.
@@ -76,13 +79,13 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "FILE")]
     dxf: Option<PathBuf>,
     /// Chord tolerance of the DXF polylines in mm.
-    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true, requires = "dxf")]
+    #[arg(long, value_name = "T", default_value_t = DEFAULT_CHORD_TOL_MM, allow_hyphen_values = true, requires = "dxf")]
     chord_tol_mm: f64,
     /// Bore diameter drawn in the DXF, mm (0: none; default 0.4 × base radius).
     #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
     bore_mm: Option<f64>,
     /// Main-shaft angle step of the printed points (deg).
-    #[arg(long, value_name = "D", default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", default_value_t = DEFAULT_SAMPLE_STEP_DEG, allow_hyphen_values = true)]
     step_deg: f64,
     /// Plot the cam (profile, pitch curve, base circle), its pressure angle and curvature (.svg or .png).
     #[arg(short, long, value_name = "PLOT")]
@@ -144,7 +147,7 @@ fn table(a: TableArgs) -> Result<()> {
     let (motion, source) = motion(&a)?;
     let spacing = match a.tolerance {
         Some(t) => Spacing::Tolerance(t),
-        None => Spacing::StepDeg(a.step_deg.unwrap_or(1.0)),
+        None => Spacing::StepDeg(a.step_deg.unwrap_or(DEFAULT_STEP_DEG)),
     };
     let table = CamTable::new(motion, spacing)?;
     let out = table.export(format)?;
@@ -208,44 +211,24 @@ fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {
                 "prime_radius_mm: a flat-faced follower needs --prime-radius-mm R (its pressure angle is 0 everywhere)"
             )
         }
-        (None, None) => Size::MaxPressureDeg(30.0),
+        (None, None) => Size::DEFAULT,
     };
     Ok(CamDesign { follower, closure, roller_radius_mm: a.roller_radius_mm, size })
 }
 
-/// The allowed step of the printed points (deg).
-const POINT_STEP_RANGE: Range = Range::closed(1e-3, 90.0, "deg");
-
 fn profile(a: ProfileArgs) -> Result<()> {
-    POINT_STEP_RANGE.check("step_deg", a.step_deg)?;
+    SAMPLE_STEP_RANGE.check("step_deg", a.step_deg)?;
     let design = profile_design(&a)?;
     let (motion, source) = profile_motion(&a)?;
     let cam = CamProfile::new(&motion, &design)?;
-    let undercut = cam.undercut_at_deg().map(|at| {
-        let e = cam.flat_extremes_report();
-        match (e, cam.roller_max_mm()) {
-            (Some(f), _) => format!(
-                "prime_radius_mm: the profile has a cusp at {} deg (radius of curvature {} mm); the least prime radius without one is {} mm",
-                compact(at),
-                compact(f.min_radius_profile_mm),
-                compact(f.least_prime_radius_mm)
-            ),
-            (None, Some(rmax)) => format!(
-                "roller_radius_mm: a {} mm roller undercuts the profile at {} deg; the largest roller without undercut is {} mm",
-                compact(design.roller_radius_mm),
-                compact(at),
-                compact(rmax)
-            ),
-            (None, None) => format!("roller_radius_mm: the profile is undercut at {} deg", compact(at)),
-        }
-    });
+    let undercut = cam.undercut().map(|u| u.to_string());
     // An undercut cam is reported in every output (undercut: true, a warning naming the angle and
     // the largest roller); a drawing of it is never written: with --dxf the report is printed
     // and the command then fails (exit 2) naming the roller.
     match (&a.dxf, &undercut) {
         (Some(_), Some(_)) => {}
         (Some(path), None) => {
-            let bore = a.bore_mm.unwrap_or(0.4 * cam.base_radius_mm());
+            let bore = a.bore_mm.unwrap_or_else(|| cam.default_bore_mm());
             let text = cam.dxf(a.chord_tol_mm, bore)?;
             output::text_to(&path.display().to_string(), &text)?;
         }

@@ -17,6 +17,15 @@ pub enum StrokeUnit {
 }
 
 impl StrokeUnit {
+    /// The allowed stroke of a rise or return in this unit (mm or deg): from 10⁻¹² (a stroke the
+    /// law's normalisation still resolves) to 10⁶ (a kilometre, or 2 778 turns of a swing).
+    pub const fn stroke_range(self) -> Range {
+        match self {
+            StrokeUnit::Mm => Range::closed(1e-12, 1e6, "mm"),
+            StrokeUnit::Deg => Range::closed(1e-12, 1e6, "deg"),
+        }
+    }
+
     /// Factor from the stroke unit to SI (m or rad).
     pub fn to_si(self) -> f64 {
         match self {
@@ -329,8 +338,7 @@ impl Cycle {
                         field: f("stroke"),
                         reason: "a rise or return needs a stroke (here or as the cycle's `stroke`)".into(),
                     })?;
-                    let unit = if spec.unit == StrokeUnit::Mm { "mm" } else { "deg" };
-                    Range::closed(1e-12, 1e6, unit).check(&f("stroke"), h)?;
+                    spec.unit.stroke_range().check(&f("stroke"), h)?;
                     let si = h * spec.unit.to_si();
                     if kind == SegmentKind::Rise { si } else { -si }
                 }

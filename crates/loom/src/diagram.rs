@@ -2,6 +2,7 @@
 
 use crate::{Drive, Loom, Motion, Pattern, Result, Timing, TimingReport, crossing_offset_deg};
 use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_units::Range;
 use serde::Serialize;
 
 /// The numbers behind the timing diagram over picks `from_pick … from_pick + picks` of the repeat
@@ -36,8 +37,16 @@ pub struct TimingCurves {
     pub report: TimingReport,
 }
 
+/// The allowed angle step of [`timing_curves`] (deg): at least a tenth of a degree (3 600 points a
+/// pick per frame), at most 10° (the shed's opening still drawn within a step).
+pub const TIMING_STEP_RANGE: Range = Range::closed(0.1, 10.0, "deg");
+/// The angle step of [`timing_curves`] when none is given (deg).
+pub const DEFAULT_TIMING_STEP_DEG: f64 = 1.0;
+/// The picks a timing diagram shows when not told: two, so that the beat-up between them shows.
+pub const DEFAULT_TIMING_PICKS: usize = 2;
+
 /// [`TimingCurves`] of `picks` picks from `from_pick` (0-based, taken within the repeat) at
-/// `step_deg`.
+/// `step_deg` (within [`TIMING_STEP_RANGE`], under the field name `step_deg`).
 pub fn timing_curves(
     loom: &Loom,
     pattern: &Pattern,
@@ -45,6 +54,7 @@ pub fn timing_curves(
     picks: usize,
     step_deg: f64,
 ) -> Result<TimingCurves> {
+    TIMING_STEP_RANGE.check("step_deg", step_deg)?;
     let motion = Motion::new(loom, pattern)?;
     let timing = Timing::new(loom, &motion, pattern)?;
     let report = timing.report()?;

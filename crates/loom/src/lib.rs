@@ -40,7 +40,10 @@ mod stagger;
 mod timing;
 
 pub use check::{CheckReport, FrameCheck, check};
-pub use diagram::{TimingCurves, timing_curves, timing_diagram, torque_figure};
+pub use diagram::{
+    DEFAULT_TIMING_PICKS, DEFAULT_TIMING_STEP_DEG, TIMING_STEP_RANGE, TimingCurves, timing_curves, timing_diagram,
+    torque_figure,
+};
 pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorqueReport};
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};

@@ -40,8 +40,8 @@ mod vloop;
 
 pub use curve::{CurvePoint, Ellipse, PlaneCurve};
 pub use dobby::analysis::{
-    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, MAX_INPUT_SPEED_RAD_S, analyze,
-    analyze_into, assemble, cam_loop, modulator_loops,
+    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, MAX_INPUT_SPEED_RAD_S, ROLLER_M_RANGE,
+    STEP_DEG_RANGE, analyze, analyze_into, assemble, cam_loop, modulator_loops,
 };
 pub use dobby::cam::{Cam, parse_point_table};
 pub use dobby::checks::{

@@ -50,16 +50,12 @@ impl Settings {
         }
     }
 
-    /// Checks the ranges that do not depend on the cam: 1 ≤ speed ≤ 10 000 rev/min, play ≥ 0, 0 < k < l,
-    /// m > 0, F₀ ≥ 0. (Play beyond the cam's reach is found when the scenario is resolved.)
+    /// Checks each setting against [`Setting::range`], the ranges that do not depend on the cam.
+    /// (Play beyond the cam's reach is found when the scenario is resolved.)
     pub fn validate(&self, mechanism: &Mechanism) -> Result<()> {
-        // Below 1 rev/min the pick lasts minutes and the integrator would follow ~10⁵ oscillations.
-        ShaftSpeed::from_rpm(self.speed_rpm)?;
-        let l_m = mechanism.params().l_m;
-        Range::closed(0.0, l_m / M_PER_MM, "mm").check("play_mm", self.play_m / M_PER_MM)?;
-        Range::open(0.0, l_m / M_PER_CM, "cm (0 < k < l)").check("strap_cm", self.strap_m / M_PER_CM)?;
-        Range::open_closed(0.0, 1e5, "g").check("shuttle_g", self.shuttle_kg / KG_PER_G)?;
-        Range::closed(0.0, 1e3, "kgf").check("checking_kgf", self.checking_n / N_PER_KGF)?;
+        for s in [Setting::Speed, Setting::Play, Setting::Strap, Setting::Shuttle, Setting::Checking] {
+            s.range(mechanism).check(&s.key(), s.value(self))?;
+        }
         Ok(())
     }
 
@@ -189,6 +185,21 @@ impl Setting {
             Setting::Strap => settings.strap_m / M_PER_CM,
             Setting::Shuttle => settings.shuttle_kg / KG_PER_G,
             Setting::Checking => settings.checking_n / N_PER_KGF,
+        }
+    }
+
+    /// The allowed values of this setting on `mechanism`, in [`Setting::unit`], checked by
+    /// [`Settings::validate`]: the shaft speed's range ([`ShaftSpeed::RANGE`]); a play from 0 to the
+    /// stick's length l (more is past any cam's reach); the strap loop on the stick, 0 < k < l; a
+    /// shuttle above 0 up to 100 kg; a checking force from 0 to a tonne-force.
+    pub fn range(&self, mechanism: &Mechanism) -> Range {
+        let l_m = mechanism.params().l_m;
+        match self {
+            Setting::Speed => ShaftSpeed::RANGE,
+            Setting::Play => Range::closed(0.0, l_m / M_PER_MM, "mm"),
+            Setting::Strap => Range::open(0.0, l_m / M_PER_CM, "cm (0 < k < l)"),
+            Setting::Shuttle => Range::open_closed(0.0, 1e5, "g"),
+            Setting::Checking => Range::closed(0.0, 1e3, "kgf"),
         }
     }
 

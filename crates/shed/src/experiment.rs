@@ -7,6 +7,7 @@ use crate::{
     fig1_design, grid_design, table1_design,
 };
 use loomkin_study::{Design, Progress};
+use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// The named families of positive-phase shapes with free relative lengths.
@@ -69,6 +70,15 @@ pub struct GridSpec {
 }
 
 impl GridSpec {
+    /// The allowed relative length k of a part (fraction of the motion angle), and so of a grid's
+    /// least and largest k.
+    pub const K_RANGE: Range = Range::closed(0.0, 1.0, "");
+    /// The allowed grid step of k: above 0, at most the whole motion.
+    pub const STEP_RANGE: Range = Range::open_closed(0.0, 1.0, "");
+    /// The paper's practical least relative length of a part, 0.005: a shorter part is a step of
+    /// the acceleration in practice.
+    pub const PRACTICAL_MIN_K: f64 = 0.005;
+
     /// The defaults of an experiment table or Pareto front: step 0.05, k ∈ [0.05, 0.9].
     pub const TABLE: Self = Self { step: 0.05, min_k: 0.05, max_k: 0.9 };
     /// The defaults of a search for the best law: step 0.01, k ∈ [0.01, 0.98].

@@ -6,7 +6,6 @@ use crate::template::MAX_PARTS;
 use crate::{Dimensionless, Result, ShedError};
 use loomkin_laws::Shape;
 use loomkin_laws::refine_root;
-use loomkin_units::Range;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The two levels a shape spans (`[0, peak]` for a sine arc).
@@ -133,7 +132,7 @@ impl Local {
 pub(crate) fn evaluate(shapes: &[Shape], lengths: &[f64], threshold: f64) -> Result<Dimensionless> {
     let mut sum = 0.0;
     for (i, &k) in lengths.iter().enumerate() {
-        Range::closed(0.0, 1.0, "").check(&format!("positive[{i}].length"), k)?;
+        crate::GridSpec::K_RANGE.check(&format!("positive[{i}].length"), k)?;
         sum += k;
     }
     if (sum - 1.0).abs() > 1e-9 {

@@ -60,8 +60,8 @@ pub use report::{
 pub use requirement::LoomRequirement;
 pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
-    Candidate, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design, grid_design,
-    grid_design_rows, pareto, pareto_indices, pareto_within, parse_motion_angles, table, table1_design,
+    Candidate, JERK_LIMIT_RANGE, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design,
+    grid_design, grid_design_rows, pareto, pareto_indices, pareto_within, parse_motion_angles, table, table1_design,
     within_jerk_limit,
 };
 pub use template::{MAX_PARTS, Template};

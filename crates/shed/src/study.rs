@@ -155,6 +155,9 @@ pub fn within_jerk_limit(
     }
 }
 
+/// The allowed jerk limit of [`pareto_within`] (m/s³): any positive number.
+pub const JERK_LIMIT_RANGE: Range = Range::open_closed(0.0, f64::MAX, "m/s³");
+
 /// [`pareto`] over the (law, motion angle) pairs [`within_jerk_limit`] only: the front an
 /// engineer may choose from when the frame's drive bounds the jerk.
 pub fn pareto_within(
@@ -166,7 +169,7 @@ pub fn pareto_within(
 ) -> Result<Vec<Candidate>> {
     check_motions_at(motions, conditions)?;
     if let Some(j) = max_jerk_m_s3 {
-        Range::open_closed(0.0, f64::MAX, "m/s³").check("max_jerk_m_s3", j)?;
+        JERK_LIMIT_RANGE.check("max_jerk_m_s3", j)?;
     }
     let senses = [Sense::Maximize, Sense::Minimize];
     let mut pool: Vec<(usize, f64)> = Vec::new();
@@ -239,7 +242,7 @@ pub fn best(
 ) -> Result<Option<Candidate>> {
     check_window_deg(window_deg)?;
     if let Some(j) = max_jerk_m_s3 {
-        Range::open_closed(0.0, f64::MAX, "m/s³").check("max_jerk_m_s3", j)?;
+        JERK_LIMIT_RANGE.check("max_jerk_m_s3", j)?;
     }
     let jmax = max_jerk_m_s3.unwrap_or(f64::INFINITY);
     let jerk_ok =

@@ -10,11 +10,12 @@ use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_cams::profile::{
-    CamDesign, CamPoint, CamProfile, Closure, Curve, Follower, ProfileExtremes, ProfileReport, Size,
+    CamDesign, CamPoint, CamProfile, Closure, Curve, DEFAULT_CHORD_TOL_MM, DEFAULT_MAX_PRESSURE_DEG,
+    DEFAULT_SAMPLE_STEP_DEG, Follower, ProfileExtremes, ProfileReport, SAMPLE_STEP_RANGE, Size,
 };
-use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
+use loomkin_cams::table::{CamTable, DEFAULT_STEP_DEG, Format, Motion, STEP_RANGE, Spacing, TOLERANCE_RANGE};
 use loomkin_laws::{Cycle, CycleSpec, StrokeUnit};
-use loomkin_units::{Range, compact};
+use loomkin_units::compact;
 use serde::{Deserialize, Serialize};
 
 /// The cycle files the view offers (`examples/`).
@@ -27,8 +28,14 @@ pub const CAM_EXAMPLES: &[(&str, &str)] = &[
 /// Most points of a cam table written by the workbench.
 pub const MAX_CAM_TABLE_POINTS: usize = 100_000;
 
-/// Most sampled angles of a profile answer.
+/// Most sampled angles of a profile answer (a finer step than the cycle's span over this is
+/// refused by the workbench, not by the library: the answer would be megabytes of curves).
 pub const MAX_CAM_POINTS: usize = 20_000;
+
+/// The finest re-interpolation tolerance of a table the workbench computes (slave unit): the
+/// answer stays quick. The library (and `loomkin cam table --tolerance`) goes to
+/// [`TOLERANCE_RANGE`]'s lower end.
+pub const MIN_WEB_TOLERANCE: f64 = 1e-6;
 
 /// The chord tolerance of the drawing sent to the page (mm): finer than a pixel at any zoom the
 /// page offers.
@@ -145,7 +152,7 @@ impl CamSource {
                     });
                 }
             };
-            Range::open_closed(0.0, 1e5, "").check(field, stroke)?;
+            unit.stroke_range().check(field, stroke)?;
             let spec = CycleSpec::rise_return(&spec, unit, stroke, l.motion_deg)
                 .map_err(|e| ApiError::invalid("source.law.motion_deg", e))?;
             let cycle = Cycle::new(&spec).map_err(|e| ApiError::invalid("source.law", e))?;
@@ -203,7 +210,8 @@ pub struct CamDesignRequest {
     /// Single, conjugate or groove.
     #[serde(default)]
     pub closure: ClosureKind,
-    /// Prime circle radius (mm); with neither this nor `max_pressure_deg`, sized for 30°.
+    /// Prime circle radius (mm); with neither this nor `max_pressure_deg`, sized for
+    /// [`DEFAULT_MAX_PRESSURE_DEG`].
     #[serde(default)]
     pub prime_radius_mm: Option<f64>,
     /// Size for this largest pressure angle (deg).
@@ -249,7 +257,7 @@ impl CamDesignRequest {
             (None, None) if self.follower == FollowerKind::Flat => {
                 return Err(bad("prime_radius_mm", "a flat-faced follower needs prime_radius_mm"));
             }
-            (None, None) => Size::MaxPressureDeg(30.0),
+            (None, None) => Size::DEFAULT,
         };
         let closure = match self.closure {
             ClosureKind::Single => Closure::Single,
@@ -270,12 +278,12 @@ pub struct CamProfileRequest {
     /// The cam.
     pub design: CamDesignRequest,
     /// Main-shaft angle step of the sampled curves (deg).
-    #[serde(default = "one")]
+    #[serde(default = "default_sample_step")]
     pub step_deg: f64,
 }
 
-fn one() -> f64 {
-    1.0
+fn default_sample_step() -> f64 {
+    DEFAULT_SAMPLE_STEP_DEG
 }
 
 /// The figures of the cam, with the keys of `loomkin cam profile --json`.
@@ -407,26 +415,10 @@ fn build(source: &CamSource, design: &CamDesignRequest) -> Result<(CamProfile, C
     Ok((cam, d, motion, name))
 }
 
-/// The undercut in words (as `loomkin cam profile` warns), naming the field.
-fn undercut_message(cam: &CamProfile, d: &CamDesign) -> Option<String> {
-    let at = cam.undercut_at_deg()?;
-    Some(match (cam.flat_extremes_report(), cam.roller_max_mm()) {
-        (Some(f), _) => format!(
-            "design.prime_radius_mm: the profile has a cusp at {} deg (radius of curvature {} mm); the least prime \
-             radius without one is {} mm",
-            compact(at),
-            compact(f.min_radius_profile_mm),
-            compact(f.least_prime_radius_mm)
-        ),
-        (None, Some(rmax)) => format!(
-            "design.roller_radius_mm: a {} mm roller undercuts the profile at {} deg; the largest roller without \
-             undercut is {} mm",
-            compact(d.roller_radius_mm),
-            compact(at),
-            compact(rmax)
-        ),
-        (None, None) => format!("design.roller_radius_mm: the profile is undercut at {} deg", compact(at)),
-    })
+/// The undercut, refused at its design field (`design.roller_radius_mm`, `design.prime_radius_mm`)
+/// taken from the library's error, in the library's words (as `loomkin cam profile` warns).
+fn undercut_error(cam: &CamProfile) -> Option<ApiError> {
+    cam.undercut().map(|u| ApiError::from_library(&u, "roller_radius_mm").within("design"))
 }
 
 fn curves(cam: &CamProfile, pts: &[CamPoint], unit: StrokeUnit) -> CamCurves {
@@ -447,7 +439,7 @@ fn curves(cam: &CamProfile, pts: &[CamPoint], unit: StrokeUnit) -> CamCurves {
 
 /// Computes the cam of one request.
 pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiError> {
-    let step = Range::closed(0.01, 30.0, "deg").check("step_deg", req.step_deg)?;
+    let step = SAMPLE_STEP_RANGE.check("step_deg", req.step_deg)?;
     let (cam, d, motion, source) = build(&req.source, &req.design)?;
     let span = motion.end_deg() - motion.start_deg();
     if span / step > MAX_CAM_POINTS as f64 {
@@ -476,7 +468,7 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
     });
     let (sized, limit) = match d.size {
         Size::MaxPressureDeg(p) => (Some(p), p),
-        Size::PrimeRadiusMm(_) => (None, 30.0),
+        Size::PrimeRadiusMm(_) => (None, DEFAULT_MAX_PRESSURE_DEG),
     };
     let mut profile_report = cam.report(source, step);
     profile_report.points.clear();
@@ -497,7 +489,7 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
             ..pr.extremes
         },
         undercut_at_deg: pr.undercut_at_deg,
-        undercut_message: undercut_message(&cam, &d),
+        undercut_message: undercut_error(&cam).map(|e| e.to_string()),
         roller_max_mm: pr.roller_max_mm.map(finite),
         counter_max_pressure_angle_deg: pr.counter_max_pressure_angle_deg,
         min_radius_profile_mm: pr.min_radius_profile_mm,
@@ -552,7 +544,7 @@ pub struct CamDxfRequest {
 }
 
 fn default_tol() -> f64 {
-    0.01
+    DEFAULT_CHORD_TOL_MM
 }
 
 /// A file to download.
@@ -570,16 +562,11 @@ pub struct CamFile {
 
 /// The DXF drawing of the cam (`cam profile --dxf`); an undercut cam is refused, naming the field.
 pub fn cam_dxf(req: &CamDxfRequest) -> Result<CamFile, ApiError> {
-    let (cam, d, _, _) = build(&req.source, &req.design)?;
-    if let Some(msg) = undercut_message(&cam, &d) {
-        let field = if msg.starts_with("design.prime_radius_mm") {
-            "design.prime_radius_mm"
-        } else {
-            "design.roller_radius_mm"
-        };
-        return Err(ApiError::invalid(field, format!("{msg}: no DXF written")));
+    let (cam, _, _, _) = build(&req.source, &req.design)?;
+    if let Some(e) = undercut_error(&cam) {
+        return Err(ApiError::invalid(e.field(), format!("{e}: no DXF written")));
     }
-    let bore = req.bore_mm.unwrap_or(0.4 * cam.base_radius_mm());
+    let bore = req.bore_mm.unwrap_or_else(|| cam.default_bore_mm());
     let text = cam.dxf(req.chord_tol_mm, bore).map_err(|e| ApiError::from_library(&e, "chord_tol_mm"))?;
     Ok(CamFile {
         filename: "cam.dxf".into(),
@@ -637,10 +624,24 @@ pub fn cam_table(req: &CamTableRequest) -> Result<CamTableResponse, ApiError> {
                 message: "tolerance: give step_deg or tolerance, not both".into(),
             });
         }
-        // A micro-unit at the finest: the answer stays quick (the CLI goes to 1e-9).
-        (_, Some(t)) => Spacing::Tolerance(Range::closed(1e-6, 1e6, "").check("tolerance", t)?),
+        (_, Some(t)) => {
+            let t = TOLERANCE_RANGE.check("tolerance", t)?;
+            if t < MIN_WEB_TOLERANCE {
+                return Err(ApiError::invalid(
+                    "tolerance",
+                    format!(
+                        "tolerance = {}: the workbench computes tables to a tolerance of {} at the finest (the \
+                         answer stays quick); loomkin cam table takes {}",
+                        compact(t),
+                        compact(MIN_WEB_TOLERANCE),
+                        TOLERANCE_RANGE.describe("--tolerance")
+                    ),
+                ));
+            }
+            Spacing::Tolerance(t)
+        }
         (s, None) => {
-            let s = Range::closed(1e-3, 3600.0, "deg").check("step_deg", s.unwrap_or(1.0))?;
+            let s = STEP_RANGE.check("step_deg", s.unwrap_or(DEFAULT_STEP_DEG))?;
             if span / s > MAX_CAM_TABLE_POINTS as f64 {
                 return Err(ApiError::invalid(
                     "step_deg",

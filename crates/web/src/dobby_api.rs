@@ -9,10 +9,10 @@ use axum::routing::{get, post};
 use loomkin_io::dxf::{DxfUnit, write_shapes};
 use loomkin_mech::dobby_export::{DEFAULT_CHORD_TOL_MM, synthesis_points_table, synthesis_shapes};
 use loomkin_mech::{
-    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, Synthesis, SynthesisOptions,
-    SynthesisSummary, Warning, synthesize,
+    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, ROLLER_M_RANGE, STEP_DEG_RANGE, Synthesis,
+    SynthesisOptions, SynthesisSummary, Warning, synthesize,
 };
-use loomkin_units::{FieldError, Range};
+use loomkin_units::{FieldError, compact};
 use serde::{Deserialize, Serialize};
 
 pub(crate) fn routes() -> Router {
@@ -26,7 +26,7 @@ pub(crate) fn routes() -> Router {
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct DobbyLaw {
-    /// Cycles per input revolution, 1 … 6.
+    /// Cycles per input revolution, [`OutputLawSpec::CYCLES_RANGE`].
     pub cycles: u32,
     /// Output dwell per cycle (deg of input).
     pub dwell_deg: f64,
@@ -44,11 +44,16 @@ pub struct DobbyRequest {
     pub law: DobbyLaw,
     /// The modulator's links (m) and angles (deg).
     pub geometry: ModulatorGeometry,
-    /// Roller radius (m), 0 … 0.2.
+    /// Roller radius (m), [`ROLLER_M_RANGE`].
     pub roller_m: f64,
-    /// Step of the input angle (deg), 0.25 … 10.
+    /// Step of the input angle (deg), [`STEP_DEG_RANGE`], at most [`MAX_DOBBY_ROWS`] rows a turn.
     pub step_deg: f64,
 }
+
+/// Most input angles of a synthesis answer (a 0.25° step): each carries the mechanism's pose, so a
+/// finer step is refused by the workbench (`loomkin dobby synthesize` goes to
+/// [`STEP_DEG_RANGE`]'s lower end).
+pub const MAX_DOBBY_ROWS: usize = 1441;
 
 impl Default for DobbyRequest {
     /// The paper's geometry and its task 2: two dwells of 40° centred at 90° and 270°, cycloidal rises.
@@ -63,7 +68,7 @@ impl Default for DobbyRequest {
             },
             geometry: ModulatorGeometry::default(),
             roller_m: SynthesisOptions::default().roller_m,
-            step_deg: 1.0,
+            step_deg: SynthesisOptions::default().step_deg,
         }
     }
 }
@@ -129,14 +134,25 @@ fn mech_error(e: MechError) -> ApiError {
 
 /// The options of a synthesis: the request's step and roller, the library's other defaults.
 fn options(req: &DobbyRequest) -> Result<SynthesisOptions, ApiError> {
-    let step = Range::closed(0.25, 10.0, "deg").check("step_deg", req.step_deg)?;
-    let roller = Range::closed(0.0, 0.2, "m").check("roller_m", req.roller_m)?;
+    let step = STEP_DEG_RANGE.check("step_deg", req.step_deg)?;
+    let roller = ROLLER_M_RANGE.check("roller_m", req.roller_m)?;
+    if 360.0 / step + 1.0 > MAX_DOBBY_ROWS as f64 {
+        return Err(ApiError::invalid(
+            "step_deg",
+            format!(
+                "step_deg = {}: the workbench draws at most {MAX_DOBBY_ROWS} input angles a turn (a step of {} deg at the \
+                 finest)",
+                compact(step),
+                compact(360.0 / (MAX_DOBBY_ROWS - 1) as f64)
+            ),
+        ));
+    }
     Ok(SynthesisOptions { step_deg: step, roller_m: roller, ..SynthesisOptions::default() })
 }
 
 fn synthesis(req: &DobbyRequest) -> Result<Synthesis, ApiError> {
     let opts = options(req)?;
-    Range::closed(1.0, 6.0, "").check("law.cycles", f64::from(req.law.cycles))?;
+    OutputLawSpec::CYCLES_RANGE.check("law.cycles", f64::from(req.law.cycles))?;
     let rise = req.law.rise.spec().map_err(|e| ApiError::invalid("law.rise", e))?;
     let spec = OutputLawSpec {
         cycles: req.law.cycles,

@@ -4,14 +4,14 @@
 
 use crate::catalogue::LawChoice;
 use crate::error::check_count;
-use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
+use crate::limits::{DEFAULT_CYCLE_SAMPLES, MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_dynamics::{Follower, Response, ResponseReport, Start, Units, sweep};
 use loomkin_laws::{Cycle, CycleSpec, SegmentKind, StrokeUnit};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::ShaftSpeed;
 use serde::{Deserialize, Serialize};
 
 /// The cycle the view opens with (`examples/heald-frame-cycle.toml`).
@@ -97,7 +97,7 @@ pub struct DynamicsRequest {
 }
 
 fn default_samples() -> usize {
-    721
+    DEFAULT_CYCLE_SAMPLES
 }
 
 /// The response over the cycle in the cycle's units.
@@ -151,8 +151,7 @@ fn cycle_of(req: &DynamicsRequest) -> Result<Cycle, ApiError> {
         (Some(text), None) => Cycle::from_toml(text).map_err(|e| ApiError::invalid("cycle_toml", e)),
         (None, Some(lc)) => {
             let spec = lc.law.spec().map_err(|e| ApiError::invalid("law.law", e))?;
-            Range::above(0.0, "mm").check("law.stroke_mm", lc.stroke_mm)?;
-            Range::at_most(1e6, "mm").check("law.stroke_mm", lc.stroke_mm)?;
+            StrokeUnit::Mm.stroke_range().check("law.stroke_mm", lc.stroke_mm)?;
             let spec = CycleSpec::rise_return(&spec, StrokeUnit::Mm, lc.stroke_mm, lc.motion_deg)
                 .map_err(|e| ApiError::invalid("law.motion_deg", e))?;
             Cycle::new(&spec).map_err(|e| ApiError::invalid("law", e))

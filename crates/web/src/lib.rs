@@ -61,7 +61,7 @@ pub use catalogue::{
 };
 pub use dobby_api::{
     DobbyCurves, DobbyExportFormat, DobbyExportRequest, DobbyExportResponse, DobbyLaw, DobbyRequest, DobbyResponse,
-    dobby_export, dobby_synthesize,
+    MAX_DOBBY_ROWS, dobby_export, dobby_synthesize,
 };
 pub use dynamics_api::{
     DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS, SweepCurves,
@@ -70,7 +70,8 @@ pub use dynamics_api::{
 pub use error::{ApiError, check_count};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
-    DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS, MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_SAMPLES,
+    DEFAULT_CAM_ROWS, DEFAULT_CYCLE_SAMPLES, DEFAULT_PICK_SAMPLES, DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS,
+    MAX_COMPARE, MAX_DEF_POINTS, MAX_SAMPLES, MAX_SPEEDS, MIN_CAM_ROWS, MIN_SAMPLES,
 };
 pub use loom_api::{
     LOOM_EXAMPLES, LoomExamples, LoomRequest, LoomResponse, MAX_TIMING_PICKS, MAX_WEB_PICKS, ObjectiveKind,

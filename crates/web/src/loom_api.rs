@@ -8,10 +8,10 @@ use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_loom::{
-    CheckReport, Drive, Loom, Motion, Objective, Pattern, StaggerResult, TimingCurves, check, optimise_stagger,
-    timing_curves,
+    CheckReport, DEFAULT_TIMING_PICKS, DEFAULT_TIMING_STEP_DEG, Drive, Loom, Motion, Objective, Pattern, StaggerResult,
+    TimingCurves, check, optimise_stagger, timing_curves,
 };
-use loomkin_units::{Range, compact};
+use loomkin_units::compact;
 use serde::{Deserialize, Serialize};
 
 /// The loom files the view offers (`examples/`).
@@ -141,19 +141,19 @@ pub struct LoomRequest {
     #[serde(default)]
     pub from_pick: usize,
     /// Picks in the timing diagram, 1 … [`MAX_TIMING_PICKS`].
-    #[serde(default = "two")]
+    #[serde(default = "default_picks")]
     pub picks: usize,
-    /// Angle step of the timing curves (deg).
-    #[serde(default = "one")]
+    /// Angle step of the timing curves (deg), [`loomkin_loom::TIMING_STEP_RANGE`].
+    #[serde(default = "default_step")]
     pub step_deg: f64,
 }
 
-fn two() -> usize {
-    2
+fn default_picks() -> usize {
+    DEFAULT_TIMING_PICKS
 }
 
-fn one() -> f64 {
-    1.0
+fn default_step() -> f64 {
+    DEFAULT_TIMING_STEP_DEG
 }
 
 /// The weave pattern as a grid.
@@ -215,9 +215,8 @@ pub fn evaluate(req: &LoomRequest) -> Result<LoomResponse, ApiError> {
         loom = loom.with_stagger(s).map_err(|e| ApiError::from_library(&e, "stagger_deg"))?;
     }
     let picks = crate::error::check_count("picks", req.picks, 1, MAX_TIMING_PICKS)?;
-    let step = Range::closed(0.1, 10.0, "deg").check("step_deg", req.step_deg)?;
     let report = check(&loom, &pattern).map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
-    let timing = timing_curves(&loom, &pattern, req.from_pick % pattern.picks(), picks, step)
+    let timing = timing_curves(&loom, &pattern, req.from_pick % pattern.picks(), picks, req.step_deg)
         .map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
     let torque = torque_curve(&loom, &pattern)?;
     let grid = PatternGrid { shafts: pattern.shafts(), picks: pattern.picks(), rows: pattern.rows().to_vec() };

@@ -1,13 +1,13 @@
 //! The picking view: the paper's under-pick mechanism run under loom settings set with sliders.
 
 use crate::error::check_count;
-use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
+use crate::limits::{DEFAULT_PICK_SAMPLES, MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_picking::{Mechanism, Method, Outcome, PickError, Setting, Settings, history};
-use loomkin_units::{FieldError, Range};
+use loomkin_units::FieldError;
 use serde::{Deserialize, Serialize};
 
 pub(crate) fn routes() -> Router {
@@ -79,13 +79,13 @@ pub struct PickingRequest {
     /// `closed` (default: the paper's closed form, corrected) or `ode`.
     #[serde(default)]
     pub method: Method,
-    /// Samples over the pick, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default 400).
+    /// Samples over the pick, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default [`DEFAULT_PICK_SAMPLES`]).
     #[serde(default = "default_samples")]
     pub samples: usize,
 }
 
 fn default_samples() -> usize {
-    400
+    DEFAULT_PICK_SAMPLES
 }
 
 /// Nominal (cam) and actual (shuttle) motion over the pick.
@@ -134,11 +134,7 @@ pub fn simulate(req: &PickingRequest) -> Result<PickingResponse, ApiError> {
             field: format!("settings.{key}"),
             message: "unknown setting: known are speed_rpm, play_mm, strap_cm, shuttle_g, checking_kgf".into(),
         })?;
-        // Generous bounds around the paper's ranges; the library checks the physical limits.
-        let (lo, hi) = setting.paper_range();
-        let span = hi - lo;
-        Range::closed((lo - 2.0 * span).max(0.0), hi + 2.0 * span, setting.unit())
-            .check(&format!("settings.{key}"), value)?;
+        // The library checks every setting against its range ([`Setting::range`]).
         st = setting.apply(st, value);
     }
     let h = history(&mech, &st, req.method, n).map_err(pick_error)?;

@@ -1,7 +1,7 @@
 //! The servo law editor's endpoints: evaluate (one drag update), optimise, export, save, load.
 
 use crate::error::check_count;
-use crate::limits::{DEFAULT_SAMPLES, MAX_CAM_ROWS, MAX_SAMPLES, MIN_SAMPLES};
+use crate::limits::{DEFAULT_CAM_ROWS, DEFAULT_SAMPLES, MAX_CAM_ROWS, MAX_SAMPLES, MIN_CAM_ROWS, MIN_SAMPLES};
 use crate::series::{LawSamples, finite};
 use crate::servo_design::{DesignFormat, ServoDesign, design_from_text, design_spline, design_text, servo_error};
 use crate::{ApiError, ApiJson};
@@ -12,7 +12,6 @@ pub use loomkin_servo::ExportFormat;
 use loomkin_servo::{
     Interpolation, Objective, OptimizeOptions, ReinterpolationRow, TorqueSummary, optimize, summary, torque_curve,
 };
-use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -237,13 +236,14 @@ pub struct ExportRequest {
     pub design: ServoDesign,
     /// What to export.
     pub format: ExportFormat,
-    /// Rows of a cam table over 0 … 360°, 5 … [`MAX_CAM_ROWS`] (default 361: a 1° step).
+    /// Rows of a cam table over 0 … 360°, [`MIN_CAM_ROWS`] … [`MAX_CAM_ROWS`] (default
+    /// [`DEFAULT_CAM_ROWS`]: a 1° step).
     #[serde(default = "default_rows")]
     pub rows: usize,
 }
 
 fn default_rows() -> usize {
-    361
+    DEFAULT_CAM_ROWS
 }
 
 /// `POST /api/servo/export` answer: a file for the browser to save.
@@ -270,8 +270,9 @@ pub struct ExportResponse {
 pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
     let spline = design_spline(&req.design).map_err(|e| e.within("design"))?;
     let step = if req.format.is_cam_table() {
-        let rows = check_count("rows", req.rows, 5, MAX_CAM_ROWS)?;
-        Range::closed(0.0, 90.0, "deg").check("rows", 360.0 / (rows - 1) as f64)?
+        // At least MIN_CAM_ROWS rows: a step of at most 90°.
+        let rows = check_count("rows", req.rows, MIN_CAM_ROWS, MAX_CAM_ROWS)?;
+        360.0 / (rows - 1) as f64
     } else {
         1.0
     };

@@ -2,16 +2,16 @@
 //! (largest weft-crossing window, least peak acceleration), and one chosen law over the cycle.
 
 use crate::error::check_count;
-use crate::limits::{MAX_SAMPLES, MIN_SAMPLES};
+use crate::limits::{DEFAULT_CYCLE_SAMPLES, MAX_SAMPLES, MIN_SAMPLES};
 use crate::series::finite;
 use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::post;
 use loomkin_shed::{
-    Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, Progress, ShedError, Study, cycle_accel_jumps,
-    cycle_curve, evaluate, pareto_within, table, within_jerk_limit,
+    Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, JERK_LIMIT_RANGE, MOTION_DEG, Progress, ShedError,
+    Study, cycle_accel_jumps, cycle_curve, evaluate, pareto_within, table, within_jerk_limit,
 };
-use loomkin_units::{FieldError, Range};
+use loomkin_units::FieldError;
 use serde::{Deserialize, Serialize};
 
 /// Most laws (grid rows) one Pareto request may evaluate.
@@ -25,32 +25,30 @@ pub(crate) fn routes() -> Router {
     Router::new().route("/shed/pareto", post(post_pareto)).route("/shed/law", post(post_law))
 }
 
-/// Frame stroke when the request gives none (m): the CLI's `--stroke-mm` default, 100 mm.
-const DEFAULT_STROKE_M: f64 = 0.1;
-
 /// Evaluation conditions shared by both shedding requests.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ShedConditions {
-    /// Dwell threshold T (fraction of the stroke), 0.75 … 0.99 (default 0.95).
+    /// Dwell threshold T (fraction of the stroke), [`loomkin_shed::THRESHOLD_RANGE`] (default:
+    /// the library's [`Conditions::default`], 0.95).
     #[serde(default = "default_threshold")]
     pub threshold: f64,
-    /// Frame stroke h (m), default 0.1.
+    /// Frame stroke h (m), default the library's (0.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke_m: Option<f64>,
     /// The same in mm, the unit of `loomkin shed … --stroke-mm` and of the page (give one of the two).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stroke_mm: Option<f64>,
-    /// Main-shaft speed n (1/min), default 300.
+    /// Main-shaft speed n (1/min), default the library's (300).
     #[serde(default = "default_speed")]
     pub speed_rpm: f64,
 }
 
 fn default_threshold() -> f64 {
-    0.95
+    Conditions::default().threshold()
 }
 fn default_speed() -> f64 {
-    300.0
+    Conditions::default().speed_rpm()
 }
 
 impl Default for ShedConditions {
@@ -72,7 +70,7 @@ impl ShedConditions {
             }
             (Some(m), None) => m,
             (None, Some(mm)) => loomkin_units::m_from_mm(mm),
-            (None, None) => DEFAULT_STROKE_M,
+            (None, None) => Conditions::default().stroke_m(),
         };
         Conditions::new(self.threshold, stroke_m, self.speed_rpm)
             .map_err(|e| match e {
@@ -103,9 +101,11 @@ fn shed_error(default_field: &str, e: ShedError) -> ApiError {
 pub struct ParetoRequest {
     /// Law family: `trapezoid` (3 parts), `lead-trapezoid` (4), `linear-trapezoid` (3).
     pub family: Family,
-    /// Grid step of the relative lengths k_Ti (0.005 … 0.5).
+    /// Grid step of the relative lengths k_Ti ([`GridSpec::STEP_RANGE`]; at most
+    /// [`MAX_SHED_ROWS`] laws).
     pub step: f64,
-    /// Smallest relative length on the grid (default 0.005, the paper's practical minimum).
+    /// Smallest relative length on the grid (default [`GridSpec::PRACTICAL_MIN_K`], the paper's
+    /// practical minimum).
     #[serde(default = "default_min")]
     pub min_length: f64,
     /// Motion angles φ (deg), 1 … [`MAX_MOTIONS`] of them, each in (0, 360].
@@ -120,7 +120,7 @@ pub struct ParetoRequest {
 }
 
 fn default_min() -> f64 {
-    0.005
+    GridSpec::PRACTICAL_MIN_K
 }
 
 /// All evaluated (law, motion angle) points, in columns, in single precision (for drawing; the
@@ -154,10 +154,20 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
     let cond = req.conditions.build()?;
     check_count("motions_deg", req.motions_deg.len(), 1, MAX_MOTIONS)?;
     for (i, &m) in req.motions_deg.iter().enumerate() {
-        Range::closed(1.0, 360.0, "deg").check(&format!("motions_deg[{i}]"), m)?;
+        MOTION_DEG.check(&format!("motions_deg[{i}]"), m)?;
     }
-    let min = Range::closed(0.0, 0.3, "").check("min_length", req.min_length)?;
-    let step = Range::closed(0.005, 0.5, "").check("step", req.step)?;
+    let min = GridSpec::K_RANGE.check("min_length", req.min_length)?;
+    let step = GridSpec::STEP_RANGE.check("step", req.step)?;
+    if min * template.parts() as f64 > 1.0 {
+        return Err(ApiError::invalid(
+            "min_length",
+            format!(
+                "min_length = {}: {} parts of at least this length cannot sum to 1",
+                loomkin_units::compact(min),
+                template.parts()
+            ),
+        ));
+    }
     // Bound the work before building the grid: the generator walks the cube of the free lengths.
     let axis = ((1.0 - min) / step).floor() + 1.0;
     let cube = axis.powi(template.parts() as i32 - 1);
@@ -197,7 +207,7 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
         ));
     }
     if let Some(j) = req.max_jerk_m_s3 {
-        Range::open_closed(0.0, 1e12, "m/s³").check("max_jerk_m_s3", j)?;
+        JERK_LIMIT_RANGE.check("max_jerk_m_s3", j)?;
     }
     let all = table(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
     let front = pareto_within(design, &rows, &req.motions_deg, &cond, req.max_jerk_m_s3)
@@ -227,13 +237,13 @@ pub struct ShedLawRequest {
     /// Evaluation conditions.
     #[serde(default)]
     pub conditions: ShedConditions,
-    /// Samples over the turn (default 721).
+    /// Samples over the turn (default [`DEFAULT_CYCLE_SAMPLES`]).
     #[serde(default = "default_samples")]
     pub samples: usize,
 }
 
 fn default_samples() -> usize {
-    721
+    DEFAULT_CYCLE_SAMPLES
 }
 
 /// `POST /api/shed/law` answer: criteria and the frame's motion over one turn.
@@ -265,9 +275,9 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
     let n = check_count("samples", req.samples, MIN_SAMPLES, MAX_SAMPLES)?;
     check_count("lengths", req.lengths.len(), template.parts(), template.parts())?;
     for (i, &k) in req.lengths.iter().enumerate() {
-        Range::closed(0.0, 1.0, "").check(&format!("lengths[{i}]"), k)?;
+        GridSpec::K_RANGE.check(&format!("lengths[{i}]"), k)?;
     }
-    Range::closed(1.0, 360.0, "deg").check("motion_deg", req.motion_deg)?;
+    MOTION_DEG.check("motion_deg", req.motion_deg)?;
     let law = template.law(req.motion_deg, &req.lengths).map_err(|e| shed_error("lengths", e))?;
     let criteria = evaluate(&law, &cond).map_err(|e| shed_error("lengths", e))?;
     let curve = cycle_curve(&law, &cond, n).map_err(|e| shed_error("lengths", e))?;

@@ -10,6 +10,7 @@ use super::track::{Track, curvature, offset};
 use crate::table::Motion;
 use crate::{CamError, Result};
 use loomkin_laws::StrokeUnit;
+use loomkin_units::Range;
 
 /// A working surface: the pitch curve of track `track` offset by `dist` (mm) along its outward
 /// normal (−r: the roller outside the cam; +r: the outer wall of a groove), or the flat face's
@@ -89,6 +90,12 @@ pub struct FlatExtremes {
     /// Greatest distance of the contact point from the line of motion (mm).
     pub face_max_mm: f64,
 }
+
+/// Allowed main-shaft angle step of the sampled points ([`CamProfile::sample`], deg): from a
+/// thousandth of a degree (360 000 points a turn) to a quarter turn.
+pub const SAMPLE_STEP_RANGE: Range = Range::closed(1e-3, 90.0, "deg");
+/// The step of the sampled points when none is given (deg).
+pub const DEFAULT_SAMPLE_STEP_DEG: f64 = 1.0;
 
 /// Which curve of a cam.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

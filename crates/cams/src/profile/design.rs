@@ -68,6 +68,16 @@ pub const ROLLER_RANGE: Range = Range::closed(0.0, 1e5, "mm");
 pub const OFFSET_RANGE: Range = Range::closed(-1e5, 1e5, "mm");
 /// Allowed largest pressure angle (deg).
 pub const PRESSURE_RANGE: Range = Range::open(0.0, 89.0, "deg");
+/// The largest pressure angle a cam is sized for when the design gives neither a prime radius
+/// nor a pressure angle (deg): the customary limit for a translating roller follower, also the
+/// limit line drawn for a cam of a given prime radius.
+pub const DEFAULT_MAX_PRESSURE_DEG: f64 = 30.0;
+
+impl Size {
+    /// The size when the design names none: the least prime circle for
+    /// [`DEFAULT_MAX_PRESSURE_DEG`].
+    pub const DEFAULT: Size = Size::MaxPressureDeg(DEFAULT_MAX_PRESSURE_DEG);
+}
 
 impl CamDesign {
     /// Checks every number against its range, naming the field.

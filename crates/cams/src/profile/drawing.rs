@@ -10,6 +10,11 @@ use loomkin_units::Range;
 pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
 /// Allowed bore diameter (mm).
 pub const BORE_RANGE: Range = Range::closed(0.0, 1e5, "mm");
+/// The chord tolerance of a drawing when none is given (mm): a hundredth of a millimetre, within
+/// the accuracy of a machined cam.
+pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
+/// The bore diameter drawn when none is given, as a fraction of the base circle radius.
+pub const DEFAULT_BORE_PER_BASE_RADIUS: f64 = 0.4;
 
 impl CamProfile {
     /// The drawing of the cam (mm, cam frame: the cam centre at the origin, the follower at
@@ -65,5 +70,11 @@ impl CamProfile {
         let shapes = loomkin_io::drawing::into_dxf(&self.drawing(tol_mm, bore_mm)?, 1e-3);
         dxf_text(&shapes, DxfUnit::Millimetre)
             .map_err(|e| crate::CamError::Usage { field: "dxf".into(), reason: e.to_string() })
+    }
+
+    /// The bore diameter drawn when none is given (mm): [`DEFAULT_BORE_PER_BASE_RADIUS`] of the
+    /// base circle radius.
+    pub fn default_bore_mm(&self) -> f64 {
+        DEFAULT_BORE_PER_BASE_RADIUS * self.base_radius_mm()
     }
 }

@@ -17,10 +17,16 @@ mod lift;
 mod report;
 mod sizing;
 mod track;
+mod undercut;
 
-pub use cam::{CamPoint, CamProfile, Curve, FlatExtremes, TrackExtremes, Wall};
-pub use design::{CamDesign, Closure, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE, Size};
-pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE};
+pub use cam::{
+    CamPoint, CamProfile, Curve, DEFAULT_SAMPLE_STEP_DEG, FlatExtremes, SAMPLE_STEP_RANGE, TrackExtremes, Wall,
+};
+pub use design::{
+    CamDesign, Closure, DEFAULT_MAX_PRESSURE_DEG, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE,
+    Size,
+};
+pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE, DEFAULT_BORE_PER_BASE_RADIUS, DEFAULT_CHORD_TOL_MM};
 pub use extremes::Extremes;
 pub use jet::Jet;
 pub use lift::Lift;
@@ -29,3 +35,4 @@ pub use lift::Lift;
 pub use loomkin_io::drawing::{Layered, Shape};
 pub use report::{PointReport, ProfileExtremes, ProfileReport};
 pub use track::{Track, TrackJets, curvature, offset};
+pub use undercut::{Undercut, UndercutKind};

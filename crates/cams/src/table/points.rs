@@ -44,6 +44,8 @@ pub enum Spacing {
 
 /// The allowed step (deg).
 pub const STEP_RANGE: Range = Range::closed(1e-6, 3600.0, "deg");
+/// The step when neither a step nor a tolerance is given (deg).
+pub const DEFAULT_STEP_DEG: f64 = 1.0;
 /// The allowed tolerance (slave unit).
 pub const TOLERANCE_RANGE: Range = Range::closed(1e-9, 1e6, "");
 /// The most points a table may hold.

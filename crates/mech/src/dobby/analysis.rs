@@ -457,12 +457,18 @@ pub(crate) fn grid_units_iter(start_deg: f64, h_deg: f64, len: usize) -> impl It
 /// The largest input speed ω2 (rad/s) the analysis and the synthesis accept (95 493 rev/min).
 pub const MAX_INPUT_SPEED_RAD_S: f64 = 1e4;
 
+/// The allowed step of the input angle of an analysis or a synthesis (deg): a hundredth of a
+/// degree (36 000 positions a turn) to 30°.
+pub const STEP_DEG_RANGE: Range = Range::closed(0.01, 30.0, "°");
+/// The allowed roller radius of a synthesis or an analysis (m): a knife edge to 10 m.
+pub const ROLLER_M_RANGE: Range = Range::closed(0.0, 10.0, "m");
+
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
-    Range::closed(0.01, 30.0, "°").check("step_deg", step_deg)?;
+    STEP_DEG_RANGE.check("step_deg", step_deg)?;
     Range::closed(1e-6, MAX_INPUT_SPEED_RAD_S, "rad/s").check("input_speed_rad_s", speed)?;
     Range::closed(0.0, 90.0, "°").check("pressure_limit_deg", limit)?;
     if let Some(r) = roller {
-        Range::closed(0.0, 10.0, "m").check("roller_m", r)?;
+        ROLLER_M_RANGE.check("roller_m", r)?;
     }
     Ok(())
 }

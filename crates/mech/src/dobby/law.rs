@@ -57,9 +57,13 @@ pub struct OutputLaw {
 }
 
 impl OutputLawSpec {
-    /// Checks the fields: cycles in 1…6, dwell in [0, 360/cycles − 1]°, centre in [−360, 360]°.
+    /// The allowed output cycles per input revolution.
+    pub const CYCLES_RANGE: Range = Range::closed(1.0, 6.0, "");
+
+    /// Checks the fields: cycles in [`OutputLawSpec::CYCLES_RANGE`], dwell in [0, 360/cycles − 1]°,
+    /// centre in [−360, 360]°.
     pub fn validate(&self) -> Result<()> {
-        Range::closed(1.0, 6.0, "").check("cycles", f64::from(self.cycles))?;
+        Self::CYCLES_RANGE.check("cycles", f64::from(self.cycles))?;
         let max_dwell = 360.0 / f64::from(self.cycles) - 1.0;
         Range::closed(0.0, max_dwell, "°").check("dwell_deg", self.dwell_deg)?;
         Range::closed(-360.0, 360.0, "°").check("dwell_centre_deg", self.dwell_centre_deg)?;
