@@ -18,7 +18,7 @@ rows=(
   "law evaluation 10^7 points, cycloidal|loomkin-laws|laws|sample_grid_10m|cycloidal|300|Mps"
   "law evaluation 10^7 points, poly345|loomkin-laws|laws|sample_grid_10m|poly345|300|Mps"
   # Reference rows: the same kernel on 10^4 points (320 KB, in the core's cache), i.e. without the
-  # memory traffic that bounds the 10^7 rows (see docs/notes/issue-15.md, "bench, session 5").
+  # memory traffic that bounds the 10^7 rows (see docs/design/performance.md).
   "law kernel in cache (10^4 points), cycloidal|loomkin-laws|laws|sample_grid_10k|cycloidal|300|Mps"
   "law kernel in cache (10^4 points), poly345|loomkin-laws|laws|sample_grid_10k|poly345|300|Mps"
   "exact metrics, constant-acceleration|loomkin-laws|laws|metrics|constant-acceleration|5|us"

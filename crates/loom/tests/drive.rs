@@ -83,7 +83,7 @@ fn the_peak_is_refined_and_the_rms_exact() {
 /// the eye crosses the back rest's level, within a fraction of a degree. One 16-point rule per
 /// 20° panel missed the RMS by 1.4e-4; the halving quadrature meets a 0.01° rectangle sum (the
 /// torque is continuous and periodic, so the sum's error is O(h²) at the kinks) to 1e-6, and a
-/// scipy Gauss–Legendre sum on 0.02° panels (docs/notes/edges.md) to 1e-15.
+/// scipy Gauss–Legendre sum on 0.02° panels (docs/design/loom.md) to 1e-15.
 #[test]
 fn the_rms_follows_a_frame_at_the_back_rest() {
     let text = edited(

@@ -1,4 +1,4 @@
-//! Prints the figures quoted in docs/notes/issue-5.md: task 1 with the paper's ellipse, task 2 with
+//! Prints the figures behind docs/design/dobby.md: task 1 with the paper's ellipse, task 2 with
 //! the default law, the α sweep and the round-trip convergence.
 //! Run: `cargo run --release -p loomkin-mech --example dobby_report`.
 

@@ -1,5 +1,5 @@
 //! Jederán's published figures: those that the model reproduces, and checks of the reasons why
-//! the others cannot be (see docs/notes/issue-4.md for the full list).
+//! the others cannot be (the full list: docs/design/picking.md).
 
 use loomkin_picking::{Mechanism, Method, Outcome, Setting, Settings, required_velocity_crossings, simulate, sweep};
 use std::f64::consts::FRAC_PI_2;

@@ -128,7 +128,7 @@ fn the_cycle_has_four_phases_and_holds_the_static_force() {
 
 /// The built-in drive is calibrated so that the default (≈ cycloidal) points need about the
 /// paper's 5 N·m at 600 1/min; with only inertia, damping and no static force the peak grows
-/// by at most (750/600)² from 600 to 750 1/min — less than the paper's 9.2/5 (see the notes).
+/// by at most (750/600)² from 600 to 750 1/min — less than the paper's 9.2/5 (see docs/design/servo.md).
 #[test]
 fn default_drive_is_calibrated_to_the_papers_original_torque() {
     let law = SplineLaw::default_law();

@@ -1,4 +1,4 @@
-//! The names the issues give (docs/notes/contracts.md): every JSON key and CSV header an issue
+//! The names the issues give (docs/design/validation.md): every JSON key and CSV header an issue
 //! text names, read from the command the issue names it for. Users' scripts rely on these names;
 //! a rename fails here by name (the snapshots show the same as a diff among many).
 

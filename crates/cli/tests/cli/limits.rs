@@ -166,7 +166,7 @@ fn studies_of_too_many_draws_are_refused_with_the_estimate() {
     }
 }
 
-/// Found by the contract audit (docs/notes/contracts.md): values that reached no check.
+/// Found by the contract audit (docs/design/validation.md): values that reached no check.
 #[test]
 fn bad_values_are_refused_by_name_not_ignored() {
     // A negative number with a negative exponent is a value, refused by its range, not the

@@ -54,7 +54,7 @@ fn has_unit(key: &str) -> bool {
 }
 
 /// Keys that carry a dimensionless number, a count or an index (judged one by one in
-/// docs/notes/contracts.md).
+/// docs/design/validation.md).
 const DIMENSIONLESS: &[&str] = &[
     // metrics of a normalised law and where they are (fractions of the motion angle)
     "cv",
