@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use loomkin_laws::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
-use loomkin_units::{Budget, Cost, ShaftSpeed};
+use loomkin_units::{Cost, ShaftSpeed};
 use std::path::PathBuf;
 
 /// `loomkin cycle`.
@@ -49,7 +49,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     } else {
         Cost::default()
     };
-    Budget::DEFAULT.check("points", a.points, cost)?;
+    crate::util::budget().check("points", a.points, cost)?;
     if a.format.csv || a.format.json {
         // Checked finite first (evaluating is cheap beside printing), so the streamed output
         // never stops half-way.

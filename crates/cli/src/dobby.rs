@@ -862,7 +862,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         ])?;
     }
     if a.format.csv {
-        return output::csv_shard(&t, a.shard.get());
+        return output::csv_shard(&t, a.shard.header());
     }
     outln!("α sweep (θ = α): analysis of the cam | synthesis of the law")?;
     outln!(

@@ -23,24 +23,34 @@ pub struct ToleranceArgs {
     format: Format,
     #[command(flatten)]
     shard: ShardArgs,
-    /// The report of a finished run from its per-draw CSV (the shards' outputs concatenated).
-    #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["csv", "shard"])]
-    from_draws: Option<PathBuf>,
+    /// The report of a finished run from its per-draw CSV: the shards' outputs concatenated, a merged file,
+    /// the directory of its parts (--parts) or the parts, or - for standard input; read as a stream, any size.
+    /// Draws whose manifest names another seed, distributions or model are refused.
+    #[arg(long, value_name = "FILE.csv|DIR|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts"])]
+    from_draws: Option<Vec<PathBuf>>,
 }
 
 /// Runs `dobby tolerance`.
 pub fn run(a: ToleranceArgs) -> Result<()> {
     a.shard.check(a.format)?;
     let t = Tolerance::from_toml(&util::read_input(&a.file)?)?;
-    let run = |items: std::ops::Range<u64>| {
-        loomkin_units::Budget::DEFAULT.check("draws", t.draws, t.cost(items.clone()))?;
-        Ok(t.run(items, Progress::Auto))
+    let report = match &a.from_draws {
+        Some(inputs) => {
+            let source = draws::source(inputs)?;
+            t.report_from(&source).map_err(util::part_error)?
+        }
+        None => {
+            let run = |items: std::ops::Range<u64>| {
+                crate::util::budget().check("draws", t.draws, t.cost(items.clone()))?;
+                Ok(t.run(items, Progress::Auto))
+            };
+            let refused = "do not run over the turn";
+            let Some(draws) = draws::collect::<Draw>(t.draws, a.format, &a.shard, &t.facts(), refused, run)? else {
+                return Ok(());
+            };
+            t.report(&draws)
+        }
     };
-    let refused = "do not run over the turn";
-    let collected =
-        draws::collect::<Draw>("dobby tolerance", t.draws, a.format, &a.shard, a.from_draws.as_deref(), refused, run)?;
-    let Some(draws) = collected else { return Ok(()) };
-    let report = t.report(&draws);
     if a.format.json {
         return output::json(&report);
     }

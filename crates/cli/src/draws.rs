@@ -1,32 +1,32 @@
 //! The front end every Monte-Carlo study shares (`pick montecarlo`, `dobby tolerance`): run this
-//! shard's draws or read a finished run's per-draw CSV back, print the draws (`--csv`, or JSON
-//! Lines with `--shard`), and the summary table of a report. The runner, the per-draw row and the
-//! report are the library's ([`loomkin_study::run_draws`], [`DrawRow`], [`loomkin_study::tally`]).
+//! shard's draws, print them (`--csv`, or JSON Lines with `--shard`), name a finished run's draws
+//! for `--from-draws`, and print the summary table of a report. The runner, the per-draw row, the
+//! reader of a finished run and the report are the library's ([`loomkin_study::run_draws`],
+//! [`DrawRow`], [`DrawSource`], [`loomkin_study::tally`], [`loomkin_study::draws::tally_stream`]).
 
 use crate::output::{self, outln};
 use crate::shard::ShardArgs;
 use crate::util::{self, Format};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use loomkin_io::Table;
+use loomkin_study::draws::DrawSource;
 use loomkin_study::{DrawEntry, DrawRow, Summary};
-use std::path::Path;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 
-/// The draws of a study for its report: read from `from_draws` (a finished run's per-draw CSV),
-/// or run (`run` on this shard's indices, which checks their cost first). `None` when they were printed instead (`--csv`, or
-/// `--json` with `--shard`). `refused` says what a refused draw is (`not simulated`).
+/// The draws of a study for its report, run on this shard's indices (`run` checks their cost
+/// first). `None` when they were printed instead (`--csv`, or `--json` with `--shard`/`--parts`).
+/// `refused` says what a refused draw is (`not simulated`); `facts` go into a part's manifest.
 pub fn collect<D: DrawRow>(
-    command: &str,
     study_draws: u64,
     format: Format,
     shard: &ShardArgs,
-    from_draws: Option<&Path>,
+    facts: &BTreeMap<String, String>,
     refused: &str,
     run: impl FnOnce(std::ops::Range<u64>) -> Result<Vec<D>>,
 ) -> Result<Option<Vec<D>>> {
     shard.check(format)?;
-    if let Some(path) = from_draws {
-        return read_draws(command, path, study_draws).map(Some);
-    }
+    output::part_facts(facts);
     let items = shard.get().items(study_draws as usize);
     let draws = run(items.start as u64..items.end as u64)?;
     let failed: Vec<&D> = draws.iter().filter(|d| d.results().is_none()).collect();
@@ -44,7 +44,7 @@ pub fn collect<D: DrawRow>(
         for d in &draws {
             table.push(d.row())?;
         }
-        output::csv_shard(&table, shard.get())?;
+        output::csv_shard(&table, shard.header())?;
         return Ok(None);
     }
     if shard.given() {
@@ -54,36 +54,11 @@ pub fn collect<D: DrawRow>(
     Ok(Some(draws))
 }
 
-/// Reads a per-draw CSV back: the header as written, rows numbered 0, 1, … in order, every draw
-/// of the study.
-fn read_draws<D: DrawRow>(command: &str, path: &Path, draws: u64) -> Result<Vec<D>> {
-    let text = util::read_input(path)?;
-    let name = path.display();
-    let mut lines = text.lines();
-    let want = D::columns().join(",");
-    if lines.next() != Some(want.as_str()) {
-        bail!("{name}: the first line is not the header of {command} --csv ({want})");
-    }
-    let width = D::columns().len();
-    let mut out = Vec::new();
-    for (i, line) in lines.enumerate() {
-        let v: Vec<f64> = line
-            .split(',')
-            .map(|x| x.trim().parse::<f64>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| anyhow::anyhow!("{name}: line {}: not {width} numbers", i + 2))?;
-        if v.len() != width || v.iter().any(|x| !x.is_finite()) {
-            bail!("{name}: line {}: not {width} finite numbers", i + 2);
-        }
-        if v[0] != i as f64 {
-            bail!("{name}: line {}: draw {} where draw {i} belongs: concatenate every shard, in order", i + 2, v[0]);
-        }
-        out.push(D::from_row(&v));
-    }
-    if out.len() as u64 != draws {
-        bail!("{name}: {} draws where the study has {draws}: concatenate every shard's --csv output", out.len());
-    }
-    Ok(out)
+/// The draws of `--from-draws`: a finished run's per-draw CSV (the shards' outputs concatenated,
+/// or a merged file), the directory of its parts or the parts themselves, or `-` for standard
+/// input; read by the library as the report is made, at any size.
+pub fn source(inputs: &[PathBuf]) -> Result<DrawSource> {
+    DrawSource::open(inputs).map_err(util::part_error)
 }
 
 /// The summaries as a table (mean, sd, percentiles, count failing) and the results' histograms as bars.

@@ -12,7 +12,7 @@ use loomkin_dynamics::{
 use loomkin_io::Table;
 use loomkin_laws::Cycle;
 use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
-use loomkin_units::{Budget, Cost, ShaftSpeed, Span};
+use loomkin_units::{Cost, ShaftSpeed, Span};
 use std::path::{Path, PathBuf};
 
 /// `loomkin dyn` subcommands.
@@ -430,7 +430,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let n = items.len() as f64;
     let per_speed = SWEEP_S_PER_SEGMENT * cycle.segments.len() as f64 / util::cores();
     let bytes = SWEEP_BYTES_PER_SPEED + if a.format.json { 1000.0 } else { 0.0 };
-    Budget::DEFAULT.check("speed_rpm", &a.speed_rpm, Cost::items(n, bytes, per_speed))?;
+    crate::util::budget().check("speed_rpm", &a.speed_rpm, Cost::items(n, bytes, per_speed))?;
     let speeds: Vec<f64> = items.map(|i| span.value(i)).collect();
     let start = if a.steady { Start::Steady } else { Start::Rest };
     let progress = util::Progress::new(speeds.len() as u64, "speeds");
@@ -449,7 +449,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         t.push(sweep_row(q, u, forces))?;
     }
     if a.format.csv {
-        return output::csv_shard(&t, a.shard.get());
+        return output::csv_shard(&t, a.shard.header());
     }
     if a.format.json && a.shard.given() {
         return output::json_lines(pts.iter().map(|q| SweepEntry { q, units: u, forces }));

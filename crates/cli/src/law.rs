@@ -6,7 +6,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use loomkin_laws::{CATALOGUE, InfoReport, Kinematics, Law, LawSpec, ListedLaw};
 use loomkin_plot::{Figure, Legend, Panel, Series};
-use loomkin_units::{Budget, Cost, Shard};
+use loomkin_units::{Cost, Shard};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -207,7 +207,7 @@ fn sample(a: SampleArgs) -> Result<()> {
     check_sample_budget(a.points, shard.items(a.points).len(), a.format.json)?;
     let (spec, law) = build(&a.law, &a.params.params)?;
     let form = if !a.format.json {
-        SampleForm::Csv { header: shard.is_first() }
+        SampleForm::Csv { header: a.shard.header() }
     } else if a.shard.given() {
         SampleForm::JsonLines
     } else {
@@ -235,7 +235,7 @@ pub enum SampleForm {
 /// formatting the numbers is what limits N.
 pub fn check_sample_budget(points: usize, rows: usize, json: bool) -> Result<()> {
     let per_row = if json { SAMPLE_JSON_S_PER_ROW } else { SAMPLE_CSV_S_PER_ROW };
-    Budget::DEFAULT.check("points", points, Cost::items(rows as f64, 0.0, per_row))?;
+    crate::util::budget().check("points", points, Cost::items(rows as f64, 0.0, per_row))?;
     Ok(())
 }
 

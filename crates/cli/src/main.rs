@@ -11,6 +11,7 @@ mod draws;
 mod dynamics;
 mod law;
 mod loom;
+mod merge;
 mod output;
 mod pick;
 mod pick_montecarlo;
@@ -28,8 +29,16 @@ use std::process::ExitCode;
 #[derive(Debug, Parser)]
 #[command(name = "loomkin", version, about, long_about = None, max_term_width = 110)]
 struct Cli {
+    /// Lift the per-run limit (about 1 GB and 1 min, estimated before a run starts) for a batch task:
+    /// MEMORY,TIME such as 64GB,2h; also the variable LOOMKIN_BUDGET. Goes before the command.
+    #[arg(long, value_name = "MEMORY,TIME", value_parser = parse_budget)]
+    budget: Option<loomkin_units::Budget>,
     #[command(subcommand)]
     command: Command,
+}
+
+fn parse_budget(text: &str) -> Result<loomkin_units::Budget, String> {
+    loomkin_units::Budget::parse("budget", text).map_err(|e| e.to_string())
 }
 
 #[derive(Debug, Subcommand)]
@@ -60,11 +69,19 @@ enum Command {
     /// The whole loom: weave pattern (WIF, lift plan), shed geometry, shedding torque, stagger, timing diagram.
     #[command(subcommand)]
     Loom(loom::LoomCommand),
+    /// The parts of a sharded run (--parts DIR) checked and joined into the one-machine output.
+    Merge(merge::MergeArgs),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
     Serve(serve::ServeArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
+    let budget = match (cli.budget, std::env::var("LOOMKIN_BUDGET")) {
+        (Some(b), _) => b,
+        (None, Ok(text)) if !text.is_empty() => loomkin_units::Budget::parse("LOOMKIN_BUDGET", &text)?,
+        _ => loomkin_units::Budget::DEFAULT,
+    };
+    util::set_budget(budget);
     match cli.command {
         Command::Law(cmd) => law::run(cmd),
         Command::Cycle(args) => cycle::run(args),
@@ -75,6 +92,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Cam(cmd) => cam::run(cmd),
         Command::Dyn(cmd) => dynamics::run(cmd),
         Command::Loom(cmd) => loom::run(cmd),
+        Command::Merge(args) => merge::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }
@@ -188,6 +206,8 @@ fn main() -> ExitCode {
         // The reader of our output went away (`loomkin law list | head -1`): stop quietly.
         Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
+            // A part being written is dropped: a failed shard leaves no part behind.
+            output::abandon_part();
             // One line: the error and its causes joined by ": ".
             output::note(format_args!("loomkin: error: {}", cut(&format!("{e:#}").replace('\n', " "))));
             ExitCode::from(util::exit_code(&e))

@@ -7,6 +7,7 @@
 //! since there is nowhere left to report it.
 
 use anyhow::anyhow;
+use loomkin_study::parts::PartWriter;
 use serde::Serialize;
 use std::fmt;
 use std::io::{self, Write};
@@ -62,16 +63,74 @@ pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
     e.chain().any(|c| c.downcast_ref::<WriteError>().is_some_and(WriteError::is_broken_pipe))
 }
 
+/// The part a sharded run writes instead of standard output (`--parts DIR`), once started.
+static PART: std::sync::Mutex<Option<PartWriter>> = std::sync::Mutex::new(None);
+
+/// Where the output goes: standard output, or the part being written.
+pub enum Sink {
+    /// Standard output.
+    Stdout(io::StdoutLock<'static>),
+    /// The part of `--parts DIR`.
+    Part(std::sync::MutexGuard<'static, Option<PartWriter>>),
+}
+
+/// The output of the command: the part of `--parts DIR` when one was started, else standard output.
+pub fn sink() -> Sink {
+    let part = PART.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if part.is_some() { Sink::Part(part) } else { Sink::Stdout(io::stdout().lock()) }
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        match self {
+            Sink::Stdout(o) => o.write(buf),
+            Sink::Part(p) => p.as_mut().map_or(Ok(buf.len()), |p| p.write(buf)),
+        }
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        match self {
+            Sink::Stdout(o) => o.flush(),
+            Sink::Part(p) => p.as_mut().map_or(Ok(()), |p| p.flush()),
+        }
+    }
+}
+
+/// Sends the output to a new part in `dir` (see [`loomkin_study::parts`]) until [`finish`].
+pub fn start_part(dir: &Path, manifest: loomkin_study::parts::Manifest, ext: &str) -> anyhow::Result<()> {
+    let mut part = PART.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if part.is_none() {
+        *part = Some(PartWriter::create(dir, manifest, ext).map_err(crate::util::part_error)?);
+    }
+    Ok(())
+}
+
+/// Adds facts to the manifest of the part being written (none without `--parts`).
+pub fn part_facts(facts: &std::collections::BTreeMap<String, String>) {
+    let mut part = PART.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(p) = part.as_mut() {
+        for (k, v) in facts {
+            p.fact(k, v.clone());
+        }
+    }
+}
+
+/// Drops an unfinished part (the command failed): its temporary file is removed, no part appears.
+pub fn abandon_part() {
+    let mut part = PART.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    part.take();
+}
+
 /// Writes one line (the formatted text and a newline) to standard output.
 pub fn line(args: fmt::Arguments<'_>) -> anyhow::Result<()> {
-    let mut out = io::stdout().lock();
+    let mut out = sink();
     out.write_fmt(args).and_then(|()| out.write_all(b"\n")).map_err(|e| WriteError::stdout(e).into())
 }
 
 /// Writes text as it is to `path`, `-` meaning standard output.
 pub fn text_to(path: &str, text: &str) -> anyhow::Result<()> {
     if path == "-" {
-        let mut out = io::stdout().lock();
+        let mut out = sink();
         return out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(|e| WriteError::stdout(e).into());
     }
     if path.trim().is_empty() {
@@ -96,7 +155,7 @@ pub fn json(value: &impl Serialize) -> anyhow::Result<()> {
         let value = serde_json::to_value(value).map_err(|e| crate::util::failure(anyhow!("internal: {e}")))?;
         check_finite(&value, "")?;
     }
-    let mut out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    let mut out = io::BufWriter::with_capacity(1 << 16, sink());
     serde_json::to_writer_pretty(&mut out, value)
         .map_err(io::Error::from)
         .and_then(|()| out.write_all(b"\n"))
@@ -155,8 +214,7 @@ fn check_finite(v: &serde_json::Value, path: &str) -> anyhow::Result<()> {
 /// whose numbers the command has checked finite; should a non-finite one slip through anyway, the
 /// output stops at it with an internal error (exit 1) rather than print `null`.
 pub fn json_streamed(value: &impl Serialize) -> anyhow::Result<()> {
-    let mut out =
-        Checked { scan: NullScan::default(), out: io::BufWriter::with_capacity(1 << 16, io::stdout().lock()) };
+    let mut out = Checked { scan: NullScan::default(), out: io::BufWriter::with_capacity(1 << 16, sink()) };
     match serde_json::to_writer_pretty(&mut out, value) {
         Ok(()) => out.out.write_all(b"\n").and_then(|()| out.out.flush()).map_err(|e| WriteError::stdout(e).into()),
         Err(_) if out.scan.found => {
@@ -217,7 +275,7 @@ pub fn csv_rows<S: AsRef<str>, R: AsRef<[f64]>>(
     header: bool,
     rows: impl Iterator<Item = R>,
 ) -> anyhow::Result<()> {
-    let out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    let out = io::BufWriter::with_capacity(1 << 16, sink());
     let fail = |e: loomkin_io::IoError| match e {
         loomkin_io::IoError::Write(e) => WriteError::stdout(e).into(),
         e => crate::util::failure(anyhow!("internal: {e}")),
@@ -231,19 +289,20 @@ pub fn csv_rows<S: AsRef<str>, R: AsRef<[f64]>>(
     w.finish().map_err(fail).map(drop)
 }
 
-/// Prints shard `shard` of a table as CSV: the header only in the first shard, then the rows the
-/// table holds (the caller computed only this shard's rows), so the shards' outputs concatenated in
-/// order are the whole table's CSV byte for byte.
-pub fn csv_shard(table: &loomkin_io::Table, shard: loomkin_units::Shard) -> anyhow::Result<()> {
+/// Prints a shard of a table as CSV: the header if `header` (the first shard, or every part of
+/// `--parts`: [`crate::shard::ShardArgs::header`]), then the rows the table holds (the caller
+/// computed only this shard's rows), so the shards' outputs concatenated in order are the whole
+/// table's CSV byte for byte.
+pub fn csv_shard(table: &loomkin_io::Table, header: bool) -> anyhow::Result<()> {
     let mut text = Vec::new();
     table.write_csv(&mut text).map_err(crate::util::failure)?;
-    let body = if shard.is_first() {
+    let body = if header {
         &text[..]
     } else {
         let header_end = text.iter().position(|&b| b == b'\n').map_or(text.len(), |i| i + 1);
         &text[header_end..]
     };
-    let mut out = io::stdout().lock();
+    let mut out = sink();
     out.write_all(body).and_then(|()| out.flush()).map_err(|e| WriteError::stdout(e).into())
 }
 
@@ -255,7 +314,7 @@ where
     I: IntoIterator,
     I::Item: Serialize,
 {
-    let mut out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    let mut out = io::BufWriter::with_capacity(1 << 16, sink());
     let mut line = Vec::new();
     for (i, v) in values.into_iter().enumerate() {
         line.clear();
@@ -297,7 +356,14 @@ pub fn warning(message: impl fmt::Display) {
     note(format_args!("loomkin: warning: {message}"));
 }
 
-/// Ends the output: flushes standard output, so a late write failure is reported too.
+/// Ends the output: flushes standard output, so a late write failure is reported too; a part
+/// being written is completed (renamed into place, its manifest beside it).
 pub fn finish() -> anyhow::Result<()> {
+    let part = PART.lock().unwrap_or_else(std::sync::PoisonError::into_inner).take();
+    if let Some(p) = part {
+        let path = p.path().display().to_string();
+        let m = p.finish().map_err(crate::util::part_error)?;
+        note(format_args!("wrote {path} ({} rows, shard {}/{})", m.rows, m.shard.index, m.shard.count));
+    }
     io::stdout().flush().map_err(|e| WriteError::stdout(e).into())
 }

@@ -13,7 +13,7 @@ use loomkin_picking::{
     required_velocity_crossings, simulate, sweep_observed,
 };
 use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
-use loomkin_units::{Budget, Cost};
+use loomkin_units::Cost;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin pick`.
@@ -447,7 +447,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let per_point = if method == Method::Ode { SWEEP_ODE_S_PER_POINT } else { SWEEP_CLOSED_S_PER_POINT };
     let output_bytes = if a.format.json { 1500.0 } else { 300.0 };
     let cost = Cost::items(n, SWEEP_BYTES_PER_POINT + output_bytes, per_point / util::cores());
-    Budget::DEFAULT.check("points", a.points, cost)?;
+    crate::util::budget().check("points", a.points, cost)?;
     // The swept setting's own flag would be overwritten by the sweep: refused, not ignored.
     let own = [
         (Setting::Speed, "--speed-rpm", a.settings.speed_rpm),
@@ -486,7 +486,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         return output::figure(&sweep_figure(&s, &crossings), path, &a.plot);
     }
     if a.format.csv {
-        return output::csv_shard(&sweep_table(&s)?, a.shard.get());
+        return output::csv_shard(&sweep_table(&s)?, a.shard.header());
     }
     if a.format.json {
         if a.shard.given() {

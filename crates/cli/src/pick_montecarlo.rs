@@ -24,9 +24,11 @@ pub struct MonteCarloArgs {
     format: Format,
     #[command(flatten)]
     shard: ShardArgs,
-    /// The report of a finished run from its per-draw CSV (the shards' outputs concatenated).
-    #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["csv", "shard"])]
-    from_draws: Option<PathBuf>,
+    /// The report of a finished run from its per-draw CSV: the shards' outputs concatenated, a merged file,
+    /// the directory of its parts (--parts) or the parts, or - for standard input; read as a stream, any size.
+    /// Draws whose manifest names another seed, distributions or model are refused.
+    #[arg(long, value_name = "FILE.csv|DIR|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts"])]
+    from_draws: Option<Vec<PathBuf>>,
 }
 
 /// Runs `pick montecarlo`.
@@ -34,21 +36,22 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
     a.shard.check(a.format)?;
     let mc = MonteCarlo::from_toml(&util::read_input(&a.file)?)?;
     let mech: Mechanism = super::pick::mechanism(&a.model)?;
-    let run = |items: std::ops::Range<u64>| {
-        loomkin_units::Budget::DEFAULT.check("draws", mc.draws, mc.cost(items.clone()))?;
-        Ok(mc.run(&mech, items, Progress::Auto))
+    let report = match &a.from_draws {
+        Some(inputs) => {
+            let source = draws::source(inputs)?;
+            mc.report_from(&mech, &source).map_err(util::part_error)?
+        }
+        None => {
+            let run = |items: std::ops::Range<u64>| {
+                crate::util::budget().check("draws", mc.draws, mc.cost(items.clone()))?;
+                Ok(mc.run(&mech, items, Progress::Auto))
+            };
+            let facts = mc.facts(&mech);
+            let collected = draws::collect::<Draw>(mc.draws, a.format, &a.shard, &facts, "not simulated", run)?;
+            let Some(draws) = collected else { return Ok(()) };
+            mc.report(&draws)
+        }
     };
-    let collected = draws::collect::<Draw>(
-        "pick montecarlo",
-        mc.draws,
-        a.format,
-        &a.shard,
-        a.from_draws.as_deref(),
-        "not simulated",
-        run,
-    )?;
-    let Some(draws) = collected else { return Ok(()) };
-    let report = mc.report(&draws);
     if a.format.json {
         return output::json(&report);
     }

@@ -355,8 +355,8 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
         ..OptimizeOptions::default()
     };
     // Refused up front if the most evaluations it may make would pass the budget.
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    loomkin_units::Budget::DEFAULT.check("starts", a.starts, opts.cost(sl.points().len(), cores))?;
+    let cores = crate::util::cores() as usize;
+    crate::util::budget().check("starts", a.starts, opts.cost(sl.points().len(), cores))?;
     let t0 = Instant::now();
     let total = (a.starts * opts.max_evals_per_start) as u64;
     let progress = util::Progress::new(total, "evaluations");

@@ -10,7 +10,7 @@ use loomkin_shed::{
     PresetReport, Progress, ShedLaw, Study, StudyRow, StudyTable, Template, WindowReport, evaluate, preset,
     preset_table, preset_table_in,
 };
-use loomkin_units::{Budget, Cost, ShaftSpeed, compact};
+use loomkin_units::{Cost, ShaftSpeed, compact};
 use serde::Serialize;
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -153,6 +153,11 @@ pub struct ParetoArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     plot: crate::util::PlotOpts,
+    /// The front of a table made before (shed table --csv, at the same --threshold, --stroke-mm and --speed-rpm):
+    /// one file, the shards' outputs in order, the directory of its parts (--parts) or the parts, or - for
+    /// standard input; read as a stream (memory: the front), the same front as the one-machine run.
+    #[arg(long, value_name = "FILE|DIR|-", num_args = 1..)]
+    from: Option<Vec<PathBuf>>,
 }
 
 /// Loom data that set the required window (and the threshold) in loom terms.
@@ -404,7 +409,7 @@ fn check_budget(
 ) -> Result<()> {
     let parts = template(d)?.map_or(if kind == DesignKind::Fig1 { 4 } else { 3 }, |t| t.parts());
     let grid = grid_of(d, g);
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cores = crate::util::cores() as usize;
     let whole = Study::estimate(kind, parts, grid, motions, 1.0, row, cores);
     // A shard evaluates and lists its share of the laws (the design is made whole).
     let share = match shard {
@@ -416,9 +421,13 @@ fn check_budget(
     let e = Study::estimate(kind, parts, grid, motions, share, row, cores);
     let what = format!("{} laws × {motions} motion angles", loomkin_units::compact(e.laws));
     if motions > 1 && motions as f64 > e.laws {
-        Budget::DEFAULT.check("motion_deg", format!("{} ({what})", d.motion_deg.as_deref().unwrap_or("")), e.cost)?;
+        crate::util::budget().check(
+            "motion_deg",
+            format!("{} ({what})", d.motion_deg.as_deref().unwrap_or("")),
+            e.cost,
+        )?;
     } else {
-        Budget::DEFAULT.check("step", format!("{} ({what})", loomkin_units::compact(grid.step)), e.cost)?;
+        crate::util::budget().check("step", format!("{} ({what})", loomkin_units::compact(grid.step)), e.cost)?;
     }
     Ok(())
 }
@@ -452,8 +461,9 @@ struct RowsOut<'a> {
 #[derive(Clone, Copy)]
 struct Form<'a> {
     format: util::Format,
-    /// A shard's part (`Some`): CSV with the header in shard 1 only, or JSON Lines.
-    shard: Option<loomkin_units::Shard>,
+    /// A shard (`Some`, holding whether its CSV starts with the header: shard 1, or a part of
+    /// `--parts`), or JSON Lines.
+    shard: Option<bool>,
     /// The text form's title.
     title: &'a str,
 }
@@ -485,7 +495,7 @@ fn print_rows(
         Ok(())
     };
     if form.format.csv {
-        if form.shard.is_none_or(|s| s.is_first()) {
+        if form.shard.is_none_or(|header| header) {
             out.push_str(&loomkin_shed::csv_header(k_names));
         }
         for r in rows {
@@ -561,7 +571,7 @@ fn table(a: TableArgs) -> Result<()> {
     a.shard.check(a.format)?;
     let cond = conditions(&a.physical, a.threshold.threshold)?;
     let shard = a.shard.get();
-    let form = Form { format: a.format, shard: a.shard.given().then_some(shard), title: "experiment table" };
+    let form = Form { format: a.format, shard: a.shard.given().then_some(a.shard.header()), title: "experiment table" };
     if a.design == DesignKind::Presets {
         let d = &a.d;
         if d.family.is_some() || d.shapes.is_some() || d.motion_deg.is_some() || d.step.is_some() {
@@ -584,7 +594,22 @@ fn table(a: TableArgs) -> Result<()> {
 
 fn pareto(a: ParetoArgs) -> Result<()> {
     let cond = conditions(&a.physical, a.threshold.threshold)?;
-    let front = if a.design == DesignKind::Presets {
+    let front = if let Some(inputs) = &a.from {
+        let d = &a.d;
+        if d.family.is_some()
+            || d.shapes.is_some()
+            || d.motion_deg.is_some()
+            || d.step.is_some()
+            || d.min_k.is_some()
+            || d.max_k.is_some()
+        {
+            bail!(
+                "--from reads the table made before: it takes no --family, --shapes, --step, --min-k, --max-k or --motion-deg"
+            );
+        }
+        let lines = loomkin_study::parts::Lines::open(inputs).map_err(util::part_error)?;
+        loomkin_shed::front_of_table(&lines, &cond).map_err(util::part_error)?
+    } else if a.design == DesignKind::Presets {
         let d = &a.d;
         if d.family.is_some() || d.shapes.is_some() || d.motion_deg.is_some() || d.step.is_some() {
             bail!("--design presets takes no --family, --shapes, --step or --motion-deg");

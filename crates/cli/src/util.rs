@@ -27,6 +27,12 @@ pub fn failure(e: impl Into<anyhow::Error>) -> anyhow::Error {
     anyhow::Error::new(Failure(format!("{e:#}")))
 }
 
+/// An error of the parts of a sharded run: the user's input (no manifest, another study's draws)
+/// exits with 2, a failed check or I/O with 1.
+pub fn part_error(e: loomkin_study::parts::PartError) -> anyhow::Error {
+    if e.is_input() { anyhow::Error::new(e) } else { failure(e) }
+}
+
 /// `--json` / `--csv` choice shared by the subcommands.
 #[derive(Debug, Clone, Copy, Args, Default)]
 pub struct Format {
@@ -222,9 +228,25 @@ impl Drop for Progress {
     }
 }
 
-/// Cores the parallel parts of a run share (at least 1), for time estimates.
+/// Cores the parallel parts of a run share (at least 1), for time estimates: `RAYON_NUM_THREADS`
+/// when set (a batch task's CPUs: scripts/slurm-shards.sbatch sets it), else the machine's. So what
+/// a shard may do depends on the CPUs it was given, not on the node it lands on.
 pub fn cores() -> f64 {
-    std::thread::available_parallelism().map_or(1, |n| n.get()) as f64
+    let given = std::env::var("RAYON_NUM_THREADS").ok().and_then(|t| t.trim().parse::<usize>().ok()).filter(|&n| n > 0);
+    given.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())) as f64
+}
+
+/// The limit of this run: [`loomkin_units::Budget::DEFAULT`], or `--budget` / `LOOMKIN_BUDGET`.
+static BUDGET: std::sync::OnceLock<loomkin_units::Budget> = std::sync::OnceLock::new();
+
+/// Sets the limit of this run (once, at the start).
+pub fn set_budget(budget: loomkin_units::Budget) {
+    let _ = BUDGET.set(budget);
+}
+
+/// The limit every estimate of this run is checked against.
+pub fn budget() -> loomkin_units::Budget {
+    BUDGET.get().copied().unwrap_or(loomkin_units::Budget::DEFAULT)
 }
 
 /// Size, resolution and title of a plot file, shared by every command that plots.

@@ -22,8 +22,10 @@
 //! where the closed form does not apply).
 
 use crate::{Mechanism, Method, PickEnd, PickError, Result, Setting, Settings, StartRule, simulate};
+use loomkin_study::draws::DrawSource;
 use loomkin_study::{DistSpec, Distribution, DrawRow, Drawn, Limit, Named, Progress, tally, uniform};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// The settings drawn, in the order of their stream variables.
 pub const INPUTS: [Setting; 5] = [Setting::Speed, Setting::Play, Setting::Strap, Setting::Shuttle, Setting::Checking];
@@ -201,18 +203,64 @@ impl MonteCarlo {
     /// of one run, or the shards' rows concatenated). Sums run in draw order, so the report does
     /// not depend on how the draws were computed.
     pub fn report(&self, draws: &[Draw]) -> Report {
-        let inputs: Vec<(String, bool)> =
-            INPUTS.iter().zip(&self.inputs).map(|(s, d)| (s.key(), d.is_some_and(|d| !d.is_fixed()))).collect();
-        let results: Vec<(&str, Option<Limit>)> = RESULTS.iter().copied().zip(self.limits).collect();
+        let (inputs, results) = self.reported();
         let t = tally(draws, &self.percentiles, self.bins, &inputs, &results);
         let ok = || draws.iter().filter_map(|d| d.result.as_ref().ok());
+        let flags = [ok().filter(|r| r.ode).count() as u64, ok().filter(|r| r.separation).count() as u64];
+        self.report_of(t, &flags)
+    }
+
+    /// [`MonteCarlo::report`] of the per-draw table in `source` (the parts of a sharded run, or
+    /// their concatenation), streamed: the same report, with memory independent of the number of
+    /// draws. The parts' manifests must name this study's facts ([`MonteCarlo::facts`]).
+    pub fn report_from(
+        &self,
+        mechanism: &Mechanism,
+        source: &DrawSource,
+    ) -> std::result::Result<Report, loomkin_study::parts::PartError> {
+        source.check_facts(&self.facts(mechanism))?;
+        let (inputs, results) = self.reported();
+        let (t, flags) = loomkin_study::draws::tally_stream::<Draw>(
+            source,
+            "pick montecarlo",
+            self.draws,
+            &self.percentiles,
+            self.bins,
+            &inputs,
+            &results,
+        )?;
+        Ok(self.report_of(t, &flags))
+    }
+
+    /// What makes the draws of this study what they are, for a part's manifest: the seed, the
+    /// number of draws, the drawn settings with the route and start rule, and the model. A reduce
+    /// refuses draws whose manifest names others; the limits, bins and percentiles only shape the
+    /// report and may change.
+    pub fn facts(&self, mechanism: &Mechanism) -> BTreeMap<String, String> {
+        use loomkin_study::parts::{fact, fingerprint};
+        BTreeMap::from([
+            ("seed".to_string(), self.seed.to_string()),
+            ("draws".to_string(), self.draws.to_string()),
+            ("inputs".to_string(), fact(&(&self.inputs, self.method, self.start))),
+            ("model".to_string(), fingerprint(mechanism)),
+        ])
+    }
+
+    /// The inputs (drawn with a spread or not) and the results with their limits, as reported.
+    fn reported(&self) -> loomkin_study::Reported {
+        let inputs =
+            INPUTS.iter().zip(&self.inputs).map(|(s, d)| (s.key(), d.is_some_and(|d| !d.is_fixed()))).collect();
+        (inputs, RESULTS.iter().copied().zip(self.limits).collect())
+    }
+
+    fn report_of(&self, t: loomkin_study::Tally, flags: &[u64]) -> Report {
         Report {
             draws: t.draws,
             seed: self.seed,
             method: self.method,
             not_simulated: t.refused,
-            ode_draws: ok().filter(|r| r.ode).count() as u64,
-            separation_draws: ok().filter(|r| r.separation).count() as u64,
+            ode_draws: flags[0],
+            separation_draws: flags[1],
             failing: t.failing,
             fail_share: t.fail_share,
             inputs: t.inputs,

@@ -6,6 +6,7 @@ use crate::{
     Candidate, Conditions, Criteria, Dimensionless, PRESETS, Result, ShedError, Template, evaluate, evaluate_rows,
     fig1_design, grid_design, table1_design,
 };
+use loomkin_study::parts::PartError;
 use loomkin_study::{Design, Progress};
 use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
@@ -376,6 +377,122 @@ pub fn csv_line(r: &StudyRow, named: bool, out: &mut String) {
     // `{}` display: the shortest text that reads back (a `-0` stays `-0`, as before).
     let values = ks.iter().chain(&criteria_values(&c.criteria)).map(|v| format!("{v}")).collect::<Vec<_>>();
     loomkin_io::csv::push_line(out, std::iter::once(first).chain(values));
+}
+
+/// The Pareto front (largest window, least peak acceleration) of a table of any size, read as a
+/// stream from its CSV (`shed table --csv`: one file, the shards' outputs, the parts of
+/// `--parts`, or standard input): what is held is the front, not the table. The rows, their order
+/// and the numbers are those of [`Study::pareto`] (or of the presets' front) run on one machine
+/// at the same conditions: the front of every (law, motion angle) row by its printed window and
+/// acceleration, sorted by window (largest first), equal points in the order of the motion
+/// angles, then of the rows. The table must have been made at `cond` (its threshold, and each
+/// row's acceleration from its `ca` at `cond`'s stroke and speed), else it is refused.
+pub fn front_of_table(
+    lines: &loomkin_study::parts::Lines,
+    cond: &Conditions,
+) -> std::result::Result<StudyTable, PartError> {
+    let bad = |m: String| PartError::Input(m);
+    let k_names = std::cell::RefCell::new(Vec::<String>::new());
+    let (named, width) = (std::cell::Cell::new(false), std::cell::Cell::new(0usize));
+    let header = |h: &str| -> std::result::Result<(), PartError> {
+        let cols: Vec<&str> = h.split(',').collect();
+        let n = cols.len();
+        let criteria_at = n.checked_sub(CRITERIA_COLUMNS.len()).filter(|&at| at >= 1);
+        match (cols.first(), criteria_at) {
+            (Some(&first), Some(at)) if (first == "law" || first == "row") && cols[at..] == CRITERIA_COLUMNS[..] => {
+                named.set(first == "law");
+                if named.get() && at > 1 {
+                    return Err(bad("a table of named laws has no length columns".into()));
+                }
+                *k_names.borrow_mut() = cols[1..at].iter().map(|s| s.to_string()).collect();
+                width.set(n);
+                Ok(())
+            }
+            _ => Err(bad(format!(
+                "the first line is not the header of shed table --csv (law or row, the length columns, then {})",
+                CRITERIA_COLUMNS.join(",")
+            ))),
+        }
+    };
+    let mut front = loomkin_study::StreamFront::new([loomkin_study::Sense::Maximize, loomkin_study::Sense::Minimize]);
+    // The motion angles in the order they first appear (a law's rows list them in order).
+    let mut motions: std::collections::HashMap<u64, usize> = std::collections::HashMap::new();
+    let scan = |path: &std::path::Path, n: u64, text: &str| -> std::result::Result<(), PartError> {
+        let (named, width) = (named.get(), width.get());
+        let name = path.display();
+        let cols: Vec<&str> = text.split(',').collect();
+        if cols.len() != width {
+            return Err(bad(format!("{name}: line {n}: {} columns where the header has {width}", cols.len())));
+        }
+        let num = |t: &str| t.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+        let values: Option<Vec<f64>> = cols[1..].iter().map(|t| num(t)).collect();
+        let Some(values) = values else {
+            return Err(bad(format!("{name}: line {n}: not {} finite numbers after the first column", width - 1)));
+        };
+        let (lengths, c) = values.split_at(values.len() - CRITERIA_COLUMNS.len());
+        let criteria = Criteria {
+            motion_deg: c[0],
+            dwell_deg: c[1],
+            conditional_dwell_deg: c[2],
+            window_deg: c[3],
+            threshold: c[4],
+            cv: c[5],
+            ca: c[6],
+            cj: c[7],
+            cm: c[8],
+            ca_rms: c[9],
+            ca_turn: c[10],
+            peak_velocity_m_s: c[11],
+            peak_accel_m_s2: c[12],
+            peak_jerk_m_s3: c[13],
+            peak_power_w_kg: c[14],
+            rms_accel_m_s2: c[15],
+            a_jump: c[16],
+            accel_jump_m_s2: c[17],
+        };
+        debug_assert_eq!(criteria_values(&criteria), *c);
+        if criteria.threshold != cond.threshold()
+            || criteria.peak_accel_m_s2 != criteria.ca * cond.scale(criteria.motion_deg, 2)
+        {
+            return Err(bad(format!(
+                "{name}: line {n}: made at other conditions than these (threshold {}, or another stroke or speed): give the table's --threshold, --stroke-mm and --speed-rpm",
+                criteria.threshold
+            )));
+        }
+        let point = [criteria.window_deg, criteria.peak_accel_m_s2];
+        let next = motions.len();
+        let at = *motions.entry(criteria.motion_deg.to_bits()).or_insert(next);
+        if !front.admits(point) {
+            return Ok(());
+        }
+        let (law, row, lengths) = if named {
+            // A named law's lengths are its preset's (the table prints its name only).
+            let at = PRESETS
+                .iter()
+                .position(|p| p.name == cols[0])
+                .ok_or_else(|| bad(format!("{name}: line {n}: '{}' is not a preset law", cols[0])))?;
+            let law = PRESETS[at].law().map_err(|e| bad(e.to_string()))?;
+            (Some(cols[0].to_string()), at, law.positive().iter().map(|s| s.length).collect())
+        } else {
+            let row = cols[0]
+                .trim()
+                .parse::<usize>()
+                .map_err(|_| bad(format!("{name}: line {n}: row '{}' is not a row number", cols[0])))?;
+            (None, row, lengths.to_vec())
+        };
+        let candidate = Candidate { row, lengths, criteria };
+        front.push(point, ((if named { 0 } else { at }, row), StudyRow { law, candidate }));
+        Ok(())
+    };
+    lines.for_each(header, scan)?;
+    let mut rows = front.into_items();
+    // As the one-machine front: by window (largest first), then acceleration, then the motion
+    // angle's place and the row.
+    rows.sort_by(|(ka, a), (kb, b)| {
+        let (a, b) = (&a.candidate.criteria, &b.candidate.criteria);
+        b.window_deg.total_cmp(&a.window_deg).then(a.peak_accel_m_s2.total_cmp(&b.peak_accel_m_s2)).then(ka.cmp(kb))
+    });
+    Ok(StudyTable { k_names: k_names.into_inner(), rows: rows.into_iter().map(|(_, r)| r).collect() })
 }
 
 #[cfg(test)]

@@ -180,12 +180,13 @@ pub fn pareto_within(
         if ok.is_empty() {
             continue;
         }
-        let a = conditions.scale(m, 2);
+        // The criteria's own window and acceleration (the numbers a table prints), so that the
+        // front is exactly the front of the table's rows (`crate::front_of_table`).
         let pts: Vec<[f64; 2]> = ok
             .iter()
             .map(|&i| {
-                let d = rows[i].as_ref().expect("filtered");
-                [d.window_deg(m), d.ca * a]
+                let c = Criteria::new(m, rows[i].as_ref().expect("filtered"), conditions);
+                [c.window_deg, c.peak_accel_m_s2]
             })
             .collect();
         pool.extend(pareto_front(&pts, &senses)?.into_iter().map(|j| (ok[j], m)));

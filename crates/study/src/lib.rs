@@ -6,7 +6,9 @@
 //! and the Pareto front, the constrained optimum, and for Monte-Carlo studies reproducible draws
 //! from stated [`Distribution`]s ([`uniform`]: any draw computed alone), the [`Summary`] of a
 //! result (percentiles, histogram, share failing a [`Limit`]), and the Monte-Carlo runner and
-//! report every such study shares ([`run_draws`], [`tally`]).
+//! report every such study shares ([`run_draws`], [`tally`]); the parts of a sharded run on disk
+//! ([`parts`]: manifests, the check, the merge) and the reduce of a Monte-Carlo run's per-draw
+//! table at any size ([`draws`]).
 //!
 //! ```
 //! use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
@@ -26,19 +28,23 @@
 #![deny(missing_docs)]
 
 mod design;
+pub mod draws;
 mod error;
 mod eval;
 mod montecarlo;
 mod optimum;
 mod pareto;
+pub mod parts;
 mod random;
 mod stats;
 
 pub use design::{Design, MAX_POINTS, simplex_rows, stepped_axis};
 pub use error::{Result, StudyError};
 pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed};
-pub use montecarlo::{DEFAULT_BINS, DrawEntry, DrawRow, Drawn, MAX_BINS, Named, Tally, check_plan, run_draws, tally};
+pub use montecarlo::{
+    DEFAULT_BINS, DrawEntry, DrawRow, Drawn, MAX_BINS, Named, Reported, Tally, check_plan, run_draws, tally,
+};
 pub use optimum::argmin_subject_to;
-pub use pareto::{Sense, dominates, non_dominated_ranks, pareto_front};
+pub use pareto::{Sense, StreamFront, dominates, non_dominated_ranks, pareto_front};
 pub use random::{DistSpec, DistTable, Distribution, MAX_VARIABLES, normal_cdf, normal_pdf, normal_quantile, uniform};
-pub use stats::{DEFAULT_PERCENTILES, Histogram, Limit, Percentile, Summary, percentile};
+pub use stats::{DEFAULT_PERCENTILES, Histogram, Limit, Percentile, Summary, interpolate, percentile, percentile_rank};

@@ -108,6 +108,10 @@ impl<D: DrawRow> Serialize for DrawEntry<'_, D> {
     }
 }
 
+/// What a study reports, as [`tally`] takes it: each input named with whether it is drawn with a
+/// spread (only those are reported), and each result named with its limit.
+pub type Reported = (Vec<(String, bool)>, Vec<(&'static str, Option<Limit>)>);
+
 /// The distribution of one quantity (a drawn input or a result), named with its unit.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Named {

@@ -182,6 +182,106 @@ pub fn non_dominated_ranks<P: AsRef<[f64]>>(points: &[P], senses: &[Sense]) -> R
     Ok(rank)
 }
 
+/// The Pareto front of two objectives over a stream of points of any length, kept as the points
+/// arrive: memory grows with the front, not with the stream. The same points as [`pareto_front`]
+/// of all the points (non-finite points are never on it; equal points are all kept), signed
+/// zeros included: like its sweep, the first cost is ordered by [`f64::total_cmp`] and costs are
+/// compared as numbers.
+///
+/// The front is held ordered by the first cost, where the second cost falls; a new point is
+/// dominated iff the front point just before it in that order has a lower second cost, or the same
+/// second cost and another first cost; the points it dominates are the run after it whose second
+/// cost is not below its own (less the points equal to it). Each point costs `O(log f)` besides the
+/// points it removes.
+///
+/// ```
+/// use loomkin_study::{Sense, StreamFront};
+///
+/// let mut f = StreamFront::new([Sense::Maximize, Sense::Minimize]);
+/// for (i, p) in [[250.0, 60.0], [195.0, 30.0], [170.0, 26.0], [175.0, 25.0], [140.0, 12.0]].into_iter().enumerate() {
+///     f.push(p, i);
+/// }
+/// assert_eq!(f.into_items(), vec![0, 1, 3, 4]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct StreamFront<T> {
+    senses: [Sense; 2],
+    /// The first cost's place in the total order → the first and second costs and the points there.
+    map: std::collections::BTreeMap<u64, (f64, f64, Vec<T>)>,
+    len: usize,
+}
+
+impl<T> StreamFront<T> {
+    /// An empty front.
+    pub fn new(senses: [Sense; 2]) -> Self {
+        Self { senses, map: std::collections::BTreeMap::new(), len: 0 }
+    }
+
+    /// The point's costs and key; `None` for a point never on a front (non-finite).
+    fn costs(&self, point: [f64; 2]) -> Option<(f64, f64, u64)> {
+        let (c1, c2) = (self.senses[0].cost(point[0]), self.senses[1].cost(point[1]));
+        (c1.is_finite() && c2.is_finite()).then(|| (c1, c2, crate::stats::order_key(c1)))
+    }
+
+    /// Whether [`StreamFront::push`] would keep `point` (a caller can skip making the item of a
+    /// point that is dominated, most of a large table).
+    pub fn admits(&self, point: [f64; 2]) -> bool {
+        let Some((c1, c2, k)) = self.costs(point) else { return false };
+        match self.map.range(..=k).next_back() {
+            Some((_, &(e1, e2, _))) => (e2 == c2 && e1 == c1) || e2 > c2,
+            None => true,
+        }
+    }
+
+    /// Offers a point: whether it is on the front of the points so far.
+    pub fn push(&mut self, point: [f64; 2], item: T) -> bool {
+        if !self.admits(point) {
+            return false;
+        }
+        let Some((c1, c2, k)) = self.costs(point) else { return false };
+        if let Some((e1, e2, items)) = self.map.get_mut(&k)
+            && *e2 == c2
+        {
+            debug_assert!(*e1 == c1);
+            items.push(item);
+            self.len += 1;
+            return true;
+        }
+        // The points after it (in the first cost's order) with a second cost not below its own are
+        // dominated — all but those equal to it (+0 after −0).
+        let doomed: Vec<u64> = self
+            .map
+            .range(k..)
+            .take_while(|(_, (_, e2, _))| *e2 >= c2)
+            .filter(|(_, (e1, e2, _))| !(*e2 == c2 && *e1 == c1))
+            .map(|(&k, _)| k)
+            .collect();
+        for d in doomed {
+            if let Some((_, _, items)) = self.map.remove(&d) {
+                self.len -= items.len();
+            }
+        }
+        self.map.insert(k, (c1, c2, vec![item]));
+        self.len += 1;
+        true
+    }
+
+    /// Points on the front.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the front is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The points' items in increasing first cost (equal points in the order they came).
+    pub fn into_items(self) -> Vec<T> {
+        self.map.into_values().flat_map(|(_, _, items)| items).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -211,6 +311,37 @@ mod tests {
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// The streamed front against the front of all the points at once, in any arrival order,
+        /// with ties, duplicates, signed zeros and non-finite values.
+        #[test]
+        fn the_streamed_front_is_the_front(
+            pts in proptest::collection::vec((0u8..12, 0u8..12, 0u8..40), 0..300),
+            max1 in proptest::bool::ANY,
+        ) {
+            let p: Vec<[f64; 2]> = pts
+                .iter()
+                .map(|&(a, b, z)| match z {
+                    0 => [f64::NAN, b as f64],
+                    1 => [a as f64, f64::INFINITY],
+                    2 => [-0.0, b as f64],
+                    3 => [a as f64, -0.0],
+                    _ => [a as f64 * 0.5, b as f64],
+                })
+                .collect();
+            let senses = [if max1 { Maximize } else { Minimize }, Minimize];
+            let mut s = StreamFront::new(senses);
+            for (i, q) in p.iter().enumerate() {
+                let admitted = s.admits(*q);
+                proptest::prop_assert_eq!(s.push(*q, i), admitted);
+            }
+            proptest::prop_assert_eq!(s.len(), s.clone().into_items().len());
+            let mut got = s.into_items();
+            got.sort_unstable();
+            let mut want = pareto_front(&p, &senses).unwrap();
+            want.sort_unstable();
+            proptest::prop_assert_eq!(got, want);
+        }
+
         /// The pre-filtered sweep against the definition of dominance, pair by pair, on clouds with
         /// ties, duplicates and non-finite values (large enough to take the bucket filter).
         #[test]

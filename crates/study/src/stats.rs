@@ -15,15 +15,39 @@ pub fn percentile(values: &mut [f64], p: f64) -> Option<f64> {
     if n == 0 {
         return None;
     }
-    let h = (n - 1) as f64 * p.clamp(0.0, 100.0) / 100.0;
-    let k = (h.floor() as usize).min(n - 1);
+    let (k, frac) = percentile_rank(n, p);
     let (_, &mut lo, right) = values.select_nth_unstable_by(k, f64::total_cmp);
-    let frac = h - k as f64;
     if frac == 0.0 || right.is_empty() {
         return Some(lo);
     }
     let hi = right.iter().copied().min_by(f64::total_cmp).unwrap_or(lo);
-    Some(lo + frac * (hi - lo))
+    Some(interpolate(lo, hi, frac))
+}
+
+/// Where the `p`-th percentile of `n ≥ 1` values lies (type 7): the 0-based rank `k` of the order
+/// statistic below it and the fraction `frac` of the way to the next (none is needed when
+/// `frac = 0` or `k = n − 1`). [`percentile`] and the streamed reduce
+/// ([`crate::draws::tally_stream`]) both place percentiles by it.
+pub fn percentile_rank(n: usize, p: f64) -> (usize, f64) {
+    let h = (n - 1) as f64 * p.clamp(0.0, 100.0) / 100.0;
+    let k = (h.floor() as usize).min(n - 1);
+    (k, h - k as f64)
+}
+
+/// The value `frac` of the way from the order statistic `lo` to the next one, `hi`.
+pub fn interpolate(lo: f64, hi: f64, frac: f64) -> f64 {
+    lo + frac * (hi - lo)
+}
+
+/// `x`'s place in the total order of `f64` ([`f64::total_cmp`]) as an unsigned key.
+pub(crate) fn order_key(x: f64) -> u64 {
+    let b = x.to_bits();
+    if b >> 63 == 1 { !b } else { b | 1 << 63 }
+}
+
+/// The `f64` of an [`order_key`].
+pub(crate) fn from_order_key(k: u64) -> f64 {
+    f64::from_bits(if k >> 63 == 1 { k & !(1 << 63) } else { !k })
 }
 
 /// Equal-width bins from the smallest to the largest value.
@@ -39,29 +63,40 @@ pub struct Histogram {
 impl Histogram {
     /// The histogram of `values` in `bins ≥ 1` bins; each value lies between its bin's edges.
     pub fn of(values: &[f64], bins: usize) -> Self {
-        let bins = bins.max(1);
+        if values.is_empty() {
+            return Self { edges: vec![0.0; bins.max(1) + 1], counts: vec![0; bins.max(1)] };
+        }
         let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        if values.is_empty() {
-            return Self { edges: vec![0.0; bins + 1], counts: vec![0; bins] };
-        }
-        let edge = |i: usize| if i == bins { hi } else { lo + (hi - lo) * i as f64 / bins as f64 };
-        let edges: Vec<f64> = (0..=bins).map(edge).collect();
-        let mut counts = vec![0u64; bins];
-        let width = hi - lo;
+        let mut h = Self::empty(lo, hi, bins);
         for &x in values {
-            let mut i = if width > 0.0 { (((x - lo) / width) * bins as f64) as usize } else { 0 };
-            i = i.min(bins - 1);
-            // The scaled index may be one off where x is at an edge: settle it on the edges themselves.
-            while i > 0 && x < edges[i] {
-                i -= 1;
-            }
-            while i + 1 < bins && x >= edges[i + 1] {
-                i += 1;
-            }
-            counts[i] += 1;
+            h.add(x);
         }
-        Self { edges, counts }
+        h
+    }
+
+    /// `bins ≥ 1` empty bins from `lo` to `hi` (the smallest and largest value to come).
+    pub fn empty(lo: f64, hi: f64, bins: usize) -> Self {
+        let bins = bins.max(1);
+        let edge = |i: usize| if i == bins { hi } else { lo + (hi - lo) * i as f64 / bins as f64 };
+        Self { edges: (0..=bins).map(edge).collect(), counts: vec![0u64; bins] }
+    }
+
+    /// Counts `x` (between the first and last edge) in its bin.
+    pub fn add(&mut self, x: f64) {
+        let bins = self.counts.len();
+        let (lo, hi) = (self.edges[0], self.edges[bins]);
+        let width = hi - lo;
+        let mut i = if width > 0.0 { (((x - lo) / width) * bins as f64) as usize } else { 0 };
+        i = i.min(bins - 1);
+        // The scaled index may be one off where x is at an edge: settle it on the edges themselves.
+        while i > 0 && x < self.edges[i] {
+            i -= 1;
+        }
+        while i + 1 < bins && x >= self.edges[i + 1] {
+            i += 1;
+        }
+        self.counts[i] += 1;
     }
 }
 

@@ -81,6 +81,52 @@ impl Budget {
     /// About 1 GB and one minute: a command-line run or a workbench request.
     pub const DEFAULT: Budget = Budget { bytes: 1e9, seconds: 60.0 };
 
+    /// Reads a budget for a batch task, `MEMORY,TIME` (`--budget 64GB,2h`): memory in bytes with
+    /// a decimal prefix (`500MB`, `64GB`, `1.5TB`; `kB`, `MB`, `GB`, `TB`, `PB`, case-insensitive,
+    /// `B` optional), time in `s`, `min`, `h` or `d` (`90s`, `30min`, `2h`, `1.5d`). Each must be
+    /// at least the interactive [`Budget::DEFAULT`]'s (a budget lifts the guard, never tightens
+    /// it) and finite.
+    pub fn parse(field: &str, text: &str) -> Result<Self, BudgetParseError> {
+        let bad = |what: &str| BudgetParseError {
+            field: field.into(),
+            text: text.chars().take(80).collect(),
+            reason: what.to_string(),
+        };
+        let (mem, time) = text.split_once(',').ok_or_else(|| bad("no comma"))?;
+        let number = |t: &str, units: &[(&str, f64)], what: &str| -> Result<f64, BudgetParseError> {
+            let t = t.trim().to_ascii_lowercase();
+            let (unit, scale) = units
+                .iter()
+                .filter(|(u, _)| t.ends_with(u))
+                .max_by_key(|(u, _)| u.len())
+                .ok_or_else(|| bad(&format!("{what} has no unit")))?;
+            let v: f64 =
+                t[..t.len() - unit.len()].trim().parse().map_err(|_| bad(&format!("{what} is not a number")))?;
+            let v = v * scale;
+            if v.is_finite() { Ok(v) } else { Err(bad(&format!("{what} is not finite"))) }
+        };
+        let bytes = number(
+            mem,
+            &[
+                ("kb", 1e3),
+                ("mb", 1e6),
+                ("gb", 1e9),
+                ("tb", 1e12),
+                ("pb", 1e15),
+                ("k", 1e3),
+                ("m", 1e6),
+                ("g", 1e9),
+                ("t", 1e12),
+            ],
+            "memory",
+        )?;
+        let seconds = number(time, &[("s", 1.0), ("min", 60.0), ("h", 3600.0), ("d", 86_400.0)], "time")?;
+        if bytes < Self::DEFAULT.bytes || seconds < Self::DEFAULT.seconds {
+            return Err(bad("below the interactive limit"));
+        }
+        Ok(Self { bytes, seconds })
+    }
+
     /// Whether `cost` fits.
     pub fn allows(&self, cost: Cost) -> bool {
         // `!(a > b)` so that a NaN estimate (a corrupt input) is refused too.
@@ -95,6 +141,39 @@ impl Budget {
         } else {
             Err(BudgetError { field: field.into(), value: value.to_string(), cost, budget: *self })
         }
+    }
+}
+
+/// A `--budget` that cannot be read, or that is below the interactive limit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BudgetParseError {
+    /// The flag or key.
+    pub field: String,
+    /// The text given (cut to 80 characters).
+    pub text: String,
+    /// What is wrong.
+    pub reason: String,
+}
+
+impl fmt::Display for BudgetParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: cannot read '{}' ({}): expected MEMORY,TIME such as 64GB,2h, memory ≥ {} and time ≥ {}",
+            self.field,
+            self.text,
+            self.reason,
+            bytes_text(Budget::DEFAULT.bytes),
+            seconds_text(Budget::DEFAULT.seconds)
+        )
+    }
+}
+
+impl std::error::Error for BudgetParseError {}
+
+impl crate::range::FieldError for BudgetParseError {
+    fn field(&self) -> Option<&str> {
+        Some(&self.field)
     }
 }
 
@@ -183,6 +262,18 @@ mod tests {
         assert_eq!(seconds_text(60.0), "1 min");
         assert_eq!(seconds_text(3.0 * 86_400.0), "3 days");
         assert_eq!(seconds_text(f64::INFINITY), "longer than can be counted");
+    }
+
+    #[test]
+    fn budgets_parse_and_only_lift_the_limit() {
+        assert_eq!(Budget::parse("budget", "64GB,2h").unwrap(), Budget { bytes: 64e9, seconds: 7200.0 });
+        assert_eq!(Budget::parse("budget", "1.5tb, 30min").unwrap(), Budget { bytes: 1.5e12, seconds: 1800.0 });
+        assert_eq!(Budget::parse("budget", "2G,1d").unwrap(), Budget { bytes: 2e9, seconds: 86_400.0 });
+        assert_eq!(Budget::parse("budget", "1GB,60s").unwrap(), Budget::DEFAULT);
+        for bad in ["64GB", "64,2h", "64GB,2", "x GB,2h", "500MB,2h", "64GB,30s", "1e400GB,1h"] {
+            let e = Budget::parse("budget", bad).unwrap_err().to_string();
+            assert!(e.starts_with("budget"), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -28,7 +28,7 @@ mod range;
 mod speed;
 mod sweep;
 
-pub use budget::{Budget, BudgetError, Cost, bytes_text, seconds_text};
+pub use budget::{Budget, BudgetError, BudgetParseError, Cost, bytes_text, seconds_text};
 pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg, rad_per_s_from_rpm, rpm_from_rad_per_s};
 pub use field::{Field, FieldList};
 pub use format::compact;

@@ -1,6 +1,6 @@
 //! One syntax for stepped sweeps (`FROM:TO:STEP`) and for a share of one (`--shard I/N`).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::format::compact;
@@ -114,7 +114,7 @@ impl Span {
 ///
 /// Shard `i` of `n` takes the contiguous block of items `⌊(i−1)·len/n⌋ .. ⌊i·len/n⌋`, so the `n`
 /// outputs concatenated in order are the whole sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Shard {
     /// 1-based index of this shard.
     pub index: u32,

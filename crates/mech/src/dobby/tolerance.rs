@@ -242,13 +242,55 @@ impl Tolerance {
 
     /// The distributions over `draws` (all the study's draws in order); sums in draw order.
     pub fn report(&self, draws: &[Draw]) -> Report {
-        let dims: Vec<(String, bool)> = DIMENSIONS
+        let (dims, results) = self.reported();
+        self.report_of(tally(draws, &self.percentiles, self.bins, &dims, &results))
+    }
+
+    /// [`Tolerance::report`] of the per-draw table in `source` (the parts of a sharded run, or
+    /// their concatenation), streamed: the same report, with memory independent of the number of
+    /// draws. The parts' manifests must name this study's facts ([`Tolerance::facts`]).
+    pub fn report_from(
+        &self,
+        source: &loomkin_study::draws::DrawSource,
+    ) -> std::result::Result<Report, loomkin_study::parts::PartError> {
+        source.check_facts(&self.facts())?;
+        let (dims, results) = self.reported();
+        let (t, _) = loomkin_study::draws::tally_stream::<Draw>(
+            source,
+            "dobby tolerance",
+            self.draws,
+            &self.percentiles,
+            self.bins,
+            &dims,
+            &results,
+        )?;
+        Ok(self.report_of(t))
+    }
+
+    /// What makes the draws of this study what they are, for a part's manifest: the seed, the
+    /// number of draws, the drawn dimensions and the analysis step, and the model (the nominal
+    /// mechanism). A reduce refuses draws whose manifest names others; the limits, bins and
+    /// percentiles only shape the report and may change.
+    pub fn facts(&self) -> std::collections::BTreeMap<String, String> {
+        use loomkin_study::parts::{fact, fingerprint};
+        std::collections::BTreeMap::from([
+            ("seed".to_string(), self.seed.to_string()),
+            ("draws".to_string(), self.draws.to_string()),
+            ("inputs".to_string(), fact(&(&self.dimensions, self.step_deg))),
+            ("model".to_string(), fingerprint(&self.nominal)),
+        ])
+    }
+
+    fn reported(&self) -> loomkin_study::Reported {
+        let dims = DIMENSIONS
             .iter()
             .zip(&self.dimensions)
             .map(|(n, d)| (n.to_string(), d.is_some_and(|d| !d.is_fixed())))
             .collect();
-        let results: Vec<(&str, Option<Limit>)> = RESULTS.iter().copied().zip(self.limits).collect();
-        let t = tally(draws, &self.percentiles, self.bins, &dims, &results);
+        (dims, RESULTS.iter().copied().zip(self.limits).collect())
+    }
+
+    fn report_of(&self, t: loomkin_study::Tally) -> Report {
         Report {
             draws: t.draws,
             seed: self.seed,
