@@ -29,25 +29,11 @@ fn rot(psi: f64, p: [f64; 2]) -> [f64; 2] {
     [c * p[0] - s * p[1], s * p[0] + c * p[1]]
 }
 
-/// Maximum of a unimodal function near `x0` by golden sections on `[x0 − w, x0 + w]`.
+/// Maximum of a unimodal function near `x0` by golden sections on `[x0 − w, x0 + w]` (values only:
+/// independent of the profile's Newton refinement of the derivative's roots).
 fn golden_max(f: impl Fn(f64) -> f64, x0: f64, w: f64) -> (f64, f64) {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (x0 - w, x0 + w);
-    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..80 {
-        if fc > fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - g * (b - a);
-            fc = f(c);
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + g * (b - a);
-            fd = f(d);
-        }
-    }
-    let x = 0.5 * (a + b);
-    (x, f(x))
+    let m = loomkin_numeric::golden_max(f, x0 - w, x0 + w);
+    (m.at, m.value)
 }
 
 /// A profile wall sampled once (in the cam frame), with its parameter (main-shaft deg).
@@ -156,7 +142,7 @@ fn oscillating_motion_rederived_from_the_profile() {
                 // Bracket around the expected arm angle (of the arm carrying this roller); which γ touches is decided by the contact alone.
                 let s_law = cam.lift_at(deg).to_degrees().to_radians();
                 let g_law = if wall == 0 { g0 + s_law } else { g0 + h - s_law };
-                let (mut lo, mut hi) = (g_law - 0.02, g_law + 0.02);
+                let (lo, hi) = (g_law - 0.02, g_law + 0.02);
                 // g is the angle of the arm that carries this roller: a larger g moves it away from the centre.
                 let inward = gap;
                 assert!(
@@ -166,11 +152,7 @@ fn oscillating_motion_rederived_from_the_profile() {
                     inward(g_law),
                     inward(hi)
                 );
-                for _ in 0..60 {
-                    let m = 0.5 * (lo + hi);
-                    if inward(m) < 0.0 { lo = m } else { hi = m }
-                }
-                let g = 0.5 * (lo + hi);
+                let g = loomkin_numeric::bisect(lo, hi, |m| inward(m) < 0.0);
                 let s = if wall == 0 { g - g0 } else { g0 + h - g };
                 worst = worst.max((s - s_law).abs() / h);
             }

@@ -33,7 +33,7 @@ const LAWSON_ROUNDS: usize = 12;
 const BAND_SAMPLES: usize = 25;
 
 /// Grid intervals over a band on which the reported worst residual is bracketed, then refined
-/// ([`crate::band_max`]): the report is the band's maximum, not the grid's.
+/// ([`loomkin_numeric::scan_max`]): the report is the band's maximum, not the grid's.
 const BAND_GRID: usize = 40;
 
 /// The residual rows `M(r)` (2 × (N−1)) of the hat functions at ratio `r` (motion time 1 s, f_n = r Hz).
@@ -347,7 +347,8 @@ pub fn optimize_cycle(
         let (r_lo, r_hi) = (fn_hz * t0 / (1.0 + band), fn_hz * t0 / (1.0 - band));
         let (law_spec, law) = quiet_law(r_lo, r_hi, zeta, 1.1 * ca_ms)?;
         // The worst over the band, located between the grid's points (not the grid's worst).
-        let worst = |l: &Law| crate::band_max(r_lo, r_hi, BAND_GRID, |r| crate::residual_ratio(l, r, zeta)).0;
+        let worst =
+            |l: &Law| loomkin_numeric::scan_max(r_lo, r_hi, BAND_GRID, |r| crate::residual_ratio(l, r, zeta)).value;
         segments.push(SegmentFigures {
             segment: i,
             ratio_band: [r_lo, r_hi],
@@ -380,7 +381,8 @@ pub fn optimize_cycle(
                 }
             }
         };
-        let (worst, _) = crate::band_max(speed.rpm() * (1.0 - band), speed.rpm() * (1.0 + band), BAND_GRID, at);
+        let worst =
+            loomkin_numeric::scan_max(speed.rpm() * (1.0 - band), speed.rpm() * (1.0 + band), BAND_GRID, at).value;
         match failure.into_inner() {
             Some(e) => Err(e),
             None => Ok(worst),
@@ -465,8 +467,8 @@ mod tests {
         let ms = LawSpec::ModifiedSine.build().unwrap();
         for (r_lo, r_hi, z) in [(3.6 / 1.1, 3.6 / 0.9, 0.05), (1.3, 7.9, 0.0), (0.4, 0.9, 0.2)] {
             let f = |r: f64| crate::residual_ratio(&ms, r, z);
-            let (w40, at) = crate::band_max(r_lo, r_hi, 40, f);
-            let (w160, _) = crate::band_max(r_lo, r_hi, 160, f);
+            let loomkin_numeric::Max { value: w40, at } = loomkin_numeric::scan_max(r_lo, r_hi, 40, f);
+            let w160 = loomkin_numeric::scan_max(r_lo, r_hi, 160, f).value;
             assert!((w40 - w160).abs() <= 1e-12 * w40, "{r_lo}…{r_hi}: {w40} vs {w160}");
             let n = 20_000;
             let dense = (0..=n).map(|j| f(r_lo + (r_hi - r_lo) * j as f64 / n as f64)).fold(0.0, f64::max);
@@ -486,7 +488,7 @@ mod far_band_tests {
     /// follower at 300 rpm, a 1 MHz one), where the band's residuals are 1e-9…1e-16 and the Gram
     /// matrix's trace as small: the peak acceleration of the built law, from its closed form
     /// (`Law::metrics`, not the optimiser's knots), stays within 110 % of the modified sine's, and
-    /// the band's worst residual (`band_max` on the closed-form spectrum) is no worse than the
+    /// the band's worst residual (`scan_max` on the closed-form spectrum) is no worse than the
     /// modified sine's where the residual is above rounding. (The regulariser's sub-diagonal was scaled by 1/trace: 8.4× the modified
     /// sine's peak at r = 600, 8.7× at r = 60 606, the residual 25× worse.)
     #[test]
@@ -497,7 +499,8 @@ mod far_band_tests {
             let (_, law) = quiet_law(lo, hi, 0.0, 1.1 * ca_ms).unwrap();
             let ca = law.metrics().ca;
             assert!(ca <= 1.1 * ca_ms, "{lo}…{hi}: Ca {ca} against the bound {}", 1.1 * ca_ms);
-            let worst = |l: &Law| crate::band_max(lo, hi, BAND_GRID, |r| crate::residual_ratio(l, r, 0.0)).0;
+            let worst =
+                |l: &Law| loomkin_numeric::scan_max(lo, hi, BAND_GRID, |r| crate::residual_ratio(l, r, 0.0)).value;
             let (quiet, reference) = (worst(&law), worst(&ms));
             // At r ≈ 6e4 both are ~3e-15 of the stroke, the rows' own rounding: only the bound is asked.
             if hi < 1e3 {

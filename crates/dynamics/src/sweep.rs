@@ -76,19 +76,9 @@ pub fn speeds_above(
 ) -> Result<Vec<[f64; 2]>> {
     let above = |p: &SweepPoint| p.residual_amplitude_si > level_si;
     let crossing = |lo: f64, hi: f64, lo_above: bool| -> Result<f64> {
-        let (mut a, mut b) = (lo, hi);
-        while b - a > 1e-9 * b.abs().max(1.0) {
-            let m = 0.5 * (a + b);
-            if m <= a || m >= b {
-                break;
-            }
-            let q = sweep_point(cycle, follower, ShaftSpeed::from_rpm(m)?, start)?;
-            if above(&q) == lo_above {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
+        let (a, b) = loomkin_numeric::try_bisect_bracket_within(lo, hi, 1e-9, |m| -> Result<bool> {
+            Ok(above(&sweep_point(cycle, follower, ShaftSpeed::from_rpm(m)?, start)?) == lo_above)
+        })?;
         Ok(0.5 * (a + b))
     };
     let mut out = Vec::new();

@@ -54,11 +54,7 @@ impl TwoMass {
             let l2_of =
                 |x: f64| if drive { Self::eigenvalues(x, k1, m2, k2).1 } else { Self::eigenvalues(m1, k1, x, k2).1 };
             // λ₂ falls as either mass grows: bisection on log m for λ₂ = (2π·10⁶ Hz)².
-            let (mut lo, mut hi) = (m.ln(), MAX_KG.ln());
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if l2_of(mid.exp()) <= top { hi = mid } else { lo = mid }
-            }
+            let (_, hi) = loomkin_numeric::bisect_bracket(m.ln(), MAX_KG.ln(), |x| l2_of(x.exp()) > top);
             let least = hi.exp();
             return Err(loomkin_units::RangeError::new(
                 field,

@@ -42,7 +42,6 @@ pub use continuity::{CONTINUITY_TOL, Continuity, DerivativeScale, Joint, SCALE_S
 pub use cycle::{Cycle, CyclePoint, CycleSegment, CycleSpec, SegmentKind, SegmentSpec, StrokeUnit};
 pub use cycle_report::{CycleExtremes, CycleReport, SegmentPeaks, StreamedReport};
 pub use error::{LawError, Result, compact};
-pub use extrema::{bisect, refine_root, refine_root_from};
 pub use kinematics::{Kinematics, MotionLaw};
 pub use law::{AccelPiece, EndCondition, Law, Samples};
 pub use metrics::Metrics;

@@ -1,8 +1,9 @@
 //! Exact characteristic values of a law, found from the closed form.
 
-use crate::extrema::{brackets, scan};
+use crate::extrema::brackets;
 use crate::quadrature::integrate;
 use crate::{Law, Segment};
+use loomkin_numeric::scan_roots as scan;
 use serde::Serialize;
 use std::f64::consts::PI;
 

@@ -225,7 +225,7 @@ impl Segment {
         let k = order.min(4);
         let n = crate::extrema::brackets(self, self.deg.saturating_sub(k));
         let mut out = Vec::new();
-        crate::extrema::roots(
+        loomkin_numeric::grid_roots(
             self.width(),
             n,
             |t| {

@@ -181,12 +181,19 @@ impl<'a> Drive<'a> {
     /// where its moves meet the grid: a search that shifts frames by multiples of the step's
     /// divisors (the stagger search) reuses them. Use one cache per loom, pattern and step.
     pub fn torque_curve_cached(&self, step_deg: f64, cache: &mut TableCache) -> Vec<(f64, f64)> {
+        let (h, t) = self.torque_values_cached(step_deg, cache);
+        t.into_iter().enumerate().map(|(k, v)| (k as f64 * h, v)).collect()
+    }
+
+    /// The torques of [`Drive::torque_curve_cached`] without their angles, and the step `h`
+    /// between them (the k-th at `k·h`): half the memory of the curve, for the peak alone.
+    fn torque_values_cached(&self, step_deg: f64, cache: &mut TableCache) -> (f64, Vec<f64>) {
         let period = self.motion.repeat_deg();
         let n = (period / step_deg).round().max(1.0) as usize;
         let h = period / n as f64;
         let per_turn = 360.0 / h;
         if (per_turn - per_turn.round()).abs() > 1e-9 * per_turn {
-            return (0..n).map(|k| (k as f64 * h, self.torque_at(k as f64 * h))).collect();
+            return (h, (0..n).map(|k| self.torque_at(k as f64 * h)).collect());
         }
         let per_turn = per_turn.round() as i64;
         let phi = self.motion.motion_deg();
@@ -218,7 +225,7 @@ impl<'a> Drive<'a> {
                 }
             }
         }
-        t.into_iter().enumerate().map(|(k, v)| (k as f64 * h, v)).collect()
+        (h, t)
     }
 
     /// The torque report of a curve already computed ([`Drive::torque_curve`]).
@@ -237,37 +244,58 @@ impl<'a> Drive<'a> {
     }
 
     /// The largest |torque| over the repeat: the grid's largest local maxima of |T| (at
-    /// `step_deg`) refined by golden-section search between their neighbours.
+    /// `step_deg`) refined by golden-section search between their neighbours. Holds the grid's
+    /// torques only (8 bytes a point, 5.8 kB a pick at 0.5°), not the curve's angles too.
     pub fn peak(&self, step_deg: f64) -> Peak {
-        let curve = self.torque_curve(step_deg);
-        self.peak_of(&curve)
+        let (h, t) = self.torque_values_cached(step_deg, &mut TableCache::default());
+        self.peak_among(t.len(), h, |k| k as f64 * h, |k| t[k])
     }
 
     /// [`Drive::peak`] from a torque curve already computed.
     pub fn peak_of(&self, curve: &[(f64, f64)]) -> Peak {
         let n = curve.len();
+        let h = if n > 1 { curve[1].0 - curve[0].0 } else { self.motion.repeat_deg() };
+        self.peak_among(n, h, |k| curve[k].0, |k| curve[k].1)
+    }
+
+    /// The peak of a grid of `n` points `h` apart, the k-th at `angle(k)` with torque `value(k)`:
+    /// the six largest local maxima of |T| (a tie to the earlier point), each refined on its two
+    /// neighbouring intervals ([`loomkin_numeric::golden_max`]); of peaks within 1e-13 of the
+    /// highest, the earliest in the repeat. The six are kept as the grid is
+    /// read, so nothing per point is stored (a dwell's flat torque makes every point a local maximum).
+    fn peak_among(&self, n: usize, h: f64, angle: impl Fn(usize) -> f64, value: impl Fn(usize) -> f64) -> Peak {
+        const CANDIDATES: usize = 6;
         if n == 0 {
             return Peak { torque_n_m: 0.0, angle_deg: 0.0 };
         }
-        let h = if n > 1 { curve[1].0 - curve[0].0 } else { self.motion.repeat_deg() };
-        let mut idx: Vec<usize> = (0..n)
-            .filter(|&k| {
-                let a = curve[k].1.abs();
-                a >= curve[(k + n - 1) % n].1.abs() && a >= curve[(k + 1) % n].1.abs()
-            })
-            .collect();
-        idx.sort_by(|a, b| curve[*b].1.abs().total_cmp(&curve[*a].1.abs()));
-        let mut best = Peak {
-            torque_n_m: curve[idx.first().copied().unwrap_or(0)].1,
-            angle_deg: curve[idx.first().copied().unwrap_or(0)].0,
-        };
-        for &k in idx.iter().take(6) {
-            let (th, t) = golden_max(|x| self.torque_at(x).abs(), curve[k].0 - h, curve[k].0 + h);
-            if t > best.torque_n_m.abs() {
-                best = Peak { torque_n_m: self.torque_at(th), angle_deg: th.rem_euclid(self.motion.repeat_deg()) };
+        let mut top: Vec<(f64, usize)> = Vec::with_capacity(CANDIDATES + 1);
+        for k in 0..n {
+            let a = value(k).abs();
+            if a >= value((k + n - 1) % n).abs() && a >= value((k + 1) % n).abs() {
+                let at = top.partition_point(|&(v, _)| v >= a);
+                if at < CANDIDATES {
+                    top.insert(at, (a, k));
+                    top.truncate(CANDIDATES);
+                }
             }
         }
-        best
+        let repeat = self.motion.repeat_deg();
+        let first = top.first().map_or(0, |&(_, k)| k);
+        // (|T|, angle within the repeat, T) of the grid's best point and of every refined candidate.
+        let mut found = vec![(value(first).abs(), angle(first), value(first))];
+        for &(_, k) in &top {
+            let m = loomkin_numeric::golden_max(|x| self.torque_at(x).abs(), angle(k) - h, angle(k) + h);
+            found.push((m.value, m.at.rem_euclid(repeat), self.torque_at(m.at)));
+        }
+        // Peaks equal to rounding (within 1e-13: a symmetric pattern's mirror images) are told
+        // apart by their last bits alone; the earliest in the repeat is reported.
+        let top_value = found.iter().map(|f| f.0).fold(f64::NEG_INFINITY, f64::max);
+        let (_, angle_deg, torque_n_m) = found
+            .into_iter()
+            .filter(|f| f.0 >= top_value * (1.0 - 1e-13))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((0.0, 0.0, 0.0));
+        Peak { torque_n_m, angle_deg }
     }
 
     /// The RMS torque over the repeat, N·m: `√(∫T²dθ / repeat)` by 16-point Gauss–Legendre on
@@ -348,23 +376,3 @@ impl<'a> Drive<'a> {
 /// Most panel halvings of [`Drive::rms`] (each 32 torque evaluations): the back frame 0.1 mm
 /// before the back rest takes 19, the examples none.
 pub const MAX_RMS_SPLITS: usize = 4096;
-
-/// The maximum of `f` on `[a, b]` by golden-section search (to 1e-10°), as `(x, f(x))`.
-pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> (f64, f64) {
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
-    let (mut fc, mut fd) = (f(c), f(d));
-    while b - a > 1e-10 {
-        if fc >= fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - r * (b - a);
-            fc = f(c);
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + r * (b - a);
-            fd = f(d);
-        }
-    }
-    let x = 0.5 * (a + b);
-    (x, f(x))
-}

@@ -89,18 +89,7 @@ pub fn equal_strain_strokes(frame_m: &[f64], back_rest: f64, warp_line: f64, fro
                 (lo, hi) = (hi, 2.0 * hi);
                 n += 1;
             }
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if f(mid) < 0.0 {
-                    lo = mid
-                } else {
-                    hi = mid
-                }
-                if hi - lo <= 1e-15 * hi {
-                    break;
-                }
-            }
-            0.5 * (lo + hi)
+            loomkin_numeric::bisect_within(lo, hi, 1e-15, |h| f(h) < 0.0)
         })
         .collect()
 }

@@ -14,7 +14,6 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
-use crate::drive::golden_max;
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
 
@@ -130,8 +129,8 @@ impl<'a> Timing<'a> {
         let (open_deg, close_deg) = match best {
             None => (f64::NAN, f64::NAN),
             Some((s, e)) => {
-                let open = if s == 0 { grid[0].0 } else { bisect(&c, grid[s - 1].0, grid[s].0) };
-                let close = if e + 1 == grid.len() { grid[e].0 } else { bisect(&c, grid[e].0, grid[e + 1].0) };
+                let open = if s == 0 { grid[0].0 } else { crossing(&c, grid[s - 1].0, grid[s].0) };
+                let close = if e + 1 == grid.len() { grid[e].0 } else { crossing(&c, grid[e].0, grid[e + 1].0) };
                 (open, close)
             }
         };
@@ -156,8 +155,8 @@ impl<'a> Timing<'a> {
         for k in 1..n {
             let strict = vals[k] < vals[k - 1] || vals[k] < vals[k + 1];
             if strict && vals[k] <= vals[k - 1] && vals[k] <= vals[k + 1] {
-                let (_, m) = golden_max(|t| -c(t), from + (k - 1) as f64 * h, from + (k + 1) as f64 * h);
-                best = best.min(-m);
+                let m = loomkin_numeric::golden_max(|t| -c(t), from + (k - 1) as f64 * h, from + (k + 1) as f64 * h);
+                best = best.min(-m.value);
             }
         }
         best
@@ -221,18 +220,14 @@ impl<'a> Timing<'a> {
                     .map(|k| (k, f(a + h * k as f64)))
                     .fold((0, f64::NEG_INFINITY), |best, kv| if kv.1 > best.1 { kv } else { best });
                 let t = a + h * k as f64;
-                golden_max(f, (t - h).max(a), (t + h).min(b)).1.max(v)
+                loomkin_numeric::golden_max(f, (t - h).max(a), (t + h).min(b)).value.max(v)
             })
             .fold(f64::NEG_INFINITY, f64::max)
     }
 }
 
-/// The root of `f` between `a` (one sign) and `b` (the other) by bisection to 1e-11°.
-fn bisect(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+/// The root of `f` between `a` (one sign) and `b` (the other), by bisection to adjacent doubles.
+fn crossing(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     let fa_neg = f(a) < 0.0;
-    while b - a > 1e-11 {
-        let m = 0.5 * (a + b);
-        if (f(m) < 0.0) == fa_neg { a = m } else { b = m }
-    }
-    0.5 * (a + b)
+    loomkin_numeric::bisect(a, b, |m| (f(m) < 0.0) == fa_neg)
 }

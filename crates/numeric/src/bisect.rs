@@ -8,14 +8,14 @@ use std::convert::Infallible;
 /// wants: after 200 halvings the bracket is 2⁻²⁰⁰ of its first width.
 pub const MAX_HALVINGS: usize = 200;
 
-/// The midpoint of `lo < hi`, finite whenever both are (`0.5·(lo + hi)` overflows near `f64::MAX`).
+/// The midpoint of `lo` and `hi`, finite whenever both are (`0.5·(lo + hi)` overflows near `f64::MAX`).
 fn midpoint(lo: f64, hi: f64) -> f64 {
     let m = 0.5 * (lo + hi);
     if m.is_finite() { m } else { 0.5 * lo + 0.5 * hi }
 }
 
-/// The boundary in `[lo, hi]` (`lo < hi`) between the points on `lo`'s side (`on_lo_side(t)`) and
-/// those on `hi`'s, by bisection down to adjacent doubles (at most [`MAX_HALVINGS`]): the midpoint
+/// The boundary between `lo` and `hi` (either may be the larger) between the points on `lo`'s
+/// side (`on_lo_side(t)`) and those on `hi`'s, by bisection down to adjacent doubles (at most [`MAX_HALVINGS`]): the midpoint
 /// of the last bracket. For roots with no derivative at hand (a level crossing, an inverse found
 /// by its monotone forward function); with a derivative, [`crate::refine_root`] takes fewer steps.
 pub fn bisect(lo: f64, hi: f64, on_lo_side: impl FnMut(f64) -> bool) -> f64 {
@@ -31,6 +31,14 @@ pub fn bisect_bracket(lo: f64, hi: f64, mut on_lo_side: impl FnMut(f64) -> bool)
     }
 }
 
+/// [`bisect`] that stops as soon as the bracket is no wider than `rel` of its ends' magnitudes
+/// ([`try_bisect_bracket_within`]): the midpoint of the last bracket.
+pub fn bisect_within(lo: f64, hi: f64, rel: f64, mut on_lo_side: impl FnMut(f64) -> bool) -> f64 {
+    match try_bisect_bracket_within(lo, hi, rel, |t| Ok::<_, Infallible>(on_lo_side(t))) {
+        Ok((lo, hi)) => midpoint(lo, hi),
+    }
+}
+
 /// [`bisect_bracket`] with a side test that can fail (a simulation at each point): the first
 /// error ends the search and is returned.
 pub fn try_bisect_bracket<E>(
@@ -42,7 +50,7 @@ pub fn try_bisect_bracket<E>(
 }
 
 /// [`try_bisect_bracket`] that stops as soon as the bracket is no wider than `rel` of the larger
-/// of its ends' magnitudes (`hi − lo ≤ rel·max(|lo|, |hi|)`), for a side test so costly (a whole
+/// of its ends' magnitudes (`|hi − lo| ≤ rel·max(|lo|, |hi|)`), for a side test so costly (a whole
 /// simulation) that the last bits are not worth it; `rel = 0` bisects to adjacent doubles. The
 /// test is relative, so it is met at any magnitude in a bounded number of halvings
 /// (`log₂(1/rel)` past the first bracket's own relative width).
@@ -53,11 +61,12 @@ pub fn try_bisect_bracket_within<E>(
     mut on_lo_side: impl FnMut(f64) -> Result<bool, E>,
 ) -> Result<(f64, f64), E> {
     for _ in 0..MAX_HALVINGS {
-        if hi - lo <= rel * lo.abs().max(hi.abs()) {
+        if (hi - lo).abs() <= rel * lo.abs().max(hi.abs()) {
             break;
         }
         let mid = midpoint(lo, hi);
-        if mid <= lo || mid >= hi {
+        // The midpoint of adjacent doubles is one of them (it lies between the ends, rounded).
+        if mid == lo || mid == hi {
             break;
         }
         if on_lo_side(mid)? { lo = mid } else { hi = mid }
@@ -110,6 +119,15 @@ mod tests {
             }
         };
         assert_eq!(try_bisect_bracket(0.0, 1.0, side), Err(0.375));
+    }
+
+    #[test]
+    fn a_bracket_given_from_its_upper_end() {
+        let (lo, hi) = bisect_bracket(2.0, 1.0, |t| t * t >= 2.0);
+        assert_eq!(hi.next_up(), lo);
+        assert!(lo * lo >= 2.0 && hi * hi < 2.0);
+        let (lo, hi) = try_bisect_bracket_within(70.0, 30.0, 1e-12, |t| Ok::<_, ()>(t > 41.3)).unwrap();
+        assert!(lo > 41.3 && hi <= 41.3 && lo - hi <= 1e-12 * 41.4, "{lo} {hi}");
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //!
 //! Every crate of the workspace that brackets a root or a maximum and closes in on it calls this
 //! crate: [`bisect`] (to adjacent doubles), [`refine_root`] (Newton kept inside a bracket),
+//! [`illinois_root`] (regula falsi, no derivative needed),
 //! [`golden_max`] (golden-section search keeping the best point), [`brent_max_from`] (parabolic
 //! steps with golden-section fall-back), [`scan_max`] (a grid's local maxima, each refined) and
 //! [`grid_roots`] / [`scan_roots`] (every root on an interval: sign changes of a grid, close pairs
@@ -32,10 +33,10 @@ mod root;
 mod roots;
 mod scan;
 
-pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, try_bisect_bracket, try_bisect_bracket_within};
+pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
 pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
-pub use root::{refine_root, refine_root_from};
+pub use root::{illinois_root, refine_root, refine_root_from};
 pub use roots::{grid_roots, scan_roots};
 pub use scan::scan_max;
 

@@ -55,6 +55,41 @@ pub fn refine_root_from(
     t
 }
 
+/// A root of `d` in `[a, b]` where `d(a) = da` and `d(b) = db` have opposite signs, without its
+/// derivative: regula falsi with the Illinois modification (superlinear, always bracketed), until
+/// a step is below 1e-14 of the first bracket plus 4 ulps of its ends (met at any magnitude), after
+/// at most 100 steps.
+pub fn illinois_root(mut a: f64, mut b: f64, mut da: f64, mut db: f64, d: impl Fn(f64) -> f64) -> f64 {
+    let tol = 1e-14 * (b - a).abs() + 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let mut side = 0i8;
+    let mut prev = a;
+    for _ in 0..100 {
+        let c = (a * db - b * da) / (db - da);
+        let c = if c > a.min(b) && c < a.max(b) { c } else { 0.5 * (a + b) };
+        let dc = d(c);
+        if dc == 0.0 || (c - prev).abs() <= tol {
+            return c;
+        }
+        prev = c;
+        if (dc < 0.0) == (db < 0.0) {
+            b = c;
+            db = dc;
+            if side == -1 {
+                da *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            da = dc;
+            if side == 1 {
+                db *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -72,6 +107,14 @@ mod tests {
         let r = refine_root(0.5, 0.625, true, gd);
         assert!((r - 0.5).abs() < 1e-15, "{r}");
         assert!(calls.get() <= 10, "{} evaluations", calls.get());
+    }
+
+    #[test]
+    fn illinois_on_a_steep_exponential() {
+        let f = |t: f64| (20.0 * t).exp() - 2.0;
+        // To its stop: a step of at most 1e-14 of the bracket (superlinear, so the error is below it).
+        let r = illinois_root(0.0, 1.0, f(0.0), f(1.0), f);
+        assert!((r - 2f64.ln() / 20.0).abs() < 1e-14, "{r}");
     }
 
     #[test]

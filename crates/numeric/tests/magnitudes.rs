@@ -4,7 +4,7 @@
 //! below a value sampled in its bracket.
 
 use loomkin_numeric::{
-    GOLDEN_REL, MAX_HALVINGS, bisect, bisect_bracket, brent_max_from, golden_max, refine_root, scan_max,
+    GOLDEN_REL, MAX_HALVINGS, bisect, bisect_bracket, brent_max_from, golden_max, illinois_root, refine_root, scan_max,
     try_bisect_bracket_within,
 };
 use proptest::prelude::*;
@@ -89,6 +89,12 @@ proptest! {
         });
         prop_assert!((r - p).abs() <= 2.0 * ulp(p), "{r} vs {p}: {} ulps", (r - p).abs() / ulp(p));
         prop_assert!(n.get() <= 102, "{} evaluations", n.get());
+        // Regula falsi on the same function, from its values alone.
+        let n = Cell::new(0);
+        let g = |x: f64| (x - p) * (1.0 + ((x - p) / w).powi(2));
+        let r = illinois_root(lo, hi, g(lo), g(hi), counted(&n, g));
+        prop_assert!((r - p).abs() <= 1e-14 * w + 8.0 * ulp(p), "{r} vs {p}: {} ulps", (r - p).abs() / ulp(p));
+        prop_assert!(n.get() <= 100, "{} evaluations", n.get());
         if w < p.abs() {
             // x² − p² rises through p where p > 0, falls where p < 0.
             let r = refine_root(lo, hi, p > 0.0, |x| (x * x - p * p, 2.0 * x));

@@ -106,19 +106,7 @@ impl BuiltCam {
         if self.eval(end).s_m - s0 < travel_m {
             return None;
         }
-        let (mut lo, mut hi) = (0.0, end);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if self.eval(mid).s_m - s0 < travel_m {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some(hi)
+        Some(loomkin_numeric::bisect_bracket(0.0, end, |mid| self.eval(mid).s_m - s0 < travel_m).1)
     }
 
     /// Nominal travel available over the rise, s(end) − s(0), m.

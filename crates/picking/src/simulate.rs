@@ -193,45 +193,18 @@ fn scan(sc: &Scenario, route: &Route<'_>) -> Result<(Vec<f64>, Vec<State>)> {
     }
 }
 
-/// Bisection for the first downward zero of the contact force between `lo` (positive) and `hi`.
-fn bisect_contact(sc: &Scenario, route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<f64> {
+/// Bisection for the first downward zero of the contact force between `lo` (positive) and `hi`,
+/// to adjacent doubles: the first instant found without contact.
+fn bisect_contact(sc: &Scenario, route: &Route<'_>, lo: f64, hi: f64) -> Result<f64> {
     let contact = |t: f64| -> Result<f64> { Ok(sc.shuttle_kg * route.state(t)?.a_m_s2 + sc.checking_n) };
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if contact(mid)? > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(hi)
+    Ok(loomkin_numeric::try_bisect_bracket(lo, hi, |mid| -> Result<bool> { Ok(contact(mid)? > 0.0) })?.1)
 }
 
 /// Golden-section search for the largest acceleration in [lo, hi] (when the jerk does not change
 /// sign across the bracket).
-fn golden_peak(route: &Route<'_>, mut lo: f64, mut hi: f64) -> Result<(f64, f64)> {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let mut c = hi - r * (hi - lo);
-    let mut d = lo + r * (hi - lo);
-    let (mut fc, mut fd) = (route.state(c)?.a_m_s2, route.state(d)?.a_m_s2);
-    for _ in 0..120 {
-        if hi - lo <= 1e-14 * hi.abs().max(1e-3) {
-            break;
-        }
-        if fc > fd {
-            (hi, d, fd) = (d, c, fc);
-            c = hi - r * (hi - lo);
-            fc = route.state(c)?.a_m_s2;
-        } else {
-            (lo, c, fc) = (c, d, fd);
-            d = lo + r * (hi - lo);
-            fd = route.state(d)?.a_m_s2;
-        }
-    }
-    Ok(if fc > fd { (c, fc) } else { (d, fd) })
+fn golden_peak(route: &Route<'_>, lo: f64, hi: f64) -> Result<(f64, f64)> {
+    let m = loomkin_numeric::try_golden_max(|t| -> Result<f64> { Ok(route.state(t)?.a_m_s2) }, lo, hi, None)?;
+    Ok((m.at, m.value))
 }
 
 /// The largest acceleration in [lo, hi]: the zero of the jerk ȧ where it falls through zero across

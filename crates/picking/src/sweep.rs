@@ -162,7 +162,7 @@ pub fn sweep_observed(
 /// Values of the swept setting where the shuttle's velocity at the end of the pick equals the
 /// required velocity V_r, in order: each one between two rows of the sweep whose margin
 /// `V − V_r` changes sign, located by bisection on the model itself (not interpolated between
-/// rows) until the bracket is 1e-12 of the value wide. `base` and `method` must be those the
+/// rows) until the bracket is 1e-12 of the value wide ([`loomkin_numeric::try_bisect_bracket_within`]). `base` and `method` must be those the
 /// sweep was run with.
 pub fn required_velocity_crossings(
     mechanism: &Mechanism,
@@ -188,22 +188,20 @@ pub fn required_velocity_crossings(
         if fb == 0.0 || fa.signum() == fb.signum() || !(fa.is_finite() && fb.is_finite()) {
             continue;
         }
-        let (mut lo, mut hi, mut f_lo) = (w[0].value, w[1].value, fa);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if (hi - lo).abs() <= 1e-12 * (1.0 + mid.abs()) || mid == lo || mid == hi {
-                break;
-            }
-            let fm = margin(&simulate(mechanism, &sweep.setting.apply(*base, mid), method)?);
-            if fm == 0.0 {
-                (lo, hi) = (mid, mid);
-            } else if fm.signum() == f_lo.signum() {
-                (lo, f_lo) = (mid, fm);
-            } else {
-                hi = mid;
-            }
+        // A margin of exactly zero at a midpoint is the crossing itself: it ends the search.
+        enum Stop {
+            Exact(f64),
+            Failed(crate::PickError),
         }
-        out.push(0.5 * (lo + hi));
+        let bracket = loomkin_numeric::try_bisect_bracket_within(w[0].value, w[1].value, 1e-12, |mid| {
+            let fm = margin(&simulate(mechanism, &sweep.setting.apply(*base, mid), method).map_err(Stop::Failed)?);
+            if fm == 0.0 { Err(Stop::Exact(mid)) } else { Ok(fm.signum() == fa.signum()) }
+        });
+        out.push(match bracket {
+            Ok((lo, hi)) => 0.5 * (lo + hi),
+            Err(Stop::Exact(mid)) => mid,
+            Err(Stop::Failed(e)) => return Err(e),
+        });
     }
     if let Some(last) = sweep.rows.last().filter(|r| margin(&r.outcome) == 0.0) {
         out.push(last.value);

@@ -299,7 +299,7 @@ fn envelope_cuts(seg: &Segment, a: f64, b: f64, speed: impl Fn(f64) -> f64, moto
             if g_lo == 0.0 || g_hi == 0.0 || g_lo.signum() == g_hi.signum() {
                 continue;
             }
-            cuts.push(loomkin_laws::bisect(w[0], w[1], |t| g(t).signum() == g_lo.signum()));
+            cuts.push(loomkin_numeric::bisect(w[0], w[1], |t| g(t).signum() == g_lo.signum()));
         }
         cuts.push(w[1]);
     }
@@ -353,7 +353,7 @@ fn abs_max(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64
         gd,
         |t| f(t).0,
         |x0, x1, d0, _| {
-            loomkin_laws::refine_root(x0, x1, d0 < 0.0, |x| {
+            loomkin_numeric::refine_root(x0, x1, d0 < 0.0, |x| {
                 let (_, d, dd) = f(x);
                 (d, dd)
             })
@@ -373,7 +373,7 @@ fn max_by(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64)
         let (q1, d1) = f(x1);
         take(&mut best, q1, x1);
         if d0 > 0.0 && d1 < 0.0 {
-            let r = loomkin_laws::bisect(x0, x1, |t| f(t).1 > 0.0);
+            let r = loomkin_numeric::bisect(x0, x1, |t| f(t).1 > 0.0);
             take(&mut best, f(r).0, r);
         }
         (x0, d0) = (x1, d1);

@@ -111,7 +111,14 @@ fn abs_max_fixed<const N: usize>(p: &[f64; N], w: f64, n: usize) -> (f64, f64) {
     let d = |t: f64| horner_fixed(&dp, l1, t);
     let dd = |t: f64| horner_fixed(&ddp, l2, t);
     // Newton on p' with p'' (kept in the bracket, secant fallback): quadratic convergence.
-    scan(0.0, w, n, |t| (g(t), d(t)), g, |t0, t1, d0, _| loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (d(t), dd(t))))
+    scan(
+        0.0,
+        w,
+        n,
+        |t| (g(t), d(t)),
+        g,
+        |t0, t1, d0, _| loomkin_numeric::refine_root(t0, t1, d0 < 0.0, |t| (d(t), dd(t))),
+    )
 }
 
 /// [`abs_max`] for any length, on the heap.
@@ -124,7 +131,7 @@ fn abs_max_slice(p: &[f64], w: f64, n: usize) -> (f64, f64) {
         n,
         |t| (eval(p, t), eval(&dp, t)),
         |t| eval(p, t),
-        |t0, t1, d0, _| loomkin_laws::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t))),
+        |t0, t1, d0, _| loomkin_numeric::refine_root(t0, t1, d0 < 0.0, |t| (eval(&dp, t), eval(&ddp, t))),
     )
 }
 
@@ -152,11 +159,11 @@ pub(crate) fn abs_bound(p: &[f64; 8], w: f64) -> f64 {
 
 /// Largest `|g(t)|` on `[0, w]` and where it occurs, for `f(t) = (g(t), g'(t))`.
 ///
-/// The sign changes of `g'` are bracketed on `n` equal sub-intervals and refined by bisection to
-/// rounding (at most 60 halvings); both ends are included. `n` must be large enough to separate
+/// The sign changes of `g'` are bracketed on `n` equal sub-intervals and refined by regula falsi
+/// ([`loomkin_numeric::illinois_root`]); both ends are included. `n` must be large enough to separate
 /// the roots of `g'` (more than the polynomial degree; more for oscillating terms).
 pub(crate) fn abs_max_by(w: f64, n: usize, f: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
-    scan(0.0, w, n, &f, |t| f(t).0, |t0, t1, d0, d1| root_illinois(t0, t1, d0, d1, |t| f(t).1))
+    scan(0.0, w, n, &f, |t| f(t).0, |t0, t1, d0, d1| loomkin_numeric::illinois_root(t0, t1, d0, d1, |t| f(t).1))
 }
 
 /// Largest `|g(t)|` on `[a, b]` and where it occurs (the first of equal maxima): both ends, and
@@ -198,40 +205,6 @@ pub(crate) fn scan(
         d0 = d1;
     }
     best
-}
-
-/// A root of `d` in `[a, b]` where `d(a) = da` and `d(b) = db` have opposite signs: regula falsi
-/// with the Illinois modification (superlinear, always bracketed), until a step is below about
-/// 1e-14 of the bracket.
-fn root_illinois(mut a: f64, mut b: f64, mut da: f64, mut db: f64, d: impl Fn(f64) -> f64) -> f64 {
-    let tol = 1e-14 * (b - a).abs() + 4.0 * f64::EPSILON * a.abs().max(b.abs());
-    let mut side = 0i8;
-    let mut prev = a;
-    for _ in 0..100 {
-        let c = (a * db - b * da) / (db - da);
-        let c = if c > a.min(b) && c < a.max(b) { c } else { 0.5 * (a + b) };
-        let dc = d(c);
-        if dc == 0.0 || (c - prev).abs() <= tol {
-            return c;
-        }
-        prev = c;
-        if (dc < 0.0) == (db < 0.0) {
-            b = c;
-            db = dc;
-            if side == -1 {
-                da *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            da = dc;
-            if side == 1 {
-                db *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    0.5 * (a + b)
 }
 
 #[cfg(test)]

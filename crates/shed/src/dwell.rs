@@ -2,10 +2,11 @@
 //! is cut at the roots of its velocity (so `s` is monotone between the cuts), and a crossing inside
 //! a monotone piece is refined by safeguarded Newton iteration (`s' = v` is known exactly).
 
-use loomkin_laws::{Law, Segment, refine_root};
+use loomkin_laws::{Law, Segment};
+use loomkin_numeric::refine_root;
 
 /// Root of `g` in `[lo, hi]` where `g(lo)` and `g(hi)` have opposite signs; `dg` is its
-/// derivative (the core's safeguarded Newton, [`loomkin_laws::refine_root`]).
+/// derivative (the core's safeguarded Newton, [`loomkin_numeric::refine_root`]).
 pub(crate) fn refine(lo: f64, hi: f64, g: impl Fn(f64) -> f64, dg: impl Fn(f64) -> f64) -> f64 {
     refine_root(lo, hi, g(lo) < 0.0, |t| (g(t), dg(t)))
 }

@@ -5,7 +5,7 @@
 use crate::template::MAX_PARTS;
 use crate::{Dimensionless, Result, ShedError};
 use loomkin_laws::Shape;
-use loomkin_laws::refine_root;
+use loomkin_numeric::refine_root;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The two levels a shape spans (`[0, peak]` for a sine arc).

@@ -72,16 +72,10 @@ pub fn table3_minimax_threshold() -> Result<(f64, f64)> {
         let e: Vec<f64> = rows.iter().map(|r| r.ours.conditional_dwell_deg - r.paper.conditional_dwell_deg).collect();
         Ok((e.iter().copied().fold(f64::NEG_INFINITY, f64::max), e.iter().copied().fold(f64::INFINITY, f64::min)))
     };
-    let (mut lo, mut hi) = (0.75, 0.99);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
+    let (lo, hi) = loomkin_numeric::try_bisect_bracket(0.75, 0.99, |mid| -> Result<bool> {
         let (mx, mn) = spread(mid)?;
-        if mx + mn > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+        Ok(mx + mn > 0.0)
+    })?;
     let t = 0.5 * (lo + hi);
     let (mx, mn) = spread(t)?;
     let worst = mx.max(-mn);

@@ -49,7 +49,7 @@ fn table3_is_reproduced_at_threshold_0_95() {
     }
     // Exact values at 0.95 (computed independently from the cycloid s = x − sin 2πx/2π):
     // s(x) = 0.05 ⇒ x = 0.20195…, φ_ув = 2·0.20195·180° = 72.70°.
-    let x = bisect(|x| x - (2.0 * PI * x).sin() / (2.0 * PI) - 0.05, 0.0, 0.5);
+    let x = loomkin_numeric::bisect(0.0, 0.5, |x| x - (2.0 * PI * x).sin() / (2.0 * PI) - 0.05 < 0.0);
     assert!((rows[0].ours.conditional_dwell_deg - 2.0 * x * 180.0).abs() < 1e-9);
     assert!((rows[1].ours.conditional_dwell_deg - 2.0 * x * 270.0).abs() < 1e-9);
     let (t, worst) = table3_minimax_threshold().unwrap();
@@ -65,12 +65,4 @@ fn the_text_threshold_of_15_percent_does_not_give_the_table() {
     let basic = &rows[0].ours;
     assert!((basic.conditional_dwell_deg - 108.4).abs() < 0.1, "{}", basic.conditional_dwell_deg);
     assert!(basic.dwell_deg + 2.0 * basic.conditional_dwell_deg > 360.0);
-}
-
-fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if (f(m) < 0.0) == (f(lo) < 0.0) { lo = m } else { hi = m }
-    }
-    0.5 * (lo + hi)
 }

@@ -1,5 +1,5 @@
 //! Extremes of a smooth quantity over a span of cam angle, located exactly: sign changes of the
-//! exact derivative bracketed on a grid and refined by `loomkin_laws::refine_root`.
+//! exact derivative bracketed on a grid and refined by `loomkin_numeric::refine_root`.
 
 use super::lift::Span;
 
@@ -136,7 +136,7 @@ pub(crate) fn extremes(sp: Span, f: impl Fn(f64) -> [f64; 3]) -> Extremes {
         let lo = if at_start { inside(t0, t1, s0) } else { Some(t0) };
         let hi = if at_end { inside(t1, t0, s1) } else { Some(t1) };
         if let (Some(lo), Some(hi)) = (lo, hi) {
-            let t = loomkin_laws::refine_root(lo, hi, s0 < 0, |t| {
+            let t = loomkin_numeric::refine_root(lo, hi, s0 < 0, |t| {
                 let v = f(t);
                 (v[1], v[2])
             });

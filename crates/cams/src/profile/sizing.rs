@@ -128,19 +128,10 @@ pub(crate) fn least_prime_radius(lift: &Lift, design: &CamDesign, a_deg: f64) ->
                             return Ok(prev);
                         }
                     }
-                    let (mut a, mut b) = (prev, rp);
-                    for _ in 0..200 {
-                        let m = 0.5 * (a + b);
-                        if m <= a || m >= b {
-                            break;
-                        }
-                        if f(m)? <= target {
-                            b = m;
-                        } else {
-                            a = m;
-                        }
-                    }
-                    return Ok(b);
+                    return Ok(loomkin_numeric::try_bisect_bracket(prev, rp, |m| -> Result<bool> {
+                        Ok(f(m)? > target)
+                    })?
+                    .1);
                 }
                 prev = rp;
             }

@@ -34,7 +34,7 @@ impl ReinterpolationError {
 /// `e(X) = Y_table(X) − Y_exact(X)` is smooth (a quintic minus one closed-form law segment), and
 /// the largest `|e|`, `|e'|` and `|e''|` are located by bracketing the sign changes of the next
 /// derivative on a grid sized to the degree and the sine frequency and refining each root by
-/// safeguarded Newton ([`loomkin_laws::refine_root`]); the ends of every piece are included.
+/// safeguarded Newton ([`loomkin_numeric::refine_root`]); the ends of every piece are included.
 pub fn reinterpolation_error(motion: &Motion, intervals: &[Interval]) -> ReinterpolationError {
     let mut out = ReinterpolationError {
         max_position_error: 0.0,
@@ -106,7 +106,7 @@ fn abs_max(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64
             best = (g1.abs(), x1);
         }
         if d0 != 0.0 && d1 != 0.0 && (d0 < 0.0) != (d1 < 0.0) {
-            let r = loomkin_laws::refine_root(x0, x1, d0 < 0.0, |x| {
+            let r = loomkin_numeric::refine_root(x0, x1, d0 < 0.0, |x| {
                 let (_, d, dd) = f(x);
                 (d, dd)
             });

@@ -376,23 +376,8 @@ pub fn assemble(g: &ModulatorGeometry, cam: &Cam, phi2: f64) -> Result<[f64; 2]>
         let (p0, p1) = (per * (i - 1) as f64 / n as f64, per * i as f64 / n as f64);
         let cur = scan[i];
         if prev == 0.0 || prev.signum() != cur.signum() {
-            let (mut lo, mut hi, mut flo) = (p0, p1, prev);
-            for _ in 0..80 {
-                let mid = 0.5 * (lo + hi);
-                let fm = f(mid);
-                let before = (lo, hi);
-                if fm.signum() == flo.signum() {
-                    (lo, flo) = (mid, fm);
-                } else {
-                    hi = mid;
-                }
-                // Nothing moved (the ends are neighbouring floats): every further halving would
-                // repeat this one.
-                if (lo.to_bits(), hi.to_bits()) == (before.0.to_bits(), before.1.to_bits()) {
-                    break;
-                }
-            }
-            let p = 0.5 * (lo + hi);
+            let side = prev.signum();
+            let p = loomkin_numeric::bisect(p0, p1, |mid| f(mid).signum() == side);
             let ab = a - c.eval(p).r;
             let phi3 = phi2 + wrap_pi(ab.y.atan2(ab.x) - g.alpha_rad() - phi2);
             let score = (phi3 - phi2).abs();
@@ -692,7 +677,7 @@ fn analyze_in(
 
 /// Names the reason the cam loop could not be followed from the state `from` to input `to` (rad):
 /// the roller out of reach, or a fold located by bisection on the input angle (the largest angle
-/// the branch can still be followed to, within 1e-12 rad).
+/// the branch can still be followed to, to adjacent doubles).
 fn locate_fold(
     g: &ModulatorGeometry,
     cam: &Cam,
@@ -701,14 +686,7 @@ fn locate_fold(
     to: f64,
     newton: &NewtonOptions,
 ) -> MechError {
-    let (mut lo, mut hi) = (from.input, to);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if (hi - lo).abs() <= 1e-12 {
-            break;
-        }
-        if sys.advance(from, mid, newton).is_ok() { lo = mid } else { hi = mid }
-    }
+    let (lo, hi) = loomkin_numeric::bisect_bracket(from.input, to, |mid| sys.advance(from, mid, newton).is_ok());
     match diagnose_cam(g, cam, from.input, hi) {
         MechError::CannotBuild { condition, .. } if condition.starts_with("fold") => MechError::CannotBuild {
             phi2_deg: lo.to_degrees(),

@@ -133,11 +133,10 @@ pub fn max_dwell_deg(spec: &OutputLawSpec, max_lag_deg: f64) -> Result<Option<f6
     if lag_at(hi_limit)? < max_lag_deg {
         return Ok(Some(hi_limit));
     }
-    let (mut lo, mut hi) = (0.0, hi_limit);
-    for _ in 0..40 {
-        let mid = 0.5 * (lo + hi);
-        if lag_at(mid)? < max_lag_deg { lo = mid } else { hi = mid }
-    }
+    // To 1e-11 of the dwell (each step builds a law and finds its largest lag).
+    let (lo, _) = loomkin_numeric::try_bisect_bracket_within(0.0, hi_limit, 1e-11, |mid| -> Result<bool> {
+        Ok(lag_at(mid)? < max_lag_deg)
+    })?;
     Ok(Some(lo))
 }
 

@@ -48,143 +48,16 @@ fn finite_or_neg_inf(v: f64) -> f64 {
     if v.is_nan() { f64::NEG_INFINITY } else { v }
 }
 
-/// Largest value of `f` on `[a, b]` down to an interval of 1e-13 rad, keeping the best point
-/// evaluated (the ends included, so a maximum at a jump or at an end of the bracket is found too).
-///
-/// Brent's method: a parabola through the three best points proposes the next probe when it
-/// falls well inside the bracket and shrinks the step, a golden-section step is taken otherwise.
-/// On a smooth maximum the parabolic steps converge superlinearly; on a kink or a jump it falls
-/// back to the golden-section steps and their guaranteed reduction.
-///
-/// Early end: at the first parabolic step below 1e-8 rad the function is probed at ±10⁻⁵ and
-/// ±2·10⁻⁵ rad from the best interior point x. If it falls off quadratically on both sides (the
-/// drop at 2·10⁻⁵ more than three times the drop at 10⁻⁵; a kink gives twice) the maximum is taken
-/// as found: the four drops fit `f* − c(t − t*)²` and give the vertex `t*` (the two one-sided drops
-/// differ by `4c·s·(x − t*)`, to ~1e-11 rad with values rounded at 1e-16), and where the value at x
-/// falls short of `f*` by more than its own rounding (`c(x − t*)² > ε|f(x)|`) the vertex is
-/// evaluated too. The value is then exact to rounding. Before this end, parabolic steps of ~1e-8 rad
-/// meet values that are flat to rounding, and Brent went on by golden steps (~20 evaluations) to
-/// 1e-13 rad without changing the value beyond its last bits. At a kink, or a maximum at an end
-/// of the bracket, the search goes on to 1e-13 rad.
-#[cfg(test)]
-pub(crate) fn golden_max(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Extreme {
-    golden_max_from(f, (a, f(a)), (b, f(b)))
-}
+/// The search's tolerance: the check grid's brackets (0.5°, 8.7e-3 rad) are closed to ~1e-13 rad.
+const TOL: f64 = 2.5e-14;
 
-/// [`golden_max`] on the bracket `[a, b]` whose end values `f(a)`, `f(b)` are known (`(a, f(a))`
-/// and `(b, f(b))`: the grid's values, not evaluated again).
-///
-/// A flat bracket ends the search early: when both ends and the first two probes (at 0.38 and
-/// about 0.62 of the bracket) have the same value to the bit, the function is taken as constant
-/// there (a dwell of the output law) and the left end returned. That is what the full search
-/// returns on a constant function (only a strictly larger value replaces the best point), where it
-/// spent ~50 evaluations closing in on one point of the plateau.
-pub(crate) fn golden_max_from(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)) -> Extreme {
-    const GOLD: f64 = 0.381_966_011_250_105_2; // (3 − √5)/2
-    const TOL: f64 = 2.5e-14;
-    let mut best = Extreme { value: f64::NEG_INFINITY, at: a };
-    let mut keep = |x: f64, v: f64| {
-        if v > best.value {
-            best = Extreme { value: v, at: x };
-        }
-        // Minimise the negated value; a value that could not be computed is the worst.
-        -v
-    };
-    let ((mut lo, flo), (mut hi, fhi)) = if a <= b { ((a, fa), (b, fb)) } else { ((b, fb), (a, fa)) };
-    keep(lo, finite_or_neg_inf(flo));
-    keep(hi, finite_or_neg_inf(fhi));
-    // x: best interior point so far, w: second best, v: the previous w.
-    let mut x = lo + GOLD * (hi - lo);
-    let mut fx = keep(x, finite_or_neg_inf(f(x)));
-    let (mut w, mut fw, mut v, mut fv) = (x, fx, x, fx);
-    // d: the last step, e: the step before it.
-    let (mut d, mut e) = (0.0f64, 0.0f64);
-    let mut checked = false;
-    // Interior probes so far, while every value equals both ends'.
-    let level = (flo == fhi && flo.is_finite()).then_some(-flo);
-    let mut flat = usize::from(level == Some(fx));
-    for _ in 0..200 {
-        if flat >= 2 {
-            break;
-        }
-        let m = 0.5 * (lo + hi);
-        if hi - lo <= 4.0 * TOL {
-            break;
-        }
-        let mut parabolic = false;
-        if e.abs() > TOL {
-            let r = (x - w) * (fx - fv);
-            let q0 = (x - v) * (fx - fw);
-            let mut p = (x - v) * q0 - (x - w) * r;
-            let mut q = 2.0 * (q0 - r);
-            if q > 0.0 {
-                p = -p;
-            } else {
-                q = -q;
-            }
-            let last = e;
-            if p.abs() < (0.5 * q * last).abs() && p > q * (lo - x) && p < q * (hi - x) {
-                e = d;
-                d = p / q;
-                let u = x + d;
-                // Not closer than the tolerance to an end of the bracket.
-                if u - lo < 2.0 * TOL || hi - u < 2.0 * TOL {
-                    d = if x < m { TOL } else { -TOL };
-                }
-                parabolic = true;
-            }
-        }
-        if !parabolic {
-            e = if x < m { hi - x } else { lo - x };
-            d = GOLD * e;
-        }
-        if parabolic && d.abs() <= 1e-8 && !checked {
-            checked = true;
-            const S: f64 = 1e-5;
-            let drop = |t: f64| -fx - finite_or_neg_inf(f(t));
-            // The drops at s and 2s on one side, if the fall-off there is quadratic.
-            let side = |sign: f64| {
-                let d1 = drop(x + sign * S);
-                (d1 >= 0.0).then(|| (d1, drop(x + sign * 2.0 * S))).filter(|&(d1, d2)| d2 > 3.0 * d1).map(|p| p.0)
-            };
-            if let Some(left) = side(-1.0)
-                && let Some(right) = side(1.0)
-            {
-                // f(x ± S) = f* − c(x ± S − t*)²: right + left = 2cS², right − left = 4cS(x − t*).
-                let sum = right + left;
-                let offset = S * (right - left) / (2.0 * sum);
-                let deficit = sum / (2.0 * S * S) * offset * offset;
-                let vertex = x - offset;
-                if deficit > f64::EPSILON * fx.abs() && vertex > lo && vertex < hi {
-                    keep(vertex, finite_or_neg_inf(f(vertex)));
-                }
-                break;
-            }
-        }
-        let u = if d.abs() >= TOL { x + d } else { x + TOL.copysign(d) };
-        let fu = keep(u, finite_or_neg_inf(f(u)));
-        flat = if flat > 0 && level == Some(fu) { flat + 1 } else { 0 };
-        if fu <= fx {
-            if u < x {
-                hi = x;
-            } else {
-                lo = x;
-            }
-            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
-        } else {
-            if u < x {
-                lo = u;
-            } else {
-                hi = u;
-            }
-            if fu <= fw || w == x {
-                (v, fv, w, fw) = (w, fw, u, fu);
-            } else if fu <= fv || v == x || v == w {
-                (v, fv) = (u, fu);
-            }
-        }
-    }
-    best
+/// The largest value of `f` on the bracket `[a, b]` whose end values are known (the grid's, not
+/// evaluated again), by Brent's method to [`TOL`] ([`loomkin_numeric::brent_max_from`]: parabolic
+/// steps, golden-section where they fail, an early end where the fall-off is quadratic, a flat
+/// bracket in two evaluations).
+pub(crate) fn brent_max_from(f: &dyn Fn(f64) -> f64, a: (f64, f64), b: (f64, f64)) -> Extreme {
+    let m = loomkin_numeric::brent_max_from(f, a, b, TOL);
+    Extreme { value: m.value, at: m.at }
 }
 
 /// The best local maxima of a grid's values `vals`: the local maxima (`≥` both neighbours; a plateau counts at every point) in decreasing
@@ -276,7 +149,7 @@ fn refined_max_ordered(
             // after the start.
             let turn = xs[last] - xs[0];
             let before = xs[last - 1] - turn;
-            let mut e = golden_max_from(f, (before, value(last - 1)), (xs[1], value(1)));
+            let mut e = brent_max_from(f, (before, value(last - 1)), (xs[1], value(1)));
             if e.at == before {
                 e.at = xs[last - 1];
             } else if e.at < xs[0] {
@@ -289,7 +162,7 @@ fn refined_max_ordered(
         }
         let (lo, hi) = (k.saturating_sub(1), (k + 1).min(n - 1));
         if xs[hi] > xs[lo] {
-            let e = golden_max_from(f, (xs[lo], value(lo)), (xs[hi], value(hi)));
+            let e = brent_max_from(f, (xs[lo], value(lo)), (xs[hi], value(hi)));
             if better(&e, &best) {
                 best = e;
             }
@@ -307,15 +180,7 @@ pub(crate) fn first_failure(xs: &[f64], ok: &dyn Fn(f64) -> f64) -> Option<f64> 
     if k == 0 {
         return Some(xs[0]);
     }
-    let (mut lo, mut hi) = (xs[k - 1], xs[k]);
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if holds(mid) { lo = mid } else { hi = mid }
-    }
-    Some(hi)
+    Some(loomkin_numeric::bisect_bracket(xs[k - 1], xs[k], holds).1)
 }
 
 /// The states of one revolution on the check grid and a way to evaluate the state between them.
@@ -399,17 +264,6 @@ impl Revolution<'_> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn golden_section_finds_a_smooth_maximum_and_a_kink() {
-        let e = golden_max(&|x: f64| -(x - 0.3).powi(2) + 2.0, 0.0, 1.0);
-        assert!((e.at - 0.3).abs() < 1e-7 && (e.value - 2.0).abs() < 1e-14, "{e:?}");
-        let e = golden_max(&|x: f64| 1.0 - (x - 0.123_456_789).abs(), 0.0, 1.0);
-        assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
-        // A maximum at an end of the bracket.
-        let e = golden_max(&|x: f64| x, 0.0, 1.0);
-        assert_eq!(e.value, 1.0);
-    }
-
     /// A peak narrower than the grid is found by refining its bracket: sin²-shaped bumps of height
     /// 1 and 2, the higher one between grid points.
     #[test]
@@ -424,42 +278,16 @@ mod tests {
     }
 
     /// Two equal peaks (a law repeated twice over the turn): the first is reported, whatever
-    /// rounding says; and a smooth maximum in a bracket of two check-grid steps costs far fewer
-    /// evaluations than golden-section search (52 for 0.5° down to 1e-13 rad).
+    /// rounding says. (The search's own cost and its flat and kinked brackets are tested with
+    /// `loomkin_numeric::brent_max_from`.)
     #[test]
-    fn equal_peaks_report_the_first_and_smooth_peaks_converge_fast() {
+    fn equal_peaks_report_the_first() {
         let f = |x: f64| (2.0 * x).cos().powi(2) * 3.0 + 1.0;
         let xs: Vec<f64> = (0..=1440).map(|i| std::f64::consts::TAU * f64::from(i) / 1440.0 + 0.3).collect();
         let vals: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
         let e = refined_max(&xs, &vals, &f);
         assert!((e.value - 4.0).abs() < 1e-14, "{e:?}");
         assert!((e.at - std::f64::consts::FRAC_PI_2).abs() < 1e-7, "the first peak after 0.3 rad: {e:?}");
-        let calls = std::cell::Cell::new(0);
-        let g = |x: f64| {
-            calls.set(calls.get() + 1);
-            40.0 * (3.0 * (x - 1.234_567)).cos() + 7.0
-        };
-        let h = 0.25f64.to_radians();
-        let e = golden_max(&g, 1.234 - h, 1.234 + h);
-        assert!((e.value - 47.0).abs() < 1e-13 && (e.at - 1.234_567).abs() < 1e-7, "{e:?}");
-        assert!(calls.get() <= 16, "{} evaluations", calls.get());
-        let count = |v: f64| {
-            calls.set(calls.get() + 1);
-            v
-        };
-        // A constant bracket costs two evaluations and returns its left end, as the full search
-        // did.
-        calls.set(0);
-        let e = golden_max_from(&|_| count(5.0), (1.0, 5.0), (2.0, 5.0));
-        assert_eq!((e.value, e.at, calls.get()), (5.0, 1.0, 2));
-        // Ends that differ in the last bit: the full search, which finds the maximum at the end.
-        calls.set(0);
-        let e = golden_max_from(&|_| count(5.0), (1.0, 5.0), (2.0, 5.0 + 1e-15));
-        assert_eq!((e.value, e.at), (5.0 + 1e-15, 2.0));
-        assert!(calls.get() > 20, "{}", calls.get());
-        // A kink in the same bracket is still located to 1e-12.
-        let e = golden_max(&|x: f64| 1.0 - (x - 1.234_567_891_2).abs(), 1.234 - h, 1.234 + h);
-        assert!((e.value - 1.0).abs() < 1e-12, "{e:?}");
     }
 
     /// A maximum at the joint of a turn is refined once, across the joint: at the joint itself

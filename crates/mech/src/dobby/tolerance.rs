@@ -315,7 +315,7 @@ fn lag_at_output_pressure_angle(g: &ModulatorGeometry, mu: f64) -> f64 {
         let delta = cos.clamp(-1.0, 1.0).acos();
         delta.min(std::f64::consts::PI - delta)
     };
-    loomkin_laws::bisect(0.0, g.max_lag_deg().to_radians(), |lag| pressure(lag) < mu)
+    loomkin_numeric::bisect(0.0, g.max_lag_deg().to_radians(), |lag| pressure(lag) < mu)
 }
 
 /// φ6 (rad) and its first two derivatives with respect to φ2 at each row (the analysis runs at
@@ -356,12 +356,8 @@ fn hermite_abs_max(xs: &[f64], f: &[[f64; 3]]) -> f64 {
             let g1 = slope(t1);
             best = best.max(val(t1).abs());
             if g0 != 0.0 && g1 != 0.0 && g0.signum() != g1.signum() {
-                let (mut lo, mut hi) = (t0, t1);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    if slope(mid).signum() == g0.signum() { lo = mid } else { hi = mid }
-                }
-                best = best.max(val(0.5 * (lo + hi)).abs());
+                let t = loomkin_numeric::bisect(t0, t1, |mid| slope(mid).signum() == g0.signum());
+                best = best.max(val(t).abs());
             }
             (t0, g0) = (t1, g1);
         }
