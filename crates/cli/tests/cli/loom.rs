@@ -38,6 +38,34 @@ fn check_json_has_the_contract_keys() {
     assert_eq!(p["picks"], 2);
 }
 
+/// The hang of issue 26: a 2,000-pick lift plan whose heaviest picks come last put the torque
+/// peak at ~7.2·10⁵°, where the peak's golden-section search (stopping on an absolute 1e-10°)
+/// never ended; `loom torque` and `loom check` gave no output. Both now answer, at that peak. The
+/// timeout guards the suite against the hang; it measures nothing (both take seconds).
+#[test]
+fn a_long_repeat_with_its_heaviest_picks_last_is_analysed() {
+    let dir = scratch("late-peak");
+    let plan = dir.join("heavy-last.txt");
+    let lines: Vec<&str> = (0..2000).map(|p| if p >= 1990 && p % 2 == 0 { "1 2 3" } else { "4" }).collect();
+    std::fs::write(&plan, lines.join("\n") + "\n").unwrap();
+    let plan = plan.to_str().unwrap();
+    let guard = std::time::Duration::from_secs(600);
+    let loom = ex("shuttle-loom.toml");
+    let out = loomkin().args(["loom", "check", &loom, "--lift-plan", plan, "--json"]).timeout(guard).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["picks"], 2000);
+    assert!(v["peak_angle_deg"].as_f64().unwrap() > 1980.0 * 360.0, "{}", v["peak_angle_deg"]);
+    let out = loomkin().args(["loom", "torque", &loom, "--lift-plan", plan]).timeout(guard).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let line = String::from_utf8(out.stdout).unwrap();
+    // "… peak 14.036 N·m at 716389.511°, RMS …": the peak where the last ten picks move (the
+    // frames start moving before the pick's turn, so within its last twenty turns).
+    let at: f64 = line.split("N·m at ").nth(1).and_then(|r| r.split('°').next()).unwrap().parse().unwrap();
+    assert!(at > 1980.0 * 360.0, "{line}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn torque_csv_covers_the_repeat() {
     let out = loomkin()
