@@ -76,7 +76,7 @@ rm sweep/parts/part-00003-of-00007.csv sweep/parts/part-00003-of-00007.csv.manif
 out=$("$LOOMKIN" merge sweep/parts -o again.csv 2>&1) && fail "merge accepted a missing part"
 echo "slurm-ci: merge refused as it should: $out"
 echo "$out" | grep -q "shard 3 (rerun: sbatch --array=3" || fail "the merge did not name shard 3"
-sbatch --parsable --wait --array=3 --output=sweep/logs/rerun-%A_%a.log "$repo/scripts/slurm-shards.sbatch" 7 sweep "${sweep[@]}" >/dev/null \
+timeout 600 sbatch --parsable --wait --array=3 --output=sweep/logs/rerun-%A_%a.log "$repo/scripts/slurm-shards.sbatch" 7 sweep "${sweep[@]}" >/dev/null \
     || fail "rerun of task 3"
 "$LOOMKIN" merge sweep/parts -o again.csv || fail "merge after the rerun"
 same again.csv sweep-whole.csv "sweep after rerunning part 3"
