@@ -18,7 +18,7 @@ from .cycles import _cycle
 __all__ = ["table", "profile", "rise_return", "FORMATS", "FOLLOWERS", "CLOSURES"]
 
 #: The formats of :func:`table`.
-FORMATS = ("xyvaj", "poly5", "csv", "twincat", "st")
+FORMATS = ("xyvaj", "poly5", "csv", "twincat", "st", "xyva")
 #: The followers of :func:`profile`.
 FOLLOWERS = ("translating", "oscillating", "flat")
 #: The closures of :func:`profile`.

@@ -78,7 +78,8 @@ def optimize(speed_rpm: Union[float, Sequence[float]] = (600.0,), objective: str
 
 def export(format: str, step_deg: float = 1.0, def_points: DefPoints = None, end: str = "natural",
            drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
-    """``loomkin servo export --format F``: text (the file's content), filename, media_type; for
+    """``loomkin servo export --format F``: text (the file's content; the cam tables csv, xyva and
+    poly5 are those of :func:`loomkin.cams.table` on the drive's turn, in mm), filename, media_type; for
     the cam tables (csv, xyva) also points, step_deg (deg) and reinterpolation (worst errors of
     linear, cubic-spline and quintic-Hermite re-interpolation: m, m/deg, m/deg², relative; the
     same rows also as interpolation, the workbench API's key, each row naming its mode as

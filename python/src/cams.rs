@@ -98,7 +98,7 @@ fn rise_return_cycle(
 ///
 /// `loomkin cam table CYCLE --format F --json` (or `--law NAME --stroke-mm H --motion-deg B`
 /// for a single rise when cycle is None) and the file it writes: text (the table, byte for byte
-/// as `-o` writes it), source, format (xyvaj, poly5, csv, twincat, st), points, unit (the
+/// as `-o` writes it), source, format (xyvaj, poly5, csv, twincat, st, xyva), points, unit (the
 /// slave's: mm or deg), spacing, interpolation, the exact re-interpolation errors
 /// max_position_error_<unit> (at max_position_error_at_deg), max_velocity_error_<unit>_per_deg,
 /// max_accel_error_<unit>_per_deg2 and the decimals written. Points every step_deg (default 1°)

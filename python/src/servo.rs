@@ -258,7 +258,8 @@ fn export_format(name: &str) -> PyResult<ExportFormat> {
 /// --
 ///
 /// Every controller export of `loomkin servo export`: format one of coeffs, json, csv, xyva,
-/// poly5, cycle. Returns text (the file `-o` writes, byte for byte), filename, media_type and, for
+/// poly5, cycle (the tables written by the cam-table engine of `loomkin cam table`, in mm). Returns
+/// text (the file `-o` writes, byte for byte), filename, media_type and, for
 /// the cam tables (csv, xyva), points, step_deg and reinterpolation (also as interpolation, the
 /// workbench API's key; each row names its mode as interpolation and as mode: the worst errors when the
 /// controller interpolates: m, m/deg, m/deg²; as `--json` prints).

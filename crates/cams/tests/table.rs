@@ -176,8 +176,8 @@ fn bad_spacings_name_the_field() {
     assert!(e.ends_with("≤ tolerance ≤ 1000000 deg"), "the slave unit of a swinging follower: {e}");
     let e = Motion::rise(&law, 0.0, 120.0, StrokeUnit::Mm).unwrap_err().to_string();
     assert!(e.starts_with("stroke_mm = 0"), "{e}");
-    let e = Format::parse("xyva").unwrap_err().to_string();
-    assert!(e.starts_with("format: unknown format 'xyva'"), "{e}");
+    let e = Format::parse("xyvb").unwrap_err().to_string();
+    assert!(e.starts_with("format: unknown format 'xyvb'"), "{e}");
 }
 
 #[test]
@@ -216,5 +216,123 @@ proptest! {
         // Positions of magnitude H carry a rounding of a few 1e-16·H in any double evaluation (the
         // law's and the quintic's), so the bound holds to that: 1e-13·H.
         prop_assert!(dense <= out.error.max_position_error * (1.0 + 1e-9) + 1e-13 * stroke);
+    }
+}
+
+/// A dwell, a constant-acceleration rise (A jumps at both dwell edges and in the middle), a dwell
+/// and a cycloidal return (A continuous, J jumps at both ends).
+const JOINTS_MM: &str = r#"
+unit = "mm"
+stroke = 30
+[[segment]]
+kind = "dwell"
+to_deg = 60
+[[segment]]
+kind = "rise"
+to_deg = 180
+law = "constant-acceleration"
+[[segment]]
+kind = "dwell"
+to_deg = 240
+[[segment]]
+kind = "return"
+to_deg = 360
+law = "cycloidal"
+"#;
+
+/// `[Y, V, A, J]` of [`JOINTS_MM`] in closed form, written out here independently of the library:
+/// `side` −1 takes the formula of the piece that ends at `x`, +1 of the one that starts there.
+fn joints_exact(x: f64, side: f64) -> [f64; 4] {
+    use std::f64::consts::PI;
+    let (h, b) = (30.0, 120.0);
+    let x = x + side * 1e-12; // only picks the piece; the formula is then evaluated at x itself
+    let on = |lo: f64, hi: f64| x > lo && x < hi;
+    let x = x - side * 1e-12;
+    if on(60.0, 120.0) {
+        let u = x - 60.0;
+        [2.0 * h * u * u / (b * b), 4.0 * h * u / (b * b), 4.0 * h / (b * b), 0.0]
+    } else if on(120.0, 180.0) {
+        let w = 180.0 - x;
+        [h - 2.0 * h * w * w / (b * b), 4.0 * h * w / (b * b), -4.0 * h / (b * b), 0.0]
+    } else if on(180.0, 240.0) {
+        [h, 0.0, 0.0, 0.0]
+    } else if on(240.0, 360.0 + 1.0) {
+        let u = (x - 240.0) / b;
+        let (s, c) = (2.0 * PI * u).sin_cos();
+        [
+            h * (1.0 - (u - s / (2.0 * PI))),
+            -h * (1.0 - c) / b,
+            -h * 2.0 * PI * s / (b * b),
+            -h * 4.0 * PI * PI * c / (b * b * b),
+        ]
+    } else {
+        [0.0; 4]
+    }
+}
+
+/// At a joint the table holds the values of the piece that starts there (never the mean of the
+/// two sides), and the reported re-interpolation error covers the interval on either side of it:
+/// both checked against the closed form above.
+#[test]
+fn a_joint_holds_the_starting_piece_and_the_error_covers_both_sides() {
+    let m = cycle(JOINTS_MM);
+    let t = CamTable::new(m.clone(), Spacing::StepDeg(7.0)).unwrap();
+    let d = t.decimals();
+    let r = |x: f64, n: usize| (x * 10f64.powi(n as i32)).round() / 10f64.powi(n as i32) + 0.0;
+    let out = t.export(Format::Csv).unwrap();
+    let pts = loomkin_cams::table::csv::read(&out.text).unwrap();
+    let a0 = 4.0 * 30.0 / (120.0f64 * 120.0);
+    for (x, want_a) in [(60.0, a0), (120.0, -a0), (180.0, 0.0), (240.0, 0.0)] {
+        let p = pts.iter().find(|p| p.master_deg == x).unwrap();
+        let e = joints_exact(x, 1.0);
+        assert_eq!(p.a, r(want_a, d.a), "A at {x}°");
+        assert_eq!([p.y, p.v, p.a, p.j], [r(e[0], d.y), r(e[1], d.v), r(e[2], d.a), r(e[3], d.j)], "at {x}°");
+    }
+    // The cycloidal return starts with the jerk −4π²H/B³, the dwell before it has none.
+    let j240 = pts.iter().find(|p| p.master_deg == 240.0).unwrap().j;
+    assert_eq!(j240, r(-4.0 * std::f64::consts::PI.powi(2) * 30.0 / 120.0f64.powi(3), d.j));
+    // The issue's case: never the mean of the sides (0.0104 here, where they are 0 and 0.0208).
+    assert!(pts.iter().all(|p| (p.a.abs() - 0.5 * a0).abs() > 1e-6), "a mean of two sides is written");
+
+    let jumps = [(60.0, a0), (120.0, -2.0 * a0), (180.0, a0), (240.0, 0.0)];
+    for f in Format::ALL {
+        let out = t.export(f).unwrap();
+        let ivs = f.read(&out.text).unwrap();
+        // Errors of every interval against the closed form of its own side, dense, ends included.
+        let mut worst = [0.0f64; 3];
+        for iv in &ivs {
+            for i in 0..=400 {
+                let x = iv.start_deg + iv.width() * i as f64 / 400.0;
+                let side = if i == 400 { -1.0 } else { 1.0 };
+                let (got, want) = (iv.eval(x), joints_exact(x, side));
+                for k in 0..3 {
+                    worst[k] = worst[k].max((got[k] - want[k]).abs());
+                }
+            }
+        }
+        let rep = [out.error.max_position_error, out.error.max_velocity_error, out.error.max_accel_error];
+        for k in 0..3 {
+            assert!(worst[k] <= rep[k] * (1.0 + 1e-9) + 1e-12, "{f:?} order {k}: dense {:e} > {:e}", worst[k], rep[k]);
+            assert!(worst[k] >= rep[k] * (1.0 - 2e-3), "{f:?} order {k}: dense {:e} ≪ {:e}", worst[k], rep[k]);
+        }
+        // Each side of each joint on its own: the interval that ends there against the piece that
+        // ends there, the one that starts there against the piece that starts there.
+        for (x, jump) in jumps {
+            let before = ivs.iter().find(|iv| iv.end_deg == x).unwrap();
+            let after = ivs.iter().find(|iv| iv.start_deg == x).unwrap();
+            let left = (before.eval(x)[2] - joints_exact(x, -1.0)[2]).abs();
+            let right = (after.eval(x)[2] - joints_exact(x, 1.0)[2]).abs();
+            assert!(left.max(right) <= rep[2] * (1.0 + 1e-9), "{f:?} at {x}°: {left:e} {right:e} vs {:e}", rep[2]);
+            // Both sides exact to the rounding of A (and, for poly5, of the coefficients).
+            assert!(right < 1e-8, "{f:?} at {x}°: right {right:e}");
+            if f == Format::Poly5 {
+                // poly5 carries both sides: each segment ends on the A of its own piece.
+                assert!(left < 1e-8, "{f:?} at {x}°: left {left:e}");
+            } else {
+                // A point holds the starting side: the interval that ends on a jump of A misses
+                // the ending piece's A by the whole jump there.
+                assert!((left - jump.abs()).abs() < 1e-8, "{f:?} at {x}°: left {left:e}, jump {jump:e}");
+            }
+        }
     }
 }

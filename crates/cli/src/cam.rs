@@ -16,7 +16,7 @@ use std::path::PathBuf;
 /// Subcommands of `loomkin cam`.
 #[derive(Debug, Subcommand)]
 pub enum CamCommand {
-    /// A controller cam table (xyvaj, poly5, csv, twincat, st) of a cycle file or a single rise,
+    /// A controller cam table (xyvaj, poly5, csv, twincat, st, xyva) of a cycle file or a single rise,
     /// with its exact re-interpolation error.
     Table(TableArgs),
     /// A disc cam profile (translating, oscillating or flat-faced follower; single, conjugate or
@@ -103,7 +103,7 @@ pub struct TableArgs {
     #[arg(required_unless_present = "law", conflicts_with = "law")]
     cycle: Option<PathBuf>,
     /// xyvaj (X,Y,V,A,J points), poly5 (fifth-degree segments), csv, twincat (motion-function point
-    /// list), st (IEC 61131-3 ARRAY OF SMC_CAMXYVA).
+    /// list), st (IEC 61131-3 ARRAY OF SMC_CAMXYVA), xyva (X,Y,V,A points).
     #[arg(long, value_enum, ignore_case = true)]
     format: Format,
     /// Points on every joint of the law and every D degrees from each joint (a shorter last step

@@ -135,15 +135,17 @@ pub struct ExportArgs {
     def: DefArgs,
     #[command(flatten)]
     drive: DriveArgs,
-    /// coeffs (documented text), json (intervals), csv (cam table), xyva (PLCopen-style
-    /// points), poly5 (exact fifth-degree segments in master degrees), cycle (the drive's turn as
-    /// a cycle file, for `loomkin cam table` and `servo check`).
+    /// coeffs (documented text), json (intervals), csv (cam table in mm), xyva (PLCopen-style
+    /// points in mm), poly5 (the law's fifth-degree segments, b0…b5 in mm), cycle (the drive's
+    /// turn as a cycle file, for `loomkin cam table` and `servo check`). The tables are those of
+    /// `loomkin cam table` on that cycle file.
     #[arg(long, value_enum, ignore_case = true)]
     format: ExportFormat,
     /// Output file (`-` for standard output).
     #[arg(short, long)]
     output: String,
-    /// Cam table resolution in degrees of the main shaft (csv, xyva).
+    /// Cam table step in degrees of the main shaft (csv, xyva): a point on every joint of the law
+    /// and every STEP_DEG from each joint, as `loomkin cam table --step-deg`.
     #[arg(long, default_value_t = 1.0)]
     step_deg: f64,
     /// Print the re-interpolation report as JSON.

@@ -29,6 +29,7 @@
 mod bisect;
 mod brent;
 mod golden;
+mod linear;
 mod root;
 mod roots;
 mod scan;
@@ -36,6 +37,7 @@ mod scan;
 pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
 pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
+pub use linear::solve_tridiagonal;
 pub use root::{illinois_root, refine_root, refine_root_from};
 pub use roots::{grid_roots, scan_roots};
 pub use scan::scan_max;

@@ -2,8 +2,8 @@
 
 use loomkin_laws::Kinematics;
 use loomkin_servo::{
-    CamTable, Drive, Interpolation, Objective, OptimizeOptions, SplineEnd, SplineLaw, default_points, optimize,
-    summary, torque_curve,
+    Drive, ExportFormat, Objective, OptimizeOptions, SplineEnd, SplineLaw, default_points, export, optimize, summary,
+    torque_curve,
 };
 
 fn main() {
@@ -55,15 +55,12 @@ fn optimize_peak(bencher: divan::Bencher, speeds: usize) {
     bencher.bench_local(|| optimize(&start, &drive, &opts).unwrap().objective_after_nm);
 }
 
-/// A 1° cam table and its quintic re-interpolation error.
+/// A 1° cam table (`servo export --format csv`) and its re-interpolation errors in the three modes.
 #[divan::bench]
 fn cam_table_1deg(bencher: divan::Bencher) {
     let law = SplineLaw::default_law();
     let drive = Drive::needle_rack_default();
-    bencher.bench_local(|| {
-        let t = CamTable::new(law.law(), &drive, 1.0).unwrap();
-        t.interpolation_error(law.law(), &drive, Interpolation::QuinticHermite).unwrap().max_position_error_m
-    });
+    bencher.bench_local(|| export(&law, &drive, ExportFormat::Csv, 1.0).unwrap().table.unwrap().points);
 }
 
 /// One objective evaluation of the optimiser (the figure behind `EVAL_S_PER_POINT_SPEED`): a start

@@ -61,6 +61,28 @@ pub enum ServoError {
     /// An error of the law core.
     #[error(transparent)]
     Law(#[from] LawError),
+    /// A cam table that cannot be written (the engine of `loomkin_cams::table`).
+    #[error("{field}: {reason}")]
+    Table {
+        /// Name of the field.
+        field: String,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl From<loomkin_cams::CamError> for ServoError {
+    fn from(e: loomkin_cams::CamError) -> Self {
+        use loomkin_units::FieldError;
+        match e {
+            loomkin_cams::CamError::Range(r) => Self::Range(r),
+            e => Self::Table {
+                field: e.field().unwrap_or("table").to_string(),
+                // The message without its leading "field: ".
+                reason: e.to_string().split_once(": ").map_or_else(|| e.to_string(), |(_, r)| r.to_string()),
+            },
+        }
+    }
 }
 
 impl FieldError for ServoError {
@@ -68,7 +90,7 @@ impl FieldError for ServoError {
         match self {
             Self::Point { .. } | Self::TooFewPoints { .. } | Self::NoRise { .. } => Some("def_points"),
             Self::Range(e) => Some(&e.field),
-            Self::Parse { field, .. } | Self::Cycle { field, .. } => Some(field),
+            Self::Parse { field, .. } | Self::Cycle { field, .. } | Self::Table { field, .. } => Some(field),
             Self::Law(e) => e.field(),
         }
     }

@@ -6,7 +6,7 @@
 //! twice and scaled to a unit stroke it is a [`loomkin_laws::Law`], so every metric, sample and
 //! plot of the law core works on it. On top: the motor torque of a rack-and-pinion servo drive
 //! ([`Drive`], [`summary`], [`torque_curve`]), export of the coefficients and cam tables for the
-//! controller ([`export_coefficients`], [`CamTable`], [`poly5_segments`]) and an optimiser that
+//! controller ([`export_coefficients`], and cam tables by [`loomkin_cams::table`] through [`export`]) and an optimiser that
 //! moves the points to lower the peak or RMS torque ([`optimize`]).
 //!
 //! ```
@@ -29,7 +29,6 @@
 
 mod axis;
 mod axis_check;
-mod camtable;
 mod cycle_file;
 mod design;
 mod drive;
@@ -47,10 +46,6 @@ pub use axis::{Axis, Limits, Load, Motor};
 pub use axis_check::{
     AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
 };
-pub use camtable::{
-    CamPoint, CamTable, Interpolation, InterpolationError, Poly5Segment, poly5_csv, poly5_segments, quintic_hermite,
-    slave_at,
-};
 pub use cycle_file::spline_cycle;
 pub use design::{DesignFormat, MAX_DEF_POINTS, MAX_SPEEDS, ServoDesign};
 pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, DRIVE_KEYS, Drive};
@@ -59,7 +54,9 @@ pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
     read_json,
 };
-pub use export_file::{Export, ExportFormat, TableReport, export};
+pub use export_file::{Export, ExportFormat, InterpolationError, TableReport, export, spline_motion};
+/// The cam-table engine the exports use (re-exported: one engine for `servo export` and `cam table`).
+pub use loomkin_cams::table::{CamTable, Interpolation};
 pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
 pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
 pub use report::{

@@ -2,7 +2,7 @@
 //! returns: the reports as structs that serialise themselves, so both front ends give one value
 //! one key.
 
-use crate::camtable::InterpolationError;
+use crate::InterpolationError;
 use crate::drive::Drive;
 use crate::error::Result;
 use crate::optimize::{Objective, OptimizeReport};

@@ -3,6 +3,7 @@
 use crate::points::check_points;
 use crate::{Result, ServoError, poly};
 use loomkin_laws::{AccelPiece, EndCondition, Law};
+use loomkin_numeric::solve_tridiagonal;
 use serde::{Deserialize, Serialize};
 
 /// The condition of the acceleration spline at `x = 0` (the start of the motion).
@@ -55,24 +56,6 @@ impl SplineEnd {
 pub fn slope_at_middle(a: [f64; 2], b: [f64; 2]) -> f64 {
     let (ta, tb) = (a[0] - 0.5, b[0] - 0.5);
     (a[1] * tb.powi(3) - b[1] * ta.powi(3)) / (ta * tb * (tb * tb - ta * ta))
-}
-
-/// Solves the tridiagonal system `lower[i]·z[i−1] + diag[i]·z[i] + upper[i]·z[i+1] = rhs[i]` by
-/// the Thomas algorithm (no pivoting; the spline systems are strictly diagonally dominant).
-/// `lower[0]` and `upper[n−1]` are ignored. Returns the solution in `rhs`.
-pub(crate) fn solve_tridiagonal(lower: &[f64], diag: &[f64], upper: &[f64], rhs: &mut [f64]) {
-    let n = rhs.len();
-    let mut c = vec![0.0; n];
-    let mut beta = diag[0];
-    rhs[0] /= beta;
-    for i in 1..n {
-        c[i - 1] = upper[i - 1] / beta;
-        beta = diag[i] - lower[i] * c[i - 1];
-        rhs[i] = (rhs[i] - lower[i] * rhs[i - 1]) / beta;
-    }
-    for i in (0..n - 1).rev() {
-        rhs[i] -= c[i] * rhs[i + 1];
-    }
 }
 
 /// Second derivatives `M_j = f''(X_j)` of the cubic spline through `points` with the given start
@@ -271,26 +254,4 @@ fn half_displacement(points: &[[f64; 2]], local: &[[f64; 4]]) -> f64 {
         v = poly::eval(&vel, h);
     }
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn tridiagonal_matches_dense_product() {
-        let lo = [0.0, 1.0, 0.5, 2.0];
-        let di = [4.0, 5.0, 3.0, 6.0];
-        let up = [1.0, 2.0, 0.7, 0.0];
-        let z = [1.0, -2.0, 0.5, 3.0];
-        let mut r: Vec<f64> = (0..4)
-            .map(|i| {
-                di[i] * z[i] + if i > 0 { lo[i] * z[i - 1] } else { 0.0 } + if i < 3 { up[i] * z[i + 1] } else { 0.0 }
-            })
-            .collect();
-        solve_tridiagonal(&lo, &di, &up, &mut r);
-        for i in 0..4 {
-            assert!((r[i] - z[i]).abs() < 1e-14);
-        }
-    }
 }

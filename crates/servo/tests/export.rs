@@ -1,8 +1,9 @@
 //! Exported coefficients and cam tables against the law they came from.
 
+use loomkin_cams::table::Format;
 use loomkin_servo::{
-    CamTable, Drive, Interpolation, SplineEnd, SplineLaw, export_coefficients, export_coeffs_text, export_json,
-    parse_points, poly5_segments, quintic_hermite, read_coeffs_text, read_json, slave_at,
+    Drive, ExportFormat, Interpolation, SplineEnd, SplineLaw, export, export_coefficients, export_coeffs_text,
+    export_json, parse_points, read_coeffs_text, read_json, spline_motion,
 };
 
 fn laws() -> Vec<SplineLaw> {
@@ -71,40 +72,44 @@ fn json_and_text_coefficients_reproduce_the_law() {
     assert_eq!(e.def_points.len(), 7);
 }
 
-#[test]
-fn poly5_segments_reproduce_the_cycle_exactly() {
-    let d = Drive::needle_rack_default();
-    for sl in laws() {
-        let segs = poly5_segments(sl.law(), &d).unwrap();
-        assert!((segs[0].master_start_deg).abs() < 1e-12 && (segs.last().unwrap().master_end_deg - 360.0).abs() < 1e-9);
-        for g in &segs {
-            for k in 0..=10 {
-                let tau = (g.master_end_deg - g.master_start_deg) * k as f64 / 10.0;
-                // Evaluate inside the segment (nudge off the right end to stay in the same phase).
-                let th = (g.master_start_deg + tau).min(g.master_end_deg - 1e-9);
-                let y = slave_at(sl.law(), &d, th).unwrap()[0];
-                let p = horner(&g.coeffs, th - g.master_start_deg);
-                assert!((p - y).abs() < 1e-12 * d.stroke_m * 10.0, "{th}: {p} vs {y}");
-            }
-        }
+/// `Y` (mm) at master angle `deg` of the drive's turn, from the law's own formula.
+fn slave_mm(law: &loomkin_laws::Law, d: &Drive, deg: f64) -> f64 {
+    let lay = d.layout().unwrap();
+    let st = lay.starts_deg();
+    let h = d.stroke_m * 1e3;
+    if deg < st[1] {
+        h * law.eval(deg / lay.rise_deg).s
+    } else if deg < st[2] {
+        h
+    } else if deg < st[3] {
+        h * (1.0 - law.eval((deg - st[2]) / lay.return_deg).s)
+    } else {
+        0.0
     }
 }
 
+/// The poly5 export has one segment per piece of the law (the spline law is piecewise quintic, so
+/// each segment is the law itself) and follows the law to the rounding of its columns.
 #[test]
-fn quintic_hermite_matches_its_end_conditions() {
-    let (y0, y1, h) = ([0.1, -0.3, 2.0], [0.7, 0.4, -1.5], 0.8);
-    let c = quintic_hermite(y0, y1, h);
-    let d: Vec<f64> = (1..6).map(|k| k as f64 * c[k]).collect();
-    let dd: Vec<f64> = (1..5).map(|k| k as f64 * d[k]).collect();
-    for (got, want) in [
-        (horner(&c, 0.0), y0[0]),
-        (horner(&d, 0.0), y0[1]),
-        (horner(&dd, 0.0), y0[2]),
-        (horner(&c, h), y1[0]),
-        (horner(&d, h), y1[1]),
-        (horner(&dd, h), y1[2]),
-    ] {
-        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+fn poly5_segments_reproduce_the_cycle_to_their_decimals() {
+    let d = Drive::needle_rack_default();
+    for sl in laws() {
+        let text = export(&sl, &d, ExportFormat::Poly5, 1.0).unwrap().text;
+        assert!(text.contains("b0_mm,b1_mm,b2_mm,b3_mm,b4_mm,b5_mm"), "{text}");
+        let segs = Format::Poly5.read(&text).unwrap();
+        let pieces = spline_motion(&sl, &d).unwrap().pieces().len();
+        assert_eq!(segs.len(), pieces);
+        assert_eq!((segs[0].start_deg, segs.last().unwrap().end_deg), (0.0, 360.0));
+        let mut worst = 0.0f64;
+        for g in &segs {
+            for k in 0..=10 {
+                // Inside the segment (nudged off the right end to stay in the same phase).
+                let th = (g.start_deg + g.width() * k as f64 / 10.0).min(g.end_deg - 1e-9);
+                worst = worst.max((g.eval(th)[0] - slave_mm(sl.law(), &d, th)).abs());
+            }
+        }
+        // The position column's last digit is 1e-6 of the 80 mm stroke at most.
+        assert!(worst < 1e-6 * 80.0, "{worst:e}");
     }
 }
 
@@ -112,34 +117,55 @@ fn quintic_hermite_matches_its_end_conditions() {
 fn cam_table_errors_shrink_with_the_step_at_the_expected_orders() {
     let d = Drive::needle_rack_default();
     let sl = SplineLaw::default_law();
-    let err =
-        |step: f64, mode| CamTable::new(sl.law(), &d, step).unwrap().interpolation_error(sl.law(), &d, mode).unwrap();
-    // Linear: O(h²) in position. Quintic Hermite on a quintic law: only where a table interval
-    // straddles a joint of the law; O(h^6) there in position.
+    let err = |step: f64, mode| {
+        let t = export(&sl, &d, ExportFormat::Csv, step).unwrap().table.unwrap();
+        *t.reinterpolation.iter().find(|e| e.mode == mode).unwrap()
+    };
+    // Linear: O(h²) in position.
     let (l1, l2) = (err(2.0, Interpolation::Linear), err(1.0, Interpolation::Linear));
     let r = l1.max_position_error_m / l2.max_position_error_m;
     assert!(r > 3.5 && r < 4.5, "linear ratio {r}");
+    // Quintic Hermite on a quintic law with a point on every joint: only the rounding of the
+    // columns (a last digit of 1e-6 of the stroke at most) remains, at any step.
     let (q1, q2) = (err(2.0, Interpolation::QuinticHermite), err(1.0, Interpolation::QuinticHermite));
-    assert!(q2.max_position_error_m < q1.max_position_error_m / 16.0, "{q1:?} {q2:?}");
+    assert!(q1.rel_position_error < 1e-6 && q2.rel_position_error < 1e-6, "{q1:?} {q2:?}");
     let c2 = err(1.0, Interpolation::CubicSpline);
     assert!(q2.max_position_error_m < c2.max_position_error_m && c2.max_position_error_m < l2.max_position_error_m);
     assert!(q2.rel_accel_error < c2.rel_accel_error && c2.rel_accel_error < 1.0);
     // Linear interpolation has no acceleration at all: the error is the whole acceleration.
-    assert!((l2.rel_accel_error - 1.0).abs() < 1e-12);
-    let t = CamTable::new(sl.law(), &d, 1.0).unwrap();
-    assert_eq!(t.points.len(), 361);
-    assert!(t.to_csv().starts_with("master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2\n"));
-    assert_eq!(t.to_xyva().lines().filter(|l| !l.starts_with('#')).count(), 362);
+    assert!((l2.rel_accel_error - 1.0).abs() < 1e-6, "{}", l2.rel_accel_error);
+    let csv = export(&sl, &d, ExportFormat::Csv, 1.0).unwrap();
+    assert!(csv.text.starts_with("master_deg,slave_mm,slave_v_mm_per_deg,slave_a_mm_per_deg2,slave_j_mm_per_deg3\n"));
+    let xyva = export(&sl, &d, ExportFormat::Xyva, 1.0).unwrap();
+    assert_eq!(xyva.text.lines().filter(|l| !l.starts_with('#')).count(), xyva.table.unwrap().points + 1);
+}
+
+/// `servo export`'s tables are `loomkin cam table`'s on the exported cycle file: one engine.
+#[test]
+fn the_tables_are_those_of_the_cycle_file() {
+    let d = Drive::needle_rack_default();
+    let sl = &laws()[1];
+    let cycle = export(sl, &d, ExportFormat::Cycle, 1.0).unwrap().text;
+    let motion = loomkin_cams::table::Motion::from_cycle(&loomkin_laws::Cycle::from_toml(&cycle).unwrap());
+    for (format, written, spacing) in [
+        (ExportFormat::Csv, Format::Csv, 2.5),
+        (ExportFormat::Xyva, Format::Xyva, 2.5),
+        (ExportFormat::Poly5, Format::Poly5, 360.0),
+    ] {
+        let table = loomkin_cams::table::CamTable::new(motion.clone(), loomkin_cams::table::Spacing::StepDeg(spacing));
+        let want = table.unwrap().export(written).unwrap().text;
+        assert_eq!(export(sl, &d, format, 2.5).unwrap().text, want, "{format:?}");
+    }
 }
 
 #[test]
 fn bad_export_requests_are_errors() {
     let d = Drive::needle_rack_default();
-    let law = loomkin_laws::LawSpec::Cycloidal.build().unwrap();
-    assert!(poly5_segments(&law, &d).is_err());
     let sl = SplineLaw::default_law();
-    assert!(CamTable::new(sl.law(), &d, 0.0).is_err());
-    assert!(CamTable::new(sl.law(), &d, f64::NAN).is_err());
+    for step in [0.0, f64::NAN, -1.0] {
+        let e = export(&sl, &d, ExportFormat::Csv, step).unwrap_err();
+        assert!(e.to_string().starts_with("step_deg "), "{e}");
+    }
     assert!(read_json("{").is_err());
     assert!(read_coeffs_text("1 2 3").is_err());
 }

@@ -663,6 +663,7 @@ pub fn cam_table(req: &CamTableRequest) -> Result<CamTableResponse, ApiError> {
         Format::Csv => "csv",
         Format::Twincat => "txt",
         Format::St => "st",
+        Format::Xyva => "txt",
     };
     let e = &out.error;
     let unit = table.unit_name();
@@ -833,7 +834,7 @@ mod tests {
         );
         let e = cam_table(&CamTableRequest {
             source: CamSource::default(),
-            format: "xyva".into(),
+            format: "xyvb".into(),
             step_deg: None,
             tolerance: None,
         })

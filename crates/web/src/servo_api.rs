@@ -237,7 +237,9 @@ pub struct ExportRequest {
     /// What to export.
     pub format: ExportFormat,
     /// Rows of a cam table over 0 … 360°, [`MIN_CAM_ROWS`] … [`MAX_CAM_ROWS`] (default
-    /// [`DEFAULT_CAM_ROWS`]: a 1° step).
+    /// [`DEFAULT_CAM_ROWS`]: a 1° step): the step is `360/(rows − 1)` degrees from each joint of
+    /// the law, and the table also has a point on every joint (the cam-table engine of `loomkin cam
+    /// table`), so it has a few more rows.
     #[serde(default = "default_rows")]
     pub rows: usize,
 }
@@ -444,7 +446,9 @@ mod tests {
         let back = loomkin_servo::read_json(&r.text).unwrap();
         assert_eq!(back.def_points, spline.points());
         let r = export(&ExportRequest { design: design.clone(), format: ExportFormat::Csv, rows: 73 }).unwrap();
-        assert_eq!(r.text.lines().count(), 74);
+        // A 5° step from each joint of the law, and the joints: a header and more than 73 rows.
+        assert!(r.text.lines().count() > 74 && r.note.starts_with(&format!("{} rows", r.text.lines().count() - 1)));
+        assert!(r.text.starts_with("master_deg,slave_mm,"), "{}", r.text);
         assert_eq!(r.interpolation.len(), 3);
         // Position at 0° and 360° (start dwell) is 0, at the end of the rise the stroke.
         let cells: Vec<f64> = r.text.lines().nth(1).unwrap().split(',').map(|c| c.parse().unwrap()).collect();

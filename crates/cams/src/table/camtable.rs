@@ -2,7 +2,7 @@
 
 use super::decimals::Decimals;
 use super::format::Format;
-use super::points::{CamPoint, Spacing, place};
+use super::points::{CamPoint, Spacing, left_at, place};
 use super::reinterpolation::{ReinterpolationError, reinterpolation_error};
 use super::{Interval, Motion};
 use crate::Result;
@@ -39,6 +39,8 @@ pub struct CamTable {
     motion: Motion,
     spacing: Spacing,
     points: Vec<CamPoint>,
+    /// `(Y, V, A)` of the piece that ends at each point (the left-hand limits at a joint).
+    left: Vec<[f64; 3]>,
     decimals: Decimals,
 }
 
@@ -110,12 +112,20 @@ impl CamTable {
                     .into(),
             });
         }
-        Ok(Self { motion, spacing, points, decimals })
+        let left = points.iter().map(|p| left_at(&motion, p.master_deg, &decimals)).collect();
+        Ok(Self { motion, spacing, points, left, decimals })
     }
 
     /// The points.
     pub fn points(&self) -> &[CamPoint] {
         &self.points
+    }
+
+    /// `(Y, V, A)` at each point by the formula of the piece that ends there: at a joint where A
+    /// jumps the left-hand limits (the points hold the right-hand ones), elsewhere the points'
+    /// own values. A format that carries both sides of a joint (poly5) ends each segment on them.
+    pub fn left_limits(&self) -> &[[f64; 3]] {
+        &self.left
     }
 
     /// The decimals of each column.
@@ -152,6 +162,11 @@ impl CamTable {
         Ok(Export { text, error, points: intervals.len() + 1 })
     }
 
+    /// The exact re-interpolation error of the table's points (as rounded) joined in `mode`.
+    pub fn reinterpolation(&self, mode: super::Interpolation) -> ReinterpolationError {
+        reinterpolation_error(&self.motion, &mode.intervals(&self.points))
+    }
+
     /// The report of `export`, written in `format` from a motion that came from `source`.
     pub fn report(&self, source: impl Into<String>, format: Format, export: &Export) -> TableReport {
         TableReport {
@@ -170,6 +185,10 @@ impl CamTable {
         let u = self.unit_name();
         let d = self.decimals;
         let spacing = match self.spacing {
+            // A step as long as every span between joints: the joints alone.
+            Spacing::StepDeg(s) if self.motion.joints().windows(2).all(|w| w[1] - w[0] <= s) => {
+                "points on every joint of the law only".to_string()
+            }
             Spacing::StepDeg(s) => format!(
                 "points on every joint of the law and every {} deg from each joint (shorter last step before a joint)",
                 compact(s)
@@ -181,10 +200,18 @@ impl CamTable {
                 )
             }
         };
-        let interp = if format == Format::Poly5 {
-            format!("slave Y = b0 + b1*u + ... + b5*u^5 ({u}), u = (X - start)/(end - start) in [0, 1]")
+        let (interp, joints) = if format == Format::Poly5 {
+            (
+                format!("slave Y = b0 + b1*u + ... + b5*u^5 ({u}), u = (X - start)/(end - start) in [0, 1]"),
+                "at a joint of the law (where A or J may jump) each segment starts and ends on the values of its own side"
+                    .to_string(),
+            )
         } else {
-            format!("interpolation between points: {INTERPOLATION}")
+            (
+                format!("interpolation between points: {INTERPOLATION}"),
+                "at a joint of the law (where A or J may jump) a point holds the values of the segment that starts there"
+                    .to_string(),
+            )
         };
         vec![
             format!(
@@ -192,6 +219,7 @@ impl CamTable {
             ),
             spacing,
             interp,
+            joints,
             format!(
                 "re-interpolation error (exact, of the values as written): position {} {u} at X = {} deg, velocity {} {u}/deg, acceleration {} {u}/deg^2",
                 sig6(e.max_position_error),
@@ -207,7 +235,7 @@ impl CamTable {
                 d.a,
                 d.j,
                 if format == Format::Poly5 {
-                    let dc = super::poly5::coeff_decimals(self, &super::points::hermite_intervals(&self.points));
+                    let dc = super::poly5::coeff_decimals(self, &super::poly5::two_sided(self));
                     format!(", b0..b5 {}", dc.map(|n| n.to_string()).join(" "))
                 } else {
                     String::new()

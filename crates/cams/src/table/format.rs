@@ -21,11 +21,13 @@ pub enum Format {
     Twincat,
     /// IEC 61131-3 Structured Text, an `ARRAY … OF SMC_CAMXYVA` initialiser.
     St,
+    /// PLCopen-style `X,Y,V,A` points after `#` comment lines (XYVAJ without the jerk).
+    Xyva,
 }
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 5] = [Format::Xyvaj, Format::Poly5, Format::Csv, Format::Twincat, Format::St];
+    pub const ALL: [Format; 6] = [Format::Xyvaj, Format::Poly5, Format::Csv, Format::Twincat, Format::St, Format::Xyva];
 
     /// The format's name on the command line.
     pub fn name(self) -> &'static str {
@@ -35,6 +37,7 @@ impl Format {
             Format::Csv => "csv",
             Format::Twincat => "twincat",
             Format::St => "st",
+            Format::Xyva => "xyva",
         }
     }
 
@@ -42,7 +45,7 @@ impl Format {
     pub fn parse(name: &str) -> Result<Self> {
         Self::ALL.into_iter().find(|f| f.name() == name).ok_or_else(|| CamError::Usage {
             field: "format".into(),
-            reason: format!("unknown format '{name}': use xyvaj, poly5, csv, twincat or st"),
+            reason: format!("unknown format '{name}': use xyvaj, poly5, csv, twincat, st or xyva"),
         })
     }
 
@@ -54,6 +57,7 @@ impl Format {
             Format::Csv => csv::write(table),
             Format::Twincat => twincat::write(table, header),
             Format::St => st::write(table, header),
+            Format::Xyva => xyvaj::write_xyva(table, header),
         }
     }
 
@@ -65,6 +69,7 @@ impl Format {
             Format::Csv => Ok(hermite_intervals(&csv::read(text)?)),
             Format::Twincat => Ok(hermite_intervals(&twincat::read(text)?)),
             Format::St => Ok(hermite_intervals(&st::read(text)?)),
+            Format::Xyva => Ok(hermite_intervals(&xyvaj::read_xyva(text)?)),
         }
     }
 }

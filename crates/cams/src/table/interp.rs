@@ -44,6 +44,21 @@ impl Interval {
         Self { start_deg, end_deg, b }
     }
 
+    /// The straight line from `Y₀` at `X₀` to `Y₁` at `X₁`: a controller that joins positions
+    /// only by lines (`b₀ = Y₀`, `b₁ = Y₁ − Y₀`, the rest zero).
+    pub fn linear(start_deg: f64, end_deg: f64, y0: f64, y1: f64) -> Self {
+        Self { start_deg, end_deg, b: [y0, y1 - y0, 0.0, 0.0, 0.0, 0.0] }
+    }
+
+    /// The cubic from `Y₀` at `X₀` to `Y₁` at `X₁` with second derivatives `M₀`, `M₁` (slave unit
+    /// per deg²) at its ends, one interval of a cubic spline through positions: in `u`,
+    /// `b₀ = Y₀`, `b₁ = Y₁ − Y₀ − (2M₀ + M₁)h²/6`, `b₂ = M₀h²/2`, `b₃ = (M₁ − M₀)h²/6`.
+    pub fn cubic(start_deg: f64, end_deg: f64, y0: f64, y1: f64, m0: f64, m1: f64) -> Self {
+        let h2 = (end_deg - start_deg).powi(2);
+        let b = [y0, y1 - y0 - (2.0 * m0 + m1) * h2 / 6.0, 0.5 * m0 * h2, (m1 - m0) * h2 / 6.0, 0.0, 0.0];
+        Self { start_deg, end_deg, b }
+    }
+
     /// Width `X₁ − X₀` (deg).
     pub fn width(&self) -> f64 {
         self.end_deg - self.start_deg
@@ -92,6 +107,16 @@ mod tests {
             assert!((got - want).abs() < 1e-13, "{got} vs {want}");
         }
         let h = 1e-4;
+        let lin = Interval::linear(1.0, 3.0, 2.0, 5.0);
+        assert_eq!((lin.eval(2.0), lin.eval(3.0)[0]), ([3.5, 1.5, 0.0, 0.0], 5.0));
+        // A cubic through its end values with the given end curvatures: against finite differences.
+        let c = Interval::cubic(2.0, 4.5, 1.0, -0.5, 0.3, -0.7);
+        let (c0, c1) = (c.eval(2.0), c.eval(4.5));
+        for (got, want) in [(c0[0], 1.0), (c1[0], -0.5), (c0[2], 0.3), (c1[2], -0.7)] {
+            assert!((got - want).abs() < 1e-13, "{got} vs {want}");
+        }
+        let fd = (c.eval(3.0 + h)[0] - 2.0 * c.eval(3.0)[0] + c.eval(3.0 - h)[0]) / (h * h);
+        assert!((fd - c.eval(3.0)[2]).abs() < 1e-6, "{fd}");
         for x in [10.3, 11.1, 12.2] {
             let (m, p) = (iv.eval(x - h), iv.eval(x + h));
             let c = iv.eval(x);

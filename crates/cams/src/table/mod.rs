@@ -21,6 +21,8 @@ pub use decimals::{Decimals, RELATIVE_RESOLUTION, decimals_exact, decimals_for, 
 pub use format::Format;
 pub use interp::Interval;
 pub use motion::{MOTION_DEG_RANGE, Motion, Piece, STROKE_RANGE};
-pub use points::{CamPoint, DEFAULT_STEP_DEG, MAX_POINTS, STEP_RANGE, Spacing, TOLERANCE_RANGE, hermite_intervals};
+pub use points::{
+    CamPoint, DEFAULT_STEP_DEG, Interpolation, MAX_POINTS, STEP_RANGE, Spacing, TOLERANCE_RANGE, hermite_intervals,
+};
 pub use reinterpolation::{ReinterpolationError, reinterpolation_error};
 pub use tolerance::TOLERANCE_MARGIN;

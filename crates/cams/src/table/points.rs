@@ -87,23 +87,19 @@ pub(crate) fn rounded_masters(masters: &[f64], d: usize) -> Vec<f64> {
     out
 }
 
-/// The point at (rounded) master angle `x`, rounded to the decimals. At a joint of the motion the
-/// values are the mean of the two sides' limits (they differ where the acceleration or the jerk
-/// jumps); at the motion's ends the one side there is.
+/// The point at (rounded) master angle `x`, rounded to the decimals. At a joint of the motion (a
+/// law's segment joint, a phase boundary), where A or J may jump, the point holds the values of the
+/// piece that **starts** there (the right-hand limits), never a mix of the two sides; the interval
+/// that ends there is then re-interpolated towards them, and its error against the piece that ends
+/// there is part of the reported error. At the motion's end the one side there is.
 pub(crate) fn point_at(motion: &Motion, x: f64, dec: &Decimals) -> CamPoint {
     let pieces = motion.pieces();
-    let i = motion.piece_index(x);
-    let p = &pieces[i];
-    let near = |j: f64| (x - j).abs() <= 1e-9 * (1.0 + j.abs());
-    let v = if near(p.start_deg) && i > 0 {
-        let (l, r) = (pieces[i - 1].eval(x), p.eval(x));
-        std::array::from_fn(|k| 0.5 * (l[k] + r[k]))
-    } else if near(p.end_deg) && i + 1 < pieces.len() {
-        let (l, r) = (p.eval(x), pieces[i + 1].eval(x));
-        std::array::from_fn(|k| 0.5 * (l[k] + r[k]))
-    } else {
-        p.eval(x)
-    };
+    let mut i = motion.piece_index(x);
+    // A master rounded to its decimals may fall just before the joint it stands for.
+    if i + 1 < pieces.len() && (x - pieces[i].end_deg).abs() <= 1e-9 * (1.0 + pieces[i].end_deg.abs()) {
+        i += 1;
+    }
+    let v = pieces[i].eval(x);
     CamPoint {
         master_deg: x,
         y: round(v[0], dec.y),
@@ -113,9 +109,82 @@ pub(crate) fn point_at(motion: &Motion, x: f64, dec: &Decimals) -> CamPoint {
     }
 }
 
+/// `(Y, V, A)` at (rounded) master angle `x` by the formula of the piece that **ends** there, rounded
+/// to the decimals: at a joint the left-hand limits (where [`point_at`] holds the right-hand ones),
+/// elsewhere the same values as the point. At the motion's start the one side there is.
+pub(crate) fn left_at(motion: &Motion, x: f64, dec: &Decimals) -> [f64; 3] {
+    let pieces = motion.pieces();
+    let mut i = motion.piece_index(x);
+    if i > 0 && (x - pieces[i].start_deg).abs() <= 1e-9 * (1.0 + pieces[i].start_deg.abs()) {
+        i -= 1;
+    }
+    let v = pieces[i].eval(x);
+    [round(v[0], dec.y), round(v[1], dec.v), round(v[2], dec.a)]
+}
+
 /// The quintic Hermite intervals through consecutive points.
 pub fn hermite_intervals(points: &[CamPoint]) -> Vec<Interval> {
     points.windows(2).map(|w| Interval::hermite(w[0].master_deg, w[1].master_deg, w[0].yva(), w[1].yva())).collect()
+}
+
+/// How a controller joins the points of a table.
+///
+/// Every format is meant for [`Interpolation::QuinticHermite`], the quintic through (Y, V, A) at
+/// both ends of each interval; the two others are what a controller that reads the positions alone
+/// would run, reported for comparison (`loomkin servo export`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Interpolation {
+    /// Straight lines between positions (velocity piecewise constant, acceleration zero).
+    Linear,
+    /// The natural cubic spline through the positions (zero second derivative at both ends).
+    CubicSpline,
+    /// Fifth-degree Hermite polynomials matching Y, V and A at both ends (XYVA points).
+    QuinticHermite,
+}
+
+impl Interpolation {
+    /// Every mode.
+    pub const ALL: [Interpolation; 3] = [Self::Linear, Self::CubicSpline, Self::QuinticHermite];
+
+    /// Kebab-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Linear => "linear",
+            Self::CubicSpline => "cubic-spline",
+            Self::QuinticHermite => "quintic-hermite",
+        }
+    }
+
+    /// The intervals a controller runs between `points` in this mode.
+    ///
+    /// The natural cubic spline's second derivatives `Mᵢ` at the points solve, with `hᵢ` the
+    /// interval widths, `δᵢ = (Yᵢ₊₁ − Yᵢ)/hᵢ` and `M₀ = M_n = 0`,
+    /// `hᵢ₋₁Mᵢ₋₁ + 2(hᵢ₋₁ + hᵢ)Mᵢ + hᵢMᵢ₊₁ = 6(δᵢ − δᵢ₋₁)`.
+    pub fn intervals(self, points: &[CamPoint]) -> Vec<Interval> {
+        match self {
+            Self::QuinticHermite => hermite_intervals(points),
+            Self::Linear => {
+                points.windows(2).map(|w| Interval::linear(w[0].master_deg, w[1].master_deg, w[0].y, w[1].y)).collect()
+            }
+            Self::CubicSpline => {
+                let n = points.len();
+                let h: Vec<f64> = points.windows(2).map(|w| w[1].master_deg - w[0].master_deg).collect();
+                let delta: Vec<f64> = points.windows(2).zip(&h).map(|(w, h)| (w[1].y - w[0].y) / h).collect();
+                let (mut lo, mut di, mut up, mut m) = (vec![0.0; n], vec![1.0; n], vec![0.0; n], vec![0.0; n]);
+                for i in 1..n - 1 {
+                    (lo[i], di[i], up[i]) = (h[i - 1], 2.0 * (h[i - 1] + h[i]), h[i]);
+                    m[i] = 6.0 * (delta[i] - delta[i - 1]);
+                }
+                loomkin_numeric::solve_tridiagonal(&lo, &di, &up, &mut m);
+                points
+                    .windows(2)
+                    .enumerate()
+                    .map(|(i, w)| Interval::cubic(w[0].master_deg, w[1].master_deg, w[0].y, w[1].y, m[i], m[i + 1]))
+                    .collect()
+            }
+        }
+    }
 }
 
 /// The points of a table for a spacing, with the decimals they are rounded to.

@@ -2,8 +2,11 @@
 //! `Y = b₀ + b₁u + … + b₅u⁵`, `u = (X − start)/(end − start)`, every `bₖ` in the slave unit.
 //!
 //! The segments are the quintic Hermite interpolants of the table's points (so the position and
-//! its first two derivatives join at every point up to the coefficients' rounding); a controller
-//! that takes polynomial segments runs them as written.
+//! its first two derivatives join at every point up to the coefficients' rounding), each from the
+//! values of its own side of a joint: a segment starts on the point (the right-hand limits) and
+//! ends on the left-hand limits of the piece that ends there ([`CamTable::left_limits`]), so where
+//! A jumps at a joint both segments follow the law up to it. A controller that takes polynomial
+//! segments runs them as written.
 //!
 //! ```text
 //! # loomkin cam table: …
@@ -12,7 +15,6 @@
 
 use super::decimals::{fixed, round};
 use super::format::numbers;
-use super::points::hermite_intervals;
 use super::{CamTable, Interval};
 use crate::{CamError, Result};
 use loomkin_io::csv::CsvText;
@@ -57,9 +59,19 @@ fn decimals_up_to(resolution: f64, max: usize) -> usize {
     ((-resolution.log10() - 1e-9).ceil().max(0.0) as usize).min(max)
 }
 
-/// The segments as written: the Hermite intervals of the points, coefficients rounded.
+/// The quintic Hermite intervals from each point to the left-hand limits at the next (unrounded
+/// coefficients).
+pub(crate) fn two_sided(table: &CamTable) -> Vec<Interval> {
+    let (pts, left) = (table.points(), table.left_limits());
+    pts.windows(2)
+        .zip(&left[1..])
+        .map(|(w, &end)| Interval::hermite(w[0].master_deg, w[1].master_deg, w[0].yva(), end))
+        .collect()
+}
+
+/// The segments as written: from each point to the left-hand limits at the next, coefficients rounded.
 pub fn segments(table: &CamTable) -> Vec<Interval> {
-    let ivs = hermite_intervals(table.points());
+    let ivs = two_sided(table);
     let dc = coeff_decimals(table, &ivs);
     ivs.into_iter().map(|iv| Interval { b: std::array::from_fn(|k| round(iv.b[k], dc[k])), ..iv }).collect()
 }
@@ -67,7 +79,7 @@ pub fn segments(table: &CamTable) -> Vec<Interval> {
 /// Writes the segments.
 pub fn write(table: &CamTable, head: &[String]) -> String {
     let d = table.decimals();
-    let dc = coeff_decimals(table, &hermite_intervals(table.points()));
+    let dc = coeff_decimals(table, &two_sided(table));
     let comments: Vec<&str> = head.iter().map(String::as_str).collect();
     let columns = header(table.unit_name());
     let mut t = CsvText::new(&comments, &columns.split(',').collect::<Vec<_>>());

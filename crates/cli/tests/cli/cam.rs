@@ -71,11 +71,11 @@ fn cam_table_of_a_single_rise_and_bad_input() {
             "--motion-deg",
             "90",
             "--format",
-            "xyva",
+            "xyvb",
             "-o",
             &out,
         ],
-        &["invalid value 'xyva' for '--format", "possible values: xyvaj, poly5, csv, twincat, st"],
+        &["invalid value 'xyvb' for '--format", "possible values: xyvaj, poly5, csv, twincat, st, xyva"],
     );
     usage_error(
         &[

@@ -95,9 +95,9 @@ fn export_writes_every_format() {
     for (fmt, first) in [
         ("coeffs", "# loomkin servo"),
         ("json", "{"),
-        ("csv", "master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2"),
-        ("xyva", "# loomkin servo cam"),
-        ("poly5", "# loomkin servo cam"),
+        ("csv", "master_deg,slave_mm,slave_v_mm_per_deg,slave_a_mm_per_deg2,slave_j_mm_per_deg3"),
+        ("xyva", "# loomkin cam table"),
+        ("poly5", "# loomkin cam table"),
     ] {
         let f = tmp(&format!("out.{fmt}"));
         let out = loomkin()
@@ -253,9 +253,17 @@ fn export_to_stdout_keeps_the_table_clean() {
         assert!(out.status.success());
         let text = String::from_utf8(out.stdout).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("master_deg,slave_m,slave_v_m_per_deg,slave_a_m_per_deg2"));
+        assert_eq!(
+            lines.next(),
+            Some("master_deg,slave_mm,slave_v_mm_per_deg,slave_a_mm_per_deg2,slave_j_mm_per_deg3")
+        );
+        // Fixed decimals: no exponent, no negative zero (issue 26).
+        let data = text.split_once('\n').unwrap().1;
+        assert!(!data.contains('e') && !data.contains("-0,") && !data.contains("-0.0,"), "{data}");
         let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|c| c.parse().unwrap()).collect()).collect();
-        assert_eq!(rows.len(), 37);
+        // Every 10° from each joint of the law (every 12.5° in the 150° rise and return) and the
+        // joints: 0, 10, 12.5, 22.5, 25, … — more than the 37 of a plain 10° grid.
+        assert!(rows.len() > 37 && rows.iter().any(|r| r[0] == 12.5), "{}", rows.len());
         assert!(String::from_utf8_lossy(&out.stderr).contains("quintic-hermite"));
     }
 }
