@@ -23,13 +23,20 @@ pub fn write(table: &CamTable, header: &[String]) -> String {
 
 /// Reads the points back (comment lines and the header skipped).
 pub fn read(text: &str) -> Result<Vec<CamPoint>> {
+    read_columns(text, 5)
+}
+
+/// Rows of `n` numbers (`X,Y,V,A[,J]`) after the comment lines and the header; a missing J is 0.
+fn read_columns(text: &str, n: usize) -> Result<Vec<CamPoint>> {
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let l = line.trim();
         if l.is_empty() || l.starts_with('#') || l.starts_with("X,") {
             continue;
         }
-        rows.push(numbers(l, 5, i, 0)?);
+        let mut v = numbers(l, n, i, 0)?;
+        v.resize(5, 0.0);
+        rows.push(v);
     }
     points_from_rows(rows)
 }
@@ -47,15 +54,5 @@ pub fn write_xyva(table: &CamTable, header: &[String]) -> String {
 
 /// Reads `X,Y,V,A` points back (comment lines and the header skipped; J, not written, is 0).
 pub fn read_xyva(text: &str) -> Result<Vec<CamPoint>> {
-    let mut rows = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let l = line.trim();
-        if l.is_empty() || l.starts_with('#') || l.starts_with("X,") {
-            continue;
-        }
-        let mut v = numbers(l, 4, i, 0)?;
-        v.push(0.0);
-        rows.push(v);
-    }
-    points_from_rows(rows)
+    read_columns(text, 4)
 }
