@@ -79,7 +79,7 @@ impl CatalogueEntry {
 
 /// A parameter's value: a number (`ramp`) or text (`segments`); untagged in JSON, so
 /// `{"ramp": 0.1}` and `{"segments": "0.5:constant:1,…"}`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum ParamValue {
     /// A number.

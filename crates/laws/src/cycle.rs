@@ -176,11 +176,15 @@ fn param_value(text: &str) -> toml::Value {
 }
 
 impl CycleSpec {
+    /// The allowed motion angle of [`CycleSpec::rise_return`] (deg): the rise and the return each
+    /// take at most half of the turn.
+    pub const RISE_RETURN_MOTION_DEG: Range = Range::closed(1e-6, 180.0, "deg");
+
     /// One turn (360°) of a rise by `law` over `motion_deg`, a dwell, the return by the same law
     /// over `motion_deg` and a dwell of the same length (dwells of zero length left out): the
     /// machine cycle of a single law. Fails when the two motions do not fit in the turn.
     pub fn rise_return(law: &LawSpec, unit: StrokeUnit, stroke: f64, motion_deg: f64) -> Result<Self> {
-        Range::closed(1e-6, 180.0, "deg").check("motion_deg", motion_deg)?;
+        Self::RISE_RETURN_MOTION_DEG.check("motion_deg", motion_deg)?;
         let dwell = 180.0 - motion_deg;
         let mut segment = vec![SegmentSpec::moving(SegmentKind::Rise, motion_deg, law)];
         if dwell > 0.0 {

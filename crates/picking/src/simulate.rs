@@ -7,7 +7,7 @@ use crate::{Mechanism, Nominal, PickError, Result, Settings, State};
 use serde::{Deserialize, Serialize};
 
 /// Which route computes the actual motion.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// The paper's closed form (eqs. 29–47, corrected). Falls back to [`Method::Ode`] with a

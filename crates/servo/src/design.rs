@@ -17,7 +17,7 @@ pub const MAX_SPEEDS: usize = 6;
 /// The file form is this struct in JSON or TOML (the drive under `[drive]`, as in drive files);
 /// `f64` values are written in shortest round-trip form, so save → load gives back exactly the
 /// same design. Its top-level keys besides `drive` are [`crate::DESIGN_KEYS`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ServoDesign {
     /// Definition points `[X, Y]`: X from 0 to 0.5 strictly increasing, Y₁ = Y_N = 0, Y ∈ [−1, 1].
@@ -26,6 +26,7 @@ pub struct ServoDesign {
     #[serde(default)]
     pub end: SplineEnd,
     /// Main-shaft speeds (rpm), 1 … [`MAX_SPEEDS`] of them.
+    #[schemars(transform = loomkin_units::schema::item_bounds(ShaftSpeed::RANGE))]
     pub speeds_rpm: Vec<f64>,
     /// The drive (SI units; see [`Drive`]).
     pub drive: Drive,
@@ -45,7 +46,7 @@ impl Default for ServoDesign {
 }
 
 /// File formats of a design.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum DesignFormat {
     /// JSON.

@@ -36,7 +36,7 @@ use serde::{Deserialize, Serialize};
 /// In a TOML file they sit under `[drive]`; a key left out is 0, except `gear_ratio` and
 /// `efficiency` (default 1) and the cycle keys `return_angle_deg` (default `motion_angle_deg`)
 /// and `dwell_after_rise_deg` (default: half of what rise and return leave of the turn).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Drive {
     /// Stroke `H` of the rack (m), > 0.

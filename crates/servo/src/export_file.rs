@@ -10,7 +10,7 @@ use loomkin_laws::Cycle;
 use serde::{Deserialize, Serialize};
 
 /// The file formats of [`export`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum ExportFormat {

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 /// The condition of the acceleration spline at `x = 0` (the start of the motion).
 ///
 /// At `x = 0.5` the slope is always the paper's `D` (see [`slope_at_middle`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum SplineEnd {

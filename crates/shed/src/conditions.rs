@@ -33,10 +33,15 @@ impl Default for Conditions {
 }
 
 impl Conditions {
+    /// The allowed dwell threshold `T` ([`THRESHOLD_RANGE`]), a fraction of the stroke.
+    pub const THRESHOLD: Range = Range::closed(THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)");
+    /// The allowed frame stroke `h` (m): above 0, at most a metre.
+    pub const STROKE_M: Range = Range::open_closed(0.0, 1.0, "m");
+
     /// Validating constructor.
     pub fn new(threshold: f64, stroke_m: f64, speed_rpm: f64) -> Result<Self> {
         check_threshold(threshold)?;
-        Range::open_closed(0.0, 1.0, "m").check("stroke_m", stroke_m)?;
+        Self::STROKE_M.check("stroke_m", stroke_m)?;
         ShaftSpeed::from_rpm(speed_rpm)?;
         Ok(Self { threshold, stroke_m, speed_rpm })
     }
@@ -72,7 +77,7 @@ impl Conditions {
 
 /// Checks a dwell threshold: `0.75 ≤ T ≤ 0.99`.
 pub fn check_threshold(threshold: f64) -> Result<f64> {
-    Ok(Range::closed(THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)").check("threshold", threshold)?)
+    Ok(Conditions::THRESHOLD.check("threshold", threshold)?)
 }
 
 #[cfg(test)]

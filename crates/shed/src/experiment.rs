@@ -12,7 +12,7 @@ use loomkin_units::Range;
 use serde::{Deserialize, Serialize};
 
 /// The named families of positive-phase shapes with free relative lengths.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Family {

@@ -9,6 +9,9 @@ use loomkin_units::{Range, ShaftSpeed};
 /// weave, two picks).
 pub const FRAME_PERIOD_DEG: f64 = 720.0;
 
+/// The allowed frame stroke of [`frame_cycle`] (mm): above 0, at most a metre.
+pub const FRAME_STROKE_MM_RANGE: Range = Range::open_closed(0.0, 1000.0, "mm");
+
 /// The full frame cycle over two picks (720° of the main shaft), as [`crate::cycle_curve`] draws it:
 /// the rise over `[0, φ_дв]`, a dwell to 360°, the return over `[360°, 360° + φ_дв]` by the same
 /// law (`s = H(1 − s°)`), a dwell to 720° (a dwell of zero length, at `φ_дв = 360°`, is left out).
@@ -18,7 +21,7 @@ pub const FRAME_PERIOD_DEG: f64 = 720.0;
 /// builds exactly the law of [`ShedLaw::build`]. `stroke_mm` is the frame's stroke, `speed_rpm`
 /// the main-shaft speed stored in the file (if given).
 pub fn frame_cycle(law: &ShedLaw, stroke_mm: f64, speed_rpm: Option<f64>) -> Result<CycleSpec> {
-    Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", stroke_mm)?;
+    FRAME_STROKE_MM_RANGE.check("stroke_mm", stroke_mm)?;
     if let Some(n) = speed_rpm {
         ShaftSpeed::from_rpm(n)?;
     }

@@ -51,7 +51,7 @@ pub use experiment::{
     CRITERIA_COLUMNS, DesignKind, Family, GridSpec, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW, Study, StudyEstimate,
     StudyRow, StudyTable, csv_header, csv_line, front_of_table, preset_table, preset_table_in,
 };
-pub use frame_cycle::{FRAME_PERIOD_DEG, frame_cycle, frame_cycle_toml};
+pub use frame_cycle::{FRAME_PERIOD_DEG, FRAME_STROKE_MM_RANGE, frame_cycle, frame_cycle_toml};
 pub use paper::{TABLE3, Table3Check, Table3Row, table3, table3_minimax_threshold};
 pub use presets::{PRESETS, Preset, preset, preset_names};
 pub use report::{

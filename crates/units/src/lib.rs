@@ -25,6 +25,7 @@ mod convert;
 mod field;
 mod format;
 mod range;
+pub mod schema;
 mod speed;
 mod sweep;
 

@@ -51,24 +51,112 @@ function num(v, digits) {
   return /^-0(\.0*)?$/.test(t) ? t.slice(1) : t; // never "-0.0"
 }
 
+// ---------------------------------------------------------------- the request schemas
+
+// GET /api/schema: the JSON Schema of every request the API checks, with the library's ranges.
+// Every numeric field takes its min and max (and, where the schema has one, its first value) from
+// it: the page writes no bound of its own. A slider beside a field moves over a view span of the
+// page's choosing; the field takes whatever the library allows (docs/design/schema.md).
+let schemas = {};
+
+async function loadSchemas() {
+  try { schemas = (await api("/schema")).routes; } catch (e) { status("schema: " + e.message, true); }
+  loomkin.schemas = schemas;
+}
+
+// The schema of the request key at `path` ("design.roller_radius_mm"; "motions_deg[]" for the
+// items of an array) of a route's request, its $refs and optional (anyOf … null) resolved.
+function schemaAt(route, path) {
+  const r = schemas[route];
+  if (!r) return null;
+  const root = r.request;
+  const deref = (s) => {
+    for (let i = 0; s && i < 16; i++) {
+      if (s.$ref) s = root.$defs[s.$ref.split("/").pop()];
+      else if (s.anyOf) s = s.anyOf.find((x) => x.type !== "null");
+      else break;
+    }
+    return s;
+  };
+  let s = deref(root);
+  for (const key of path.split(".")) {
+    const items = key.endsWith("[]");
+    s = deref(s && s.properties && s.properties[items ? key.slice(0, -2) : key]);
+    if (items) s = deref(s && s.items);
+    if (!s) return null;
+  }
+  return s;
+}
+
+// The limits of a numeric request key: {min, max, minOpen, maxOpen, unit, default} (min or max
+// undefined on a side without a bound).
+function limitsOf(route, path) {
+  const s = schemaAt(route, path);
+  if (!s) return null;
+  return {
+    min: s.minimum !== undefined ? s.minimum : s.exclusiveMinimum, minOpen: s.exclusiveMinimum !== undefined,
+    max: s.maximum !== undefined ? s.maximum : s.exclusiveMaximum, maxOpen: s.exclusiveMaximum !== undefined,
+    unit: s["x-unit"] || "", default: s.default,
+  };
+}
+
+// Sets a numeric input's min and max from the schema (an open side also as data-min-open /
+// data-max-open), and its value from the schema's default when it has none; `scale` turns the
+// request's unit into the field's (1000 for a field in mm of a key in m). Returns the limits.
+function applyLimits(input, route, path, scale) {
+  const l = limitsOf(route, path);
+  if (!l) { loomkin.errors.push(`no schema for ${route} ${path}`); return null; }
+  const k = scale || 1;
+  const text = (v) => String(+(v * k).toPrecision(12));
+  input.removeAttribute("min"); input.removeAttribute("max");
+  if (l.min !== undefined) input.min = text(l.min);
+  if (l.max !== undefined) input.max = text(l.max);
+  input.dataset.minOpen = String(l.minOpen);
+  input.dataset.maxOpen = String(l.maxOpen);
+  input.dataset.schema = `${route} ${path}`;
+  if (input.value === "" && typeof l.default === "number") input.value = text(l.default);
+  return l;
+}
+
+// Whether a typed value lies outside an input's min and max (open sides excluded).
+function outOfLimits(input, v) {
+  if (!isFinite(v)) return true;
+  const lo = input.min === "" ? -Infinity : +input.min, hi = input.max === "" ? Infinity : +input.max;
+  const loOpen = input.dataset.minOpen === "true", hiOpen = input.dataset.maxOpen === "true";
+  return (loOpen ? v <= lo : v < lo) || (hiOpen ? v >= hi : v > hi);
+}
+
+// "0 < label ≤ 1000 mm": an input's limits in words.
+function limitsText(input, label, unit) {
+  const lo = input.min === "" ? null : input.min, hi = input.max === "" ? null : input.max;
+  const l = lo === null ? "" : `${lo} ${input.dataset.minOpen === "true" ? "<" : "≤"} `;
+  const h = hi === null ? "" : ` ${input.dataset.maxOpen === "true" ? "<" : "≤"} ${hi}`;
+  return `${l}${label}${h}${unit ? " " + unit : ""}`;
+}
+
 // ---------------------------------------------------------------- shared pieces for every view
 
-// A slider with a numeric field beside it; both edit one value. The slider moves in `step`, the
-// field takes any value in [min, max] (e.g. 15.5 mm of strap play). onInput(v) on every move or
-// typed value; onCommit(v) when an edit ends (slider released, field changed): record it for undo.
+// A slider with a numeric field beside it; both edit one value. The slider moves in `step` over
+// the view span [min, max]; the field takes any value (e.g. 15.5 mm of strap play) within the
+// schema's limits of the request key `limits` = {route, path} (or the view span without one), also
+// beyond the slider's span (the slider then rests at its end). onInput(v) on every move or typed
+// value; onCommit(v) when an edit ends (slider released, field changed): record it for undo.
 // Returns {label, range, field, set(v)}; set shows a value without calling back.
-function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCommit) {
+function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCommit, limits) {
   const range = el("input", { type: "range", min: String(min), max: String(max), step: String(step), value: String(value), id: id + "-range" });
   const field = el("input", { type: "number", min: String(min), max: String(max), step: "any", value: String(value), id, className: "short" });
+  if (limits) applyLimits(field, limits.route, limits.path);
   field.setAttribute("aria-label", `${label} (${unit})`);
   range.addEventListener("input", () => { field.value = range.value; field.classList.remove("bad"); onInput(+range.value); });
   range.addEventListener("change", () => { if (onCommit) onCommit(+range.value); });
   field.addEventListener("change", () => {
-    // The bounds as the slider has them now (a view may change its range, e.g. a 720° cycle).
-    const v = +field.value, lo = +range.min, hi = +range.max;
-    if (!isFinite(v) || field.value === "" || v < lo || v > hi) {
+    // The field's own bounds (the schema's, or the slider's as it has them now: a view may change
+    // its span, e.g. a 720° cycle).
+    const v = +field.value;
+    if (field.value === "" || outOfLimits(field, v)) {
       field.classList.add("bad");
-      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${lo} … ${hi} ${unit}`, true);
+      const allowed = limits ? limitsText(field, label, unit) : `${field.min} … ${field.max} ${unit}`;
+      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${allowed}`, true);
       return;
     }
     field.classList.remove("bad");
@@ -77,8 +165,8 @@ function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCom
     if (onCommit) onCommit(v);
   });
   const set = (v) => { range.value = String(v); field.value = String(v); field.classList.remove("bad"); };
-  // A new upper bound for both (the field's own check follows the slider's).
-  const setMax = (v) => { range.max = String(v); field.max = String(v); };
+  // A new upper end of the slider's span (and of the field's, when the schema does not bound it).
+  const setMax = (v) => { range.max = String(v); if (!limits) field.max = String(v); };
   return { setMax, label: el("label", { className: "slider" }, el("span", { textContent: `${label} (${unit})` }), el("div", { className: "num-slider" }, range, field)), range, field, set };
 }
 
@@ -210,11 +298,12 @@ function undo() {
   h.undo();
 }
 
-// A length the page takes in mm while the API takes m: checked here, so that a refusal names
-// the field in the unit it is typed in (the API's message would give metres).
-function mmRefused(prefix, input, label, value, lo, hi, loOpen) {
-  if (isFinite(value) && (loOpen ? value > lo : value >= lo) && value <= hi) return false;
-  const e = new Error(`${input.value || "(empty)"} mm is out of range: allowed ${lo} ${loOpen ? "<" : "≤"} ${label} ≤ ${hi} mm`);
+// A length the page takes in mm while the API takes m: checked here against the input's limits
+// (the schema's, scaled to mm by applyLimits), so that a refusal names the field in the unit it is
+// typed in (the API's message would give metres).
+function mmRefused(prefix, input, label, value) {
+  if (input.value !== "" && !outOfLimits(input, value)) return false;
+  const e = new Error(`${input.value || "(empty)"} mm is out of range: allowed ${limitsText(input, label, "mm")}`);
   e.field = label;
   showFieldError(prefix, e, () => ({ inputs: [input], label }));
   return true;
@@ -237,7 +326,7 @@ document.addEventListener("keydown", (e) => {
 });
 
 Object.assign(loomkin, { histories: {}, undo, redo, encodeState, decodeState });
-window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, viewHistory, download, api, status, el, num };
+window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, viewHistory, download, api, status, el, num, applyLimits };
 
 // ---------------------------------------------------------------- tabs
 
@@ -529,7 +618,8 @@ async function optimise() {
 
 async function exportDesign(format) {
   try {
-    const r = await api("/servo/export", { design: servo.design, format, rows: parseInt($("#cam-rows").value, 10) || 361 });
+    const rows = parseInt($("#cam-rows").value, 10);
+    const r = await api("/servo/export", { design: servo.design, format, ...(isFinite(rows) ? { rows } : {}) });
     download(r.filename, r.text, r.media_type);
     status(`exported ${r.filename}` + (r.note ? ` — ${r.note}` : ""));
   } catch (e) { status("export: " + e.message, true); }
@@ -702,8 +792,10 @@ async function initPicking() {
       picking.values[s.key] = s.designed;
       // The slider moves in round steps; the field beside it takes any value (15.5 mm of play).
       const step = niceRound((s.max - s.min) / 200);
+      // The slider spans the paper's range; the field takes the library's (the request schema's).
       const w = sliderWithNumber("pick-" + s.key, s.description, s.unit, s.min, s.max, step, +s.designed.toPrecision(6),
-        (v) => { picking.values[s.key] = v; simulatePick(); }, () => picking.history.commit());
+        (v) => { picking.values[s.key] = v; simulatePick(); }, () => picking.history.commit(),
+        { route: "/api/picking/simulate", path: "settings." + s.key });
       w.field.value = String(+s.designed.toPrecision(6));
       picking.sliders[s.key] = w;
       panel.append(w.label);
@@ -775,12 +867,18 @@ function initShed() {
   const inputs = {
     step: el("input", { type: "number", step: "any", value: "0.025", id: "shed-step" }),
     motions: el("input", { type: "text", value: "180, 200, 220, 240, 260, 280, 300", id: "shed-motions", spellcheck: false }),
-    threshold: el("input", { type: "number", step: "any", value: "0.95", id: "shed-threshold" }),
+    threshold: el("input", { type: "number", step: "any", id: "shed-threshold" }),
     // mm, as `loomkin shed … --stroke-mm` (the API takes stroke_m).
     stroke: el("input", { type: "number", step: "any", value: "100", id: "shed-stroke" }),
-    speed: el("input", { type: "number", step: "any", value: "300", id: "shed-speed" }),
-    jerk: el("input", { type: "number", step: "any", min: "0", placeholder: "none", id: "shed-jerk" }),
+    speed: el("input", { type: "number", step: "any", id: "shed-speed" }),
+    jerk: el("input", { type: "number", step: "any", placeholder: "none", id: "shed-jerk" }),
   };
+  const pareto = "/api/shed/pareto";
+  applyLimits(inputs.step, pareto, "step");
+  applyLimits(inputs.threshold, pareto, "conditions.threshold");
+  applyLimits(inputs.stroke, pareto, "conditions.stroke_m", 1000);
+  applyLimits(inputs.speed, pareto, "conditions.speed_rpm");
+  applyLimits(inputs.jerk, pareto, "max_jerk_m_s3");
   const log = el("input", { type: "checkbox", id: "shed-log" });
   const form = el("div", { className: "panel" }, el("h2", { textContent: "Family and grid" }),
     el("p", { className: "hint", textContent: "Heald-frame laws (Makarov et al. 2004): every law of the family on a grid of relative lengths k_Ti, at each motion angle. Click a point of the Pareto front to see that law. A jerk limit keeps only the laws whose peak jerk stays under it (laws whose acceleration jumps have no bounded jerk)." }),
@@ -846,7 +944,7 @@ function shedField(path) {
 async function computePareto(chosen) {
   const i = shed.inputs;
   // 0 < h ≤ 1 m, as the library's Conditions.
-  if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value, 0, 1000, true)) return;
+  if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value)) return;
   const motions_deg = i.motions.value.split(/[,;\s]+/).filter((t) => t).map(Number);
   status("evaluating the grid…");
   const req = { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() };
@@ -939,7 +1037,7 @@ const dobby = { req: null, result: null };
 async function initDobby() {
   const root = $("#dobby-root");
   const inputs = {
-    cycles: el("input", { type: "number", min: "1", max: "6", step: "1", id: "dobby-cycles" }),
+    cycles: el("input", { type: "number", step: "1", id: "dobby-cycles" }),
     dwell: el("input", { type: "number", step: "any", id: "dobby-dwell" }),
     centre: el("input", { type: "number", step: "any", id: "dobby-centre" }),
     rise: el("select", { id: "dobby-rise" }),
@@ -947,6 +1045,9 @@ async function initDobby() {
     roller: el("input", { type: "number", step: "any", id: "dobby-roller" }),
   };
   for (const name of ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"]) inputs.rise.append(el("option", { value: name, textContent: name }));
+  applyLimits(inputs.cycles, "/api/dobby/synthesize", "law.cycles");
+  applyLimits(inputs.alpha, "/api/dobby/synthesize", "geometry.alpha_deg");
+  applyLimits(inputs.roller, "/api/dobby/synthesize", "roller_m", 1000);
   const angleW = sliderWithNumber("dobby-angle", "input angle φ2", "°", 0, 360, 1, 40, () => drawDobby(), () => dobby.history.commit());
   const angle = angleW.range;
   const play = el("button", { type: "button", id: "dobby-play", textContent: "▶ turn the crank" });
@@ -1029,8 +1130,8 @@ async function exportDobby(format) {
 }
 
 async function synthesizeDobby() {
-  // 0 ≤ r ≤ 0.2 m, as /api/dobby/synthesize.
-  if (mmRefused("dobby", dobby.inputs.roller, "roller radius", +dobby.inputs.roller.value, 0, 200, false)) return;
+  // The roller's limits as /api/dobby/synthesize's schema, in mm.
+  if (mmRefused("dobby", dobby.inputs.roller, "roller radius", +dobby.inputs.roller.value)) return;
   const r = dobbyRequest();
   dobby.req = r;
   try {
@@ -1109,8 +1210,11 @@ async function initDynamics() {
   const law = el("select", { id: "dyn-law" });
   try { for (const l of (await api("/laws")).laws) law.append(el("option", { value: l.name, textContent: l.name })); } catch (e) { status("laws: " + e.message, true); }
   law.value = "modified-sine";
-  const stroke = el("input", { type: "number", step: "any", value: "100", min: "0", id: "dyn-stroke" });
-  const motion = el("input", { type: "number", step: "any", value: "120", min: "0", max: "180", id: "dyn-motion" });
+  const dynRoute = "/api/dynamics/response";
+  const stroke = el("input", { type: "number", step: "any", value: "100", id: "dyn-stroke" });
+  const motion = el("input", { type: "number", step: "any", value: "120", id: "dyn-motion" });
+  applyLimits(stroke, dynRoute, "law.stroke_mm");
+  applyLimits(motion, dynRoute, "law.motion_deg");
   const file = el("input", { type: "file", accept: ".toml,text/plain", id: "dyn-file" });
   const fileName = el("span", { className: "hint", textContent: "" });
   const lawBox = el("div", { className: "grid2", hidden: true }, el("label", {}, "law", law), el("label", {}, "stroke (mm)", stroke), el("label", {}, "motion angle, rise and return (°)", motion));
@@ -1131,15 +1235,19 @@ async function initDynamics() {
   });
   dyn.source = source; dyn.law = law; dyn.stroke = stroke; dyn.motion = motion;
   dyn.values = { speed_rpm: example.speed_rpm, natural_hz: example.natural_hz, damping_ratio: example.damping_ratio };
-  const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); }, commit);
-  const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); }, commit);
-  const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); }, commit);
+  // The sliders' spans are the view's (the speeds, frames and damping of looms); the fields beside
+  // them take the library's ranges from the request schema.
+  const speed = sliderWithNumber("dyn-speed", "main-shaft speed", "rpm", 50, 1500, 1, example.speed_rpm, (v) => { dyn.values.speed_rpm = v; respond(); }, commit, { route: dynRoute, path: "speed_rpm" });
+  const fn = sliderWithNumber("dyn-fn", "natural frequency of the frame f_n", "Hz", 5, 300, 0.5, example.natural_hz, (v) => { dyn.values.natural_hz = v; changed(); }, commit, { route: dynRoute, path: "natural_hz" });
+  const zeta = sliderWithNumber("dyn-zeta", "damping ratio ζ", "–", 0, 0.5, 0.005, example.damping_ratio, (v) => { dyn.values.damping_ratio = v; changed(); }, commit, { route: dynRoute, path: "damping_ratio" });
   dyn.speedW = speed; dyn.fnW = fn; dyn.zetaW = zeta;
   const steady = el("input", { type: "checkbox", id: "dyn-steady" });
   steady.addEventListener("change", () => { changed(); commit(); });
   dyn.steady = steady;
   const from = el("input", { type: "number", step: "any", value: "100", id: "dyn-from", className: "short" });
   const to = el("input", { type: "number", step: "any", value: "1200", id: "dyn-to", className: "short" });
+  applyLimits(from, dynRoute, "sweep.from_rpm");
+  applyLimits(to, dynRoute, "sweep.to_rpm");
   for (const e of [from, to]) e.addEventListener("change", () => { changed(); commit(); });
   dyn.from = from; dyn.to = to;
   // The state in the address; a loaded cycle file is not (it stays in the page only).
@@ -1236,6 +1344,8 @@ window.LoomkinApp = {
 };
 
 async function start() {
+  await loadSchemas();
+  applyLimits($("#cam-rows"), "/api/servo/export", "rows");
   let views = ["servo", "catalogue"];
   try { views = (await api("/info")).views; } catch (e) { status("info: " + e.message, true); }
   const tabs = $("#tabs");

@@ -6,7 +6,7 @@
 
 const { Chart, Scene, PALETTE } = window.LoomkinCharts;
 const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
-const { sliderWithNumber, viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
+const { sliderWithNumber, viewHistory, showFieldError, clearFieldErrors, applyLimits } = window.LoomkinShared;
 
 const cam = { inflight: false, queued: false, result: null, fileText: null };
 
@@ -16,9 +16,14 @@ function field(label, input, hint) {
   return l;
 }
 
-function numberInput(id, value, attrs) {
-  return el("input", Object.assign({ type: "number", step: "any", value: String(value), id }, attrs || {}));
+// A numeric field whose limits are those of the request key `path` of `route` in the schema.
+function numberInput(id, value, route, path, attrs) {
+  const input = el("input", Object.assign({ type: "number", step: "any", value: String(value), id }, attrs || {}));
+  applyLimits(input, route, path);
+  return input;
 }
+
+const PROFILE = "/api/cam/profile";
 
 async function initCam() {
   const panel = document.querySelector("#cam-panel");
@@ -36,15 +41,15 @@ async function initCam() {
   const law = el("select", { id: "cam-law" });
   try { for (const l of (await api("/laws")).laws) law.append(el("option", { value: l.name, textContent: l.name })); } catch (e) { status("laws: " + e.message, true); }
   law.value = "modified-sine";
-  const stroke = numberInput("cam-stroke", 60, { min: "0" });
-  const motion = numberInput("cam-motion", 120, { min: "0", max: "180" });
+  const stroke = numberInput("cam-stroke", 60, PROFILE, "source.law.stroke_mm");
+  const motion = numberInput("cam-motion", 120, PROFILE, "source.law.motion_deg");
   const strokeLabel = el("span", { textContent: "stroke (mm)" });
   const lawBox = el("div", { className: "grid2", hidden: true }, field("law", law),
     el("label", {}, strokeLabel, stroke), field("motion angle, rise and return (°)", motion));
   const preset = el("select", { id: "cam-shed-preset" });
   for (const p of ex.shed_presets) preset.append(el("option", { value: p, textContent: p }));
-  const shedStroke = numberInput("cam-shed-stroke", 100, { min: "0" });
-  const shedMotion = numberInput("cam-shed-motion", "", { placeholder: "preset's" });
+  const shedStroke = numberInput("cam-shed-stroke", 100, PROFILE, "source.shed.stroke_mm");
+  const shedMotion = numberInput("cam-shed-motion", "", PROFILE, "source.shed.motion_deg", { placeholder: "preset's" });
   const shedBox = el("div", { className: "grid2", hidden: true }, field("preset", preset),
     field("frame stroke (mm)", shedStroke), field("motion angle (°)", shedMotion));
   const file = el("input", { type: "file", accept: ".toml,text/plain", id: "cam-file" });
@@ -63,12 +68,12 @@ async function initCam() {
   const sizeBy = el("select", { id: "cam-size-by" },
     el("option", { value: "pressure", textContent: "least prime circle for a pressure angle" }),
     el("option", { value: "radius", textContent: "a given prime circle" }));
-  const pressure = numberInput("cam-max-pressure", 30, { min: "0", max: "89" });
-  const prime = numberInput("cam-prime", 120, { min: "0" });
-  const roller = numberInput("cam-roller", 15, { min: "0" });
-  const offset = numberInput("cam-offset", 0);
-  const arm = numberInput("cam-arm", 160, { min: "0" });
-  const pivot = numberInput("cam-pivot", 190, { min: "0" });
+  const pressure = numberInput("cam-max-pressure", 30, PROFILE, "design.max_pressure_deg");
+  const prime = numberInput("cam-prime", 120, PROFILE, "design.prime_radius_mm");
+  const roller = numberInput("cam-roller", 15, PROFILE, "design.roller_radius_mm");
+  const offset = numberInput("cam-offset", 0, PROFILE, "design.offset_mm");
+  const arm = numberInput("cam-arm", 160, PROFILE, "design.arm_mm");
+  const pivot = numberInput("cam-pivot", 190, PROFILE, "design.pivot_mm");
   const pressureLabel = field("largest pressure angle (°)", pressure);
   const primeLabel = field("prime circle radius Rp (mm)", prime, "least radius of the pitch curve: base circle + roller");
   const rollerLabel = field("roller radius (mm)", roller);
@@ -77,14 +82,14 @@ async function initCam() {
   const pivotLabel = field("pivot distance d (mm)", pivot);
 
   // Downloads.
-  const tol = numberInput("cam-chord-tol", 0.01, { min: "0", className: "short" });
-  const bore = numberInput("cam-bore", "", { min: "0", className: "short", placeholder: "0.4·Rb" });
+  const tol = numberInput("cam-chord-tol", "", "/api/cam/dxf", "chord_tol_mm", { className: "short" });
+  const bore = numberInput("cam-bore", "", "/api/cam/dxf", "bore_mm", { className: "short", placeholder: "0.4·Rb" });
   const dxfBtn = el("button", { type: "button", id: "cam-dxf", textContent: "DXF drawing" });
   const format = el("select", { id: "cam-format" });
   for (const f of ex.formats) format.append(el("option", { value: f, textContent: f }));
   const spacing = el("select", { id: "cam-spacing" },
     el("option", { value: "step", textContent: "step (°)" }), el("option", { value: "tolerance", textContent: "tolerance" }));
-  const spacingValue = numberInput("cam-spacing-value", 1, { min: "0", className: "short" });
+  const spacingValue = numberInput("cam-spacing-value", 1, "/api/cam/table", "step_deg", { className: "short" });
   const tableBtn = el("button", { type: "button", id: "cam-table", textContent: "Cam table" });
   const fileNote = el("p", { className: "hint", id: "cam-download-note" });
 
@@ -145,7 +150,11 @@ async function initCam() {
   for (const e of [law, stroke, motion, preset, shedStroke, shedMotion, follower, closure, sizeBy, pressure, prime, roller, offset, arm, pivot]) e.addEventListener("change", changed);
   // The download settings are part of the state too (no recomputation).
   for (const e of [tol, bore, format, spacingValue]) e.addEventListener("change", commit);
-  spacing.addEventListener("change", () => { spacingValue.value = spacing.value === "step" ? "1" : "0.001"; layout(); commit(); });
+  spacing.addEventListener("change", () => {
+    spacingValue.value = spacing.value === "step" ? "1" : "0.001";
+    applyLimits(spacingValue, "/api/cam/table", spacing.value === "step" ? "step_deg" : "tolerance");
+    layout(); commit();
+  });
   file.addEventListener("change", async () => {
     const f = file.files[0]; if (!f) return;
     cam.fileText = await f.text(); cam.fileName = f.name; fileName.textContent = f.name; source.value = "file"; changed();

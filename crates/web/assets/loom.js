@@ -31,7 +31,8 @@ async function initLoom() {
   const patFile = el("input", { type: "file", accept: ".wif,.txt,text/plain", id: "loom-pattern-upload" });
   const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
   const fromPick = el("input", { type: "number", min: "1", step: "1", value: "1", id: "loom-from-pick", className: "short" });
-  const picks = el("input", { type: "number", min: "1", max: "8", step: "1", value: "2", id: "loom-picks", className: "short" });
+  const picks = el("input", { type: "number", step: "1", id: "loom-picks", className: "short" });
+  window.LoomkinShared.applyLimits(picks, "/api/loom/evaluate", "picks");
   const objective = el("select", { id: "loom-objective" }, el("option", { value: "peak", textContent: "peak torque" }), el("option", { value: "rms", textContent: "RMS torque" }));
   const optimise = el("button", { type: "button", id: "loom-optimise", textContent: "Optimise stagger" });
   const apply = el("input", { type: "checkbox", id: "loom-apply-stagger", disabled: true });
@@ -185,7 +186,7 @@ function evaluate() {
     showFieldError("loom", e, () => ({ inputs: [input], label }));
   };
   if (!Number.isInteger(q.from_pick) || q.from_pick < 0) { refuse(loom.inputs.fromPick, "first pick", "is not a pick number: a whole number from 1"); return; }
-  if (!Number.isInteger(q.picks)) { refuse(loom.inputs.picks, "picks", "is not a whole number: allowed 1 … 8"); return; }
+  if (!Number.isInteger(q.picks)) { refuse(loom.inputs.picks, "picks", `is not a whole number: allowed ${loom.inputs.picks.min} … ${loom.inputs.picks.max}`); return; }
   loom.inflight = true;
   const t0 = performance.now();
   api("/loom/evaluate", q)

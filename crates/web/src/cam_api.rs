@@ -10,8 +10,9 @@ use crate::{ApiError, ApiJson};
 use axum::Router;
 use axum::routing::{get, post};
 use loomkin_cams::profile::{
-    CamDesign, CamPoint, CamProfile, Closure, Curve, DEFAULT_CHORD_TOL_MM, DEFAULT_MAX_PRESSURE_DEG,
-    DEFAULT_SAMPLE_STEP_DEG, Follower, ProfileExtremes, ProfileReport, SAMPLE_STEP_RANGE, Size,
+    BORE_RANGE, CHORD_TOL_RANGE, CamDesign, CamPoint, CamProfile, Closure, Curve, DEFAULT_CHORD_TOL_MM,
+    DEFAULT_MAX_PRESSURE_DEG, DEFAULT_SAMPLE_STEP_DEG, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE,
+    ProfileExtremes, ProfileReport, ROLLER_RANGE, SAMPLE_STEP_RANGE, Size,
 };
 use loomkin_cams::table::{CamTable, DEFAULT_STEP_DEG, Format, Motion, STEP_RANGE, Spacing, TOLERANCE_RANGE};
 use loomkin_laws::{Cycle, CycleSpec, StrokeUnit};
@@ -79,36 +80,41 @@ pub fn examples() -> CamExamples {
 }
 
 /// A catalogue law as rise, dwell, return, dwell over one turn (`cam profile --law`).
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamLaw {
     /// The law of the rise and of the return.
     pub law: LawChoice,
     /// Stroke (mm) of a translating or flat-faced follower.
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(StrokeUnit::Mm.stroke_range()))]
     pub stroke_mm: Option<f64>,
     /// Swing (deg) of an oscillating follower.
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(StrokeUnit::Deg.stroke_range()))]
     pub stroke_deg: Option<f64>,
     /// Master angle of the rise and of the return (deg, at most 180).
+    #[schemars(transform = loomkin_units::schema::bounds(CycleSpec::RISE_RETURN_MOTION_DEG))]
     pub motion_deg: f64,
 }
 
 /// A shedding law's full frame cycle (`shed law NAME --emit-cycle`).
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShedSource {
     /// Preset name (`loomkin shed list`).
     pub preset: String,
     /// The frame's stroke (mm).
+    #[schemars(transform = loomkin_units::schema::bounds(loomkin_shed::FRAME_STROKE_MM_RANGE))]
     pub stroke_mm: f64,
     /// Another motion angle than the preset's (deg).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(loomkin_shed::MOTION_DEG))]
     pub motion_deg: Option<f64>,
 }
 
 /// Where the motion comes from: exactly one of the three, or none for the heald-frame example.
-#[derive(Debug, Clone, Deserialize, PartialEq, Default)]
+#[derive(Debug, Clone, Deserialize, PartialEq, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamSource {
     /// A cycle file's text.
@@ -175,7 +181,7 @@ impl CamSource {
 }
 
 /// The follower (`--follower`).
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum FollowerKind {
     /// Translating roller follower.
@@ -188,7 +194,7 @@ pub enum FollowerKind {
 }
 
 /// How the follower is held (`--conjugate`, `--groove`).
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ClosureKind {
     /// One cam, force closure.
@@ -201,7 +207,7 @@ pub enum ClosureKind {
 }
 
 /// The cam: the flags of `loomkin cam profile`.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamDesignRequest {
     /// The follower.
@@ -213,21 +219,27 @@ pub struct CamDesignRequest {
     /// Prime circle radius (mm); with neither this nor `max_pressure_deg`, sized for
     /// [`DEFAULT_MAX_PRESSURE_DEG`].
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(LENGTH_RANGE))]
     pub prime_radius_mm: Option<f64>,
     /// Size for this largest pressure angle (deg).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(PRESSURE_RANGE))]
     pub max_pressure_deg: Option<f64>,
     /// Roller radius (mm; 0 a knife edge).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(ROLLER_RANGE))]
     pub roller_radius_mm: f64,
     /// Offset of a translating follower (mm).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(OFFSET_RANGE))]
     pub offset_mm: f64,
     /// Arm length of an oscillating follower (mm).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(LENGTH_RANGE))]
     pub arm_mm: Option<f64>,
     /// Pivot distance of an oscillating follower (mm).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(LENGTH_RANGE))]
     pub pivot_mm: Option<f64>,
 }
 
@@ -269,7 +281,7 @@ impl CamDesignRequest {
 }
 
 /// `POST /api/cam/profile` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamProfileRequest {
     /// The motion.
@@ -279,6 +291,7 @@ pub struct CamProfileRequest {
     pub design: CamDesignRequest,
     /// Main-shaft angle step of the sampled curves (deg).
     #[serde(default = "default_sample_step")]
+    #[schemars(transform = loomkin_units::schema::bounds(SAMPLE_STEP_RANGE))]
     pub step_deg: f64,
 }
 
@@ -527,7 +540,7 @@ pub fn cam_profile(req: &CamProfileRequest) -> Result<CamProfileResponse, ApiErr
 }
 
 /// `POST /api/cam/dxf` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamDxfRequest {
     /// The motion.
@@ -537,9 +550,12 @@ pub struct CamDxfRequest {
     pub design: CamDesignRequest,
     /// Chord tolerance of the polylines (mm).
     #[serde(default = "default_tol")]
+    #[schemars(transform = loomkin_units::schema::bounds(CHORD_TOL_RANGE))]
     pub chord_tol_mm: f64,
-    /// Bore diameter (mm; 0 none; default 0.4 × base radius).
+    /// Bore diameter (mm; 0 none; default [`loomkin_cams::profile::DEFAULT_BORE_PER_BASE_RADIUS`] × base
+    /// radius).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(BORE_RANGE))]
     pub bore_mm: Option<f64>,
 }
 
@@ -577,7 +593,7 @@ pub fn cam_dxf(req: &CamDxfRequest) -> Result<CamFile, ApiError> {
 }
 
 /// `POST /api/cam/table` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CamTableRequest {
     /// The motion.
@@ -587,9 +603,12 @@ pub struct CamTableRequest {
     pub format: String,
     /// Points on the joints and every `step_deg` from each (default 1 when no tolerance).
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(STEP_RANGE))]
     pub step_deg: Option<f64>,
-    /// Fewest points for this re-interpolation error (slave unit), instead of a step.
+    /// Fewest points for this re-interpolation error (slave unit), instead of a step; at least
+    /// [`MIN_WEB_TOLERANCE`].
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(TOLERANCE_RANGE))]
     pub tolerance: Option<f64>,
 }
 

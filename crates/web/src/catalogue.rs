@@ -39,7 +39,7 @@ pub fn catalogue() -> CatalogueResponse {
 pub use loomkin_laws::ParamValue;
 
 /// One law to compare: a catalogue name and its parameters.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LawChoice {
     /// Catalogue name (`cycloidal`, `modified-trapezoid`, …).
@@ -58,13 +58,14 @@ impl LawChoice {
 }
 
 /// `POST /api/laws/compare` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CompareRequest {
     /// The laws, 1 … [`MAX_COMPARE`].
     pub laws: Vec<LawChoice>,
     /// Samples per law, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default [`DEFAULT_SAMPLES`]).
     #[serde(default = "default_samples")]
+    #[schemars(transform = crate::schema::count(MIN_SAMPLES, MAX_SAMPLES))]
     pub samples: usize,
 }
 

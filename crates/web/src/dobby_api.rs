@@ -23,10 +23,11 @@ pub(crate) fn routes() -> Router {
 }
 
 /// The output law of the modulator.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DobbyLaw {
     /// Cycles per input revolution, [`OutputLawSpec::CYCLES_RANGE`].
+    #[schemars(transform = loomkin_units::schema::bounds(OutputLawSpec::CYCLES_RANGE))]
     pub cycles: u32,
     /// Output dwell per cycle (deg of input).
     pub dwell_deg: f64,
@@ -37,7 +38,7 @@ pub struct DobbyLaw {
 }
 
 /// `POST /api/dobby/synthesize` request (and `GET /api/dobby/default` answer: the paper's case).
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DobbyRequest {
     /// The output law.
@@ -45,8 +46,10 @@ pub struct DobbyRequest {
     /// The modulator's links (m) and angles (deg).
     pub geometry: ModulatorGeometry,
     /// Roller radius (m), [`ROLLER_M_RANGE`].
+    #[schemars(transform = loomkin_units::schema::bounds(ROLLER_M_RANGE))]
     pub roller_m: f64,
     /// Step of the input angle (deg), [`STEP_DEG_RANGE`], at most [`MAX_DOBBY_ROWS`] rows a turn.
+    #[schemars(transform = loomkin_units::schema::bounds(STEP_DEG_RANGE))]
     pub step_deg: f64,
 }
 
@@ -190,7 +193,7 @@ pub fn dobby_synthesize(req: &DobbyRequest) -> Result<DobbyResponse, ApiError> {
 }
 
 /// What `POST /api/dobby/export` writes.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum DobbyExportFormat {
     /// The drawing of both cams in mm, as `loomkin dobby synthesize --dxf` writes it.
@@ -200,7 +203,7 @@ pub enum DobbyExportFormat {
 }
 
 /// `POST /api/dobby/export` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DobbyExportRequest {
     /// The synthesis, as for `/api/dobby/synthesize`.

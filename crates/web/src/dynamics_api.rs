@@ -20,6 +20,9 @@ pub const EXAMPLE_CYCLE: &str = include_str!("../../../examples/heald-frame-cycl
 /// Most speeds of one sweep.
 pub const MAX_SWEEP_POINTS: usize = 2000;
 
+/// Fewest speeds of a sweep: its two ends.
+pub const MIN_SWEEP_POINTS: usize = 2;
+
 pub(crate) fn routes() -> Router {
     Router::new()
         .route("/dynamics/example", get(|| async { ApiJson(example()) }))
@@ -45,31 +48,36 @@ pub fn example() -> Example {
 }
 
 /// A catalogue law as a rise–dwell–return–dwell cycle over one turn.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LawCycle {
     /// The law of the rise and of the return.
     pub law: LawChoice,
     /// Stroke (mm).
+    #[schemars(transform = loomkin_units::schema::bounds(StrokeUnit::Mm.stroke_range()))]
     pub stroke_mm: f64,
     /// Motion angle of the rise and of the return (deg, ≤ 180); the dwells fill the turn.
+    #[schemars(transform = loomkin_units::schema::bounds(CycleSpec::RISE_RETURN_MOTION_DEG))]
     pub motion_deg: f64,
 }
 
 /// Speeds of the sweep.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SweepRequest {
     /// Lowest speed (rpm).
+    #[schemars(transform = loomkin_units::schema::bounds(ShaftSpeed::RANGE))]
     pub from_rpm: f64,
     /// Highest speed (rpm).
+    #[schemars(transform = loomkin_units::schema::bounds(ShaftSpeed::RANGE))]
     pub to_rpm: f64,
-    /// Number of speeds, 2 … [`MAX_SWEEP_POINTS`].
+    /// Number of speeds, [`MIN_SWEEP_POINTS`] … [`MAX_SWEEP_POINTS`].
+    #[schemars(transform = crate::schema::count(MIN_SWEEP_POINTS, MAX_SWEEP_POINTS))]
     pub points: usize,
 }
 
 /// `POST /api/dynamics/response` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicsRequest {
     /// A cycle file's text; with neither this nor `law`, the example cycle.
@@ -79,17 +87,21 @@ pub struct DynamicsRequest {
     #[serde(default)]
     pub law: Option<LawCycle>,
     /// Main-shaft speed (rpm).
+    #[schemars(transform = loomkin_units::schema::bounds(ShaftSpeed::RANGE))]
     pub speed_rpm: f64,
     /// Natural frequency of the frame on its drive (Hz).
+    #[schemars(transform = loomkin_units::schema::bounds(Follower::NATURAL_HZ))]
     pub natural_hz: f64,
     /// Damping ratio ζ, 0 ≤ ζ < 1.
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(Follower::DAMPING_RATIO))]
     pub damping_ratio: f64,
     /// The periodic steady state instead of one cycle from rest.
     #[serde(default)]
     pub steady: bool,
     /// Samples over the cycle, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default 721: every half degree).
     #[serde(default = "default_samples")]
+    #[schemars(transform = crate::schema::count(MIN_SAMPLES, MAX_SAMPLES))]
     pub samples: usize,
     /// A speed sweep to compute as well.
     #[serde(default)]
@@ -181,7 +193,7 @@ pub fn respond(req: &DynamicsRequest) -> Result<DynamicsResponse, ApiError> {
     let sweep = match &req.sweep {
         None => None,
         Some(sw) => {
-            let m = check_count("sweep.points", sw.points, 2, MAX_SWEEP_POINTS)?;
+            let m = check_count("sweep.points", sw.points, MIN_SWEEP_POINTS, MAX_SWEEP_POINTS)?;
             ShaftSpeed::RANGE.check("sweep.from_rpm", sw.from_rpm)?;
             ShaftSpeed::RANGE.check("sweep.to_rpm", sw.to_rpm)?;
             if sw.to_rpm <= sw.from_rpm {

@@ -43,6 +43,7 @@ mod limits;
 mod loom_api;
 mod picking_api;
 mod pool;
+mod schema;
 mod series;
 mod server;
 mod servo_api;
@@ -52,8 +53,8 @@ mod shed_api;
 pub use assets::{APP_JS, CAM_JS, CHARTS_JS, INDEX_HTML, LOOM_JS, STYLE_CSS};
 pub use cam_api::{
     CAM_EXAMPLES, CamDesignRequest, CamDxfRequest, CamExamples, CamFile, CamLaw, CamProfileRequest, CamProfileResponse,
-    CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, ShedSource, cam_dxf,
-    cam_profile, cam_table,
+    CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, MIN_WEB_TOLERANCE, ShedSource,
+    cam_dxf, cam_profile, cam_table,
 };
 pub use catalogue::{
     CatalogueItem, CatalogueResponse, CompareRequest, CompareResponse, ComparedLaw, LawChoice, ParamValue, catalogue,
@@ -64,8 +65,8 @@ pub use dobby_api::{
     MAX_DOBBY_ROWS, dobby_export, dobby_synthesize,
 };
 pub use dynamics_api::{
-    DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS, SweepCurves,
-    SweepRequest, respond as dynamics_response,
+    DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS,
+    MIN_SWEEP_POINTS, SweepCurves, SweepRequest, respond as dynamics_response,
 };
 pub use error::{ApiError, check_count};
 pub use json::{ApiJson, parse_json, parse_toml};
@@ -82,6 +83,7 @@ pub use picking_api::{
     PickingCurves, PickingRequest, PickingResponse, SettingInfo, SettingsInfo, settings_info, simulate as simulate_pick,
 };
 pub use pool::{HEAVY_BUDGET, RETRY_AFTER_S, heavy_slots};
+pub use schema::{ApiSchema, RouteSchema, SCHEMA_DIALECT, api_schema, request_schema};
 pub use series::{LawSamples, finite};
 pub use server::{Bound, HEADER_READ_TIMEOUT, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
 pub use servo_api::{

@@ -73,7 +73,7 @@ pub fn examples() -> LoomExamples {
 }
 
 /// The weave pattern: a WIF draft or a lift plan (neither: plain weave on the loom's frames).
-#[derive(Debug, Clone, Deserialize, PartialEq, Default)]
+#[derive(Debug, Clone, Deserialize, PartialEq, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PatternSource {
     /// A WIF 1.1 file's text.
@@ -125,7 +125,7 @@ impl LoomSource {
 }
 
 /// `POST /api/loom/evaluate` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoomRequest {
     /// A loom file's text (default: `examples/rapier-loom.toml`).
@@ -142,9 +142,11 @@ pub struct LoomRequest {
     pub from_pick: usize,
     /// Picks in the timing diagram, 1 … [`MAX_TIMING_PICKS`].
     #[serde(default = "default_picks")]
+    #[schemars(transform = crate::schema::count(1, MAX_TIMING_PICKS))]
     pub picks: usize,
     /// Angle step of the timing curves (deg), [`loomkin_loom::TIMING_STEP_RANGE`].
     #[serde(default = "default_step")]
+    #[schemars(transform = loomkin_units::schema::bounds(loomkin_loom::TIMING_STEP_RANGE))]
     pub step_deg: f64,
 }
 
@@ -224,7 +226,7 @@ pub fn evaluate(req: &LoomRequest) -> Result<LoomResponse, ApiError> {
 }
 
 /// What the stagger minimises (`--objective`).
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq, Default, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectiveKind {
     /// Peak |torque|.
@@ -235,7 +237,7 @@ pub enum ObjectiveKind {
 }
 
 /// `POST /api/loom/stagger` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StaggerRequest {
     /// A loom file's text (default: `examples/rapier-loom.toml`).

@@ -69,18 +69,20 @@ pub fn settings_info() -> SettingsInfo {
 }
 
 /// `POST /api/picking/simulate` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PickingRequest {
     /// Setting values by key (`speed_rpm`, `play_mm`, `strap_cm`, `shuttle_g`, `checking_kgf`);
     /// a key left out keeps the designed value.
     #[serde(default)]
+    #[schemars(schema_with = "crate::schema::picking_settings")]
     pub settings: std::collections::BTreeMap<String, f64>,
     /// `closed` (default: the paper's closed form, corrected) or `ode`.
     #[serde(default)]
     pub method: Method,
     /// Samples over the pick, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default [`DEFAULT_PICK_SAMPLES`]).
     #[serde(default = "default_samples")]
+    #[schemars(transform = crate::schema::count(MIN_SAMPLES, MAX_SAMPLES))]
     pub samples: usize,
 }
 

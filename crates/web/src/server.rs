@@ -30,6 +30,7 @@ pub fn router() -> Router {
         .merge(crate::dynamics_api::routes())
         .merge(crate::cam_api::routes())
         .merge(crate::loom_api::routes())
+        .merge(crate::schema::routes())
         .fallback(api_not_found);
     Router::new()
         .route("/", get(assets::index))

@@ -26,20 +26,21 @@ pub(crate) fn routes() -> Router {
 }
 
 /// `{"design": …}`: answer of `GET /api/servo/default` and `POST /api/servo/design/load`.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq, schemars::JsonSchema)]
 pub struct DesignResponse {
     /// The design.
     pub design: ServoDesign,
 }
 
 /// `POST /api/servo/evaluate` request: one redraw of the editor.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EvaluateRequest {
     /// The design.
     pub design: ServoDesign,
     /// Samples per curve, [`MIN_SAMPLES`] … [`MAX_SAMPLES`] (default [`DEFAULT_SAMPLES`]).
     #[serde(default = "default_samples")]
+    #[schemars(transform = crate::schema::count(MIN_SAMPLES, MAX_SAMPLES))]
     pub samples: usize,
 }
 
@@ -140,7 +141,7 @@ pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
 }
 
 /// `POST /api/servo/optimize` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OptimizeRequest {
     /// The starting design (its speeds are the optimiser's speeds).
@@ -229,7 +230,7 @@ pub(crate) fn optimize_until(
 }
 
 /// `POST /api/servo/export` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ExportRequest {
     /// The design.
@@ -241,6 +242,7 @@ pub struct ExportRequest {
     /// the law, and the table also has a point on every joint (the cam-table engine of `loomkin cam
     /// table`), so it has a few more rows.
     #[serde(default = "default_rows")]
+    #[schemars(transform = crate::schema::count(MIN_CAM_ROWS, MAX_CAM_ROWS))]
     pub rows: usize,
 }
 
@@ -309,7 +311,7 @@ pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
 }
 
 /// `POST /api/servo/design/save` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SaveRequest {
     /// The design.
@@ -337,7 +339,7 @@ pub fn save(req: &SaveRequest) -> Result<ExportResponse, ApiError> {
 }
 
 /// `POST /api/servo/design/load` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadRequest {
     /// The file's text.

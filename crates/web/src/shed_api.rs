@@ -11,7 +11,7 @@ use loomkin_shed::{
     Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, JERK_LIMIT_RANGE, MOTION_DEG, Progress, ShedError,
     Study, cycle_accel_jumps, cycle_curve, evaluate, pareto_within, table, within_jerk_limit,
 };
-use loomkin_units::FieldError;
+use loomkin_units::{FieldError, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 
 /// Most laws (grid rows) one Pareto request may evaluate.
@@ -26,21 +26,25 @@ pub(crate) fn routes() -> Router {
 }
 
 /// Evaluation conditions shared by both shedding requests.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShedConditions {
     /// Dwell threshold T (fraction of the stroke), [`loomkin_shed::THRESHOLD_RANGE`] (default:
     /// the library's [`Conditions::default`], 0.95).
     #[serde(default = "default_threshold")]
+    #[schemars(transform = loomkin_units::schema::bounds(Conditions::THRESHOLD))]
     pub threshold: f64,
     /// Frame stroke h (m), default the library's (0.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = loomkin_units::schema::bounds(Conditions::STROKE_M))]
     pub stroke_m: Option<f64>,
     /// The same in mm, the unit of `loomkin shed … --stroke-mm` and of the page (give one of the two).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = loomkin_units::schema::bounds_in_unit(Conditions::STROKE_M, 1e3, "mm"))]
     pub stroke_mm: Option<f64>,
     /// Main-shaft speed n (1/min), default the library's (300).
     #[serde(default = "default_speed")]
+    #[schemars(transform = loomkin_units::schema::bounds(ShaftSpeed::RANGE))]
     pub speed_rpm: f64,
 }
 
@@ -96,19 +100,22 @@ fn shed_error(default_field: &str, e: ShedError) -> ApiError {
 }
 
 /// `POST /api/shed/pareto` request.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ParetoRequest {
     /// Law family: `trapezoid` (3 parts), `lead-trapezoid` (4), `linear-trapezoid` (3).
     pub family: Family,
     /// Grid step of the relative lengths k_Ti ([`GridSpec::STEP_RANGE`]; at most
     /// [`MAX_SHED_ROWS`] laws).
+    #[schemars(transform = loomkin_units::schema::bounds(GridSpec::STEP_RANGE))]
     pub step: f64,
     /// Smallest relative length on the grid (default [`GridSpec::PRACTICAL_MIN_K`], the paper's
     /// practical minimum).
     #[serde(default = "default_min")]
+    #[schemars(transform = loomkin_units::schema::bounds(GridSpec::K_RANGE))]
     pub min_length: f64,
     /// Motion angles φ (deg), 1 … [`MAX_MOTIONS`] of them, each in (0, 360].
+    #[schemars(transform = loomkin_units::schema::item_bounds(MOTION_DEG))]
     pub motions_deg: Vec<f64>,
     /// Evaluation conditions.
     #[serde(default)]
@@ -116,6 +123,7 @@ pub struct ParetoRequest {
     /// Jerk limit (m/s³): the front is drawn from the laws whose peak jerk stays within it (a
     /// law whose acceleration steps has no bounded jerk); none when absent.
     #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(JERK_LIMIT_RANGE))]
     pub max_jerk_m_s3: Option<f64>,
 }
 
@@ -225,20 +233,23 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
 }
 
 /// `POST /api/shed/law` request: one law of a family.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShedLawRequest {
     /// Law family (as in [`ParetoRequest::family`]).
     pub family: Family,
     /// Relative lengths k_T1 … k_Tn of the positive phase (sum 1).
+    #[schemars(transform = loomkin_units::schema::item_bounds(GridSpec::K_RANGE))]
     pub lengths: Vec<f64>,
     /// Motion angle φ (deg).
+    #[schemars(transform = loomkin_units::schema::bounds(MOTION_DEG))]
     pub motion_deg: f64,
     /// Evaluation conditions.
     #[serde(default)]
     pub conditions: ShedConditions,
     /// Samples over the turn (default [`DEFAULT_CYCLE_SAMPLES`]).
     #[serde(default = "default_samples")]
+    #[schemars(transform = crate::schema::count(MIN_SAMPLES, MAX_SAMPLES))]
     pub samples: usize,
 }
 

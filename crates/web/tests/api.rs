@@ -9,30 +9,7 @@ use loomkin_web::{MAX_BODY_BYTES, MAX_SAMPLES, ServoDesign, router};
 use serde_json::{Value, json};
 use tower::ServiceExt;
 
-/// One request through the router; a 503 (the heavy slots taken by another test running in
-/// parallel) is retried after a short wait, as a client told `Retry-After` would.
-async fn call(method: &str, path: &str, body: Option<String>) -> (StatusCode, String, String) {
-    let mut tries = 0;
-    let res = loop {
-        let req = Request::builder()
-            .method(method)
-            .uri(path)
-            .header(header::CONTENT_TYPE, "application/json")
-            .body(body.clone().map_or_else(Body::empty, Body::from))
-            .expect("request");
-        let res = router().oneshot(req).await.expect("infallible");
-        tries += 1;
-        if res.status() != StatusCode::SERVICE_UNAVAILABLE || tries > 600 {
-            break res;
-        }
-        assert!(res.headers().contains_key(header::RETRY_AFTER), "a 503 without Retry-After");
-        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
-    };
-    let status = res.status();
-    let ctype = res.headers().get(header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).unwrap_or("").to_string();
-    let bytes = to_bytes(res.into_body(), usize::MAX).await.expect("body");
-    (status, ctype, String::from_utf8_lossy(&bytes).to_string())
-}
+use common::oneshot as call;
 
 async fn post(path: &str, body: Value) -> (StatusCode, Value) {
     let (s, _, text) = call("POST", path, Some(body.to_string())).await;

@@ -548,12 +548,22 @@ fn the_workbench_in_a_real_browser() {
     );
     assert!((v1.as_f64().expect("velocity") - 20.88).abs() < 0.05);
     assert_eq!(d.script("return +document.querySelector('#pick-play_mm-range').step"), json!(0.2));
+    // The slider spans the paper's 0 … 60 mm; the field takes the library's range (up to the
+    // stick's length, 740 mm): 75 mm is computed, the slider resting at its end.
     d.type_into("#pick-play_mm", "75");
+    d.wait_for(
+        "the pick at 75 mm of play",
+        "return !document.querySelector('#pick-play_mm').classList.contains('bad') && \
+         document.querySelector('#status').textContent === 'pick simulated' && \
+         +document.querySelector('#pick-play_mm-range').value === 60",
+    );
+    d.type_into("#pick-play_mm", "800");
     d.wait_for(
         "the out-of-range play refused",
         "return document.querySelector('#pick-play_mm').classList.contains('bad')",
     );
-    assert!(d.text("#status").contains("0 … 60 mm"), "{}", d.text("#status"));
+    assert!(d.text("#status").contains("0 ≤ strap-loop play ≤ 740 mm"), "{}", d.text("#status"));
+
     d.shot("picking");
     lap("picking numeric field");
 
@@ -910,6 +920,32 @@ fn the_workbench_in_a_real_browser() {
         }
     }
     lap("every view at 1024, 1280 and 1920 px");
+    // Every field's limits are the request schema's (the library's ranges), not the page's.
+    let limits = d.script(
+        "const out = []; for (const e of document.querySelectorAll('input[data-schema]')) \
+         out.push([e.id, e.dataset.schema, e.min, e.max, e.dataset.minOpen, e.dataset.maxOpen]); return out",
+    );
+    let schema = common::request(server, "GET", "/api/schema", None).expect("schema").json();
+    let fields = limits.as_array().expect("fields");
+    assert!(fields.len() >= 8, "{limits}");
+    for f in fields {
+        let (id, key) = (f[0].as_str().unwrap_or(""), f[1].as_str().unwrap_or(""));
+        let (route, path) = key.split_once(' ').expect("route and path");
+        let s = common::schema_at(&schema["routes"][route]["request"], path);
+        // A field in mm of a key in m is scaled by 1000 (the page's own unit).
+        let k = if path.ends_with("_m") && !path.ends_with("_rpm") { 1e3 } else { 1.0 };
+        for (i, closed, open) in [(2, "minimum", "exclusiveMinimum"), (3, "maximum", "exclusiveMaximum")] {
+            let want = s.get(closed).or(s.get(open)).and_then(Value::as_f64).map(|v| v * k);
+            let got = f[i].as_str().filter(|t| !t.is_empty()).map(|t| t.parse::<f64>().expect("number"));
+            match (want, got) {
+                (Some(w), Some(g)) => assert!((w - g).abs() <= 1e-9 * w.abs(), "{id}: {g} vs schema {w}"),
+                (None, None) => {}
+                _ => panic!("{id} ({key}): page {got:?}, schema {want:?}"),
+            }
+            assert_eq!(f[i + 2] == "true", s.get(open).is_some(), "{id}: open side");
+        }
+    }
+    lap("every field's limits are the schema's");
     let errors = d.script("return loomkin.errors");
     assert_eq!(errors, json!([]), "script errors on the page");
 }

@@ -2,6 +2,7 @@
 
 use crate::Result;
 use loomkin_units::Range;
+use loomkin_units::schema::bounds;
 use serde::{Deserialize, Serialize};
 
 /// Geometry of the modulator of a Stäubli-type rotary dobby (series 2600).
@@ -15,19 +16,25 @@ use serde::{Deserialize, Serialize};
 ///
 /// [`ModulatorGeometry::default`] is the paper's, eq. (10): `l2 = 0.66 m`, `l3 = l3′ = 0.36 m`,
 /// `l6 = 0.40 m`, `α = θ = 47°` (the angle of its figures; the paper sweeps α over 30…60°).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ModulatorGeometry {
     /// Input crank OA (m).
+    #[schemars(transform = bounds(Self::LENGTH_M_RANGE))]
     pub l2_m: f64,
     /// Lever arm AB to the cam roller (m).
+    #[schemars(transform = bounds(Self::LENGTH_M_RANGE))]
     pub l3_m: f64,
     /// Lever arm AC to the counter-cam roller (m).
+    #[schemars(transform = bounds(Self::LENGTH_M_RANGE))]
     pub l3p_m: f64,
     /// Output crank OD (m); must be shorter than `l2`.
+    #[schemars(transform = bounds(Self::LENGTH_M_RANGE))]
     pub l6_m: f64,
     /// Angle α between the slot and the arm AB (deg).
+    #[schemars(transform = bounds(Self::ANGLE_DEG_RANGE))]
     pub alpha_deg: f64,
     /// Angle θ between the slot and the arm AC (deg), on the other side of the slot.
+    #[schemars(transform = bounds(Self::ANGLE_DEG_RANGE))]
     pub theta_deg: f64,
 }
 
@@ -56,14 +63,20 @@ impl ModulatorGeometry {
         Ok(g)
     }
 
-    /// Checks every field: lengths in (0, 100] m, `l6 < l2`, α and θ in (0°, 180°).
+    /// The allowed link length (m): above 0, at most 100 m.
+    pub const LENGTH_M_RANGE: Range = Range::open_closed(0.0, 100.0, "m");
+    /// The allowed angles α and θ (deg): strictly between 0° and 180° (the arm would lie on the slot).
+    pub const ANGLE_DEG_RANGE: Range = Range::open(0.0, 180.0, "°");
+
+    /// Checks every field: lengths in [`ModulatorGeometry::LENGTH_M_RANGE`], `l6 < l2`, α and θ in
+    /// [`ModulatorGeometry::ANGLE_DEG_RANGE`].
     pub fn validate(&self) -> Result<()> {
         for (f, v) in [("l2_m", self.l2_m), ("l3_m", self.l3_m), ("l3p_m", self.l3p_m), ("l6_m", self.l6_m)] {
-            Range::open_closed(0.0, 100.0, "m").check(f, v)?;
+            Self::LENGTH_M_RANGE.check(f, v)?;
         }
         Range::open(0.0, self.l2_m, "m (l6 < l2)").check("l6_m", self.l6_m)?;
         for (f, v) in [("alpha_deg", self.alpha_deg), ("theta_deg", self.theta_deg)] {
-            Range::open(0.0, 180.0, "°").check(f, v)?;
+            Self::ANGLE_DEG_RANGE.check(f, v)?;
         }
         Ok(())
     }

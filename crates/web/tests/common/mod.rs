@@ -2,9 +2,12 @@
 //! ChromeDriver's W3C WebDriver protocol) and a server on a free loopback port.
 #![allow(dead_code)]
 
+use axum::body::{Body, to_bytes};
+use axum::http::{Request, StatusCode, header};
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::time::Duration;
+use tower::ServiceExt;
 
 /// A response: status code and body text.
 #[derive(Debug)]
@@ -111,4 +114,50 @@ pub fn spawn_server() -> SocketAddr {
         });
     });
     rx.recv_timeout(Duration::from_secs(10)).expect("server did not start")
+}
+
+/// One request through the router; a 503 (the heavy slots taken by another test running in
+/// parallel) is retried after a short wait, as a client told `Retry-After` would.
+pub async fn oneshot(method: &str, path: &str, body: Option<String>) -> (StatusCode, String, String) {
+    let mut tries = 0;
+    let res = loop {
+        let req = Request::builder()
+            .method(method)
+            .uri(path)
+            .header(header::CONTENT_TYPE, "application/json")
+            .body(body.clone().map_or_else(Body::empty, Body::from))
+            .expect("request");
+        let res = loomkin_web::router().oneshot(req).await.expect("infallible");
+        tries += 1;
+        if res.status() != StatusCode::SERVICE_UNAVAILABLE || tries > 600 {
+            break res;
+        }
+        assert!(res.headers().contains_key(header::RETRY_AFTER), "a 503 without Retry-After");
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    };
+    let status = res.status();
+    let ctype = res.headers().get(header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).unwrap_or("").to_string();
+    let bytes = to_bytes(res.into_body(), usize::MAX).await.expect("body");
+    (status, ctype, String::from_utf8_lossy(&bytes).to_string())
+}
+
+/// The schema of the request key `path` (`design.roller_radius_mm`) in a route's request schema
+/// of `GET /api/schema`, its `$ref`s and optional values (`anyOf` with `null`) resolved.
+pub fn schema_at<'a>(root: &'a serde_json::Value, path: &str) -> &'a serde_json::Value {
+    use serde_json::Value;
+    let deref = |mut s: &'a Value| loop {
+        if let Some(r) = s.get("$ref").and_then(Value::as_str) {
+            s = &root["$defs"][r.trim_start_matches("#/$defs/")];
+        } else if let Some(a) = s.get("anyOf").and_then(Value::as_array) {
+            s = a.iter().find(|b| b["type"] != "null").expect("a non-null branch");
+        } else {
+            return s;
+        }
+    };
+    let mut s = deref(root);
+    for key in path.split('.') {
+        s = deref(&s["properties"][key]);
+        assert!(s.is_object(), "no schema for {path}");
+    }
+    s
 }
