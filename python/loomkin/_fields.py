@@ -20,3 +20,8 @@ def default(path: str) -> Any:
     if v is None:
         raise KeyError(f"{path} has no default")
     return int(v) if f["count"] else float(v)
+
+
+def speeds(kind: str) -> list:
+    """The servo commands' default speeds (rpm): ``"TORQUE"`` (servo torque) or ``"DESIGN"``."""
+    return list(_m.SERVO_DEFAULT_SPEEDS[kind])

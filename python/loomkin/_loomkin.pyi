@@ -10,6 +10,8 @@ __version__: str
 # The libraries' field descriptors by the path of their const ("ShaftSpeed::SPEED"): name, range,
 # default, count, doc. Stubs write defaults as `...`: their values are the descriptors' (loomkin._fields).
 FIELDS: Dict[str, Dict[str, Any]]
+# The servo commands' default speeds (rpm) by use: TORQUE, DESIGN.
+SERVO_DEFAULT_SPEEDS: Dict[str, List[float]]
 
 class LoomkinError(ValueError):
     """Bad input: `field` names the input at fault, `allowed` says what is accepted."""
@@ -67,8 +69,8 @@ class Cycle:
         """The law of each rise and return (dimensionless), with the segment's index."""
     def to_toml(self) -> str:
         """The cycle as a cycle file's TOML text (from_toml reads it back to the same cycle)."""
-    def report(self, speed_rpm: Optional[float] = None, points: int = 721) -> Dict[str, Any]: ...
-    def sample(self, speed_rpm: Optional[float] = None, points: int = 721) -> Columns:
+    def report(self, speed_rpm: Optional[float] = None, points: int = ...) -> Dict[str, Any]: ...
+    def sample(self, speed_rpm: Optional[float] = None, points: int = ...) -> Columns:
         """angle_deg, time_s (s) and s, v, a, j in SI units with the unit in the key (s_m, v_m_s,
         a_m_s2, j_m_s3 or s_rad, v_rad_s, ...), points evenly spaced over the cycle."""
     def segments(self, speed_rpm: Optional[float] = None) -> List[Dict[str, Any]]: ...
@@ -81,8 +83,8 @@ def servo_torque(
     speed_rpm: Sequence[float] = ..., def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
 ) -> Dict[str, Any]: ...
 def servo_torque_curve(
-    speed_rpm: float = 600.0,
-    points: int = 721,
+    speed_rpm: float = ...,
+    points: int = ...,
     def_points: DefPoints = None,
     end: str = "natural",
     drive_text: Optional[str] = None,
@@ -90,14 +92,14 @@ def servo_torque_curve(
 def servo_optimize(
     speed_rpm: Sequence[float] = ...,
     objective: str = "peak",
-    starts: int = 6,
+    starts: int = ...,
     fixed_x: bool = False,
     def_points: DefPoints = None,
     end: str = "natural",
     drive_text: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def servo_export(
-    format: str, step_deg: float = 1.0, def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
+    format: str, step_deg: float = ..., def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
 ) -> Dict[str, Any]: ...
 def servo_check(axis_toml: str, cycle: Cycle, speed_rpm: Optional[float] = None) -> Dict[str, Any]:
     """`loomkin servo check AXIS --json`: peak and RMS torque (N·m), speeds (rpm), ratios, checks, pass."""
@@ -105,7 +107,7 @@ def servo_check(axis_toml: str, cycle: Cycle, speed_rpm: Optional[float] = None)
 # picking (keywords as loomkin.picking documents them)
 def pick_design(**model: Any) -> Dict[str, Any]: ...
 def pick_simulate(**kw: Any) -> Dict[str, Any]: ...
-def pick_history(points: int = 201, **kw: Any) -> "tuple[Columns, Dict[str, Any]]": ...
+def pick_history(points: int = ..., **kw: Any) -> "tuple[Columns, Dict[str, Any]]": ...
 def pick_sweep(setting: str, start: float, stop: float, points: int, **kw: Any) -> Dict[str, Any]: ...
 
 def pick_montecarlo(study_toml: str, **model: Any) -> Dict[str, Any]:
@@ -119,33 +121,33 @@ def dobby_sweep(alpha_deg: Sequence[float], **kw: Any) -> Dict[str, Any]:
 def dobby_analyze(
     alpha_deg: Optional[float] = None,
     theta_deg: Optional[float] = None,
-    l2_m: float = 0.66,
-    l3_m: float = 0.36,
-    l3p_m: float = 0.36,
-    l6_m: float = 0.40,
+    l2_m: float = ...,
+    l3_m: float = ...,
+    l3p_m: float = ...,
+    l6_m: float = ...,
     speed_rpm: Optional[float] = None,
-    pressure_limit_deg: float = 60.0,
+    pressure_limit_deg: float = ...,
     cam_spec: Optional[str] = None,
     cam_points_text: Optional[str] = None,
-    step_deg: float = 1.0,
+    step_deg: float = ...,
     roller_m: Optional[float] = None,
 ) -> Dict[str, Any]: ...
 def dobby_synthesize(
-    dwell_deg: float = 40.0,
-    dwell_centre_deg: float = 90.0,
-    cycles: int = 2,
+    dwell_deg: float = ...,
+    dwell_centre_deg: float = ...,
+    cycles: int = ...,
     law: str = "cycloidal",
     params: Optional[Dict[str, Any]] = None,
-    roller_m: float = 0.03,
-    step_deg: float = 1.0,
+    roller_m: float = ...,
+    step_deg: float = ...,
     alpha_deg: Optional[float] = None,
     theta_deg: Optional[float] = None,
-    l2_m: float = 0.66,
-    l3_m: float = 0.36,
-    l3p_m: float = 0.36,
-    l6_m: float = 0.40,
+    l2_m: float = ...,
+    l3_m: float = ...,
+    l3p_m: float = ...,
+    l6_m: float = ...,
     speed_rpm: Optional[float] = None,
-    pressure_limit_deg: float = 60.0,
+    pressure_limit_deg: float = ...,
 ) -> Dict[str, Any]: ...
 
 # shedding
@@ -154,8 +156,8 @@ def shed_law(
     name: Optional[str] = None,
     spec_toml: Optional[str] = None,
     motion_deg: Optional[float] = None,
-    threshold: float = 0.95,
-    stroke_mm: float = 100.0,
+    threshold: float = ...,
+    stroke_mm: float = ...,
     speed_rpm: float = ...,
     label: Optional[str] = None,
 ) -> Dict[str, Any]: ...
@@ -166,9 +168,9 @@ def shed_window(
     carrier_speed_m_s: float,
     reed_width_m: float,
     cloth_width_m: Optional[float] = None,
-    carrier_length_m: float = 0.0,
-    crossing_range_deg: float = 0.0,
-    shed_excess: float = 0.05,
+    carrier_length_m: float = ...,
+    crossing_range_deg: float = ...,
+    shed_excess: float = ...,
     speed_rpm: float = ...,
 ) -> Dict[str, Any]:
     """`loomkin shed window --json`: the loom data, flight_deg, required_window_deg (deg), thresholds."""
@@ -176,7 +178,7 @@ def shed_window(
 # the loom (texts of the loom file and the weave)
 def loom_check(loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None) -> Dict[str, Any]: ...
 def loom_torque(
-    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, step_deg: float = 0.5
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, step_deg: float = ...
 ) -> Dict[str, Any]: ...
 def loom_stagger(
     loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, objective: str = "peak"
@@ -186,16 +188,16 @@ def loom_stagger(
 def dyn_response(
     cycle: Cycle,
     natural_hz: float,
-    damping_ratio: float = 0.0,
+    damping_ratio: float = ...,
     mass_kg: Optional[float] = None,
-    return_spring_n_m: float = 0.0,
-    preload_n: float = 0.0,
+    return_spring_n_m: float = ...,
+    preload_n: float = ...,
     weight: bool = False,
-    force_n: float = 0.0,
+    force_n: float = ...,
     speed_rpm: Optional[float] = None,
-    cycles: int = 1,
+    cycles: int = ...,
     steady: bool = False,
-    points: int = 721,
+    points: int = ...,
 ) -> Dict[str, Any]: ...
 
 # cams
@@ -226,15 +228,15 @@ def cam_profile(
     follower: str,
     prime_radius_mm: Optional[float] = None,
     max_pressure_deg: Optional[float] = None,
-    roller_radius_mm: float = 0.0,
-    offset_mm: float = 0.0,
+    roller_radius_mm: float = ...,
+    offset_mm: float = ...,
     arm_mm: Optional[float] = None,
     pivot_mm: Optional[float] = None,
     closure: str = "single",
-    step_deg: float = 1.0,
+    step_deg: float = ...,
     source: str = "",
     dxf: bool = False,
-    chord_tol_mm: float = 0.01,
+    chord_tol_mm: float = ...,
     bore_mm: Optional[float] = None,
 ) -> Dict[str, Any]:
     """`loomkin cam profile --json`: lengths in mm, angles in deg, curvature in 1/mm; points
@@ -244,42 +246,43 @@ def dyn_sweep(
     cycle: Cycle,
     speed_rpm: npt.ArrayLike,
     natural_hz: float,
-    damping_ratio: float = 0.0,
+    damping_ratio: float = ...,
     mass_kg: Optional[float] = None,
-    return_spring_n_m: float = 0.0,
-    preload_n: float = 0.0,
+    return_spring_n_m: float = ...,
+    preload_n: float = ...,
     weight: bool = False,
-    force_n: float = 0.0,
+    force_n: float = ...,
     steady: bool = False,
 ) -> Dict[str, Any]: ...
-def dyn_spectrum(law: Law, ratio: npt.ArrayLike, damping_ratio: float = 0.0) -> npt.NDArray[np.float64]:
+def dyn_default_ratios() -> npt.NDArray[np.float64]: ...
+def dyn_spectrum(law: Law, ratio: npt.ArrayLike, damping_ratio: float = ...) -> npt.NDArray[np.float64]:
     """Residual amplitude after a rise (% of stroke) at each ratio T·f_n (motion time / natural
     period, dimensionless); damping_ratio dimensionless, 0 <= zeta < 1."""
 def dyn_compensate(
     cycle: Cycle,
     natural_hz: float,
-    damping_ratio: float = 0.0,
+    damping_ratio: float = ...,
     mass_kg: Optional[float] = None,
-    return_spring_n_m: float = 0.0,
-    preload_n: float = 0.0,
+    return_spring_n_m: float = ...,
+    preload_n: float = ...,
     weight: bool = False,
-    force_n: float = 0.0,
+    force_n: float = ...,
     speed_rpm: Optional[float] = None,
-    points: int = 721,
+    points: int = ...,
 ) -> Dict[str, Any]:
     """Compensated input (polydyne): classes, period_s (s), pieces (SI coefficients, t in s) and
     samples (angle_deg, x_mm, s_mm, s_velocity_m_s, s_acceleration_m_s2 or the deg/rad forms)."""
 def dyn_optimize(
     cycle: Cycle,
     natural_hz: float,
-    damping_ratio: float = 0.0,
+    damping_ratio: float = ...,
     mass_kg: Optional[float] = None,
-    return_spring_n_m: float = 0.0,
-    preload_n: float = 0.0,
+    return_spring_n_m: float = ...,
+    preload_n: float = ...,
     weight: bool = False,
-    force_n: float = 0.0,
+    force_n: float = ...,
     speed_rpm: Optional[float] = None,
-    band_pct: float = 10.0,
+    band_pct: float = ...,
 ) -> Dict[str, Any]:
     """`loomkin dyn optimize --json` (natural_hz in Hz, speed_rpm in rpm, band_pct in %, residuals
     in the cycle's unit) and cycle_toml."""
@@ -289,7 +292,7 @@ def dyn_two_mass(
     drive_stiffness_n_m: float,
     frame_mass_kg: float,
     frame_stiffness_n_m: float,
-    damping_ratio: float = 0.0,
+    damping_ratio: float = ...,
     speed_rpm: Optional[float] = None,
     steady: bool = False,
 ) -> Dict[str, Any]:

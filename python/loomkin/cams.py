@@ -12,6 +12,7 @@ import warnings
 from typing import Any, Dict, Mapping, Optional, Union
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._table import Table
 from .cycles import _cycle
 
@@ -86,9 +87,11 @@ def _points(r: Dict[str, Any]) -> Dict[str, Any]:
 
 def profile(cycle: Optional[CycleLike] = None, follower: str = "translating", *,
             prime_radius_mm: Optional[float] = None, max_pressure_deg: Optional[float] = None,
-            roller_radius_mm: float = 0.0, offset_mm: float = 0.0, arm_mm: Optional[float] = None,
-            pivot_mm: Optional[float] = None, closure: str = "single", step_deg: float = 1.0,
-            dxf: bool = False, chord_tol_mm: float = 0.01, bore_mm: Optional[float] = None,
+            roller_radius_mm: float = _default("CamDesign::ROLLER_RADIUS_MM"),
+            offset_mm: float = _default("CamDesign::OFFSET_MM"), arm_mm: Optional[float] = None,
+            pivot_mm: Optional[float] = None, closure: str = "single",
+            step_deg: float = _default("CamProfile::STEP_DEG"), dxf: bool = False,
+            chord_tol_mm: float = _default("CamProfile::CHORD_TOL_MM"), bore_mm: Optional[float] = None,
             law: Optional[str] = None, params: Optional[Dict[str, Union[float, str]]] = None,
             stroke_mm: Optional[float] = None, stroke_deg: Optional[float] = None,
             motion_deg: Optional[float] = None) -> Dict[str, Any]:

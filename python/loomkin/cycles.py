@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 from typing import Any, Dict, Mapping, Optional, Union
 
+from ._fields import default as _default
 from ._inputs import text_of
 from ._loomkin import Cycle
 from ._table import Table
@@ -36,7 +37,7 @@ def _cycle(source: Union[Cycle, str, "os.PathLike[str]", Mapping[str, Any]]) -> 
 
 
 def report(source: Union[Cycle, str, "os.PathLike[str]", Mapping[str, Any]],
-           speed_rpm: Optional[float] = None, points: int = 721) -> Dict[str, Any]:
+           speed_rpm: Optional[float] = None, points: int = _default("Cycle::HELD_POINTS")) -> Dict[str, Any]:
     """``loomkin cycle FILE --json`` for a cycle, a path or a dict: segment peaks and samples.
 
     ``samples`` is a :class:`Table` (angle_deg, time_s, s_m, v_m_s, a_m_s2, j_m_s3, or the rad
@@ -48,7 +49,7 @@ def report(source: Union[Cycle, str, "os.PathLike[str]", Mapping[str, Any]],
 
 
 def sample(source: Union[Cycle, str, "os.PathLike[str]", Mapping[str, Any]],
-           speed_rpm: Optional[float] = None, points: int = 721) -> Table:
+           speed_rpm: Optional[float] = None, points: int = _default("Cycle::HELD_POINTS")) -> Table:
     """The samples of :func:`report` alone, as a :class:`Table` (the CLI's ``--csv`` columns),
     written straight into the arrays (no per-point objects: 10⁷ points are fine)."""
     return Table(_cycle(source).sample(speed_rpm, points))

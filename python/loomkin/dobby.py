@@ -13,6 +13,7 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._inputs import study_text
 from ._table import Table
 
@@ -35,7 +36,7 @@ def _cam_args(cam: Union[str, Sequence[Sequence[float]], None]) -> Tuple[Optiona
     return None, "\n".join(f"{x!r},{y!r}" for x, y in pts.reshape(-1, 2).tolist())
 
 
-def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: float = 1.0,
+def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: float = _default("DobbyInputs::STEP_DEG"),
             roller_m: Optional[float] = None, **geometry: Any) -> Dict[str, Any]:
     """``loomkin dobby analyze --json``: summary (checks: output speed and acceleration range,
     pressure angles, curvature, closure; admissible α), warnings, and rows as a :class:`Table`.
@@ -47,8 +48,10 @@ def analyze(cam: Union[str, Sequence[Sequence[float]], None] = None, step_deg: f
                                   roller_m=roller_m, **geometry))
 
 
-def synthesize(dwell_deg: float = 40.0, dwell_centre_deg: float = 90.0, cycles: int = 2, law: str = "cycloidal",
-               params: Optional[Dict[str, Any]] = None, roller_m: float = 0.03, step_deg: float = 1.0,
+def synthesize(dwell_deg: float = _default("OutputLawSpec::DWELL_DEG"),
+               dwell_centre_deg: float = _default("OutputLawSpec::DWELL_CENTRE_DEG"),
+               cycles: int = _default("OutputLawSpec::CYCLES"), law: str = "cycloidal",
+               params: Optional[Dict[str, Any]] = None, roller_m: float = _default("DobbyInputs::ROLLER_M"), step_deg: float = _default("DobbyInputs::STEP_DEG"),
                **geometry: Any) -> Dict[str, Any]:
     """``loomkin dobby synthesize --json``: the cam Γ and counter-cam Γ′ for ``cycles`` output
     motions by the catalogue ``law`` with dwells of ``dwell_deg`` centred on ``dwell_centre_deg``.

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any, Dict
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._table import Table
 from .cycles import _cycle
 
@@ -36,7 +37,7 @@ def sweep(cycle: Any, speed_rpm: Any, natural_hz: float, **kw: Any) -> Dict[str,
     return r
 
 
-def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = 0.0) -> Table:
+def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = _default("Follower::DAMPING_RATIO")) -> Table:
     """``loomkin dyn spectrum LAW … --csv``: the residual vibration a rise leaves, in % of the
     stroke, against the ratio of motion time to natural period T·f_n (dimensionless).
 
@@ -52,11 +53,7 @@ def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = 0.0) -> Table:
     from ._loomkin import Law
 
     if ratio is None:
-        # The CLI's span 0.5:10:0.01: from + i·step, the last snapped onto `to`.
-        lo, hi, step = 0.5, 10.0, 0.01
-        n = int(np.floor((hi - lo) / step + 1e-9)) + 1
-        v = lo + np.arange(n) * step
-        ratio = np.where(np.abs(v - hi) <= 1e-9 * step, hi, np.minimum(v, hi))
+        ratio = _m.dyn_default_ratios()
     ratio = np.ascontiguousarray(ratio, dtype=np.float64)
     zetas = list(damping_ratio) if isinstance(damping_ratio, (list, tuple, np.ndarray)) else [damping_ratio]
     items = laws if isinstance(laws, (list, tuple)) else [laws]

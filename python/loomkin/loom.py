@@ -11,6 +11,7 @@ import os
 from typing import Any, Dict, Optional, Union
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._inputs import bytes_of, text_of
 from ._table import Table
 
@@ -32,7 +33,7 @@ def check(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = No
 
 
 def torque(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
-           step_deg: float = 0.5) -> Dict[str, Any]:
+           step_deg: float = _default("Drive::STEP_DEG")) -> Dict[str, Any]:
     """``loomkin loom torque --json``: peak and RMS shedding torque (N·m) over the repeat and
     ``points``, a :class:`Table` of angle_deg and torque_n_m."""
     r = _m.loom_torque(*_texts(loom, wif, lift_plan), float(step_deg))

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any, Dict, Optional, Tuple, Union
 
 from . import _loomkin as _m
+from ._fields import default as _default
 from ._inputs import study_text, text_of
 from ._table import Table
 
@@ -40,7 +41,7 @@ def simulate(mechanism: Optional[Any] = None, **kw: Any) -> Dict[str, Any]:
     return _m.pick_simulate(**_kw(mechanism, kw))
 
 
-def history(points: int = 201, mechanism: Optional[Any] = None, **kw: Any) -> Tuple[Table, Dict[str, Any]]:
+def history(points: int = _default("History::POINTS"), mechanism: Optional[Any] = None, **kw: Any) -> Tuple[Table, Dict[str, Any]]:
     """The pick over time (``loomkin pick simulate --csv``): a :class:`Table` of t_s, s_m, v_s_m_s,
     a_s_m_s2 (the picker's nominal motion) and x_m, v_m_s, a_m_s2 (the shuttle), and the outcome."""
     cols, outcome = _m.pick_history(points, **_kw(mechanism, kw))

@@ -12,6 +12,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Union
 
 from . import _loomkin as _m
+from ._fields import default as _default
+from ._fields import speeds as _default_speeds
 from ._inputs import PathOrDict, study_text, text_of
 from ._loomkin import Law
 from ._table import Table
@@ -52,7 +54,7 @@ def law(def_points: DefPoints = None, end: str = "natural") -> Dict[str, Any]:
     return _m.servo_law(def_points, end)
 
 
-def torque(speed_rpm: Union[float, Sequence[float]] = (600.0, 750.0), def_points: DefPoints = None,
+def torque(speed_rpm: Union[float, Sequence[float]] = tuple(_default_speeds("TORQUE")), def_points: DefPoints = None,
            end: str = "natural", drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
     """``loomkin servo torque --json``: def_points, drive (with layout_deg) and per speed the peak
     and RMS motor torque (N·m), the angle of the peak (deg), peak power (W), peak rack velocity
@@ -60,14 +62,15 @@ def torque(speed_rpm: Union[float, Sequence[float]] = (600.0, 750.0), def_points
     return _m.servo_torque(_speeds(speed_rpm), def_points, end, _drive(drive))
 
 
-def torque_curve(speed_rpm: float = 600.0, points: int = 721, def_points: DefPoints = None,
+def torque_curve(speed_rpm: float = _default_speeds("DESIGN")[0], points: int = _default("ServoInputs::CURVE_POINTS"), def_points: DefPoints = None,
                  end: str = "natural", drive: Optional[PathOrDict] = None) -> Table:
     """The drive over one turn: angle_deg, time_s, u_m, v_m_s, a_m_s2, torque_nm, power_w (arrays)
     and phase (a list of rise / dwell-after-rise / return / dwell-after-return)."""
     return Table(_m.servo_torque_curve(float(speed_rpm), points, def_points, end, _drive(drive)))
 
 
-def optimize(speed_rpm: Union[float, Sequence[float]] = (600.0,), objective: str = "peak", starts: int = 6,
+def optimize(speed_rpm: Union[float, Sequence[float]] = tuple(_default_speeds("DESIGN")), objective: str = "peak",
+             starts: int = _default("ServoInputs::STARTS"),
              fixed_x: bool = False, def_points: DefPoints = None, end: str = "natural",
              drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
     """``loomkin servo optimize --json``: least worst peak (or "rms") motor torque over the
@@ -76,7 +79,7 @@ def optimize(speed_rpm: Union[float, Sequence[float]] = (600.0,), objective: str
     return _m.servo_optimize(_speeds(speed_rpm), objective, starts, fixed_x, def_points, end, _drive(drive))
 
 
-def export(format: str, step_deg: float = 1.0, def_points: DefPoints = None, end: str = "natural",
+def export(format: str, step_deg: float = _default("ServoInputs::EXPORT_STEP_DEG"), def_points: DefPoints = None, end: str = "natural",
            drive: Optional[PathOrDict] = None) -> Dict[str, Any]:
     """``loomkin servo export --format F``: text (the file's content; the cam tables csv, xyva and
     poly5 are those of :func:`loomkin.cams.table` on the drive's turn, in mm), filename, media_type; for

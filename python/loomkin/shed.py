@@ -54,7 +54,9 @@ def best(window_deg: float, **kw: Any) -> Dict[str, Any]:
 
 
 def window(carrier_speed_m_s: float, reed_width_m: float, *, cloth_width_m: Optional[float] = None,
-           carrier_length_m: float = 0.0, crossing_range_deg: float = 0.0, shed_excess: float = 0.05,
+           carrier_length_m: float = _default("LoomRequirement::CARRIER_LENGTH_M"),
+           crossing_range_deg: float = _default("LoomRequirement::CROSSING_RANGE_DEG"),
+           shed_excess: float = _default("LoomRequirement::SHED_EXCESS"),
            speed_rpm: float = _default("ShaftSpeed::SPEED")) -> Dict[str, Any]:
     """``loomkin shed window --carrier-speed-m-s V --reed-width-m L --json``: the window a loom
     needs. The loom data (the weft carrier's mean speed in m/s; reed width, cloth width (default:

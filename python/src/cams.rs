@@ -5,10 +5,10 @@ use crate::convert::{columns, to_py};
 use crate::cycles::Cycle;
 use crate::errors::{Fault, OrRaise, raise};
 use loomkin_cams::CamError;
-use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Follower, Size};
+use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, DesignInputs, FollowerKind};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_laws::{CycleSpec, LawSpec, StrokeUnit};
-use loomkin_units::{Range, RangeError};
+use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -127,10 +127,7 @@ fn cam_table<'py>(
     if step_deg.is_some() && tolerance.is_some() {
         return Err(usage("tolerance", "give step_deg or tolerance, not both"));
     }
-    let spacing = match tolerance {
-        Some(t) => Spacing::Tolerance(t),
-        None => Spacing::StepDeg(step_deg.unwrap_or(1.0)),
-    };
+    let spacing = Spacing::of(step_deg, tolerance);
     let motion = match (&cycle, law) {
         (Some(c), None) => Motion::from_cycle(&c.inner),
         (None, Some(name)) => {
@@ -153,10 +150,7 @@ fn cam_table<'py>(
     Ok(r)
 }
 
-/// The allowed step of the printed points (deg), as the CLI's `--step-deg`.
-const POINT_STEP_RANGE: Range = Range::closed(1e-3, 90.0, "deg");
-
-/// The design of `loomkin cam profile`'s flags, refused as the CLI refuses them.
+/// The design of `loomkin cam profile`'s flags, refused as the CLI refuses them (the library's rules).
 #[allow(clippy::too_many_arguments)]
 fn design(
     follower: &str,
@@ -168,47 +162,21 @@ fn design(
     pivot_mm: Option<f64>,
     closure: &str,
 ) -> PyResult<CamDesign> {
-    let kind = follower.trim().to_ascii_lowercase();
-    let follower = match kind.as_str() {
-        "translating" => Follower::Translating { offset_mm },
-        "oscillating" => match (arm_mm, pivot_mm) {
-            (Some(arm_mm), Some(pivot_mm)) => Follower::Oscillating { arm_mm, pivot_mm },
-            (None, _) => return Err(usage("arm_mm", "an oscillating follower needs arm_mm and pivot_mm")),
-            (_, None) => return Err(usage("pivot_mm", "an oscillating follower needs arm_mm and pivot_mm")),
-        },
-        "flat" => Follower::Flat,
+    let follower = match follower.trim().to_ascii_lowercase().as_str() {
+        "translating" => FollowerKind::Translating,
+        "oscillating" => FollowerKind::Oscillating,
+        "flat" => FollowerKind::Flat,
         other => return Err(unknown("follower", other, "translating, oscillating, flat")),
     };
-    if kind != "oscillating" && (arm_mm.is_some() || pivot_mm.is_some()) {
-        return Err(usage("arm_mm", "arm_mm and pivot_mm are for an oscillating follower"));
-    }
-    if kind != "translating" && offset_mm != 0.0 {
-        return Err(usage("offset_mm", "offset_mm is for a translating follower"));
-    }
-    if kind == "flat" && roller_radius_mm != 0.0 {
-        return Err(usage("roller_radius_mm", "a flat-faced follower has no roller"));
-    }
     let closure = match closure.trim().to_ascii_lowercase().as_str() {
         "single" => Closure::Single,
         "conjugate" => Closure::Conjugate,
         "groove" => Closure::Groove,
         other => return Err(unknown("closure", other, "single, conjugate, groove")),
     };
-    let size = match (prime_radius_mm, max_pressure_deg) {
-        (Some(_), Some(_)) => {
-            return Err(usage("max_pressure_deg", "give prime_radius_mm or max_pressure_deg, not both"));
-        }
-        (Some(r), None) => Size::PrimeRadiusMm(r),
-        (None, Some(p)) => Size::MaxPressureDeg(p),
-        (None, None) if kind == "flat" => {
-            return Err(usage(
-                "prime_radius_mm",
-                "a flat-faced follower needs prime_radius_mm (its pressure angle is 0 everywhere)",
-            ));
-        }
-        (None, None) => Size::MaxPressureDeg(30.0),
-    };
-    Ok(CamDesign { follower, closure, roller_radius_mm, size })
+    DesignInputs { follower, closure, prime_radius_mm, max_pressure_deg, roller_radius_mm, offset_mm, arm_mm, pivot_mm }
+        .design()
+        .or_raise()
 }
 
 /// The points of a track as arrays: the report's columns (angle_deg, x_mm, y_mm,
@@ -231,9 +199,9 @@ fn point_columns<'py>(py: Python<'py>, pts: &[CamPoint]) -> PyResult<Bound<'py, 
     )
 }
 
-/// cam_profile(cycle, follower, prime_radius_mm=None, max_pressure_deg=None, roller_radius_mm=0,
-/// offset_mm=0, arm_mm=None, pivot_mm=None, closure="single", step_deg=1, source="", dxf=False,
-/// chord_tol_mm=0.01, bore_mm=None) -> dict
+/// cam_profile(cycle, follower, prime_radius_mm=None, max_pressure_deg=None, roller_radius_mm=...,
+/// offset_mm=..., arm_mm=None, pivot_mm=None, closure="single", step_deg=..., source="", dxf=False,
+/// chord_tol_mm=..., bore_mm=None) -> dict
 /// --
 ///
 /// `loomkin cam profile CYCLE --follower F … --json`: a disc cam for the cycle and a translating
@@ -249,9 +217,10 @@ fn point_columns<'py>(py: Python<'py>, pts: &[CamPoint]) -> PyResult<Bound<'py, 
 /// 0.4 × base radius); an undercut cam is never drawn (LoomkinError naming the roller).
 /// Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (cycle, follower, prime_radius_mm=None, max_pressure_deg=None, roller_radius_mm=0.0,
-    offset_mm=0.0, arm_mm=None, pivot_mm=None, closure="single", step_deg=1.0, source="", dxf=false,
-    chord_tol_mm=0.01, bore_mm=None))]
+#[pyo3(signature = (cycle, follower, prime_radius_mm=None, max_pressure_deg=None,
+    roller_radius_mm=CamDesign::ROLLER_RADIUS_MM.default_value(), offset_mm=CamDesign::OFFSET_MM.default_value(),
+    arm_mm=None, pivot_mm=None, closure="single", step_deg=CamProfile::STEP_DEG.default_value(), source="", dxf=false,
+    chord_tol_mm=CamProfile::CHORD_TOL_MM.default_value(), bore_mm=None))]
 #[allow(clippy::too_many_arguments)]
 fn cam_profile<'py>(
     py: Python<'py>,
@@ -270,7 +239,7 @@ fn cam_profile<'py>(
     chord_tol_mm: f64,
     bore_mm: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    POINT_STEP_RANGE.check("step_deg", step_deg).or_raise()?;
+    CamProfile::STEP_DEG.check(step_deg).or_raise()?;
     let design =
         design(follower, prime_radius_mm, max_pressure_deg, roller_radius_mm, offset_mm, arm_mm, pivot_mm, closure)?;
     let motion = Motion::from_cycle(&cycle.inner);
@@ -280,33 +249,15 @@ fn cam_profile<'py>(
             let report = cam.report(source, step_deg);
             let points = cam.sample(0, step_deg);
             let counter = (cam.track_count() == 2).then(|| cam.sample(1, step_deg));
-            let drawing = match (dxf, cam.undercut_at_deg()) {
+            let drawing = match (dxf, cam.undercut()) {
                 (false, _) => None,
-                (true, Some(at)) => {
-                    let (field, reason) = match (cam.flat_extremes_report(), cam.roller_max_mm()) {
-                        (Some(f), _) => (
-                            "prime_radius_mm",
-                            format!(
-                                "the profile has a cusp at {at} deg; the least prime radius without one is {} mm: \
-                                 no DXF written",
-                                f.least_prime_radius_mm
-                            ),
-                        ),
-                        (None, Some(rmax)) => (
-                            "roller_radius_mm",
-                            format!(
-                                "a {} mm roller undercuts the profile at {at} deg; the largest roller without \
-                                 undercut is {rmax} mm: no DXF written",
-                                design.roller_radius_mm
-                            ),
-                        ),
-                        (None, None) => {
-                            ("roller_radius_mm", format!("the profile is undercut at {at} deg: no DXF written"))
-                        }
-                    };
-                    return Err(CamError::Usage { field: field.into(), reason });
+                (true, Some(u)) => {
+                    let field = u.field_name();
+                    let text = u.to_string();
+                    let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text);
+                    return Err(CamError::Usage { field: field.into(), reason: format!("{reason}: no DXF written") });
                 }
-                (true, None) => Some(cam.dxf(chord_tol_mm, bore_mm.unwrap_or(0.4 * cam.base_radius_mm()))?),
+                (true, None) => Some(cam.dxf(chord_tol_mm, cam.bore_mm_or(bore_mm))?),
             };
             Ok((report, points, counter, drawing))
         })

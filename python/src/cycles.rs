@@ -1,15 +1,12 @@
 //! Machine cycles in SI units at a speed, from a TOML file's text or a dict (as JSON text).
 
 use crate::convert::{columns, fill_columns, to_py};
-use crate::errors::{OrRaise, check_count};
+use crate::errors::OrRaise;
 use loomkin_laws::{CycleSpec, LawError};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::ShaftSpeed;
 use numpy::{AllowTypeChange, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// Samples of a cycle (as the CLI's `--points`).
-const CYCLE_POINTS: Range = Range::closed(2.0, 1e7, "");
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Cycle>()?;
@@ -144,7 +141,7 @@ impl Cycle {
         self.inner.speed_rpm
     }
 
-    /// report(speed_rpm=None, points=721) -> dict
+    /// report(speed_rpm=None, points=...) -> dict
     /// --
     ///
     /// `loomkin cycle FILE --json`: speed_rpm, period_deg, cycle_time_s (s), unit (SI unit of
@@ -152,26 +149,26 @@ impl Cycle {
     /// jerk with their units in the keys) and samples as a dict of numpy arrays (angle_deg, time_s,
     /// s_m, v_m_s, a_m_s2, j_m_s3 or the rad forms). speed_rpm: the call's, else the file's, else 300.
     /// Runs with the GIL released.
-    #[pyo3(signature = (speed_rpm=None, points=721))]
+    #[pyo3(signature = (speed_rpm=None, points=loomkin_laws::Cycle::HELD_POINTS.default_count()))]
     fn report(&self, py: Python<'_>, speed_rpm: Option<f64>, points: usize) -> PyResult<Py<PyAny>> {
         let speed = self.speed(speed_rpm)?;
-        check_count("points", points, CYCLE_POINTS)?;
+        loomkin_laws::Cycle::HELD_POINTS.check_count(points).or_raise()?;
         // The report's head without samples, then the samples straight into numpy arrays.
         let out = to_py(py, &self.inner.report(speed, 0))?;
         out.bind(py).set_item("samples", self.sample_arrays(py, speed, points)?)?;
         Ok(out)
     }
 
-    /// sample(speed_rpm=None, points=721) -> dict[str, numpy.ndarray]
+    /// sample(speed_rpm=None, points=...) -> dict[str, numpy.ndarray]
     /// --
     ///
     /// The samples of `report` alone (angle_deg, time_s, s_m, v_m_s, a_m_s2, j_m_s3 or the rad
     /// forms; `points` evenly spaced over the cycle, both ends included), written straight into
     /// the arrays with the GIL released.
-    #[pyo3(signature = (speed_rpm=None, points=721))]
+    #[pyo3(signature = (speed_rpm=None, points=loomkin_laws::Cycle::HELD_POINTS.default_count()))]
     fn sample<'py>(&self, py: Python<'py>, speed_rpm: Option<f64>, points: usize) -> PyResult<Bound<'py, PyDict>> {
         let speed = self.speed(speed_rpm)?;
-        check_count("points", points, CYCLE_POINTS)?;
+        loomkin_laws::Cycle::HELD_POINTS.check_count(points).or_raise()?;
         self.sample_arrays(py, speed, points)
     }
 

@@ -5,10 +5,10 @@ use crate::convert::{to_py, value_records_to_columns};
 use crate::errors::{Fault, OrRaise};
 use loomkin_laws::{LawError, LawSpec};
 use loomkin_mech::{
-    AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, OutputLawSpec, SynthesisOptions, analyze,
-    parse_point_table, synthesize,
+    AlphaSweep, AnalysisOptions, Cam, CamProfile, DobbyInputs, MechError, ModulatorGeometry, OutputLawSpec,
+    SynthesisOptions, analyze, parse_point_table, synthesize,
 };
-use loomkin_units::{RangeError, ShaftSpeed};
+use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
@@ -50,16 +50,12 @@ struct Geometry {
 
 impl Geometry {
     fn build(&self) -> PyResult<ModulatorGeometry> {
-        let alpha = self.alpha_deg.unwrap_or(47.0);
-        let theta = self.theta_deg.unwrap_or(alpha);
-        ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, alpha, theta).or_raise()
+        ModulatorGeometry::from_inputs(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, self.alpha_deg, self.theta_deg)
+            .or_raise()
     }
     /// The input speed (rad/s): 1 rad/s (per-radian values) unless a speed is given.
     fn speed_rad_s(&self) -> PyResult<f64> {
-        match self.speed_rpm {
-            None => Ok(1.0),
-            Some(n) => Ok(ShaftSpeed::from_rpm_field("speed_rpm", n).or_raise()?.rad_per_s()),
-        }
+        DobbyInputs::speed_rad_s("speed_rpm", self.speed_rpm).or_raise()
     }
 }
 
@@ -114,8 +110,9 @@ fn report<'py, S: Serialize, W: Serialize, R: Serialize>(
 /// s53_m, omega*_rad_s, eps*_rad_s2, … as numpy arrays). Lengths in m, angles in deg; speeds per
 /// rad/s of input unless speed_rpm is given. Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (alpha_deg=None, theta_deg=None, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
-    pressure_limit_deg=60.0, cam_spec=None, cam_points_text=None, step_deg=1.0, roller_m=None))]
+#[pyo3(signature = (alpha_deg=None, theta_deg=None, l2_m=ModulatorGeometry::L2_M.default_value(), l3_m=ModulatorGeometry::L3_M.default_value(),
+    l3p_m=ModulatorGeometry::L3P_M.default_value(), l6_m=ModulatorGeometry::L6_M.default_value(), speed_rpm=None,
+    pressure_limit_deg=DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), cam_spec=None, cam_points_text=None, step_deg=DobbyInputs::STEP_DEG.default_value(), roller_m=None))]
 fn dobby_analyze<'py>(
     py: Python<'py>,
     alpha_deg: Option<f64>,
@@ -172,9 +169,12 @@ fn profile<'py>(py: Python<'py>, p: &CamProfile) -> PyResult<Bound<'py, PyDict>>
 /// roller-centre curves and groove walls as (N, 2) arrays in m (what `--dxf` draws). Runs with
 /// the GIL released.
 #[pyfunction]
-#[pyo3(signature = (dwell_deg=40.0, dwell_centre_deg=90.0, cycles=2, law="cycloidal", params=None, roller_m=0.03,
-    step_deg=1.0, alpha_deg=None, theta_deg=None, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
-    pressure_limit_deg=60.0))]
+#[pyo3(signature = (dwell_deg=OutputLawSpec::DWELL_DEG.default_value(),
+    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=OutputLawSpec::CYCLES.default_count() as u32,
+    law=OutputLawSpec::DEFAULT_LAW, params=None, roller_m=DobbyInputs::ROLLER_M.default_value(),
+    step_deg=DobbyInputs::STEP_DEG.default_value(), alpha_deg=None, theta_deg=None, l2_m=ModulatorGeometry::L2_M.default_value(), l3_m=ModulatorGeometry::L3_M.default_value(),
+    l3p_m=ModulatorGeometry::L3P_M.default_value(), l6_m=ModulatorGeometry::L6_M.default_value(), speed_rpm=None,
+    pressure_limit_deg=DobbyInputs::PRESSURE_LIMIT_DEG.default_value()))]
 fn dobby_synthesize<'py>(
     py: Python<'py>,
     dwell_deg: f64,
@@ -220,12 +220,9 @@ fn dobby_tolerance<'py>(py: Python<'py>, study_toml: &str) -> PyResult<Bound<'py
     crate::study::run_study(py, t.draws, |items| t.run(items, loomkin_study::Progress::Hidden), |d| t.report(d))
 }
 
-/// The most lever angles of one sweep (as the CLI).
-const SWEEP_ALPHAS: loomkin_units::Range = loomkin_units::Range::closed(1.0, 1000.0, "");
-
-/// dobby_sweep(alpha_deg, dwell_deg=40, dwell_centre_deg=90, cycles=2, law="cycloidal", params=None,
-/// roller_m=0.03, step_deg=1, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
-/// pressure_limit_deg=60, cam_spec=None, cam_points_text=None) -> dict
+/// dobby_sweep(alpha_deg, dwell_deg=..., dwell_centre_deg=..., cycles=..., law="cycloidal", params=None,
+/// roller_m=..., step_deg=..., l2_m=..., l3_m=..., l3p_m=..., l6_m=..., speed_rpm=None,
+/// pressure_limit_deg=..., cam_spec=None, cam_points_text=None) -> dict
 /// --
 ///
 /// `loomkin dobby sweep --json` (the paper's α sweep) at the lever angles of an array (deg, α = θ):
@@ -233,9 +230,12 @@ const SWEEP_ALPHAS: loomkin_units::Range = loomkin_units::Range::closed(1.0, 100
 /// deg, …) and the synthesis of the law (syn_ok, …), as a dict of columns (numbers as numpy arrays,
 /// errors and flags as lists). Lengths in m, angles in deg. Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (alpha_deg, dwell_deg=40.0, dwell_centre_deg=90.0, cycles=2, law="cycloidal", params=None,
-    roller_m=0.03, step_deg=1.0, l2_m=0.66, l3_m=0.36, l3p_m=0.36, l6_m=0.40, speed_rpm=None,
-    pressure_limit_deg=60.0, cam_spec=None, cam_points_text=None))]
+#[pyo3(signature = (alpha_deg, dwell_deg=OutputLawSpec::DWELL_DEG.default_value(),
+    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=OutputLawSpec::CYCLES.default_count() as u32,
+    law=OutputLawSpec::DEFAULT_LAW, params=None,
+    roller_m=DobbyInputs::ROLLER_M.default_value(), step_deg=DobbyInputs::STEP_DEG.default_value(), l2_m=ModulatorGeometry::L2_M.default_value(), l3_m=ModulatorGeometry::L3_M.default_value(),
+    l3p_m=ModulatorGeometry::L3P_M.default_value(), l6_m=ModulatorGeometry::L6_M.default_value(), speed_rpm=None,
+    pressure_limit_deg=DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), cam_spec=None, cam_points_text=None))]
 #[allow(clippy::too_many_arguments)]
 fn dobby_sweep<'py>(
     py: Python<'py>,
@@ -256,7 +256,7 @@ fn dobby_sweep<'py>(
     cam_spec: Option<&str>,
     cam_points_text: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
-    crate::errors::check_count("alpha_deg", alpha_deg.len(), SWEEP_ALPHAS)?;
+    AlphaSweep::ALPHAS.check_count(alpha_deg.len()).or_raise()?;
     let geo = Geometry { alpha_deg: None, theta_deg: None, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
     let g = geo.build()?;
     let c = cam(cam_spec, cam_points_text)?;

@@ -3,11 +3,9 @@
 
 use crate::convert::{columns, to_py};
 use crate::cycles::Cycle;
-use crate::errors::{Fault, OrRaise, check_count};
-use loomkin_dynamics::{
-    DynError, Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, Units, sweep, sweep_columns, sweep_row,
-};
-use loomkin_units::{Range, RangeError};
+use crate::errors::{Fault, OrRaise};
+use loomkin_dynamics::{DynError, Follower, Response, ResponseReport, Start, Units, sweep, sweep_columns, sweep_row};
+use loomkin_units::RangeError;
 use numpy::{AllowTypeChange, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -21,11 +19,6 @@ impl Fault for DynError {
     }
 }
 
-/// Cycles simulated from rest (as the CLI's `--cycles`).
-const CYCLES: Range = Range::closed(1.0, 10_000.0, "");
-/// Samples per cycle (as the CLI's `--points`).
-const POINTS: Range = Range::closed(2.0, 1e6, "");
-
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dyn_response, m)?)?;
     m.add_function(wrap_pyfunction!(dyn_sweep, m)?)?;
@@ -33,6 +26,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dyn_compensate, m)?)?;
     m.add_function(wrap_pyfunction!(dyn_optimize, m)?)?;
     m.add_function(wrap_pyfunction!(dyn_two_mass, m)?)?;
+    m.add_function(wrap_pyfunction!(dyn_default_ratios, m)?)?;
     Ok(())
 }
 
@@ -46,18 +40,13 @@ fn follower(
     weight: bool,
     force_n: f64,
 ) -> PyResult<Follower> {
-    let f = Follower::new(natural_hz, damping_ratio).or_raise()?;
-    match mass_kg {
-        Some(m) => {
-            let w = if weight { m * STANDARD_GRAVITY } else { 0.0 };
-            f.with_loads(m, return_spring_n_m, preload_n + w + force_n).or_raise()
-        }
-        None => Ok(f),
-    }
+    Follower::new(natural_hz, damping_ratio)
+        .and_then(|f| f.with_front_loads(mass_kg, return_spring_n_m, preload_n, weight, force_n))
+        .or_raise()
 }
 
-/// dyn_response(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
-/// preload_n=0, weight=False, force_n=0, speed_rpm=None, cycles=1, steady=False, points=721) -> dict
+/// dyn_response(cycle, natural_hz, damping_ratio=..., mass_kg=None, return_spring_n_m=...,
+/// preload_n=..., weight=False, force_n=..., speed_rpm=None, cycles=..., steady=False, points=...) -> dict
 /// --
 ///
 /// `loomkin dyn response FILE --json` for a `Cycle`: the follower as a spring-mass-damper of
@@ -68,8 +57,9 @@ fn follower(
 /// s, x (driven and actual position), error (in mm or deg) and a (m/s² or rad/s²).
 /// Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (cycle, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0, preload_n=0.0,
-    weight=false, force_n=0.0, speed_rpm=None, cycles=1, steady=false, points=721))]
+#[pyo3(signature = (cycle, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(), preload_n=Follower::PRELOAD_N.default_value(),
+    weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None, cycles=Response::CYCLES.default_count(), steady=false,
+    points=Response::POINTS.default_count()))]
 fn dyn_response<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -87,8 +77,8 @@ fn dyn_response<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let speed = cycle.speed(speed_rpm)?;
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
-    check_count("cycles", cycles, CYCLES)?;
-    check_count("points", points, POINTS)?;
+    Response::CYCLES.check_count(cycles).or_raise()?;
+    Response::POINTS.check_count(points).or_raise()?;
     let start = if steady { Start::Steady } else { Start::Rest };
     let inner = &cycle.inner;
     let (summary, samples) = py
@@ -121,11 +111,8 @@ fn dyn_response<'py>(
     Ok(out)
 }
 
-/// The most speeds of one sweep (each is one response, a few µs to ms).
-const SWEEP_SPEEDS: Range = Range::closed(1.0, 1e6, "");
-
-/// dyn_sweep(cycle, speed_rpm, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
-/// preload_n=0, weight=False, force_n=0, steady=False) -> dict
+/// dyn_sweep(cycle, speed_rpm, natural_hz, damping_ratio=..., mass_kg=None, return_spring_n_m=...,
+/// preload_n=..., weight=False, force_n=..., steady=False) -> dict
 /// --
 ///
 /// `loomkin dyn sweep FILE --speed-rpm … --json` at the speeds of an array (rpm, any order):
@@ -133,8 +120,8 @@ const SWEEP_SPEEDS: Range = Range::closed(1.0, 1e6, "");
 /// (speed_rpm, residual amplitude, peak error, … in the cycle's units; forces in N with a mass).
 /// The speeds run in parallel with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (cycle, speed_rpm, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0,
-    preload_n=0.0, weight=false, force_n=0.0, steady=false))]
+#[pyo3(signature = (cycle, speed_rpm, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(),
+    preload_n=Follower::PRELOAD_N.default_value(), weight=false, force_n=Follower::FORCE_N.default_value(), steady=false))]
 fn dyn_sweep<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -149,7 +136,7 @@ fn dyn_sweep<'py>(
     steady: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let speeds: Vec<f64> = speed_rpm.as_array().iter().copied().collect();
-    check_count("speed_rpm", speeds.len(), SWEEP_SPEEDS)?;
+    loomkin_dynamics::SweepPoint::SPEEDS.check_count(speeds.len()).or_raise()?;
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
     let start = if steady { Start::Steady } else { Start::Rest };
     let inner = &cycle.inner;
@@ -168,12 +155,7 @@ fn dyn_sweep<'py>(
     Ok(out)
 }
 
-/// Ratios of motion time to natural period a spectrum takes (as the CLI's `--ratio`).
-const RATIO: Range = Range::open(0.0, 1e4, "");
-/// The most ratios of one spectrum (as the CLI).
-const RATIOS: Range = Range::closed(1.0, 1e6, "");
-
-/// dyn_spectrum(law, ratio, damping_ratio=0) -> numpy.ndarray
+/// dyn_spectrum(law, ratio, damping_ratio=...) -> numpy.ndarray
 /// --
 ///
 /// The residual-vibration spectrum of a law (`loomkin dyn spectrum` for one law and one damping
@@ -181,18 +163,18 @@ const RATIOS: Range = Range::closed(1.0, 1e6, "");
 /// motion time to natural period T·f_n of the array `ratio` (each 0 < r < 1e4, at most 1e6 of
 /// them). Exact (closed-form response per segment). Runs with the GIL released; Ctrl-C stops it.
 #[pyfunction]
-#[pyo3(signature = (law, ratio, damping_ratio=0.0))]
+#[pyo3(signature = (law, ratio, damping_ratio=Follower::DAMPING_RATIO.default_value()))]
 fn dyn_spectrum<'py>(
     py: Python<'py>,
     law: PyRef<'py, crate::laws::Law>,
     ratio: PyArrayLike1<'py, f64, AllowTypeChange>,
     damping_ratio: f64,
 ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-    let z = Follower::DAMPING_RATIO.check("damping_ratio", damping_ratio).or_raise()?;
+    let z = Follower::DAMPING_RATIO.check(damping_ratio).or_raise()?;
     let ratios: Vec<f64> = ratio.as_array().iter().copied().collect();
-    check_count("ratio", ratios.len(), RATIOS)?;
+    loomkin_dynamics::RATIOS.check_count(ratios.len()).or_raise()?;
     for &r in &ratios {
-        RATIO.check("ratio", r).or_raise()?;
+        loomkin_dynamics::RATIO.check(r).or_raise()?;
     }
     let law = law.inner.clone();
     let pct = crate::interrupt::detached(py, move || {
@@ -201,8 +183,8 @@ fn dyn_spectrum<'py>(
     Ok(numpy::PyArray1::from_vec(py, pct))
 }
 
-/// dyn_compensate(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
-/// preload_n=0, weight=False, force_n=0, speed_rpm=None, points=721) -> dict
+/// dyn_compensate(cycle, natural_hz, damping_ratio=..., mass_kg=None, return_spring_n_m=...,
+/// preload_n=..., weight=False, force_n=..., speed_rpm=None, points=...) -> dict
 /// --
 ///
 /// `loomkin dyn compensate FILE`: the input law (polydyne) that makes the follower follow the
@@ -213,8 +195,9 @@ fn dyn_spectrum<'py>(
 /// designed motion), s_<P> (the input), s_velocity and s_acceleration in SI (m/s, m/s² or rad/s,
 /// rad/s²), P the cycle's unit. A cycle whose input would jump raises LoomkinError (field cycle).
 #[pyfunction]
-#[pyo3(signature = (cycle, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0, preload_n=0.0,
-    weight=false, force_n=0.0, speed_rpm=None, points=721))]
+#[pyo3(signature = (cycle, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(), preload_n=Follower::PRELOAD_N.default_value(),
+    weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None,
+    points=loomkin_dynamics::Compensation::POINTS.default_count()))]
 fn dyn_compensate<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -230,7 +213,7 @@ fn dyn_compensate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let speed = cycle.speed(speed_rpm)?;
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
-    check_count("points", points, POINTS)?;
+    loomkin_dynamics::Compensation::POINTS.check_count(points).or_raise()?;
     let exc = loomkin_dynamics::Excitation::from_cycle(&cycle.inner, speed);
     let (comp, samples) = py
         .detach(|| -> Result<_, DynError> {
@@ -269,8 +252,8 @@ fn dyn_compensate<'py>(
     Ok(out)
 }
 
-/// dyn_optimize(cycle, natural_hz, damping_ratio=0, mass_kg=None, return_spring_n_m=0,
-/// preload_n=0, weight=False, force_n=0, speed_rpm=None, band_pct=10) -> dict
+/// dyn_optimize(cycle, natural_hz, damping_ratio=..., mass_kg=None, return_spring_n_m=...,
+/// preload_n=..., weight=False, force_n=..., speed_rpm=None, band_pct=...) -> dict
 /// --
 ///
 /// `loomkin dyn optimize FILE --json`: every rise and return of the cycle shaped for the least
@@ -281,8 +264,9 @@ fn dyn_compensate<'py>(
 /// fractions of the stroke, ca_ratio), and cycle_toml (the optimised cycle file `-o` writes).
 /// Runs with the GIL released (seconds); Ctrl-C stops waiting for it.
 #[pyfunction]
-#[pyo3(signature = (cycle, natural_hz, damping_ratio=0.0, mass_kg=None, return_spring_n_m=0.0, preload_n=0.0,
-    weight=false, force_n=0.0, speed_rpm=None, band_pct=10.0))]
+#[pyo3(signature = (cycle, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(), preload_n=Follower::PRELOAD_N.default_value(),
+    weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None,
+    band_pct=loomkin_dynamics::Optimized::BAND_PCT.default_value()))]
 fn dyn_optimize<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -316,7 +300,7 @@ fn dyn_optimize<'py>(
 }
 
 /// dyn_two_mass(cycle, drive_mass_kg, drive_stiffness_n_m, frame_mass_kg, frame_stiffness_n_m,
-/// damping_ratio=0, speed_rpm=None, steady=False) -> dict
+/// damping_ratio=..., speed_rpm=None, steady=False) -> dict
 /// --
 ///
 /// `loomkin dyn two-mass FILE --json`: the cycle drives a drive mass (kg) through a stiffness
@@ -326,7 +310,7 @@ fn dyn_optimize<'py>(
 /// speed_rpm, damping_ratio, start; P the cycle's unit. Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (cycle, drive_mass_kg, drive_stiffness_n_m, frame_mass_kg, frame_stiffness_n_m,
-    damping_ratio=0.0, speed_rpm=None, steady=false))]
+    damping_ratio=Follower::DAMPING_RATIO.default_value(), speed_rpm=None, steady=false))]
 #[allow(clippy::too_many_arguments)]
 fn dyn_two_mass(
     py: Python<'_>,
@@ -353,4 +337,13 @@ fn dyn_two_mass(
     let u = Units::of(cycle.inner.unit);
     let r = py.detach(|| tm.report(&exc, speed, start, u)).or_raise()?;
     to_py(py, &r)
+}
+
+/// dyn_default_ratios() -> numpy.ndarray
+/// --
+///
+/// The ratios `dyn spectrum` takes when none are given (the span loomkin_dynamics::DEFAULT_RATIOS).
+#[pyfunction]
+fn dyn_default_ratios(py: Python<'_>) -> Bound<'_, numpy::PyArray1<f64>> {
+    numpy::PyArray1::from_vec(py, loomkin_dynamics::default_ratios())
 }

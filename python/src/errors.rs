@@ -6,7 +6,7 @@
 //! `.value`, `.unit`, `.low` and `.high` (the bounds, `None` when a side is unbounded) and
 //! `.low_inclusive`, `.high_inclusive`.
 
-use loomkin_units::{Bound as Side, FieldError, Range, RangeError};
+use loomkin_units::{Bound as Side, FieldError, RangeError};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -123,12 +123,6 @@ fn fill_range(v: &Bound<'_, pyo3::exceptions::PyBaseException>, field: Option<St
     v.setattr("low_inclusive", lo_in)?;
     v.setattr("high_inclusive", hi_in)?;
     Ok(())
-}
-
-/// Checks a count argument of the Python layer itself (`points`, …) against its range, raising
-/// `OutOfRangeError` naming `field`.
-pub fn check_count(field: &str, n: usize, range: Range) -> PyResult<usize> {
-    range.check(field, n as f64).map(|_| n).map_err(raise)
 }
 
 /// Extension: `result.map_err(raise)` as a method.

@@ -9,7 +9,17 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Every library crate's descriptors.
-const LISTS: [FieldList; 1] = [loomkin_units::FIELDS];
+const LISTS: [FieldList; 9] = [
+    loomkin_units::FIELDS,
+    loomkin_laws::FIELDS,
+    loomkin_picking::FIELDS,
+    loomkin_cams::FIELDS,
+    loomkin_dynamics::FIELDS,
+    loomkin_shed::FIELDS,
+    loomkin_loom::FIELDS,
+    loomkin_mech::FIELDS,
+    loomkin_servo::FIELDS,
+];
 
 /// Every descriptor with the path of its `const`.
 pub fn all() -> impl Iterator<Item = &'static (&'static str, Field)> {
@@ -23,5 +33,10 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     for (path, field) in all() {
         d.set_item(path, to_py(py, field)?)?;
     }
-    m.add("FIELDS", d)
+    m.add("FIELDS", d)?;
+    let speeds = PyDict::new(py);
+    use loomkin_servo::ServoInputs;
+    speeds.set_item("TORQUE", ServoInputs::speeds(ServoInputs::TORQUE_SPEEDS_RPM))?;
+    speeds.set_item("DESIGN", ServoInputs::speeds(ServoInputs::DESIGN_SPEEDS_RPM))?;
+    m.add("SERVO_DEFAULT_SPEEDS", speeds)
 }

@@ -2,16 +2,12 @@
 //! with metrics, continuity and sampling into numpy arrays.
 
 use crate::convert::{self, columns, to_py};
-use crate::errors::{OrRaise, check_count};
+use crate::errors::OrRaise;
 use loomkin_laws::{ContinuityReport, InfoReport, Kinematics, LawSpec, ListedLaw, ParamValue};
-use loomkin_units::Range;
 use numpy::{AllowTypeChange, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::collections::BTreeMap;
-
-/// Samples of one law: 2 ≤ points ≤ 10⁸ (800 MB of float64 columns at the top).
-pub const SAMPLE_POINTS: Range = Range::closed(2.0, 1e8, "");
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Law>()?;
@@ -66,7 +62,7 @@ fn kin_columns(x: Vec<f64>, k: &[Kinematics]) -> Vec<(&'static str, Vec<f64>)> {
 /// Samples of a law, `points` evenly spaced from 0 to 1, as a dict of arrays x, s, v, a, j; the
 /// GIL is released while they are computed.
 pub fn sample_dict<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
-    check_count("points", points, SAMPLE_POINTS)?;
+    loomkin_laws::Law::HELD_POINTS.check_count(points).or_raise()?;
     crate::convert::law_samples(py, law, points)
 }
 

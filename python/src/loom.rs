@@ -4,7 +4,7 @@
 use crate::convert::{columns, to_py};
 use crate::errors::{Fault, OrRaise, raise};
 use loomkin_loom::{Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_stagger};
-use loomkin_units::{Range, RangeError};
+use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,9 +25,6 @@ impl Fault for LoomError {
         }
     }
 }
-
-/// The torque curve's step (as the CLI's `--step-deg`).
-const STEP_DEG: Range = Range::closed(0.01, 10.0, "deg");
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(loom_check, m)?)?;
@@ -79,14 +76,14 @@ fn loom_check(py: Python<'_>, loom_toml: &str, wif: Option<Wif>, lift_plan: Opti
     to_py(py, &r)
 }
 
-/// loom_torque(loom_toml, wif=None, lift_plan=None, step_deg=0.5) -> dict
+/// loom_torque(loom_toml, wif=None, lift_plan=None, step_deg=...) -> dict
 /// --
 ///
 /// `loomkin loom torque LOOM.toml --json`: speed_rpm, picks, repeat_deg, peak_torque_n_m and its
 /// peak_angle_deg, rms_torque_n_m, step_deg, and points as arrays angle_deg, torque_n_m (the
 /// shedding torque over the whole repeat). Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, step_deg=0.5))]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, step_deg=Drive::STEP_DEG.default_value()))]
 fn loom_torque<'py>(
     py: Python<'py>,
     loom_toml: &str,
@@ -95,7 +92,7 @@ fn loom_torque<'py>(
     step_deg: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
-    STEP_DEG.check("step_deg", step_deg).map_err(raise)?;
+    Drive::STEP_DEG.check(step_deg).map_err(raise)?;
     let (curve, peak, rms, repeat_deg) = py
         .detach(|| -> Result<_, LoomError> {
             let motion = Motion::new(&loom, &pattern)?;

@@ -2,19 +2,14 @@
 //! `loomkin pick … --json`.
 
 use crate::convert::{columns, to_py, value_records_to_columns, value_to_py};
-use crate::errors::{Fault, OrRaise, check_count};
+use crate::errors::{Fault, OrRaise};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
-use loomkin_picking::{Mechanism, Method, PickError, Setting, Settings, StartRule, history, simulate};
-use loomkin_units::{Range, RangeError};
+use loomkin_picking::{History, Mechanism, Method, PickError, Setting, Settings, StartRule, Sweep, history, simulate};
+use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
-
-/// Samples of a pick's history (as the CLI's `--points`).
-const HISTORY_POINTS: Range = Range::closed(2.0, 1e6, "");
-/// Points of a sweep (the CLI's budget refuses more than a few million).
-const SWEEP_POINTS: Range = Range::closed(1.0, 1e6, "");
 
 impl Fault for PickError {
     fn range(&self) -> Option<&RangeError> {
@@ -213,20 +208,20 @@ fn pick_simulate(py: Python<'_>, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Py<
     to_py(py, &o)
 }
 
-/// pick_history(points=201, **model_and_settings) -> (dict, dict)
+/// pick_history(points=..., **model_and_settings) -> (dict, dict)
 /// --
 ///
 /// The pick over time, as `loomkin pick simulate --csv`: arrays t_s, s_m, v_s_m_s, a_s_m_s2
 /// (nominal picker motion) and x_m, v_m_s, a_m_s2 (the shuttle), with the outcome dict.
 /// Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (points=201, **kw))]
+#[pyo3(signature = (points=History::POINTS.default_count(), **kw))]
 fn pick_history<'py>(
     py: Python<'py>,
     points: usize,
     kw: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyDict>, Py<PyAny>)> {
-    check_count("points", points, HISTORY_POINTS)?;
+    History::POINTS.check_count(points).or_raise()?;
     let Call { model, set, start, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
     let st = settings(&mech, &set, start);
@@ -262,7 +257,7 @@ fn pick_sweep(
     kw: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Py<PyAny>> {
     let setting = Setting::parse(setting).or_raise()?;
-    check_count("points", points, SWEEP_POINTS)?;
+    Sweep::HELD_POINTS.check_count(points).or_raise()?;
     let Call { model, set, start: start_rule, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
     let st = settings(&mech, &set, start_rule);

@@ -3,26 +3,16 @@
 
 use crate::convert::{records_to_columns, to_py};
 use crate::cycles::Cycle;
-use crate::errors::{OrRaise, check_count, raise};
+use crate::errors::{OrRaise, raise};
 use crate::laws::Law;
 use loomkin_laws::ParamValue;
 use loomkin_servo::{
-    Axis, Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, ServoError, SplineEnd,
-    SplineLaw, TorqueReport, check_axis, format_points, parse_points, torque_curve,
+    Axis, Drive, ExportFormat, LawReport, Objective, OptimizeOptions, ReinterpolationRow, ServoError, ServoInputs,
+    SplineEnd, SplineLaw, TorqueReport, check_axis, format_points, parse_points, torque_curve,
 };
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::ShaftSpeed;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// The CLI's default `--def` (the sine-shaped start of the paper), written as the CLI writes it so
-/// that a call without `def` gives the CLI's numbers bit for bit.
-const DEFAULT_DEF: &str = "0:0,0.0833333333333333:0.5,0.1666666666666667:0.8660254037844386,0.25:1,\
-0.3333333333333333:0.8660254037844387,0.4166666666666667:0.5,0.5:0";
-
-/// Points of a torque curve over one turn.
-const CURVE_POINTS: Range = Range::closed(2.0, 1e7, "");
-/// Optimiser starts (as the CLI's `--starts`).
-const STARTS: Range = Range::closed(1.0, 1000.0, "");
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(servo_spline_law, m)?)?;
@@ -39,7 +29,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// (x, y) pairs (a list, or an (N, 2) numpy array).
 fn def_points(def: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<[f64; 2]>> {
     match def {
-        None => parse_points(DEFAULT_DEF).or_raise(),
+        None => parse_points(loomkin_servo::DEFAULT_DEF).or_raise(),
         Some(d) => {
             if let Ok(text) = d.extract::<String>() {
                 parse_points(&text).or_raise()
@@ -122,7 +112,7 @@ fn servo_law(py: Python<'_>, def_points: Option<&Bound<'_, PyAny>>, end: &str) -
     to_py(py, &report)
 }
 
-/// servo_torque(speed_rpm=(600, 750), def_points=None, end="natural", drive=None) -> dict
+/// servo_torque(speed_rpm=..., def_points=None, end="natural", drive=None) -> dict
 /// --
 ///
 /// `loomkin servo torque --json`: per speed (rpm) the peak motor torque (N·m) and its angle (deg),
@@ -130,7 +120,7 @@ fn servo_law(py: Python<'_>, def_points: Option<&Bound<'_, PyAny>>, end: &str) -
 /// rise and cycle time (s); `drive` is the drive file's text (TOML or JSON; None: the built-in
 /// needle-rack drive). Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (speed_rpm=vec![600.0, 750.0], def_points=None, end="natural", drive_text=None))]
+#[pyo3(signature = (speed_rpm=ServoInputs::speeds(ServoInputs::TORQUE_SPEEDS_RPM), def_points=None, end="natural", drive_text=None))]
 fn servo_torque(
     py: Python<'_>,
     speed_rpm: Vec<f64>,
@@ -145,13 +135,14 @@ fn servo_torque(
     to_py(py, &report)
 }
 
-/// servo_torque_curve(speed_rpm=600, points=721, def_points=None, end="natural", drive=None) -> dict
+/// servo_torque_curve(speed_rpm=..., points=..., def_points=None, end="natural", drive=None) -> dict
 /// --
 ///
 /// The drive over one main-shaft turn at `points` evenly spaced angles, as arrays angle_deg,
 /// time_s, u_m, v_m_s, a_m_s2, torque_nm, power_w and the list phase. Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (speed_rpm=600.0, points=721, def_points=None, end="natural", drive_text=None))]
+#[pyo3(signature = (speed_rpm=ServoInputs::speeds(ServoInputs::DESIGN_SPEEDS_RPM)[0],
+    points=ServoInputs::CURVE_POINTS.default_count(), def_points=None, end="natural", drive_text=None))]
 fn servo_torque_curve(
     py: Python<'_>,
     speed_rpm: f64,
@@ -161,14 +152,14 @@ fn servo_torque_curve(
     drive_text: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
     speeds(&[speed_rpm])?;
-    check_count("points", points, CURVE_POINTS)?;
+    ServoInputs::CURVE_POINTS.check_count(points).or_raise()?;
     let sl = spline(def_points, end)?;
     let d = drive(drive_text)?;
     let curve = py.detach(|| torque_curve(sl.law(), &d, speed_rpm, points)).or_raise()?;
     records_to_columns(py, &curve)
 }
 
-/// servo_optimize(speed_rpm=(600,), objective="peak", starts=6, fixed_x=False, def_points=None,
+/// servo_optimize(speed_rpm=..., objective="peak", starts=..., fixed_x=False, def_points=None,
 /// end="natural", drive=None) -> dict
 /// --
 ///
@@ -177,7 +168,8 @@ fn servo_torque_curve(
 /// def text, evaluations. Deterministic (seeded starts). Runs with the GIL released; Ctrl-C
 /// (a notebook's interrupt) stops it and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (speed_rpm=vec![600.0], objective="peak", starts=6, fixed_x=false, def_points=None, end="natural", drive_text=None))]
+#[pyo3(signature = (speed_rpm=ServoInputs::speeds(ServoInputs::DESIGN_SPEEDS_RPM), objective="peak",
+    starts=ServoInputs::STARTS.default_count(), fixed_x=false, def_points=None, end="natural", drive_text=None))]
 fn servo_optimize(
     py: Python<'_>,
     speed_rpm: Vec<f64>,
@@ -189,7 +181,7 @@ fn servo_optimize(
     drive_text: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
     speeds(&speed_rpm)?;
-    check_count("starts", starts, STARTS)?;
+    ServoInputs::STARTS.check_count(starts).or_raise()?;
     let objective = Objective::parse(objective).or_raise()?;
     let sl = spline(def_points, end)?;
     let d = drive(drive_text)?;
@@ -254,7 +246,7 @@ fn export_format(name: &str) -> PyResult<ExportFormat> {
     })
 }
 
-/// servo_export(format, step_deg=1.0, def_points=None, end="natural", drive=None) -> dict
+/// servo_export(format, step_deg=..., def_points=None, end="natural", drive=None) -> dict
 /// --
 ///
 /// Every controller export of `loomkin servo export`: format one of coeffs, json, csv, xyva,
@@ -264,7 +256,7 @@ fn export_format(name: &str) -> PyResult<ExportFormat> {
 /// workbench API's key; each row names its mode as interpolation and as mode: the worst errors when the
 /// controller interpolates: m, m/deg, m/deg²; as `--json` prints).
 #[pyfunction]
-#[pyo3(signature = (format, step_deg=1.0, def_points=None, end="natural", drive_text=None))]
+#[pyo3(signature = (format, step_deg=ServoInputs::EXPORT_STEP_DEG.default_value(), def_points=None, end="natural", drive_text=None))]
 fn servo_export<'py>(
     py: Python<'py>,
     format: &str,

@@ -9,7 +9,7 @@ use loomkin_shed::{
     preset_table_in,
 };
 use loomkin_study::StudyError;
-use loomkin_units::{Range, RangeError, ShaftSpeed};
+use loomkin_units::{RangeError, ShaftSpeed};
 use pyo3::prelude::*;
 
 impl Fault for StudyError {
@@ -54,8 +54,7 @@ fn parse_err(field: &str, reason: String) -> PyErr {
 
 /// The conditions of the CLI's `--threshold --stroke-mm --speed-rpm`.
 fn conditions(threshold: f64, stroke_mm: f64, speed_rpm: f64) -> PyResult<Conditions> {
-    Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", stroke_mm).or_raise()?;
-    Conditions::new(threshold, stroke_mm / 1000.0, speed_rpm).or_raise()
+    Conditions::from_stroke_mm(threshold, stroke_mm, speed_rpm).or_raise()
 }
 
 /// shed_presets() -> list[dict]
@@ -68,15 +67,15 @@ fn shed_presets(py: Python<'_>) -> PyResult<Py<PyAny>> {
     to_py(py, &PresetReport::all())
 }
 
-/// shed_law(name=None, spec_toml=None, motion_deg=None, threshold=0.95, stroke_mm=100, speed_rpm=300) -> dict
+/// shed_law(name=None, spec_toml=None, motion_deg=None, threshold=..., stroke_mm=..., speed_rpm=...) -> dict
 /// --
 ///
 /// `loomkin shed law NAME --json`: the window, absolute and conditional dwell (deg), the
 /// dimensionless cv, ca, cj, cm, ca_rms and the physical peaks (m/s, m/s², m/s³, W/kg) at the
 /// stroke (mm) and speed (rpm), with the law's definition.
 #[pyfunction]
-#[pyo3(signature = (name=None, spec_toml=None, motion_deg=None, threshold=loomkin_shed::TABLE3_THRESHOLD,
-    stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM, label=None))]
+#[pyo3(signature = (name=None, spec_toml=None, motion_deg=None, threshold=Conditions::THRESHOLD_FIELD.default_value(),
+    stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM, label=None))]
 fn shed_law(
     py: Python<'_>,
     name: Option<&str>,
@@ -178,12 +177,12 @@ fn study_rows(
         }
         (Build::Table, false) => {
             let s = study(kind, d, GridSpec::TABLE)?;
-            let motions = motions("300")?;
+            let motions = motions(loomkin_shed::TABLE_MOTION_DEG)?;
             py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, 0..s.design.len())).or_raise()?
         }
         (Build::Pareto, presets) => {
             // The angles are checked whatever the design (as the CLI does).
-            let motions = motions("180:360:10")?;
+            let motions = motions(loomkin_shed::PARETO_MOTION_DEG)?;
             if presets {
                 let all = py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?;
                 let pts: Vec<[f64; 2]> = all
@@ -209,7 +208,7 @@ fn study_rows(
 /// lengths (the relative lengths k of each law, a list per row). Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (design="presets", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
-    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
+    threshold=Conditions::THRESHOLD_FIELD.default_value(), stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_table(
     py: Python<'_>,
     design: &str,
@@ -235,7 +234,7 @@ fn shed_table(
 /// ("FROM:TO:STEP" or a list "A,B,…"; default 180:360:10). Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (design="grid", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
-    threshold=loomkin_shed::TABLE3_THRESHOLD, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
+    threshold=Conditions::THRESHOLD_FIELD.default_value(), stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_pareto(
     py: Python<'_>,
     design: &str,
@@ -253,7 +252,7 @@ fn shed_pareto(
     study_rows(py, Build::Pareto, design, &d, motion_deg, (threshold, stroke_mm, speed_rpm))
 }
 
-/// shed_best(window_deg, threshold=0.95, max_jerk_m_s3=None, design="grid", ...) -> dict
+/// shed_best(window_deg, threshold=..., max_jerk_m_s3=None, design="grid", ...) -> dict
 /// --
 ///
 /// `loomkin shed best --window-deg W --json`: the law of the family with the least peak
@@ -261,8 +260,8 @@ fn shed_pareto(
 /// lengths, definition and criteria; max_jerk_m_s3 bounds the peak jerk. Runs with the GIL
 /// released.
 #[pyfunction]
-#[pyo3(signature = (window_deg, threshold=loomkin_shed::TABLE3_THRESHOLD, max_jerk_m_s3=None, design="grid",
-    family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None, stroke_mm=100.0, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
+#[pyo3(signature = (window_deg, threshold=Conditions::THRESHOLD_FIELD.default_value(), max_jerk_m_s3=None, design="grid",
+    family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None, stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_best(
     py: Python<'_>,
     window_deg: f64,
@@ -317,8 +316,8 @@ fn shed_best(
     to_py(py, &BestReport::new(search, &b, &law, &cond))
 }
 
-/// shed_window(carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=0,
-/// crossing_range_deg=0, shed_excess=0.05, speed_rpm=300) -> dict
+/// shed_window(carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=...,
+/// crossing_range_deg=..., shed_excess=..., speed_rpm=...) -> dict
 /// --
 ///
 /// `loomkin shed window --carrier-speed-m-s V --reed-width-m L --json`: the loom data (the
@@ -327,8 +326,10 @@ fn shed_best(
 /// through the warp and the window it needs (deg of the main shaft), and the dwell threshold
 /// T = 1/(1 + excess) with the one for both sheets moving.
 #[pyfunction]
-#[pyo3(signature = (carrier_speed_m_s, reed_width_m, cloth_width_m=None, carrier_length_m=0.0,
-    crossing_range_deg=0.0, shed_excess=0.05, speed_rpm=ShaftSpeed::DEFAULT_RPM))]
+#[pyo3(signature = (carrier_speed_m_s, reed_width_m, cloth_width_m=None,
+    carrier_length_m=LoomRequirement::CARRIER_LENGTH_M.default_value(),
+    crossing_range_deg=LoomRequirement::CROSSING_RANGE_DEG.default_value(),
+    shed_excess=LoomRequirement::SHED_EXCESS.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM))]
 fn shed_window(
     py: Python<'_>,
     carrier_speed_m_s: f64,
@@ -339,14 +340,14 @@ fn shed_window(
     shed_excess: f64,
     speed_rpm: f64,
 ) -> PyResult<Py<PyAny>> {
-    let loom = LoomRequirement {
+    let loom = LoomRequirement::from_inputs(
         carrier_speed_m_s,
         reed_width_m,
-        cloth_width_m: cloth_width_m.unwrap_or(reed_width_m),
-        carrier_length_m,
-        crossing_range_deg,
-        shed_excess,
+        cloth_width_m,
+        Some(carrier_length_m),
+        Some(crossing_range_deg),
+        Some(shed_excess),
         speed_rpm,
-    };
+    );
     to_py(py, &WindowReport::of(&loom).or_raise()?)
 }

@@ -9,3 +9,20 @@ pub mod profile;
 pub mod table;
 
 pub use error::{CamError, Result};
+use profile::{CamDesign, CamProfile};
+use table::Spacing;
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    CamDesign::ROLLER_RADIUS_MM,
+    CamDesign::OFFSET_MM,
+    CamDesign::PRIME_RADIUS_MM,
+    CamDesign::MAX_PRESSURE_DEG,
+    CamDesign::ARM_MM,
+    CamDesign::PIVOT_MM,
+    CamProfile::STEP_DEG,
+    CamProfile::CHORD_TOL_MM,
+    CamProfile::BORE_MM,
+    Spacing::STEP_DEG,
+    Spacing::TOLERANCE,
+];

@@ -4,11 +4,8 @@ use crate::output::outln;
 use crate::{output, util};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use loomkin_cams::profile::{
-    CamDesign, CamPoint, CamProfile, Closure, Curve, DEFAULT_CHORD_TOL_MM, DEFAULT_SAMPLE_STEP_DEG, Follower,
-    SAMPLE_STEP_RANGE, Size,
-};
-use loomkin_cams::table::{CamTable, DEFAULT_STEP_DEG, Format, Motion, Spacing};
+use loomkin_cams::profile::{CamDesign, CamPoint, CamProfile, Closure, Curve, DesignInputs, FollowerKind, Size};
+use loomkin_cams::table::{CamTable, Format, Motion, Spacing};
 use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
 use loomkin_units::compact;
 use std::path::PathBuf;
@@ -54,11 +51,11 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "A", allow_hyphen_values = true)]
     max_pressure_deg: Option<f64>,
     /// Roller radius in mm (default 0: a knife edge, the profile is the pitch curve).
-    #[arg(long, value_name = "r", default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_name = "r", default_value_t = CamDesign::ROLLER_RADIUS_MM.default_value(), allow_hyphen_values = true)]
     roller_radius_mm: f64,
     /// Offset ε of a translating follower's line of motion in mm (positive: to the right of the
     /// cam centre, seen with the follower above it).
-    #[arg(long, value_name = "e", default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_name = "e", default_value_t = CamDesign::OFFSET_MM.default_value(), allow_hyphen_values = true)]
     offset_mm: f64,
     /// Arm length L of an oscillating follower in mm (pivot to roller centre).
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
@@ -79,13 +76,13 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "FILE")]
     dxf: Option<PathBuf>,
     /// Chord tolerance of the DXF polylines in mm.
-    #[arg(long, value_name = "T", default_value_t = DEFAULT_CHORD_TOL_MM, allow_hyphen_values = true, requires = "dxf")]
+    #[arg(long, value_name = "T", default_value_t = CamProfile::CHORD_TOL_MM.default_value(), allow_hyphen_values = true, requires = "dxf")]
     chord_tol_mm: f64,
     /// Bore diameter drawn in the DXF, mm (0: none; default 0.4 × base radius).
     #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
     bore_mm: Option<f64>,
     /// Main-shaft angle step of the printed points (deg).
-    #[arg(long, value_name = "D", default_value_t = DEFAULT_SAMPLE_STEP_DEG, allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", default_value_t = CamProfile::STEP_DEG.default_value(), allow_hyphen_values = true)]
     step_deg: f64,
     /// Plot the cam (profile, pitch curve, base circle), its pressure angle and curvature (.svg or .png).
     #[arg(short, long, value_name = "PLOT")]
@@ -145,10 +142,7 @@ fn motion(a: &TableArgs) -> Result<(Motion, String)> {
 fn table(a: TableArgs) -> Result<()> {
     let format = a.format;
     let (motion, source) = motion(&a)?;
-    let spacing = match a.tolerance {
-        Some(t) => Spacing::Tolerance(t),
-        None => Spacing::StepDeg(a.step_deg.unwrap_or(DEFAULT_STEP_DEG)),
-    };
+    let spacing = Spacing::of(a.step_deg, a.tolerance);
     let table = CamTable::new(motion, spacing)?;
     let out = table.export(format)?;
     output::text_to(&a.output, &out.text)?;
@@ -181,55 +175,41 @@ fn profile_motion(a: &ProfileArgs) -> Result<(Motion, String)> {
 
 fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {
     let follower = match a.follower {
-        FollowerArg::Translating => Follower::Translating { offset_mm: a.offset_mm },
-        FollowerArg::Oscillating => match (a.arm_mm, a.pivot_mm) {
-            (Some(arm_mm), Some(pivot_mm)) => Follower::Oscillating { arm_mm, pivot_mm },
-            (None, _) => bail!("arm_mm: an oscillating follower needs --arm-mm L and --pivot-mm d"),
-            (_, None) => bail!("pivot_mm: an oscillating follower needs --arm-mm L and --pivot-mm d"),
-        },
-        FollowerArg::Flat => Follower::Flat,
+        FollowerArg::Translating => FollowerKind::Translating,
+        FollowerArg::Oscillating => FollowerKind::Oscillating,
+        FollowerArg::Flat => FollowerKind::Flat,
     };
-    if a.follower != FollowerArg::Oscillating && (a.arm_mm.is_some() || a.pivot_mm.is_some()) {
-        bail!("arm_mm: --arm-mm and --pivot-mm are for --follower oscillating");
-    }
-    if a.follower != FollowerArg::Translating && a.offset_mm != 0.0 {
-        bail!("offset_mm: --offset-mm is for --follower translating");
-    }
-    if a.follower == FollowerArg::Flat && a.roller_radius_mm != 0.0 {
-        bail!("roller_radius_mm: a flat-faced follower has no roller");
-    }
     let closure = match (a.conjugate, a.groove) {
         (true, _) => Closure::Conjugate,
         (_, true) => Closure::Groove,
         _ => Closure::Single,
     };
-    let size = match (a.prime_radius_mm, a.max_pressure_deg) {
-        (Some(r), _) => Size::PrimeRadiusMm(r),
-        (None, Some(p)) => Size::MaxPressureDeg(p),
-        (None, None) if a.follower == FollowerArg::Flat => {
-            bail!(
-                "prime_radius_mm: a flat-faced follower needs --prime-radius-mm R (its pressure angle is 0 everywhere)"
-            )
-        }
-        (None, None) => Size::DEFAULT,
+    let inputs = DesignInputs {
+        follower,
+        closure,
+        prime_radius_mm: a.prime_radius_mm,
+        max_pressure_deg: a.max_pressure_deg,
+        roller_radius_mm: a.roller_radius_mm,
+        offset_mm: a.offset_mm,
+        arm_mm: a.arm_mm,
+        pivot_mm: a.pivot_mm,
     };
-    Ok(CamDesign { follower, closure, roller_radius_mm: a.roller_radius_mm, size })
+    Ok(inputs.design()?)
 }
 
 fn profile(a: ProfileArgs) -> Result<()> {
-    SAMPLE_STEP_RANGE.check("step_deg", a.step_deg)?;
+    CamProfile::STEP_DEG.check(a.step_deg)?;
     let design = profile_design(&a)?;
     let (motion, source) = profile_motion(&a)?;
     let cam = CamProfile::new(&motion, &design)?;
-    let undercut = cam.undercut().map(|u| u.to_string());
+    let undercut = cam.undercut().map(|e| e.to_string());
     // An undercut cam is reported in every output (undercut: true, a warning naming the angle and
     // the largest roller); a drawing of it is never written: with --dxf the report is printed
     // and the command then fails (exit 2) naming the roller.
     match (&a.dxf, &undercut) {
         (Some(_), Some(_)) => {}
         (Some(path), None) => {
-            let bore = a.bore_mm.unwrap_or_else(|| cam.default_bore_mm());
-            let text = cam.dxf(a.chord_tol_mm, bore)?;
+            let text = cam.dxf(a.chord_tol_mm, cam.bore_mm_or(a.bore_mm))?;
             output::text_to(&path.display().to_string(), &text)?;
         }
         (None, Some(msg)) => output::warning(msg),

@@ -2,7 +2,7 @@
 
 use crate::output::{self, outln};
 use crate::util::{self, Format};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 use loomkin_laws::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
@@ -18,7 +18,7 @@ pub struct CycleArgs {
     #[arg(long)]
     speed_rpm: Option<f64>,
     /// Number of samples over the cycle for CSV, JSON and plots.
-    #[arg(long, default_value_t = 721)]
+    #[arg(long, default_value_t = Cycle::POINTS.default_count())]
     points: usize,
     #[command(flatten)]
     format: Format,
@@ -35,9 +35,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", a.file.display()))?;
     let rpm = cycle.speed_rpm_or(a.speed_rpm);
     let speed = ShaftSpeed::from_rpm_field("--speed-rpm", rpm)?;
-    if a.points < 2 {
-        bail!("--points {} is too few: allowed 2 ≤ N", a.points);
-    }
+    Cycle::POINTS.check_count_as("--points", a.points)?;
     // Tables stream (nothing held per row): their time limits N; a plot holds its points.
     let n = a.points as f64;
     let cost = if a.format.json {

@@ -9,8 +9,9 @@ use loomkin_io::Table;
 use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
-    Analysis, AnalysisOptions, Cam, CamProfile, MechError, ModulatorGeometry, ModulatorState, OutputLawSpec, Synthesis,
-    SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table, synthesize,
+    AlphaSweep, Analysis, AnalysisOptions, Cam, CamProfile, DobbyInputs, MechError, ModulatorGeometry, ModulatorState,
+    OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table,
+    synthesize,
 };
 use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use std::path::PathBuf;
@@ -41,43 +42,32 @@ pub struct GeometryArgs {
     #[arg(long, allow_hyphen_values = true)]
     theta_deg: Option<f64>,
     /// Input crank OA, m.
-    #[arg(long, default_value_t = 0.66, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ModulatorGeometry::L2_M.default_value(), allow_hyphen_values = true)]
     l2_m: f64,
     /// Arm AB to the cam roller, m.
-    #[arg(long, default_value_t = 0.36, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ModulatorGeometry::L3_M.default_value(), allow_hyphen_values = true)]
     l3_m: f64,
     /// Arm AC to the counter-cam roller, m.
-    #[arg(long, default_value_t = 0.36, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ModulatorGeometry::L3P_M.default_value(), allow_hyphen_values = true)]
     l3p_m: f64,
     /// Output crank OD, m (< l2).
-    #[arg(long, default_value_t = 0.40, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = ModulatorGeometry::L6_M.default_value(), allow_hyphen_values = true)]
     l6_m: f64,
     /// Input (main-shaft) speed, rpm (default: ω2 = 1 rad/s as in the paper, so rates read as ratios).
     #[arg(long, alias = "input-rpm", allow_hyphen_values = true)]
     speed_rpm: Option<f64>,
     /// Pressure angles above this raise a warning, deg.
-    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), allow_hyphen_values = true)]
     pressure_limit_deg: f64,
 }
 
 impl GeometryArgs {
     fn geometry(&self) -> Result<ModulatorGeometry> {
-        let alpha = self.alpha_deg.unwrap_or(47.0);
-        let theta = self.theta_deg.unwrap_or(alpha);
-        Ok(ModulatorGeometry::new(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, alpha, theta)?)
+        Ok(ModulatorGeometry::from_inputs(self.l2_m, self.l3_m, self.l3p_m, self.l6_m, self.alpha_deg, self.theta_deg)?)
     }
 
     fn speed_rad_s(&self) -> Result<f64> {
-        match self.speed_rpm {
-            None => Ok(1.0),
-            Some(n) => {
-                // The shaft's range, then the modulator's own bound on ω2, both on the flag as typed.
-                let w = loomkin_units::ShaftSpeed::from_rpm_field("--speed-rpm", n)?.rad_per_s();
-                let max_rpm = loomkin_mech::MAX_INPUT_SPEED_RAD_S * 60.0 / std::f64::consts::TAU;
-                loomkin_units::Range::closed(1e-3, max_rpm, "rpm").check("--speed-rpm", n)?;
-                Ok(w)
-            }
-        }
+        Ok(DobbyInputs::speed_rad_s("--speed-rpm", self.speed_rpm)?)
     }
 }
 
@@ -131,16 +121,16 @@ fn parse_ellipse(spec: &str) -> Result<Cam> {
 #[derive(Debug, Args, Clone)]
 pub struct LawArgs {
     /// Dwell of the output per cycle, deg of input.
-    #[arg(long, default_value_t = 40.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = OutputLawSpec::DWELL_DEG.default_value(), allow_hyphen_values = true)]
     dwell_deg: f64,
     /// Input angle at the centre of the first dwell, also the output angle held there, deg.
-    #[arg(long, default_value_t = 90.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = OutputLawSpec::DWELL_CENTRE_DEG.default_value(), allow_hyphen_values = true)]
     dwell_centre_deg: f64,
     /// Cycles (dwell + rise of 360°/cycles) per input turn.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = OutputLawSpec::CYCLES.default_count() as u32)]
     cycles: u32,
     /// Shape of each rise: a law of the catalogue (see `loomkin law list`).
-    #[arg(long, default_value = "cycloidal")]
+    #[arg(long, default_value = OutputLawSpec::DEFAULT_LAW)]
     law: String,
     /// A parameter of --law, e.g. `--param ramp=0.1`.
     #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
@@ -175,21 +165,14 @@ impl RollerArgs {
     /// The roller radius in m, if given. A `--roller-mm` outside 0…10 000 mm is refused here,
     /// naming the flag and the range in mm; `--roller-m` is checked by the library (0…10 m).
     fn metres(&self) -> Result<Option<f64>> {
-        if let Some(mm) = self.roller_mm {
-            loomkin_units::Range::closed(0.0, 10_000.0, "mm").check("--roller-mm", mm)?;
-            return Ok(Some(loomkin_units::m_from_mm(mm)));
-        }
-        Ok(self.roller_m)
+        Ok(DobbyInputs::roller_m("--roller-mm", self.roller_mm, self.roller_m)?)
     }
 
     /// The roller radius in m, 30 mm unless given (the cams are synthesised with a roller).
     fn metres_or_default(&self) -> Result<f64> {
-        Ok(self.metres()?.unwrap_or(DEFAULT_ROLLER_M))
+        Ok(self.metres()?.unwrap_or(DobbyInputs::ROLLER_M.default_value()))
     }
 }
-
-/// The roller of a synthesis when none is given, m.
-const DEFAULT_ROLLER_M: f64 = 0.03;
 
 /// `dobby analyze`.
 #[derive(Debug, Args)]
@@ -199,7 +182,7 @@ pub struct AnalyzeArgs {
     #[command(flatten)]
     cam: CamArgs,
     /// Input step, deg (0.01…30).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true)]
     step_deg: f64,
     #[command(flatten)]
     roller: RollerArgs,
@@ -217,7 +200,7 @@ pub struct SynthesizeArgs {
     #[command(flatten)]
     roller: RollerArgs,
     /// Input step, deg (0.01…30).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true)]
     step_deg: f64,
     #[command(flatten)]
     format: Format,
@@ -228,7 +211,13 @@ pub struct SynthesizeArgs {
     #[arg(long, value_enum, default_value_t = UnitArg::Mm)]
     dxf_unit: UnitArg,
     /// Chord tolerance of the DXF polylines, mm (the curves are drawn within it whatever --step-deg).
-    #[arg(long, value_name = "T", default_value_t = 0.01, allow_hyphen_values = true, requires = "dxf")]
+    #[arg(
+        long,
+        value_name = "T",
+        default_value_t = loomkin_mech::dobby_export::DEFAULT_CHORD_TOL_MM,
+        allow_hyphen_values = true,
+        requires = "dxf"
+    )]
     chord_tol_mm: f64,
     /// Bore diameter about the crank centre drawn in the DXF, mm (0: none; default 0.4 × the cams'
     /// least radius).
@@ -276,7 +265,7 @@ pub struct PlotArgs {
     #[arg(long, value_enum, default_value_t = WhatArg::Law)]
     what: WhatArg,
     /// Input angle at which the mechanism is drawn (with --what cams), deg.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::AT_DEG.default_value(), allow_hyphen_values = true)]
     at_deg: f64,
     #[command(flatten)]
     geometry: GeometryArgs,
@@ -287,7 +276,7 @@ pub struct PlotArgs {
     #[command(flatten)]
     roller: RollerArgs,
     /// Input step, deg.
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::PLOT_STEP_DEG.default_value(), allow_hyphen_values = true)]
     step_deg: f64,
     /// Output file, .svg or .png.
     #[arg(short, long)]
@@ -300,13 +289,13 @@ pub struct PlotArgs {
 #[derive(Debug, Args)]
 pub struct SweepArgs {
     /// First α, deg.
-    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = AlphaSweep::FROM.default_value(), allow_hyphen_values = true)]
     from: f64,
     /// Last α, deg.
-    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = AlphaSweep::TO.default_value(), allow_hyphen_values = true)]
     to: f64,
     /// α step, deg.
-    #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = AlphaSweep::BY.default_value(), allow_hyphen_values = true)]
     by: f64,
     #[command(flatten)]
     geometry: GeometryArgs,
@@ -317,7 +306,7 @@ pub struct SweepArgs {
     #[command(flatten)]
     roller: RollerArgs,
     /// Input step, deg.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true)]
     step_deg: f64,
     #[command(flatten)]
     format: Format,
@@ -743,7 +732,7 @@ fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, s
 }
 
 fn plot_cmd(a: PlotArgs) -> Result<()> {
-    loomkin_units::Range::closed(-360.0, 360.0, "deg").check("--at-deg", a.at_deg)?;
+    DobbyInputs::AT_DEG.check_as("--at-deg", a.at_deg)?;
     let g = a.geometry.geometry()?;
     let w2 = a.geometry.speed_rad_s()?;
     let (states, gamma, gamma_p, title, checks) = match a.task {
@@ -795,21 +784,9 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     if a.geometry.alpha_deg.is_some() || a.geometry.theta_deg.is_some() {
         bail!("--alpha-deg and --theta-deg do not apply to dobby sweep: it sweeps α = θ over --from … --to by --by");
     }
-    // α = θ values: the sweep's ends inside the lever-angle range (so the count below is finite).
-    let alpha = loomkin_units::Range::open(0.0, 180.0, "°");
-    alpha.check("--from", a.from)?;
-    alpha.check("--to", a.to)?;
-    loomkin_units::Range::above(0.0, "°").check("--by", a.by)?;
-    if a.to < a.from {
-        bail!("--from {} --to {} --by {}: need from ≤ to and by > 0", a.from, a.to, a.by);
-    }
-    let n = ((a.to - a.from) / a.by + 1e-9).floor() + 1.0;
-    if n > 1000.0 {
-        bail!("--by {} gives {} values of α: allowed at most 1000", a.by, loomkin_units::compact(n));
-    }
-    let n = n as usize;
+    let all = AlphaSweep::values(["--from", "--to", "--by"], a.from, a.to, a.by)?;
     a.shard.check(a.format)?;
-    let alphas: Vec<f64> = a.shard.get().items(n).map(|i| a.from + i as f64 * a.by).collect();
+    let alphas: Vec<f64> = a.shard.get().items(all.len()).map(|i| all[i]).collect();
     let g = a.geometry.geometry()?;
     let rows = alpha_sweep(
         &g,

@@ -6,8 +6,8 @@ use crate::util::{self, Format};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use loomkin_dynamics::{
-    Follower, Response, ResponseReport, STANDARD_GRAVITY, Start, SweepEntry, SweepReport, Units, sweep, sweep_columns,
-    sweep_row,
+    Compensation, Follower, Optimized, Response, ResponseReport, Start, SweepEntry, SweepPoint, SweepReport, Units,
+    sweep, sweep_columns, sweep_row,
 };
 use loomkin_io::Table;
 use loomkin_laws::Cycle;
@@ -59,7 +59,7 @@ pub struct TwoMassArgs {
     #[arg(long)]
     frame_stiffness_n_m: f64,
     /// Modal damping ratio ζ of both modes (0 ≤ ζ < 1).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = Follower::DAMPING_RATIO.default_value())]
     damping_ratio: f64,
     /// The periodic steady state instead of one cycle from rest.
     #[arg(long)]
@@ -78,7 +78,7 @@ pub struct OptimizeArgs {
     #[arg(long)]
     speed_rpm: Option<f64>,
     /// Half-width of the speed band around the design speed, in % (0 < band < 90).
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = Optimized::BAND_PCT.default_value())]
     band_pct: f64,
     #[command(flatten)]
     model: ModelArgs,
@@ -101,7 +101,7 @@ pub struct CompensateArgs {
     #[command(flatten)]
     model: ModelArgs,
     /// Samples per cycle in the CSV.
-    #[arg(long, default_value_t = 721)]
+    #[arg(long, default_value_t = Compensation::POINTS.default_count())]
     points: usize,
     /// Output file: OUT.csv (samples) or OUT.toml (exact pieces); `-` prints the CSV.
     #[arg(short, long)]
@@ -116,10 +116,10 @@ pub struct SpectrumArgs {
     #[arg(required = true)]
     laws: Vec<String>,
     /// Damping ratios, comma-separated (each 0 ≤ ζ < 1).
-    #[arg(long, default_value = "0")]
+    #[arg(long, default_value_t = Follower::DAMPING_RATIO.default_value().to_string())]
     damping_ratio: String,
     /// Ratios of motion time to natural period, FROM:TO:STEP.
-    #[arg(long, default_value = "0.5:10:0.01")]
+    #[arg(long, default_value = loomkin_dynamics::DEFAULT_RATIOS)]
     ratio: String,
     /// Print CSV (one column per law and damping ratio).
     #[arg(long)]
@@ -138,35 +138,34 @@ pub struct ModelArgs {
     #[arg(long)]
     natural_hz: f64,
     /// Damping ratio ζ (0 ≤ ζ < 1).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = Follower::DAMPING_RATIO.default_value())]
     damping_ratio: f64,
     /// Moving mass in kg: enables forces (train/contact force, contact loss).
     #[arg(long)]
     mass_kg: Option<f64>,
     /// Return spring acting on the mass, N/m (needs --mass-kg; f_n is that of the whole follower).
-    #[arg(long, default_value_t = 0.0, requires = "mass_kg")]
+    #[arg(long, default_value_t = Follower::RETURN_SPRING_N_M.default_value(), requires = "mass_kg")]
     return_spring_n_m: f64,
     /// Spring preload pulling the follower onto the cam, N (needs --mass-kg).
-    #[arg(long, default_value_t = 0.0, requires = "mass_kg")]
+    #[arg(long, default_value_t = Follower::PRELOAD_N.default_value(), requires = "mass_kg")]
     preload_n: f64,
     /// Add the follower's weight m·g as a closing force (a follower rising upwards).
     #[arg(long, requires = "mass_kg")]
     weight: bool,
     /// A further constant closing force, N (needs --mass-kg).
-    #[arg(long, default_value_t = 0.0, requires = "mass_kg")]
+    #[arg(long, default_value_t = Follower::FORCE_N.default_value(), requires = "mass_kg")]
     force_n: f64,
 }
 
 impl ModelArgs {
     fn follower(&self) -> Result<Follower> {
-        let f = Follower::new(self.natural_hz, self.damping_ratio)?;
-        Ok(match self.mass_kg {
-            Some(m) => {
-                let weight = if self.weight { m * STANDARD_GRAVITY } else { 0.0 };
-                f.with_loads(m, self.return_spring_n_m, self.preload_n + weight + self.force_n)?
-            }
-            None => f,
-        })
+        Ok(Follower::new(self.natural_hz, self.damping_ratio)?.with_front_loads(
+            self.mass_kg,
+            self.return_spring_n_m,
+            self.preload_n,
+            self.weight,
+            self.force_n,
+        )?)
     }
 }
 
@@ -181,13 +180,13 @@ pub struct ResponseArgs {
     #[command(flatten)]
     model: ModelArgs,
     /// Number of cycles computed from rest at 0° of the cycle.
-    #[arg(long, default_value_t = 1, conflicts_with = "steady")]
+    #[arg(long, default_value_t = Response::CYCLES.default_count(), conflicts_with = "steady")]
     cycles: usize,
     /// The periodic steady state (the motion that repeats every cycle) instead of starting from rest.
     #[arg(long)]
     steady: bool,
     /// Samples per cycle for CSV, JSON and plots.
-    #[arg(long, default_value_t = 721)]
+    #[arg(long, default_value_t = Response::POINTS.default_count())]
     points: usize,
     #[command(flatten)]
     format: Format,
@@ -220,7 +219,7 @@ pub struct SweepArgs {
     output: Option<PathBuf>,
     /// Residual amplitude a design accepts, % of the stroke (0 < L ≤ 100): drawn on the plot, the
     /// speeds above it shaded as speeds to avoid.
-    #[arg(long, default_value_t = 1.0, value_name = "L")]
+    #[arg(long, default_value_t = SweepPoint::RESIDUAL_LIMIT_PCT.default_value(), value_name = "L")]
     residual_limit_pct: f64,
     #[command(flatten)]
     plot: crate::util::PlotOpts,
@@ -265,12 +264,8 @@ fn response(a: ResponseArgs) -> Result<()> {
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
-    if !(1..=10_000).contains(&a.cycles) {
-        anyhow::bail!("cycles = {} is out of range: allowed 1 ≤ cycles ≤ 10000", a.cycles);
-    }
-    if !(2..=1_000_000).contains(&a.points) {
-        anyhow::bail!("points = {} is out of range: allowed 2 ≤ points ≤ 1000000", a.points);
-    }
+    Response::CYCLES.check_count(a.cycles)?;
+    Response::POINTS.check_count(a.points)?;
     let start = if a.steady { Start::Steady } else { Start::Rest };
     let r = Response::new(&cycle, speed, &follower, start, a.cycles)?;
     let u = units(&cycle);
@@ -419,7 +414,7 @@ const SWEEP_BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     // Checked first, with or without a plot to draw it on (refused, not ignored).
-    loomkin_units::Range::open_closed(0.0, 100.0, "%").check("residual_limit_pct", a.residual_limit_pct)?;
+    SweepPoint::RESIDUAL_LIMIT_PCT.check(a.residual_limit_pct)?;
     let cycle = read_cycle(&a.file)?;
     let follower = a.model.follower()?;
     let span = Span::parse("speed_rpm", &a.speed_rpm, ShaftSpeed::RANGE)?;
@@ -576,12 +571,10 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
     let mut zetas = Vec::new();
     for z in a.damping_ratio.split(',') {
         let v: f64 = z.trim().parse().map_err(|_| anyhow::anyhow!("damping_ratio: '{z}' is not a number"))?;
-        zetas.push(Follower::DAMPING_RATIO.check("damping_ratio", v)?);
+        zetas.push(Follower::DAMPING_RATIO.check(v)?);
     }
-    let span = Span::parse("ratio", &a.ratio, loomkin_units::Range::open(0.0, 1e4, ""))?;
-    if span.count() > 1_000_000 {
-        anyhow::bail!("ratio: {} points is too many: allowed at most 1000000", span.count());
-    }
+    let span = Span::parse(loomkin_dynamics::RATIO.name, &a.ratio, loomkin_dynamics::RATIO.range)?;
+    loomkin_dynamics::RATIOS.check_count(span.count())?;
     let ratios: Vec<f64> = span.values().collect();
     let mut series = Vec::new();
     for (label, key, law) in &laws {
@@ -651,9 +644,7 @@ fn compensate_cmd(a: CompensateArgs) -> Result<()> {
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
-    if !(2..=1_000_000).contains(&a.points) {
-        anyhow::bail!("points = {} is out of range: allowed 2 ≤ points ≤ 1000000", a.points);
-    }
+    Compensation::POINTS.check_count(a.points)?;
     if !(a.output.ends_with(".csv") || a.output.ends_with(".toml") || a.output == "-") {
         anyhow::bail!("output = {}: give OUT.csv, OUT.toml or - (CSV on standard output)", a.output);
     }

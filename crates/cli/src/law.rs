@@ -82,7 +82,7 @@ pub struct PlotArgs {
     #[command(flatten)]
     plot: crate::util::PlotOpts,
     /// Points per curve.
-    #[arg(long, default_value_t = 801)]
+    #[arg(long, default_value_t = Law::PLOT_POINTS.default_count())]
     points: usize,
 }
 
@@ -199,9 +199,7 @@ fn info(a: InfoArgs) -> Result<()> {
 }
 
 fn sample(a: SampleArgs) -> Result<()> {
-    if a.points < 2 {
-        bail!("--points {} is too few: allowed 2 ≤ N", a.points);
-    }
+    Law::SAMPLE_POINTS.check_count_as("--points", a.points)?;
     a.shard.check(a.format)?;
     let shard = a.shard.get();
     check_sample_budget(a.points, shard.items(a.points).len(), a.format.json)?;
@@ -299,9 +297,7 @@ const SAMPLE_JSON_S_PER_ROW: f64 = 2.0 * 0.92e-6;
 const SAMPLE_CSV_S_PER_ROW: f64 = 2.0 * 1.83e-6;
 
 fn plot(a: PlotArgs) -> Result<()> {
-    if a.points < 2 || a.points > 100_000 {
-        bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
-    }
+    Law::PLOT_POINTS.check_count_as("--points", a.points)?;
     for (k, _) in &a.params.params {
         let known = a.laws.iter().any(|l| CATALOGUE.iter().any(|e| e.name == l && e.has_param(k)));
         if !known {

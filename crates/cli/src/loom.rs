@@ -52,7 +52,7 @@ pub struct TorqueArgs {
     #[command(flatten)]
     pattern: PatternArgs,
     /// Angle step of the curve, deg.
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = Drive::STEP_DEG.default_value())]
     step_deg: f64,
     #[command(flatten)]
     format: Format,
@@ -211,7 +211,7 @@ fn run_check(a: CheckArgs) -> Result<()> {
 
 fn run_torque(a: TorqueArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
-    loomkin_units::Range::closed(0.01, 10.0, "deg").check("--step-deg", a.step_deg)?;
+    Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
     if let Some(out) = &a.output {
         return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out, &a.plot);
     }

@@ -9,6 +9,10 @@ mod dobby;
 mod dobby_tolerance;
 mod draws;
 mod dynamics;
+#[cfg(test)]
+mod fields_doc;
+#[cfg(test)]
+mod front_end_literals;
 mod law;
 mod loom;
 mod merge;

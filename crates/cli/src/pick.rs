@@ -150,7 +150,7 @@ pub struct SimulateArgs {
     #[command(flatten)]
     format: Format,
     /// Samples of the time history for --csv (both ends included).
-    #[arg(long, default_value_t = 201)]
+    #[arg(long, default_value_t = History::POINTS.default_count())]
     points: usize,
 }
 
@@ -202,7 +202,7 @@ pub struct PlotArgs {
     #[command(flatten)]
     plot: crate::util::PlotOpts,
     /// Points per curve.
-    #[arg(long, default_value_t = 601)]
+    #[arg(long, default_value_t = History::PLOT_POINTS.default_count())]
     points: usize,
 }
 
@@ -350,9 +350,7 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     let st = settings(&mech, &a.settings);
     let method = a.method.into();
     if a.format.csv {
-        if !(2..=1_000_000).contains(&a.points) {
-            bail!("--points {} is out of range: allowed 2 ≤ N ≤ 1000000", a.points);
-        }
+        History::POINTS.check_count_as("--points", a.points)?;
         let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
         note(&h.outcome);
         return output::csv(&history_table(&h)?);
@@ -365,11 +363,11 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     outln!("pick with cam '{}' by the {} route", mech.cam().label(), o.method.name())?;
     outln!(
         "  speed {} rpm, play {} mm, strap k = {} cm, shuttle {} g, checking {} kgf",
-        loomkin_units::compact(st.speed_rpm),
-        loomkin_units::compact(st.play_m * 1e3),
-        loomkin_units::compact(st.strap_m * 1e2),
-        loomkin_units::compact(st.shuttle_kg * 1e3),
-        loomkin_units::compact(st.checking_n / loomkin_picking::units::N_PER_KGF)
+        loomkin_units::compact(Setting::Speed.value(&st)),
+        loomkin_units::compact(Setting::Play.value(&st)),
+        loomkin_units::compact(Setting::Strap.value(&st)),
+        loomkin_units::compact(Setting::Shuttle.value(&st)),
+        loomkin_units::compact(Setting::Checking.value(&st))
     )?;
     outln!("  t0           = {:.6} s   (delay taking up the play)", o.t0_s)?;
     outln!(
@@ -436,9 +434,7 @@ const SWEEP_BYTES_PER_POINT: f64 = 200.0;
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let setting = Setting::parse(&a.setting)?;
-    if a.points < 1 {
-        bail!("--points 0 is too few: allowed N ≥ 1");
-    }
+    Sweep::POINTS.check_count_as("--points", a.points)?;
     a.shard.check(a.format)?;
     let method: Method = a.method.into();
     let items = a.shard.get().items(a.points);
@@ -575,9 +571,7 @@ fn sweep_figure(s: &Sweep, crossings: &[f64]) -> Figure {
 }
 
 fn plot(a: PlotArgs) -> Result<()> {
-    if !(2..=1_000_000).contains(&a.points) {
-        bail!("--points {} is out of range: allowed 2 ≤ N ≤ 1000000", a.points);
-    }
+    History::PLOT_POINTS.check_count_as("--points", a.points)?;
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
     let method = a.method.into();
@@ -624,9 +618,9 @@ fn plot(a: PlotArgs) -> Result<()> {
     let title = format!(
         "Picking: nominal and actual motion (cam {}, {} rpm, play {} mm, k = {} cm)",
         mech.cam().label(),
-        loomkin_units::compact(st.speed_rpm),
-        loomkin_units::compact(st.play_m * 1e3),
-        loomkin_units::compact(st.strap_m * 1e2)
+        loomkin_units::compact(Setting::Speed.value(&st)),
+        loomkin_units::compact(Setting::Play.value(&st)),
+        loomkin_units::compact(Setting::Strap.value(&st))
     );
     output::figure(&Figure::new(title, "time from the shuttle's start t [ms]", panels), &a.output, &a.plot)
 }

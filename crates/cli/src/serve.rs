@@ -9,7 +9,7 @@ use clap::Args;
 #[derive(Debug, Args)]
 pub struct ServeArgs {
     /// Port to listen on; the server listens on 127.0.0.1 only (0 picks a free port).
-    #[arg(long, default_value_t = 8765)]
+    #[arg(long, default_value_t = loomkin_web::DEFAULT_PORT)]
     port: u16,
     /// Open the page in the default browser once the server listens.
     #[arg(long)]

@@ -14,11 +14,6 @@ use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// The default definition points: the cycloid's acceleration sin(2πX) at X = j/12 (the paper
-/// does not list its points).
-const DEFAULT_DEF: &str = "0:0,0.0833333333333333:0.5,0.1666666666666667:0.8660254037844386,0.25:1,\
-0.3333333333333333:0.8660254037844387,0.4166666666666667:0.5,0.5:0";
-
 /// Subcommands of `loomkin servo`.
 #[derive(Debug, Subcommand)]
 pub enum ServoCommand {
@@ -42,7 +37,7 @@ pub enum ServoCommand {
 pub struct DefArgs {
     /// Definition points "X:Y,X:Y,…": X from 0 to 0.5 increasing, Y₁ = Y_N = 0, other Y in
     /// [-1, 1]. Default: the cycloid's acceleration sampled at X = j/12 (7 points).
-    #[arg(long = "def", value_name = "X:Y,…", default_value = DEFAULT_DEF, hide_default_value = true)]
+    #[arg(long = "def", value_name = "X:Y,…", default_value = loomkin_servo::DEFAULT_DEF, hide_default_value = true)]
     def: String,
     /// Condition of the acceleration spline at x = 0: natural (f'' = 0) or clamped (f' = 0).
     #[arg(long, value_enum, ignore_case = true, default_value_t = SplineEnd::Natural)]
@@ -97,7 +92,7 @@ pub struct TorqueArgs {
     #[command(flatten)]
     drive: DriveArgs,
     /// Main-shaft speeds in 1/min, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "600,750")]
+    #[arg(long, value_delimiter = ',', default_value = loomkin_servo::ServoInputs::TORQUE_SPEEDS_RPM)]
     speed_rpm: Vec<f64>,
     /// Print JSON.
     #[arg(long)]
@@ -112,13 +107,13 @@ pub struct OptimizeArgs {
     #[command(flatten)]
     drive: DriveArgs,
     /// Main-shaft speeds in 1/min (comma separated): the worst value over them is minimised.
-    #[arg(long, value_delimiter = ',', default_value = "600")]
+    #[arg(long, value_delimiter = ',', default_value = loomkin_servo::ServoInputs::DESIGN_SPEEDS_RPM)]
     speed_rpm: Vec<f64>,
     /// Quantity to minimise: peak or rms motor torque.
     #[arg(long, value_enum, ignore_case = true, default_value_t = Objective::Peak)]
     objective: Objective,
     /// Number of Nelder–Mead starts (the given points, then pseudo-random ones).
-    #[arg(long, default_value_t = 6)]
+    #[arg(long, default_value_t = loomkin_servo::ServoInputs::STARTS.default_count())]
     starts: usize,
     /// Keep the X of the points and move only their Y.
     #[arg(long)]
@@ -146,7 +141,7 @@ pub struct ExportArgs {
     output: String,
     /// Cam table step in degrees of the main shaft (csv, xyva): a point on every joint of the law
     /// and every STEP_DEG from each joint, as `loomkin cam table --step-deg`.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = loomkin_servo::ServoInputs::EXPORT_STEP_DEG.default_value())]
     step_deg: f64,
     /// Print the re-interpolation report as JSON.
     #[arg(long)]
@@ -161,7 +156,7 @@ pub struct PlotArgs {
     #[command(flatten)]
     drive: DriveArgs,
     /// Main-shaft speeds in 1/min, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "600")]
+    #[arg(long, value_delimiter = ',', default_value = loomkin_servo::ServoInputs::DESIGN_SPEEDS_RPM)]
     speed_rpm: Vec<f64>,
     /// A second set of definition points to overlay (e.g. the optimised one).
     #[arg(long, value_name = "X:Y,…")]
@@ -216,9 +211,7 @@ fn law(a: LawArgs) -> Result<()> {
     let sl = a.def.build()?;
     let law = sl.law();
     if let Some(n) = a.points {
-        if n < 2 {
-            bail!("--points {n} is too few: allowed 2 ≤ N");
-        }
+        loomkin_laws::Law::SAMPLE_POINTS.check_count_as("--points", n)?;
         crate::law::check_sample_budget(n, n, a.format.json)?;
         // Checked finite first (sampling is cheap beside printing), then streamed: one block of
         // samples in memory whatever N.
@@ -344,9 +337,7 @@ fn torque(a: TorqueArgs) -> Result<()> {
 
 fn optimize(a: OptimizeArgs) -> Result<()> {
     check_speeds(&a.speed_rpm)?;
-    if a.starts < 1 {
-        bail!("--starts 0 is too few: allowed starts ≥ 1");
-    }
+    loomkin_servo::ServoInputs::STARTS.check_count_as("--starts", a.starts)?;
     let sl = a.def.build()?;
     let d = a.drive.load()?;
     let opts = OptimizeOptions {

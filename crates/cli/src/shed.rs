@@ -38,7 +38,7 @@ pub enum ShedCommand {
 #[derive(Debug, Args, Clone)]
 pub struct Physical {
     /// Frame stroke, mm.
-    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = Conditions::STROKE_MM.default_value(), allow_hyphen_values = true)]
     stroke_mm: f64,
     /// Main-shaft speed, rpm (one pick per turn).
     #[arg(long, default_value_t = ShaftSpeed::DEFAULT_RPM, allow_hyphen_values = true)]
@@ -50,14 +50,12 @@ pub struct Physical {
 pub struct Threshold {
     /// Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme;
     /// 0.75 ≤ T ≤ 0.99 (0.95 reproduces the paper's Table 3).
-    #[arg(long, default_value_t = loomkin_shed::TABLE3_THRESHOLD, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = Conditions::THRESHOLD_FIELD.default_value(), allow_hyphen_values = true)]
     threshold: f64,
 }
 
 fn conditions(p: &Physical, t: f64) -> Result<Conditions> {
-    // Checked here in the unit of the flag; the library checks the same range in metres.
-    loomkin_units::Range::open_closed(0.0, 1000.0, "mm").check("stroke_mm", p.stroke_mm)?;
-    Ok(Conditions::new(t, p.stroke_mm / 1000.0, p.speed_rpm)?)
+    Ok(Conditions::from_stroke_mm(t, p.stroke_mm, p.speed_rpm)?)
 }
 
 /// `shed list`.
@@ -205,15 +203,15 @@ impl LoomArgs {
             return Ok(None);
         };
         let Some(reed) = self.reed_width_m else { bail!("--reed-width-m is needed with --carrier-speed-m-s") };
-        let r = LoomRequirement {
-            carrier_speed_m_s: v,
-            reed_width_m: reed,
-            cloth_width_m: self.cloth_width_m.unwrap_or(reed),
-            carrier_length_m: self.carrier_length_m.unwrap_or(0.0),
-            crossing_range_deg: self.crossing_range_deg.unwrap_or(0.0),
-            shed_excess: self.shed_excess.unwrap_or(0.05),
+        let r = LoomRequirement::from_inputs(
+            v,
+            reed,
+            self.cloth_width_m,
+            self.carrier_length_m,
+            self.crossing_range_deg,
+            self.shed_excess,
             speed_rpm,
-        };
+        );
         r.required_window_deg()?;
         Ok(Some(r))
     }
@@ -282,7 +280,7 @@ pub struct PlotArgs {
     #[command(flatten)]
     plot: crate::util::PlotOpts,
     /// Points per curve.
-    #[arg(long, default_value_t = 1441)]
+    #[arg(long, default_value_t = loomkin_shed::PLOT_POINTS.default_count())]
     points: usize,
     #[command(flatten)]
     threshold: Threshold,
@@ -581,7 +579,8 @@ fn table(a: TableArgs) -> Result<()> {
         return print_rows(&t.k_names, t.rows.into_iter(), form, &cond, &util::Progress::new(0, "rows"));
     }
     // The rows are streamed: what is held is the design and one set of criteria per law.
-    let motions = loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or("300"))?;
+    let motions =
+        loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or(loomkin_shed::TABLE_MOTION_DEG))?;
     check_budget(a.design, &a.d, GridSpec::TABLE, motions.len(), Some(shard), row_cost(a.format))?;
     let study = study_design(a.design, &a.d, GridSpec::TABLE)?;
     let items = shard.items(study.design.len());
@@ -619,7 +618,8 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             all.rows.iter().map(|r| [r.candidate.criteria.window_deg, r.candidate.criteria.peak_accel_m_s2]).collect();
         all.select(&loomkin_shed::pareto_indices(&pts)?)
     } else {
-        let motions = loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or("180:360:10"))?;
+        let motions =
+            loomkin_shed::parse_motion_angles(a.d.motion_deg.as_deref().unwrap_or(loomkin_shed::PARETO_MOTION_DEG))?;
         // What is held per law and angle is its point (window, acceleration) and its index.
         check_budget(a.design, &a.d, GridSpec::TABLE, motions.len(), None, Cost { bytes: 32.0, seconds: 0.0 })?;
         let study = study_design(a.design, &a.d, GridSpec::TABLE)?;
@@ -762,9 +762,7 @@ fn plot(a: PlotArgs) -> Result<()> {
     if a.laws.is_empty() && a.spec.is_empty() {
         bail!("give at least one law name or --spec FILE.toml");
     }
-    if a.points < 2 || a.points > 100_000 {
-        bail!("--points {} out of range: allowed 2 ≤ N ≤ 100000", a.points);
-    }
+    loomkin_shed::PLOT_POINTS.check_count_as("--points", a.points)?;
     let cond = conditions(&a.physical, a.threshold.threshold)?;
     let mut laws = Vec::new();
     for n in &a.laws {

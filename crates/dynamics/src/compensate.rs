@@ -17,6 +17,7 @@ use crate::excitation::{Excitation, TimePiece};
 use crate::follower::Follower;
 use crate::oscillator::{NCOEF, poly_derivs};
 use crate::{DynError, Result};
+use loomkin_units::Field;
 use serde::Serialize;
 
 /// The compensated input on one piece: `s(t) = Σ p_k t^k + Im(q·e^{iΩt}) + C·e^{−a t}`.
@@ -68,6 +69,9 @@ pub struct Compensation {
 }
 
 impl Compensation {
+    /// `points`: samples per cycle of the compensated input's table, as [`crate::Response::POINTS`].
+    pub const POINTS: Field = crate::Response::POINTS;
+
     /// `s, s', s''` at time `t` of the cycle.
     pub fn eval(&self, t: f64) -> [f64; 3] {
         let t = t.clamp(0.0, self.period_s);

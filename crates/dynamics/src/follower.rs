@@ -4,7 +4,7 @@ use crate::excitation::TimePiece;
 use crate::oscillator::{Forcing, Harmonic, NCOEF, Oscillator};
 use crate::trajectory::Channel;
 use crate::{DynError, Result};
-use loomkin_units::{Range, RangeError};
+use loomkin_units::{Field, Range, RangeError};
 use serde::Serialize;
 
 /// Standard gravity (m/s²), for a follower's weight.
@@ -38,23 +38,64 @@ pub struct Follower {
 }
 
 impl Follower {
-    /// Allowed natural frequencies (a bound below keeps ω_n² representable: no overflow of 1/ω_n²).
-    pub const NATURAL_HZ: Range = Range::closed(1e-3, 1e6, "Hz");
-    /// Allowed damping ratios.
-    pub const DAMPING_RATIO: Range = Range::closed_open(0.0, 1.0, "");
-    /// Allowed masses.
-    pub const MASS_KG: Range = Range::open(0.0, 1e6, "kg");
-    /// Allowed return-spring rates.
-    pub const RETURN_SPRING_N_M: Range = Range::closed(0.0, 1e12, "N/m");
-    /// Allowed closing forces.
-    pub const CLOSING_FORCE_N: Range = Range::closed(-1e9, 1e9, "N");
+    /// `natural_hz`: f_n, 10⁻³ … 10⁶ Hz. The lower bound keeps ω_n² representable (no overflow of
+    /// 1/ω_n²); the closed-form response is exact up to 10⁶ Hz (checked against Duhamel integrals
+    /// at 300 rpm, where a cycle holds 2·10⁵ natural periods). A workbench slider's narrower span
+    /// (5 … 300 Hz) is a view of this range, not another bound.
+    pub const NATURAL_HZ: Field = Field::new(
+        "natural_hz",
+        Range::closed(1e-3, 1e6, "Hz"),
+        "Natural frequency f_n of the follower: 0.001 … 10⁶ Hz (the lower bound keeps 1/ω_n² finite; the \
+         closed-form response holds to 10⁶ Hz). Required.",
+    );
+    /// `damping_ratio`: ζ, 0 ≤ ζ < 1 (the closed form is that of an underdamped oscillator); 0.
+    pub const DAMPING_RATIO: Field = Field::new(
+        "damping_ratio",
+        Range::closed_open(0.0, 1.0, ""),
+        "Damping ratio ζ: 0 ≤ ζ < 1 (the closed-form response is the underdamped oscillator's); 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `mass_kg`: the moving mass, 0 < m < 10⁶ kg; it makes forces available.
+    pub const MASS_KG: Field = Field::new(
+        "mass_kg",
+        Range::open(0.0, 1e6, "kg"),
+        "Moving mass: 0 < m < 10⁶ kg; given, the forces (train, contact, loss of contact) are computed.",
+    );
+    /// `return_spring_n_m`: k_r, 0 … 10¹² N/m, and below m·ω_n² (checked with the mass); 0.
+    pub const RETURN_SPRING_N_M: Field = Field::new(
+        "return_spring_n_m",
+        Range::closed(0.0, 1e12, "N/m"),
+        "Return spring on the mass: 0 … 10¹² N/m and below m·ω_n² (else the train would have no stiffness); \
+         0 when left out.",
+    )
+    .with_default(0.0);
+    /// `closing_force_n`: the constant closing force, ±10⁹ N (front ends take it as `preload_n`,
+    /// the weight and `force_n`, [`Follower::with_front_loads`]).
+    pub const CLOSING_FORCE_N: Field = Field::new(
+        "closing_force_n",
+        Range::closed(-1e9, 1e9, "N"),
+        "Constant force closing the follower on the cam: ±10⁹ N.",
+    );
+    /// `preload_n`: the spring preload, a part of the closing force; 0.
+    pub const PRELOAD_N: Field = Self::CLOSING_FORCE_N
+        .within(
+            Range::closed(-1e9, 1e9, "N"),
+            "Spring preload pulling the follower onto the cam: ±10⁹ N; 0 when left out.",
+        )
+        .named("preload_n")
+        .with_default(0.0);
+    /// `force_n`: a further constant closing force; 0.
+    pub const FORCE_N: Field = Self::CLOSING_FORCE_N
+        .within(Range::closed(-1e9, 1e9, "N"), "A further constant closing force: ±10⁹ N; 0 when left out.")
+        .named("force_n")
+        .with_default(0.0);
 
     /// A follower of natural frequency `natural_hz` (Hz, 10⁻³…10⁶) and damping ratio `damping_ratio`
     /// (0 ≤ ζ < 1), without loads.
     pub fn new(natural_hz: f64, damping_ratio: f64) -> Result<Self> {
         Ok(Self {
-            natural_hz: Self::NATURAL_HZ.check("natural_hz", natural_hz)?,
-            damping_ratio: Self::DAMPING_RATIO.check("damping_ratio", damping_ratio)?,
+            natural_hz: Self::NATURAL_HZ.check(natural_hz)?,
+            damping_ratio: Self::DAMPING_RATIO.check(damping_ratio)?,
             mass_kg: None,
             return_spring_n_m: 0.0,
             closing_force_n: 0.0,
@@ -64,9 +105,9 @@ impl Follower {
     /// The same follower with a mass (kg), a return spring (N/m) and a constant closing force (N):
     /// the mass makes forces available; the train stiffness `k = m·ω_n² − k_r` must stay positive.
     pub fn with_loads(mut self, mass_kg: f64, return_spring_n_m: f64, closing_force_n: f64) -> Result<Self> {
-        let m = Self::MASS_KG.check("mass_kg", mass_kg)?;
-        let kr = Self::RETURN_SPRING_N_M.check("return_spring_n_m", return_spring_n_m)?;
-        let f0 = Self::CLOSING_FORCE_N.check("closing_force_n", closing_force_n)?;
+        let m = Self::MASS_KG.check(mass_kg)?;
+        let kr = Self::RETURN_SPRING_N_M.check(return_spring_n_m)?;
+        let f0 = Self::CLOSING_FORCE_N.check(closing_force_n)?;
         let w = std::f64::consts::TAU * self.natural_hz;
         let k_total = m * w * w;
         if kr >= k_total {
@@ -80,6 +121,26 @@ impl Follower {
         self.return_spring_n_m = kr;
         self.closing_force_n = f0;
         Ok(self)
+    }
+
+    /// The follower of a front end's model options: with `mass_kg`, its loads — the return spring
+    /// and the closing force `preload_n + force_n`, plus the weight m·g when `weight` (a follower
+    /// rising upwards); without a mass, the options of the loads are not used.
+    pub fn with_front_loads(
+        self,
+        mass_kg: Option<f64>,
+        return_spring_n_m: f64,
+        preload_n: f64,
+        weight: bool,
+        force_n: f64,
+    ) -> Result<Self> {
+        match mass_kg {
+            Some(m) => {
+                let w = if weight { m * STANDARD_GRAVITY } else { 0.0 };
+                self.with_loads(m, return_spring_n_m, preload_n + w + force_n)
+            }
+            None => Ok(self),
+        }
     }
 
     /// f_n (Hz).

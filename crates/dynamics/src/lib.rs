@@ -69,7 +69,26 @@ pub use report::{
     OptimizeReport, ResponseReport, SweepEntry, SweepReport, TwoMassReport, Units, start_name, sweep_columns, sweep_row,
 };
 pub use response::{DwellResidual, Located, Response, Summary, VDI_2149_MIN_RATIO};
-pub use spectrum::{cycloidal_undamped, residual_ratio, spectrum};
+pub use spectrum::{DEFAULT_RATIOS, RATIO, RATIOS, cycloidal_undamped, default_ratios, residual_ratio, spectrum};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Follower::NATURAL_HZ,
+    Follower::DAMPING_RATIO,
+    Follower::MASS_KG,
+    Follower::RETURN_SPRING_N_M,
+    Follower::CLOSING_FORCE_N,
+    Follower::PRELOAD_N,
+    Follower::FORCE_N,
+    Response::CYCLES,
+    Response::POINTS,
+    Compensation::POINTS,
+    Optimized::BAND_PCT,
+    SweepPoint::SPEEDS,
+    SweepPoint::RESIDUAL_LIMIT_PCT,
+    RATIO,
+    RATIOS,
+];
 pub use sweep::{SweepPoint, speeds_above, sweep, sweep_point};
 pub use trajectory::{Channel, Solved, Start, steady_state, trajectory};
 pub use twomass::TwoMass;

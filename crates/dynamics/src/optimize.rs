@@ -283,6 +283,16 @@ pub struct Optimized {
 }
 
 impl Optimized {
+    /// `band_pct`: the half-width of the speed band, 0 < band < 90 % (at 90 % the band's low end is a
+    /// tenth of the speed); 10 %.
+    pub const BAND_PCT: loomkin_units::Field = loomkin_units::Field::new(
+        "band_pct",
+        loomkin_units::Range::open(0.0, 90.0, "%"),
+        "Half-width of the speed band around the design speed: 0 < band < 90 % (both ends inside the \
+         shaft-speed range); 10 % when left out.",
+    )
+    .with_default(10.0);
+
     /// How many times lower the cycle's largest dwell residual is than the modified-sine cycle's
     /// (at most 1e300: a residual of 0 is not an infinite improvement in a file).
     pub fn improvement_factor(&self) -> f64 {
@@ -315,7 +325,7 @@ pub fn optimize_cycle(
     band_pct: f64,
     follower: &crate::Follower,
 ) -> Result<Optimized> {
-    let band = loomkin_units::Range::open(0.0, 90.0, "%").check("band_pct", band_pct)? / 100.0;
+    let band = Optimized::BAND_PCT.check(band_pct)? / 100.0;
     // The band's ends are speeds the responses run at: both inside the shaft-speed range, said
     // in the user's two inputs rather than as a speed they never typed.
     let speeds = loomkin_units::ShaftSpeed::RANGE;

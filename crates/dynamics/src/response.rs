@@ -7,7 +7,7 @@ use crate::oscillator::free_roots;
 use crate::peaks::{Extremes, extremes, extremes_of, grid_size};
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use loomkin_laws::Cycle;
-use loomkin_units::ShaftSpeed;
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::Serialize;
 
 /// VDI 2149 Blatt 1: a rigid-body model is acceptable only when `f_n ≥ 10·f_shaft`.
@@ -76,6 +76,23 @@ pub struct Summary {
 }
 
 impl Response {
+    /// `cycles`: cycles computed from rest, 1 … 10⁴ (a response holds its pieces, some per segment
+    /// and cycle); 1.
+    pub const CYCLES: Field = Field::count(
+        "cycles",
+        Range::closed(1.0, 1e4, ""),
+        "Cycles computed from rest at 0° of the cycle: 1 … 10⁴ (the response holds every cycle's pieces); \
+         1 when left out.",
+    )
+    .with_default(1.0);
+    /// `points`: samples per cycle of a response, 2 … 10⁶; 721 (every half degree of a turn).
+    pub const POINTS: Field = Field::count(
+        "points",
+        Range::closed(2.0, 1e6, ""),
+        "Samples per cycle: 2 … 10⁶; 721 (every half degree of a turn) when left out.",
+    )
+    .with_default(721.0);
+
     /// The response of `follower` to `cycle` at `speed` over `cycles` cycles (from rest or steady).
     pub fn new(cycle: &Cycle, speed: ShaftSpeed, follower: &Follower, start: Start, cycles: usize) -> Result<Self> {
         Self::from_excitation(Excitation::from_cycle(cycle, speed), follower, start, cycles)

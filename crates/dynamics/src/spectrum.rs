@@ -15,6 +15,28 @@ use crate::excitation::Excitation;
 use crate::oscillator::Oscillator;
 use crate::trajectory::Channel;
 use loomkin_laws::Law;
+use loomkin_units::{Field, Range};
+
+/// `ratio`: a spectrum's ratio of motion time to natural period T·f_n, 0 < r < 10⁴ (at 10⁴ natural
+/// periods a motion the residual is rounding noise).
+pub const RATIO: Field = Field::new(
+    "ratio",
+    Range::open(0.0, 1e4, ""),
+    "Ratio of motion time to natural period T·f_n: 0 < r < 10⁴; 0.5:10:0.01 (FROM:TO:STEP) when left out.",
+);
+/// How many ratios a spectrum takes: 1 … 10⁶.
+pub const RATIOS: Field = Field::count("ratio", Range::closed(1.0, 1e6, ""), "Ratios of one spectrum: 1 … 10⁶.");
+/// The ratios of a spectrum when none are given, FROM:TO:STEP: 0.5 … 10 every 0.01 (the range of
+/// VDI 2149's charts, fine enough to show each minimum).
+pub const DEFAULT_RATIOS: &str = "0.5:10:0.01";
+
+/// The ratios of [`DEFAULT_RATIOS`], as `dyn spectrum` takes them when none are given.
+pub fn default_ratios() -> Vec<f64> {
+    match loomkin_units::Span::parse(RATIO.name, DEFAULT_RATIOS, RATIO.range) {
+        Ok(span) => span.values().collect(),
+        Err(e) => unreachable!("the default ratios are a span: {e}"),
+    }
+}
 
 /// `A/h` (fraction of the stroke) left by `law` at the ratio `r = T/T_n` (> 0) with damping ratio `zeta`.
 pub fn residual_ratio(law: &Law, r: f64, zeta: f64) -> f64 {
@@ -99,5 +121,20 @@ mod tests {
             let closed = residual_ratio(&law, r, 0.0);
             prop_assert!((duhamel - closed).abs() < 1e-11 * (1.0 + closed), "{}: r {} {} vs {}", CATALOGUE[i].name, r, closed, duhamel);
         }
+    }
+}
+
+#[cfg(test)]
+mod field_tests {
+    use super::*;
+
+    /// The default span is 0.5, 0.51, …, 10 (951 ratios), inside the range.
+    #[test]
+    fn the_default_ratios_span_the_charts() {
+        let r = default_ratios();
+        assert_eq!(r.len(), 951);
+        assert_eq!((r[0], r[950]), (0.5, 10.0));
+        assert!(r.iter().all(|&x| RATIO.range.contains(x)));
+        assert!(RATIOS.check_count(r.len()).is_ok());
     }
 }

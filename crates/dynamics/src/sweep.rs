@@ -5,9 +5,27 @@ use crate::follower::Follower;
 use crate::response::Response;
 use crate::trajectory::Start;
 use loomkin_laws::Cycle;
-use loomkin_units::ShaftSpeed;
+use loomkin_units::{Field, Range, ShaftSpeed};
 use rayon::prelude::*;
 use serde::Serialize;
+
+impl SweepPoint {
+    /// `speed_rpm` of a sweep held as arrays (Python): how many speeds, 1 … 10⁶ (each one response,
+    /// µs to ms); the CLI streams its rows and its time budget bounds how many.
+    pub const SPEEDS: Field = Field::count(
+        "speed_rpm",
+        Range::closed(1.0, 1e6, ""),
+        "Speeds of a sweep held as arrays: 1 … 10⁶ of them (each one response), each in the shaft-speed range; a streamed sweep is bounded by the time budget.",
+    );
+    /// `residual_limit_pct`: the residual amplitude a design accepts, 0 < L ≤ 100 % of the stroke;
+    /// 1 % (a heald frame's usual allowance).
+    pub const RESIDUAL_LIMIT_PCT: Field = Field::new(
+        "residual_limit_pct",
+        Range::open_closed(0.0, 100.0, "%"),
+        "Residual amplitude a design accepts, % of the stroke: 0 < L ≤ 100; 1 % when left out.",
+    )
+    .with_default(1.0);
+}
 
 /// The response's figures at one speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

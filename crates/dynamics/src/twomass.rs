@@ -43,7 +43,7 @@ impl TwoMass {
         let stiff = Range::open(0.0, 1e13, "N/m");
         let (m1, m2) = (mass.check("drive_mass_kg", m1)?, mass.check("frame_mass_kg", m2)?);
         let (k1, k2) = (stiff.check("drive_stiffness_n_m", k1)?, stiff.check("frame_stiffness_n_m", k2)?);
-        let zeta = crate::Follower::DAMPING_RATIO.check("damping_ratio", zeta)?;
+        let zeta = crate::Follower::DAMPING_RATIO.check(zeta)?;
         let (l1, l2) = Self::eigenvalues(m1, k1, m2, k2);
         // The second mode within the single-mass model's frequency range: a mass too light for its
         // stiffness is refused by name, with the least mass that keeps f₂ ≤ 10⁶ Hz.

@@ -1,7 +1,7 @@
 //! Machine cycles: dwell / rise / dwell / return segments over one turn of the main shaft.
 
 use crate::{Kinematics, Law, LawError, LawSpec, Result};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -380,6 +380,22 @@ impl Cycle {
         }
         Ok(Self { unit: spec.unit, period_rad: period * DEG, speed_rpm: spec.speed_rpm, segments })
     }
+
+    /// `points`: samples over the cycle, both ends included: at least 2 (a streamed table is bounded
+    /// by the time budget, [`loomkin_units::Budget`]); 721 (every half degree of a turn) when left
+    /// out. Held as arrays (Python): [`Cycle::HELD_POINTS`].
+    pub const POINTS: Field = Field::count(
+        "points",
+        Range::at_least(2.0, ""),
+        "Samples over the cycle, both ends included: at least 2 (a streamed table is bounded by the time \
+         budget, arrays by 10⁷); 721 (every half degree of a turn) when left out.",
+    )
+    .with_default(721.0);
+    /// [`Cycle::POINTS`] held in memory as float64 columns (Python's arrays): 2 … 10⁷ (about 500 MB).
+    pub const HELD_POINTS: Field = Self::POINTS.within(
+        Range::closed(2.0, 1e7, ""),
+        "Samples over the cycle held as arrays (six float64 columns): 2 … 10⁷ (about 500 MB); 721 when left out.",
+    );
 
     /// The speed to run the cycle at, rpm: `given` (a front end's `speed_rpm`), else the file's,
     /// else [`loomkin_units::ShaftSpeed::DEFAULT_RPM`]. Not checked: the caller checks it under its

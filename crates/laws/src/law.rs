@@ -1,7 +1,7 @@
 //! A law: a sequence of closed-form segments covering `[0, 1]`.
 
 use crate::{Kinematics, LawError, MotionLaw, Result, Segment, Sine};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::Serialize;
 
 /// One piece of acceleration handed to [`Law::from_accel_pieces`]: a width on the `x` axis and the
@@ -74,6 +74,29 @@ pub struct Law {
 }
 
 impl Law {
+    /// `points` of a law's samples, both ends included: at least 2 (the ends). A table streams
+    /// them, so the time budget ([`loomkin_units::Budget`]) bounds how many; held as arrays (Python)
+    /// they are bounded by [`Law::HELD_POINTS`].
+    pub const SAMPLE_POINTS: Field = Field::count(
+        "points",
+        Range::at_least(2.0, ""),
+        "Samples of the law from x = 0 to 1, both ends included: at least 2; a streamed table is bounded \
+         by the time budget, samples held as arrays by 10⁸.",
+    );
+    /// [`Law::SAMPLE_POINTS`] held in memory as five float64 columns (Python's arrays): 2 … 10⁸ (4 GB).
+    pub const HELD_POINTS: Field = Self::SAMPLE_POINTS.within(
+        Range::closed(2.0, 1e8, ""),
+        "Samples of the law held as arrays (five float64 columns): 2 … 10⁸ (4 GB at the top).",
+    );
+    /// [`Law::SAMPLE_POINTS`] of a plot: 2 … 10⁵ points a curve (a plot holds them all, several
+    /// curves at once), 801 when left out.
+    pub const PLOT_POINTS: Field = Field::count(
+        "points",
+        Range::closed(2.0, 1e5, ""),
+        "Points per plotted curve: 2 … 10⁵ (a plot holds every curve's points); 801 when left out.",
+    )
+    .with_default(801.0);
+
     /// Builds a law from contiguous segments. The first must start at 0, the last end at 1, each
     /// start where the previous ended (within 1e-12), and `s`, `v` be continuous at the joints (as
     /// [`crate::DerivativeScale`] judges it: within 1e-9 of their peaks over the segments).

@@ -50,3 +50,12 @@ pub use quadrature::gauss_legendre;
 pub use report::{ContinuityReport, ContinuousFlags, InfoReport, JointReport, ListedLaw};
 pub use segment::{MAX_DEGREE, Segment, Sine};
 pub use shape::{Shape, ShapeSegment, format_segments, parse_segments};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Law::SAMPLE_POINTS,
+    Law::HELD_POINTS,
+    Law::PLOT_POINTS,
+    Cycle::POINTS,
+    Cycle::HELD_POINTS
+];

@@ -88,6 +88,18 @@ pub struct Drive<'a> {
     l0: f64,
 }
 
+impl Drive<'_> {
+    /// `step_deg` of a torque curve: 0.01 … 10° (finer is rounding noise between samples; coarser
+    /// misses a frame's move of 60°); 0.5° when left out (720 samples a turn).
+    pub const STEP_DEG: loomkin_units::Field = loomkin_units::Field::new(
+        "step_deg",
+        loomkin_units::Range::closed(0.01, 10.0, "deg"),
+        "Angle step of the torque curve: 0.01 … 10° (coarser would step over a frame's move); 0.5° \
+         (720 samples a turn) when left out.",
+    )
+    .with_default(0.5);
+}
+
 impl<'a> Drive<'a> {
     /// The drive of `loom` moving `motion` (the frames weaving `pattern`). The loom's warp ends
     /// are shared among the frames by the pattern's threading if it has one, else equally.

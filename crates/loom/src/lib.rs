@@ -45,6 +45,9 @@ pub use diagram::{
     torque_figure,
 };
 pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorqueReport};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![Drive::STEP_DEG];
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
 pub use law::FrameLaw;

@@ -40,8 +40,8 @@ mod vloop;
 
 pub use curve::{CurvePoint, Ellipse, PlaneCurve};
 pub use dobby::analysis::{
-    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, MAX_INPUT_SPEED_RAD_S, ROLLER_M_RANGE,
-    STEP_DEG_RANGE, analyze, analyze_into, assemble, cam_loop, modulator_loops,
+    Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, DobbyInputs, MAX_INPUT_SPEED_RAD_S,
+    ROLLER_M_RANGE, STEP_DEG_RANGE, analyze, analyze_into, assemble, cam_loop, modulator_loops,
 };
 pub use dobby::cam::{Cam, parse_point_table};
 pub use dobby::checks::{
@@ -55,7 +55,31 @@ pub use dobby::kinematics::ModulatorState;
 pub use dobby::law::{OutputLaw, OutputLawSpec, OutputState, max_dwell_deg};
 pub use dobby::pose::{MechanismPose, nearest_state};
 pub use dobby::report::{CamChecks, CamProfile};
-pub use dobby::sweep::{SweepReport, SweepRow, alpha_sweep};
+pub use dobby::sweep::{AlphaSweep, SweepReport, SweepRow, alpha_sweep};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    ModulatorGeometry::L2_M,
+    ModulatorGeometry::L3_M,
+    ModulatorGeometry::L3P_M,
+    ModulatorGeometry::L6_M,
+    ModulatorGeometry::ALPHA_DEG,
+    ModulatorGeometry::THETA_DEG,
+    OutputLawSpec::CYCLES,
+    OutputLawSpec::DWELL_DEG,
+    OutputLawSpec::DWELL_CENTRE_DEG,
+    DobbyInputs::STEP_DEG,
+    DobbyInputs::PLOT_STEP_DEG,
+    DobbyInputs::SPEED_RPM,
+    DobbyInputs::PRESSURE_LIMIT_DEG,
+    DobbyInputs::ROLLER_M,
+    DobbyInputs::ROLLER_MM,
+    DobbyInputs::AT_DEG,
+    AlphaSweep::FROM,
+    AlphaSweep::TO,
+    AlphaSweep::BY,
+    AlphaSweep::ALPHAS,
+];
 pub use dobby::synthesis::{
     Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize, synthesize_into,
 };

@@ -1,7 +1,7 @@
 //! Design of the compound picking law (sine, then constant acceleration), eqs. 6–20.
 
 use crate::{Constants, PickError, Result};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -20,9 +20,44 @@ pub struct DesignSpec {
 }
 
 impl DesignSpec {
+    /// `velocity_m_s`: V, 0 < V ≤ 1000 m/s (far above any shuttle); the paper's 17 m/s.
+    pub const VELOCITY_M_S: Field = Field::new(
+        "velocity_m_s",
+        Range::open_closed(0.0, 1e3, "m/s"),
+        "Shuttle velocity V at the end of the pick, the cam's design: 0 < V ≤ 1000 m/s; the paper's 17 m/s.",
+    )
+    .with_default(17.0);
+    /// `distance_m`: X, 0 < X ≤ 100 m; the paper's 0.22 m.
+    pub const DISTANCE_M: Field = Field::new(
+        "distance_m",
+        Range::open_closed(0.0, 100.0, "m"),
+        "Pick distance X: 0 < X ≤ 100 m; the paper's 0.22 m.",
+    )
+    .with_default(0.22);
+    /// `first_stage_m`: X₁, 0 < X₁ < X (the sine stage ends before the final velocity); 0.086 m.
+    pub const FIRST_STAGE_M: Field = Field::new(
+        "first_stage_m",
+        Range::above(0.0, "m"),
+        "Distance X₁ of the first (sine) stage: 0 < X₁ < X (so T' > τ and eq. 20's denominator stays \
+         positive); the paper's 0.086 m.",
+    )
+    .with_default(0.086);
+    /// `design_speed_rpm`: n₁, the shaft-speed range; the paper's 200 rpm.
+    pub const SPEED_RPM: Field = Field::new(
+        "design_speed_rpm",
+        ShaftSpeed::RANGE,
+        "Loom speed n₁ the cam is designed for: the main-shaft speed range; the paper's 200 rpm.",
+    )
+    .with_default(200.0);
+
     /// The paper's design: V = 17 m/s, X = 22 cm, X₁ = 8.6 cm, n = 200 rev/min.
     pub fn paper() -> Self {
-        Self { velocity_m_s: 17.0, distance_m: 0.22, first_stage_m: 0.086, speed_rpm: 200.0 }
+        Self {
+            velocity_m_s: Self::VELOCITY_M_S.default_value(),
+            distance_m: Self::DISTANCE_M.default_value(),
+            first_stage_m: Self::FIRST_STAGE_M.default_value(),
+            speed_rpm: Self::SPEED_RPM.default_value(),
+        }
     }
 
     /// Checks ranges: V, X, n positive and 0 < X₁ < X.
@@ -30,9 +65,9 @@ impl DesignSpec {
     /// X₁ < X is exactly the condition T' > τ (the sine stage ends below the final velocity,
     /// V·μ > A); it also keeps eq. 20's denominator 2X − X₁·(π−3)/(π/2−1) positive.
     pub fn validate(&self) -> Result<()> {
-        Range::open_closed(0.0, 1e3, "m/s").check("velocity_m_s", self.velocity_m_s)?;
-        Range::open_closed(0.0, 100.0, "m").check("distance_m", self.distance_m)?;
-        Range::open(0.0, self.distance_m, "m").check("first_stage_m", self.first_stage_m)?;
+        Self::VELOCITY_M_S.check(self.velocity_m_s)?;
+        Self::DISTANCE_M.check(self.distance_m)?;
+        Range::open(0.0, self.distance_m, "m").check(Self::FIRST_STAGE_M.name, self.first_stage_m)?;
         ShaftSpeed::from_rpm(self.speed_rpm)?;
         Ok(())
     }

@@ -61,6 +61,26 @@ pub use required::RequiredVelocity;
 pub use scenario::{MAX_CYCLES, MAX_NATURAL_1_S};
 pub use settings::{Setting, Settings, StartRule};
 pub use simulate::{History, Method, Outcome, PickEnd, Sample, closed_form_constants, history, simulate};
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Settings::SPEED_RPM,
+    Settings::PLAY_MM,
+    Settings::STRAP_CM,
+    Settings::SHUTTLE_G,
+    Settings::CHECKING_KGF,
+    History::POINTS,
+    History::PLOT_POINTS,
+    Sweep::POINTS,
+    Sweep::HELD_POINTS,
+    DesignSpec::VELOCITY_M_S,
+    DesignSpec::DISTANCE_M,
+    DesignSpec::FIRST_STAGE_M,
+    DesignSpec::SPEED_RPM,
+    RequiredVelocity::RETARDATION_PCT,
+    RequiredVelocity::PATH_M,
+    RequiredVelocity::FREE_SHED_DEG,
+];
+
 pub use sweep::{
     RowReport, SettingValue, Sweep, SweepReport, SweepRow, required_velocity_crossings, sweep, sweep_items,
     sweep_observed,

@@ -391,6 +391,23 @@ mod tests {
         assert!(rep.inputs.is_empty(), "no input has a spread");
     }
 
+    /// A study that leaves every setting out runs the designed setting — the shuttle the mechanism
+    /// is designed with (419.725 g for the paper's, not the 420 g the paper rounds it to) — so its
+    /// statistics are `pick simulate`'s without settings, bit for bit.
+    #[test]
+    fn settings_left_out_are_the_designed_ones() {
+        let m = Mechanism::paper_default();
+        let mc = MonteCarlo::from_toml("draws = 2\nseed = 9\n").unwrap();
+        let st = mc.settings(&m, 1);
+        assert_eq!(st, Settings::designed(&m));
+        assert_eq!(Setting::Shuttle.value(&st), Setting::Shuttle.value(&Settings::designed(&m)));
+        assert!((Setting::Shuttle.value(&st) - 419.725).abs() < 5e-4, "{}", Setting::Shuttle.value(&st));
+        let o = simulate(&m, &Settings::designed(&m), Method::Closed).unwrap();
+        let rep = mc.report(&mc.run(&m, 0..2, Progress::Hidden));
+        assert_eq!(rep.results[0].summary.mean, o.velocity_m_s);
+        assert_eq!(rep.results[1].summary.max, o.distance_m);
+    }
+
     /// Draws are the same computed alone, in a shard or all together; reports the same by thread count.
     #[test]
     fn draws_do_not_depend_on_shards_or_threads() {

@@ -1,7 +1,7 @@
 //! The required shuttle velocity from the free shed opening (Jederán's V_r formula, §3.1).
 
 use crate::Result;
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 
 /// Inputs of the required-velocity formula
@@ -28,16 +28,45 @@ pub struct RequiredVelocity {
 
 impl Default for RequiredVelocity {
     fn default() -> Self {
-        Self { retardation_pct: 10.0, path_m: 1.53, free_shed_deg: 120.0 }
+        Self {
+            retardation_pct: Self::RETARDATION_PCT.default_value(),
+            path_m: Self::PATH_M.default_value(),
+            free_shed_deg: Self::FREE_SHED_DEG.default_value(),
+        }
     }
 }
 
 impl RequiredVelocity {
+    /// `retardation_pct`: p, 0 ≤ p < 100 (at 100 % the shuttle would stop in the shed); the paper's 10 %.
+    pub const RETARDATION_PCT: Field = Field::new(
+        "retardation_pct",
+        Range::closed_open(0.0, 100.0, "%"),
+        "Retardation p of the shuttle in the shed: 0 ≤ p < 100 % (the formula divides by 100 − p); the \
+         paper's 10 %.",
+    )
+    .with_default(10.0);
+    /// `path_m`: s, 0 < s ≤ 100 m; 1.53 m (with φ_s = 120°, V_r = 17 m/s at 200 rpm as Fig. 5 requires).
+    pub const PATH_M: Field = Field::new(
+        "path_m",
+        Range::open_closed(0.0, 100.0, "m"),
+        "Shuttle length plus shuttle race s: 0 < s ≤ 100 m; 1.53 m, which with φ_s = 120° gives the \
+         paper's V_r = 17 m/s at 200 rpm.",
+    )
+    .with_default(1.53);
+    /// `free_shed_deg`: φ_s, 0 < φ_s ≤ 360°; 120°.
+    pub const FREE_SHED_DEG: Field = Field::new(
+        "free_shed_deg",
+        Range::open_closed(0.0, 360.0, "°"),
+        "Free shed opening φ_s as crank angle: 0 < φ_s ≤ 360° (one turn); 120°, with s = 1.53 m the \
+         paper's V_r = 17 m/s at 200 rpm.",
+    )
+    .with_default(120.0);
+
     /// Checks 0 ≤ p < 100, s > 0, 0 < φ_s ≤ 360.
     pub fn validate(&self) -> Result<()> {
-        Range::closed_open(0.0, 100.0, "%").check("retardation_pct", self.retardation_pct)?;
-        Range::open_closed(0.0, 100.0, "m").check("path_m", self.path_m)?;
-        Range::open_closed(0.0, 360.0, "°").check("free_shed_deg", self.free_shed_deg)?;
+        Self::RETARDATION_PCT.check(self.retardation_pct)?;
+        Self::PATH_M.check(self.path_m)?;
+        Self::FREE_SHED_DEG.check(self.free_shed_deg)?;
         Ok(())
     }
 

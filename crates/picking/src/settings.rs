@@ -2,7 +2,7 @@
 
 use crate::units::{KG_PER_G, M_PER_CM, M_PER_MM, N_PER_KGF};
 use crate::{Mechanism, PickError, Result};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 
 /// How the instant the shuttle starts (t = 0) is found on the nominal motion.
@@ -37,6 +37,45 @@ pub struct Settings {
 }
 
 impl Settings {
+    /// `speed_rpm`: the loom speed n₂, the one main-shaft speed range; left out, the speed the cam
+    /// is designed for (200 rpm for the paper's mechanism).
+    pub const SPEED_RPM: Field = Field::new(
+        "speed_rpm",
+        ShaftSpeed::RANGE,
+        "Loom speed n₂: the main-shaft speed range (0.001 … 100000 rpm keeps every derived quantity \
+         finite); left out, the speed the cam is designed for (200 rpm for the paper's mechanism).",
+    );
+    /// `play_mm`: the play s'₀ of the strap loop; its upper bound is the mechanism's stick length
+    /// ([`Setting::range`]), and a play the cam cannot take up is refused when the pick is resolved.
+    pub const PLAY_MM: Field = Field::new(
+        "play_mm",
+        Range::at_least(0.0, "mm"),
+        "Play s'₀ of the picking-strap loop: 0 ≤ s'₀ ≤ l, the stick length (740 mm for the paper's \
+         mechanism); a play beyond the cam's reach is refused when the pick is resolved. 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `strap_cm`: the height k of the strap loop, 0 < k < l (the stick length, [`Setting::range`]).
+    pub const STRAP_CM: Field = Field::new(
+        "strap_cm",
+        Range::above(0.0, "cm"),
+        "Height k of the strap loop on the picking stick: 0 < k < l, the stick length (74 cm for the \
+         paper's mechanism; the constants of eq. 4 go as 1/k²); left out, the mechanism's k.",
+    );
+    /// `shuttle_g`: the shuttle's weight Q in grams (its mass); left out, the mechanism's.
+    pub const SHUTTLE_G: Field = Field::new(
+        "shuttle_g",
+        Range::open_closed(0.0, 1e5, "g"),
+        "Shuttle weight Q (its mass in g): 0 < Q ≤ 100 kg, far above any shuttle; left out, the \
+         mechanism's (419.725 g for the paper's: 0.428·10⁻³ kgf·s²/cm, which the paper rounds to 420 g).",
+    );
+    /// `checking_kgf`: the checking force F₀; left out, the mechanism's.
+    pub const CHECKING_KGF: Field = Field::new(
+        "checking_kgf",
+        Range::closed(0.0, 1e3, "kgf"),
+        "Checking force F₀: 0 ≤ F₀ ≤ 1000 kgf, far above any shuttle box; left out, the mechanism's \
+         (5 kgf for the paper's).",
+    );
+
     /// The designed setting of `mechanism`: designed speed, no play, designed k, m and F₀.
     pub fn designed(mechanism: &Mechanism) -> Self {
         let p = mechanism.params();
@@ -50,11 +89,12 @@ impl Settings {
         }
     }
 
-    /// Checks each setting against [`Setting::range`], the ranges that do not depend on the cam.
-    /// (Play beyond the cam's reach is found when the scenario is resolved.)
+    /// Checks the ranges that do not depend on the cam ([`Setting::range`] of each setting):
+    /// the shaft-speed range, 0 ≤ play ≤ l, 0 < k < l, 0 < Q ≤ 100 kg, 0 ≤ F₀ ≤ 1000 kgf. (Play
+    /// beyond the cam's reach is found when the scenario is resolved.)
     pub fn validate(&self, mechanism: &Mechanism) -> Result<()> {
         for s in [Setting::Speed, Setting::Play, Setting::Strap, Setting::Shuttle, Setting::Checking] {
-            s.range(mechanism).check(&s.key(), s.value(self))?;
+            s.range(mechanism).check(s.field().name, s.value(self))?;
         }
         Ok(())
     }
@@ -150,15 +190,31 @@ impl Setting {
         }
     }
 
+    /// The setting's descriptor ([`Settings::SPEED_RPM`], …): its key, unit and static range.
+    pub fn field(&self) -> &'static Field {
+        match self {
+            Setting::Speed => &Settings::SPEED_RPM,
+            Setting::Play => &Settings::PLAY_MM,
+            Setting::Strap => &Settings::STRAP_CM,
+            Setting::Shuttle => &Settings::SHUTTLE_G,
+            Setting::Checking => &Settings::CHECKING_KGF,
+        }
+    }
+
+    /// The allowed values on `mechanism`, in [`Setting::unit`]: the descriptor's range, with the
+    /// play at most and the strap below the mechanism's stick length l.
+    pub fn range(&self, mechanism: &Mechanism) -> Range {
+        let l_m = mechanism.params().l_m;
+        match self {
+            Setting::Play => Range::closed(0.0, l_m / M_PER_MM, "mm"),
+            Setting::Strap => Range::open(0.0, l_m / M_PER_CM, "cm (0 < k < l)"),
+            _ => self.field().range,
+        }
+    }
+
     /// The practical unit of the setting's values.
     pub fn unit(&self) -> &'static str {
-        match self {
-            Setting::Speed => "rpm",
-            Setting::Play => "mm",
-            Setting::Strap => "cm",
-            Setting::Shuttle => "g",
-            Setting::Checking => "kgf",
-        }
+        self.field().unit()
     }
 
     /// Column name with unit, e.g. `play_mm`.
@@ -188,22 +244,8 @@ impl Setting {
         }
     }
 
-    /// The allowed values of this setting on `mechanism`, in [`Setting::unit`], checked by
-    /// [`Settings::validate`]: the shaft speed's range ([`ShaftSpeed::RANGE`]); a play from 0 to the
-    /// stick's length l (more is past any cam's reach); the strap loop on the stick, 0 < k < l; a
-    /// shuttle above 0 up to 100 kg; a checking force from 0 to a tonne-force.
-    pub fn range(&self, mechanism: &Mechanism) -> Range {
-        let l_m = mechanism.params().l_m;
-        match self {
-            Setting::Speed => ShaftSpeed::RANGE,
-            Setting::Play => Range::closed(0.0, l_m / M_PER_MM, "mm"),
-            Setting::Strap => Range::open(0.0, l_m / M_PER_CM, "cm (0 < k < l)"),
-            Setting::Shuttle => Range::open_closed(0.0, 1e5, "g"),
-            Setting::Checking => Range::closed(0.0, 1e3, "kgf"),
-        }
-    }
-
-    /// The paper's range for this setting (Figs. 5–8, 10), in [`Setting::unit`].
+    /// The paper's range for this setting (Figs. 5–8, 10), in [`Setting::unit`]: what its figures
+    /// show (a plot's or a slider's span), not the allowed range ([`Setting::range`]).
     pub fn paper_range(&self) -> (f64, f64) {
         match self {
             Setting::Speed => (160.0, 240.0),
@@ -234,6 +276,23 @@ mod tests {
         }
         assert!((Setting::Checking.value(&base) - 5.0).abs() < 1e-12, "the paper's F₀ is 5 kgf");
         assert!(Setting::parse("weight").is_err());
+    }
+
+    #[test]
+    fn each_setting_is_its_descriptor() {
+        let m = Mechanism::paper_default();
+        for s in Setting::ALL {
+            assert_eq!(s.key(), s.field().name);
+            assert_eq!(s.unit(), s.field().unit());
+            // The paper's spans lie inside the allowed ranges.
+            let (a, b) = s.paper_range();
+            assert!(s.range(&m).contains(a) && s.range(&m).contains(b), "{s:?}");
+        }
+        // The play and the strap reach the stick length (74 cm) and no further.
+        assert!(Setting::Play.range(&m).contains(740.0) && !Setting::Play.range(&m).contains(740.001));
+        assert!(!Setting::Strap.range(&m).contains(74.0));
+        // The speed range is the shaft's.
+        assert_eq!(Setting::Speed.range(&m), ShaftSpeed::RANGE);
     }
 
     #[test]

@@ -4,6 +4,7 @@ use crate::closed::{CANCELLATION_LIMIT, PaperConstants};
 use crate::ode::OdeTrajectory;
 use crate::scenario::Scenario;
 use crate::{Mechanism, Nominal, PickError, Result, Settings, State};
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 
 /// Which route computes the actual motion.
@@ -97,6 +98,20 @@ pub struct History {
     pub outcome: Outcome,
     /// Evenly spaced samples from 0 to `outcome.t_end_s`.
     pub samples: Vec<Sample>,
+}
+
+impl History {
+    /// `points`: samples of a pick's history, both ends included. Two are the least that span the
+    /// pick; 10⁶ (some 100 MB of samples) the most; 201 draw a smooth curve for a table.
+    pub const POINTS: Field = Field::count(
+        "points",
+        Range::closed(2.0, 1e6, ""),
+        "Samples of the pick's history, both ends included: 2 span the pick, 10⁶ (about 100 MB) is the \
+         most; 201 when left out (601 for a plot).",
+    )
+    .with_default(201.0);
+    /// [`History::POINTS`] for a plot: 601 samples, a smooth curve at a plot's resolution.
+    pub const PLOT_POINTS: Field = Self::POINTS.with_default(601.0);
 }
 
 /// A route made ready: either the closed form's constants or the stored integration.

@@ -1,7 +1,7 @@
 //! Sweeps of one setting over a range, evaluated in parallel (the paper's Figs. 5–8 and 10).
 
 use crate::{Mechanism, Method, Outcome, Result, Setting, Settings, simulate};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -24,6 +24,18 @@ pub struct Sweep {
 }
 
 impl Sweep {
+    /// `points`: the evenly spaced values of a sweep, both ends included (required): at least one
+    /// (a single simulation); the time budget ([`loomkin_units::Budget`]) bounds how many.
+    pub const POINTS: Field = Field::count(
+        "points",
+        Range::at_least(1.0, ""),
+        "Values of the swept setting, both ends included: at least 1; the time budget bounds how many (10⁶ \
+         when the rows are held as arrays).",
+    );
+    /// [`Sweep::POINTS`] held as arrays (Python): 1 … 10⁶.
+    pub const HELD_POINTS: Field = Self::POINTS
+        .within(Range::closed(1.0, 1e6, ""), "Values of the swept setting when the rows are held as arrays: 1 … 10⁶.");
+
     /// Rows where the closed form could not answer and the numerical route did.
     pub fn fallbacks(&self) -> impl Iterator<Item = &SweepRow> {
         self.rows.iter().filter(|r| r.outcome.note.is_some())
@@ -143,8 +155,7 @@ pub fn sweep_observed(
 ) -> Result<Sweep> {
     Range::finite(setting.unit()).check("from", from)?;
     Range::finite(setting.unit()).check("to", to)?;
-    // No upper bound here: a front end estimates the time of its points against its budget.
-    Range::at_least(1.0, "").check("steps", steps as f64)?;
+    Sweep::POINTS.check_count(steps)?;
     let value = |i: usize| if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
     let rows = (items.start.min(steps)..items.end.min(steps))
         .into_par_iter()

@@ -58,7 +58,54 @@ pub use export_file::{Export, ExportFormat, InterpolationError, TableReport, exp
 /// The cam-table engine the exports use (re-exported: one engine for `servo export` and `cam table`).
 pub use loomkin_cams::table::{CamTable, Interpolation};
 pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
-pub use points::{END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points};
+pub use points::{
+    DEFAULT_DEF, END_TOL, MIN_GAP, MIN_POINTS, MIN_Y_MAX, check_points, default_points, format_points, parse_points,
+};
+
+use loomkin_units::{Field, Range};
+
+/// The inputs of the servo commands that belong to no one type.
+pub struct ServoInputs;
+
+impl ServoInputs {
+    /// The speeds `servo torque` evaluates when none are given (rpm, comma separated): the paper's two.
+    pub const TORQUE_SPEEDS_RPM: &'static str = "600,750";
+    /// The speed `servo optimize` and `servo plot` work at when none is given (rpm): the paper's.
+    pub const DESIGN_SPEEDS_RPM: &'static str = "600";
+    /// `starts`: Nelder–Mead starts of `servo optimize`, at least one (the time budget, from
+    /// [`OptimizeOptions::cost`], bounds how many; Python's run stops on Ctrl-C); 6 (the given
+    /// points, then five pseudo-random ones).
+    pub const STARTS: Field = Field::count(
+        "starts",
+        Range::at_least(1.0, ""),
+        "Nelder–Mead starts (the given points, then pseudo-random ones): at least 1, the time budget bounds          how many; 6 when left out.",
+    )
+    .with_default(6.0);
+    /// `points`: samples of a torque curve over one turn, 2 … 10⁷; 721 (every half degree).
+    pub const CURVE_POINTS: Field = Field::count(
+        "points",
+        Range::closed(2.0, 1e7, ""),
+        "Samples of the torque curve over one turn: 2 … 10⁷; 721 (every half degree) when left out.",
+    )
+    .with_default(721.0);
+    /// `step_deg`: the cam table resolution of an export, 360°/10⁶ … 90°; 1°.
+    pub const EXPORT_STEP_DEG: Field = Field::new(
+        "step_deg",
+        Range::closed(CYCLE_DEG / 1e6, CYCLE_DEG / 4.0, "deg"),
+        "Cam table resolution in degrees of the main shaft: 360°/10⁶ … 90° (at least four points a turn); \
+         1° when left out.",
+    )
+    .with_default(1.0);
+
+    /// The speeds of a comma-separated default ([`ServoInputs::TORQUE_SPEEDS_RPM`]) as numbers.
+    pub fn speeds(text: &str) -> Vec<f64> {
+        text.split(',').filter_map(|v| v.trim().parse().ok()).collect()
+    }
+}
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList =
+    loomkin_units::field_list![ServoInputs::STARTS, ServoInputs::CURVE_POINTS, ServoInputs::EXPORT_STEP_DEG];
 pub use report::{
     DriveReport, LAW_UNITS, LawReport, LayoutDeg, OptimizeSummary, ReinterpolationRow, TorqueReport, WorstTorque,
 };

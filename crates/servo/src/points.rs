@@ -26,10 +26,18 @@ pub const END_TOL: f64 = 1e-9;
 
 /// The built-in default definition points (N = 7).
 ///
+/// The default definition points in `--def` notation: [`default_points`], the cycloid's
+/// acceleration sin(2πX) at X = j/12 (the paper does not list its points).
+pub const DEFAULT_DEF: &str = "0:0,0.0833333333333333:0.5,0.1666666666666667:0.8660254037844386,0.25:1,\
+0.3333333333333333:0.8660254037844387,0.4166666666666667:0.5,0.5:0";
+
 /// The paper does not list its seven points, so the default is the acceleration of the cycloidal
 /// law, `Y = sin(2πX)`, sampled at `X = j/12`, `j = 0…6`: a smooth "original" from which the
 /// optimiser starts. In `--def` notation:
 /// `0:0,0.083333:0.5,0.166667:0.866025,0.25:1,0.333333:0.866025,0.416667:0.5,0.5:0`.
+///
+/// [`DEFAULT_DEF`] is the same points as front ends take them (`--def`), written as the CLI has
+/// always written them, so a call without definition points gives the same numbers everywhere.
 pub fn default_points() -> Vec<[f64; 2]> {
     (0..7)
         .map(|j| {
@@ -178,5 +186,24 @@ mod tests {
         assert!(matches!(check_points(&below), Err(ServoError::Point { index: 3, .. })));
         let zero = [[0.0, 0.0], [0.1, 0.0], [0.3, 0.0], [0.5, 0.0]];
         assert!(matches!(check_points(&zero), Err(ServoError::NoRise { .. })));
+    }
+}
+
+#[cfg(test)]
+mod default_def_tests {
+    use super::*;
+
+    /// The text of the default points reads back as the points to the last bit but one.
+    #[test]
+    fn the_default_text_is_the_default_points() {
+        let text = parse_points(DEFAULT_DEF).unwrap();
+        let pts = default_points();
+        assert_eq!(text.len(), pts.len());
+        for (a, b) in text.iter().zip(&pts) {
+            assert!(
+                (a[0] - b[0]).abs() <= 2.0 * f64::EPSILON && (a[1] - b[1]).abs() <= 2.0 * f64::EPSILON,
+                "{a:?} {b:?}"
+            );
+        }
     }
 }

@@ -2,7 +2,7 @@
 //! main-shaft speed.
 
 use crate::Result;
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::Serialize;
 
 /// Allowed range of the dwell threshold `T` (the paper's 0.75 … 0.99 of the stroke).
@@ -26,9 +26,13 @@ pub struct Conditions {
 }
 
 impl Default for Conditions {
-    /// `T = 0.95`, `h = 0.1 m`, `n = 300 rpm`.
+    /// `T = 0.95`, `h = 0.1 m`, `n = 300 rpm`: the descriptors' defaults.
     fn default() -> Self {
-        Self { threshold: TABLE3_THRESHOLD, stroke_m: 0.1, speed_rpm: 300.0 }
+        Self {
+            threshold: Self::THRESHOLD_FIELD.default_value(),
+            stroke_m: loomkin_units::m_from_mm(Self::STROKE_MM.default_value()),
+            speed_rpm: ShaftSpeed::DEFAULT_RPM,
+        }
     }
 }
 
@@ -37,6 +41,30 @@ impl Conditions {
     pub const THRESHOLD: Range = Range::closed(THRESHOLD_RANGE.0, THRESHOLD_RANGE.1, "(fraction of the stroke)");
     /// The allowed frame stroke `h` (m): above 0, at most a metre.
     pub const STROKE_M: Range = Range::open_closed(0.0, 1.0, "m");
+    /// `threshold`: T, the share of the stroke within which the frame counts as still: the paper's
+    /// 0.75 … 0.99; 0.95 ([`TABLE3_THRESHOLD`], which reproduces Table 3).
+    pub const THRESHOLD_FIELD: Field = Field::new(
+        "threshold",
+        Self::THRESHOLD,
+        "Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme; the \
+         paper's 0.75 … 0.99; 0.95 (reproduces the paper's Table 3) when left out.",
+    )
+    .with_default(TABLE3_THRESHOLD);
+    /// `stroke_mm`: the frame's stroke as front ends take it, 0 < h ≤ 1000 mm (a metre, above any
+    /// heald frame); 100 mm.
+    pub const STROKE_MM: Field = Field::new(
+        "stroke_mm",
+        Range::open_closed(0.0, 1000.0, "mm"),
+        "Heald-frame stroke: 0 < h ≤ 1000 mm (a metre, above any frame); 100 mm when left out.",
+    )
+    .with_default(100.0);
+
+    /// The conditions of a front end's `threshold`, `stroke_mm` (checked in mm, [`Conditions::STROKE_MM`])
+    /// and `speed_rpm`.
+    pub fn from_stroke_mm(threshold: f64, stroke_mm: f64, speed_rpm: f64) -> Result<Self> {
+        Self::STROKE_MM.check(stroke_mm)?;
+        Self::new(threshold, loomkin_units::m_from_mm(stroke_mm), speed_rpm)
+    }
 
     /// Validating constructor.
     pub fn new(threshold: f64, stroke_m: f64, speed_rpm: f64) -> Result<Self> {

@@ -1,7 +1,7 @@
 //! The frame's motion over its full cycle, for plots: up over one pick, down over the next.
 
 use crate::{Conditions, Result, ShedLaw};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::Serialize;
 
 /// One point of the cycle.
@@ -29,9 +29,20 @@ pub struct AccelJump {
     pub jump_m_s2: f64,
 }
 
+/// `points` per curve of a shedding plot: 2 … 10⁵ (a plot holds every curve); 1441 (every half
+/// degree of the frame's 720° cycle).
+pub const PLOT_POINTS: Field = loomkin_laws::Law::PLOT_POINTS
+    .within(
+        Range::closed(2.0, 1e5, ""),
+        "Points per plotted curve over the frame's 720° cycle: 2 … 10⁵; 1441 (every half degree) when left out.",
+    )
+    .with_default(1441.0);
+
 /// The frame over two picks (720° of the main shaft; one up-and-down period in plain weave): the
 /// rise over `[0, φ_дв]`, the dwell up to 360°, the return `1 − s` over `[360°, 360° + φ_дв]`, the
 /// dwell up to 720°. `points ≥ 2` evenly spaced angles, both ends included.
+///
+/// (A plot of several laws takes [`PLOT_POINTS`].)
 pub fn cycle_curve(law: &ShedLaw, conditions: &Conditions, points: usize) -> Result<Vec<CurvePoint>> {
     Range::closed(2.0, 1e6, "").check("points", points as f64)?;
     crate::criteria::check_scales(law.motion_deg(), conditions)?;

@@ -45,7 +45,7 @@ mod template;
 
 pub use conditions::{Conditions, TABLE3_THRESHOLD, THRESHOLD_RANGE, check_threshold};
 pub use criteria::{Criteria, Dimensionless, evaluate};
-pub use curve::{AccelJump, CurvePoint, CycleMarks, cycle_accel_jumps, cycle_curve, cycle_marks};
+pub use curve::{AccelJump, CurvePoint, CycleMarks, PLOT_POINTS, cycle_accel_jumps, cycle_curve, cycle_marks};
 pub use error::{Result, ShedError};
 pub use experiment::{
     CRITERIA_COLUMNS, DesignKind, Family, GridSpec, STUDY_BYTES_PER_LAW, STUDY_S_PER_LAW, Study, StudyEstimate,
@@ -60,10 +60,23 @@ pub use report::{
 pub use requirement::LoomRequirement;
 pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
-    Candidate, JERK_LIMIT_RANGE, best, check_window_deg, dominates_in, evaluate_rows, evaluate_rows_in, fig1_design,
-    grid_design, grid_design_rows, pareto, pareto_indices, pareto_within, parse_motion_angles, table, table1_design,
-    within_jerk_limit,
+    Candidate, JERK_LIMIT_RANGE, PARETO_MOTION_DEG, TABLE_MOTION_DEG, best, check_window_deg, dominates_in,
+    evaluate_rows, evaluate_rows_in, fig1_design, grid_design, grid_design_rows, pareto, pareto_indices, pareto_within,
+    parse_motion_angles, table, table1_design, within_jerk_limit,
 };
 pub use template::{MAX_PARTS, Template};
 
 pub use loomkin_study::{Design, Progress};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Conditions::THRESHOLD_FIELD,
+    Conditions::STROKE_MM,
+    LoomRequirement::CARRIER_SPEED_M_S,
+    LoomRequirement::REED_WIDTH_M,
+    LoomRequirement::CLOTH_WIDTH_M,
+    LoomRequirement::CARRIER_LENGTH_M,
+    LoomRequirement::CROSSING_RANGE_DEG,
+    LoomRequirement::SHED_EXCESS,
+    PLOT_POINTS,
+];

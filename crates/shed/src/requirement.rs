@@ -2,7 +2,7 @@
 //! height reserve allows.
 
 use crate::{Result, THRESHOLD_RANGE};
-use loomkin_units::{Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::Serialize;
 
 /// Loom data that fix the weft-insertion window a law must give.
@@ -47,17 +47,79 @@ pub struct LoomRequirement {
 }
 
 impl LoomRequirement {
+    /// `carrier_speed_m_s`: v_п, 0 < v ≤ 200 m/s (above any projectile).
+    pub const CARRIER_SPEED_M_S: Field = Field::new(
+        "carrier_speed_m_s",
+        Range::open_closed(0.0, 200.0, "m/s"),
+        "Mean speed of the weft carrier: 0 < v ≤ 200 m/s (above any projectile or air jet).",
+    );
+    /// `reed_width_m`: L_з, 0 < L ≤ 20 m.
+    pub const REED_WIDTH_M: Field = Field::new(
+        "reed_width_m",
+        Range::open_closed(0.0, 20.0, "m"),
+        "Reed (working) width of the loom: 0 < L ≤ 20 m.",
+    );
+    /// `cloth_width_m`: L_т, 0 < L_т ≤ L_з; left out, the reed width.
+    pub const CLOTH_WIDTH_M: Field = Field::new(
+        "cloth_width_m",
+        Range::above(0.0, "m"),
+        "Cloth width in the reed: 0 < L_т ≤ the reed width; left out, the reed width (a loom set up for \
+         any cloth).",
+    );
+    /// `carrier_length_m`: l, 0 … 2 m; 0.
+    pub const CARRIER_LENGTH_M: Field =
+        Field::new("carrier_length_m", Range::closed(0.0, 2.0, "m"), "Carrier length: 0 … 2 m; 0 when left out.")
+            .with_default(0.0);
+    /// `crossing_range_deg`: D_заст, 0 … 359°; 0.
+    pub const CROSSING_RANGE_DEG: Field = Field::new(
+        "crossing_range_deg",
+        Range::closed(0.0, 359.0, "deg"),
+        "Range of the crossing-point (заступ) setting: 0 … 359° (the window must stay below a turn); 0 \
+         when left out.",
+    )
+    .with_default(0.0);
+    /// `shed_excess`: ΔA_S, a fraction; T = 1/(1 + ΔA_S) must lie in the threshold range
+    /// (0.0101 … 0.333); 0.05, the paper's 5 %.
+    pub const SHED_EXCESS: Field = Field::new(
+        "shed_excess",
+        Range::closed(1.0 / THRESHOLD_RANGE.1 - 1.0, 1.0 / THRESHOLD_RANGE.0 - 1.0, "(fraction)"),
+        "Shed-height excess over the necessary opening, a fraction; sets T = 1/(1 + excess), which must \
+         lie in 0.75 … 0.99; 0.05 (the paper's 5 %) when left out.",
+    )
+    .with_default(0.05);
+
+    /// The requirement of a front end's loom data, the options left out taking their defaults
+    /// (the cloth the reed's width, no carrier length, no crossing range, 5 % excess).
+    pub fn from_inputs(
+        carrier_speed_m_s: f64,
+        reed_width_m: f64,
+        cloth_width_m: Option<f64>,
+        carrier_length_m: Option<f64>,
+        crossing_range_deg: Option<f64>,
+        shed_excess: Option<f64>,
+        speed_rpm: f64,
+    ) -> Self {
+        Self {
+            carrier_speed_m_s,
+            reed_width_m,
+            cloth_width_m: cloth_width_m.unwrap_or(reed_width_m),
+            carrier_length_m: carrier_length_m.unwrap_or(Self::CARRIER_LENGTH_M.default_value()),
+            crossing_range_deg: crossing_range_deg.unwrap_or(Self::CROSSING_RANGE_DEG.default_value()),
+            shed_excess: shed_excess.unwrap_or(Self::SHED_EXCESS.default_value()),
+            speed_rpm,
+        }
+    }
+
     /// Checks every field's range.
     pub fn validate(&self) -> Result<()> {
-        Range::open_closed(0.0, 200.0, "m/s").check("carrier_speed_m_s", self.carrier_speed_m_s)?;
-        Range::open_closed(0.0, 20.0, "m").check("reed_width_m", self.reed_width_m)?;
-        Range::open_closed(0.0, self.reed_width_m, "m").check("cloth_width_m", self.cloth_width_m)?;
-        Range::closed(0.0, 2.0, "m").check("carrier_length_m", self.carrier_length_m)?;
-        Range::closed(0.0, 359.0, "deg").check("crossing_range_deg", self.crossing_range_deg)?;
+        Self::CARRIER_SPEED_M_S.check(self.carrier_speed_m_s)?;
+        Self::REED_WIDTH_M.check(self.reed_width_m)?;
+        Range::open_closed(0.0, self.reed_width_m, "m").check(Self::CLOTH_WIDTH_M.name, self.cloth_width_m)?;
+        Self::CARRIER_LENGTH_M.check(self.carrier_length_m)?;
+        Self::CROSSING_RANGE_DEG.check(self.crossing_range_deg)?;
         ShaftSpeed::from_rpm(self.speed_rpm)?;
         // T = 1/(1 + e) must lie in the threshold range.
-        let (lo, hi) = (1.0 / THRESHOLD_RANGE.1 - 1.0, 1.0 / THRESHOLD_RANGE.0 - 1.0);
-        Range::closed(lo, hi, "(fraction)").check("shed_excess", self.shed_excess)?;
+        Self::SHED_EXCESS.check(self.shed_excess)?;
         Ok(())
     }
 

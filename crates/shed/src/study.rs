@@ -291,6 +291,11 @@ pub fn best(
     }
 }
 
+/// The motion angles of `shed table` when none are given (deg): 300, the paper's experiments'.
+pub const TABLE_MOTION_DEG: &str = "300";
+/// The motion angles of `shed pareto` when none are given (deg): 180 … 360 every 10.
+pub const PARETO_MOTION_DEG: &str = "180:360:10";
+
 /// Reads a list of motion angles: `300`, `180,270,300` or `MIN:MAX:STEP` (e.g. `180:360:10`),
 /// each in (0, 360] deg.
 pub fn parse_motion_angles(text: &str) -> Result<Vec<f64>> {

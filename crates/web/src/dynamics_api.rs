@@ -90,11 +90,11 @@ pub struct DynamicsRequest {
     #[schemars(transform = loomkin_units::schema::bounds(ShaftSpeed::RANGE))]
     pub speed_rpm: f64,
     /// Natural frequency of the frame on its drive (Hz).
-    #[schemars(transform = loomkin_units::schema::bounds(Follower::NATURAL_HZ))]
+    #[schemars(transform = loomkin_units::schema::bounds(Follower::NATURAL_HZ.range))]
     pub natural_hz: f64,
     /// Damping ratio ζ, 0 ≤ ζ < 1.
     #[serde(default)]
-    #[schemars(transform = loomkin_units::schema::bounds(Follower::DAMPING_RATIO))]
+    #[schemars(transform = loomkin_units::schema::bounds(Follower::DAMPING_RATIO.range))]
     pub damping_ratio: f64,
     /// The periodic steady state instead of one cycle from rest.
     #[serde(default)]

@@ -85,7 +85,9 @@ pub use picking_api::{
 pub use pool::{HEAVY_BUDGET, RETRY_AFTER_S, heavy_slots};
 pub use schema::{ApiSchema, RouteSchema, SCHEMA_DIALECT, api_schema, request_schema};
 pub use series::{LawSamples, finite};
-pub use server::{Bound, HEADER_READ_TIMEOUT, Info, Limits, bind, info_value, open_browser, router, serve_blocking};
+pub use server::{
+    Bound, DEFAULT_PORT, HEADER_READ_TIMEOUT, Info, Limits, bind, info_value, open_browser, router, serve_blocking,
+};
 pub use servo_api::{
     DesignResponse, EvaluateRequest, EvaluateResponse, ExportFormat, ExportRequest, ExportResponse, LawReport,
     LoadRequest, OptimizeRequest, OptimizeResponse, SaveRequest, SpeedReport, SplineSamples, TorquePair, evaluate,

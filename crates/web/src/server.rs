@@ -256,6 +256,9 @@ impl Bound {
     }
 }
 
+/// The port `loomkin serve` listens on when none is given (0 picks a free one).
+pub const DEFAULT_PORT: u16 = 8765;
+
 /// Binds 127.0.0.1:`port`, calls `on_ready` with the page's URL, and serves until Ctrl-C on a
 /// runtime of its own (what `loomkin serve` runs; for callers without an async runtime).
 pub fn serve_blocking(port: u16, on_ready: impl FnOnce(&str)) -> std::io::Result<()> {

@@ -214,8 +214,8 @@ fn schema_bounds_are_the_library_ranges() {
     let s = schemas();
     let dynamics = "/api/dynamics/response";
     assert_is(at(&s, dynamics, "speed_rpm"), ShaftSpeed::RANGE, "speed");
-    assert_is(at(&s, dynamics, "natural_hz"), loomkin_dynamics::Follower::NATURAL_HZ, "f_n");
-    assert_is(at(&s, dynamics, "damping_ratio"), loomkin_dynamics::Follower::DAMPING_RATIO, "ζ");
+    assert_is(at(&s, dynamics, "natural_hz"), loomkin_dynamics::Follower::NATURAL_HZ.range, "f_n");
+    assert_is(at(&s, dynamics, "damping_ratio"), loomkin_dynamics::Follower::DAMPING_RATIO.range, "ζ");
     assert_is(at(&s, dynamics, "sweep.from_rpm"), ShaftSpeed::RANGE, "sweep speed");
     let mech = loomkin_picking::Mechanism::paper_default();
     for setting in loomkin_picking::Setting::ALL {

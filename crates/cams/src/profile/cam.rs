@@ -10,7 +10,7 @@ use super::track::{Track, curvature, offset};
 use crate::table::Motion;
 use crate::{CamError, Result};
 use loomkin_laws::StrokeUnit;
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 
 /// A working surface: the pitch curve of track `track` offset by `dist` (mm) along its outward
 /// normal (−r: the roller outside the cam; +r: the outer wall of a groove), or the flat face's
@@ -358,6 +358,16 @@ impl CamProfile {
             curvature_profile_per_mm: curvature(prof).v(),
         }
     }
+
+    /// `step_deg`: the main-shaft angle between the printed points of a profile: 0.001° … 90°
+    /// (360 000 points a turn at the finest; four a turn at the coarsest); 1° when left out.
+    pub const STEP_DEG: Field = Field::new(
+        "step_deg",
+        SAMPLE_STEP_RANGE,
+        "Main-shaft angle between the profile's printed points: 0.001 … 90° (360 000 points a turn at \
+         the finest, four at the coarsest); 1° when left out.",
+    )
+    .with_default(DEFAULT_SAMPLE_STEP_DEG);
 
     /// Samples of track `track` every `step_deg` of main-shaft angle from the cycle's start, the
     /// end excluded (the curve is closed).

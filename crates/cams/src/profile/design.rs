@@ -1,7 +1,7 @@
 //! What the user chooses: the follower, the closure, the roller and the size.
 
-use crate::Result;
-use loomkin_units::Range;
+use crate::{CamError, Result};
+use loomkin_units::{Field, Range};
 
 /// The follower of a disc cam.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,26 +79,149 @@ impl Size {
     pub const DEFAULT: Size = Size::MaxPressureDeg(DEFAULT_MAX_PRESSURE_DEG);
 }
 
+/// The kind of follower, as a front end names it (`--follower`, `follower`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FollowerKind {
+    /// Translating roller follower (radial, or offset by `offset_mm`).
+    #[default]
+    Translating,
+    /// Oscillating roller follower (`arm_mm`, `pivot_mm`).
+    Oscillating,
+    /// Flat-faced translating follower.
+    Flat,
+}
+
+/// A cam design as a front end takes it, each option as given: [`DesignInputs::design`] applies the
+/// rules every front end shares (which options go with which follower, the default size).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DesignInputs {
+    /// The follower.
+    pub follower: FollowerKind,
+    /// Single, conjugate or groove.
+    pub closure: Closure,
+    /// The prime radius, if given (mm).
+    pub prime_radius_mm: Option<f64>,
+    /// The largest pressure angle to size for, if given (deg).
+    pub max_pressure_deg: Option<f64>,
+    /// Roller radius (mm; [`CamDesign::ROLLER_RADIUS_MM`]'s default 0 is a knife edge).
+    pub roller_radius_mm: f64,
+    /// Offset of a translating follower (mm; default 0).
+    pub offset_mm: f64,
+    /// Arm length of an oscillating follower, if given (mm).
+    pub arm_mm: Option<f64>,
+    /// Pivot distance of an oscillating follower, if given (mm).
+    pub pivot_mm: Option<f64>,
+}
+
+impl DesignInputs {
+    /// The design, refusing what does not go together, naming the option:
+    /// an oscillating follower needs `arm_mm` and `pivot_mm` (and only it takes them); only a
+    /// translating follower takes `offset_mm`; a flat face has no roller and needs
+    /// `prime_radius_mm`; the size is `prime_radius_mm` or `max_pressure_deg`, not both, and a
+    /// roller follower given neither is sized for [`CamDesign::MAX_PRESSURE_DEG`]'s default (30°).
+    /// The numbers are checked against their ranges by [`CamDesign::check`].
+    pub fn design(&self) -> Result<CamDesign> {
+        let usage = |field: &str, reason: &str| CamError::Usage { field: field.into(), reason: reason.into() };
+        let follower = match self.follower {
+            FollowerKind::Translating => Follower::Translating { offset_mm: self.offset_mm },
+            FollowerKind::Oscillating => match (self.arm_mm, self.pivot_mm) {
+                (Some(arm_mm), Some(pivot_mm)) => Follower::Oscillating { arm_mm, pivot_mm },
+                (None, _) => return Err(usage("arm_mm", "an oscillating follower needs arm_mm and pivot_mm")),
+                (_, None) => return Err(usage("pivot_mm", "an oscillating follower needs arm_mm and pivot_mm")),
+            },
+            FollowerKind::Flat => Follower::Flat,
+        };
+        if self.follower != FollowerKind::Oscillating && (self.arm_mm.is_some() || self.pivot_mm.is_some()) {
+            return Err(usage("arm_mm", "arm_mm and pivot_mm are for an oscillating follower"));
+        }
+        if self.follower != FollowerKind::Translating && self.offset_mm != 0.0 {
+            return Err(usage("offset_mm", "offset_mm is for a translating follower"));
+        }
+        if self.follower == FollowerKind::Flat && self.roller_radius_mm != 0.0 {
+            return Err(usage("roller_radius_mm", "a flat-faced follower has no roller"));
+        }
+        let size = match (self.prime_radius_mm, self.max_pressure_deg) {
+            (Some(_), Some(_)) => {
+                return Err(usage("max_pressure_deg", "give prime_radius_mm or max_pressure_deg, not both"));
+            }
+            (Some(r), None) => Size::PrimeRadiusMm(r),
+            (None, Some(p)) => Size::MaxPressureDeg(p),
+            (None, None) if self.follower == FollowerKind::Flat => {
+                return Err(usage(
+                    "prime_radius_mm",
+                    "a flat-faced follower needs prime_radius_mm (its pressure angle is 0 everywhere)",
+                ));
+            }
+            (None, None) => Size::DEFAULT,
+        };
+        Ok(CamDesign { follower, closure: self.closure, roller_radius_mm: self.roller_radius_mm, size })
+    }
+}
+
 impl CamDesign {
+    /// `roller_radius_mm`: 0 (a knife edge: the profile is the pitch curve) up to 100 m.
+    pub const ROLLER_RADIUS_MM: Field = Field::new(
+        "roller_radius_mm",
+        ROLLER_RANGE,
+        "Roller radius: 0 (a knife edge, the profile is the pitch curve) … 100 m; 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `offset_mm`: the offset ε of a translating follower, ±100 m.
+    pub const OFFSET_MM: Field = Field::new(
+        "offset_mm",
+        OFFSET_RANGE,
+        "Offset ε of a translating follower's line of motion (positive: right of the cam centre, the \
+         follower above it): ±100 m; 0 (radial) when left out.",
+    )
+    .with_default(0.0);
+    /// `prime_radius_mm`: a micrometre up to 100 m.
+    pub const PRIME_RADIUS_MM: Field = Field::new(
+        "prime_radius_mm",
+        LENGTH_RANGE,
+        "Prime circle radius R (base circle + roller), a micrometre … 100 m; left out, the least R whose \
+         largest pressure angle is max_pressure_deg.",
+    );
+    /// `max_pressure_deg`: 0 < α < 89° (at 90° the follower jams); 30° for a roller follower given
+    /// neither this nor a prime radius (the usual limit of a translating roller follower).
+    pub const MAX_PRESSURE_DEG: Field = Field::new(
+        "max_pressure_deg",
+        PRESSURE_RANGE,
+        "Size the cam for this largest pressure angle: 0 < α < 89° (at 90° the follower jams); 30° for a \
+         roller follower given neither this nor prime_radius_mm (the usual limit of a roller follower).",
+    )
+    .with_default(DEFAULT_MAX_PRESSURE_DEG);
+    /// `arm_mm`: the arm length of an oscillating follower, a micrometre up to 100 m.
+    pub const ARM_MM: Field = Field::new(
+        "arm_mm",
+        LENGTH_RANGE,
+        "Arm length L of an oscillating follower (pivot to roller centre): a micrometre … 100 m.",
+    );
+    /// `pivot_mm`: the pivot distance of an oscillating follower, a micrometre up to 100 m.
+    pub const PIVOT_MM: Field = Field::new(
+        "pivot_mm",
+        LENGTH_RANGE,
+        "Distance d from the cam centre to an oscillating follower's pivot: a micrometre … 100 m.",
+    );
+
     /// Checks every number against its range, naming the field.
     pub fn check(&self) -> Result<()> {
-        ROLLER_RANGE.check("roller_radius_mm", self.roller_radius_mm)?;
+        Self::ROLLER_RADIUS_MM.check(self.roller_radius_mm)?;
         match self.follower {
             Follower::Translating { offset_mm } => {
-                OFFSET_RANGE.check("offset_mm", offset_mm)?;
+                Self::OFFSET_MM.check(offset_mm)?;
             }
             Follower::Oscillating { arm_mm, pivot_mm } => {
-                LENGTH_RANGE.check("arm_mm", arm_mm)?;
-                LENGTH_RANGE.check("pivot_mm", pivot_mm)?;
+                Self::ARM_MM.check(arm_mm)?;
+                Self::PIVOT_MM.check(pivot_mm)?;
             }
             Follower::Flat => {}
         }
         match self.size {
             Size::PrimeRadiusMm(r) => {
-                LENGTH_RANGE.check("prime_radius_mm", r)?;
+                Self::PRIME_RADIUS_MM.check(r)?;
             }
             Size::MaxPressureDeg(a) => {
-                PRESSURE_RANGE.check("max_pressure_deg", a)?;
+                Self::MAX_PRESSURE_DEG.check(a)?;
             }
         }
         Ok(())

@@ -4,7 +4,7 @@ use super::cam::{CamProfile, Curve};
 use super::design::Closure;
 use crate::Result;
 use loomkin_io::drawing::{Layered, Shape};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 
 /// Allowed chord tolerance (mm).
 pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
@@ -17,6 +17,27 @@ pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
 pub const DEFAULT_BORE_PER_BASE_RADIUS: f64 = 0.4;
 
 impl CamProfile {
+    /// `chord_tol_mm`: how far a drawing's polyline chords may leave the curve: a nanometre … 10 mm;
+    /// 0.01 mm (below a machine shop's tolerance) when left out.
+    pub const CHORD_TOL_MM: Field = Field::new(
+        "chord_tol_mm",
+        CHORD_TOL_RANGE,
+        "Chord tolerance of the drawing's polylines: 1e-6 … 10 mm; 0.01 mm (below a machine shop's \
+         tolerance) when left out.",
+    )
+    .with_default(DEFAULT_CHORD_TOL_MM);
+    /// `bore_mm`: the bore diameter drawn (0: none); left out, 0.4 × the base radius.
+    pub const BORE_MM: Field = Field::new(
+        "bore_mm",
+        BORE_RANGE,
+        "Bore diameter drawn: 0 (none) … 100 m, inside the base circle; left out, 0.4 × the base radius.",
+    );
+
+    /// The bore diameter to draw: `given`, else 0.4 × the base radius ([`CamProfile::BORE_MM`]).
+    pub fn bore_mm_or(&self, given: Option<f64>) -> f64 {
+        given.unwrap_or_else(|| self.default_bore_mm())
+    }
+
     /// The drawing of the cam (mm, cam frame: the cam centre at the origin, the follower at
     /// main-shaft angle 0° along the phase mark): layers `CAM_PITCH`, `CAM_PROFILE` (and `COUNTER_PITCH`,
     /// `COUNTER_PROFILE` for a conjugate pair — the counter-cam on its own layers, same centre and

@@ -23,8 +23,8 @@ pub use cam::{
     CamPoint, CamProfile, Curve, DEFAULT_SAMPLE_STEP_DEG, FlatExtremes, SAMPLE_STEP_RANGE, TrackExtremes, Wall,
 };
 pub use design::{
-    CamDesign, Closure, DEFAULT_MAX_PRESSURE_DEG, Follower, LENGTH_RANGE, OFFSET_RANGE, PRESSURE_RANGE, ROLLER_RANGE,
-    Size,
+    CamDesign, Closure, DEFAULT_MAX_PRESSURE_DEG, DesignInputs, Follower, FollowerKind, LENGTH_RANGE, OFFSET_RANGE,
+    PRESSURE_RANGE, ROLLER_RANGE, Size,
 };
 pub use drawing::{BORE_RANGE, CHORD_TOL_RANGE, DEFAULT_BORE_PER_BASE_RADIUS, DEFAULT_CHORD_TOL_MM};
 pub use extremes::Extremes;

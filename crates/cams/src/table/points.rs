@@ -3,7 +3,7 @@
 use super::decimals::{Decimals, round};
 use super::{Interval, Motion, tolerance};
 use crate::{CamError, Result};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::Serialize;
 
 /// One point of a cam table: the master angle and the slave's position and derivatives with
@@ -40,6 +40,34 @@ pub enum Spacing {
     /// On every joint, and in between as few points as the greedy placement needs to keep the
     /// re-interpolation error of every interval at most this tolerance (slave unit).
     Tolerance(f64),
+}
+
+impl Spacing {
+    /// `step_deg` of a table: points on every joint and every step from it; 1e-6 … 3600° (a step
+    /// longer than the motion leaves the joints alone); 1° when neither it nor a tolerance is given.
+    pub const STEP_DEG: Field = Field::new(
+        "step_deg",
+        STEP_RANGE,
+        "Points on every joint and every step from it: 1e-6 … 3600° (the table holds at most 10⁶ \
+         points); 1° when neither it nor tolerance is given.",
+    )
+    .with_default(DEFAULT_STEP_DEG);
+    /// `tolerance` of a table: the re-interpolation error allowed between points, in the slave unit.
+    pub const TOLERANCE: Field = Field::new(
+        "tolerance",
+        TOLERANCE_RANGE,
+        "Re-interpolation error allowed between the points, in the slave unit (mm, or deg for a swinging \
+         follower): 1e-9 … 10⁶.",
+    );
+
+    /// The spacing of a front end's options: by `tolerance` when given, else every `step_deg`
+    /// (default [`Spacing::STEP_DEG`]'s 1°).
+    pub fn of(step_deg: Option<f64>, tolerance: Option<f64>) -> Self {
+        match tolerance {
+            Some(t) => Spacing::Tolerance(t),
+            None => Spacing::StepDeg(step_deg.unwrap_or(Self::STEP_DEG.default_value())),
+        }
+    }
 }
 
 /// The allowed step (deg).

@@ -76,7 +76,7 @@ fn bad_input_exits_2_with_a_clear_line() {
     usage_error(&["law", "info", "zigzag"], &["unknown law 'zigzag'", "cycloidal"]);
     usage_error(&["law", "info", "modified-trapezoid", "--param", "ramp=0.4"], &["ramp", "0.25"]);
     usage_error(&["law", "info", "cycloidal", "--param", "ramp=0.1"], &["no parameter 'ramp'"]);
-    usage_error(&["law", "sample", "cycloidal", "--points", "1"], &["--points", "2 ≤ N"]);
+    usage_error(&["law", "sample", "cycloidal", "--points", "1"], &["--points", "--points ≥ 2"]);
     usage_error(&["law", "info", "piecewise", "--param", "segments=0.5:constant:1,0.4:constant:-1"], &["sum to 0.9"]);
     usage_error(
         &["law", "info", "piecewise", "--param", "segments=0.5:bogus:1,0.5:constant:-1"],

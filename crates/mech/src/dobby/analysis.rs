@@ -14,7 +14,7 @@ use crate::newton::{LoopState, NewtonOptions};
 use crate::planar::{Vec2, e, wrap_pi};
 use crate::vloop::{LoopSystem, Scalar, VectorLoop};
 use crate::{MechError, Result};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range, ShaftSpeed};
 use nalgebra::SVector;
 use serde::Serialize;
 
@@ -448,12 +448,87 @@ pub const STEP_DEG_RANGE: Range = Range::closed(0.01, 30.0, "°");
 /// The allowed roller radius of a synthesis or an analysis (m): a knife edge to 10 m.
 pub const ROLLER_M_RANGE: Range = Range::closed(0.0, 10.0, "m");
 
+/// The modulator's inputs that are not its dimensions: steps, the speed, the roller, the warning limit.
+pub struct DobbyInputs;
+
+impl DobbyInputs {
+    /// `step_deg`: the input step of an analysis or synthesis, 0.01 … 30°; 1°.
+    pub const STEP_DEG: Field = Field::new(
+        "step_deg",
+        STEP_DEG_RANGE,
+        "Input step of the analysis or synthesis rows: 0.01 … 30° (the extremes are refined between rows); \
+         1° when left out.",
+    )
+    .with_default(1.0);
+    /// [`DobbyInputs::STEP_DEG`] of a plot: 0.5°.
+    pub const PLOT_STEP_DEG: Field = Self::STEP_DEG.with_default(0.5);
+    /// `speed_rpm`: the input (main-shaft) speed, the shaft range up to the modulator's bound on ω2
+    /// ([`MAX_INPUT_SPEED_RAD_S`], 95 493 rpm); left out, ω2 = 1 rad/s (rates read as ratios).
+    pub const SPEED_RPM: Field = Field::new(
+        "speed_rpm",
+        Range::closed(1e-3, MAX_INPUT_SPEED_RAD_S * 60.0 / std::f64::consts::TAU, "rpm"),
+        "Input (main-shaft) speed: 0.001 rpm … the modulator's bound ω2 ≤ 10⁴ rad/s (95 493 rpm); left out, \
+         ω2 = 1 rad/s as in the paper, so rates read as ratios.",
+    );
+    /// `pressure_limit_deg`: pressure angles above it raise a warning, 0 … 90°; 60°.
+    pub const PRESSURE_LIMIT_DEG: Field = Field::new(
+        "pressure_limit_deg",
+        Range::closed(0.0, 90.0, "°"),
+        "Pressure angles above this raise a warning: 0 … 90°; 60° (the paper's limit) when left out.",
+    )
+    .with_default(60.0);
+    /// `roller_m`: the radius of both rollers, 0 … 10 m; 0.03 m where cams are synthesised.
+    pub const ROLLER_M: Field = Field::new(
+        "roller_m",
+        ROLLER_M_RANGE,
+        "Roller radius of both rollers (groove walls, undercut): 0 … 10 m; 0.03 m where the cams are \
+         synthesised, none for a given cam.",
+    )
+    .with_default(0.03);
+    /// `roller_mm`: [`DobbyInputs::ROLLER_M`] in mm (the workbench's and `cam profile`'s unit).
+    pub const ROLLER_MM: Field = Field::new(
+        "roller_mm",
+        Range::closed(0.0, 10_000.0, "mm"),
+        "Roller radius in mm (as roller_m): 0 … 10 000 mm; 30 mm where the cams are synthesised.",
+    )
+    .with_default(30.0);
+    /// `at_deg`: the input angle a plot draws the mechanism at, ±360°; 0°.
+    pub const AT_DEG: Field = Field::new(
+        "at_deg",
+        Range::closed(-360.0, 360.0, "deg"),
+        "Input angle at which the mechanism is drawn: ±360°; 0° when left out.",
+    )
+    .with_default(0.0);
+
+    /// The input speed ω2 (rad/s) of a front end's `speed_rpm` under `field` (its flag or key):
+    /// the shaft-speed range, then the modulator's bound [`DobbyInputs::SPEED_RPM`], both named
+    /// by the input as typed; left out, 1 rad/s.
+    pub fn speed_rad_s(field: &str, speed_rpm: Option<f64>) -> Result<f64> {
+        match speed_rpm {
+            None => Ok(1.0),
+            Some(n) => {
+                let w = ShaftSpeed::from_rpm_field(field, n)?.rad_per_s();
+                Self::SPEED_RPM.check_as(field, n)?;
+                Ok(w)
+            }
+        }
+    }
+
+    /// The roller radius in m of `roller_mm` (checked in mm, named `field`) or `roller_m`.
+    pub fn roller_m(field_mm: &str, roller_mm: Option<f64>, roller_m: Option<f64>) -> Result<Option<f64>> {
+        match roller_mm {
+            Some(mm) => Ok(Some(loomkin_units::m_from_mm(Self::ROLLER_MM.check_as(field_mm, mm)?))),
+            None => Ok(roller_m),
+        }
+    }
+}
+
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
-    STEP_DEG_RANGE.check("step_deg", step_deg)?;
+    DobbyInputs::STEP_DEG.check(step_deg)?;
     Range::closed(1e-6, MAX_INPUT_SPEED_RAD_S, "rad/s").check("input_speed_rad_s", speed)?;
-    Range::closed(0.0, 90.0, "°").check("pressure_limit_deg", limit)?;
+    DobbyInputs::PRESSURE_LIMIT_DEG.check(limit)?;
     if let Some(r) = roller {
-        ROLLER_M_RANGE.check("roller_m", r)?;
+        DobbyInputs::ROLLER_M.check(r)?;
     }
     Ok(())
 }

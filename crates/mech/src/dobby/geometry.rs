@@ -1,8 +1,8 @@
 //! The modulator's link lengths and lever angles.
 
 use crate::Result;
-use loomkin_units::Range;
 use loomkin_units::schema::bounds;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 
 /// Geometry of the modulator of a Stäubli-type rotary dobby (series 2600).
@@ -44,10 +44,67 @@ impl Default for ModulatorGeometry {
     }
 }
 
+/// A link length of the modulator: (0, 100] m.
+const LENGTH: Range = Range::open_closed(0.0, 100.0, "m");
+/// A lever angle: (0°, 180°).
+const LEVER_ANGLE: Range = Range::open(0.0, 180.0, "°");
+
 impl ModulatorGeometry {
+    /// `l2_m`: the input crank OA, (0, 100] m; the paper's 0.66 m.
+    pub const L2_M: Field =
+        Field::new("l2_m", LENGTH, "Input crank OA: 0 < l2 ≤ 100 m; the paper's 0.66 m.").with_default(0.66);
+    /// `l3_m`: the arm AB to the cam roller, (0, 100] m; the paper's 0.36 m.
+    pub const L3_M: Field =
+        Field::new("l3_m", LENGTH, "Arm AB to the cam roller: 0 < l3 ≤ 100 m; the paper's 0.36 m.").with_default(0.36);
+    /// `l3p_m`: the arm AC to the counter-cam roller, (0, 100] m; the paper's 0.36 m.
+    pub const L3P_M: Field =
+        Field::new("l3p_m", LENGTH, "Arm AC to the counter-cam roller: 0 < l3′ ≤ 100 m; the paper's 0.36 m.")
+            .with_default(0.36);
+    /// `l6_m`: the output crank OD, (0, 100] m and below l2 (else the output turns through a dead
+    /// point); the paper's 0.40 m.
+    pub const L6_M: Field = Field::new(
+        "l6_m",
+        LENGTH,
+        "Output crank OD: 0 < l6 < l2 (else the output passes a dead point), at most 100 m; the paper's 0.40 m.",
+    )
+    .with_default(0.40);
+    /// `alpha_deg`: the angle α between the slot and the arm AB, (0°, 180°); the paper's 47°.
+    pub const ALPHA_DEG: Field = Field::new(
+        "alpha_deg",
+        LEVER_ANGLE,
+        "Angle α between the slot and the arm AB: 0 < α < 180° (the paper studies 30 … 60); 47° when left out.",
+    )
+    .with_default(47.0);
+    /// `theta_deg`: the angle θ between the slot and the arm AC, (0°, 180°); left out, α (a
+    /// symmetric lever).
+    pub const THETA_DEG: Field = Field::new(
+        "theta_deg",
+        LEVER_ANGLE,
+        "Angle θ between the slot and the arm AC: 0 < θ < 180°; left out, θ = α (a symmetric lever).",
+    );
+
     /// The paper's geometry with α = θ = 47°.
-    pub const PAPER: ModulatorGeometry =
-        ModulatorGeometry { l2_m: 0.66, l3_m: 0.36, l3p_m: 0.36, l6_m: 0.40, alpha_deg: 47.0, theta_deg: 47.0 };
+    pub const PAPER: ModulatorGeometry = ModulatorGeometry {
+        l2_m: Self::L2_M.default_value(),
+        l3_m: Self::L3_M.default_value(),
+        l3p_m: Self::L3P_M.default_value(),
+        l6_m: Self::L6_M.default_value(),
+        alpha_deg: Self::ALPHA_DEG.default_value(),
+        theta_deg: Self::ALPHA_DEG.default_value(),
+    };
+
+    /// A validated geometry from a front end's inputs: α defaults to 47°, θ to α.
+    pub fn from_inputs(
+        l2_m: f64,
+        l3_m: f64,
+        l3p_m: f64,
+        l6_m: f64,
+        alpha_deg: Option<f64>,
+        theta_deg: Option<f64>,
+    ) -> Result<Self> {
+        let alpha = alpha_deg.unwrap_or(Self::ALPHA_DEG.default_value());
+        Self::new(l2_m, l3_m, l3p_m, l6_m, alpha, theta_deg.unwrap_or(alpha))
+    }
 
     /// A validated geometry.
     pub fn new(l2_m: f64, l3_m: f64, l3p_m: f64, l6_m: f64, alpha_deg: f64, theta_deg: f64) -> Result<Self> {
@@ -71,12 +128,14 @@ impl ModulatorGeometry {
     /// Checks every field: lengths in [`ModulatorGeometry::LENGTH_M_RANGE`], `l6 < l2`, α and θ in
     /// [`ModulatorGeometry::ANGLE_DEG_RANGE`].
     pub fn validate(&self) -> Result<()> {
-        for (f, v) in [("l2_m", self.l2_m), ("l3_m", self.l3_m), ("l3p_m", self.l3p_m), ("l6_m", self.l6_m)] {
-            Self::LENGTH_M_RANGE.check(f, v)?;
+        for (f, v) in
+            [(Self::L2_M, self.l2_m), (Self::L3_M, self.l3_m), (Self::L3P_M, self.l3p_m), (Self::L6_M, self.l6_m)]
+        {
+            f.check(v)?;
         }
         Range::open(0.0, self.l2_m, "m (l6 < l2)").check("l6_m", self.l6_m)?;
-        for (f, v) in [("alpha_deg", self.alpha_deg), ("theta_deg", self.theta_deg)] {
-            Self::ANGLE_DEG_RANGE.check(f, v)?;
+        for (f, v) in [(Self::ALPHA_DEG, self.alpha_deg), (Self::THETA_DEG, self.theta_deg)] {
+            f.check(v)?;
         }
         Ok(())
     }

@@ -2,7 +2,7 @@
 
 use crate::Result;
 use loomkin_laws::{Law, LawSpec};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -60,13 +60,39 @@ impl OutputLawSpec {
     /// The allowed output cycles per input revolution.
     pub const CYCLES_RANGE: Range = Range::closed(1.0, 6.0, "");
 
-    /// Checks the fields: cycles in [`OutputLawSpec::CYCLES_RANGE`], dwell in [0, 360/cycles − 1]°,
-    /// centre in [−360, 360]°.
+    /// `cycles`: dwell-and-rise cycles per input turn, 1 … 6 (a rise of 60° at six); 2 (a plain weave).
+    pub const CYCLES: Field = Field::count(
+        "cycles",
+        Self::CYCLES_RANGE,
+        "Cycles (a dwell and a rise of 360°/cycles) per input turn: 1 … 6; 2 when left out.",
+    )
+    .with_default(2.0);
+    /// `dwell_deg`: the output's dwell per cycle, 0 ≤ dwell ≤ 360°/cycles − 1° (a rise of at least
+    /// 1°); 40°.
+    pub const DWELL_DEG: Field = Field::new(
+        "dwell_deg",
+        Range::closed(0.0, 359.0, "°"),
+        "Dwell of the output per cycle, deg of input: 0 ≤ dwell ≤ 360°/cycles − 1 (the rise keeps a degree); \
+         40° when left out.",
+    )
+    .with_default(40.0);
+    /// `dwell_centre_deg`: the input angle at the first dwell's centre, ±360°; 90°.
+    pub const DWELL_CENTRE_DEG: Field = Field::new(
+        "dwell_centre_deg",
+        Range::closed(-360.0, 360.0, "°"),
+        "Input angle at the centre of the first dwell (the output angle held there): ±360°; 90° when left out.",
+    )
+    .with_default(90.0);
+    /// The law of each rise when none is given: the cycloidal (continuous acceleration, the
+    /// paper's choice).
+    pub const DEFAULT_LAW: &'static str = "cycloidal";
+
+    /// Checks the fields: cycles in 1…6, dwell in [0, 360/cycles − 1]°, centre in [−360, 360]°.
     pub fn validate(&self) -> Result<()> {
-        Self::CYCLES_RANGE.check("cycles", f64::from(self.cycles))?;
+        Self::CYCLES.check(f64::from(self.cycles))?;
         let max_dwell = 360.0 / f64::from(self.cycles) - 1.0;
-        Range::closed(0.0, max_dwell, "°").check("dwell_deg", self.dwell_deg)?;
-        Range::closed(-360.0, 360.0, "°").check("dwell_centre_deg", self.dwell_centre_deg)?;
+        Range::closed(0.0, max_dwell, "°").check(Self::DWELL_DEG.name, self.dwell_deg)?;
+        Self::DWELL_CENTRE_DEG.check(self.dwell_centre_deg)?;
         self.rise.validate()?;
         Ok(())
     }

@@ -6,6 +6,7 @@ use super::geometry::ModulatorGeometry;
 use super::law::OutputLawSpec;
 use super::synthesis::{SynthesisOptions, synthesize};
 use crate::Result;
+use loomkin_units::{Field, Range};
 use serde::Serialize;
 
 /// The α sweep as `loomkin dobby sweep --json` prints it.
@@ -59,6 +60,68 @@ pub struct SweepRow {
     /// Synthesis: undercut of either cam by the roller.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub syn_undercut: Option<bool>,
+}
+
+/// The α sweep's inputs: from, to, by (deg) and how many values.
+pub struct AlphaSweep;
+
+impl AlphaSweep {
+    /// `from`: the first α, a lever angle (0°, 180°); 30° (the paper's range starts there).
+    pub const FROM: Field =
+        Field::new("from", Range::open(0.0, 180.0, "°"), "First α = θ: 0 < α < 180°; 30° (the paper's) when left out.")
+            .with_default(30.0);
+    /// `to`: the last α, (0°, 180°) and not below `from`; 60°.
+    pub const TO: Field = Field::new(
+        "to",
+        Range::open(0.0, 180.0, "°"),
+        "Last α = θ: 0 < α < 180°, not below from; 60° (the paper's) when left out.",
+    )
+    .with_default(60.0);
+    /// `by`: the α step, > 0; 5°.
+    pub const BY: Field = Field::new("by", Range::above(0.0, "°"), "α step: > 0°; 5° when left out.").with_default(5.0);
+    /// `alpha_deg`: how many α a sweep takes, 1 … 1000 (each an analysis and a synthesis).
+    pub const ALPHAS: Field = Field::count(
+        "alpha_deg",
+        Range::closed(1.0, 1000.0, ""),
+        "Values of α in one sweep: 1 … 1000 (each an analysis and a synthesis).",
+    );
+
+    /// The α values `from, from + by, …` up to `to`, each named by `names` (the front end's
+    /// from, to and by): at most [`AlphaSweep::ALPHAS`].
+    pub fn values(names: [&str; 3], from: f64, to: f64, by: f64) -> Result<Vec<f64>> {
+        Self::FROM.check_as(names[0], from)?;
+        Self::TO.check_as(names[1], to)?;
+        Self::BY.check_as(names[2], by)?;
+        let key = |name: &str| name.trim_start_matches('-').replace('-', "_");
+        if to < from {
+            return Err(crate::MechError::Invalid {
+                field: key(names[1]),
+                reason: format!(
+                    "{} {} {} {} {} {}: need from ≤ to and by > 0",
+                    names[0],
+                    loomkin_units::compact(from),
+                    names[1],
+                    loomkin_units::compact(to),
+                    names[2],
+                    loomkin_units::compact(by)
+                ),
+            });
+        }
+        let n = ((to - from) / by + 1e-9).floor() + 1.0;
+        if !Self::ALPHAS.range.contains(n) {
+            return Err(crate::MechError::Invalid {
+                field: key(names[2]),
+                reason: format!(
+                    "{} {} gives {} values of α: allowed at most {}",
+                    names[2],
+                    loomkin_units::compact(by),
+                    loomkin_units::compact(n),
+                    Self::ALPHAS.range.describe("n").rsplit(' ').next().unwrap_or("")
+                ),
+            });
+        }
+        Ok((0..n as usize).map(|i| from + i as f64 * by).collect())
+    }
 }
 
 /// Runs the analysis of `cam` and the synthesis of `law` for each α (θ = α) in `alphas_deg`.

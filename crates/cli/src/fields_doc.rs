@@ -1,0 +1,296 @@
+//! The field reference, docs/reference/fields.md, generated from the libraries' descriptors
+//! (`loomkin_*::FIELDS`) and the CLI's own command tree, and a check that it is current.
+//!
+//! A test rather than a command: it needs the CLI's private clap tree and every library crate,
+//! both of which this crate has, and it runs in CI with the other tests without adding a command
+//! users would take for a contract. Regenerate with
+//! `LOOMKIN_WRITE_FIELDS=1 cargo test --release -p loomkin-cli fields_reference`.
+
+use clap::CommandFactory;
+use loomkin_units::{Bound, Field, FieldList};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Every library crate's descriptors, with the crate's name.
+const LISTS: [(&str, FieldList); 9] = [
+    ("loomkin-units", loomkin_units::FIELDS),
+    ("loomkin-laws", loomkin_laws::FIELDS),
+    ("loomkin-picking", loomkin_picking::FIELDS),
+    ("loomkin-cams", loomkin_cams::FIELDS),
+    ("loomkin-dynamics", loomkin_dynamics::FIELDS),
+    ("loomkin-shed", loomkin_shed::FIELDS),
+    ("loomkin-loom", loomkin_loom::FIELDS),
+    ("loomkin-mech", loomkin_mech::FIELDS),
+    ("loomkin-servo", loomkin_servo::FIELDS),
+];
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A bound's number as the reference writes it.
+fn num(v: f64) -> String {
+    loomkin_units::compact(v)
+}
+
+/// The range as `lo … hi` with `[`/`(` for closed/open sides.
+fn range_text(f: &Field) -> String {
+    let lo = match f.range.lo {
+        Bound::Unbounded => "(−∞".to_string(),
+        Bound::Closed(v) => format!("[{}", num(v)),
+        Bound::Open(v) => format!("({}", num(v)),
+    };
+    let hi = match f.range.hi {
+        Bound::Unbounded => "∞)".to_string(),
+        Bound::Closed(v) => format!("{}]", num(v)),
+        Bound::Open(v) => format!("{})", num(v)),
+    };
+    format!("{lo}, {hi}")
+}
+
+/// One CLI input: the command path, the flag (or `<NAME>` of a positional), its default as
+/// `--help` shows it, the first line of its help.
+struct CliInput {
+    command: String,
+    flag: String,
+    key: String,
+    default: String,
+    help: String,
+}
+
+fn cli_inputs() -> Vec<CliInput> {
+    fn walk(cmd: &clap::Command, path: &str, out: &mut Vec<CliInput>) {
+        let subs: Vec<&clap::Command> = cmd.get_subcommands().filter(|c| c.get_name() != "help").collect();
+        if !subs.is_empty() {
+            for s in subs {
+                let p = if path.is_empty() { s.get_name().to_string() } else { format!("{path} {}", s.get_name()) };
+                walk(s, &p, out);
+            }
+            return;
+        }
+        for a in cmd.get_arguments() {
+            let id = a.get_id().as_str();
+            if id == "help" || id == "version" {
+                continue;
+            }
+            let (flag, key) = match a.get_long() {
+                Some(l) => (format!("--{l}"), l.replace('-', "_")),
+                None => (format!("<{}>", id.to_uppercase()), id.to_string()),
+            };
+            let default: Vec<String> =
+                a.get_default_values().iter().map(|v| v.to_string_lossy().into_owned()).collect();
+            let help = a.get_help().map(|h| h.to_string()).unwrap_or_default();
+            let help = help.lines().next().unwrap_or("").replace('|', "\\|");
+            out.push(CliInput { command: path.to_string(), flag, key, default: default.join(","), help });
+        }
+    }
+    let mut out = Vec::new();
+    walk(&crate::Cli::command(), "", &mut out);
+    out
+}
+
+/// The top-level functions of the Python module's stubs (`python/loomkin/_loomkin.pyi`) and their
+/// keyword names.
+fn python_functions() -> Vec<(String, Vec<String>)> {
+    let text = std::fs::read_to_string(repo().join("python/loomkin/_loomkin.pyi")).unwrap_or_default();
+    let mut out = Vec::new();
+    let mut rest = text.as_str();
+    while let Some(i) = rest.find("\ndef ") {
+        rest = &rest[i + 5..];
+        let Some(open) = rest.find('(') else { break };
+        let name = rest[..open].trim().to_string();
+        let (mut depth, mut params, mut cur) = (0usize, Vec::new(), String::new());
+        let take = |cur: &str, params: &mut Vec<String>| {
+            let p = cur.split([':', '=']).next().unwrap_or("").trim().trim_start_matches('*').to_string();
+            if !p.is_empty() && p != "self" {
+                params.push(p);
+            }
+        };
+        for ch in rest[open..].chars() {
+            match ch {
+                '(' | '[' => {
+                    depth += 1;
+                    if depth == 1 {
+                        continue;
+                    }
+                }
+                ')' | ']' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        take(&cur, &mut params);
+                        break;
+                    }
+                }
+                ',' if depth == 1 => {
+                    take(&cur, &mut params);
+                    cur.clear();
+                    continue;
+                }
+                _ => {}
+            }
+            cur.push(ch);
+        }
+        if !name.starts_with('_') {
+            out.push((name, params));
+        }
+    }
+    out
+}
+
+/// The reference as Markdown.
+fn reference() -> String {
+    let cli = cli_inputs();
+    let py = python_functions();
+    let mut all: Vec<(&str, &str, &Field)> = Vec::new();
+    for (krate, list) in LISTS {
+        for (path, f) in list {
+            all.push((krate, path, f));
+        }
+    }
+    let mut by_name: BTreeMap<&str, Vec<&Field>> = BTreeMap::new();
+    for (_, _, f) in &all {
+        by_name.entry(f.name).or_default().push(f);
+    }
+    let mut s = String::new();
+    s.push_str(
+        "<!-- Generated by `LOOMKIN_WRITE_FIELDS=1 cargo test --release -p loomkin-cli fields_reference` from the \
+         libraries' field descriptors and the CLI's command tree; do not edit by hand. -->\n\n",
+    );
+    s.push_str("# Field reference\n\n");
+    s.push_str(
+        "Every input quantity loomkin's libraries declare — its key, unit, allowed range, default and the reason \
+         for its bounds — and every input of every command. A range or default is declared once, on the library \
+         type that owns it (`loomkin_units::Field`, see docs/design/fields.md); the CLI, the workbench and Python \
+         read it from there. Ranges: `[a, b]` closed, `(a, b)` open. The key is the JSON and Python keyword; the \
+         CLI flag is the same words joined with `-`. \"Taken by\" matches inputs by key (a key several quantities share, by its \
+         default): the CLI's flags and the keywords of the Python module's functions (`loomkin._loomkin`, which \
+         the `loomkin.*` modules wrap).\n\n",
+    );
+    s.push_str("## Quantities\n\n");
+    for (krate, list) in LISTS {
+        let _ = writeln!(s, "### {krate}\n");
+        s.push_str("| descriptor | key | unit | range | default | taken by | what and why |\n");
+        s.push_str("|---|---|---|---|---|---|---|\n");
+        for (path, f) in list {
+            let default = match f.default {
+                Some(v) => num(v),
+                None => "—".into(),
+            };
+            // A key several descriptors share (`points`, `speed_rpm`) is matched by its default only;
+            // without a default the command tables below say which flag is which.
+            let shared = by_name.get(f.name).map_or(1, Vec::len) > 1;
+            let matches = |default: &str| match (shared, f.default) {
+                (false, _) => true,
+                (true, Some(d)) => default == num(d),
+                (true, None) => false,
+            };
+            let mut takers: Vec<String> = cli
+                .iter()
+                .filter(|c| c.key == f.name && matches(&c.default))
+                .map(|c| format!("`{} {}`", c.command, c.flag))
+                .collect();
+            takers.dedup();
+            let pyf: Vec<String> = if shared {
+                Vec::new()
+            } else {
+                py.iter().filter(|(_, ps)| ps.iter().any(|p| p == f.name)).map(|(n, _)| format!("`{n}`")).collect()
+            };
+            let mut taken = Vec::new();
+            if !takers.is_empty() {
+                taken.push(format!("CLI {}", takers.join(", ")));
+            }
+            if !pyf.is_empty() {
+                taken.push(format!("Python {}", pyf.join(", ")));
+            }
+            if shared && taken.is_empty() {
+                taken.push("(a key several quantities share: see the commands below)".to_string());
+            }
+            let _ = writeln!(
+                s,
+                "| `{path}` | `{}`{} | {} | {} | {default} | {} | {} |",
+                f.name,
+                if f.count { " (count)" } else { "" },
+                if f.unit().is_empty() { "—" } else { f.unit() },
+                range_text(f),
+                if taken.is_empty() { "—".into() } else { taken.join("; ") },
+                f.doc.replace('|', "\\|"),
+            );
+        }
+        s.push('\n');
+    }
+    s.push_str("## Command-line inputs\n\n");
+    s.push_str(
+        "Every flag and argument of every `loomkin` command, with the default `--help` shows and, where the key \
+         names a library descriptor, its unit and range.\n\n",
+    );
+    let mut last = String::new();
+    for c in &cli {
+        if c.command != last {
+            let _ = writeln!(s, "\n### `loomkin {}`\n", c.command);
+            s.push_str("| input | unit | range | default | help |\n|---|---|---|---|---|\n");
+            last.clone_from(&c.command);
+        }
+        let cands = by_name.get(c.key.as_str()).cloned().unwrap_or_default();
+        let f = match cands.len() {
+            0 => None,
+            1 => Some(cands[0]),
+            _ => cands.iter().copied().find(|f| f.default.is_some_and(|d| c.default == num(d))),
+        };
+        let (unit, range) = match f {
+            Some(f) => ((if f.unit().is_empty() { "—" } else { f.unit() }).to_string(), range_text(f)),
+            None => ("".into(), "".into()),
+        };
+        let _ = writeln!(
+            s,
+            "| `{}` | {unit} | {range} | {} | {} |",
+            c.flag,
+            if c.default.is_empty() { "—".to_string() } else { format!("`{}`", c.default) },
+            c.help
+        );
+    }
+    s.push_str("\n## Python functions\n\n");
+    s.push_str("The keywords of each function of `loomkin._loomkin` (from its stubs); their defaults are the descriptors'.\n\n");
+    for (name, params) in &py {
+        let _ = writeln!(s, "- `{name}({})`", params.join(", "));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// docs/reference/fields.md is what the descriptors and the command tree give today.
+    #[test]
+    fn fields_reference() {
+        let path = repo().join("docs/reference/fields.md");
+        let text = reference();
+        if std::env::var_os("LOOMKIN_WRITE_FIELDS").is_some() {
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, &text).unwrap();
+        }
+        let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            on_disk == text,
+            "docs/reference/fields.md is not current: regenerate it with \
+             `LOOMKIN_WRITE_FIELDS=1 cargo test --release -p loomkin-cli fields_reference` and commit it"
+        );
+    }
+
+    /// Every descriptor's path is unique across the crates (Python looks them up by it) and every
+    /// default lies inside its range (also checked at compile time).
+    #[test]
+    fn descriptors_are_unique_and_consistent() {
+        let mut seen = std::collections::BTreeSet::new();
+        for (_, list) in LISTS {
+            for (path, f) in list {
+                assert!(seen.insert(*path), "{path} is declared twice");
+                if let Some(d) = f.default {
+                    assert!(f.range.contains(d), "{path}: default {d} outside {}", f.describe());
+                }
+                assert!(!f.doc.is_empty(), "{path} has no doc");
+            }
+        }
+    }
+}
