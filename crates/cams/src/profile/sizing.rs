@@ -114,9 +114,11 @@ pub(crate) fn least_prime_radius(lift: &Lift, design: &CamDesign, a_deg: f64) ->
             const N: usize = 200;
             let mut prev = lo;
             let mut best = (f64::INFINITY, lo);
+            let mut grid: Vec<(f64, f64)> = Vec::with_capacity(N);
             for i in 1..N {
                 let rp = lo + (hi - lo) * i as f64 / N as f64;
                 let v = f(rp)?;
+                grid.push((rp, v));
                 if v < best.0 {
                     best = (v, rp);
                 }
@@ -134,6 +136,23 @@ pub(crate) fn least_prime_radius(lift: &Lift, design: &CamDesign, a_deg: f64) ->
                     .1);
                 }
                 prev = rp;
+            }
+            // No grid point within A: a minimum of F narrower than the grid may still dip below it.
+            // Locate every grid minimum exactly (golden section on its two neighbouring intervals);
+            // the least feasible radius is then the crossing between the grid point before it and it.
+            for k in 1..grid.len().saturating_sub(1) {
+                let ((a, va), (_, vm), (b, vb)) = (grid[k - 1], grid[k], grid[k + 1]);
+                if vm > va || vm > vb {
+                    continue;
+                }
+                let m = loomkin_numeric::golden_max(|rp| -f(rp).unwrap_or(f64::INFINITY), a, b);
+                if -m.value < best.0 {
+                    best = (-m.value, m.at);
+                }
+                if -m.value <= target {
+                    let feasible = |rp: f64| f(rp).is_ok_and(|v| v <= target);
+                    return Ok(loomkin_numeric::bisect(a, m.at, |rp| !feasible(rp)));
+                }
             }
             Err(CamError::Usage {
                 field: "max_pressure_deg".into(),
