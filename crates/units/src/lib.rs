@@ -33,7 +33,7 @@ pub use budget::{Budget, BudgetError, BudgetParseError, Cost, bytes_text, second
 pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg, rad_per_s_from_rpm, rpm_from_rad_per_s};
 pub use field::{Field, FieldList};
 pub use format::compact;
-pub use range::{Bound, FieldError, Range, RangeError};
+pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
 pub use sweep::{Shard, Span, SweepError};
 

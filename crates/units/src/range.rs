@@ -113,6 +113,12 @@ impl Range {
     }
 }
 
+/// Checks a count `min ≤ n ≤ max` under `field` (a number of samples, laws or points a caller
+/// bounds by the size of its answer): the one count check every front end calls.
+pub fn check_count(field: &str, n: usize, min: usize, max: usize) -> Result<usize, RangeError> {
+    Range::closed(min as f64, max as f64, "").check(field, n as f64).map(|_| n)
+}
+
 /// A number outside its allowed range, or not a finite number.
 ///
 /// The message is one line naming the field, the value and the allowed range with its unit:

@@ -3,7 +3,7 @@
 use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use loomkin_units::{FieldError, Range, RangeError};
+use loomkin_units::{FieldError, RangeError};
 use serde::Serialize;
 use thiserror::Error;
 
@@ -168,13 +168,13 @@ impl From<RangeError> for ApiError {
 
 /// Checks a count `min ≤ n ≤ max`.
 pub fn check_count(field: &str, n: usize, min: usize, max: usize) -> Result<usize, ApiError> {
-    Range::closed(min as f64, max as f64, "").check(field, n as f64)?;
-    Ok(n)
+    Ok(loomkin_units::check_count(field, n, min, max)?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use loomkin_units::Range;
 
     #[test]
     fn statuses_are_client_errors_and_name_the_field() {
