@@ -9,3 +9,24 @@
 //! It sits below `loomkin-loom`: the mechanisms and the solvers live here, as library types with
 //! their own bounds; the whole loom (its file, its frames over a pattern repeat) assembles them.
 #![deny(missing_docs)]
+
+pub mod sley;
+
+pub use sley::{Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyState, SleyTable};
+
+/// The descriptors this crate declares.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    SleyTable::CRANK_MM,
+    SleyTable::ROD_MM,
+    SleyTable::SWORD_MM,
+    SleyTable::PIVOT_X_MM,
+    SleyTable::PIVOT_Y_MM,
+    SleyTable::REED_HEIGHT_MM,
+    SleyTable::MASS_KG,
+    SleyTable::GYRATION_MM,
+    SleyTable::CENTRE_MM,
+    SleyTable::BEAT_UP_DEG,
+    SleyTable::BEAT_UP_FORCE_N,
+    SleyTable::BEAT_UP_RANGE_DEG,
+    SleyAnalysis::DWELL_TOLERANCE_MM,
+];
