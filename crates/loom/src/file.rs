@@ -1,6 +1,7 @@
 //! The loom file (TOML): one machine on the main-shaft angle.
 
 use crate::{FrameLaw, LoomError, Result};
+use loomkin_drive::{FourBarSley, SleyError, SleyTable};
 use loomkin_laws::{CycleSpec, LawSpec};
 use loomkin_picking::{Mechanism, Method, Settings, simulate};
 use loomkin_shed::{ShedLaw, preset};
@@ -26,6 +27,7 @@ struct LoomFile {
     shedding: SheddingFile,
     insertion: InsertionFile,
     beat_up: Option<BeatUpFile>,
+    sley: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -249,6 +251,9 @@ pub struct Loom {
     pub insertion: Insertion,
     /// Beat-up angle, deg.
     pub beat_up_deg: f64,
+    /// The sley linkage (`[sley]`), when the file describes it. Its `beat_up_deg` is the file's
+    /// `[beat_up] angle_deg` when the table leaves it out, and must equal it when given.
+    pub sley: Option<FourBarSley>,
 }
 
 fn mm(v: f64) -> f64 {
@@ -414,11 +419,24 @@ impl Loom {
         let insertion = read_insertion(&f.insertion, &geometry, speed)?;
         let beat_up_deg = Range::closed_open(0.0, 360.0, "deg")
             .check("beat_up.angle_deg", f.beat_up.as_ref().map_or(0.0, |b| b.angle_deg))?;
+        let sley = f.sley.map(|t| read_sley(t, beat_up_deg)).transpose()?;
         let name = f.name.unwrap_or_default();
         if name.chars().count() > 200 {
             return Err(LoomError::field("name", "longer than 200 characters"));
         }
-        Ok(Self { name, speed, efficiency, motor_torque_n_m, geometry, frames, warp, shedding, insertion, beat_up_deg })
+        Ok(Self {
+            name,
+            speed,
+            efficiency,
+            motor_torque_n_m,
+            geometry,
+            frames,
+            warp,
+            shedding,
+            insertion,
+            beat_up_deg,
+            sley,
+        })
     }
 
     /// Number of heald frames.
@@ -472,6 +490,33 @@ impl Loom {
         }
         toml::to_string(&doc).map_err(|e| LoomError::field("loom file", e.to_string()))
     }
+}
+
+/// The `[sley]` table checked by the drive crate, its errors named `sley.…`; a left-out
+/// `beat_up_deg` is the loom's beat-up angle, a given one must equal it.
+fn read_sley(mut t: toml::Table, beat_up_deg: f64) -> Result<FourBarSley> {
+    let key = SleyTable::BEAT_UP_DEG.name;
+    if !t.contains_key(key) {
+        t.insert(key.into(), toml::Value::Float(beat_up_deg));
+    }
+    let table: SleyTable =
+        t.try_into().map_err(|e: toml::de::Error| LoomError::field("sley", e.message().trim().to_string()))?;
+    let sley = FourBarSley::new(table).map_err(|e| match e.prefixed("sley.") {
+        SleyError::Range(r) => LoomError::Range(r),
+        SleyError::Infeasible { fields, reason } => LoomError::Infeasible { field: fields, reason },
+        other => LoomError::field("sley", other.to_string()),
+    })?;
+    if sley.table().beat_up_deg != beat_up_deg {
+        return Err(LoomError::field(
+            "sley.beat_up_deg",
+            format!(
+                "{}° but [beat_up] angle_deg is {}°: the reed's front dead centre is the beat-up (leave one out)",
+                loomkin_units::compact(sley.table().beat_up_deg),
+                loomkin_units::compact(beat_up_deg)
+            ),
+        ));
+    }
+    Ok(sley)
 }
 
 fn line_of(text: &str, byte: usize) -> usize {
