@@ -368,13 +368,24 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     })?;
     progress.finish();
     let elapsed = t0.elapsed().as_secs_f64();
-    // The elapsed time goes to stderr only: identical input gives byte-identical output.
-    output::note(format_args!("loomkin: optimised in {elapsed:.3} s"));
+    // The elapsed time goes to stderr only (identical input gives byte-identical output), and only
+    // once the output is written: after a closed or failed standard output it is not printed.
+    print_optimized(&a, &d, &opts, &r)?;
+    output::note_after_output(format_args!("loomkin: optimised in {elapsed:.3} s"))
+}
+
+/// The result of `servo optimize` on standard output.
+fn print_optimized(
+    a: &OptimizeArgs,
+    d: &Drive,
+    opts: &OptimizeOptions,
+    r: &loomkin_servo::OptimizeReport,
+) -> Result<()> {
     let pts = r.law.points();
     if a.json {
         return output::json(&r.summary(&a.speed_rpm));
     }
-    print_drive(&d)?;
+    print_drive(d)?;
     outln!(
         "minimised the {} motor torque (worst over {} speed(s)), {} evaluations",
         opts.objective.name(),

@@ -55,3 +55,28 @@ fn full_disk_is_one_line_naming_the_target() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+/// A message that follows the output (`servo optimize`'s `optimised in 0.05 s`) is not printed
+/// once standard output has failed: a closed pipe leaves stderr empty, `> /dev/full` leaves the
+/// one error line (issue 27; on main the timing line came first, then the error).
+#[test]
+fn no_message_after_a_failed_output() {
+    for args in [&["servo", "optimize", "--starts", "1"][..], &["servo", "optimize", "--starts", "1", "--json"][..]] {
+        // The reader has gone before the first byte is written.
+        let mut child =
+            Command::new(binary()).args(args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        if !std::path::Path::new("/dev/full").exists() {
+            continue;
+        }
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let out = Command::new(binary()).args(args).stdout(full).stderr(Stdio::piped()).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("loomkin: error: cannot write standard output"), "{args:?}: {err}");
+    }
+}
