@@ -1,6 +1,6 @@
 //! `loomkin cam …`: from a law to a part.
 
-use crate::output::outln;
+use crate::output::{Out, outln};
 use crate::{output, util};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
@@ -140,6 +140,7 @@ fn motion(a: &TableArgs) -> Result<(Motion, String)> {
 }
 
 fn table(a: TableArgs) -> Result<()> {
+    output::check_outputs([Some(Out::file("--output", &a.output))])?;
     let format = a.format;
     let (motion, source) = motion(&a)?;
     let spacing = Spacing::of(a.step_deg, a.tolerance);
@@ -198,6 +199,10 @@ fn profile_design(a: &ProfileArgs) -> Result<CamDesign> {
 }
 
 fn profile(a: ProfileArgs) -> Result<()> {
+    output::check_outputs([
+        a.dxf.as_ref().map(|p| Out::file("--dxf", p)),
+        a.output.as_ref().map(|p| Out::plot("--output", p)),
+    ])?;
     CamProfile::STEP_DEG.check(a.step_deg)?;
     let design = profile_design(&a)?;
     let (motion, source) = profile_motion(&a)?;

@@ -1,6 +1,6 @@
 //! `loomkin cycle FILE.toml`: a machine cycle in physical units.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::Result;
 use clap::Args;
@@ -31,6 +31,7 @@ pub struct CycleArgs {
 
 /// Runs `loomkin cycle`.
 pub fn run(a: CycleArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let text = util::read_input(&a.file)?;
     let cycle = Cycle::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", a.file.display()))?;
     let rpm = cycle.speed_rpm_or(a.speed_rpm);

@@ -1,7 +1,7 @@
 //! `loomkin dobby …`: the modulator of a Stäubli-type rotary dobby (series 2600): analysis of a
 //! given cam (task 1), synthesis of the conjugate cams for an output law (task 2), plots, α sweep.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand, ValueEnum};
@@ -518,6 +518,10 @@ fn print_checks(c: &loomkin_mech::CamChecks) -> Result<()> {
 }
 
 fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
+    output::check_outputs([
+        a.dxf.as_ref().map(|p| Out::file("--dxf", p)),
+        a.points_csv.as_ref().map(|p| Out::file("--points-csv", p)),
+    ])?;
     let g = a.geometry.geometry()?;
     let law = a.law.spec()?;
     let res = synthesize(&g, &law, &synthesis_options(&a.geometry, a.step_deg, a.roller.metres_or_default()?)?)?;
@@ -732,6 +736,7 @@ fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, s
 }
 
 fn plot_cmd(a: PlotArgs) -> Result<()> {
+    output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     DobbyInputs::AT_DEG.check_as("--at-deg", a.at_deg)?;
     let g = a.geometry.geometry()?;
     let w2 = a.geometry.speed_rad_s()?;

@@ -1,7 +1,7 @@
 //! `loomkin dyn …`: elastic follower dynamics — response, speed sweep, residual spectrum,
 //! compensation, quiet laws. Parses, calls `loomkin-dynamics`, prints.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
@@ -261,6 +261,7 @@ fn rigidity_note(s: &loomkin_dynamics::Summary) {
 }
 
 fn response(a: ResponseArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
@@ -413,6 +414,7 @@ const SWEEP_S_PER_SEGMENT: f64 = 2.0 * 5e-6;
 const SWEEP_BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     // Checked first, with or without a plot to draw it on (refused, not ignored).
     SweepPoint::RESIDUAL_LIMIT_PCT.check(a.residual_limit_pct)?;
     let cycle = read_cycle(&a.file)?;
@@ -567,6 +569,7 @@ fn spectrum_laws(tokens: &[String]) -> Result<Vec<(String, String, loomkin_laws:
 }
 
 fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let laws = spectrum_laws(&a.laws)?;
     let mut zetas = Vec::new();
     for z in a.damping_ratio.split(',') {
@@ -641,6 +644,7 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
 }
 
 fn compensate_cmd(a: CompensateArgs) -> Result<()> {
+    output::check_outputs([Some(Out::file("--output", &a.output))])?;
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
@@ -715,6 +719,7 @@ fn compensate_cmd(a: CompensateArgs) -> Result<()> {
 }
 
 fn optimize_cmd(a: OptimizeArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::file("--output", p))])?;
     let text = util::read_input(&a.file)?;
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;

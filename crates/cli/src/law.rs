@@ -1,6 +1,6 @@
 //! `loomkin law …`: the catalogue of normalised laws.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -297,6 +297,7 @@ const SAMPLE_JSON_S_PER_ROW: f64 = 2.0 * 0.92e-6;
 const SAMPLE_CSV_S_PER_ROW: f64 = 2.0 * 1.83e-6;
 
 fn plot(a: PlotArgs) -> Result<()> {
+    output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     Law::PLOT_POINTS.check_count_as("--points", a.points)?;
     for (k, _) in &a.params.params {
         let known = a.laws.iter().any(|l| CATALOGUE.iter().any(|e| e.name == l && e.has_param(k)));

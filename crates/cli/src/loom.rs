@@ -1,6 +1,6 @@
 //! `loomkin loom …`: the whole loom — pattern, shed geometry, shedding torque, stagger, timing.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
@@ -111,6 +111,7 @@ pub fn run(cmd: LoomCommand) -> Result<()> {
         LoomCommand::Torque(a) => run_torque(a),
         LoomCommand::Stagger(a) => run_stagger(a),
         LoomCommand::Timing(a) => {
+            output::check_outputs([Some(Out::plot("--output", &a.output))])?;
             let (loom, pattern) = read(&a.loom, &a.pattern)?;
             output::figure(&timing_diagram(&loom, &pattern)?, &a.output, &a.plot)
         }
@@ -210,6 +211,7 @@ fn run_check(a: CheckArgs) -> Result<()> {
 }
 
 fn run_torque(a: TorqueArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
     if let Some(out) = &a.output {
@@ -243,6 +245,7 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
 }
 
 fn run_stagger(a: StaggerArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::file("--output", p))])?;
     let (loom, text) = read_loom(&a.loom)?;
     let pattern = read_pattern(&loom, &a.pattern)?;
     let objective = match a.objective {

@@ -1,7 +1,7 @@
 //! `loomkin merge`: the parts of a sharded run (`--parts DIR`) checked and joined into the
 //! one-machine output (library: [`loomkin_study::parts`]).
 
-use crate::output;
+use crate::output::{self, Out};
 use crate::util;
 use anyhow::Result;
 use clap::Args;
@@ -21,9 +21,7 @@ pub struct MergeArgs {
 
 /// Runs `merge`: exit 1 naming the missing or damaged parts when the check fails.
 pub fn run(a: MergeArgs) -> Result<()> {
-    if a.output.as_os_str().is_empty() {
-        anyhow::bail!("--output is empty: give a file name, or - for standard output");
-    }
+    output::check_outputs([Some(Out::file("--output", &a.output))])?;
     let set = loomkin_study::parts::find(&a.parts).map_err(util::part_error)?.check().map_err(util::part_error)?;
     let m = set.manifest();
     let (count, rows) = (m.shard.count, set.rows());

@@ -331,6 +331,72 @@ where
     out.flush().map_err(|e| WriteError::stdout(e).into())
 }
 
+/// A file a command is to write, named by its option (`--output`, `--dxf`), for [`check_outputs`].
+pub enum Out<'a> {
+    /// A plot: `.svg` or `.png`.
+    Plot(&'static str, &'a Path),
+    /// A file of any name, `-` meaning standard output.
+    File(&'static str, &'a Path),
+}
+
+impl<'a> Out<'a> {
+    /// A plot file given with `option`.
+    pub fn plot(option: &'static str, path: &'a (impl AsRef<Path> + ?Sized)) -> Self {
+        Out::Plot(option, path.as_ref())
+    }
+
+    /// A file (or `-`) given with `option`.
+    pub fn file(option: &'static str, path: &'a (impl AsRef<Path> + ?Sized)) -> Self {
+        Out::File(option, path.as_ref())
+    }
+
+    fn parts(&self) -> (&'static str, &'a Path) {
+        match self {
+            Out::Plot(o, p) | Out::File(o, p) => (o, p),
+        }
+    }
+}
+
+/// Checks every output of a command before anything is computed or written, so a bad name is the
+/// one line the run prints (not a line after warnings, nor after another output was written): a
+/// plot's extension and an empty name are the user's mistake (exit 2), as is one file named by two
+/// options; a folder that does not exist, or a name that is a folder, cannot be written (exit 1,
+/// the message the write itself would give).
+pub fn check_outputs<'a>(outs: impl IntoIterator<Item = Option<Out<'a>>>) -> anyhow::Result<()> {
+    let outs: Vec<Out<'a>> = outs.into_iter().flatten().collect();
+    for (i, out) in outs.iter().enumerate() {
+        let (option, path) = out.parts();
+        if path.to_string_lossy().trim().is_empty() {
+            let or_stdout = if matches!(out, Out::File(..)) { ", or - for standard output" } else { "" };
+            anyhow::bail!("{option} is empty: give a file name{or_stdout}");
+        }
+        if matches!(out, Out::File(..)) && path.as_os_str() == "-" {
+            continue;
+        }
+        if let Out::Plot(..) = out {
+            loomkin_plot::plot_format(path).map_err(|e| anyhow!("{option}: {e}"))?;
+        }
+        if let Some((other, _)) = outs[..i].iter().map(Out::parts).find(|(_, p)| *p == path) {
+            anyhow::bail!("{option}: {} is also the file of {other}: give each output its own name", path.display());
+        }
+        let name = path.display().to_string();
+        if path.is_dir() {
+            return Err(WriteError::file(&name, io::Error::new(io::ErrorKind::IsADirectory, "it is a folder")).into());
+        }
+        let folder = path.parent().filter(|f| !f.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        match std::fs::metadata(folder) {
+            Ok(m) if m.is_dir() => {}
+            Ok(_) => {
+                let cause =
+                    io::Error::new(io::ErrorKind::NotADirectory, format!("{} is not a folder", folder.display()));
+                return Err(WriteError::file(&name, cause).into());
+            }
+            Err(cause) => return Err(WriteError::file(&name, cause).into()),
+        }
+    }
+    Ok(())
+}
+
 /// Saves a figure with the user's size, resolution and title, naming the file in the error.
 pub fn figure(fig: &loomkin_plot::Figure, path: &Path, opts: &crate::util::PlotOpts) -> anyhow::Result<()> {
     let fig = fig.clone().with_page(&opts.page()?).map_err(crate::util::page_error)?;

@@ -1,6 +1,6 @@
 //! `loomkin pick …`: shuttle picking dynamics of an elastic under-pick mechanism (Jederán 1959).
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::shard::ShardArgs;
 use crate::util::{self, Format};
 use anyhow::{Result, bail};
@@ -433,6 +433,7 @@ const SWEEP_ODE_S_PER_POINT: f64 = 2.0 * 400e-6;
 const SWEEP_BYTES_PER_POINT: f64 = 200.0;
 
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let setting = Setting::parse(&a.setting)?;
     Sweep::POINTS.check_count_as("--points", a.points)?;
     a.shard.check(a.format)?;
@@ -571,6 +572,7 @@ fn sweep_figure(s: &Sweep, crossings: &[f64]) -> Figure {
 }
 
 fn plot(a: PlotArgs) -> Result<()> {
+    output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     History::PLOT_POINTS.check_count_as("--points", a.points)?;
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);

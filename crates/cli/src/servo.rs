@@ -1,7 +1,7 @@
 //! `loomkin servo …`: servo motion laws from definition points (Sivčák 2017), drive torque,
 //! controller export, optimisation.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -418,6 +418,7 @@ fn print_optimized(
 }
 
 fn export(a: ExportArgs) -> Result<()> {
+    output::check_outputs([Some(Out::file("--output", &a.output))])?;
     let sl = a.def.build()?;
     let d = a.drive.load()?;
     let file = loomkin_servo::export(&sl, &d, a.format, a.step_deg)?;
@@ -467,6 +468,7 @@ fn export(a: ExportArgs) -> Result<()> {
 }
 
 fn plot(a: PlotArgs) -> Result<()> {
+    output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     check_speeds(&a.speed_rpm)?;
     let d = a.drive.load()?;
     let mut laws = vec![("given", a.def.build()?)];

@@ -1,5 +1,6 @@
 //! `loomkin servo check`: a servo axis (motor and load from a TOML file) moving a cycle.
 
+use crate::output::Out;
 use crate::{output, util};
 use anyhow::Result;
 use clap::Args;
@@ -36,6 +37,7 @@ pub struct CheckArgs {
 
 /// Runs `servo check`.
 pub fn run(a: CheckArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let (cycle, _) = a.rise.cycle(a.cycle.as_deref())?;
     let text = util::read_input(&a.axis)?;
     let axis = Axis::from_toml(&text, cycle.unit).map_err(|e| anyhow::anyhow!("{}: {e}", a.axis.display()))?;

@@ -1,6 +1,6 @@
 //! `loomkin shed …`: heald-frame laws, dwell criteria, experiment tables, Pareto choice.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, failure};
 use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
@@ -332,6 +332,7 @@ fn list(a: ListArgs) -> Result<()> {
 }
 
 fn law(a: LawArgs) -> Result<()> {
+    output::check_outputs([a.emit_cycle.as_ref().map(|p| Out::file("--emit-cycle", p))])?;
     let (name, mut law) = load(a.name.as_deref(), a.spec.as_ref())?;
     if let Some(m) = a.motion_deg {
         law = law.with_motion_deg(m)?;
@@ -592,6 +593,7 @@ fn table(a: TableArgs) -> Result<()> {
 }
 
 fn pareto(a: ParetoArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let cond = conditions(&a.physical, a.threshold.threshold)?;
     let front = if let Some(inputs) = &a.from {
         let d = &a.d;
@@ -675,6 +677,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
 }
 
 fn best(a: BestArgs) -> Result<()> {
+    output::check_outputs([a.emit_cycle.as_ref().map(|p| Out::file("--emit-cycle", p))])?;
     let req = a.loom.requirement(a.physical.speed_rpm)?;
     let (w, t) = match (&req, a.window_deg) {
         (Some(r), _) => (r.required_window_deg()?, a.threshold.unwrap_or(r.threshold())),
@@ -759,6 +762,7 @@ fn window(a: WindowArgs) -> Result<()> {
 }
 
 fn plot(a: PlotArgs) -> Result<()> {
+    output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     if a.laws.is_empty() && a.spec.is_empty() {
         bail!("give at least one law name or --spec FILE.toml");
     }

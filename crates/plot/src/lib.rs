@@ -451,13 +451,11 @@ impl Figure {
         Ok(self)
     }
 
-    /// Renders to `path`; the extension (`.svg` or `.png`) chooses the format.
+    /// Renders to `path`; the extension (`.svg` or `.png`) chooses the format (see [`plot_format`]).
     pub fn save(&self, path: &Path) -> Result<(), IoError> {
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        let bytes = match ext.as_deref() {
-            Some("svg") => self.to_svg()?.into_bytes(),
-            Some("png") => self.to_png()?,
-            _ => return Err(IoError::PlotFormat { path: path.display().to_string() }),
+        let bytes = match plot_format(path)? {
+            PlotFormat::Svg => self.to_svg()?.into_bytes(),
+            PlotFormat::Png => self.to_png()?,
         };
         std::fs::write(path, bytes).map_err(|cause| IoError::File { path: path.display().to_string(), cause })
     }
@@ -474,6 +472,26 @@ impl Figure {
     /// Renders to a PNG file's bytes (the SVG rasterised, antialiased, at the figure's DPI).
     pub fn to_png(&self) -> Result<Vec<u8>, IoError> {
         raster::png(&self.to_svg()?, self.pixel_size(), self.dpi)
+    }
+}
+
+/// The file format of a plot, chosen by the file's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlotFormat {
+    /// `.svg` (any case).
+    Svg,
+    /// `.png` (any case).
+    Png,
+}
+
+/// The format [`Figure::save`] writes to `path`, or [`IoError::PlotFormat`] for an extension other
+/// than `.svg` or `.png`: a front end checks every output's name with it before any work is done.
+pub fn plot_format(path: &Path) -> Result<PlotFormat, IoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(PlotFormat::Svg),
+        Some("png") => Ok(PlotFormat::Png),
+        _ => Err(IoError::PlotFormat { path: path.display().to_string() }),
     }
 }
 

@@ -80,3 +80,79 @@ fn no_message_after_a_failed_output() {
         assert!(err.starts_with("loomkin: error: cannot write standard output"), "{args:?}: {err}");
     }
 }
+
+/// Every output of a command is checked before anything is computed or written (issue 27): a bad
+/// plot name after a good `--dxf` leaves no DXF behind, a folder that does not exist is the one
+/// line on stderr (not a line after the run's warnings), one file named by two options is refused.
+#[test]
+fn every_output_is_checked_before_any_is_written() {
+    let dir = std::env::temp_dir().join(format!("loomkin-outputs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let heald = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml");
+    let profile = ["cam", "profile", heald, "--follower", "translating"];
+    let missing = p("no-such-folder/r.png");
+    // (arguments, exit code, words of the one line, files that must not appear)
+    type Case<'a> = (Vec<String>, i32, Vec<&'a str>, Vec<String>);
+    let cases: Vec<Case> = vec![
+        (
+            [&profile[..], &["--dxf", &p("side.dxf"), "-o", &p("plot.jpg")]]
+                .concat()
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            2,
+            vec!["--output", "plot.jpg", ".svg or .png"],
+            vec![p("side.dxf")],
+        ),
+        (
+            [&profile[..], &["--dxf", &p("same.svg"), "-o", &p("same.svg")]]
+                .concat()
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            2,
+            vec!["--output", "same.svg", "--dxf"],
+            vec![p("same.svg")],
+        ),
+        (
+            // This run warns (rigidity ratio below 10): the bad name comes first and alone.
+            ["dyn", "response", heald, "--speed-rpm", "600", "--natural-hz", "54", "-o", &missing]
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            1,
+            vec!["cannot write", "no-such-folder/r.png"],
+            vec![],
+        ),
+        (
+            ["dobby", "synthesize", "--dwell-deg", "30", "--dxf", &p("cams.dxf"), "--points-csv", &p("none/c.csv")]
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            1,
+            vec!["cannot write", "none/c.csv"],
+            vec![p("cams.dxf")],
+        ),
+        (
+            ["law", "plot", "cycloidal", "-o", &p("")].iter().map(|s| s.to_string()).collect(),
+            2,
+            vec!["--output", ".svg or .png"],
+            vec![],
+        ),
+    ];
+    for (args, code, words, absent) in cases {
+        let out = Command::new(binary()).args(&args).stdout(Stdio::piped()).stderr(Stdio::piped()).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: not one line: {err}");
+        for w in words {
+            assert!(err.contains(w), "{args:?}: lacks '{w}': {err}");
+        }
+        for f in absent {
+            assert!(!std::path::Path::new(&f).exists(), "{args:?}: {f} was written");
+        }
+        assert!(out.stdout.is_empty(), "{args:?}: wrote to stdout");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
