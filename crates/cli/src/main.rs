@@ -24,6 +24,7 @@ mod servo;
 mod servo_check;
 mod shard;
 mod shed;
+mod sley;
 mod util;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -73,6 +74,9 @@ enum Command {
     /// The whole loom: weave pattern (WIF, lift plan), shed geometry, shedding torque, stagger, timing diagram.
     #[command(subcommand)]
     Loom(loom::LoomCommand),
+    /// The sley (batten) linkage: reed motion, back dwell, forces and crank torque; a four-bar for a stroke and dwell.
+    #[command(subcommand)]
+    Sley(sley::SleyCommand),
     /// The parts of a sharded run (--parts DIR) checked and joined into the one-machine output.
     Merge(merge::MergeArgs),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
@@ -96,6 +100,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Cam(cmd) => cam::run(cmd),
         Command::Dyn(cmd) => dynamics::run(cmd),
         Command::Loom(cmd) => loom::run(cmd),
+        Command::Sley(cmd) => sley::run(cmd),
         Command::Merge(args) => merge::run(args),
         Command::Serve(args) => serve::run(args),
     }

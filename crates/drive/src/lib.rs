@@ -29,4 +29,5 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     SleyTable::BEAT_UP_FORCE_N,
     SleyTable::BEAT_UP_RANGE_DEG,
     SleyAnalysis::DWELL_TOLERANCE_MM,
+    SleyAnalysis::POINTS,
 ];

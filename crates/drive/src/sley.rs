@@ -46,7 +46,7 @@ pub enum SleyError {
     /// Dimensions that do not make a crank-rocker, or a target no linkage meets.
     #[error("{fields}: {reason}")]
     Infeasible {
-        /// The fields at fault, comma-separated (`crank_mm, pivot_x_mm, pivot_y_mm`).
+        /// The fields at fault, comma-separated (`sley.crank_mm, sley.pivot_x_mm, sley.pivot_y_mm`).
         fields: String,
         /// Why, with the numbers.
         reason: String,
@@ -56,20 +56,6 @@ pub enum SleyError {
 impl SleyError {
     fn infeasible(fields: &str, reason: String) -> Self {
         Self::Infeasible { fields: fields.into(), reason }
-    }
-
-    /// The same error with every field name prefixed (`sley.` inside a loom file).
-    pub fn prefixed(self, prefix: &str) -> Self {
-        match self {
-            Self::Range(e) => {
-                let f = format!("{prefix}{}", e.field);
-                Self::Range(e.renamed(f))
-            }
-            Self::Infeasible { fields, reason } => Self::Infeasible {
-                fields: fields.split(", ").map(|f| format!("{prefix}{f}")).collect::<Vec<_>>().join(", "),
-                reason,
-            },
-        }
     }
 }
 
@@ -158,59 +144,59 @@ const MAX_LENGTH_MM: f64 = 1e4;
 impl SleyTable {
     /// `crank_mm`: 0 < r ≤ 10⁴ mm.
     pub const CRANK_MM: Field = Field::new(
-        "crank_mm",
+        "sley.crank_mm",
         Range::open_closed(0.0, MAX_LENGTH_MM, "mm"),
         "Crank radius r of the sley drive: 0 < r ≤ 10000 mm (a length; the crank must also be the linkage's \
          shortest link, checked with the other lengths).",
     );
     /// `rod_mm`: 0 < b ≤ 10⁴ mm.
     pub const ROD_MM: Field = Field::new(
-        "rod_mm",
+        "sley.rod_mm",
         Range::open_closed(0.0, MAX_LENGTH_MM, "mm"),
         "Connecting rod b, crank pin to the sword's pin: 0 < b ≤ 10000 mm (the loop's closure is checked with \
          the other lengths).",
     );
     /// `sword_mm`: 0 < c ≤ 10⁴ mm.
     pub const SWORD_MM: Field = Field::new(
-        "sword_mm",
+        "sley.sword_mm",
         Range::open_closed(0.0, MAX_LENGTH_MM, "mm"),
         "Sword c, rocking shaft to the rod's pin: 0 < c ≤ 10000 mm.",
     );
     /// `pivot_x_mm`: |x| ≤ 10⁴ mm.
     pub const PIVOT_X_MM: Field = Field::new(
-        "pivot_x_mm",
+        "sley.pivot_x_mm",
         Range::closed(-MAX_LENGTH_MM, MAX_LENGTH_MM, "mm"),
         "The rocking shaft's x from the crank centre, toward the fell: −10000 … 10000 mm (it must lie farther \
          from the crank centre than the crank radius).",
     );
     /// `pivot_y_mm`: |y| ≤ 10⁴ mm.
     pub const PIVOT_Y_MM: Field = Field::new(
-        "pivot_y_mm",
+        "sley.pivot_y_mm",
         Range::closed(-MAX_LENGTH_MM, MAX_LENGTH_MM, "mm"),
         "The rocking shaft's y from the crank centre, up: −10000 … 10000 mm.",
     );
     /// `reed_height_mm`: 0 < h ≤ 10⁴ mm.
     pub const REED_HEIGHT_MM: Field = Field::new(
-        "reed_height_mm",
+        "sley.reed_height_mm",
         Range::open_closed(0.0, MAX_LENGTH_MM, "mm"),
         "Rocking shaft to the reed's beating point, on the sword's line: 0 < h ≤ 10000 mm (the reed's travel \
          and the inertia force at the reed scale with it).",
     );
     /// `mass_kg`: 0 < m ≤ 10⁴ kg.
     pub const MASS_KG: Field = Field::new(
-        "mass_kg",
+        "sley.mass_kg",
         Range::open_closed(0.0, 1e4, "kg"),
         "The sley's moving mass (swords, beam, reed, race board): 0 < m ≤ 10000 kg.",
     );
     /// `gyration_mm`: 0 < k ≤ 10⁴ mm.
     pub const GYRATION_MM: Field = Field::new(
-        "gyration_mm",
+        "sley.gyration_mm",
         Range::open_closed(0.0, MAX_LENGTH_MM, "mm"),
         "Radius of gyration k of the sley about the rocking shaft (J = m·k²): 0 < k ≤ 10000 mm.",
     );
     /// `centre_mm`: 0 ≤ g ≤ k; left out, `gyration_mm`.
     pub const CENTRE_MM: Field = Field::new(
-        "centre_mm",
+        "sley.centre_mm",
         Range::closed(0.0, MAX_LENGTH_MM, "mm"),
         "Rocking shaft to the sley's centre of mass, on the sword's line: 0 ≤ g ≤ gyration_mm (the inertia \
          about the centre of mass, m·(k² − g²), cannot be negative); left out, gyration_mm (the mass taken at \
@@ -218,7 +204,7 @@ impl SleyTable {
     );
     /// `beat_up_deg`: 0 ≤ φ_b < 360°, default 0.
     pub const BEAT_UP_DEG: Field = Field::new(
-        "beat_up_deg",
+        "sley.beat_up_deg",
         Range::closed_open(0.0, 360.0, "deg"),
         "Main-shaft angle at which the reed reaches its front dead centre (beat-up): 0 ≤ φ_b < 360°; 0° when \
          left out (loomkin's angles count from beat-up).",
@@ -226,7 +212,7 @@ impl SleyTable {
     .with_default(0.0);
     /// `beat_up_force_n`: 0 ≤ F ≤ 10⁶ N, default 0 (none).
     pub const BEAT_UP_FORCE_N: Field = Field::new(
-        "beat_up_force_n",
+        "sley.beat_up_force_n",
         Range::closed(0.0, 1e6, "N"),
         "Largest beat-up resistance of the cloth fell at the reed, reached at front dead centre: 0 ≤ F ≤ 10⁶ N; \
          0 (none) when left out.",
@@ -234,7 +220,7 @@ impl SleyTable {
     .with_default(0.0);
     /// `beat_up_range_deg`: 0 ≤ Δ < 360°, default 0; at most the reed's forward stroke (checked).
     pub const BEAT_UP_RANGE_DEG: Field = Field::new(
-        "beat_up_range_deg",
+        "sley.beat_up_range_deg",
         Range::closed_open(0.0, 360.0, "deg"),
         "Main-shaft angle before front dead centre over which the beat-up resistance rises from 0 to \
          beat_up_force_n: 0 ≤ Δ and at most the reed's forward stroke from back to front dead centre (the \
@@ -422,7 +408,7 @@ impl FourBarSley {
         let d = px.hypot(py);
         if r >= d {
             return Err(SleyError::infeasible(
-                "crank_mm, pivot_x_mm, pivot_y_mm",
+                "sley.crank_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
                     "the crank ({r} mm) reaches the rocking shaft ({} mm from the crank centre): a crank-rocker \
                      needs crank_mm < the pivot distance",
@@ -432,7 +418,7 @@ impl FourBarSley {
         }
         if d + r >= b + c {
             return Err(SleyError::infeasible(
-                "crank_mm, rod_mm, sword_mm, pivot_x_mm, pivot_y_mm",
+                "sley.crank_mm, sley.rod_mm, sley.sword_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
                     "the loop does not close with the crank pointing away from the rocking shaft: crank + pivot \
                      distance = {} mm, not less than rod + sword = {} mm",
@@ -443,7 +429,7 @@ impl FourBarSley {
         }
         if d - r <= (b - c).abs() {
             return Err(SleyError::infeasible(
-                "crank_mm, rod_mm, sword_mm, pivot_x_mm, pivot_y_mm",
+                "sley.crank_mm, sley.rod_mm, sley.sword_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
                     "the loop does not close with the crank pointing toward the rocking shaft: pivot distance − \
                      crank = {} mm, not more than |rod − sword| = {} mm",
@@ -492,7 +478,7 @@ impl FourBarSley {
         let (front, back) = if reed_x(ext.1) >= reed_x(fold.1) { (ext, fold) } else { (fold, ext) };
         if reed_x(front.1) - reed_x(back.1) <= 1e-12 * s.h {
             return Err(SleyError::infeasible(
-                "pivot_x_mm, pivot_y_mm, assembly",
+                "sley.pivot_x_mm, sley.pivot_y_mm, sley.assembly",
                 "the reed's two dead centres lie equally far from the fell: the reed does not beat toward it (the \
                  sword swings about the horizontal)"
                     .into(),
@@ -892,6 +878,22 @@ impl SleyAnalysis {
          left out (a clearance the carrier's path keeps to the reed).",
     )
     .with_default(1.0);
+
+    /// Rows of the curves over one turn (`--points`): 720, every 0.5°, when left out.
+    pub const POINTS: Field = Field::count(
+        "points",
+        Range::closed(2.0, 1e6, ""),
+        "Intervals of the sley's curves over one turn: 2 … 10⁶ (the rows are held in memory, 64 bytes each); \
+         720 (every 0.5°) when left out.",
+    )
+    .with_default(720.0);
+
+    /// The back dwell as main-shaft angle intervals within one turn `[0, 360]`, deg: one, or two
+    /// when the dwell straddles 0°.
+    pub fn dwell_bands_deg(&self) -> Vec<(f64, f64)> {
+        let (a, b) = (self.dwell_start_deg, self.dwell_end_deg);
+        if a <= b { vec![(a, b)] } else { vec![(a, 360.0), (0.0, b)] }
+    }
 
     /// Intervals of the grid whose peaks the analysis refines: 0.5° apart, so no two extremes of a
     /// four-bar's curves (a handful per turn) share one.

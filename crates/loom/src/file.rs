@@ -495,20 +495,19 @@ impl Loom {
 /// The `[sley]` table checked by the drive crate, its errors named `sley.…`; a left-out
 /// `beat_up_deg` is the loom's beat-up angle, a given one must equal it.
 fn read_sley(mut t: toml::Table, beat_up_deg: f64) -> Result<FourBarSley> {
-    let key = SleyTable::BEAT_UP_DEG.name;
-    if !t.contains_key(key) {
-        t.insert(key.into(), toml::Value::Float(beat_up_deg));
+    if !t.contains_key("beat_up_deg") {
+        t.insert("beat_up_deg".into(), toml::Value::Float(beat_up_deg));
     }
     let table: SleyTable =
         t.try_into().map_err(|e: toml::de::Error| LoomError::field("sley", e.message().trim().to_string()))?;
-    let sley = FourBarSley::new(table).map_err(|e| match e.prefixed("sley.") {
+    let sley = FourBarSley::new(table).map_err(|e| match e {
         SleyError::Range(r) => LoomError::Range(r),
         SleyError::Infeasible { fields, reason } => LoomError::Infeasible { field: fields, reason },
         other => LoomError::field("sley", other.to_string()),
     })?;
     if sley.table().beat_up_deg != beat_up_deg {
         return Err(LoomError::field(
-            "sley.beat_up_deg",
+            SleyTable::BEAT_UP_DEG.name,
             format!(
                 "{}° but [beat_up] angle_deg is {}°: the reed's front dead centre is the beat-up (leave one out)",
                 loomkin_units::compact(sley.table().beat_up_deg),

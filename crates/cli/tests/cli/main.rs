@@ -17,5 +17,6 @@ mod serve;
 mod servo;
 mod shard;
 mod shed;
+mod sley;
 mod snapshots;
 mod units;

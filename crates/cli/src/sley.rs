@@ -1,0 +1,185 @@
+//! `loomkin sley …`: the sley (batten) linkage of a loom file — reed motion, back dwell, forces,
+//! crank torque — and the synthesis of a four-bar for a target stroke and back dwell.
+
+use crate::output::{self, outln};
+use crate::util::{self, Format};
+use anyhow::{Result, anyhow};
+use clap::{Args, Subcommand};
+use loomkin_drive::{FourBarSley, SleyAnalysis, SleyError, SleyRow};
+use loomkin_io::Table;
+use loomkin_loom::Loom;
+use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
+use loomkin_units::ShaftSpeed;
+use std::path::{Path, PathBuf};
+
+/// `loomkin sley`.
+#[derive(Debug, Subcommand)]
+pub enum SleyCommand {
+    /// The sley of a loom file: reed stroke and back dwell, reed motion, inertia force, rod and bearing forces, crank torque.
+    Analyze(AnalyzeArgs),
+}
+
+/// `loomkin sley analyze`.
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    /// The loom file (TOML) with a [sley] table.
+    loom: PathBuf,
+    /// Main-shaft speed in rpm (default: the loom file's `speed_rpm`).
+    #[arg(long)]
+    speed_rpm: Option<f64>,
+    /// How near its back position the reed counts as dwelling, mm (below the reed's stroke).
+    #[arg(long, default_value_t = SleyAnalysis::DWELL_TOLERANCE_MM.default_value())]
+    dwell_tolerance_mm: f64,
+    /// Curve rows of --csv and the plot over one turn.
+    #[arg(long, default_value_t = SleyAnalysis::POINTS.default_count())]
+    points: usize,
+    #[command(flatten)]
+    format: Format,
+    /// Plot reed displacement, velocity, acceleration and the crank torque to this file (.svg or .png).
+    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: util::PlotOpts,
+}
+
+/// Runs `loomkin sley …`.
+pub fn run(cmd: SleyCommand) -> Result<()> {
+    match cmd {
+        SleyCommand::Analyze(a) => run_analyze(a),
+    }
+}
+
+/// The loom file's sley and speed.
+fn read_sley(path: &Path) -> Result<(FourBarSley, Loom)> {
+    let text = util::read_input(path)?;
+    let loom = Loom::from_toml(&text).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let sley = loom.sley.ok_or_else(|| {
+        anyhow!(
+            "{}: sley: the loom file has no [sley] table (crank_mm, rod_mm, sword_mm, …; see docs/drive.md)",
+            path.display()
+        )
+    })?;
+    Ok((sley, loom))
+}
+
+/// A library error about the dwell tolerance, named by the flag.
+fn flag_named(e: SleyError) -> anyhow::Error {
+    match e {
+        SleyError::Range(r) if r.field == SleyAnalysis::DWELL_TOLERANCE_MM.name => {
+            r.renamed("--dwell-tolerance-mm").into()
+        }
+        e => e.into(),
+    }
+}
+
+fn run_analyze(a: AnalyzeArgs) -> Result<()> {
+    let (sley, loom) = read_sley(&a.loom)?;
+    let speed = match a.speed_rpm {
+        Some(v) => ShaftSpeed::from_rpm_field("--speed-rpm", v)?,
+        None => loom.speed,
+    };
+    SleyAnalysis::DWELL_TOLERANCE_MM.check_as("--dwell-tolerance-mm", a.dwell_tolerance_mm)?;
+    SleyAnalysis::POINTS.check_count_as("--points", a.points)?;
+    let r = sley.analyze(speed, a.dwell_tolerance_mm).map_err(flag_named)?;
+    let omega = speed.rad_per_s();
+    if let Some(out) = &a.output {
+        let name = if loom.name.is_empty() { util::file_name(&a.loom) } else { loom.name.clone() };
+        return output::figure(&figure(&name, &sley, &r, &sley.curve(a.points, omega), omega), out, &a.plot);
+    }
+    if a.format.csv {
+        let mut t = Table::new([
+            "angle_deg",
+            "reed_mm",
+            "velocity_m_s",
+            "acceleration_m_s2",
+            "jerk_m_s3",
+            "inertia_force_n",
+            "rod_force_n",
+            "crank_torque_n_m",
+        ]);
+        for row in sley.curve(a.points, omega) {
+            t.push(vec![
+                row.angle_deg,
+                row.reed_mm,
+                row.velocity_m_s,
+                row.acceleration_m_s2,
+                row.jerk_m_s3,
+                row.inertia_force_n,
+                row.rod_force_n,
+                row.crank_torque_n_m,
+            ])?;
+        }
+        return output::csv(&t);
+    }
+    if a.format.json {
+        return output::json(&r);
+    }
+    outln!(
+        "sley at {} rpm: reed stroke {:.3} mm, back dwell {:.3}° within {} mm ({:.3}° to {:.3}°)",
+        r.speed_rpm,
+        r.reed_stroke_mm,
+        r.back_dwell_deg,
+        r.dwell_tolerance_mm,
+        r.dwell_start_deg,
+        r.dwell_end_deg
+    )?;
+    outln!(
+        "front dead centre at {:.3}°, back dead centre at {:.3}°; least transmission angle {:.3}°",
+        r.front_dead_centre_deg,
+        r.back_dead_centre_deg,
+        r.min_transmission_angle_deg
+    )?;
+    outln!(
+        "reed: peak velocity {:.4} m/s, peak acceleration {:.4} m/s² at {:.3}°, peak jerk {:.4e} m/s³",
+        r.peak_reed_velocity_m_s,
+        r.peak_reed_acceleration_m_s2,
+        r.peak_reed_acceleration_deg,
+        r.peak_reed_jerk_m_s3
+    )?;
+    outln!(
+        "inertia force along the reed's path (J = {:.4} kg·m²): max {:.3} N at {:.3}°, min {:.3} N at {:.3}°",
+        r.inertia_kg_m2,
+        r.max_inertia_force_n,
+        r.max_inertia_force_deg,
+        r.min_inertia_force_n,
+        r.min_inertia_force_deg
+    )?;
+    outln!(
+        "peak crank torque {:.3} N·m at {:.3}°; peak rod force {:.3} N, peak rocking-shaft force {:.3} N",
+        r.peak_crank_torque_n_m,
+        r.peak_crank_torque_deg,
+        r.peak_rod_force_n,
+        r.peak_rocking_shaft_force_n
+    )
+}
+
+/// Four panels over the turn: the reed's displacement (the back dwell shaded), velocity,
+/// acceleration, and the crank torque; peaks noted.
+fn figure(name: &str, sley: &FourBarSley, r: &SleyAnalysis, rows: &[SleyRow], omega: f64) -> Figure {
+    let pts = |f: &dyn Fn(&SleyRow) -> f64| rows.iter().map(|q| (q.angle_deg, f(q))).collect::<Vec<_>>();
+    let label = format!("dwell {}°", sig4(r.back_dwell_deg));
+    let dwell =
+        r.dwell_bands_deg().into_iter().enumerate().map(|(i, (from, to))| {
+            XBand::new(from, to, if i == 0 { label.clone() } else { String::new() }, XBand::DWELL)
+        });
+    let acc_at = r.peak_reed_acceleration_deg;
+    let acc = sley.reed(acc_at.to_radians()).acceleration_m_s2(omega);
+    let torque_at = r.peak_crank_torque_deg;
+    let torque = sley.forces(torque_at.to_radians(), omega).crank_torque_n_m;
+    let panels = vec![
+        Panel::new("reed [mm]", vec![Series::line("displacement from the back dead centre", pts(&|q| q.reed_mm))])
+            .with_x_bands(dwell),
+        Panel::new("velocity [m/s]", vec![Series::line("reed velocity", pts(&|q| q.velocity_m_s))]),
+        Panel::new("acceleration [m/s²]", vec![Series::line("reed acceleration", pts(&|q| q.acceleration_m_s2))])
+            .with_notes([Note::new(acc_at, acc, format!("peak {} m/s² at {}°", sig4(acc), sig4(acc_at)))]),
+        Panel::new("crank torque [N·m]", vec![Series::line("crank torque", pts(&|q| q.crank_torque_n_m))])
+            .with_notes([Note::new(torque_at, torque, format!("peak {} N·m at {}°", sig4(torque), sig4(torque_at)))]),
+    ];
+    let title = format!(
+        "{name}: sley at {} rpm, stroke {} mm, back dwell {}°",
+        sig4(r.speed_rpm),
+        sig4(r.reed_stroke_mm),
+        sig4(r.back_dwell_deg)
+    );
+    Figure::new(title, "main-shaft angle [deg]", panels)
+}

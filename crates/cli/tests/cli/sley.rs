@@ -1,0 +1,100 @@
+//! `loomkin sley …`: the contract keys, the plot, the errors.
+
+use crate::common::{loomkin, stdout_json, usage_error};
+use std::path::PathBuf;
+
+fn ex(name: &str) -> String {
+    concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/").to_string() + name
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("loomkin-sley-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn analyze_json_has_the_contract_keys() {
+    let v = stdout_json(&["sley", "analyze", &ex("rapier-loom.toml"), "--json"]);
+    for key in [
+        "reed_stroke_mm",
+        "back_dwell_deg",
+        "dwell_tolerance_mm",
+        "peak_reed_acceleration_m_s2",
+        "max_inertia_force_n",
+        "min_inertia_force_n",
+        "peak_crank_torque_n_m",
+        "min_transmission_angle_deg",
+        "front_dead_centre_deg",
+        "back_dead_centre_deg",
+    ] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    assert_eq!(v["dwell_tolerance_mm"], 1.0);
+    assert_eq!(v["speed_rpm"], 500.0);
+    // Signed along the reed's path: the sley decelerates into beat-up.
+    assert!(v["min_inertia_force_n"].as_f64().unwrap() < 0.0 && v["max_inertia_force_n"].as_f64().unwrap() > 0.0);
+    // A wider tolerance, a longer dwell; a speed flag scales the forces by its square (no beat-up
+    // force changes with speed, so the inertia force alone does).
+    let wide = stdout_json(&["sley", "analyze", &ex("rapier-loom.toml"), "--dwell-tolerance-mm", "3", "--json"]);
+    assert!(wide["back_dwell_deg"].as_f64().unwrap() > v["back_dwell_deg"].as_f64().unwrap());
+    let slow = stdout_json(&["sley", "analyze", &ex("rapier-loom.toml"), "--speed-rpm", "250", "--json"]);
+    let ratio = slow["max_inertia_force_n"].as_f64().unwrap() / v["max_inertia_force_n"].as_f64().unwrap();
+    assert!((ratio - 0.25).abs() < 1e-9, "{ratio}");
+    assert_eq!(slow["reed_stroke_mm"], v["reed_stroke_mm"]);
+}
+
+#[test]
+fn analyze_text_csv_and_plot() {
+    let out = loomkin().args(["sley", "analyze", &ex("shuttle-loom.toml")]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("sley at 200 rpm: reed stroke 130.785 mm"), "{text}");
+    assert!(text.contains("peak crank torque"), "{text}");
+    let out = loomkin().args(["sley", "analyze", &ex("shuttle-loom.toml"), "--csv", "--points", "8"]).output().unwrap();
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "angle_deg,reed_mm,velocity_m_s,acceleration_m_s2,jerk_m_s3,inertia_force_n,rod_force_n,crank_torque_n_m"
+    );
+    assert_eq!(lines.len(), 10);
+    assert!(lines[1].starts_with("0,130.78"), "{}", lines[1]);
+    let dir = scratch("plot");
+    for ext in ["svg", "png"] {
+        let path = dir.join(format!("sley.{ext}"));
+        let out = loomkin()
+            .args(["sley", "analyze", &ex("rapier-loom.toml"), "-o", path.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+    }
+    let svg = std::fs::read_to_string(dir.join("sley.svg")).unwrap();
+    assert!(svg.contains("crank torque [N·m]") && svg.contains("dwell 26.09°"), "the panels and the dwell band");
+}
+
+#[test]
+fn analyze_errors_are_one_line() {
+    let dir = scratch("errors");
+    let text = std::fs::read_to_string(ex("rapier-loom.toml")).unwrap();
+    let bare = dir.join("no-sley.toml");
+    std::fs::write(&bare, &text[..text.find("\n# The sley").unwrap()]).unwrap();
+    usage_error(&["sley", "analyze", bare.to_str().unwrap()], &["no [sley] table"]);
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, text.replace("rod_mm = 120", "rod_mm = 20")).unwrap();
+    usage_error(&["sley", "analyze", bad.to_str().unwrap()], &["sley.crank_mm, sley.rod_mm", "does not close"]);
+    std::fs::write(&bad, text.replace("crank_mm = 40", "crank_mm = 0")).unwrap();
+    usage_error(
+        &["sley", "analyze", bad.to_str().unwrap()],
+        &["sley.crank_mm = 0 is out of range: allowed 0 < sley.crank_mm ≤ 10000 mm"],
+    );
+    let r = ex("rapier-loom.toml");
+    usage_error(
+        &["sley", "analyze", &r, "--dwell-tolerance-mm", "0"],
+        &["--dwell-tolerance-mm = 0", "0 < --dwell-tolerance-mm"],
+    );
+    usage_error(&["sley", "analyze", &r, "--dwell-tolerance-mm", "113"], &["--dwell-tolerance-mm = 113", "< 112.8"]);
+    usage_error(&["sley", "analyze", &r, "--speed-rpm", "-5"], &["--speed-rpm = -5"]);
+    usage_error(&["sley", "analyze", &r, "--points", "1"], &["--points = 1"]);
+}
