@@ -1,7 +1,7 @@
 //! `loomkin sley …`: the sley (batten) linkage of a loom file — reed motion, back dwell, forces,
 //! crank torque — and the synthesis of a four-bar for a target stroke and back dwell.
 
-use crate::output::{self, outln};
+use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand};
@@ -73,6 +73,7 @@ fn flag_named(e: SleyError) -> anyhow::Error {
 }
 
 fn run_analyze(a: AnalyzeArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let (sley, loom) = read_sley(&a.loom)?;
     let speed = match a.speed_rpm {
         Some(v) => ShaftSpeed::from_rpm_field("--speed-rpm", v)?,

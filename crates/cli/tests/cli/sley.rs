@@ -97,4 +97,5 @@ fn analyze_errors_are_one_line() {
     usage_error(&["sley", "analyze", &r, "--dwell-tolerance-mm", "113"], &["--dwell-tolerance-mm = 113", "< 112.8"]);
     usage_error(&["sley", "analyze", &r, "--speed-rpm", "-5"], &["--speed-rpm = -5"]);
     usage_error(&["sley", "analyze", &r, "--points", "1"], &["--points = 1"]);
+    usage_error(&["sley", "analyze", &bare.to_string_lossy(), "-o", "plot.jpg"], &["plot.jpg"]);
 }
