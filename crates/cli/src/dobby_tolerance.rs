@@ -10,7 +10,7 @@ use anyhow::Result;
 use clap::Args;
 use loomkin_mech::Tolerance;
 use loomkin_mech::tolerance::{Draw, Report};
-use loomkin_study::{Progress, Summary};
+use loomkin_study::Summary;
 use std::path::PathBuf;
 
 /// `dobby tolerance`.
@@ -40,12 +40,11 @@ pub fn run(a: ToleranceArgs) -> Result<()> {
             t.report_from(&source).map_err(util::part_error)?
         }
         None => {
-            let run = |items: std::ops::Range<u64>| {
-                crate::util::budget().check("draws", t.draws, t.cost(items.clone()))?;
-                Ok(t.run(items, Progress::Auto))
-            };
+            let check = |items| Ok(crate::util::budget().check("draws", t.draws, t.cost(items))?);
+            let run = |items, progress| t.run(items, progress);
             let refused = "do not run over the turn";
-            let Some(draws) = draws::collect::<Draw>(t.draws, a.format, &a.shard, &t.facts(), refused, run)? else {
+            let Some(draws) = draws::collect::<Draw>(t.draws, a.format, &a.shard, &t.facts(), refused, check, run)?
+            else {
                 return Ok(());
             };
             t.report(&draws)

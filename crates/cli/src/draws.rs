@@ -8,14 +8,20 @@ use crate::output::{self, outln};
 use crate::shard::ShardArgs;
 use crate::util::{self, Format};
 use anyhow::Result;
-use loomkin_io::Table;
 use loomkin_study::draws::DrawSource;
-use loomkin_study::{DrawEntry, DrawRow, Summary};
+use loomkin_study::{DrawEntry, DrawRow, Progress, Summary};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-/// The draws of a study for its report, run on this shard's indices (`run` checks their cost
-/// first). `None` when they were printed instead (`--csv`, or `--json` with `--shard`/`--parts`).
+/// Draws computed (in parallel) and printed at a time by `--csv` and JSON Lines: the memory held
+/// is one block's rows, whatever the number of draws (10⁶ draws of `pick montecarlo --csv` held
+/// 536 MB before they were streamed).
+const BLOCK: u64 = 1 << 14;
+
+/// The draws of a study for its report, run on this shard's indices (`check` refuses them first
+/// if their cost passes the budget; `run` computes a range of them, showing its own progress bar
+/// when told `Progress::Auto`). `None` when they were printed instead (`--csv`, or `--json` with
+/// `--shard`/`--parts`): then they are computed and printed a block at a time.
 /// `refused` says what a refused draw is (`not simulated`); `facts` go into a part's manifest.
 pub fn collect<D: DrawRow>(
     study_draws: u64,
@@ -23,35 +29,71 @@ pub fn collect<D: DrawRow>(
     shard: &ShardArgs,
     facts: &BTreeMap<String, String>,
     refused: &str,
-    run: impl FnOnce(std::ops::Range<u64>) -> Result<Vec<D>>,
+    check: impl FnOnce(std::ops::Range<u64>) -> Result<()>,
+    run: impl Fn(std::ops::Range<u64>, Progress) -> Vec<D>,
 ) -> Result<Option<Vec<D>>> {
     shard.check(format)?;
     output::part_facts(facts);
     let items = shard.get().items(study_draws as usize);
-    let draws = run(items.start as u64..items.end as u64)?;
-    let failed: Vec<&D> = draws.iter().filter(|d| d.results().is_none()).collect();
-    if let Some(first) = failed.first() {
+    let items = items.start as u64..items.end as u64;
+    check(items.clone())?;
+    let streamed = format.csv || shard.given();
+    if !streamed {
+        let draws = run(items, Progress::Auto);
+        let failed = draws.iter().filter(|d| d.results().is_none());
+        note_refused(failed.clone().count(), draws.len(), failed.clone().next(), refused);
+        return Ok(Some(draws));
+    }
+    // A block at a time: the rows are printed as they are made; the refused draws are counted
+    // and the first one kept for the note, printed once the output is written.
+    let progress = util::Progress::new(items.end - items.start, "draws");
+    let (mut failed, mut first) = (0usize, None::<(u64, String)>);
+    let blocks = (items.start..items.end).step_by(BLOCK as usize).map(|lo| lo..(lo + BLOCK).min(items.end));
+    let mut tally = |block: &[D]| {
+        for d in block.iter().filter(|d| d.results().is_none()) {
+            failed += 1;
+            first.get_or_insert_with(|| (d.index(), d.error().unwrap_or("").to_string()));
+        }
+        progress.inc(block.len() as u64);
+    };
+    let mut block_rows = blocks.map(|b| run(b, Progress::Hidden)).inspect(|block| tally(block));
+    if format.csv {
+        let columns = D::columns();
+        let rows = block_rows.by_ref().flat_map(|block| block.into_iter().map(|d| d.row()));
+        output::csv_rows(&columns, shard.header(), rows)?;
+    } else {
+        output::json_lines(block_rows.by_ref().flat_map(|block| block.into_iter().map(Owned)))?;
+    }
+    drop(block_rows);
+    progress.finish();
+    if let Some((index, error)) = &first {
+        output::note_after_output(format_args!(
+            "loomkin: note: {failed} of {} draws {refused} (counted as failing); first, draw {index}: {error}",
+            items.end - items.start
+        ))?;
+    }
+    Ok(None)
+}
+
+/// A draw printed as its JSON Lines entry ([`DrawEntry`]), owned: a block's draws are moved out
+/// as they are printed.
+struct Owned<D>(D);
+
+impl<D: DrawRow> serde::Serialize for Owned<D> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        DrawEntry(&self.0).serialize(ser)
+    }
+}
+
+/// The note on the draws refused (`3 of 1000 draws not simulated …; first, draw 17: …`).
+fn note_refused<D: DrawRow>(failed: usize, of: usize, first: Option<&D>, refused: &str) {
+    if let Some(first) = first {
         output::note(format_args!(
-            "loomkin: note: {} of {} draws {refused} (counted as failing); first, draw {}: {}",
-            failed.len(),
-            draws.len(),
+            "loomkin: note: {failed} of {of} draws {refused} (counted as failing); first, draw {}: {}",
             first.index(),
             first.error().unwrap_or("")
         ));
     }
-    if format.csv {
-        let mut table = Table::new(D::columns());
-        for d in &draws {
-            table.push(d.row())?;
-        }
-        output::csv_shard(&table, shard.header())?;
-        return Ok(None);
-    }
-    if shard.given() {
-        output::json_lines(draws.iter().map(DrawEntry))?;
-        return Ok(None);
-    }
-    Ok(Some(draws))
 }
 
 /// The draws of `--from-draws`: a finished run's per-draw CSV (the shards' outputs concatenated,

@@ -9,7 +9,7 @@ use loomkin_io::Table;
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
-    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, history,
+    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, SweepRow, history,
     required_velocity_crossings, simulate, sweep_observed,
 };
 use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
@@ -401,27 +401,93 @@ const SWEEP_COLUMNS: [&str; 10] = [
     "ode_fallback",
 ];
 
-fn sweep_table(s: &Sweep) -> Result<Table> {
-    let mut cols = vec![s.setting.key()];
-    cols.extend(SWEEP_COLUMNS.iter().map(|c| c.to_string()));
-    let mut t = Table::new(cols);
-    for r in &s.rows {
-        let o = &r.outcome;
-        t.push(vec![
-            r.value,
-            o.t_end_s,
-            o.t0_s,
-            o.distance_m,
-            o.velocity_m_s,
-            o.accel_end_m_s2,
-            o.accel_peak_m_s2,
-            o.t_peak_s,
-            o.required_velocity_m_s,
-            o.velocity_vs_required_pct,
-            if o.note.is_some() { 1.0 } else { 0.0 },
-        ])?;
+/// A point of the sweep as its CSV row (the setting's value, then [`SWEEP_COLUMNS`]).
+fn sweep_row(r: &SweepRow) -> [f64; 11] {
+    let o = &r.outcome;
+    [
+        r.value,
+        o.t_end_s,
+        o.t0_s,
+        o.distance_m,
+        o.velocity_m_s,
+        o.accel_end_m_s2,
+        o.accel_peak_m_s2,
+        o.t_peak_s,
+        o.required_velocity_m_s,
+        o.velocity_vs_required_pct,
+        if o.note.is_some() { 1.0 } else { 0.0 },
+    ]
+}
+
+/// Points computed (in parallel) and printed at a time by `pick sweep --csv`: the memory held is
+/// one block's rows, whatever `--points` (10⁶ points held 450 MB before they were streamed).
+const SWEEP_BLOCK: usize = 1 << 14;
+
+/// `pick sweep --csv`: the rows printed a block at a time as they are computed (the first rows
+/// of 10⁶ points after a fraction of a second, not after the whole sweep); the same bytes as the
+/// whole table printed at once. The note on the points where the closed form fell back to
+/// numerical integration follows the output. A point refused inside the range (its ends are
+/// checked first) ends the output there with the one error line.
+#[allow(clippy::too_many_arguments)]
+fn sweep_csv(
+    mech: &Mechanism,
+    st: &Settings,
+    setting: Setting,
+    a: &SweepArgs,
+    method: Method,
+    items: std::ops::Range<usize>,
+    progress: &util::Progress,
+) -> Result<()> {
+    let mut columns = vec![setting.key()];
+    columns.extend(SWEEP_COLUMNS.iter().map(|c| c.to_string()));
+    let (mut fallbacks, mut first, mut failed) = (0usize, None::<SweepRow>, None::<anyhow::Error>);
+    let n = items.len();
+    // The ends of the range first: a setting beyond what the model takes (a play beyond the cam's
+    // reach) is refused there before a row is printed, as when the whole table was made first.
+    for i in [items.start, items.end.saturating_sub(1)].into_iter().filter(|&i| i < items.end) {
+        sweep_observed(mech, st, setting, a.from, a.to, a.points, method, i..i + 1, &|| {}).map_err(lib_err)?;
     }
-    Ok(t)
+    let blocks = items.clone().step_by(SWEEP_BLOCK).map(|lo| lo..(lo + SWEEP_BLOCK).min(items.end));
+    let rows = blocks
+        .map_while(|b| {
+            match sweep_observed(mech, st, setting, a.from, a.to, a.points, method, b, &|| progress.inc(1)) {
+                Ok(s) => Some(s.rows),
+                Err(e) => {
+                    failed = Some(lib_err(e));
+                    None
+                }
+            }
+        })
+        .flatten()
+        .inspect(|r| {
+            if r.outcome.note.is_some() {
+                fallbacks += 1;
+                if first.is_none() {
+                    first = Some(r.clone());
+                }
+            }
+        })
+        .map(|r| sweep_row(&r));
+    output::csv_rows(&columns, a.shard.header(), rows)?;
+    progress.finish();
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    if let Some(first) = &first {
+        output::note_after_output(format_args!("{}", fallback_note(setting, fallbacks, n, first)))?;
+    }
+    Ok(())
+}
+
+/// The note on the points where the closed form fell back to numerical integration.
+fn fallback_note(setting: Setting, fallbacks: usize, points: usize, first: &SweepRow) -> String {
+    format!(
+        "loomkin: note: at {fallbacks} of {points} points (first at {} = {} {}) {}",
+        setting.name(),
+        first.value,
+        setting.unit(),
+        first.outcome.note.as_deref().unwrap_or("")
+    )
 }
 
 /// Seconds per point of `pick sweep` by the closed form (one `simulate`, the ODE fallback at a few
@@ -463,27 +529,19 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let mech = mechanism(&a.model)?;
     let st = settings(&mech, &a.settings);
     let progress = util::Progress::new(items.len() as u64, "points");
+    if a.format.csv {
+        return sweep_csv(&mech, &st, setting, &a, method, items, &progress);
+    }
     let s = sweep_observed(&mech, &st, setting, a.from, a.to, a.points, method, items, &|| progress.inc(1))
         .map_err(lib_err)?;
     progress.finish();
     let fallbacks: Vec<f64> = s.fallbacks().map(|r| r.value).collect();
     if let Some(first) = s.fallbacks().next() {
-        output::note(format_args!(
-            "loomkin: note: at {} of {} points (first at {} = {} {}) {}",
-            fallbacks.len(),
-            s.rows.len(),
-            setting.name(),
-            first.value,
-            setting.unit(),
-            first.outcome.note.as_deref().unwrap_or("")
-        ));
+        output::note(format_args!("{}", fallback_note(setting, fallbacks.len(), s.rows.len(), first)));
     }
     if let Some(path) = &a.output {
         let crossings = required_velocity_crossings(&mech, &st, &s, method).map_err(lib_err)?;
         return output::figure(&sweep_figure(&s, &crossings), path, &a.plot);
-    }
-    if a.format.csv {
-        return output::csv_shard(&sweep_table(&s)?, a.shard.header());
     }
     if a.format.json {
         if a.shard.given() {

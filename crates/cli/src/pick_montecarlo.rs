@@ -9,7 +9,7 @@ use anyhow::Result;
 use clap::Args;
 use loomkin_picking::montecarlo::{Draw, Report};
 use loomkin_picking::{Mechanism, MonteCarlo};
-use loomkin_study::{Progress, Summary};
+use loomkin_study::Summary;
 use std::path::PathBuf;
 
 /// `pick montecarlo`.
@@ -42,12 +42,10 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
             mc.report_from(&mech, &source).map_err(util::part_error)?
         }
         None => {
-            let run = |items: std::ops::Range<u64>| {
-                crate::util::budget().check("draws", mc.draws, mc.cost(items.clone()))?;
-                Ok(mc.run(&mech, items, Progress::Auto))
-            };
+            let check = |items| Ok(crate::util::budget().check("draws", mc.draws, mc.cost(items))?);
+            let run = |items, progress| mc.run(&mech, items, progress);
             let facts = mc.facts(&mech);
-            let collected = draws::collect::<Draw>(mc.draws, a.format, &a.shard, &facts, "not simulated", run)?;
+            let collected = draws::collect::<Draw>(mc.draws, a.format, &a.shard, &facts, "not simulated", check, run)?;
             let Some(draws) = collected else { return Ok(()) };
             mc.report(&draws)
         }
