@@ -341,8 +341,8 @@ pub fn optimize_cycle(
             ),
         });
     }
-    let mut spec: loomkin_laws::CycleSpec =
-        toml::from_str(text).map_err(|e| DynError::Input { field: "cycle file".into(), reason: e.message().into() })?;
+    let mut spec: loomkin_laws::CycleSpec = toml::from_str(text)
+        .map_err(|e| DynError::Input { field: "cycle file".into(), reason: loomkin_units::toml_reason(text, &e) })?;
     let original = loomkin_laws::Cycle::new(&spec)?;
     let ms = LawSpec::ModifiedSine.build()?;
     let ca_ms = ms.metrics().ca;

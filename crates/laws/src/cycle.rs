@@ -258,7 +258,7 @@ impl Cycle {
     pub fn from_toml(text: &str) -> Result<Self> {
         let spec: CycleSpec = toml::from_str(text).map_err(|e| LawError::Parse {
             field: "cycle file".into(),
-            text: e.message().to_string(),
+            text: loomkin_units::toml_reason(text, &e),
             expected: "TOML with [[segment]] tables (kind, from_deg/to_deg or length_deg, law, stroke)".into(),
         })?;
         Self::new(&spec)

@@ -281,10 +281,8 @@ impl Loom {
     /// Reads and checks a loom file. Every number is range-checked and every error names its
     /// field as `section.key` (`geometry.frame_distances_mm[3]`).
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: LoomFile = toml::from_str(text).map_err(|e| {
-            let path = e.span().map(|s| line_of(text, s.start)).map(|l| format!(" (line {l})")).unwrap_or_default();
-            LoomError::field("loom file", format!("{}{path}", e.message().trim()))
-        })?;
+        let f: LoomFile =
+            toml::from_str(text).map_err(|e| LoomError::field("loom file", loomkin_units::toml_reason(text, &e)))?;
         let speed = ShaftSpeed::from_rpm(f.speed_rpm)?;
         let efficiency = Range::open_closed(0.0, 1.0, "").check("efficiency", f.efficiency.unwrap_or(1.0))?;
         let motor_torque_n_m = match f.motor_torque_n_m {
@@ -466,7 +464,7 @@ impl Loom {
     /// one value per group (its first frame's). The other keys are kept (comments are not).
     pub fn stagger_toml(text: &str, stagger_deg: &[f64], groups: Option<&[Vec<usize>]>) -> Result<String> {
         let mut doc: toml::Table =
-            toml::from_str(text).map_err(|e| LoomError::field("loom file", e.message().trim().to_string()))?;
+            toml::from_str(text).map_err(|e| LoomError::field("loom file", loomkin_units::toml_reason(text, &e)))?;
         let Some(toml::Value::Table(sh)) = doc.get_mut("shedding") else {
             return Err(LoomError::field("shedding", "missing"));
         };
@@ -516,10 +514,6 @@ fn read_sley(mut t: toml::Table, beat_up_deg: f64) -> Result<FourBarSley> {
         ));
     }
     Ok(sley)
-}
-
-fn line_of(text: &str, byte: usize) -> usize {
-    text.as_bytes()[..byte.min(text.len())].iter().filter(|b| **b == b'\n').count() + 1
 }
 
 fn read_shedding(s: &SheddingFile, n: usize) -> Result<Shedding> {

@@ -44,7 +44,8 @@ impl Mechanism {
     /// source line, which may be huge): tables `[mechanism]` (the fields of [`Params`]), `[design]`
     /// (the fields of [`DesignSpec`]) and optionally `[required]` ([`RequiredVelocity`]).
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: MechanismFile = toml::from_str(text).map_err(|e| PickError::Toml { reason: toml_reason(text, &e) })?;
+        let f: MechanismFile =
+            toml::from_str(text).map_err(|e| PickError::Toml { reason: loomkin_units::toml_reason(text, &e) })?;
         let m = Self::new(f.mechanism, f.design)?;
         match f.required {
             Some(r) => m.with_required(r),
@@ -134,20 +135,6 @@ fn check_constants(params: &Params) -> Result<()> {
     });
     let (field, get, _) = blame.unwrap_or(&fields[2]);
     Err(PickError::NonFiniteResult { field: (*field).into(), value: get(params), quantity: "B, C, D (eq. 4)".into() })
-}
-
-/// `line L, column C: message` of a TOML error, on one line and without quoting the source.
-pub(crate) fn toml_reason(text: &str, e: &toml::de::Error) -> String {
-    let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
-    match e.span() {
-        Some(span) => {
-            let before = text.get(..span.start.min(text.len())).unwrap_or(text);
-            let line = before.matches('\n').count() + 1;
-            let column = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
-            format!("line {line}, column {column}: {message}")
-        }
-        None => message,
-    }
 }
 
 /// The designed pick and the mechanism's constants (`loomkin pick design --json`): the compound

@@ -130,7 +130,7 @@ impl MonteCarlo {
     /// Reads and checks a study file.
     pub fn from_toml(text: &str) -> Result<Self> {
         let f: StudyFile = toml::from_str(text)
-            .map_err(|e| PickError::Study { field: "study".into(), reason: crate::mechanism::toml_reason(text, &e) })?;
+            .map_err(|e| PickError::Study { field: "study".into(), reason: loomkin_units::toml_reason(text, &e) })?;
         let (bins, percentiles) =
             loomkin_study::check_plan(f.draws, MAX_DRAWS, f.bins, f.percentiles).map_err(study_err)?;
         let s = &f.settings;

@@ -131,15 +131,12 @@ pub struct Axis {
 impl Axis {
     /// Reads an axis file and checks it against the slave unit of the motion it will move.
     pub fn from_toml(text: &str, unit: StrokeUnit) -> Result<Self> {
-        let axis: Axis = toml::from_str(text).map_err(|e| {
-            let line = e.span().map(|r| text[..r.start.min(text.len())].matches('\n').count() + 1);
-            ServoError::Parse {
-                field: "axis file".into(),
-                text: format!("{}{}", e.message().trim(), line.map(|l| format!(" at line {l}")).unwrap_or_default()),
-                expected: "TOML with [motor] (rated_torque_nm, peak_torque_nm, rated_speed_rpm, max_speed_rpm, \
+        let axis: Axis = toml::from_str(text).map_err(|e| ServoError::Parse {
+            field: "axis file".into(),
+            text: loomkin_units::toml_reason(text, &e),
+            expected: "TOML with [motor] (rated_torque_nm, peak_torque_nm, rated_speed_rpm, max_speed_rpm, \
                            rotor_inertia_kg_m2) and [load] tables"
-                    .into(),
-            }
+                .into(),
         })?;
         axis.validate(unit)?;
         Ok(axis)

@@ -217,14 +217,10 @@ impl Drive {
     /// saved by the workbench serves as a drive file. Every other key, and every value that is
     /// not a number, is an error naming the key.
     pub fn from_toml(text: &str) -> Result<Self> {
-        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
-            let line = e.span().map(|r| text[..r.start.min(text.len())].matches('\n').count() + 1);
-            let at = line.map(|l| format!(" at line {l}")).unwrap_or_default();
-            ServoError::Parse {
-                field: "drive file".into(),
-                text: format!("{}{at}", e.message().trim()),
-                expected: "TOML with a [drive] table".into(),
-            }
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| ServoError::Parse {
+            field: "drive file".into(),
+            text: loomkin_units::toml_reason(text, &e),
+            expected: "TOML with a [drive] table".into(),
         })?;
         let top: Vec<String> = table.keys().cloned().collect();
         let drive = table.get("drive").map(|v| match v {

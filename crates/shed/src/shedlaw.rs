@@ -177,7 +177,7 @@ impl ShedLaw {
     /// ```
     pub fn from_toml(text: &str) -> Result<Self> {
         let spec: SpecFile = toml::from_str(text)
-            .map_err(|e| ShedError::Parse { field: "spec".into(), reason: e.message().to_string() })?;
+            .map_err(|e| ShedError::Parse { field: "spec".into(), reason: loomkin_units::toml_reason(text, &e) })?;
         let positive = read_segments(spec.positive, "positive")?;
         match (spec.negative, spec.positive_fraction) {
             (None, None) => Self::symmetric(spec.motion_deg, positive),

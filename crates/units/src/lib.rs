@@ -28,6 +28,7 @@ mod range;
 pub mod schema;
 mod speed;
 mod sweep;
+mod toml_text;
 
 pub use budget::{Budget, BudgetError, BudgetParseError, Cost, bytes_text, seconds_text};
 pub use convert::{deg_from_rad, m_from_mm, mm_from_m, rad_from_deg, rad_per_s_from_rpm, rpm_from_rad_per_s};
@@ -36,6 +37,7 @@ pub use format::compact;
 pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
 pub use sweep::{Shard, Span, SweepError};
+pub use toml_text::toml_reason;
 
 /// The descriptors this crate declares.
 pub const FIELDS: FieldList = field_list![ShaftSpeed::SPEED];

@@ -83,26 +83,12 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
 /// draws the line with a caret over several lines).
 pub fn parse_toml<T: DeserializeOwned>(text: &str) -> Result<T, ApiError> {
     let de = toml::Deserializer::parse(text)
-        .map_err(|e| ApiError::BadJson { field: "text".into(), message: toml_message(text, &e) })?;
+        .map_err(|e| ApiError::BadJson { field: "text".into(), message: loomkin_units::toml_reason(text, &e) })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let field = if path.is_empty() || path == "." || path == "?" { "text".to_string() } else { path };
-        ApiError::BadJson { field, message: toml_message(text, &e.into_inner()) }
+        ApiError::BadJson { field, message: loomkin_units::toml_reason(text, &e.into_inner()) }
     })
-}
-
-/// `line L, column C: message` of a TOML error (1-based, columns in characters).
-fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
-    match e.span() {
-        Some(span) => {
-            let before = text.get(..span.start.min(text.len())).unwrap_or(text);
-            let line = before.matches('\n').count() + 1;
-            let column = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
-            format!("line {line}, column {column}: {message}")
-        }
-        None => message,
-    }
 }
 
 impl<T: serde::Serialize> IntoResponse for ApiJson<T> {

@@ -152,10 +152,8 @@ impl Tolerance {
 
     /// Reads and checks a study file and analyses the nominal mechanism (which must assemble).
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: StudyFile = toml::from_str(text).map_err(|e| {
-            let m = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
-            invalid("tolerance study", m)
-        })?;
+        let f: StudyFile =
+            toml::from_str(text).map_err(|e| invalid("tolerance study", loomkin_units::toml_reason(text, &e)))?;
         let (bins, percentiles) =
             loomkin_study::check_plan(f.draws, MAX_DRAWS, f.bins, f.percentiles).map_err(study_err)?;
         let step_deg = f.step_deg.unwrap_or(2.0);
