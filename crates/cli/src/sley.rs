@@ -5,7 +5,7 @@ use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand};
-use loomkin_drive::{FourBarSley, SleyAnalysis, SleyError, SleyRow};
+use loomkin_drive::{Assembly, FourBarSley, SleyAnalysis, SleyError, SleyRow, SleyTarget};
 use loomkin_io::Table;
 use loomkin_loom::Loom;
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
@@ -17,6 +17,31 @@ use std::path::{Path, PathBuf};
 pub enum SleyCommand {
     /// The sley of a loom file: reed stroke and back dwell, reed motion, inertia force, rod and bearing forces, crank torque.
     Analyze(AnalyzeArgs),
+    /// A crank-rocker four-bar for a target reed stroke and back dwell, with the largest least transmission angle.
+    Synthesize(SynthesizeArgs),
+}
+
+/// `loomkin sley synthesize`.
+#[derive(Debug, Args)]
+pub struct SynthesizeArgs {
+    /// The reed's stroke, mm (arc of the beating point between its dead centres).
+    #[arg(long = "reed-stroke-mm", visible_alias = "stroke-mm")]
+    stroke_mm: f64,
+    /// The back dwell wanted, deg of main shaft (about 25° for a projectile loom, longer for a rapier loom).
+    #[arg(long)]
+    back_dwell_deg: f64,
+    /// How near its back position the reed counts as dwelling, mm (below the stroke).
+    #[arg(long, default_value_t = SleyAnalysis::DWELL_TOLERANCE_MM.default_value())]
+    dwell_tolerance_mm: f64,
+    /// Rocking shaft to the reed's beating point, mm.
+    #[arg(long, default_value_t = SleyTarget::REED_HEIGHT_MM.default_value())]
+    reed_height_mm: f64,
+    /// Rocking shaft to the rod's pin, mm (default: 0.7 of the reed height; it scales crank, rod and pivot only).
+    #[arg(long)]
+    sword_mm: Option<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 /// `loomkin sley analyze`.
@@ -46,6 +71,7 @@ pub struct AnalyzeArgs {
 pub fn run(cmd: SleyCommand) -> Result<()> {
     match cmd {
         SleyCommand::Analyze(a) => run_analyze(a),
+        SleyCommand::Synthesize(a) => run_synthesize(a),
     }
 }
 
@@ -152,6 +178,64 @@ fn run_analyze(a: AnalyzeArgs) -> Result<()> {
         r.peak_rod_force_n,
         r.peak_rocking_shaft_force_n
     )
+}
+
+/// Library errors named by the synthesis's flags.
+fn synth_flag_named(e: SleyError) -> anyhow::Error {
+    match e {
+        SleyError::Range(r) => {
+            let flag = format!("--{}", r.field.replace('_', "-"));
+            r.renamed(flag).into()
+        }
+        SleyError::Infeasible { fields, reason } => {
+            let flags: Vec<String> = fields.split(", ").map(|f| format!("--{}", f.replace('_', "-"))).collect();
+            anyhow!("{}: {reason}", flags.join(", "))
+        }
+        e => e.into(),
+    }
+}
+
+fn run_synthesize(a: SynthesizeArgs) -> Result<()> {
+    let target = SleyTarget {
+        stroke_mm: a.stroke_mm,
+        back_dwell_deg: a.back_dwell_deg,
+        dwell_tolerance_mm: a.dwell_tolerance_mm,
+        reed_height_mm: a.reed_height_mm,
+        sword_mm: a.sword_mm,
+    };
+    let r = target.synthesize().map_err(synth_flag_named)?;
+    if a.json {
+        return output::json(&r);
+    }
+    outln!(
+        "sley for a stroke of {} mm and a back dwell of {}° within {} mm (reed height {} mm): stroke {:.6} mm, \
+         back dwell {:.6}°",
+        a.stroke_mm,
+        a.back_dwell_deg,
+        r.dwell_tolerance_mm,
+        r.reed_height_mm,
+        r.reed_stroke_mm,
+        r.back_dwell_deg
+    )?;
+    outln!(
+        "least transmission angle {:.3}° (the largest any crank-rocker of the search gives); back dead centre at \
+         {:.3}°; rod {:.3} crank radii ({} linkages evaluated)",
+        r.min_transmission_angle_deg,
+        r.back_dead_centre_deg,
+        r.rod_mm / r.crank_mm,
+        r.evaluations
+    )?;
+    outln!()?;
+    outln!("[sley]")?;
+    outln!("crank_mm = {:.6}", r.crank_mm)?;
+    outln!("rod_mm = {:.6}", r.rod_mm)?;
+    outln!("sword_mm = {:.6}", r.sword_mm)?;
+    outln!("pivot_x_mm = {:.6}", r.pivot_x_mm)?;
+    outln!("pivot_y_mm = {:.6}", r.pivot_y_mm)?;
+    outln!("reed_height_mm = {}", r.reed_height_mm)?;
+    outln!("assembly = \"{}\"", if r.assembly == Assembly::Left { "left" } else { "right" })?;
+    outln!("# mass_kg = …      the sley's moving mass (the synthesis is kinematic: add it)")?;
+    outln!("# gyration_mm = …  its radius of gyration about the rocking shaft")
 }
 
 /// Four panels over the turn: the reed's displacement (the back dwell shaded), velocity,

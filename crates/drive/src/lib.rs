@@ -12,6 +12,7 @@
 
 pub mod sley;
 
+pub use sley::synth::{SleySynthesis, SleyTarget};
 pub use sley::{Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyState, SleyTable};
 
 /// The descriptors this crate declares.
@@ -30,4 +31,8 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     SleyTable::BEAT_UP_RANGE_DEG,
     SleyAnalysis::DWELL_TOLERANCE_MM,
     SleyAnalysis::POINTS,
+    SleyTarget::STROKE_MM,
+    SleyTarget::BACK_DWELL_DEG,
+    SleyTarget::REED_HEIGHT_MM,
+    SleyTarget::SWORD_MM,
 ];

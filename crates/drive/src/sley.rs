@@ -36,6 +36,8 @@ use loomkin_units::{Field, FieldError, Range, RangeError, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+pub mod synth;
+
 /// A wrong or infeasible sley.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]

@@ -99,3 +99,59 @@ fn analyze_errors_are_one_line() {
     usage_error(&["sley", "analyze", &r, "--points", "1"], &["--points = 1"]);
     usage_error(&["sley", "analyze", &bare.to_string_lossy(), "-o", "plot.jpg"], &["plot.jpg"]);
 }
+
+#[test]
+fn synthesize_prints_a_table_that_analyze_reads_back() {
+    let out = loomkin().args(["sley", "synthesize", "--stroke-mm", "110", "--back-dwell-deg", "40"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("least transmission angle"), "{text}");
+    let table = &text[text.find("[sley]").unwrap()..];
+    // The table pasted into a loom file with the sley's mass: the targets come back.
+    let loom = std::fs::read_to_string(ex("rapier-loom.toml")).unwrap();
+    let loom =
+        loom[..loom.find("\n# The sley").unwrap()].to_string() + "\n" + table + "mass_kg = 20\ngyration_mm = 300\n";
+    let dir = scratch("synth");
+    let path = dir.join("loom.toml");
+    std::fs::write(&path, loom).unwrap();
+    let v = stdout_json(&["sley", "analyze", path.to_str().unwrap(), "--json"]);
+    // Six decimals of a millimetre in the table: the targets to about 1e-6 of themselves.
+    assert!((v["reed_stroke_mm"].as_f64().unwrap() - 110.0).abs() < 1e-4, "{v}");
+    assert!((v["back_dwell_deg"].as_f64().unwrap() - 40.0).abs() < 1e-3, "{v}");
+    let j = stdout_json(&["sley", "synthesize", "--reed-stroke-mm", "110", "--back-dwell-deg", "40", "--json"]);
+    for key in [
+        "crank_mm",
+        "rod_mm",
+        "sword_mm",
+        "pivot_x_mm",
+        "pivot_y_mm",
+        "min_transmission_angle_deg",
+        "reed_stroke_mm",
+        "back_dwell_deg",
+    ] {
+        assert!(j[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    let (a, b) = (j["min_transmission_angle_deg"].as_f64().unwrap(), v["min_transmission_angle_deg"].as_f64().unwrap());
+    assert!((a - b).abs() < 1e-4, "{a} vs {b}");
+}
+
+#[test]
+fn synthesize_refuses_infeasible_targets() {
+    usage_error(
+        &["sley", "synthesize", "--stroke-mm", "110", "--back-dwell-deg", "300"],
+        &["--back-dwell-deg: no crank-rocker gives a back dwell of 300°"],
+    );
+    usage_error(
+        &["sley", "synthesize", "--stroke-mm", "0", "--back-dwell-deg", "30"],
+        &["--reed-stroke-mm = 0 is out of range"],
+    );
+    usage_error(
+        &["sley", "synthesize", "--stroke-mm", "900", "--back-dwell-deg", "30"],
+        &["--reed-stroke-mm, --reed-height-mm", "120°"],
+    );
+    usage_error(
+        &["sley", "synthesize", "--stroke-mm", "110", "--back-dwell-deg", "30", "--dwell-tolerance-mm", "110"],
+        &["--dwell-tolerance-mm = 110", "< 110 mm"],
+    );
+    usage_error(&["sley", "synthesize", "--stroke-mm", "110"], &["--back-dwell-deg"]);
+}
