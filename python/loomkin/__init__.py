@@ -9,13 +9,17 @@ Modules: :mod:`loomkin.laws`, :mod:`loomkin.cycles`, :mod:`loomkin.servo`, :mod:
 :mod:`loomkin.dobby`, :mod:`loomkin.shed`, :mod:`loomkin.loom`, :mod:`loomkin.dynamics`,
 :mod:`loomkin.cams`.
 
+Sweeps and Monte-Carlo studies take ``shard=(i, n)`` (the CLI's ``--shard I/N``) for a cluster
+(Dask, Ray): :func:`concat` joins the shards' tables, and the Monte-Carlo functions' ``from_draws``
+makes the report of the unsharded run from them (docs/python.md).
+
 Errors are :class:`LoomkinError` (a ``ValueError``) with ``.field`` and ``.allowed``;
 :class:`OutOfRangeError` adds ``.value``, ``.unit``, ``.low``, ``.high``. Long computations release
 the GIL.
 """
 
 from ._loomkin import __version__, Cycle, Law, LoomkinError, OutOfRangeError
-from ._table import Table
+from ._table import Table, concat
 from . import cams, cycles, dobby, dynamics, laws, loom, picking, servo, shed
 
 __all__ = [
@@ -25,6 +29,7 @@ __all__ = [
     "LoomkinError",
     "OutOfRangeError",
     "Table",
+    "concat",
     "cams",
     "cycles",
     "dobby",

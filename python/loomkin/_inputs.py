@@ -19,6 +19,19 @@ def text_of(source: Optional[PathOrDict]) -> Optional[str]:
         return f.read()
 
 
+def required_text(field: str, source: PathOrDict) -> str:
+    """:func:`text_of` of an input that must be given: None raises :class:`loomkin.LoomkinError`
+    naming ``field``."""
+    text = text_of(source)
+    if text is None:
+        from ._loomkin import LoomkinError
+
+        err = LoomkinError(f"{field}: give a file path or a dict")
+        err.field, err.allowed = field, "a file path or a dict"
+        raise err
+    return text
+
+
 def bytes_of(source: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[bytes]:
     """None stays None; a path is read as bytes (a file whose encoding the library decides)."""
     if source is None:
@@ -33,7 +46,7 @@ def study_text(study: Any) -> str:
 
     if isinstance(study, Mapping):
         return _toml_of(study)
-    return text_of(study)
+    return required_text("study", study)
 
 
 def _toml_of(d: Any, prefix: str = "") -> str:

@@ -1,12 +1,23 @@
 # Type stubs of the extension module `loomkin._loomkin` (built from python/src/*.rs).
 # Units: laws are dimensionless (per unit stroke and unit motion angle); cycles and the servo drive
 # are in SI units, named in the keys (_m, _m_s, _m_s2, _deg, _nm, _w, _rpm, _s).
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
+from ._table import Table
+
 __version__: str
+__all__ = [
+    "__version__", "LoomkinError", "OutOfRangeError", "FIELDS", "SERVO_DEFAULT_SPEEDS", "Law", "law_catalogue",
+    "servo_spline_law", "servo_law", "servo_torque", "servo_torque_curve", "servo_optimize", "servo_export",
+    "servo_check", "Cycle", "pick_design", "pick_simulate", "pick_history", "pick_sweep", "pick_montecarlo",
+    "dobby_analyze", "dobby_synthesize", "dobby_tolerance", "dobby_sweep", "shed_presets", "shed_law", "shed_table",
+    "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "dyn_response",
+    "dyn_sweep", "dyn_spectrum", "dyn_compensate", "dyn_optimize", "dyn_two_mass", "dyn_default_ratios",
+    "cam_table", "cam_profile", "rise_return_cycle",
+]
 # The libraries' field descriptors by the path of their const ("ShaftSpeed::SPEED"): name, range,
 # default, count, doc. Stubs write defaults as `...`: their values are the descriptors' (loomkin._fields).
 FIELDS: Dict[str, Dict[str, Any]]
@@ -29,13 +40,20 @@ class OutOfRangeError(LoomkinError):
     low_inclusive: bool
     high_inclusive: bool
 
-Columns = Dict[str, npt.NDArray[np.float64]]
-DefPoints = Union[str, Sequence[Sequence[float]], None]
+_Columns = Dict[str, npt.NDArray[np.float64]]
+# A table of columns: loomkin.Table, a dict of name to float64 array.
+_TableLike = Table
+# Shard I of N of a sweep's or study's rows (the CLI's --shard I/N): (I, N) or "I/N".
+_ShardArg = Union[Tuple[int, int], str, None]
+# A finished Monte-Carlo run's per-draw tables in shard order, or paths as --from-draws takes.
+_FromDraws = Union[Sequence[Any], str, None]
+_DefPoints = Union[str, Sequence[Sequence[float]], None]
 
+@final
 class Law:
     """A normalised rise law, exact in closed form (x, s, v, a, j dimensionless)."""
 
-    def __init__(self, name: str, **params: Union[float, str]) -> None: ...
+    def __new__(cls, name: str, **params: Union[float, str]) -> "Law": ...
     @property
     def name(self) -> str: ...
     @property
@@ -49,9 +67,11 @@ class Law:
     def metrics(self) -> Dict[str, float]: ...
     def continuity(self) -> Dict[str, Any]: ...
     def info(self) -> Dict[str, Any]: ...
-    def sample(self, points: int) -> Columns: ...
-    def __call__(self, x: npt.ArrayLike) -> Columns: ...
+    def sample(self, points: int, shard: _ShardArg = None) -> _TableLike: ...
+    def __call__(self, x: npt.ArrayLike) -> _TableLike:
+        """x, s, v, a, j at x: floats for a number, arrays of x's shape otherwise."""
 
+@final
 class Cycle:
     """A checked machine cycle in SI units (m or rad, per second)."""
 
@@ -70,22 +90,22 @@ class Cycle:
     def to_toml(self) -> str:
         """The cycle as a cycle file's TOML text (from_toml reads it back to the same cycle)."""
     def report(self, speed_rpm: Optional[float] = None, points: int = ...) -> Dict[str, Any]: ...
-    def sample(self, speed_rpm: Optional[float] = None, points: int = ...) -> Columns:
+    def sample(self, speed_rpm: Optional[float] = None, points: int = ...) -> _TableLike:
         """angle_deg, time_s (s) and s, v, a, j in SI units with the unit in the key (s_m, v_m_s,
         a_m_s2, j_m_s3 or s_rad, v_rad_s, ...), points evenly spaced over the cycle."""
     def segments(self, speed_rpm: Optional[float] = None) -> List[Dict[str, Any]]: ...
-    def __call__(self, angle_deg: npt.ArrayLike, speed_rpm: Optional[float] = None) -> Columns: ...
+    def __call__(self, angle_deg: npt.ArrayLike, speed_rpm: Optional[float] = None) -> _TableLike: ...
 
 def law_catalogue() -> List[Dict[str, Any]]: ...
-def servo_spline_law(def_points: DefPoints = None, end: str = "natural") -> Law: ...
-def servo_law(def_points: DefPoints = None, end: str = "natural") -> Dict[str, Any]: ...
+def servo_spline_law(def_points: _DefPoints = None, end: str = "natural") -> Law: ...
+def servo_law(def_points: _DefPoints = None, end: str = "natural") -> Dict[str, Any]: ...
 def servo_torque(
-    speed_rpm: Sequence[float] = ..., def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
+    speed_rpm: Sequence[float] = ..., def_points: _DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
 ) -> Dict[str, Any]: ...
 def servo_torque_curve(
     speed_rpm: float = ...,
     points: int = ...,
-    def_points: DefPoints = None,
+    def_points: _DefPoints = None,
     end: str = "natural",
     drive_text: Optional[str] = None,
 ) -> Dict[str, Any]: ...
@@ -94,12 +114,12 @@ def servo_optimize(
     objective: str = "peak",
     starts: int = ...,
     fixed_x: bool = False,
-    def_points: DefPoints = None,
+    def_points: _DefPoints = None,
     end: str = "natural",
     drive_text: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def servo_export(
-    format: str, step_deg: float = ..., def_points: DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
+    format: str, step_deg: float = ..., def_points: _DefPoints = None, end: str = "natural", drive_text: Optional[str] = None
 ) -> Dict[str, Any]: ...
 def servo_check(axis_toml: str, cycle: Cycle, speed_rpm: Optional[float] = None) -> Dict[str, Any]:
     """`loomkin servo check AXIS --json`: peak and RMS torque (N·m), speeds (rpm), ratios, checks, pass."""
@@ -107,16 +127,42 @@ def servo_check(axis_toml: str, cycle: Cycle, speed_rpm: Optional[float] = None)
 # picking (keywords as loomkin.picking documents them)
 def pick_design(**model: Any) -> Dict[str, Any]: ...
 def pick_simulate(**kw: Any) -> Dict[str, Any]: ...
-def pick_history(points: int = ..., **kw: Any) -> "tuple[Columns, Dict[str, Any]]": ...
-def pick_sweep(setting: str, start: float, stop: float, points: int, **kw: Any) -> Dict[str, Any]: ...
+def pick_history(points: int = ..., **kw: Any) -> "tuple[_Columns, Dict[str, Any]]": ...
+def pick_sweep(
+    setting: str, start: float, stop: float, points: int, shard: _ShardArg = None, **kw: Any
+) -> Dict[str, Any]: ...
 
-def pick_montecarlo(study_toml: str, **model: Any) -> Dict[str, Any]:
-    """`loomkin pick montecarlo STUDY --json` (units in the keys) and `per_draw`, the `--csv` Columns."""
+def pick_montecarlo(
+    study_toml: str, shard: _ShardArg = None, from_draws: _FromDraws = None, **model: Any
+) -> Union[Dict[str, Any], _TableLike]:
+    """`loomkin pick montecarlo STUDY --json` (units in the keys) and `per_draw`, the `--csv` table;
+    with shard: that shard's per-draw table; with from_draws: the report of the finished run."""
 
 # dobby
-def dobby_tolerance(study_toml: str) -> Dict[str, Any]:
-    """`loomkin dobby tolerance STUDY --json` (m, deg in the keys) and `per_draw`, the `--csv` Columns."""
-def dobby_sweep(alpha_deg: Sequence[float], **kw: Any) -> Dict[str, Any]:
+def dobby_tolerance(
+    study_toml: str, shard: _ShardArg = None, from_draws: _FromDraws = None
+) -> Union[Dict[str, Any], _TableLike]:
+    """`loomkin dobby tolerance STUDY --json` (m, deg in the keys) and `per_draw`, the `--csv` table;
+    with shard: that shard's per-draw table; with from_draws: the report of the finished run."""
+def dobby_sweep(
+    alpha_deg: Sequence[float],
+    dwell_deg: float = ...,
+    dwell_centre_deg: float = ...,
+    cycles: int = ...,
+    law: str = ...,
+    params: Optional[Dict[str, Any]] = None,
+    roller_m: float = ...,
+    step_deg: float = ...,
+    l2_m: float = ...,
+    l3_m: float = ...,
+    l3p_m: float = ...,
+    l6_m: float = ...,
+    speed_rpm: Optional[float] = None,
+    pressure_limit_deg: float = ...,
+    cam_spec: Optional[str] = None,
+    cam_points_text: Optional[str] = None,
+    shard: _ShardArg = None,
+) -> Dict[str, Any]:
     """`loomkin dobby sweep --json` at lever angles alpha_deg (deg): rows (m, deg, rad/s in the keys)."""
 def dobby_analyze(
     alpha_deg: Optional[float] = None,
@@ -136,7 +182,7 @@ def dobby_synthesize(
     dwell_deg: float = ...,
     dwell_centre_deg: float = ...,
     cycles: int = ...,
-    law: str = "cycloidal",
+    law: str = ...,
     params: Optional[Dict[str, Any]] = None,
     roller_m: float = ...,
     step_deg: float = ...,
@@ -161,9 +207,45 @@ def shed_law(
     speed_rpm: float = ...,
     label: Optional[str] = None,
 ) -> Dict[str, Any]: ...
-def shed_table(**kw: Any) -> Dict[str, Any]: ...
-def shed_pareto(**kw: Any) -> Dict[str, Any]: ...
-def shed_best(window_deg: float, **kw: Any) -> Dict[str, Any]: ...
+def shed_table(
+    design: str = "presets",
+    family: Optional[str] = None,
+    shapes: Optional[str] = None,
+    step: Optional[float] = None,
+    min_k: Optional[float] = None,
+    max_k: Optional[float] = None,
+    motion_deg: Optional[str] = None,
+    threshold: float = ...,
+    stroke_mm: float = ...,
+    speed_rpm: float = ...,
+    shard: _ShardArg = None,
+) -> Dict[str, Any]: ...
+def shed_pareto(
+    design: str = "grid",
+    family: Optional[str] = None,
+    shapes: Optional[str] = None,
+    step: Optional[float] = None,
+    min_k: Optional[float] = None,
+    max_k: Optional[float] = None,
+    motion_deg: Optional[str] = None,
+    threshold: float = ...,
+    stroke_mm: float = ...,
+    speed_rpm: float = ...,
+) -> Dict[str, Any]: ...
+def shed_best(
+    window_deg: float,
+    threshold: float = ...,
+    max_jerk_m_s3: Optional[float] = None,
+    design: str = "grid",
+    family: Optional[str] = None,
+    shapes: Optional[str] = None,
+    step: Optional[float] = None,
+    min_k: Optional[float] = None,
+    max_k: Optional[float] = None,
+    motion_deg: Optional[str] = None,
+    stroke_mm: float = ...,
+    speed_rpm: float = ...,
+) -> Dict[str, Any]: ...
 def shed_window(
     carrier_speed_m_s: float,
     reed_width_m: float,
@@ -240,7 +322,7 @@ def cam_profile(
     bore_mm: Optional[float] = None,
 ) -> Dict[str, Any]:
     """`loomkin cam profile --json`: lengths in mm, angles in deg, curvature in 1/mm; points
-    (and counter_points) as Columns; `dxf` text (mm) when dxf=True."""
+    (and counter_points) as _Columns; `dxf` text (mm) when dxf=True."""
 
 def dyn_sweep(
     cycle: Cycle,
@@ -253,6 +335,7 @@ def dyn_sweep(
     weight: bool = False,
     force_n: float = ...,
     steady: bool = False,
+    shard: _ShardArg = None,
 ) -> Dict[str, Any]: ...
 def dyn_default_ratios() -> npt.NDArray[np.float64]: ...
 def dyn_spectrum(law: Law, ratio: npt.ArrayLike, damping_ratio: float = ...) -> npt.NDArray[np.float64]:

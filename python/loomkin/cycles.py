@@ -10,7 +10,7 @@ import os
 from typing import Any, Dict, Mapping, Optional, Union
 
 from ._fields import default as _default
-from ._inputs import text_of
+from ._inputs import required_text
 from ._loomkin import Cycle
 from ._table import Table
 
@@ -19,13 +19,13 @@ __all__ = ["Cycle", "load", "from_dict", "report", "sample"]
 
 def load(path: Union[str, "os.PathLike[str]"]) -> Cycle:
     """Reads and checks a cycle TOML file."""
-    return Cycle.from_toml(text_of(path))
+    return Cycle.from_toml(required_text("path", path))
 
 
 def from_dict(spec: Mapping[str, Any]) -> Cycle:
     """A cycle from a dict with the file's keys: unit, stroke, speed_rpm, period_deg and
     segment (a list of dicts: kind, to_deg or length_deg, law, params, stroke)."""
-    return Cycle.from_json(text_of(spec))
+    return Cycle.from_json(required_text("spec", spec))
 
 
 def _cycle(source: Union[Cycle, str, "os.PathLike[str]", Mapping[str, Any]]) -> Cycle:

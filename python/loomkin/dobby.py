@@ -15,7 +15,7 @@ import numpy as np
 from . import _loomkin as _m
 from ._fields import default as _default
 from ._inputs import study_text
-from ._table import Table
+from ._table import Shard, Table, _draw_tables
 
 __all__ = ["analyze", "synthesize", "tolerance", "sweep"]
 
@@ -61,25 +61,29 @@ def synthesize(dwell_deg: float = _default("OutputLawSpec::DWELL_DEG"),
                                      float(step_deg), **geometry))
 
 
-def tolerance(study: Any) -> Dict[str, Any]:
+def tolerance(study: Any, *, shard: Shard = None, from_draws: Optional[Any] = None) -> Any:
     """``loomkin dobby tolerance STUDY --json``: the modulator's dimensions drawn from the study
     file's distributions (``study``: a TOML path or a dict with draws, seed, step_deg,
     ``dimensions`` in m and deg, ``limits``): draws, seed, step_deg, not_assembled, failing,
     fail_share, ``dimensions`` and ``results`` (output_angle_error_deg, pressure_angle_deg,
     dead_point_margin_deg: mean, sd, percentiles, histogram, limit, count failing). ``per_draw`` is the
     per-draw :class:`Table` of ``--csv``. The draws run in parallel with the GIL released; Ctrl-C
-    stops the study."""
-    r = _m.dobby_tolerance(study_text(study))
-    r["per_draw"] = Table(r["per_draw"])
-    return r
+    stops the study.
+
+    For a cluster: ``shard=(i, n)`` runs only shard i of n of the draws and returns their per-draw
+    :class:`Table`; ``from_draws=[table_1, …, table_n]`` (or paths, as ``--from-draws`` takes)
+    returns the report of the finished run, equal to the unsharded report (without ``per_draw``)."""
+    return _m.dobby_tolerance(study_text(study), shard, _draw_tables(from_draws))
 
 
-def sweep(alpha_deg: Any, cam: Union[str, Sequence[Sequence[float]], None] = None, **kw: Any) -> Dict[str, Any]:
+def sweep(alpha_deg: Any, cam: Union[str, Sequence[Sequence[float]], None] = None, shard: Shard = None,
+          **kw: Any) -> Dict[str, Any]:
     """``loomkin dobby sweep --json`` (the paper's α sweep) at the lever angles ``alpha_deg`` (an
     array, deg; α = θ): ``rows``, a :class:`Table` with per α the analysis of ``cam`` (as
     :func:`analyze`) and the synthesis of the law (keywords of :func:`synthesize`: dwell_deg,
     dwell_centre_deg, cycles, law, params, roller_m, step_deg, and the geometry l2_m … in m,
-    speed_rpm, pressure_limit_deg in deg); an_ok / syn_ok and the error texts as lists."""
+    speed_rpm, pressure_limit_deg in deg); an_ok / syn_ok and the error texts as lists.
+    ``shard=(i, n)`` computes only shard i of n of the angles (``--shard i/n``)."""
     spec, text = _cam_args(cam)
     alphas = [float(a) for a in np.atleast_1d(np.asarray(alpha_deg, dtype=float))]
-    return _wrap(_m.dobby_sweep(alphas, cam_spec=spec, cam_points_text=text, **kw))
+    return _wrap(_m.dobby_sweep(alphas, cam_spec=spec, cam_points_text=text, shard=shard, **kw))

@@ -8,7 +8,7 @@ from typing import Any, Dict
 
 from . import _loomkin as _m
 from ._fields import default as _default
-from ._table import Table
+from ._table import Shard, Table
 from .cycles import _cycle
 
 __all__ = ["response", "sweep", "spectrum", "compensate", "optimize", "two_mass"]
@@ -27,12 +27,13 @@ def response(cycle: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
     return r
 
 
-def sweep(cycle: Any, speed_rpm: Any, natural_hz: float, **kw: Any) -> Dict[str, Any]:
+def sweep(cycle: Any, speed_rpm: Any, natural_hz: float, shard: Shard = None, **kw: Any) -> Dict[str, Any]:
     """``loomkin dyn sweep FILE --speed-rpm … --natural-hz F --json`` at the speeds of an array
     (rpm): natural_hz, damping_ratio, start and ``points``, a :class:`Table` with the CLI's
     columns (speed_rpm, the residual vibration and peak error in the cycle's units, …).
-    Keywords as :func:`response` (without speed_rpm, cycles, points)."""
-    r = _m.dyn_sweep(_cycle(cycle), speed_rpm, float(natural_hz), **kw)
+    Keywords as :func:`response` (without speed_rpm, cycles, points). ``shard=(i, n)`` computes
+    only shard i of n of the speeds (``--shard i/n``)."""
+    r = _m.dyn_sweep(_cycle(cycle), speed_rpm, float(natural_hz), shard=shard, **kw)
     r["points"] = Table(r["points"])
     return r
 

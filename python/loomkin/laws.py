@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any, Dict, List
 
 from ._loomkin import Law, law_catalogue
-from ._table import Table
+from ._table import Shard, Table
 
 __all__ = ["Law", "catalogue", "names", "info", "sample"]
 
@@ -33,6 +33,8 @@ def info(name: str, **params: Any) -> Dict[str, Any]:
     return Law(name, **params).info()
 
 
-def sample(name: str, points: int, **params: Any) -> Table:
-    """``loomkin law sample NAME --points N``: arrays x, s, v, a, j (dimensionless), both ends included."""
-    return Table(Law(name, **params).sample(points))
+def sample(name: str, points: int, shard: Shard = None, **params: Any) -> Table:
+    """``loomkin law sample NAME --points N``: a :class:`Table` of arrays x, s, v, a, j
+    (dimensionless), both ends included (as ``Law(name, **params).sample(points)``); ``shard=(i,
+    n)`` gives only the rows of ``--shard i/n``."""
+    return Law(name, **params).sample(points, shard)

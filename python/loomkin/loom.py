@@ -8,11 +8,11 @@ and ``lift_plan`` a lift plan (text files); without either, plain weave over the
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, Optional, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 from . import _loomkin as _m
 from ._fields import default as _default
-from ._inputs import bytes_of, text_of
+from ._inputs import bytes_of, required_text, text_of
 from ._table import Table
 
 __all__ = ["check", "torque", "stagger"]
@@ -20,23 +20,25 @@ __all__ = ["check", "torque", "stagger"]
 Path = Union[str, "os.PathLike[str]"]
 
 
-def _texts(loom: Path, wif: Optional[Path], lift_plan: Optional[Path]):
+def _texts(loom: Path, wif: Optional[Path], lift_plan: Optional[Path]) -> Tuple[str, Optional[bytes], Optional[str]]:
     # The WIF goes as its bytes: the library decodes it (UTF-8, else the Windows code page with a
     # UserWarning), as the CLI and the workbench do.
-    return text_of(loom), bytes_of(wif), text_of(lift_plan)
+    return required_text("loom", loom), bytes_of(wif), text_of(lift_plan)
 
 
 def check(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None) -> Dict[str, Any]:
     """``loomkin loom check --json``: per frame stroke (mm), shed angle (deg), warp strain; peak
     and RMS shedding torque (N·m), the insertion window (deg), the least clearance (mm)."""
-    return _m.loom_check(*_texts(loom, wif, lift_plan))
+    loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
+    return _m.loom_check(loom_toml, wif_bytes, plan)
 
 
 def torque(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
            step_deg: float = _default("Drive::STEP_DEG")) -> Dict[str, Any]:
     """``loomkin loom torque --json``: peak and RMS shedding torque (N·m) over the repeat and
     ``points``, a :class:`Table` of angle_deg and torque_n_m."""
-    r = _m.loom_torque(*_texts(loom, wif, lift_plan), float(step_deg))
+    loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
+    r = _m.loom_torque(loom_toml, wif_bytes, plan, float(step_deg))
     r["points"] = Table(r["points"])
     return r
 
@@ -45,4 +47,5 @@ def stagger(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = 
             objective: str = "peak") -> Dict[str, Any]:
     """``loomkin loom stagger --json``: crossing offsets (deg) that least the peak (or "rms")
     shedding torque with the window kept, against no stagger and two groups."""
-    return _m.loom_stagger(*_texts(loom, wif, lift_plan), objective)
+    loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
+    return _m.loom_stagger(loom_toml, wif_bytes, plan, objective)

@@ -15,7 +15,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 from . import _loomkin as _m
 from ._fields import default as _default
 from ._inputs import study_text, text_of
-from ._table import Table
+from ._table import Shard, Table, _draw_tables
 
 __all__ = ["design", "simulate", "history", "sweep", "montecarlo", "SETTINGS"]
 
@@ -49,23 +49,30 @@ def history(points: int = _default("History::POINTS"), mechanism: Optional[Any] 
 
 
 def sweep(setting: str, start: float, stop: float, points: int, mechanism: Optional[Any] = None,
-          **kw: Any) -> Dict[str, Any]:
+          shard: Shard = None, **kw: Any) -> Dict[str, Any]:
     """``loomkin pick sweep SETTING --from START --to STOP --points N --json``; ``rows`` is a
-    :class:`Table` (one column per outcome key, the swept value under ``<setting>_<unit>``)."""
-    r = _m.pick_sweep(setting, float(start), float(stop), points, **_kw(mechanism, kw))
+    :class:`Table` (one column per outcome key, the swept value under ``<setting>_<unit>``).
+    ``shard=(i, n)`` computes only the rows of ``--shard i/n`` (:func:`loomkin.concat` of the
+    n shards' ``rows`` is the unsharded ``rows``)."""
+    r = _m.pick_sweep(setting, float(start), float(stop), points, shard, **_kw(mechanism, kw))
     r["rows"] = Table(r["rows"])
     return r
 
 
-def montecarlo(study: Any, mechanism: Optional[Any] = None, **kw: Any) -> Dict[str, Any]:
+def montecarlo(study: Any, mechanism: Optional[Any] = None, *, shard: Shard = None,
+               from_draws: Optional[Any] = None, **kw: Any) -> Any:
     """``loomkin pick montecarlo STUDY --json``: loom settings drawn from the study file's
     distributions (``study``: a TOML path or a dict with draws, seed, ``settings``, ``limits``), the
     end-of-pick results as distributions: draws, seed, method, failing and fail_share, ``inputs`` and
     ``results`` (per quantity, units in the name: mean, sd, percentiles, histogram, limit, count
     failing). ``per_draw`` is the per-draw :class:`Table` of ``--csv`` (draw, the settings drawn,
     simulated 1/0, velocity_m_s, distance_m, …). Mechanism keywords as :func:`design`. The draws run
-    in parallel with the GIL released; Ctrl-C stops the study."""
-    r = _m.pick_montecarlo(study_text(study), **_kw(mechanism, kw))
-    r["per_draw"] = Table(r["per_draw"])
-    return r
+    in parallel with the GIL released; Ctrl-C stops the study.
+
+    For a cluster: ``shard=(i, n)`` runs only shard i of n of the draws and returns their per-draw
+    :class:`Table` (``--shard i/n --csv``); ``from_draws=[table_1, …, table_n]`` (those tables in
+    shard order, DataFrames, or paths of ``--parts`` directories or CSV files as ``--from-draws``
+    takes) returns the report of the finished run, equal to the unsharded report (without
+    ``per_draw``)."""
+    return _m.pick_montecarlo(study_text(study), shard, _draw_tables(from_draws), **_kw(mechanism, kw))
 

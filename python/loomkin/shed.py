@@ -37,7 +37,8 @@ def law(name: Optional[str] = None, spec: Union[str, "os.PathLike[str]", None] =
 
 
 def table(**kw: Any) -> Table:
-    """``loomkin shed table --json``'s rows as a :class:`Table` (``.frame()`` for pandas)."""
+    """``loomkin shed table --json``'s rows as a :class:`Table` (``.frame()`` for pandas);
+    ``shard=(i, n)`` gives only the rows of ``--shard i/n``."""
     return Table(_m.shed_table(**kw))
 
 

@@ -2,6 +2,7 @@
 //! keys the CLI's `--json` uses (both go through the same `Serialize` impls), and columns of numbers
 //! into numpy arrays.
 
+use loomkin_units::Shard;
 use numpy::{PyArray1, PyArrayMethods, PyReadwriteArray1};
 use pyo3::IntoPyObjectExt;
 use pyo3::exceptions::PyRuntimeError;
@@ -148,4 +149,102 @@ pub fn params(kw: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>>
         }
     }
     Ok(out)
+}
+
+/// A whole-number argument (a count of points, draws, cycles) as Python gave it, checked against
+/// its field only in [`Count::check`]: any Python integer (negative, or past 64 bits) and anything
+/// else are taken here, so a bad one raises the package's error naming the field and the allowed
+/// range, not pyo3's `OverflowError` or `TypeError`.
+pub struct Count(Result<i128, String>);
+
+impl Count {
+    /// The count `n` (a default).
+    pub fn of(n: usize) -> Self {
+        Self(Ok(n as i128))
+    }
+
+    /// The count, checked against `field`'s range (named by `field`'s name).
+    pub fn check(&self, field: &loomkin_units::Field) -> PyResult<usize> {
+        self.check_as(field, field.name)
+    }
+
+    /// The count, checked against `field`'s range under the name `name`.
+    pub fn check_as(&self, field: &loomkin_units::Field, name: &str) -> PyResult<usize> {
+        match &self.0 {
+            Ok(n) => {
+                // An integer beyond f64's exact range is still far outside every count's range.
+                field.check_as(name, *n as f64).map_err(crate::errors::raise)?;
+                usize::try_from(*n)
+                    .map_err(|_| crate::errors::raise(loomkin_units::RangeError::new(name, *n as f64, field.range)))
+            }
+            Err(text) => Err(crate::errors::raise(loomkin_laws::LawError::Parse {
+                field: name.into(),
+                text: text.clone(),
+                expected: format!("a whole number, {}", field.range.describe(name)),
+            })),
+        }
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Count {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        // Python's bool is an int: refused as a count.
+        if obj.is_instance_of::<pyo3::types::PyBool>() || !obj.hasattr("__index__")? {
+            let text = obj.repr().map(|r| r.to_string()).unwrap_or_else(|_| "?".into());
+            return Ok(Self(Err(text.chars().take(80).collect())));
+        }
+        let n = match obj.extract::<i128>() {
+            Ok(n) => n,
+            // Past i128: only the sign matters for the range check.
+            Err(_) => {
+                if obj.lt(0)? {
+                    i128::MIN
+                } else {
+                    i128::MAX
+                }
+            }
+        };
+        Ok(Self(Ok(n)))
+    }
+}
+
+/// `shard=(I, N)` or `shard="I/N"`: shard I of N of the rows, as the CLI's `--shard I/N`, read and
+/// checked by the library ([`Shard::parse`]); `None` is the whole run.
+pub fn shard(arg: Option<&Bound<'_, PyAny>>) -> PyResult<Shard> {
+    let Some(a) = arg.filter(|a| !a.is_none()) else { return Ok(Shard::WHOLE) };
+    let text = if let Ok(s) = a.extract::<String>() {
+        s
+    } else if let Ok((i, n)) = a.extract::<(i128, i128)>() {
+        format!("{i}/{n}")
+    } else {
+        a.repr().map(|r| r.to_string()).unwrap_or_else(|_| "?".into())
+    };
+    Shard::parse("shard", &text).map_err(crate::errors::raise)
+}
+
+/// Columns as the package's `loomkin.Table` (a dict of name to array, with `.frame()`): every
+/// table-shaped result has this one type.
+pub fn table<'py>(py: Python<'py>, columns: Bound<'py, PyDict>) -> PyResult<Bound<'py, PyAny>> {
+    py.import("loomkin._table")?.getattr("Table")?.call1((columns,))
+}
+
+/// Columns computed at the points of an input of shape `shape` (in its logical order) as a
+/// `loomkin.Table` of arrays of that shape, as numpy functions broadcast: a 0-d input (a number)
+/// gives floats.
+pub fn shaped_table<'py, K: AsRef<str>>(
+    py: Python<'py>,
+    cols: Vec<(K, Vec<f64>)>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let d = PyDict::new(py);
+    for (k, v) in cols {
+        if shape.is_empty() {
+            d.set_item(k.as_ref(), v.first().copied().unwrap_or(f64::NAN))?;
+        } else {
+            d.set_item(k.as_ref(), PyArray1::from_vec(py, v).reshape(shape.to_vec())?)?;
+        }
+    }
+    table(py, d)
 }

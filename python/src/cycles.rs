@@ -1,10 +1,10 @@
 //! Machine cycles in SI units at a speed, from a TOML file's text or a dict (as JSON text).
 
-use crate::convert::{columns, fill_columns, to_py};
+use crate::convert::{Count, fill_columns, to_py};
 use crate::errors::OrRaise;
 use loomkin_laws::{CycleSpec, LawError};
 use loomkin_units::ShaftSpeed;
-use numpy::{AllowTypeChange, PyArrayLike1};
+use numpy::{AllowTypeChange, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -149,27 +149,27 @@ impl Cycle {
     /// jerk with their units in the keys) and samples as a dict of numpy arrays (angle_deg, time_s,
     /// s_m, v_m_s, a_m_s2, j_m_s3 or the rad forms). speed_rpm: the call's, else the file's, else 300.
     /// Runs with the GIL released.
-    #[pyo3(signature = (speed_rpm=None, points=loomkin_laws::Cycle::HELD_POINTS.default_count()))]
-    fn report(&self, py: Python<'_>, speed_rpm: Option<f64>, points: usize) -> PyResult<Py<PyAny>> {
+    #[pyo3(signature = (speed_rpm=None, points=Count::of(loomkin_laws::Cycle::HELD_POINTS.default_count())))]
+    fn report(&self, py: Python<'_>, speed_rpm: Option<f64>, points: Count) -> PyResult<Py<PyAny>> {
         let speed = self.speed(speed_rpm)?;
-        loomkin_laws::Cycle::HELD_POINTS.check_count(points).or_raise()?;
+        let points = points.check(&loomkin_laws::Cycle::HELD_POINTS)?;
         // The report's head without samples, then the samples straight into numpy arrays.
         let out = to_py(py, &self.inner.report(speed, 0))?;
         out.bind(py).set_item("samples", self.sample_arrays(py, speed, points)?)?;
         Ok(out)
     }
 
-    /// sample(speed_rpm=None, points=...) -> dict[str, numpy.ndarray]
+    /// sample(speed_rpm=None, points=...) -> Table
     /// --
     ///
-    /// The samples of `report` alone (angle_deg, time_s, s_m, v_m_s, a_m_s2, j_m_s3 or the rad
-    /// forms; `points` evenly spaced over the cycle, both ends included), written straight into
-    /// the arrays with the GIL released.
-    #[pyo3(signature = (speed_rpm=None, points=loomkin_laws::Cycle::HELD_POINTS.default_count()))]
-    fn sample<'py>(&self, py: Python<'py>, speed_rpm: Option<f64>, points: usize) -> PyResult<Bound<'py, PyDict>> {
+    /// The samples of `report` alone as a Table (angle_deg, time_s, s_m, v_m_s, a_m_s2, j_m_s3 or
+    /// the rad forms; `points` evenly spaced over the cycle, both ends included), written straight
+    /// into the arrays with the GIL released.
+    #[pyo3(signature = (speed_rpm=None, points=Count::of(loomkin_laws::Cycle::HELD_POINTS.default_count())))]
+    fn sample<'py>(&self, py: Python<'py>, speed_rpm: Option<f64>, points: Count) -> PyResult<Bound<'py, PyAny>> {
         let speed = self.speed(speed_rpm)?;
-        loomkin_laws::Cycle::HELD_POINTS.check_count(points).or_raise()?;
-        self.sample_arrays(py, speed, points)
+        let points = points.check(&loomkin_laws::Cycle::HELD_POINTS)?;
+        crate::convert::table(py, self.sample_arrays(py, speed, points)?)
     }
 
     /// segments(speed_rpm=None) -> list[dict]
@@ -182,19 +182,21 @@ impl Cycle {
         to_py(py, &self.inner.segment_peaks(speed))
     }
 
-    /// __call__(angle_deg, speed_rpm=None) -> dict[str, numpy.ndarray]
+    /// __call__(angle_deg, speed_rpm=None) -> Table
     /// --
     ///
-    /// The cycle at main-shaft angles (deg, wrapped into the cycle) as arrays angle_deg, s, v, a, j
-    /// in SI units. Runs with the GIL released.
+    /// The cycle at main-shaft angles (deg, wrapped into the cycle; a number or an array of any
+    /// shape) as a Table angle_deg, s, v, a, j in SI units: floats for a number, arrays of the
+    /// input's shape otherwise. Runs with the GIL released.
     #[pyo3(signature = (angle_deg, speed_rpm=None))]
     fn __call__<'py>(
         &self,
         py: Python<'py>,
-        angle_deg: PyArrayLike1<'py, f64, AllowTypeChange>,
+        angle_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
         speed_rpm: Option<f64>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let rpm = self.speed(speed_rpm)?.rpm();
+        let shape = angle_deg.shape().to_vec();
         let th: Vec<f64> = angle_deg.as_array().iter().copied().collect();
         let cols = py.detach(|| {
             let k: Vec<_> = th.iter().map(|&t| self.inner.eval(t.to_radians(), rpm)).collect();
@@ -206,7 +208,7 @@ impl Cycle {
                 ("j", k.iter().map(|k| k.j).collect()),
             ]
         });
-        columns(py, cols)
+        crate::convert::shaped_table(py, cols, &shape)
     }
 
     fn __repr__(&self) -> String {

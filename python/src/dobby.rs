@@ -1,7 +1,7 @@
 //! The rotary-dobby modulator (Stäubli 2600 type): analysis of a given cam and synthesis of the
 //! conjugate cams for an output law, keyed as `loomkin dobby analyze|synthesize --json`.
 
-use crate::convert::{to_py, value_records_to_columns};
+use crate::convert::{Count, to_py, value_records_to_columns};
 use crate::errors::{Fault, OrRaise};
 use loomkin_laws::{LawError, LawSpec};
 use loomkin_mech::{
@@ -170,7 +170,7 @@ fn profile<'py>(py: Python<'py>, p: &CamProfile) -> PyResult<Bound<'py, PyDict>>
 /// the GIL released.
 #[pyfunction]
 #[pyo3(signature = (dwell_deg=OutputLawSpec::DWELL_DEG.default_value(),
-    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=OutputLawSpec::CYCLES.default_count() as u32,
+    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=Count::of(OutputLawSpec::CYCLES.default_count()),
     law=OutputLawSpec::DEFAULT_LAW, params=None, roller_m=DobbyInputs::ROLLER_M.default_value(),
     step_deg=DobbyInputs::STEP_DEG.default_value(), alpha_deg=None, theta_deg=None, l2_m=ModulatorGeometry::L2_M.default_value(), l3_m=ModulatorGeometry::L3_M.default_value(),
     l3p_m=ModulatorGeometry::L3P_M.default_value(), l6_m=ModulatorGeometry::L6_M.default_value(), speed_rpm=None,
@@ -179,7 +179,7 @@ fn dobby_synthesize<'py>(
     py: Python<'py>,
     dwell_deg: f64,
     dwell_centre_deg: f64,
-    cycles: u32,
+    cycles: Count,
     law: &str,
     params: Option<&Bound<'py, PyDict>>,
     roller_m: f64,
@@ -196,6 +196,8 @@ fn dobby_synthesize<'py>(
     let geo = Geometry { alpha_deg, theta_deg, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
     let g = geo.build()?;
     let rise = LawSpec::parse(law, &crate::convert::params(params)?).or_raise()?;
+    // At most 6 (the field's range), so the u32 holds it.
+    let cycles = cycles.check(&OutputLawSpec::CYCLES)? as u32;
     let spec = OutputLawSpec { cycles, dwell_deg, dwell_centre_deg, rise };
     let opts = SynthesisOptions { step_deg, input_speed_rad_s: geo.speed_rad_s()?, roller_m, pressure_limit_deg };
     let res = py.detach(|| synthesize(&g, &spec, &opts)).or_raise()?;
@@ -205,44 +207,65 @@ fn dobby_synthesize<'py>(
     Ok(out)
 }
 
-/// dobby_tolerance(study_toml) -> dict
+/// dobby_tolerance(study_toml, shard=None, from_draws=None) -> dict | Table
 /// --
 ///
 /// `loomkin dobby tolerance STUDY --json` for the study file's text (draws, seed, step_deg,
 /// `[dimensions]` distributions in m and deg, `[limits]`): draws, seed, step_deg, not_assembled,
 /// failing, fail_share, dimensions and results (output-angle error in deg, pressure angle in
 /// deg, dead-point margin in deg: mean, sd, percentiles, histogram, limit, count failing), and
-/// `per_draw`, the per-draw table of `--csv` as a dict of arrays. The draws run in parallel with the
-/// GIL released, a piece at a time: Ctrl-C stops the study between pieces.
+/// `per_draw`, the per-draw table of `--csv` as a Table. `shard=(I, N)` runs only shard I of N
+/// of the draws and returns their per-draw Table (`--shard I/N --csv`); `from_draws` (a list of
+/// such tables in shard order, or of paths as `--from-draws` takes) returns the report of the
+/// finished run without `per_draw`. The draws run in parallel with the GIL released, a piece at
+/// a time: Ctrl-C stops the study between pieces.
 #[pyfunction]
-fn dobby_tolerance<'py>(py: Python<'py>, study_toml: &str) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (study_toml, shard=None, from_draws=None))]
+fn dobby_tolerance<'py>(
+    py: Python<'py>,
+    study_toml: &str,
+    shard: Option<&Bound<'py, PyAny>>,
+    from_draws: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let ask = crate::study::Ask::of(shard, from_draws)?;
     let t = loomkin_mech::Tolerance::from_toml(study_toml).or_raise()?;
-    crate::study::run_study(py, t.draws, |items| t.run(items, loomkin_study::Progress::Hidden), |d| t.report(d))
+    crate::study::answer(
+        py,
+        crate::study::Study {
+            command: "dobby tolerance",
+            draws: t.draws,
+            run: &|items| t.run(items, loomkin_study::Progress::Hidden),
+            report: &|d| t.report(d),
+            report_from: &|source| t.report_from(source),
+        },
+        ask,
+    )
 }
 
 /// dobby_sweep(alpha_deg, dwell_deg=..., dwell_centre_deg=..., cycles=..., law="cycloidal", params=None,
 /// roller_m=..., step_deg=..., l2_m=..., l3_m=..., l3p_m=..., l6_m=..., speed_rpm=None,
-/// pressure_limit_deg=..., cam_spec=None, cam_points_text=None) -> dict
+/// pressure_limit_deg=..., cam_spec=None, cam_points_text=None, shard=None) -> dict
 /// --
 ///
 /// `loomkin dobby sweep --json` (the paper's α sweep) at the lever angles of an array (deg, α = θ):
 /// `rows`, per α the analysis of the given cam (an_ok, an_omega6_min/max_rad_s, pressure angles in
 /// deg, …) and the synthesis of the law (syn_ok, …), as a dict of columns (numbers as numpy arrays,
-/// errors and flags as lists). Lengths in m, angles in deg. Runs with the GIL released.
+/// errors and flags as lists). `shard=(I, N)` computes only shard I of N of the angles (`--shard
+/// I/N`). Lengths in m, angles in deg. Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (alpha_deg, dwell_deg=OutputLawSpec::DWELL_DEG.default_value(),
-    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=OutputLawSpec::CYCLES.default_count() as u32,
+    dwell_centre_deg=OutputLawSpec::DWELL_CENTRE_DEG.default_value(), cycles=Count::of(OutputLawSpec::CYCLES.default_count()),
     law=OutputLawSpec::DEFAULT_LAW, params=None,
     roller_m=DobbyInputs::ROLLER_M.default_value(), step_deg=DobbyInputs::STEP_DEG.default_value(), l2_m=ModulatorGeometry::L2_M.default_value(), l3_m=ModulatorGeometry::L3_M.default_value(),
     l3p_m=ModulatorGeometry::L3P_M.default_value(), l6_m=ModulatorGeometry::L6_M.default_value(), speed_rpm=None,
-    pressure_limit_deg=DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), cam_spec=None, cam_points_text=None))]
+    pressure_limit_deg=DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), cam_spec=None, cam_points_text=None, shard=None))]
 #[allow(clippy::too_many_arguments)]
 fn dobby_sweep<'py>(
     py: Python<'py>,
     alpha_deg: Vec<f64>,
     dwell_deg: f64,
     dwell_centre_deg: f64,
-    cycles: u32,
+    cycles: Count,
     law: &str,
     params: Option<&Bound<'py, PyDict>>,
     roller_m: f64,
@@ -255,12 +278,17 @@ fn dobby_sweep<'py>(
     pressure_limit_deg: f64,
     cam_spec: Option<&str>,
     cam_points_text: Option<&str>,
+    shard: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
     AlphaSweep::ALPHAS.check_count(alpha_deg.len()).or_raise()?;
+    // Shard I of N: the rows of `dobby sweep --shard I/N` when the array holds the CLI's angles.
+    let alpha_deg = &alpha_deg[crate::convert::shard(shard)?.items(alpha_deg.len())];
     let geo = Geometry { alpha_deg: None, theta_deg: None, l2_m, l3_m, l3p_m, l6_m, speed_rpm };
     let g = geo.build()?;
     let c = cam(cam_spec, cam_points_text)?;
     let rise = LawSpec::parse(law, &crate::convert::params(params)?).or_raise()?;
+    // At most 6 (the field's range), so the u32 holds it.
+    let cycles = cycles.check(&OutputLawSpec::CYCLES)? as u32;
     let spec = OutputLawSpec { cycles, dwell_deg, dwell_centre_deg, rise };
     let speed = geo.speed_rad_s()?;
     let an = AnalysisOptions {
@@ -271,7 +299,7 @@ fn dobby_sweep<'py>(
         ..AnalysisOptions::default()
     };
     let syn = SynthesisOptions { step_deg, input_speed_rad_s: speed, roller_m, pressure_limit_deg };
-    let rows = py.detach(|| loomkin_mech::alpha_sweep(&g, &c, &spec, &alpha_deg, &an, &syn)).or_raise()?;
+    let rows = py.detach(|| loomkin_mech::alpha_sweep(&g, &c, &spec, alpha_deg, &an, &syn)).or_raise()?;
     let out = PyDict::new(py);
     out.set_item("rows", crate::convert::records_to_columns(py, &rows)?)?;
     Ok(out.into_any().unbind())

@@ -1,7 +1,7 @@
 //! The elastic follower: the response of a cycle driven through a spring-mass-damper at a speed,
 //! keyed as `loomkin dyn response FILE --json`.
 
-use crate::convert::{columns, to_py};
+use crate::convert::{Count, columns, to_py};
 use crate::cycles::Cycle;
 use crate::errors::{Fault, OrRaise};
 use loomkin_dynamics::{DynError, Follower, Response, ResponseReport, Start, Units, sweep, sweep_columns, sweep_row};
@@ -58,8 +58,8 @@ fn follower(
 /// Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (cycle, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(), preload_n=Follower::PRELOAD_N.default_value(),
-    weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None, cycles=Response::CYCLES.default_count(), steady=false,
-    points=Response::POINTS.default_count()))]
+    weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None, cycles=Count::of(Response::CYCLES.default_count()), steady=false,
+    points=Count::of(Response::POINTS.default_count())))]
 fn dyn_response<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -71,14 +71,14 @@ fn dyn_response<'py>(
     weight: bool,
     force_n: f64,
     speed_rpm: Option<f64>,
-    cycles: usize,
+    cycles: Count,
     steady: bool,
-    points: usize,
+    points: Count,
 ) -> PyResult<Bound<'py, PyDict>> {
     let speed = cycle.speed(speed_rpm)?;
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
-    Response::CYCLES.check_count(cycles).or_raise()?;
-    Response::POINTS.check_count(points).or_raise()?;
+    let cycles = cycles.check(&Response::CYCLES)?;
+    let points = points.check(&Response::POINTS)?;
     let start = if steady { Start::Steady } else { Start::Rest };
     let inner = &cycle.inner;
     let (summary, samples) = py
@@ -112,16 +112,18 @@ fn dyn_response<'py>(
 }
 
 /// dyn_sweep(cycle, speed_rpm, natural_hz, damping_ratio=..., mass_kg=None, return_spring_n_m=...,
-/// preload_n=..., weight=False, force_n=..., steady=False) -> dict
+/// preload_n=..., weight=False, force_n=..., steady=False, shard=None) -> dict
 /// --
 ///
 /// `loomkin dyn sweep FILE --speed-rpm … --json` at the speeds of an array (rpm, any order):
 /// natural_hz, damping_ratio, start and points, a dict of arrays with the CLI's columns
 /// (speed_rpm, residual amplitude, peak error, … in the cycle's units; forces in N with a mass).
-/// The speeds run in parallel with the GIL released.
+/// `shard=(I, N)` computes only shard I of N of the speeds (`--shard I/N`). The speeds run in
+/// parallel with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (cycle, speed_rpm, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(),
-    preload_n=Follower::PRELOAD_N.default_value(), weight=false, force_n=Follower::FORCE_N.default_value(), steady=false))]
+    preload_n=Follower::PRELOAD_N.default_value(), weight=false, force_n=Follower::FORCE_N.default_value(), steady=false, shard=None))]
+#[allow(clippy::too_many_arguments)]
 fn dyn_sweep<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -134,9 +136,13 @@ fn dyn_sweep<'py>(
     weight: bool,
     force_n: f64,
     steady: bool,
+    shard: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let speeds: Vec<f64> = speed_rpm.as_array().iter().copied().collect();
-    loomkin_dynamics::SweepPoint::SPEEDS.check_count(speeds.len()).or_raise()?;
+    let all = speed_rpm.as_array();
+    loomkin_dynamics::SweepPoint::SPEEDS.check_count(all.len()).or_raise()?;
+    // Shard I of N: the rows of `dyn sweep --shard I/N` when the array holds the CLI's speeds.
+    let items = crate::convert::shard(shard)?.items(all.len());
+    let speeds: Vec<f64> = all.iter().copied().skip(items.start).take(items.len()).collect();
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
     let start = if steady { Start::Steady } else { Start::Rest };
     let inner = &cycle.inner;
@@ -197,7 +203,7 @@ fn dyn_spectrum<'py>(
 #[pyfunction]
 #[pyo3(signature = (cycle, natural_hz, damping_ratio=Follower::DAMPING_RATIO.default_value(), mass_kg=None, return_spring_n_m=Follower::RETURN_SPRING_N_M.default_value(), preload_n=Follower::PRELOAD_N.default_value(),
     weight=false, force_n=Follower::FORCE_N.default_value(), speed_rpm=None,
-    points=loomkin_dynamics::Compensation::POINTS.default_count()))]
+    points=Count::of(loomkin_dynamics::Compensation::POINTS.default_count())))]
 fn dyn_compensate<'py>(
     py: Python<'py>,
     cycle: PyRef<'py, Cycle>,
@@ -209,11 +215,11 @@ fn dyn_compensate<'py>(
     weight: bool,
     force_n: f64,
     speed_rpm: Option<f64>,
-    points: usize,
+    points: Count,
 ) -> PyResult<Bound<'py, PyDict>> {
     let speed = cycle.speed(speed_rpm)?;
     let follower = follower(natural_hz, damping_ratio, mass_kg, return_spring_n_m, preload_n, weight, force_n)?;
-    loomkin_dynamics::Compensation::POINTS.check_count(points).or_raise()?;
+    let points = points.check(&loomkin_dynamics::Compensation::POINTS)?;
     let exc = loomkin_dynamics::Excitation::from_cycle(&cycle.inner, speed);
     let (comp, samples) = py
         .detach(|| -> Result<_, DynError> {

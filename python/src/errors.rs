@@ -136,3 +136,18 @@ impl<T, E: Fault> OrRaise<T> for Result<T, E> {
         self.map_err(raise)
     }
 }
+
+impl Fault for loomkin_units::SweepError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            _ => None,
+        }
+    }
+    fn accepted(&self) -> Option<String> {
+        match self {
+            Self::Parse { expected, .. } => Some((*expected).to_string()),
+            _ => None,
+        }
+    }
+}

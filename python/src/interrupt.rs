@@ -40,18 +40,18 @@ pub fn detached<T: Send + 'static>(py: Python<'_>, work: impl FnOnce() -> T + Se
     }
 }
 
-/// Runs `work` on the ranges `0..n` cut into pieces of `piece` items, each with the GIL released
+/// Runs `work` on the range `items` cut into pieces of `piece` items, each with the GIL released
 /// (the work itself may be parallel), checking Python's signals between pieces; the results in
 /// order. Work whose items depend on their index only gives the same results as one call on
-/// `0..n`.
+/// `items`.
 pub fn chunks<T: Send>(
     py: Python<'_>,
-    n: u64,
+    items: std::ops::Range<u64>,
     piece: u64,
     work: impl Fn(std::ops::Range<u64>) -> Vec<T> + Sync,
 ) -> PyResult<Vec<T>> {
     let mut out = Vec::new();
-    let mut lo = 0;
+    let (mut lo, n) = (items.start, items.end);
     while lo < n {
         let hi = (lo + piece.max(1)).min(n);
         out.extend(py.detach(|| work(lo..hi)));

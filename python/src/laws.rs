@@ -1,10 +1,11 @@
 //! Normalised laws: the catalogue, `Law` objects (catalogue, piecewise, polynomial, servo spline)
 //! with metrics, continuity and sampling into numpy arrays.
 
-use crate::convert::{self, columns, to_py};
+use crate::convert::{self, Count, fill_columns, to_py};
 use crate::errors::OrRaise;
 use loomkin_laws::{ContinuityReport, InfoReport, Kinematics, LawSpec, ListedLaw, ParamValue};
-use numpy::{AllowTypeChange, PyArrayLike1};
+use loomkin_units::Shard;
+use numpy::{AllowTypeChange, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::collections::BTreeMap;
@@ -59,11 +60,30 @@ fn kin_columns(x: Vec<f64>, k: &[Kinematics]) -> Vec<(&'static str, Vec<f64>)> {
     ]
 }
 
-/// Samples of a law, `points` evenly spaced from 0 to 1, as a dict of arrays x, s, v, a, j; the
-/// GIL is released while they are computed.
-pub fn sample_dict<'py>(py: Python<'py>, law: &loomkin_laws::Law, points: usize) -> PyResult<Bound<'py, PyDict>> {
-    loomkin_laws::Law::HELD_POINTS.check_count(points).or_raise()?;
-    crate::convert::law_samples(py, law, points)
+/// Samples of a law, `points` evenly spaced from 0 to 1 (shard `shard` of them, as `loomkin law
+/// sample --shard I/N`), as a [`Table`](crate::convert::table) of arrays x, s, v, a, j; the GIL is
+/// released while they are computed.
+pub fn sample_table<'py>(
+    py: Python<'py>,
+    law: &loomkin_laws::Law,
+    points: &Count,
+    shard: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let points = points.check(&loomkin_laws::Law::HELD_POINTS)?;
+    let shard = crate::convert::shard(shard)?;
+    let cols = if shard == Shard::WHOLE {
+        crate::convert::law_samples(py, law, points)?
+    } else {
+        // The share of the whole run's samples, bit for bit: the stream `law sample --shard` prints.
+        let items = shard.items(points);
+        fill_columns(py, &["x", "s", "v", "a", "j"], items.len(), |c| {
+            let [x, s, v, a, j] = c else { return };
+            for (i, (xi, k)) in law.samples(points).skip(items.start).take(items.len()).enumerate() {
+                (x[i], s[i], v[i], a[i], j[i]) = (xi, k.s, k.v, k.a, k.j);
+            }
+        })?
+    };
+    crate::convert::table(py, cols)
 }
 
 #[pymethods]
@@ -141,32 +161,42 @@ impl Law {
         to_py(py, &r)
     }
 
-    /// sample(points) -> dict[str, numpy.ndarray]
+    /// sample(points, shard=None) -> Table
     /// --
     ///
     /// `points` (2 ≤ points ≤ 1e8) evenly spaced samples from x = 0 to 1, both ends included, as
-    /// float64 arrays x, s, v, a, j (dimensionless). The same numbers as `loomkin law sample`.
-    /// Runs with the GIL released.
-    fn sample<'py>(&self, py: Python<'py>, points: usize) -> PyResult<Bound<'py, PyDict>> {
-        sample_dict(py, &self.inner, points)
+    /// a Table of float64 arrays x, s, v, a, j (dimensionless). The same numbers as `loomkin law
+    /// sample`; `shard=(I, N)` (or "I/N") gives only the rows of `--shard I/N`. Runs with the GIL
+    /// released.
+    #[pyo3(signature = (points, shard=None))]
+    fn sample<'py>(
+        &self,
+        py: Python<'py>,
+        points: Count,
+        shard: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        sample_table(py, &self.inner, &points, shard)
     }
 
-    /// __call__(x) -> dict[str, numpy.ndarray]
+    /// __call__(x) -> Table
     /// --
     ///
-    /// The law at the positions `x` (a float64 array or anything numpy turns into one; clamped to
-    /// [0, 1]) as arrays x, s, v, a, j of the same length. Runs with the GIL released.
+    /// The law at the positions `x` (a number, or an array of any shape, or anything numpy turns
+    /// into one) as a Table x, s, v, a, j: floats for a number, arrays of `x`'s shape otherwise.
+    /// Outside [0, 1] the follower dwells: s is the law's end value, v, a and j are 0. Runs with
+    /// the GIL released.
     fn __call__<'py>(
         &self,
         py: Python<'py>,
-        x: PyArrayLike1<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+        x: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let shape = x.shape().to_vec();
         let xs: Vec<f64> = x.as_array().iter().copied().collect();
         let cols = py.detach(|| {
             let k: Vec<Kinematics> = xs.iter().map(|&x| self.inner.eval(x)).collect();
             kin_columns(xs, &k)
         });
-        columns(py, cols)
+        crate::convert::shaped_table(py, cols, &shape)
     }
 
     fn __repr__(&self) -> String {

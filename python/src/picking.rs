@@ -1,7 +1,7 @@
 //! Shuttle picking dynamics (Jederán 1959): design, simulation and sweeps, keyed as
 //! `loomkin pick … --json`.
 
-use crate::convert::{columns, to_py, value_records_to_columns, value_to_py};
+use crate::convert::{Count, columns, to_py, value_records_to_columns, value_to_py};
 use crate::errors::{Fault, OrRaise};
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
@@ -215,13 +215,13 @@ fn pick_simulate(py: Python<'_>, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Py<
 /// (nominal picker motion) and x_m, v_m_s, a_m_s2 (the shuttle), with the outcome dict.
 /// Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (points=History::POINTS.default_count(), **kw))]
+#[pyo3(signature = (points=Count::of(History::POINTS.default_count()), **kw))]
 fn pick_history<'py>(
     py: Python<'py>,
-    points: usize,
+    points: Count,
     kw: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyDict>, Py<PyAny>)> {
-    History::POINTS.check_count(points).or_raise()?;
+    let points = points.check(&History::POINTS)?;
     let Call { model, set, start, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
     let st = settings(&mech, &set, start);
@@ -239,29 +239,35 @@ fn pick_history<'py>(
     Ok((columns(py, cols)?, to_py(py, &h.outcome)?))
 }
 
-/// pick_sweep(setting, start, stop, points, **model_and_settings) -> dict
+/// pick_sweep(setting, start, stop, points, shard=None, **model_and_settings) -> dict
 /// --
 ///
 /// `loomkin pick sweep SETTING --from --to --points --json`: setting, unit, method,
 /// fallback_values and rows, here a dict of columns (the outcome keys of `pick_simulate` and the
 /// swept value under `<setting>_<unit>`; numbers as numpy arrays, text as lists, a missing note
-/// None). The points run in parallel with the GIL released.
+/// None). `shard=(I, N)` computes only the rows of `--shard I/N`. The points run in parallel with
+/// the GIL released.
 #[pyfunction]
-#[pyo3(signature = (setting, start, stop, points, **kw))]
+#[pyo3(signature = (setting, start, stop, points, shard=None, **kw))]
+#[allow(clippy::too_many_arguments)]
 fn pick_sweep(
     py: Python<'_>,
     setting: &str,
     start: f64,
     stop: f64,
-    points: usize,
+    points: Count,
+    shard: Option<&Bound<'_, PyAny>>,
     kw: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Py<PyAny>> {
     let setting = Setting::parse(setting).or_raise()?;
-    Sweep::HELD_POINTS.check_count(points).or_raise()?;
+    let points = points.check(&Sweep::HELD_POINTS)?;
+    let items = crate::convert::shard(shard)?.items(points);
     let Call { model, set, start: start_rule, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
     let st = settings(&mech, &set, start_rule);
-    let s = py.detach(|| loomkin_picking::sweep(&mech, &st, setting, start, stop, points, method)).or_raise()?;
+    let s = py
+        .detach(|| loomkin_picking::sweep_items(&mech, &st, setting, start, stop, points, method, items))
+        .or_raise()?;
     // The report as `loomkin pick sweep --json` prints it, its rows as columns.
     let mut report = serde_json::to_value(s.report(method))
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("internal: {e}")))?;
@@ -271,23 +277,28 @@ fn pick_sweep(
     Ok(out)
 }
 
-/// pick_montecarlo(study_toml, **model) -> dict
+/// pick_montecarlo(study_toml, shard=None, from_draws=None, **model) -> dict | Table
 /// --
 ///
 /// `loomkin pick montecarlo STUDY --json` for the study file's text (draws, seed, `[settings]`
 /// distributions, `[limits]`) and the mechanism keywords of `pick_design`: draws, seed, method,
 /// ode_draws, not_simulated, separation_draws, failing, fail_share, inputs and results (each
 /// quantity's mean, sd, percentiles, histogram, limit and count failing), and `per_draw`, the
-/// per-draw table of `--csv` as a dict of arrays (draw, the settings drawn, simulated 1/0, the
-/// end-of-pick results, flags 1/0). The draws run in parallel with the GIL released, a piece at
-/// a time: Ctrl-C stops the study between pieces.
+/// per-draw table of `--csv` as a Table (draw, the settings drawn, simulated 1/0, the end-of-pick
+/// results, flags 1/0). `shard=(I, N)` runs only shard I of N of the draws and returns their
+/// per-draw Table (`--shard I/N --csv`); `from_draws` (a list of such tables in shard order, or
+/// of paths as `--from-draws` takes) returns the report of the finished run without `per_draw`,
+/// equal to the unsharded report. The draws run in parallel with the GIL released, a piece at a
+/// time: Ctrl-C stops the study between pieces.
 #[pyfunction]
-#[pyo3(signature = (study_toml, **model))]
+#[pyo3(signature = (study_toml, shard=None, from_draws=None, **model))]
 fn pick_montecarlo<'py>(
     py: Python<'py>,
     study_toml: &str,
+    shard: Option<&Bound<'py, PyAny>>,
+    from_draws: Option<&Bound<'py, PyAny>>,
     model: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let call = Model::from_kw(model)?;
     if let Some((s, _)) = call.set.first() {
         return Err(parse_err(
@@ -296,12 +307,18 @@ fn pick_montecarlo<'py>(
             "the loom settings of a Monte-Carlo study come from its file ([settings]); give only mechanism keywords",
         ));
     }
+    let ask = crate::study::Ask::of(shard, from_draws)?;
     let mc = loomkin_picking::MonteCarlo::from_toml(study_toml).or_raise()?;
     let mech = call.model.build()?;
-    crate::study::run_study(
+    crate::study::answer(
         py,
-        mc.draws,
-        |items| mc.run(&mech, items, loomkin_study::Progress::Hidden),
-        |d| mc.report(d),
+        crate::study::Study {
+            command: "pick montecarlo",
+            draws: mc.draws,
+            run: &|items| mc.run(&mech, items, loomkin_study::Progress::Hidden),
+            report: &|d| mc.report(d),
+            report_from: &|source| mc.report_from(&mech, source),
+        },
+        ask,
     )
 }

@@ -1,7 +1,7 @@
 //! Servo motion functions from definition points: the spline law, drive torque, optimisation and
 //! the controller exports, keyed as `loomkin servo … --json`.
 
-use crate::convert::{records_to_columns, to_py};
+use crate::convert::{Count, records_to_columns, to_py};
 use crate::cycles::Cycle;
 use crate::errors::{OrRaise, raise};
 use crate::laws::Law;
@@ -142,17 +142,17 @@ fn servo_torque(
 /// time_s, u_m, v_m_s, a_m_s2, torque_nm, power_w and the list phase. Runs with the GIL released.
 #[pyfunction]
 #[pyo3(signature = (speed_rpm=ServoInputs::speeds(ServoInputs::DESIGN_SPEEDS_RPM)[0],
-    points=ServoInputs::CURVE_POINTS.default_count(), def_points=None, end="natural", drive_text=None))]
+    points=Count::of(ServoInputs::CURVE_POINTS.default_count()), def_points=None, end="natural", drive_text=None))]
 fn servo_torque_curve(
     py: Python<'_>,
     speed_rpm: f64,
-    points: usize,
+    points: Count,
     def_points: Option<&Bound<'_, PyAny>>,
     end: &str,
     drive_text: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
     speeds(&[speed_rpm])?;
-    ServoInputs::CURVE_POINTS.check_count(points).or_raise()?;
+    let points = points.check(&ServoInputs::CURVE_POINTS)?;
     let sl = spline(def_points, end)?;
     let d = drive(drive_text)?;
     let curve = py.detach(|| torque_curve(sl.law(), &d, speed_rpm, points)).or_raise()?;
@@ -169,19 +169,19 @@ fn servo_torque_curve(
 /// (a notebook's interrupt) stops it and raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (speed_rpm=ServoInputs::speeds(ServoInputs::DESIGN_SPEEDS_RPM), objective="peak",
-    starts=ServoInputs::STARTS.default_count(), fixed_x=false, def_points=None, end="natural", drive_text=None))]
+    starts=Count::of(ServoInputs::STARTS.default_count()), fixed_x=false, def_points=None, end="natural", drive_text=None))]
 fn servo_optimize(
     py: Python<'_>,
     speed_rpm: Vec<f64>,
     objective: &str,
-    starts: usize,
+    starts: Count,
     fixed_x: bool,
     def_points: Option<&Bound<'_, PyAny>>,
     end: &str,
     drive_text: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
     speeds(&speed_rpm)?;
-    ServoInputs::STARTS.check_count(starts).or_raise()?;
+    let starts = starts.check(&ServoInputs::STARTS)?;
     let objective = Objective::parse(objective).or_raise()?;
     let sl = spline(def_points, end)?;
     let d = drive(drive_text)?;

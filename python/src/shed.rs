@@ -149,8 +149,9 @@ fn rows_columns(py: Python<'_>, t: &StudyTable, cond: &Conditions) -> PyResult<P
 /// Which table [`study_rows`] builds.
 #[derive(Clone, Copy)]
 enum Build {
-    /// `shed table`: every law of the design (at motion angles `motion_deg`, default 300).
-    Table,
+    /// `shed table`: every law of the design (at motion angles `motion_deg`, default 300), or
+    /// one shard's share of the laws.
+    Table(loomkin_units::Shard),
     /// `shed pareto`: the laws not dominated over the motion angles (default 180:360:10).
     Pareto,
 }
@@ -169,16 +170,16 @@ fn study_rows(
     let cond = conditions(threshold, stroke_mm, speed_rpm)?;
     let motions = |default: &str| loomkin_shed::parse_motion_angles(motion_deg.unwrap_or(default)).or_raise();
     let t = match (build, kind == DesignKind::Presets) {
-        (Build::Table, true) => {
+        (Build::Table(shard), true) => {
             if d.family.is_some() || d.shapes.is_some() || motion_deg.is_some() || d.step.is_some() {
                 return Err(parse_err("design", "design presets takes no family, shapes, step or motion_deg".into()));
             }
-            py.detach(|| preset_table_in(&cond, 0..PRESETS.len())).or_raise()?
+            py.detach(|| preset_table_in(&cond, shard.items(PRESETS.len()))).or_raise()?
         }
-        (Build::Table, false) => {
+        (Build::Table(shard), false) => {
             let s = study(kind, d, GridSpec::TABLE)?;
             let motions = motions(loomkin_shed::TABLE_MOTION_DEG)?;
-            py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, 0..s.design.len())).or_raise()?
+            py.detach(|| s.table_in(&motions, &cond, Progress::Hidden, shard.items(s.design.len()))).or_raise()?
         }
         (Build::Pareto, presets) => {
             // The angles are checked whatever the design (as the CLI does).
@@ -200,15 +201,18 @@ fn study_rows(
     rows_columns(py, &t, &cond)
 }
 
-/// shed_table(design="presets", ...) -> dict[str, array]
+/// shed_table(design="presets", ..., shard=None) -> dict[str, array]
 /// --
 ///
 /// `loomkin shed table --json`'s rows as columns: law (presets) or row (a design), the criteria
 /// (window_deg, dwell_deg, conditional_dwell_deg, ca, peak_accel_m_s2, …), stroke_mm, speed_rpm and
-/// lengths (the relative lengths k of each law, a list per row). Runs with the GIL released.
+/// lengths (the relative lengths k of each law, a list per row). `shard=(I, N)` gives only the
+/// rows of `--shard I/N` (shard I of N of the laws, each at every motion angle). Runs with the GIL
+/// released.
 #[pyfunction]
 #[pyo3(signature = (design="presets", family=None, shapes=None, step=None, min_k=None, max_k=None, motion_deg=None,
-    threshold=Conditions::THRESHOLD_FIELD.default_value(), stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM))]
+    threshold=Conditions::THRESHOLD_FIELD.default_value(), stroke_mm=Conditions::STROKE_MM.default_value(), speed_rpm=ShaftSpeed::DEFAULT_RPM, shard=None))]
+#[allow(clippy::too_many_arguments)]
 fn shed_table(
     py: Python<'_>,
     design: &str,
@@ -221,9 +225,11 @@ fn shed_table(
     threshold: f64,
     stroke_mm: f64,
     speed_rpm: f64,
+    shard: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
     let d = DesignArgs { family, shapes, step, min_k, max_k };
-    study_rows(py, Build::Table, design, &d, motion_deg, (threshold, stroke_mm, speed_rpm))
+    let shard = crate::convert::shard(shard)?;
+    study_rows(py, Build::Table(shard), design, &d, motion_deg, (threshold, stroke_mm, speed_rpm))
 }
 
 /// shed_pareto(design="grid", ...) -> dict[str, array]

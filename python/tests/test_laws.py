@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import loomkin
-from conftest import records, same
+from conftest import REPO, records, same
 
 PIECEWISE = "0.25:sine-ramp:0:1,0.5:half-cosine:1:-1,0.25:cosine-ramp:-1:0"
 
@@ -87,3 +87,66 @@ def test_too_few_points_raise():
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.Law("cycloidal").sample(1)
     assert e.value.field == "points" and e.value.low == 2
+
+
+def test_one_result_type_for_samples():
+    """issue 27: Law.sample() returned a dict while laws.sample() returned a Table."""
+    law = loomkin.Law("cycloidal")
+    for t in (law.sample(11), loomkin.laws.sample("cycloidal", 11), law(np.linspace(0, 1, 11))):
+        assert type(t) is loomkin.Table and list(t) == ["x", "s", "v", "a", "j"]
+    np.testing.assert_array_equal(law.sample(11)["s"], loomkin.laws.sample("cycloidal", 11)["s"])
+    assert type(loomkin.cycles.load(REPO / "examples" / "heald-frame-cycle.toml").sample(points=5)) is loomkin.Table
+
+
+def test_call_broadcasts_as_numpy_functions_do():
+    """issue 27: Law(…)(0.5) and 2-D arrays raised `dimensionality mismatch`."""
+    law = loomkin.Law("cycloidal")
+    one = law(0.25)
+    assert all(isinstance(v, float) for v in one.values())
+    # Independent route: the closed form at x = 1/4, s = 1/4 − 1/(2π), v = 1 − cos(π/2) = 1.
+    assert one["s"] == pytest.approx(0.25 - 1 / (2 * np.pi), abs=1e-15)
+    assert one["v"] == pytest.approx(1.0, abs=1e-15)
+    x = np.linspace(0.0, 1.0, 12).reshape(3, 4)
+    grid = law(x)
+    flat = law(x.ravel())
+    for k in ("x", "s", "v", "a", "j"):
+        assert grid[k].shape == (3, 4)
+        np.testing.assert_array_equal(grid[k].ravel(), flat[k])
+    # A transposed (non-contiguous) view keeps its logical order; a 0-d array is a number.
+    np.testing.assert_array_equal(law(x.T)["s"], grid["s"].T)
+    assert isinstance(law(np.float64(0.5))["s"], float)
+    c = loomkin.cycles.load(REPO / "examples" / "heald-frame-cycle.toml")
+    assert isinstance(c(90.0)["s"], float) and c(np.zeros((2, 5)))["a"].shape == (2, 5)
+
+
+@pytest.mark.parametrize("name", ["cycloidal", "modified-sine", "poly345", "constant-acceleration", "harmonic"])
+def test_outside_the_rise_the_follower_dwells(name):
+    """issue 27: outside [0, 1] s, v, a took the dwell values but j kept 39.48 (cycloidal): the
+    derivatives of a dwell are 0, and s holds the end the follower rests at."""
+    law = loomkin.Law(name)
+    before, after = law(np.array([-1e-9, -0.5, -3.0])), law(np.array([1 + 1e-9, 1.5, 40.0]))
+    for out, s in ((before, law(0.0)["s"]), (after, law(1.0)["s"])):
+        np.testing.assert_array_equal(out["s"], s)
+        for k in ("v", "a", "j"):
+            np.testing.assert_array_equal(out[k], 0.0)
+
+
+def test_bad_counts_raise_the_package_error_naming_the_field():
+    """issue 27: sample(-5) raised a raw OverflowError."""
+    law = loomkin.Law("cycloidal")
+    for bad in (-5, 2**70, -(2**70), 1):
+        with pytest.raises(loomkin.OutOfRangeError) as e:
+            law.sample(bad)
+        assert e.value.field == "points" and e.value.low == 2 and e.value.value == float(bad)
+    for bad in ("ten", 2.5, True, None):
+        with pytest.raises(loomkin.LoomkinError) as e:
+            loomkin.laws.sample("cycloidal", bad)
+        assert e.value.field == "points" and "whole number" in e.value.allowed
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.picking.history(points=-1)
+    assert e.value.field == "points"
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.dobby.synthesize(cycles=-2)
+    assert e.value.field == "cycles"
+    # numpy integers are integers.
+    assert law.sample(np.int64(5))["x"].shape == (5,)

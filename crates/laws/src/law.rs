@@ -280,12 +280,15 @@ impl Law {
         }
     }
 
-    /// Kinematics at `x`, clamped to `[0, 1]`.
+    /// Kinematics at `x`. Outside `[0, 1]` the follower dwells where the law starts (`x < 0`) or
+    /// ends (`x > 1`): `s` is the law's value there, `v`, `a` and `j` are 0 (the derivatives of a
+    /// dwell), whatever the law's own derivatives at its ends. A NaN is taken as 0.
     #[inline]
     pub fn eval(&self, x: f64) -> Kinematics {
-        let x = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
-        let seg = &self.segments[self.segment_index(x)];
-        seg.eval(x)
+        let inside = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+        let seg = &self.segments[self.segment_index(inside)];
+        let k = seg.eval(inside);
+        if inside == x || x.is_nan() { k } else { Kinematics { s: k.s, ..Kinematics::default() } }
     }
 
     /// Fills `out` with the kinematics at `n = out.len()` evenly spaced points from 0 to 1, both ends

@@ -52,6 +52,21 @@ proptest! {
         prop_assert!((fd(|y| law.eval(y).a, x, h) - k.j).abs() < 1e-5 * (1.0 + k.j.abs()));
     }
 
+    /// Outside [0, 1] the follower dwells at the law's end values: every derivative is 0, and the
+    /// finite differences of the values returned there agree (issue 27: the jerk kept 4π² = 39.48
+    /// for the cycloidal law before x = 0).
+    #[test]
+    fn outside_the_rise_the_follower_dwells(i in 0usize..7, d in 1e-9..10.0f64) {
+        let law = &catalogue()[i];
+        let h = d.min(1e-3) / 2.0;
+        for (x, end) in [(-d, law.eval(0.0).s), (1.0 + d, law.eval(1.0).s)] {
+            let k = law.eval(x);
+            prop_assert_eq!((k.s, k.v, k.a, k.j), (end, 0.0, 0.0, 0.0), "x = {}", x);
+            prop_assert_eq!(fd(|y| law.eval(y).s, x, h), 0.0);
+            prop_assert_eq!(fd(|y| law.eval(y).a, x, h), 0.0);
+        }
+    }
+
     #[test]
     fn symmetric_laws_are_odd_about_the_middle(i in 0usize..7, x in 0.0..1.0f64) {
         let law = &catalogue()[i];

@@ -124,6 +124,59 @@ impl DrawSource {
     }
 }
 
+/// The draws of per-draw tables held in memory (a Python caller's shards, each a list of named
+/// columns), in order: the tables concatenated are the study's whole per-draw table. Checked as
+/// [`DrawSource::for_each`] checks a file: each table's columns are [`DrawRow::columns`] in order,
+/// of one length, every value finite, the draws numbered 0, 1, … across the tables, and `draws` of
+/// them. [`crate::tally`] of the result is the report of the unsharded run, bit for bit (the same
+/// draws in the same order). `command` names the study's command in the messages.
+pub fn draws_of_tables<D: DrawRow>(command: &str, tables: &[Vec<(String, Vec<f64>)>], draws: u64) -> Result<Vec<D>> {
+    let want = D::columns();
+    let mut out = Vec::new();
+    let mut next = 0u64;
+    for (t, cols) in tables.iter().enumerate() {
+        let t = t + 1;
+        let names: Vec<&str> = cols.iter().map(|(n, _)| n.as_str()).collect();
+        if names != want {
+            return Err(PartError::Input(format!(
+                "table {t}: its columns ({}) are not those of {command} --csv ({})",
+                names.join(","),
+                want.join(",")
+            )));
+        }
+        let len = cols.first().map_or(0, |(_, c)| c.len());
+        if let Some((name, c)) = cols.iter().find(|(_, c)| c.len() != len) {
+            return Err(PartError::Input(format!(
+                "table {t}: column {name} has {} rows where column draw has {len}",
+                c.len()
+            )));
+        }
+        let mut v = Vec::with_capacity(cols.len());
+        for r in 0..len {
+            v.clear();
+            v.extend(cols.iter().map(|(_, c)| c[r]));
+            if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+                return Err(PartError::Input(format!("table {t}, row {}: {} is {}", r + 1, want[k], v[k])));
+            }
+            if v[0] != next as f64 {
+                return Err(PartError::Input(format!(
+                    "table {t}, row {}: draw {} where draw {next} belongs: give every shard's table, in order",
+                    r + 1,
+                    v[0]
+                )));
+            }
+            next += 1;
+            out.push(D::from_row(&v));
+        }
+    }
+    if next != draws {
+        return Err(PartError::Input(format!(
+            "{next} draws where the study has {draws}: give every shard's per-draw table, in order"
+        )));
+    }
+    Ok(out)
+}
+
 /// Values per slice count before a pass collects them.
 const COLLECT: u64 = 1 << 14;
 /// Slices of the interval per counting pass.
@@ -495,6 +548,49 @@ mod tests {
             let draws: Vec<D> = v.iter().enumerate().map(|(i, &(x, r))| draw(i as u64, x.round(), x, r && i > 0)).collect();
             stream_equals_memory(&draws, "prop");
         }
+    }
+
+    /// Tables in memory cut anywhere give back the draws bit for bit, so their tally is the
+    /// unsharded report; a table missing, out of order, or of other columns is refused by name.
+    #[test]
+    fn tables_in_memory_are_the_draws() {
+        let draws: Vec<D> = (0..11).map(|i| draw(i, i as f64 * 0.5, -(i as f64), i == 4)).collect();
+        let table = |ds: &[D]| -> Vec<(String, Vec<f64>)> {
+            D::columns().into_iter().enumerate().map(|(k, n)| (n, ds.iter().map(|d| d.row()[k]).collect())).collect()
+        };
+        let ps = [0.0, 50.0, 90.0];
+        let inputs = [("a".to_string(), true), ("b".to_string(), false)];
+        let results = [("x", Some(Limit { min: Some(-5.0), max: None })), ("y", None)];
+        let want = tally(&draws, &ps, 4, &inputs, &results);
+        for n in [1u32, 2, 3, 7, 15] {
+            let tables: Vec<_> = (1..=n)
+                .map(|i| table(&draws[loomkin_units::Shard { index: i, count: n }.items(draws.len())]))
+                .collect();
+            let back: Vec<D> = draws_of_tables("test", &tables, 11).unwrap();
+            assert_eq!(tally(&back, &ps, 4, &inputs, &results), want, "N = {n}");
+            let e = |t: &[Vec<(String, Vec<f64>)>]| draws_of_tables::<D>("test", t, 11).unwrap_err().to_string();
+            if n > 1 {
+                let k = n as usize;
+                let mut swapped = tables.clone();
+                swapped.swap(k - 2, k - 1);
+                assert!(e(&swapped).contains(" belongs: give every shard's table, in order"), "{}", e(&swapped));
+                let first = tables.iter().position(|t| !t[0].1.is_empty()).unwrap();
+                let mut lost = tables.clone();
+                lost.remove(first);
+                assert!(e(&lost).contains("where draw 0 belongs"), "{}", e(&lost));
+                assert!(
+                    e(&tables[..k - 1])
+                        .ends_with("where the study has 11: give every shard's per-draw table, in order")
+                );
+            }
+        }
+        let mut renamed = table(&draws);
+        renamed[1].0 = "z".into();
+        assert!(e_of(&[renamed]).starts_with("table 1: its columns (draw,z,b,ok"));
+    }
+
+    fn e_of(t: &[Vec<(String, Vec<f64>)>]) -> String {
+        draws_of_tables::<D>("test", t, 11).unwrap_err().to_string()
     }
 
     #[test]
