@@ -15,7 +15,7 @@ from ._fields import default as _default
 from ._inputs import bytes_of, required_text, text_of
 from ._table import Table
 
-__all__ = ["check", "torque", "stagger"]
+__all__ = ["check", "torque", "stagger", "sley"]
 
 Path = Union[str, "os.PathLike[str]"]
 
@@ -49,3 +49,13 @@ def stagger(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = 
     shedding torque with the window kept, against no stagger and two groups."""
     loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
     return _m.loom_stagger(loom_toml, wif_bytes, plan, objective)
+
+
+def sley(loom: Path, speed_rpm: Optional[float] = None,
+         dwell_tolerance_mm: float = _default("SleyAnalysis::DWELL_TOLERANCE_MM"),
+         points: int = _default("SleyAnalysis::POINTS")) -> Dict[str, Any]:
+    """``loomkin sley analyze LOOM.toml --json``: the loom file's ``[sley]`` four-bar at speed_rpm
+    (rpm; the file's when None): reed stroke (mm), back dwell (deg) within dwell_tolerance_mm (mm),
+    peak reed velocity, acceleration, jerk (m/s, m/s², m/s³), forces (N), crank torque (N·m) with
+    their angles (deg), and ``curve``, a :class:`Table` of the ``--csv`` rows at ``points`` angles."""
+    return _m.loom_sley(required_text("loom", loom), speed_rpm, float(dwell_tolerance_mm), points)

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Every library crate's descriptors.
-const LISTS: [FieldList; 9] = [
+const LISTS: [FieldList; 10] = [
     loomkin_units::FIELDS,
     loomkin_laws::FIELDS,
     loomkin_picking::FIELDS,
@@ -19,6 +19,7 @@ const LISTS: [FieldList; 9] = [
     loomkin_loom::FIELDS,
     loomkin_mech::FIELDS,
     loomkin_servo::FIELDS,
+    loomkin_drive::FIELDS,
 ];
 
 /// Every descriptor with the path of its `const`.

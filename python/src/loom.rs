@@ -1,12 +1,21 @@
 //! The whole loom: pattern, shed geometry, shedding torque and the stagger of the frames, keyed
 //! as `loomkin loom check|torque|stagger --json`.
 
-use crate::convert::{columns, to_py};
+use crate::convert::{Count, columns, to_py};
 use crate::errors::{Fault, OrRaise, raise};
 use loomkin_loom::{Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_stagger};
 use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+impl Fault for loomkin_drive::SleyError {
+    fn range(&self) -> Option<&RangeError> {
+        match self {
+            Self::Range(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 impl Fault for LoomError {
     fn range(&self) -> Option<&RangeError> {
@@ -30,6 +39,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(loom_check, m)?)?;
     m.add_function(wrap_pyfunction!(loom_torque, m)?)?;
     m.add_function(wrap_pyfunction!(loom_stagger, m)?)?;
+    m.add_function(wrap_pyfunction!(loom_sley, m)?)?;
     Ok(())
 }
 
@@ -144,4 +154,58 @@ fn loom_stagger(
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     let r = py.detach(|| optimise_stagger(&loom, &pattern, objective)).or_raise()?;
     to_py(py, &r)
+}
+
+/// loom_sley(loom_toml, speed_rpm=None, dwell_tolerance_mm=..., points=...) -> dict
+/// --
+///
+/// `loomkin sley analyze LOOM.toml --json`: the loom file's `[sley]` four-bar at `speed_rpm` (the
+/// file's when None): reed stroke (mm) and back dwell (deg) within `dwell_tolerance_mm`, dead
+/// centres, peak reed velocity (m/s), acceleration (m/s²) and jerk (m/s³), inertia force (N), rod
+/// and rocking-shaft forces (N), peak crank torque (N·m) with their angles (deg); and `curve`, the
+/// rows of `--csv` over one turn at `points` angles (angle_deg, reed_mm, velocity_m_s,
+/// acceleration_m_s2, jerk_m_s3, inertia_force_n, rod_force_n, crank_torque_n_m).
+#[pyfunction]
+#[pyo3(signature = (loom_toml, speed_rpm=None,
+    dwell_tolerance_mm=loomkin_drive::SleyAnalysis::DWELL_TOLERANCE_MM.default_value(),
+    points=Count::of(loomkin_drive::SleyAnalysis::POINTS.default_count())))]
+fn loom_sley<'py>(
+    py: Python<'py>,
+    loom_toml: &str,
+    speed_rpm: Option<f64>,
+    dwell_tolerance_mm: f64,
+    points: Count,
+) -> PyResult<Bound<'py, PyAny>> {
+    use loomkin_drive::SleyAnalysis;
+    let loom = Loom::from_toml(loom_toml).or_raise()?;
+    let speed = match speed_rpm {
+        Some(v) => loomkin_units::ShaftSpeed::from_rpm_field("speed_rpm", v).or_raise()?,
+        None => loom.speed,
+    };
+    SleyAnalysis::DWELL_TOLERANCE_MM.check(dwell_tolerance_mm).map_err(raise)?;
+    let points = points.check(&SleyAnalysis::POINTS)?;
+    let Some(sley) = loom.sley else {
+        return Err(crate::study::error(
+            "sley",
+            "sley: the loom file has no [sley] table (crank_mm, rod_mm, sword_mm, …; see docs/drive.md)",
+        ));
+    };
+    let (r, rows) = py
+        .detach(|| sley.analyze(speed, dwell_tolerance_mm).map(|r| (r, sley.curve(points, speed.rad_per_s()))))
+        .or_raise()?;
+    let out = to_py(py, &r)?.into_bound(py);
+    // The columns of `sley analyze --csv`, in its order.
+    let col = |f: fn(&loomkin_drive::SleyRow) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+    let cols = vec![
+        ("angle_deg", col(|q| q.angle_deg)),
+        ("reed_mm", col(|q| q.reed_mm)),
+        ("velocity_m_s", col(|q| q.velocity_m_s)),
+        ("acceleration_m_s2", col(|q| q.acceleration_m_s2)),
+        ("jerk_m_s3", col(|q| q.jerk_m_s3)),
+        ("inertia_force_n", col(|q| q.inertia_force_n)),
+        ("rod_force_n", col(|q| q.rod_force_n)),
+        ("crank_torque_n_m", col(|q| q.crank_torque_n_m)),
+    ];
+    out.set_item("curve", crate::convert::table(py, columns(py, cols)?)?)?;
+    Ok(out)
 }

@@ -42,6 +42,7 @@ PYTHON_CALL = {
     "loom check": loomkin.loom.check,
     "loom torque": loomkin.loom.torque,
     "loom stagger": loomkin.loom.stagger,
+    "sley analyze": loomkin.loom.sley,
 }
 
 # CLI commands with no Python call, and why.

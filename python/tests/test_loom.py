@@ -1,5 +1,8 @@
 """Loom: parity with `loomkin loom check|torque|stagger --json`, errors."""
 
+import csv
+import io
+
 import numpy as np
 import pytest
 
@@ -54,3 +57,21 @@ def test_a_wif_in_the_windows_code_page_reads_as_in_the_cli(cli, tmp_path):
         r = loomkin.loom.check(EX / "shuttle-loom.toml", wif=cp)
     same(r, loomkin.loom.check(EX / "shuttle-loom.toml", wif=utf8))
     same(r, cli("loom", "check", "examples/shuttle-loom.toml", "--wif", str(cp), "--json"))
+
+
+def test_sley_matches_sley_analyze(cli):
+    path = REPO / "examples" / "rapier-loom.toml"
+    ref = cli("sley", "analyze", "examples/rapier-loom.toml", "--speed-rpm", "500", "--json")
+    r = loomkin.loom.sley(path, speed_rpm=500, points=73)
+    curve = r.pop("curve")
+    same(r, ref)
+    text = cli("sley", "analyze", "examples/rapier-loom.toml", "--speed-rpm", "500", "--points", "73", "--csv", text=True)
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert type(curve) is loomkin.Table and list(curve) == list(rows[0])
+    for k in curve:
+        np.testing.assert_array_equal(curve[k], [float(row[k]) for row in rows])
+    # The stroke is the travel of the reed over the turn (an independent reading of the curve).
+    assert r["reed_stroke_mm"] >= curve["reed_mm"].max() - curve["reed_mm"].min() - 1e-9
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.loom.sley(path, points=-3)
+    assert e.value.field == "points"
