@@ -40,11 +40,11 @@ pub fn run(a: CycleArgs) -> Result<()> {
     // Tables stream (nothing held per row): their time limits N; a plot holds its points.
     let n = a.points as f64;
     let cost = if a.format.json {
-        Cost::items(n, 0.0, JSON_S_PER_ROW)
+        Cost::cpu_items(n, 0.0, JSON_S_PER_ROW)
     } else if a.format.csv {
-        Cost::items(n, 0.0, CSV_S_PER_ROW)
+        Cost::cpu_items(n, 0.0, CSV_S_PER_ROW)
     } else if a.output.is_some() {
-        Cost::items(n, PLOT_BYTES_PER_POINT, PLOT_S_PER_POINT)
+        Cost::cpu_items(n, PLOT_BYTES_PER_POINT, PLOT_S_PER_POINT)
     } else {
         Cost::default()
     };
@@ -109,12 +109,11 @@ pub fn run(a: CycleArgs) -> Result<()> {
     Ok(())
 }
 
-/// Seconds per row of `cycle --json` (six keyed numbers, pretty-printed): the `cycle_json_rows`
-/// bench of loomkin-laws (release, fastest of 10: 0.92 µs) with a margin of 2.
-const JSON_S_PER_ROW: f64 = 2.0 * 0.92e-6;
-/// Seconds per row of `cycle --csv`: the `cycle_csv_rows` bench (fastest of 10: 1.75 µs) with a
-/// margin of 2.
-const CSV_S_PER_ROW: f64 = 2.0 * 1.75e-6;
+/// CPU seconds per row of `cycle --json` (six keyed numbers, pretty-printed): the `cycle_json_rows`
+/// bench of loomkin-laws (release, fastest of 10: 0.92 µs).
+const JSON_S_PER_ROW: f64 = 0.92e-6;
+/// CPU seconds per row of `cycle --csv`: the `cycle_csv_rows` bench (fastest of 10: 1.75 µs).
+const CSV_S_PER_ROW: f64 = 1.75e-6;
 /// Bytes held per point of a plot: the sample (48 bytes) and four series of (angle, value) pairs.
 const PLOT_BYTES_PER_POINT: f64 = 48.0 + 4.0 * 16.0;
 /// Seconds per point of a plot (drawing four polylines): not measured by a bench; taken as four

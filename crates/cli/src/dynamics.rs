@@ -12,7 +12,7 @@ use loomkin_dynamics::{
 use loomkin_io::Table;
 use loomkin_laws::Cycle;
 use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
-use loomkin_units::{Cost, ShaftSpeed, Span};
+use loomkin_units::{ShaftSpeed, Span};
 use std::path::{Path, PathBuf};
 
 /// `loomkin dyn` subcommands.
@@ -407,12 +407,6 @@ fn response(a: ResponseArgs) -> Result<()> {
     Ok(())
 }
 
-/// Seconds per speed and cycle segment of `dyn sweep` (one closed-form response), measured on the
-/// reference machine (release, one core) with a margin of 2.
-const SWEEP_S_PER_SEGMENT: f64 = 2.0 * 5e-6;
-/// Bytes held per speed: the point, its table row and the list of speeds.
-const SWEEP_BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
-
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     // Checked first, with or without a plot to draw it on (refused, not ignored).
@@ -425,9 +419,9 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     // Each speed of this shard is one response (closed form per segment of the cycle), in
     // parallel; its row is held until printed (as a JSON object with --json).
     let n = items.len() as f64;
-    let per_speed = SWEEP_S_PER_SEGMENT * cycle.segments.len() as f64 / util::cores();
-    let bytes = SWEEP_BYTES_PER_SPEED + if a.format.json { 1000.0 } else { 0.0 };
-    crate::util::budget().check("speed_rpm", &a.speed_rpm, Cost::items(n, bytes, per_speed))?;
+    let row_bytes = if a.format.json { 1000.0 } else { 0.0 };
+    let cost = SweepPoint::cost(n, cycle.segments.len(), util::cores(), row_bytes);
+    crate::util::budget().check("speed_rpm", &a.speed_rpm, cost)?;
     let speeds: Vec<f64> = items.map(|i| span.value(i)).collect();
     let start = if a.steady { Start::Steady } else { Start::Rest };
     let progress = util::Progress::new(speeds.len() as u64, "speeds");

@@ -233,7 +233,7 @@ pub enum SampleForm {
 /// formatting the numbers is what limits N.
 pub fn check_sample_budget(points: usize, rows: usize, json: bool) -> Result<()> {
     let per_row = if json { SAMPLE_JSON_S_PER_ROW } else { SAMPLE_CSV_S_PER_ROW };
-    crate::util::budget().check("points", points, Cost::items(rows as f64, 0.0, per_row))?;
+    crate::util::budget().check("points", points, Cost::cpu_items(rows as f64, 0.0, per_row))?;
     Ok(())
 }
 
@@ -287,14 +287,14 @@ pub fn print_samples(law: &Law, n: usize, shard: Shard, form: SampleForm, name: 
     Ok(())
 }
 
-/// Seconds per row of `law sample --json` (five numbers with their keys, pretty-printed): the
+/// CPU seconds per row of `law sample --json` (five numbers with their keys, pretty-printed): the
 /// `cycle_json_rows` bench of loomkin-laws (release, fastest of 10: 0.92 µs a row of six keyed
-/// numbers) with a margin of 2.
-const SAMPLE_JSON_S_PER_ROW: f64 = 2.0 * 0.92e-6;
+/// numbers).
+const SAMPLE_JSON_S_PER_ROW: f64 = 0.92e-6;
 
-/// Seconds per row of `law sample --csv` (five numbers in shortest round-trip form): the
-/// `law_sample_csv_rows` bench (fastest of 10: 1.83 µs) with a margin of 2.
-const SAMPLE_CSV_S_PER_ROW: f64 = 2.0 * 1.83e-6;
+/// CPU seconds per row of `law sample --csv` (five numbers in shortest round-trip form): the
+/// `law_sample_csv_rows` bench (fastest of 10: 1.83 µs).
+const SAMPLE_CSV_S_PER_ROW: f64 = 1.83e-6;
 
 fn plot(a: PlotArgs) -> Result<()> {
     output::check_outputs([Some(Out::plot("--output", &a.output))])?;

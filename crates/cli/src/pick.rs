@@ -13,7 +13,6 @@ use loomkin_picking::{
     required_velocity_crossings, simulate, sweep_observed,
 };
 use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
-use loomkin_units::Cost;
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin pick`.
@@ -490,14 +489,6 @@ fn fallback_note(setting: Setting, fallbacks: usize, points: usize, first: &Swee
     )
 }
 
-/// Seconds per point of `pick sweep` by the closed form (one `simulate`, the ODE fallback at a few
-/// points), measured on the reference machine (release, one core) with a margin of 2.
-const SWEEP_CLOSED_S_PER_POINT: f64 = 2.0 * 40e-6;
-/// Seconds per point by the ODE route, measured as above.
-const SWEEP_ODE_S_PER_POINT: f64 = 2.0 * 400e-6;
-/// Bytes held per point: the row (value and outcome, with its note's text at a fallback).
-const SWEEP_BYTES_PER_POINT: f64 = 200.0;
-
 fn sweep_cmd(a: SweepArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let setting = Setting::parse(&a.setting)?;
@@ -507,9 +498,8 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let items = a.shard.get().items(a.points);
     // This shard's points run in parallel; each is held as a row (and again as a row of the output).
     let n = items.len() as f64;
-    let per_point = if method == Method::Ode { SWEEP_ODE_S_PER_POINT } else { SWEEP_CLOSED_S_PER_POINT };
     let output_bytes = if a.format.json { 1500.0 } else { 300.0 };
-    let cost = Cost::items(n, SWEEP_BYTES_PER_POINT + output_bytes, per_point / util::cores());
+    let cost = Sweep::cost(n, method, util::cores(), output_bytes);
     crate::util::budget().check("points", a.points, cost)?;
     // The swept setting's own flag would be overwritten by the sweep: refused, not ignored.
     let own = [

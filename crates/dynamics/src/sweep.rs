@@ -25,6 +25,20 @@ impl SweepPoint {
         "Residual amplitude a design accepts, % of the stroke: 0 < L ≤ 100; 1 % when left out.",
     )
     .with_default(1.0);
+
+    /// CPU seconds per speed and cycle segment (one closed-form response), measured on the
+    /// reference machine (release, one core): 5 µs.
+    pub const CPU_S_PER_SEGMENT: f64 = 5e-6;
+    /// Bytes held per speed: the point, its table row and the list of speeds.
+    pub const BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
+
+    /// What a sweep of `speeds` speeds over a cycle of `segments` segments on `threads` threads
+    /// costs, estimated before it runs ([`loomkin_units::Cost::cpu_items`]), each speed holding its
+    /// point and `row_bytes` more (the text a front end keeps for it).
+    pub fn cost(speeds: f64, segments: usize, threads: f64, row_bytes: f64) -> loomkin_units::Cost {
+        let per = Self::CPU_S_PER_SEGMENT * segments as f64 / threads.max(1.0);
+        loomkin_units::Cost::cpu_items(speeds, Self::BYTES_PER_SPEED + row_bytes, per)
+    }
 }
 
 /// The response's figures at one speed.

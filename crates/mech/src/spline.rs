@@ -21,42 +21,6 @@ pub struct PeriodicSpline {
     period: f64,
 }
 
-/// Solves the cyclic tridiagonal system `a_i x_{i−1} + b_i x_i + c_i x_{i+1} = r_i` (indices mod n,
-/// n ≥ 3) by Sherman–Morrison on the Thomas algorithm. The system must be diagonally dominant.
-fn solve_cyclic(a: &[f64], b: &[f64], c: &[f64], r: &[f64]) -> Vec<f64> {
-    let n = b.len();
-    let (alpha, beta) = (c[n - 1], a[0]); // bottom-left and top-right corners
-    let gamma = -b[0];
-    let mut bb = b.to_vec();
-    bb[0] = b[0] - gamma;
-    bb[n - 1] = b[n - 1] - alpha * beta / gamma;
-    let thomas = |rhs: &[f64]| -> Vec<f64> {
-        let mut cp = vec![0.0; n];
-        let mut x = vec![0.0; n];
-        let mut den = bb[0];
-        x[0] = rhs[0] / den;
-        for i in 1..n {
-            cp[i - 1] = c[i - 1] / den;
-            den = bb[i] - a[i] * cp[i - 1];
-            x[i] = (rhs[i] - a[i] * x[i - 1]) / den;
-        }
-        for i in (0..n - 1).rev() {
-            x[i] -= cp[i] * x[i + 1];
-        }
-        x
-    };
-    let mut x = thomas(r);
-    let mut u = vec![0.0; n];
-    u[0] = gamma;
-    u[n - 1] = alpha;
-    let z = thomas(&u);
-    let fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + z[0] + beta * z[n - 1] / gamma);
-    for (xi, zi) in x.iter_mut().zip(&z) {
-        *xi -= fact * zi;
-    }
-    x
-}
-
 impl PeriodicSpline {
     /// Fits the spline through `values` at strictly increasing `knots` with period `period`
     /// (`period > knots[n−1] − knots[0]`, the last interval closes the loop). Needs n ≥ 3.
@@ -89,7 +53,7 @@ impl PeriodicSpline {
             c[i] = h[i];
             r[i] = 6.0 * ((y(i + 1) - y(i)) / h[i] - (y(i) - y(i + n - 1)) / hp);
         }
-        let m = solve_cyclic(&a, &b, &c, &r);
+        let m = loomkin_numeric::solve_cyclic_tridiagonal(&a, &b, &c, &r);
         let coef = (0..n)
             .map(|i| {
                 let (mi, mj, hi) = (m[i], m[(i + 1) % n], h[i]);
@@ -220,20 +184,6 @@ mod tests {
         for &u in knots.iter().chain(std::iter::once(&(knots[0] + period))) {
             let (l, r) = (s.eval(u - eps), s.eval(u + eps));
             assert!((l.0 - r.0).abs() < 1e-8 && (l.1 - r.1).abs() < 1e-7 && (l.2 - r.2).abs() < 1e-6);
-        }
-    }
-
-    #[test]
-    fn cyclic_solver_matches_the_dense_product() {
-        let n = 7;
-        let a: Vec<f64> = (0..n).map(|i| 1.0 + 0.1 * i as f64).collect();
-        let c: Vec<f64> = (0..n).map(|i| 0.7 - 0.05 * i as f64).collect();
-        let b: Vec<f64> = (0..n).map(|i| 4.0 + 0.2 * i as f64).collect();
-        let r: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
-        let x = solve_cyclic(&a, &b, &c, &r);
-        for i in 0..n {
-            let lhs = a[i] * x[(i + n - 1) % n] + b[i] * x[i] + c[i] * x[(i + 1) % n];
-            assert!((lhs - r[i]).abs() < 1e-12, "row {i}");
         }
     }
 

@@ -37,7 +37,7 @@ mod scan;
 pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
 pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
-pub use linear::solve_tridiagonal;
+pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
 pub use root::{illinois_root, refine_root, refine_root_from};
 pub use roots::{grid_roots, scan_roots};
 pub use scan::scan_max;

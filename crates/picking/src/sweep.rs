@@ -36,6 +36,22 @@ impl Sweep {
     pub const HELD_POINTS: Field = Self::POINTS
         .within(Range::closed(1.0, 1e6, ""), "Values of the swept setting when the rows are held as arrays: 1 … 10⁶.");
 
+    /// CPU seconds per point by the closed form (one `simulate`, the ODE fallback at a few points):
+    /// 40 µs, measured on the reference machine (release, one core).
+    pub const CPU_S_PER_POINT_CLOSED: f64 = 40e-6;
+    /// CPU seconds per point integrated numerically, measured as [`Sweep::CPU_S_PER_POINT_CLOSED`]: 400 µs.
+    pub const CPU_S_PER_POINT_ODE: f64 = 400e-6;
+    /// Bytes held per point: the row (value and outcome, with its note's text at a fallback).
+    pub const BYTES_PER_POINT: f64 = 200.0;
+
+    /// What sweeping `points` values by `method` on `threads` threads costs, estimated before it
+    /// runs ([`loomkin_units::Cost::cpu_items`]), each point holding its row and `row_bytes` more
+    /// (the text a front end keeps for it).
+    pub fn cost(points: f64, method: Method, threads: f64, row_bytes: f64) -> loomkin_units::Cost {
+        let per = if method == Method::Ode { Self::CPU_S_PER_POINT_ODE } else { Self::CPU_S_PER_POINT_CLOSED };
+        loomkin_units::Cost::cpu_items(points, Self::BYTES_PER_POINT + row_bytes, per / threads.max(1.0))
+    }
+
     /// Rows where the closed form could not answer and the numerical route did.
     pub fn fallbacks(&self) -> impl Iterator<Item = &SweepRow> {
         self.rows.iter().filter(|r| r.outcome.note.is_some())
