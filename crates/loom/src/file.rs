@@ -27,7 +27,7 @@ struct LoomFile {
     shedding: SheddingFile,
     insertion: InsertionFile,
     beat_up: Option<BeatUpFile>,
-    sley: Option<toml::Table>,
+    sley: Option<SleyTable>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -417,7 +417,7 @@ impl Loom {
         let insertion = read_insertion(&f.insertion, &geometry, speed)?;
         let beat_up_deg = Range::closed_open(0.0, 360.0, "deg")
             .check("beat_up.angle_deg", f.beat_up.as_ref().map_or(0.0, |b| b.angle_deg))?;
-        let sley = f.sley.map(|t| read_sley(t, beat_up_deg)).transpose()?;
+        let sley = f.sley.map(|t| read_sley(text, t, beat_up_deg)).transpose()?;
         let name = f.name.unwrap_or_default();
         if name.chars().count() > 200 {
             return Err(LoomError::field("name", "longer than 200 characters"));
@@ -490,14 +490,17 @@ impl Loom {
     }
 }
 
-/// The `[sley]` table checked by the drive crate, its errors named `sley.…`; a left-out
+/// The `[sley]` table checked by the drive crate (errors named `sley.…`); a left-out
 /// `beat_up_deg` is the loom's beat-up angle, a given one must equal it.
-fn read_sley(mut t: toml::Table, beat_up_deg: f64) -> Result<FourBarSley> {
-    if !t.contains_key("beat_up_deg") {
-        t.insert("beat_up_deg".into(), toml::Value::Float(beat_up_deg));
+fn read_sley(text: &str, mut table: SleyTable, beat_up_deg: f64) -> Result<FourBarSley> {
+    // Whether the table gives beat_up_deg (serde fills in the default when it does not).
+    let given = toml::from_str::<toml::Table>(text)
+        .ok()
+        .and_then(|doc| doc.get("sley").and_then(|s| s.get("beat_up_deg")).map(|_| ()))
+        .is_some();
+    if !given {
+        table.beat_up_deg = beat_up_deg;
     }
-    let table: SleyTable =
-        t.try_into().map_err(|e: toml::de::Error| LoomError::field("sley", e.message().trim().to_string()))?;
     let sley = FourBarSley::new(table).map_err(|e| match e {
         SleyError::Range(r) => LoomError::Range(r),
         SleyError::Infeasible { fields, reason } => LoomError::Infeasible { field: fields, reason },
