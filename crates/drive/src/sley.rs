@@ -568,7 +568,7 @@ impl FourBarSley {
     /// The rocker angle θ at crank angle α, closed form (the position only, no rates).
     fn rocker_at_crank(&self, alpha: f64) -> f64 {
         let (dx, dy) = (self.r * alpha.cos() - self.qx, self.r * alpha.sin() - self.qy);
-        let s = dx.hypot(dy);
+        let s = (dx * dx + dy * dy).sqrt();
         dy.atan2(dx) + self.kappa * triangle_angle(s, self.c, self.b)
     }
 
@@ -578,15 +578,27 @@ impl FourBarSley {
         let alpha = self.crank_rad(phi_rad);
         let theta = self.rocker_at_crank(alpha);
         let (r, b, c) = (self.r, self.b, self.c);
-        let (bx, by) = (self.qx + c * theta.cos(), self.qy + c * theta.sin());
-        let beta = (by - r * alpha.sin()).atan2(bx - r * alpha.cos());
-        let sbt = (beta - theta).sin();
-        let cbt = (beta - theta).cos();
-        let d1 = r * (beta - alpha).sin() / (c * sbt);
-        let b1 = -r * (alpha - theta).sin() / (b * sbt);
-        let d2 = (c * d1 * d1 * cbt - r * (alpha - beta).cos() - b * b1 * b1) / (c * sbt);
-        let b2 = -(r * (alpha - theta).cos() + b * b1 * b1 * cbt - c * d1 * d1) / (b * sbt);
-        let d3 = d1 * d1 * d1 + (3.0 * c * d1 * d2 * cbt - r * (beta - alpha).sin() - 3.0 * b * b1 * b2) / (c * sbt);
+        // Unit vectors of crank, sword and rod; the sines and cosines of the angles between them
+        // are their cross and dot products (sin(y − x) = e(x) × e(y), cos(y − x) = e(x)·e(y)).
+        let (sa, ca) = alpha.sin_cos();
+        let (st, ct) = theta.sin_cos();
+        let (rx, ry) = (self.qx + c * ct - r * ca, self.qy + c * st - r * sa);
+        let beta = ry.atan2(rx);
+        let (cb, sb) = (rx / b, ry / b);
+        let sin = |(x1, y1): (f64, f64), (x2, y2): (f64, f64)| x1 * y2 - y1 * x2;
+        let cos = |(x1, y1): (f64, f64), (x2, y2): (f64, f64)| x1 * x2 + y1 * y2;
+        let (ea, et, eb) = ((ca, sa), (ct, st), (cb, sb));
+        let sbt = sin(et, eb);
+        let cbt = cos(et, eb);
+        let sba = sin(ea, eb);
+        let cab = cos(ea, eb);
+        let sat = sin(et, ea);
+        let cat = cos(et, ea);
+        let d1 = r * sba / (c * sbt);
+        let b1 = -r * sat / (b * sbt);
+        let d2 = (c * d1 * d1 * cbt - r * cab - b * b1 * b1) / (c * sbt);
+        let b2 = -(r * cat + b * b1 * b1 * cbt - c * d1 * d1) / (b * sbt);
+        let d3 = d1 * d1 * d1 + (3.0 * c * d1 * d2 * cbt - r * sba - 3.0 * b * b1 * b2) / (c * sbt);
         SleyState {
             phi_rad,
             crank_rad: alpha,
