@@ -445,3 +445,55 @@ proptest! {
         prop_assert!((s.reed(s.front_dead_centre_rad()).x_m - s.stroke_m()).abs() < 1e-12 * s.stroke_m());
     }
 }
+
+/// A published example: J. T. Taylor, *Cotton Weaving and Designing*, 6th ed. (1909; Project
+/// Gutenberg #57031), the chapter on the eccentricity of the slay: with a 12-inch crank-arm and
+/// (as the figures imply: 12 − √(12² − 3²) = 0·3811) a 3-inch crank, the connecting pin travels
+/// 3·3811 inches while the crank turns from front to top centre and 2·6189 inches from top to back
+/// centre. Taylor takes the pin along the line of centres (a slider-crank); the four-bar tends to
+/// it as the sword grows, its pin's sag below the line going as 1/c, so the travel at c = 2.5, 5 and
+/// 10 m extrapolated to c → ∞ (Richardson, two steps) is compared with the book's four decimals and
+/// with the slider-crank's closed form.
+#[test]
+fn taylors_slay_eccentricity_figures() {
+    let inch = 25.4;
+    let (r, b) = (3.0 * inch, 12.0 * inch);
+    let travel = |c: f64| {
+        let t = SleyTable {
+            crank_mm: r,
+            rod_mm: b,
+            sword_mm: c,
+            pivot_x_mm: b,
+            pivot_y_mm: -c,
+            reed_height_mm: c,
+            mass_kg: 1.0,
+            gyration_mm: c,
+            centre_mm: None,
+            beat_up_deg: 0.0,
+            beat_up_force_n: 0.0,
+            beat_up_range_deg: 0.0,
+            assembly: Assembly::Up,
+        };
+        let s = FourBarSley::new(t).unwrap();
+        let pin_x = |phi: f64| b + c * s.state(phi).rocker_rad.cos();
+        let front = s.front_dead_centre_rad();
+        let (x0, x90, x180) = (pin_x(front), pin_x(front + PI / 2.0), pin_x(front + PI));
+        ((x0 - x90) / inch, (x90 - x180) / inch)
+    };
+    // Two Richardson steps in h = 1/c (errors A·h + B·h²) from c = 2.5, 5 and 10 m.
+    let limit = |f: &dyn Fn(f64) -> f64| {
+        let (f1, f2, f4) = (f(2500.0), f(5000.0), f(10000.0));
+        let (r1, r2) = (2.0 * f2 - f1, 2.0 * f4 - f2);
+        (4.0 * r2 - r1) / 3.0
+    };
+    let (front_to_top, top_to_back) = (limit(&|c| travel(c).0), limit(&|c| travel(c).1));
+    let (a2, b2) = travel(10000.0);
+    // One unit of the book's last place: it takes √135 as 11·6189 (4 decimals) before subtracting,
+    // so its figures carry that rounding (the exact travel is 3·381050, which rounds to 3·3810).
+    assert!((front_to_top - 3.3811).abs() < 1e-4, "{front_to_top} (c = 10 m: {a2})");
+    assert!((top_to_back - 2.6189).abs() < 1e-4, "{top_to_back} (c = 10 m: {b2})");
+    // The slider-crank's closed form, to which the four-bar tends: r + b − √(b² − r²).
+    let exact = (r + b - (b * b - r * r).sqrt()) / inch;
+    // Residual of the extrapolation (third order in 1/c): 2e-7 inch measured.
+    assert!((front_to_top - exact).abs() < 1e-6, "{front_to_top} vs {exact}");
+}
