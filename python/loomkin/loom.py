@@ -15,7 +15,7 @@ from ._fields import default as _default
 from ._inputs import bytes_of, required_text, text_of
 from ._table import Table
 
-__all__ = ["check", "torque", "stagger", "sley"]
+__all__ = ["check", "torque", "stagger", "sley", "sley_synthesize"]
 
 Path = Union[str, "os.PathLike[str]"]
 
@@ -59,3 +59,14 @@ def sley(loom: Path, speed_rpm: Optional[float] = None,
     peak reed velocity, acceleration, jerk (m/s, m/s², m/s³), forces (N), crank torque (N·m) with
     their angles (deg), and ``curve``, a :class:`Table` of the ``--csv`` rows at ``points`` angles."""
     return _m.loom_sley(required_text("loom", loom), speed_rpm, float(dwell_tolerance_mm), points)
+
+
+def sley_synthesize(stroke_mm: float, back_dwell_deg: float,
+                    dwell_tolerance_mm: float = _default("SleyAnalysis::DWELL_TOLERANCE_MM"),
+                    reed_height_mm: float = _default("SleyTarget::REED_HEIGHT_MM"),
+                    sword_mm: Optional[float] = None) -> Dict[str, Any]:
+    """``loomkin sley synthesize --reed-stroke-mm S --back-dwell-deg D --json``: the crank-rocker
+    sley (its ``[sley]`` dimensions in mm) for a reed stroke (mm) and back dwell (deg of main
+    shaft, within dwell_tolerance_mm) with the largest least transmission angle (deg)."""
+    return _m.loom_sley_synthesize(float(stroke_mm), float(back_dwell_deg), float(dwell_tolerance_mm),
+                                   float(reed_height_mm), None if sword_mm is None else float(sword_mm))

@@ -40,6 +40,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(loom_torque, m)?)?;
     m.add_function(wrap_pyfunction!(loom_stagger, m)?)?;
     m.add_function(wrap_pyfunction!(loom_sley, m)?)?;
+    m.add_function(wrap_pyfunction!(loom_sley_synthesize, m)?)?;
     Ok(())
 }
 
@@ -208,4 +209,28 @@ fn loom_sley<'py>(
     ];
     out.set_item("curve", crate::convert::table(py, columns(py, cols)?)?)?;
     Ok(out)
+}
+
+/// loom_sley_synthesize(stroke_mm, back_dwell_deg, dwell_tolerance_mm=..., reed_height_mm=..., sword_mm=None) -> dict
+/// --
+///
+/// `loomkin sley synthesize --json`: the crank-rocker sley for a reed stroke (mm) and back dwell
+/// (deg of main shaft, within `dwell_tolerance_mm`) with the largest least transmission angle;
+/// `reed_height_mm` from the rocking shaft to the beating point, `sword_mm` to the rod's pin
+/// (None: the library's share of the reed height).
+#[pyfunction]
+#[pyo3(signature = (stroke_mm, back_dwell_deg,
+    dwell_tolerance_mm=loomkin_drive::SleyAnalysis::DWELL_TOLERANCE_MM.default_value(),
+    reed_height_mm=loomkin_drive::SleyTarget::REED_HEIGHT_MM.default_value(), sword_mm=None))]
+fn loom_sley_synthesize(
+    py: Python<'_>,
+    stroke_mm: f64,
+    back_dwell_deg: f64,
+    dwell_tolerance_mm: f64,
+    reed_height_mm: f64,
+    sword_mm: Option<f64>,
+) -> PyResult<Py<PyAny>> {
+    let target = loomkin_drive::SleyTarget { stroke_mm, back_dwell_deg, dwell_tolerance_mm, reed_height_mm, sword_mm };
+    let r = py.detach(|| target.synthesize()).or_raise()?;
+    to_py(py, &r)
 }

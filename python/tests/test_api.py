@@ -43,6 +43,7 @@ PYTHON_CALL = {
     "loom torque": loomkin.loom.torque,
     "loom stagger": loomkin.loom.stagger,
     "sley analyze": loomkin.loom.sley,
+    "sley synthesize": loomkin.loom.sley_synthesize,
 }
 
 # CLI commands with no Python call, and why.

@@ -75,3 +75,12 @@ def test_sley_matches_sley_analyze(cli):
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.loom.sley(path, points=-3)
     assert e.value.field == "points"
+
+
+def test_sley_synthesize_matches_sley_synthesize(cli):
+    ref = cli("sley", "synthesize", "--reed-stroke-mm", "110", "--back-dwell-deg", "60", "--json")
+    r = loomkin.loom.sley_synthesize(110, 60)
+    same(r, ref)
+    with pytest.raises(loomkin.OutOfRangeError) as e:
+        loomkin.loom.sley_synthesize(-1, 60)
+    assert e.value.field is not None
