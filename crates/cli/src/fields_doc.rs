@@ -139,6 +139,127 @@ fn python_functions() -> Vec<(String, Vec<String>)> {
     out
 }
 
+/// The workbench's requests as Markdown: every route that takes a body, each key of its request
+/// (nested keys as `a.b`, array items as `a[]`) with its type, unit, range and default, read from
+/// the JSON Schema the workbench serves (`GET /api/schema`, generated from the request types, whose
+/// bounds are the library's ranges).
+fn workbench_requests() -> String {
+    use serde_json::Value;
+    fn bound(v: &Value, key: &str) -> Option<String> {
+        v.get(key).and_then(Value::as_f64).map(num)
+    }
+    fn range(v: &Value) -> String {
+        let lo = bound(v, "minimum")
+            .map(|b| format!("[{b}"))
+            .or_else(|| bound(v, "exclusiveMinimum").map(|b| format!("({b}")));
+        let hi = bound(v, "maximum")
+            .map(|b| format!("{b}]"))
+            .or_else(|| bound(v, "exclusiveMaximum").map(|b| format!("{b})")));
+        match (lo, hi) {
+            (None, None) => String::new(),
+            (lo, hi) => format!("{}, {}", lo.unwrap_or_else(|| "(−∞".into()), hi.unwrap_or_else(|| "∞)".into())),
+        }
+    }
+    fn resolve<'a>(v: &'a Value, defs: &'a Value) -> &'a Value {
+        match v.get("$ref").and_then(Value::as_str).and_then(|r| r.strip_prefix("#/$defs/")) {
+            Some(name) => defs.get(name).unwrap_or(v),
+            None => v,
+        }
+    }
+    fn kind(v: &Value, defs: &Value) -> String {
+        let v = resolve(v, defs);
+        let alternatives = v.get("oneOf").or_else(|| v.get("anyOf")).or_else(|| v.get("enum"));
+        if let Some(Value::Array(alts)) = alternatives {
+            let names: Vec<String> = alts
+                .iter()
+                .filter_map(|a| {
+                    a.as_str()
+                        .map(str::to_string)
+                        .or_else(|| resolve(a, defs).get("const").and_then(Value::as_str).map(str::to_string))
+                })
+                .map(|n| format!("`{n}`"))
+                .collect();
+            if names.len() == alts.len() && !names.is_empty() {
+                return format!("one of {}", names.join(", "));
+            }
+            return "one of several forms".into();
+        }
+        match v.get("type") {
+            Some(Value::String(t)) => t.clone(),
+            Some(Value::Array(ts)) => ts.iter().filter_map(Value::as_str).collect::<Vec<_>>().join(" or "),
+            _ => String::new(),
+        }
+    }
+    fn walk(path: &str, v: &Value, defs: &Value, depth: usize, out: &mut String) {
+        let r = resolve(v, defs);
+        let props = r.get("properties").and_then(Value::as_object);
+        if let (Some(props), true) = (props, depth < 6) {
+            for (key, p) in props {
+                let sub = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+                walk(&sub, p, defs, depth + 1, out);
+            }
+            return;
+        }
+        if let (Some(items), true) = (r.get("items"), depth < 6) {
+            let t = resolve(items, defs);
+            if t.get("properties").is_some() {
+                walk(&format!("{path}[]"), items, defs, depth + 1, out);
+                return;
+            }
+        }
+        if path.is_empty() {
+            return;
+        }
+        let item = r.get("items").map(|i| resolve(i, defs));
+        let (t, unit, range) = match item {
+            Some(i) => {
+                (format!("array of {}", kind(i, defs)), i.get("x-unit"), fields_doc_range_or(range(i), range(r)))
+            }
+            None => (kind(v, defs), r.get("x-unit"), range(r)),
+        };
+        let unit = unit.or_else(|| v.get("x-unit")).and_then(Value::as_str).unwrap_or("");
+        let default = v.get("default").or_else(|| r.get("default")).map(|d| match d {
+            Value::Number(n) => n.as_f64().map(num).unwrap_or_else(|| n.to_string()),
+            other => other.to_string(),
+        });
+        let help = v
+            .get("description")
+            .or_else(|| r.get("description"))
+            .and_then(Value::as_str)
+            .unwrap_or("")
+            .lines()
+            .next()
+            .unwrap_or("")
+            .replace('|', "\\|");
+        let _ = writeln!(
+            out,
+            "| `{path}` | {t} | {} | {range} | {} | {help} |",
+            if unit.is_empty() { "—" } else { unit },
+            default.map_or_else(|| "—".to_string(), |d| format!("`{d}`")),
+        );
+    }
+    let schema = loomkin_web::api_schema();
+    let mut s = String::from("\n## Workbench requests\n\n");
+    s.push_str(
+        "Every route of the workbench that takes a request body (`loomkin serve`; `GET /api/schema` serves these \
+         schemas), each key of its request with its type, unit, range and default. The bounds are the library \
+         ranges above, carried into the schema by the request types.\n",
+    );
+    for (route, r) in &schema.routes {
+        let v = serde_json::to_value(&r.request).unwrap_or_default();
+        let defs = v.get("$defs").cloned().unwrap_or_default();
+        let _ = writeln!(s, "\n### `{} {route}`\n", r.method);
+        s.push_str("| key | type | unit | range | default | help |\n|---|---|---|---|---|---|\n");
+        walk("", &v, &defs, 0, &mut s);
+    }
+    s
+}
+
+/// An array's range: its items' when they have one, else the array's own (a length's).
+fn fields_doc_range_or(items: String, own: String) -> String {
+    if items.is_empty() { own } else { items }
+}
+
 /// The reference as Markdown.
 fn reference() -> String {
     let cli = cli_inputs();
@@ -161,7 +282,7 @@ fn reference() -> String {
     s.push_str("# Field reference\n\n");
     s.push_str(
         "Every input quantity loomkin's libraries declare — its key, unit, allowed range, default and the reason \
-         for its bounds — and every input of every command. A range or default is declared once, on the library \
+         for its bounds — and every input of every command, workbench route and Python function. A range or default is declared once, on the library \
          type that owns it (`loomkin_units::Field`, see docs/design/fields.md); the CLI, the workbench and Python \
          read it from there. Ranges: `[a, b]` closed, `(a, b)` open. The key is the JSON and Python keyword; the \
          CLI flag is the same words joined with `-`. \"Taken by\" matches inputs by key (a key several quantities share, by its \
@@ -250,6 +371,7 @@ fn reference() -> String {
             c.help
         );
     }
+    s.push_str(&workbench_requests());
     s.push_str("\n## Python functions\n\n");
     s.push_str("The keywords of each function of `loomkin._loomkin` (from its stubs); their defaults are the descriptors'.\n\n");
     for (name, params) in &py {
