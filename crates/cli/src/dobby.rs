@@ -590,11 +590,15 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
             .find(|w| w.message.starts_with("undercut"))
             .and_then(|w| w.phi2_deg)
             .map_or(String::new(), |a| format!(" at φ2 = {a:.2} deg"));
+        // Said in the unit the roller was given in (`--roller-mm 400`: a 400 mm roller).
+        let (flag, unit, scale) =
+            if a.roller.roller_mm.is_some() { ("roller_mm", "mm", 1e3) } else { ("roller_m", "m", 1.0) };
+        let length = |m: f64| format!("{} {unit}", loomkin_plot::sig4(m * scale));
         let largest = s
             .checks
             .roller_max_m
-            .map_or(String::new(), |r| format!("; the largest roller without undercut is {r:.5} m"));
-        bail!("roller_m: a {} m roller undercuts the cams{at}{largest}: no DXF written", s.roller_m);
+            .map_or(String::new(), |r| format!("; the largest roller without undercut is {}", length(r)));
+        bail!("{flag}: a {} roller undercuts the cams{at}{largest}: no DXF written", length(s.roller_m));
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! Machine cycles: dwell / rise / dwell / return segments over one turn of the main shaft.
 
 use crate::{Kinematics, Law, LawError, LawSpec, Result};
-use loomkin_units::{Field, Range, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed, compact};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -289,7 +289,9 @@ impl Cycle {
                     return Err(LawError::Cycle {
                         field: f("from_deg"),
                         reason: format!(
-                            "starts at {from}° but the previous segment ends at {at}°: leave no gap or overlap"
+                            "starts at {}° but the previous segment ends at {}°: leave no gap or overlap",
+                            compact(from),
+                            compact(at)
                         ),
                     });
                 }
@@ -308,7 +310,8 @@ impl Cycle {
                 return Err(LawError::Cycle {
                     field: f(if s.to_deg.is_some() { "to_deg" } else { "length_deg" }),
                     reason: format!(
-                        "the segment's length is {len}°; it must be positive (segments in increasing angle)"
+                        "the segment's length is {}°; it must be positive (segments in increasing angle)",
+                        compact(len)
                     ),
                 });
             }
@@ -362,8 +365,9 @@ impl Cycle {
             return Err(LawError::Cycle {
                 field: format!("segment[{}].to_deg", spec.segment.len() - 1),
                 reason: format!(
-                    "the segments span {}°, the cycle is {period}°: the angles must close the cycle",
-                    at - start
+                    "the segments span {}°, the cycle is {}°: the angles must close the cycle",
+                    compact(at - start),
+                    compact(period)
                 ),
             });
         }

@@ -195,13 +195,20 @@ pub struct BudgetError {
 
 impl fmt::Display for BudgetError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // What passes the limit is said; an amount within it is left out (a streamed table
+        // holds a buffer: `needs about 0 bytes of memory and 4.4 h` read as an overflow).
+        let memory = format!("{} of memory", bytes_text(self.cost.bytes));
+        let time = seconds_text(self.cost.seconds);
+        let needs = match (self.cost.bytes <= self.budget.bytes, self.cost.seconds <= self.budget.seconds) {
+            (true, false) => time,
+            (false, true) => memory,
+            _ => format!("{memory} and {time}"),
+        };
         write!(
             f,
-            "{} = {} needs about {} of memory and {} (estimate); the limit is {} and {}",
+            "{} = {} needs about {needs} (estimate); the limit is {} and {}",
             self.field,
             self.value,
-            bytes_text(self.cost.bytes),
-            seconds_text(self.cost.seconds),
             bytes_text(self.budget.bytes),
             seconds_text(self.budget.seconds)
         )
@@ -290,5 +297,12 @@ mod tests {
         );
         use crate::FieldError;
         assert_eq!(e.field(), Some("step_deg"));
+        // Only what passes the limit is named: a streamed table's few bytes are not "0 bytes".
+        let e = b.check("points", 4_294_967_297u64, Cost::items(4_294_967_297.0, 0.0, 3.66e-6)).unwrap_err();
+        assert_eq!(e.to_string(), "points = 4294967297 needs about 4.4 h (estimate); the limit is 1 GB and 1 min");
+        let e = b.check("points", 7, Cost { bytes: 2e9, seconds: 1.0 }).unwrap_err();
+        assert_eq!(e.to_string(), "points = 7 needs about 2 GB of memory (estimate); the limit is 1 GB and 1 min");
+        let e = b.check("points", 7, Cost { bytes: f64::NAN, seconds: 1.0 }).unwrap_err();
+        assert!(e.to_string().contains("needs about more than can be counted of memory (estimate)"), "{e}");
     }
 }

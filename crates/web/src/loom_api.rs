@@ -214,7 +214,7 @@ fn torque_curve(loom: &Loom, pattern: &Pattern) -> Result<TorqueCurve, ApiError>
 pub fn evaluate(req: &LoomRequest) -> Result<LoomResponse, ApiError> {
     let (mut loom, pattern) = LoomSource { loom_toml: req.loom_toml.clone(), pattern: req.pattern.clone() }.read()?;
     if let Some(s) = &req.stagger_deg {
-        loom = loom.with_stagger(s).map_err(|e| ApiError::from_library(&e, "stagger_deg"))?;
+        loom = loom.with_stagger(s).map_err(|e| stagger_error(&e))?;
     }
     let picks = crate::error::check_count("picks", req.picks, 1, MAX_TIMING_PICKS)?;
     let report = check(&loom, &pattern).map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
@@ -267,6 +267,15 @@ pub struct StaggerResponse {
     pub loom_toml: Option<String>,
     /// One line on the result.
     pub note: String,
+}
+
+/// A request's `stagger_deg` refused by the library, named by the request's key (`stagger_deg[2]`)
+/// rather than the loom file's (`shedding.stagger_deg[2]`).
+fn stagger_error(e: &loomkin_loom::LoomError) -> ApiError {
+    use loomkin_units::FieldError;
+    let file_key = "shedding.stagger_deg";
+    let field = e.field().unwrap_or(file_key).replacen(file_key, "stagger_deg", 1);
+    ApiError::invalid(field, e.to_string().replace(file_key, "stagger_deg"))
 }
 
 /// The stagger optimisation and its baselines.
@@ -390,7 +399,13 @@ mod tests {
         let both = PatternSource { lift_plan: Some("1\n2\n".into()), ..twill() };
         assert_eq!(evaluate(&req(None, both)).unwrap_err().field(), "pattern");
         let e = evaluate(&LoomRequest { stagger_deg: Some(vec![0.0; 3]), ..shuttle_twill() }).unwrap_err();
-        assert!(e.field().starts_with("shedding.stagger_deg") || e.field() == "stagger_deg", "{e}");
+        assert_eq!(e.field(), "stagger_deg", "{e}");
+        assert!(!e.to_string().contains("shedding."), "named by the request's key: {e}");
+        let mut far = vec![0.0; 4];
+        far[2] = 1e9;
+        let e = evaluate(&LoomRequest { stagger_deg: Some(far), ..shuttle_twill() }).unwrap_err();
+        assert_eq!(e.field(), "stagger_deg[2]", "{e}");
+        assert!(e.to_string().starts_with("stagger_deg[2] = 1e9 is out of range"), "{e}");
         assert_eq!(evaluate(&LoomRequest { picks: 9, ..shuttle_twill() }).unwrap_err().field(), "picks");
         let long = PatternSource { wif: None, lift_plan: Some("1\n".repeat(1001)) };
         assert_eq!(evaluate(&req(None, long)).unwrap_err().field(), "pattern");

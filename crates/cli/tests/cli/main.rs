@@ -9,6 +9,7 @@ mod dynamics;
 mod law;
 mod limits;
 mod loom;
+mod messages;
 mod output;
 mod parts;
 mod pick;

@@ -1,0 +1,91 @@
+//! Messages that say what they mean (issue 27): numbers in the library's number format, the key
+//! and line of a file's mistake, the unit the user typed, only the part of an estimate that passes
+//! the limit.
+
+use crate::common::*;
+
+fn examples(name: &str) -> String {
+    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str, text: &str) -> String {
+    let path = std::env::temp_dir().join(format!("loomkin-messages-{}-{name}", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// The longest run of digits in `text`.
+fn longest_digits(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit()).map(str::len).max().unwrap_or(0)
+}
+
+/// A streamed table's estimate passes the time limit only: its memory (a buffer) is not printed
+/// as "needs about 0 bytes of memory" (read as an overflow on main).
+#[test]
+fn an_estimate_names_only_what_passes_the_limit() {
+    for args in
+        [&["law", "sample", "cycloidal", "--points", "4294967297"][..], &["servo", "law", "--points", "4294967297"][..]]
+    {
+        usage_error(args, &["points = 4294967297 needs about", "h (estimate); the limit is 1 GB and 1 min"]);
+        let err = String::from_utf8(loomkin().args(args).output().unwrap().stderr).unwrap();
+        assert!(!err.contains("0 bytes") && !err.contains("of memory"), "{err}");
+    }
+}
+
+/// A key given twice in a study file is named, with its line (on main: "tolerance study:
+/// duplicate key", no key, no line).
+#[test]
+fn a_duplicate_key_is_named_with_its_line() {
+    for (cmd, example) in
+        [(["dobby", "tolerance"], "dobby-tolerance.toml"), (["pick", "montecarlo"], "pick-montecarlo.toml")]
+    {
+        let text = std::fs::read_to_string(examples(example)).unwrap();
+        let line = text.lines().position(|l| l.starts_with("seed")).unwrap() + 2;
+        let doubled = text.replacen("\nseed", "\nseed = 1\nseed", 1);
+        let path = scratch(example, &doubled);
+        usage_error(&[cmd[0], cmd[1], &path], &[&format!("line {line}, column 1: duplicate key `seed`")]);
+        std::fs::remove_file(path).unwrap();
+    }
+}
+
+/// A cycle's angles in an error are in the number format (on main: a 61-digit length).
+#[test]
+fn cycle_errors_print_numbers_in_the_number_format() {
+    let text = std::fs::read_to_string(examples("heald-frame-cycle.toml")).unwrap();
+    for (from, to, words) in [
+        ("to_deg = 180", "to_deg = 1e60", vec!["segment[2].to_deg", "length is -1e60°"]),
+        ("to_deg = 360", "to_deg = 359.99990000000001", vec!["segment[3].to_deg", "span 359.9999°"]),
+    ] {
+        assert!(text.contains(from));
+        let path = scratch("cycle.toml", &text.replace(from, to));
+        let out = loomkin().args(["cycle", &path]).output().unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        for w in words {
+            assert!(err.contains(w), "lacks {w}: {err}");
+        }
+        assert!(longest_digits(&err) <= 12, "{err}");
+        std::fs::remove_file(path).unwrap();
+    }
+}
+
+/// `--roller-mm 400` is answered in mm (on main: "a 0.4 m roller … 0.05267 m").
+#[test]
+fn a_refused_roller_is_named_in_the_unit_typed() {
+    let dir = std::env::temp_dir().join(format!("loomkin-messages-{}-cams.dxf", std::process::id()));
+    let dxf = dir.to_str().unwrap();
+    for (flag, value, words) in [
+        ("--roller-mm", "400", ["roller_mm: a 400 mm roller", "the largest roller without undercut is 52.67 mm"]),
+        ("--roller-m", "0.4", ["roller_m: a 0.4 m roller", "the largest roller without undercut is 0.05267 m"]),
+    ] {
+        let out =
+            loomkin().args(["dobby", "synthesize", "--dwell-deg", "30", flag, value, "--dxf", dxf]).output().unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        let last = err.lines().last().unwrap();
+        for w in words {
+            assert!(last.contains(w), "lacks {w}: {last}");
+        }
+        assert!(!std::path::Path::new(dxf).exists(), "an undercut cam is never drawn");
+    }
+}
