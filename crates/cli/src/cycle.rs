@@ -14,8 +14,7 @@ use std::path::PathBuf;
 pub struct CycleArgs {
     /// The cycle file (TOML: `unit`, `stroke`, `[[segment]]` tables).
     file: PathBuf,
-    /// Main-shaft speed in rpm (overrides the file's `speed_rpm`; default 300).
-    #[arg(long)]
+    #[arg(long, help = util::speed_help("Main-shaft speed in rpm (overrides the file's `speed_rpm`)"))]
     speed_rpm: Option<f64>,
     /// Number of samples over the cycle for CSV, JSON and plots.
     #[arg(long, default_value_t = Cycle::POINTS.default_count())]

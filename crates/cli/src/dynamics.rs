@@ -43,8 +43,7 @@ pub enum DynCommand {
 pub struct TwoMassArgs {
     /// The cycle file (TOML): the motion of the drive's input.
     file: PathBuf,
-    /// Main-shaft speed in rpm (default: the file's `speed_rpm`, else 300).
-    #[arg(long)]
+    #[arg(long, help = util::speed_help("Main-shaft speed in rpm (left out: the file's `speed_rpm`, else the default)"))]
     speed_rpm: Option<f64>,
     /// Mass of the drive's output (dobby or cam-box lever, reduced to the frame's motion), kg.
     #[arg(long)]
@@ -74,8 +73,7 @@ pub struct TwoMassArgs {
 pub struct OptimizeArgs {
     /// The cycle file (TOML).
     file: PathBuf,
-    /// Design speed in rpm (default: the file's `speed_rpm`, else 300).
-    #[arg(long)]
+    #[arg(long, help = util::speed_help("Design speed in rpm (left out: the file's `speed_rpm`, else the default)"))]
     speed_rpm: Option<f64>,
     /// Half-width of the speed band around the design speed, in % (0 < band < 90).
     #[arg(long, default_value_t = Optimized::BAND_PCT.default_value())]
@@ -95,8 +93,7 @@ pub struct OptimizeArgs {
 pub struct CompensateArgs {
     /// The designed cycle (TOML): the motion the follower must make.
     file: PathBuf,
-    /// Main-shaft speed in rpm (default: the file's `speed_rpm`, else 300).
-    #[arg(long)]
+    #[arg(long, help = util::speed_help("Main-shaft speed in rpm (left out: the file's `speed_rpm`, else the default)"))]
     speed_rpm: Option<f64>,
     #[command(flatten)]
     model: ModelArgs,
@@ -174,8 +171,7 @@ impl ModelArgs {
 pub struct ResponseArgs {
     /// The cycle file (TOML, as for `loomkin cycle`).
     file: PathBuf,
-    /// Main-shaft speed in rpm (default: the file's `speed_rpm`, else 300).
-    #[arg(long)]
+    #[arg(long, help = util::speed_help("Main-shaft speed in rpm (left out: the file's `speed_rpm`, else the default)"))]
     speed_rpm: Option<f64>,
     #[command(flatten)]
     model: ModelArgs,

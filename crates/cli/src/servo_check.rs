@@ -22,8 +22,11 @@ pub struct CheckArgs {
     // Or a catalogue law: rise over --motion-deg, dwell, return, dwell over one turn.
     #[command(flatten)]
     rise: util::RiseArgs,
-    /// Main-shaft speed in rpm (default: the cycle file's, else 300).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        help = util::speed_help("Main-shaft speed in rpm (left out: the cycle file's, else the default)")
+    )]
     speed_rpm: Option<f64>,
     /// Print the report as JSON.
     #[arg(long)]

@@ -228,6 +228,21 @@ impl Drop for Progress {
     }
 }
 
+/// The help of an option that takes a library quantity: `text`, then the quantity's range and
+/// default in words, read from its descriptor (so `--help` never states a bound or default of
+/// its own).
+pub fn field_help(text: &str, field: &loomkin_units::Field) -> String {
+    match field.default {
+        Some(d) => format!("{text}: {}, default {}", field.describe(), loomkin_units::compact(d)),
+        None => format!("{text}: {}", field.describe()),
+    }
+}
+
+/// `--speed-rpm`'s help where the file may set the speed: the main-shaft speed's range and default.
+pub fn speed_help(text: &str) -> String {
+    field_help(text, &loomkin_units::ShaftSpeed::SPEED)
+}
+
 /// Cores the parallel parts of a run share (at least 1), for time estimates: `RAYON_NUM_THREADS`
 /// when set (a batch task's CPUs: scripts/slurm-shards.sbatch sets it), else the machine's. So what
 /// a shard may do depends on the CPUs it was given, not on the node it lands on.
