@@ -339,7 +339,7 @@ impl ReedMotion {
 }
 
 /// The forces of the sley at one main-shaft angle at a constant shaft speed (the crank and the rod
-/// massless, the sley a rigid body about its rocking shaft; no gravity, no friction).
+/// massless, the sley a rigid body about its rocking shaft under its weight; no friction).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SleyForces {
     /// The sley's inertia as a force along the reed's path at the beating point, N:
@@ -356,11 +356,12 @@ pub struct SleyForces {
     pub crank_bearing_n: f64,
     /// Rocking-shaft bearing force on the sley, x and y, N.
     pub rocking_shaft_n: [f64; 2],
-    /// Torque the main shaft gives the crank, N·m: the inertia part plus the beat-up part.
+    /// Torque the main shaft gives the crank, N·m: the inertia part plus the load part.
     pub crank_torque_n_m: f64,
     /// The inertia part of the crank torque, N·m (`½·dJ/dφ·ω²`).
     pub inertia_torque_n_m: f64,
-    /// The beat-up part of the crank torque, N·m ([`FourBarSley::load_torque_n_m`]).
+    /// The non-inertial part of the crank torque (beat-up and weight), N·m
+    /// ([`FourBarSley::load_torque_n_m`]).
     pub load_torque_n_m: f64,
 }
 
@@ -648,14 +649,19 @@ impl FourBarSley {
         if before <= self.beat_range { self.beat_force * (1.0 - before / self.beat_range) } else { 0.0 }
     }
 
+    /// The sley's weight as a moment about its rocking shaft at rocker angle θ, N·m
+    /// (counter-clockwise positive): `−m·g₀·g·cos θ`, the centre of mass at `centre_mm` on the sword's line.
+    fn weight_moment(&self, theta: f64) -> f64 {
+        -self.table.mass_kg * loomkin_units::STANDARD_GRAVITY_M_S2 * self.g * theta.cos()
+    }
+
     /// The non-inertial torque the sley asks of the main shaft at angle φ, N·m (positive: the shaft
-    /// must give it): the beat-up resistance by power balance, `F(φ)·dx/dφ`. Speed-independent.
+    /// must give it), speed-independent, by power balance: the beat-up resistance, `F(φ)·dx/dφ`, and
+    /// the sley's weight, `m·g₀·g·cos θ·θ'` (the rate of its potential energy, so its integral over
+    /// a turn is zero).
     pub fn load_torque_n_m(&self, phi_rad: f64) -> f64 {
-        let f = self.beat_up_force_n(phi_rad);
-        if f == 0.0 {
-            return 0.0;
-        }
-        f * self.sigma * self.h * self.state(phi_rad).rocker_d1
+        let st = self.state(phi_rad);
+        (self.sigma * self.beat_up_force_n(phi_rad) * self.h - self.weight_moment(st.rocker_rad)) * st.rocker_d1
     }
 
     /// The forces at main-shaft angle φ and the constant shaft speed `omega` (rad/s).
@@ -665,16 +671,17 @@ impl FourBarSley {
 
     /// [`FourBarSley::forces`] of a state already computed.
     ///
-    /// The sley about Q: `J_Q·θ̈ = −N·c·sin(β−θ) − σ·F·h`, N the rod's tension, F the beat-up
-    /// resistance; the crank (massless) balances the rod: torque `−N·r·sin(β−α)`; the rocking shaft
-    /// carries `m·a_G + N·e(β) + σ·F·e⊥(θ)`, `a_G = g·(θ̈·e⊥(θ) − θ̇²·e(θ))`.
+    /// The sley about Q: `J_Q·θ̈ = −N·c·sin(β−θ) − σ·F·h + M_w`, N the rod's tension, F the beat-up
+    /// resistance, `M_w = −m·g₀·g·cos θ` the weight's moment; the crank (massless) balances the rod:
+    /// torque `−N·r·sin(β−α)`; the rocking shaft carries `m·a_G + N·e(β) + σ·F·e⊥(θ) + (0, m·g₀)`,
+    /// `a_G = g·(θ̈·e⊥(θ) − θ̇²·e(θ))`.
     pub fn forces_of(&self, st: &SleyState, omega: f64) -> SleyForces {
         let w2 = omega * omega;
         let (theta, beta, alpha) = (st.rocker_rad, st.rod_rad, st.crank_rad);
         let theta_dd = st.rocker_d2 * w2;
         let theta_d = st.rocker_d1 * omega;
         let f = self.beat_up_force_n(st.phi_rad);
-        let moment = self.j_q * theta_dd + self.sigma * f * self.h;
+        let moment = self.j_q * theta_dd + self.sigma * f * self.h - self.weight_moment(theta);
         let tension = -moment / (self.c * (beta - theta).sin());
         let crank_torque = -tension * self.r * (beta - alpha).sin();
         let (ct, stt) = (theta.cos(), theta.sin());
@@ -684,7 +691,7 @@ impl FourBarSley {
         let (eb, et_perp) = ([beta.cos(), beta.sin()], [-stt, ct]);
         let bearing = [
             m * ag[0] + tension * eb[0] + self.sigma * f * et_perp[0],
-            m * ag[1] + tension * eb[1] + self.sigma * f * et_perp[1],
+            m * ag[1] + tension * eb[1] + self.sigma * f * et_perp[1] + m * loomkin_units::STANDARD_GRAVITY_M_S2,
         ];
         let inertia_torque = self.j_q * st.rocker_d1 * st.rocker_d2 * w2;
         SleyForces {

@@ -219,7 +219,9 @@ fn crank_torque_by_virtual_work_and_energy_over_a_revolution() {
         let theta_d1 = fd(|x| theta_numeric(&t, phase(&s), x), phi, H);
         let st = s.state(phi);
         let sigma = (s.reed(phi).dx_m / (h * st.rocker_d1)).signum();
-        let moment = s.inertia_kg_m2() * st.rocker_d2 * w * w + sigma * f.beat_up_force_n * h;
+        // The weight's moment about the rocking shaft: m·g₀ times the centre of mass's lever arm.
+        let weight = t.mass_kg * G0 * t.centre_mm.unwrap() * 1e-3 * st.rocker_rad.cos();
+        let moment = s.inertia_kg_m2() * st.rocker_d2 * w * w + sigma * f.beat_up_force_n * h + weight;
         let virtual_work = moment * theta_d1;
         assert!(
             (virtual_work - f.crank_torque_n_m).abs() < 1e-9 * (1.0 + f.crank_torque_n_m.abs()),
@@ -230,7 +232,7 @@ fn crank_torque_by_virtual_work_and_energy_over_a_revolution() {
         let dj = fd(|x| s.reduced_inertia_kg_m2(x).0, phi, H);
         assert!((0.5 * dj * w * w - f.inertia_torque_n_m).abs() < 1e-9 * (1.0 + f.inertia_torque_n_m.abs()));
         assert!((s.reduced_inertia_kg_m2(phi).1 - dj).abs() < 1e-9 * (1.0 + dj.abs()));
-        // The load torque is the beat-up resistance by power balance.
+        // The load torque is the beat-up resistance and the weight by power balance.
         assert!((f.load_torque_n_m - s.load_torque_n_m(phi)).abs() < 1e-9 * (1.0 + f.load_torque_n_m.abs()));
         e_inertia += f.inertia_torque_n_m;
         e_abs += f.inertia_torque_n_m.abs();
@@ -253,9 +255,40 @@ fn the_beat_up_resistance_does_work_and_is_the_model() {
     let work: f64 = (0..n).map(|i| s.load_torque_n_m(TAU * (i as f64 + 0.5) / n as f64)).sum::<f64>() * TAU / n as f64;
     let travel = s.stroke_m() - s.reed((-30f64).to_radians()).x_m;
     assert!(work > 0.0 && work < 2000.0 * travel, "{work} vs {travel}");
-    // Without a range there is no resistance.
+    // Without a range there is no resistance: only the weight's torque is left.
     let none = FourBarSley::new(table()).unwrap();
-    assert_eq!(none.load_torque_n_m(0.01), 0.0);
+    assert_eq!(none.load_torque_n_m(0.01), s.load_torque_n_m(0.01));
+    assert!(none.load_torque_n_m(-0.01) < s.load_torque_n_m(-0.01));
+}
+
+/// Standard gravity, m/s².
+const G0: f64 = 9.80665;
+
+#[test]
+fn the_weight_is_conservative_and_its_torque_the_rate_of_potential_energy() {
+    for t in [table(), mirrored(), SleyTable { centre_mm: None, ..table() }] {
+        let s = FourBarSley::new(t).unwrap();
+        let g = t.centre_mm.unwrap_or(t.gyration_mm) * 1e-3;
+        let p = phase(&s);
+        // V(φ) = m·g₀·y_G with the centre of mass on the numerically solved sword.
+        let v = |x: f64| t.mass_kg * G0 * (t.pivot_y_mm * 1e-3 + g * theta_numeric(&t, p, x).sin());
+        let n = 2048;
+        let (mut sum, mut abs) = (0.0, 0.0);
+        for i in 0..n {
+            let phi = TAU * i as f64 / n as f64;
+            let load = s.load_torque_n_m(phi);
+            let dv = fd(v, phi, H);
+            assert!((load - dv).abs() < 1e-9 * (1.0 + dv.abs()), "{phi}: {load} vs dV/dφ {dv}");
+            sum += load;
+            abs += load.abs();
+        }
+        assert!(sum.abs() < 1e-9 * abs, "{sum} of {abs}");
+        // At rest (ω → 0) the rocking shaft and the rod hold the weight alone.
+        let f = s.forces(0.7, 0.0);
+        let beta = s.state(0.7).rod_rad;
+        assert!((f.rocking_shaft_n[0] - f.rod_force_n * beta.cos()).abs() < 1e-9 * t.mass_kg * G0);
+        assert!((f.rocking_shaft_n[1] - f.rod_force_n * beta.sin() - t.mass_kg * G0).abs() < 1e-9 * t.mass_kg * G0);
+    }
 }
 
 #[test]
@@ -269,8 +302,8 @@ fn the_rocking_shaft_carries_the_centre_of_mass_acceleration() {
         let phi = (10.0 * i as f64 + 3.0).to_radians();
         let f = s.forces(phi, w);
         // Force balance of the whole mechanism (crank and rod massless): the frame's forces at the
-        // crank bearing (−N·e(β)) and the rocking shaft equal m·a_G, a_G by finite differences of the
-        // centre of mass on the numerically solved rocker.
+        // crank bearing (−N·e(β)) and the rocking shaft equal m·a_G less the weight, a_G by finite
+        // differences of the centre of mass on the numerically solved rocker.
         let gx = |x: f64| g * theta_numeric(&t, p, x).cos();
         let gy = |x: f64| g * theta_numeric(&t, p, x).sin();
         let dd = |f: &dyn Fn(f64) -> f64| fd(|x| fd(f, x, H), phi, H) * w * w;
@@ -279,8 +312,9 @@ fn the_rocking_shaft_carries_the_centre_of_mass_acceleration() {
         let fy = f.rocking_shaft_n[1] - f.rod_force_n * beta.sin();
         let (ax, ay) = (dd(&gx), dd(&gy));
         let scale = t.mass_kg * g * w * w;
+        // The frame also carries the weight, m·g₀ up.
         assert!((fx - t.mass_kg * ax).abs() < 1e-6 * scale, "{fx} vs {}", t.mass_kg * ax);
-        assert!((fy - t.mass_kg * ay).abs() < 1e-6 * scale, "{fy} vs {}", t.mass_kg * ay);
+        assert!((fy - t.mass_kg * (ay + G0)).abs() < 1e-6 * scale, "{fy} vs {}", t.mass_kg * (ay + G0));
     }
 }
 

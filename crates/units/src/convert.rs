@@ -1,6 +1,9 @@
 //! Unit conversions, named once. loomkin computes in SI (m, rad, s); files and front ends may speak
 //! mm and degrees, and convert at their edge with these.
 
+/// Standard gravity g₀, m/s² (the conventional value, CGPM 1901): the weight of a mass on a loom.
+pub const STANDARD_GRAVITY_M_S2: f64 = 9.806_65;
+
 /// Millimetres per metre.
 const MM_PER_M: f64 = 1000.0;
 
