@@ -8,7 +8,7 @@ use loomkin_units::{Field, Range, RangeError};
 use serde::Serialize;
 
 /// Standard gravity (m/s²), for a follower's weight.
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub const STANDARD_GRAVITY: f64 = loomkin_units::STANDARD_GRAVITY_M_S2;
 
 /// A follower train as one mass on a spring and damper, driven through the law (base excitation):
 ///

@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 /// Most heald frames on one loom.
 pub const MAX_FRAMES: usize = 64;
 /// Standard gravity, m/s².
-pub const G_M_S2: f64 = 9.806_65;
+pub const G_M_S2: f64 = loomkin_units::STANDARD_GRAVITY_M_S2;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -13,7 +13,7 @@
 //! | kgf·s²/cm (mass) | kg | 9.80665 / 0.01 = 980.665 |
 
 /// Standard gravity g₀ in m/s²: one kilogram-force is g₀ newtons.
-pub const G0_M_S2: f64 = 9.80665;
+pub const G0_M_S2: f64 = loomkin_units::STANDARD_GRAVITY_M_S2;
 /// Newtons per kilogram-force.
 pub const N_PER_KGF: f64 = G0_M_S2;
 /// Metres per centimetre.
