@@ -10,9 +10,14 @@
 //! their own bounds; the whole loom (its file, its frames over a pattern repeat) assembles them.
 #![deny(missing_docs)]
 
+pub mod motor;
+pub mod ripple;
 pub mod sley;
 
+pub use motor::{Induction, Motor, MotorCurve, MotorKind, MotorSpec, Servo};
+pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for, solve};
 pub use sley::synth::{SleySynthesis, SleyTarget};
+
 pub use sley::{Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyState, SleyTable};
 
 /// The descriptors this crate declares.
@@ -35,4 +40,15 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     SleyTarget::BACK_DWELL_DEG,
     SleyTarget::REED_HEIGHT_MM,
     SleyTarget::SWORD_MM,
+    ripple::STEP_DEG,
+    ripple::FLYWHEEL_KG_M2,
+    ripple::TARGET_RIPPLE_PCT,
+    Induction::SYNCHRONOUS_RPM,
+    Induction::RATED_RPM,
+    Induction::RATED_POWER_KW,
+    Induction::BREAKDOWN_RATIO,
+    Induction::GEAR_RATIO,
+    Servo::GAIN_N_M_S,
+    Servo::INTEGRAL_S,
+    Servo::TORQUE_LIMIT_N_M,
 ];
