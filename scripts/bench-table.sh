@@ -38,6 +38,10 @@ rows=(
   "dobby synthesis into an earlier result|loomkin-mech|dobby|synthesize_default_0_1deg_into|synthesize_default_0_1deg_into|500|us"
   "servo optimisation, peak torque, 7 points, 2 speeds|loomkin-servo|servo|optimize_peak|2|30|ms"
   "Pareto front of 10^6 points|loomkin-study|pareto|front_1m_two_objectives|front_1m_two_objectives|50|ms"
+  "speed ripple, 3600 angles, constant torque|loomkin-drive|ripple|periodic_solution_3600_angles|constant|1000|us"
+  "speed ripple, 3600 angles, induction (Kloss)|loomkin-drive|ripple|periodic_solution_3600_angles|induction|1000|us"
+  "speed ripple, 3600 angles, servo|loomkin-drive|ripple|periodic_solution_3600_angles|servo|1000|us"
+  "reduced inertia, 24 frames, 10^4 picks|loomkin-loom|inertia|inertia_24_frames_10k_picks|inertia_24_frames_10k_picks|50|ms"
 )
 
 wanted() { [[ -z "$only" || "$1" == *"$only"* ]]; }

@@ -61,6 +61,10 @@ NO_PYTHON_CALL = {
     "merge": "a file tool for --parts; in Python loomkin.concat and from_draws",
     # The local web workbench is a server, not a computation.
     "serve": "the web workbench (a server)",
+    # Issue 29's drive: the library (loomkin_drive::ripple, loomkin_loom::LoomShaft) landed with the
+    # CLI; the Python module loomkin.drive is the issue's item 5, not written yet.
+    "drive inertia": "loomkin.drive not written yet (issue 29 item 5)",
+    "drive ripple": "loomkin.drive not written yet (issue 29 item 5)",
 }
 
 

@@ -124,7 +124,7 @@ fn read_loom(path: &Path) -> Result<(Loom, String)> {
     Ok((loom, text))
 }
 
-fn read(path: &Path, p: &PatternArgs) -> Result<(Loom, Pattern)> {
+pub(crate) fn read(path: &Path, p: &PatternArgs) -> Result<(Loom, Pattern)> {
     let (loom, _) = read_loom(path)?;
     Ok((loom.clone(), read_pattern(&loom, p)?))
 }

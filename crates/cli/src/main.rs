@@ -8,6 +8,7 @@ mod cycle;
 mod dobby;
 mod dobby_tolerance;
 mod draws;
+mod drive;
 mod dynamics;
 #[cfg(test)]
 mod fields_doc;
@@ -77,6 +78,9 @@ enum Command {
     /// The sley (batten) linkage: reed motion, back dwell, forces and crank torque; a four-bar for a stroke and dwell.
     #[command(subcommand)]
     Sley(sley::SleyCommand),
+    /// The main shaft: reduced inertia of the mechanisms, speed ripple under a motor, flywheel.
+    #[command(subcommand)]
+    Drive(drive::DriveCommand),
     /// The parts of a sharded run (--parts DIR) checked and joined into the one-machine output.
     Merge(merge::MergeArgs),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
@@ -101,6 +105,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Dyn(cmd) => dynamics::run(cmd),
         Command::Loom(cmd) => loom::run(cmd),
         Command::Sley(cmd) => sley::run(cmd),
+        Command::Drive(cmd) => drive::run(cmd),
         Command::Merge(args) => merge::run(args),
         Command::Serve(args) => serve::run(args),
     }

@@ -28,6 +28,25 @@ struct LoomFile {
     insertion: InsertionFile,
     beat_up: Option<BeatUpFile>,
     sley: Option<SleyTable>,
+    drive: Option<DriveFile>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DriveFile {
+    rotating_inertia_kg_m2: Option<f64>,
+    friction_torque_n_m: Option<f64>,
+    flywheel_kg_m2: Option<f64>,
+    motor: Option<String>,
+    motor_curve: Option<String>,
+    synchronous_rpm: Option<f64>,
+    rated_rpm: Option<f64>,
+    rated_power_kw: Option<f64>,
+    breakdown_ratio: Option<f64>,
+    gear_ratio: Option<f64>,
+    servo_gain_n_m_s: Option<f64>,
+    servo_integral_s: Option<f64>,
+    servo_torque_limit_n_m: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -254,6 +273,8 @@ pub struct Loom {
     /// The sley linkage (`[sley]`), when the file describes it. Its `beat_up_deg` is the file's
     /// `[beat_up] angle_deg` when the table leaves it out, and must equal it when given.
     pub sley: Option<FourBarSley>,
+    /// The main-shaft drive (`[drive]`): rotating parts, friction, flywheel, motor.
+    pub drive: crate::DriveSpec,
 }
 
 fn mm(v: f64) -> f64 {
@@ -422,6 +443,7 @@ impl Loom {
         if name.chars().count() > 200 {
             return Err(LoomError::field("name", "longer than 200 characters"));
         }
+        let drive = read_drive(f.drive.unwrap_or_default())?;
         Ok(Self {
             name,
             speed,
@@ -434,6 +456,7 @@ impl Loom {
             insertion,
             beat_up_deg,
             sley,
+            drive,
         })
     }
 
@@ -517,6 +540,23 @@ fn read_sley(text: &str, mut table: SleyTable, beat_up_deg: f64) -> Result<FourB
         ));
     }
     Ok(sley)
+}
+
+fn read_drive(d: DriveFile) -> Result<crate::DriveSpec> {
+    use loomkin_drive::{MotorCurve, MotorKind, MotorSpec};
+    let motor = MotorSpec {
+        motor: d.motor.as_deref().map(|m| MotorKind::parse("drive.motor", m)).transpose()?,
+        motor_curve: d.motor_curve.as_deref().map(|m| MotorCurve::parse("drive.motor_curve", m)).transpose()?,
+        synchronous_rpm: d.synchronous_rpm,
+        rated_rpm: d.rated_rpm,
+        rated_power_kw: d.rated_power_kw,
+        breakdown_ratio: d.breakdown_ratio,
+        gear_ratio: d.gear_ratio,
+        servo_gain_n_m_s: d.servo_gain_n_m_s,
+        servo_integral_s: d.servo_integral_s,
+        servo_torque_limit_n_m: d.servo_torque_limit_n_m,
+    };
+    crate::inertia::drive_spec(d.rotating_inertia_kg_m2, d.friction_torque_n_m, d.flywheel_kg_m2, motor)
 }
 
 fn read_shedding(s: &SheddingFile, n: usize) -> Result<Shedding> {

@@ -33,6 +33,7 @@ mod drive;
 mod error;
 mod file;
 pub mod geometry;
+mod inertia;
 mod law;
 mod motion;
 mod pattern;
@@ -47,9 +48,11 @@ pub use diagram::{
 pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorqueReport};
 
 /// The descriptors of this crate's inputs.
-pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![Drive::STEP_DEG];
+pub const FIELDS: loomkin_units::FieldList =
+    loomkin_units::field_list![Drive::STEP_DEG, DriveSpec::ROTATING_INERTIA_KG_M2, DriveSpec::FRICTION_TORQUE_N_M];
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
+pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismInertia, ripple_figure};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};

@@ -5,6 +5,7 @@ mod common;
 mod contracts;
 mod dobby;
 mod docs;
+mod drive;
 mod dynamics;
 mod law;
 mod limits;

@@ -1,0 +1,254 @@
+//! `loomkin drive …`: the main shaft — reduced inertia of the loom's mechanisms, speed ripple, flywheel.
+
+use crate::loom::{PatternArgs, read};
+use crate::output::{self, outln};
+use crate::util::{self, Format};
+use anyhow::Result;
+use clap::{Args, Subcommand, ValueEnum};
+use loomkin_drive::ripple::{FLYWHEEL_KG_M2, STEP_DEG};
+use loomkin_drive::{MotorCurve, MotorKind, MotorSpec, Table, flywheel_for, solve};
+use loomkin_io::Table as Csv;
+use loomkin_loom::{Drive, LoomShaft, Motion, ripple_figure};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// `loomkin drive`.
+#[derive(Debug, Subcommand)]
+pub enum DriveCommand {
+    /// The reduced moment of inertia J(φ) of every mechanism on the main shaft over the repeat.
+    Inertia(InertiaArgs),
+    /// The main shaft's periodic speed under a motor: speed ripple, energy swing, motor torque, flywheel.
+    Ripple(Box<RippleArgs>),
+}
+
+/// `loomkin drive inertia`.
+#[derive(Debug, Args)]
+pub struct InertiaArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// Angle step of the grid (CSV rows; the extremes are located between its points), deg.
+    #[arg(long, default_value_t = Drive::STEP_DEG.default_value())]
+    step_deg: f64,
+    #[command(flatten)]
+    format: Format,
+}
+
+/// The motor model.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum MotorArg {
+    /// An ideal constant torque holding the loom's speed as the mean.
+    Constant,
+    /// An induction motor through a gear.
+    Induction,
+    /// A speed-controlled servo drive (PI loop, torque limit).
+    Servo,
+}
+
+/// The induction motor's curve.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum CurveArg {
+    /// The straight slip line through the rated point.
+    Linear,
+    /// Kloss's curve with the breakdown torque.
+    Kloss,
+}
+
+/// `loomkin drive ripple`.
+#[derive(Debug, Args)]
+pub struct RippleArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    /// The motor (default: the file's [drive] motor, else constant).
+    #[arg(long, value_enum)]
+    motor: Option<MotorArg>,
+    /// The induction motor's torque curve (default: the file's, else linear).
+    #[arg(long, value_enum)]
+    motor_curve: Option<CurveArg>,
+    /// Induction motor: synchronous speed of the motor, rpm.
+    #[arg(long, allow_hyphen_values = true)]
+    synchronous_rpm: Option<f64>,
+    /// Induction motor: rated speed of the motor, rpm.
+    #[arg(long, allow_hyphen_values = true)]
+    rated_rpm: Option<f64>,
+    /// Induction motor: rated power, kW.
+    #[arg(long, allow_hyphen_values = true)]
+    rated_power_kw: Option<f64>,
+    /// Induction motor (Kloss): breakdown torque over rated torque.
+    #[arg(long, allow_hyphen_values = true)]
+    breakdown_ratio: Option<f64>,
+    /// Induction motor: motor speed over main-shaft speed.
+    #[arg(long, allow_hyphen_values = true)]
+    gear_ratio: Option<f64>,
+    /// Servo: proportional gain at the main shaft, N·m per rad/s.
+    #[arg(long, allow_hyphen_values = true)]
+    servo_gain_n_m_s: Option<f64>,
+    /// Servo: integral time, s.
+    #[arg(long, allow_hyphen_values = true)]
+    servo_integral_s: Option<f64>,
+    /// Servo: torque limit at the main shaft, N·m.
+    #[arg(long, allow_hyphen_values = true)]
+    servo_torque_limit_n_m: Option<f64>,
+    /// Inertia added to the main shaft, kg·m² (default: the file's [drive] flywheel_kg_m2, else 0).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "target_ripple_pct")]
+    flywheel_kg_m2: Option<f64>,
+    /// Size the least flywheel that holds the speed ripple at this value, %.
+    #[arg(long, allow_hyphen_values = true)]
+    target_ripple_pct: Option<f64>,
+    /// Step of the integration grid, deg.
+    #[arg(long, default_value_t = STEP_DEG.default_value())]
+    step_deg: f64,
+    #[command(flatten)]
+    format: Format,
+    /// Plot ω(φ) and the torques to this file (.svg or .png).
+    #[arg(short, long, conflicts_with_all = ["json", "csv"])]
+    output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: util::PlotOpts,
+}
+
+/// Runs `loomkin drive …`.
+pub fn run(cmd: DriveCommand) -> Result<()> {
+    match cmd {
+        DriveCommand::Inertia(a) => run_inertia(a),
+        DriveCommand::Ripple(a) => run_ripple(*a),
+    }
+}
+
+/// A mechanism's name as a CSV column word (`frame 3` → `frame3`, `rotating parts` → `rotating`).
+fn column(name: &str) -> String {
+    name.split_whitespace().take(if name.starts_with("frame") { 2 } else { 1 }).collect::<Vec<_>>().concat()
+}
+
+fn run_inertia(a: InertiaArgs) -> Result<()> {
+    let (loom, pattern) = read(&a.loom, &a.pattern)?;
+    Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
+    let motion = Motion::new(&loom, &pattern)?;
+    let shaft = LoomShaft::new(&loom, &motion, &pattern);
+    let names = shaft.mechanism_names();
+    if a.format.csv {
+        let mut header = vec!["angle_deg".to_string()];
+        for n in names.iter().map(|n| column(n)).chain(std::iter::once("total".to_string())) {
+            header.push(format!("j_{n}_kg_m2"));
+            header.push(format!("dj_{n}_kg_m2_per_rad"));
+        }
+        let mut t = Csv::new(header);
+        let period = motion.repeat_deg();
+        let n = (period / a.step_deg).round().max(1.0) as usize;
+        let h = period / n as f64;
+        for k in 0..n {
+            let th = k as f64 * h;
+            let mut row = vec![th];
+            let parts = shaft.mechanism_inertia(th);
+            for (j, dj) in &parts {
+                row.push(*j);
+                row.push(*dj);
+            }
+            let (j, dj) = shaft.inertia_at(th);
+            row.push(j);
+            row.push(dj);
+            t.push(row)?;
+        }
+        return output::csv(&t);
+    }
+    let r = shaft.report(a.step_deg)?;
+    if a.format.json {
+        return output::json(&r);
+    }
+    outln!("reduced inertia on the main shaft over {} picks ({}°), kg·m²:", r.picks, r.repeat_deg)?;
+    outln!("{:<16} {:>14} {:>14} {:>14}", "mechanism", "J min", "J max", "J mean")?;
+    for m in &r.mechanisms {
+        outln!("{:<16} {:>14.6} {:>14.6} {:>14.6}", m.name, m.j_min_kg_m2, m.j_max_kg_m2, m.j_mean_kg_m2)?;
+    }
+    outln!("{:<16} {:>14.6} {:>14.6} {:>14.6}", "total", r.j_min_kg_m2, r.j_max_kg_m2, r.j_mean_kg_m2)?;
+    outln!("total least at {:.3}°, largest at {:.3}° of the repeat", r.total.j_min_angle_deg, r.total.j_max_angle_deg)
+}
+
+/// `drive ripple --json`: the report, and the target when a flywheel was sized.
+#[derive(Debug, Serialize)]
+struct RippleJson<'a> {
+    #[serde(flatten)]
+    report: &'a loomkin_drive::RippleReport,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    target_ripple_pct: Option<f64>,
+}
+
+fn run_ripple(a: RippleArgs) -> Result<()> {
+    let (loom, pattern) = read(&a.loom, &a.pattern)?;
+    STEP_DEG.check_as("--step-deg", a.step_deg)?;
+    let over = MotorSpec {
+        motor: a.motor.map(|m| match m {
+            MotorArg::Constant => MotorKind::Constant,
+            MotorArg::Induction => MotorKind::Induction,
+            MotorArg::Servo => MotorKind::Servo,
+        }),
+        motor_curve: a.motor_curve.map(|c| match c {
+            CurveArg::Linear => MotorCurve::Linear,
+            CurveArg::Kloss => MotorCurve::Kloss,
+        }),
+        synchronous_rpm: a.synchronous_rpm,
+        rated_rpm: a.rated_rpm,
+        rated_power_kw: a.rated_power_kw,
+        breakdown_ratio: a.breakdown_ratio,
+        gear_ratio: a.gear_ratio,
+        servo_gain_n_m_s: a.servo_gain_n_m_s,
+        servo_integral_s: a.servo_integral_s,
+        servo_torque_limit_n_m: a.servo_torque_limit_n_m,
+    };
+    let motor = loom.drive.motor.overridden(&over).build(loom.speed.rpm(), "drive.")?;
+    let motion = Motion::new(&loom, &pattern)?;
+    let shaft = LoomShaft::new(&loom, &motion, &pattern);
+    let table = Table::new(&shaft, a.step_deg)?;
+    let sol = match a.target_ripple_pct {
+        Some(target) => flywheel_for(&table, &motor, target)?.1,
+        None => {
+            let jf = match a.flywheel_kg_m2 {
+                Some(v) => FLYWHEEL_KG_M2.check_as("--flywheel-kg-m2", v)?,
+                None => loom.drive.flywheel_kg_m2,
+            };
+            solve(&table, &motor, jf)?
+        }
+    };
+    let r = &sol.report;
+    if let Some(out) = &a.output {
+        let title = if loom.name.is_empty() { util::file_name(&a.loom) } else { loom.name.clone() };
+        return output::figure(&ripple_figure(&sol, &title), out, &a.plot);
+    }
+    if a.format.csv {
+        let mut t = Csv::new(["angle_deg", "speed_rpm", "motor_torque_n_m", "load_torque_n_m", "energy_j"]);
+        let (w, m, l) = (sol.omega(), sol.motor_torque(), sol.load_torque());
+        for (k, phi) in sol.angles_rad().iter().enumerate() {
+            t.push(vec![phi.to_degrees(), loomkin_units::rpm_from_rad_per_s(w[k]), m[k], l[k], sol.energy_j()[k]])?;
+        }
+        return output::csv(&t);
+    }
+    if a.format.json {
+        return output::json(&RippleJson { report: r, target_ripple_pct: a.target_ripple_pct });
+    }
+    outln!(
+        "main shaft over {} picks ({}°), {} motor: mean {:.3} rpm, {:.3} to {:.3} rpm (at {:.2}° and {:.2}°), ripple {:.4} %",
+        pattern.picks(),
+        motion.repeat_deg(),
+        r.motor,
+        r.mean_speed_rpm,
+        r.min_speed_rpm,
+        r.max_speed_rpm,
+        r.min_speed_angle_deg,
+        r.max_speed_angle_deg,
+        r.speed_ripple_pct
+    )?;
+    outln!(
+        "energy swing {:.4} J; motor torque peak {:.3} N·m, RMS {:.3} N·m; mean load {:.3} N·m",
+        r.energy_swing_j,
+        r.peak_motor_torque_n_m,
+        r.rms_motor_torque_n_m,
+        r.mean_load_torque_n_m
+    )?;
+    match a.target_ripple_pct {
+        Some(t) => outln!("flywheel {:.6} kg·m² holds the ripple at {t} %", r.flywheel_kg_m2),
+        None => outln!("flywheel {} kg·m²", r.flywheel_kg_m2),
+    }
+}

@@ -1,0 +1,81 @@
+//! `loomkin drive …`: the contract keys and headers, the plot written, the errors.
+
+use crate::common::{loomkin, stdout_json, usage_error};
+
+fn ex(name: &str) -> String {
+    concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/").to_string() + name
+}
+
+/// The rapier loom with its `[drive]` table replaced by `drive` (a file in the temporary folder).
+fn rapier_with_drive_table(tag: &str, drive: &str) -> String {
+    let path = std::env::temp_dir().join(format!("loomkin-drive-{tag}-{}.toml", std::process::id()));
+    let text = std::fs::read_to_string(ex("rapier-loom.toml")).unwrap();
+    let text = text[..text.find("\n# The main-shaft drive").unwrap()].to_string() + drive;
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// The rapier loom with rotating parts and friction on its main shaft, constant torque.
+fn rapier_with_drive() -> String {
+    rapier_with_drive_table("constant", "\n[drive]\nrotating_inertia_kg_m2 = 0.8\nfriction_torque_n_m = 4\n")
+}
+
+#[test]
+fn inertia_json_has_the_total_and_every_mechanism() {
+    let loom = rapier_with_drive();
+    let v = stdout_json(&["drive", "inertia", &loom, "--wif", &ex("point-24.wif"), "--json"]);
+    for key in ["j_min_kg_m2", "j_max_kg_m2", "j_mean_kg_m2"] {
+        assert_eq!(v[key], v["total"][key], "{key}");
+        let m = v["mechanisms"].as_array().unwrap();
+        assert_eq!(m.len(), 24 + 2);
+        assert!(m.iter().all(|x| x[key].as_f64().unwrap() >= 0.0));
+    }
+    assert_eq!(v["mechanisms"][24]["name"], "sley");
+    // The example's own drive table (induction motor, Kloss) runs as shipped.
+    let e = stdout_json(&["drive", "ripple", &ex("rapier-loom.toml"), "--json"]);
+    assert_eq!(e["motor"], "induction");
+    assert_eq!(v["mechanisms"][25]["j_mean_kg_m2"], 0.8);
+    let out = loomkin().args(["drive", "inertia", &loom, "--csv", "--step-deg", "10"]).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(header.starts_with("angle_deg,j_frame1_kg_m2,dj_frame1_kg_m2_per_rad,"), "{header}");
+    assert!(header.ends_with("j_sley_kg_m2,dj_sley_kg_m2_per_rad,j_rotating_kg_m2,dj_rotating_kg_m2_per_rad,j_total_kg_m2,dj_total_kg_m2_per_rad"), "{header}");
+    assert_eq!(text.lines().count(), 1 + 72);
+}
+
+#[test]
+fn ripple_json_has_the_contract_keys_and_a_flywheel_holds_its_target() {
+    let loom = rapier_with_drive();
+    let v = stdout_json(&["drive", "ripple", &loom, "--json"]);
+    for key in [
+        "mean_speed_rpm",
+        "min_speed_rpm",
+        "max_speed_rpm",
+        "speed_ripple_pct",
+        "energy_swing_j",
+        "peak_motor_torque_n_m",
+        "rms_motor_torque_n_m",
+    ] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    assert!((v["mean_speed_rpm"].as_f64().unwrap() - 500.0).abs() < 1e-9);
+    let f = stdout_json(&["drive", "ripple", &loom, "--target-ripple-pct", "2", "--json"]);
+    assert!((f["speed_ripple_pct"].as_f64().unwrap() - 2.0).abs() < 1e-8, "{f}");
+    assert!(f["flywheel_kg_m2"].as_f64().unwrap() > 0.0);
+    assert_eq!(f["target_ripple_pct"], 2.0);
+    let i = stdout_json(&["drive", "ripple", &loom, "--motor", "induction", "--rated-power-kw", "5.5", "--json"]);
+    assert_eq!(i["motor"], "induction");
+    let dir = std::env::temp_dir().join(format!("loomkin-ripple-{}.svg", std::process::id()));
+    let out = loomkin().args(["drive", "ripple", &loom, "-o", dir.to_str().unwrap()]).output().unwrap();
+    assert!(out.status.success() && std::fs::metadata(&dir).unwrap().len() > 1000);
+}
+
+#[test]
+fn ripple_refuses_bad_input_naming_the_field() {
+    let loom = rapier_with_drive();
+    usage_error(&["drive", "ripple", &rapier_with_drive_table("none", "")], &["rotating_inertia_kg_m2"]);
+    usage_error(&["drive", "ripple", &loom, "--motor", "induction"], &["drive.rated_power_kw", "required"]);
+    usage_error(&["drive", "ripple", &loom, "--flywheel-kg-m2", "-1"], &["--flywheel-kg-m2 = -1 is out of range"]);
+    usage_error(&["drive", "ripple", &loom, "--target-ripple-pct", "0"], &["target_ripple_pct = 0 is out of range"]);
+    usage_error(&["drive", "ripple", &loom, "--step-deg", "20"], &["--step-deg = 20 is out of range"]);
+}

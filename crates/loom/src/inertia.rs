@@ -1,0 +1,502 @@
+//! The whole loom on its main shaft: the reduced moment of inertia `J(φ)` of every mechanism over
+//! the pattern repeat, and the load torque `M_load(φ)` of their non-inertial forces — what the
+//! speed-ripple solver of loomkin-drive takes ([`LoomShaft`] is its [`Shaft`]).
+//!
+//! The kinetic energy of the mechanisms at shaft speed ω is `½·J(φ)·ω²` with
+//!
+//! $$ J(\varphi) = \sum_i m_i\,y_i'(\varphi)^2 + J_Q\,\theta'(\varphi)^2 + J_\mathrm{rot}, \qquad
+//!    \frac{dJ}{d\varphi} = \sum_i 2 m_i\,y_i' y_i'' + 2 J_Q\,\theta'\theta'' $$
+//!
+//! (frame `i` of mass `m_i` at height `y_i`, the sley of inertia `J_Q` about its rocking shaft at
+//! angle `θ`, the rotating parts' constant `J_rot`; primes are derivatives in the main-shaft angle,
+//! exact in closed form). The load is what [`Drive::torque_at`] gives less its inertial part — the
+//! frames' weight, springs and warp by power balance over the shedding drive's efficiency — plus the
+//! sley's beat-up resistance and a constant friction torque on the shaft. At constant speed,
+//! `M_load + ½ω²·dJ/dφ` is `loom torque`'s torque (at efficiency 1; the efficiency divides the
+//! shedding's inertial part there, while the kinetic energy here is exchanged without loss).
+
+use crate::{Drive, Loom, LoomError, Motion, Pattern, Result};
+use loomkin_drive::{FourBarSley, MotorSpec, Shaft};
+use loomkin_laws::gauss_legendre;
+use loomkin_units::{Field, Range};
+use serde::Serialize;
+use std::f64::consts::TAU;
+
+/// The `[drive]` table of a loom file: the rotating parts, friction, flywheel and motor.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct DriveSpec {
+    /// Inertia of the rotating parts referred to the main shaft (shaft, cams, gears, the motor's
+    /// rotor times the gear ratio squared), kg·m².
+    pub rotating_inertia_kg_m2: f64,
+    /// Constant friction torque on the main shaft, N·m.
+    pub friction_torque_n_m: f64,
+    /// Flywheel on the main shaft, kg·m².
+    pub flywheel_kg_m2: f64,
+    /// The motor.
+    pub motor: MotorSpec,
+}
+
+impl DriveSpec {
+    /// `rotating_inertia_kg_m2`.
+    pub const ROTATING_INERTIA_KG_M2: Field = Field::new(
+        "rotating_inertia_kg_m2",
+        Range::closed(0.0, 1e6, "kg·m²"),
+        "Inertia of the loom's rotating parts referred to the main shaft (shafts, cams, gears, pulleys, \
+         the motor's rotor times the gear ratio squared), kg·m²: 0 … 10⁶. The speed ripple needs it \
+         above 0 (the frames' and sley's inertia vanishes where they stand still).",
+    )
+    .with_default(0.0);
+    /// `friction_torque_n_m`.
+    pub const FRICTION_TORQUE_N_M: Field = Field::new(
+        "friction_torque_n_m",
+        Range::closed(0.0, 1e7, "N·m"),
+        "Constant friction torque on the main shaft (bearings, seals), N·m: 0 … 10⁷; the shaft turns \
+         one way, so it always takes power.",
+    )
+    .with_default(0.0);
+}
+
+/// One mechanism's reduced inertia over the repeat.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MechanismInertia {
+    /// `frame 1` … (front first), `sley`, `rotating parts`.
+    pub name: String,
+    /// Least J, kg·m² (located between the grid points).
+    pub j_min_kg_m2: f64,
+    /// Largest J, kg·m².
+    pub j_max_kg_m2: f64,
+    /// Mean J over the repeat, kg·m² (exact quadrature).
+    pub j_mean_kg_m2: f64,
+}
+
+/// The extremes and mean of a J(φ).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct InertiaStats {
+    /// Least J, kg·m².
+    pub j_min_kg_m2: f64,
+    /// Where, deg within the repeat.
+    pub j_min_angle_deg: f64,
+    /// Largest J, kg·m².
+    pub j_max_kg_m2: f64,
+    /// Where, deg within the repeat.
+    pub j_max_angle_deg: f64,
+    /// Mean J over the repeat, kg·m².
+    pub j_mean_kg_m2: f64,
+}
+
+/// `loomkin drive inertia --json`: the total's extremes and mean at the top, the total again under
+/// `total`, and each mechanism under `mechanisms`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InertiaReport {
+    /// Picks in the repeat.
+    pub picks: usize,
+    /// The repeat, deg.
+    pub repeat_deg: f64,
+    /// Least total J, kg·m².
+    pub j_min_kg_m2: f64,
+    /// Largest total J, kg·m².
+    pub j_max_kg_m2: f64,
+    /// Mean total J, kg·m².
+    pub j_mean_kg_m2: f64,
+    /// The total with where its extremes are.
+    pub total: InertiaStats,
+    /// Each mechanism.
+    pub mechanisms: Vec<MechanismInertia>,
+}
+
+/// The loom's main shaft weaving a pattern: J(φ), dJ/dφ and M_load(φ) over the repeat.
+#[derive(Debug, Clone)]
+pub struct LoomShaft<'a> {
+    loom: &'a Loom,
+    drive: Drive<'a>,
+    sley: Option<&'a FourBarSley>,
+}
+
+impl<'a> LoomShaft<'a> {
+    /// The shaft of `loom` moving `motion` (its frames weaving `pattern`), with the loom's sley if
+    /// it has one.
+    pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Self {
+        Self { loom, drive: Drive::new(loom, motion, pattern), sley: loom.sley.as_ref() }
+    }
+
+    /// The frames' motion.
+    pub fn motion(&self) -> &Motion {
+        self.drive.motion()
+    }
+
+    /// The sley, if any.
+    pub fn sley(&self) -> Option<&FourBarSley> {
+        self.sley
+    }
+
+    /// Frame `i`'s reduced inertia `m·y'²` and its rate `2m·y'·y''` at `theta_deg`.
+    pub fn frame_inertia(&self, i: usize, theta_deg: f64) -> (f64, f64) {
+        let k = self.motion().frame(i, theta_deg);
+        let m = self.loom.frames[i].mass_kg;
+        (m * k.dy * k.dy, 2.0 * m * k.dy * k.d2y)
+    }
+
+    /// The sley's reduced inertia and rate at `theta_deg` (0 without a sley).
+    pub fn sley_inertia(&self, theta_deg: f64) -> (f64, f64) {
+        self.sley.map_or((0.0, 0.0), |s| s.reduced_inertia_kg_m2(theta_deg.to_radians().rem_euclid(TAU)))
+    }
+
+    /// The mechanisms' names, in the order of [`LoomShaft::mechanism_inertia`]: the frames, the
+    /// sley (when there is one), the rotating parts.
+    pub fn mechanism_names(&self) -> Vec<String> {
+        let mut out: Vec<String> = (1..=self.loom.frame_count()).map(|i| format!("frame {i}")).collect();
+        if self.sley.is_some() {
+            out.push("sley".into());
+        }
+        out.push("rotating parts".into());
+        out
+    }
+
+    /// Every mechanism's `(J, dJ/dφ)` at `theta_deg`, in the order of [`LoomShaft::mechanism_names`].
+    pub fn mechanism_inertia(&self, theta_deg: f64) -> Vec<(f64, f64)> {
+        let mut out: Vec<(f64, f64)> = (0..self.loom.frame_count()).map(|i| self.frame_inertia(i, theta_deg)).collect();
+        if self.sley.is_some() {
+            out.push(self.sley_inertia(theta_deg));
+        }
+        out.push((self.loom.drive.rotating_inertia_kg_m2, 0.0));
+        out
+    }
+
+    /// The total `(J, dJ/dφ)` at `theta_deg`, kg·m² and kg·m²/rad.
+    pub fn inertia_at(&self, theta_deg: f64) -> (f64, f64) {
+        let (mut j, mut dj) = self.sley_inertia(theta_deg);
+        j += self.loom.drive.rotating_inertia_kg_m2;
+        for i in 0..self.loom.frame_count() {
+            let (a, b) = self.frame_inertia(i, theta_deg);
+            j += a;
+            dj += b;
+        }
+        (j, dj)
+    }
+
+    /// The load torque at `theta_deg`, N·m: the frames' weight, springs and warp over the shedding
+    /// drive's efficiency, the sley's beat-up resistance, the friction.
+    pub fn load_at(&self, theta_deg: f64) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..self.loom.frame_count() {
+            let k = self.motion().frame(i, theta_deg);
+            if k.dy != 0.0 {
+                let f = self.drive.force(i, &k);
+                sum += (f.weight_n + f.spring_n + f.warp_n) * k.dy;
+            }
+        }
+        let sley = self.sley.map_or(0.0, |s| s.load_torque_n_m(theta_deg.to_radians().rem_euclid(TAU)));
+        sum / self.loom.efficiency + sley + self.loom.drive.friction_torque_n_m
+    }
+
+    /// The statistics of J over the repeat, per mechanism and in total. A grid of `step_deg`
+    /// ([`Drive::STEP_DEG`]) finds the extremes' neighbourhoods and golden-section search locates
+    /// them on the exact J; the means are exact quadratures (Gauss–Legendre between the laws'
+    /// joints). When the step divides 360°, every move of a frame in one direction meets the grid
+    /// at the same fractions of its motion, so each frame's J over a rise and over a fall is
+    /// computed once and added at every move (the cost of a long repeat is additions).
+    pub fn report(&self, step_deg: f64) -> Result<InertiaReport> {
+        Drive::STEP_DEG.check(step_deg)?;
+        let motion = self.motion();
+        let period = motion.repeat_deg();
+        let n = (period / step_deg).round().max(1.0) as usize;
+        let h = period / n as f64;
+        let per_turn = 360.0 / h;
+        let aligned = (per_turn - per_turn.round()).abs() <= 1e-9 * per_turn;
+        let phi = motion.motion_deg();
+        let rule = gauss_legendre(16);
+        let mut total = vec![self.loom.drive.rotating_inertia_kg_m2; n];
+        // Each frame's J over a rise and a fall on the grid, and where every move adds one: added in
+        // the order of the repeat at the end, so the grid is swept once (not once per frame).
+        let mut tables: Vec<Vec<f64>> = Vec::new();
+        let mut adds: Vec<(usize, usize)> = Vec::new();
+        let mut mechanisms = Vec::new();
+        let mut mean_total = 0.0;
+        for i in 0..self.loom.frame_count() {
+            let moves = motion.moves(i);
+            let mass = self.loom.frames[i].mass_kg;
+            let j_of = |rising: bool, x: f64| {
+                let k = motion.moving(i, rising, x);
+                mass * k.dy * k.dy
+            };
+            // ∫ J over one move, by direction: Gauss–Legendre on the law's panels.
+            let move_integral = |rising: bool| -> f64 {
+                let law = motion.law().law(rising);
+                let xs: Vec<f64> = std::iter::once(0.0).chain(law.joints()).chain(std::iter::once(1.0)).collect();
+                xs.windows(2)
+                    .map(|w| {
+                        let (mid, half) = (0.5 * (w[0] + w[1]), 0.5 * (w[1] - w[0]));
+                        rule.iter().map(|&(x, wt)| half * wt * j_of(rising, mid + half * x)).sum::<f64>()
+                    })
+                    .sum::<f64>()
+                    * phi
+            };
+            let rises = moves.iter().filter(|m| m.rising).count();
+            let falls = moves.len() - rises;
+            let mean = (rises as f64 * if rises > 0 { move_integral(true) } else { 0.0 }
+                + falls as f64 * if falls > 0 { move_integral(false) } else { 0.0 })
+                / period;
+            mean_total += mean;
+            // Extremes over the move(s): the grid on x, refined.
+            let extreme = |sign: f64| -> f64 {
+                let mut best = f64::NEG_INFINITY;
+                for rising in [true, false] {
+                    if (rising && rises == 0) || (!rising && falls == 0) {
+                        continue;
+                    }
+                    let m = 720;
+                    let vals: Vec<f64> = (0..=m).map(|k| sign * j_of(rising, k as f64 / m as f64)).collect();
+                    let (k, _) = vals
+                        .iter()
+                        .enumerate()
+                        .fold((0, f64::NEG_INFINITY), |b, (k, v)| if *v > b.1 { (k, *v) } else { b });
+                    let a = (k as f64 - 1.0).max(0.0) / m as f64;
+                    let b = (k as f64 + 1.0).min(m as f64) / m as f64;
+                    let r = loomkin_numeric::golden_max(|x| sign * j_of(rising, x), a, b);
+                    best = best.max(r.value).max(vals[k]);
+                }
+                sign * best
+            };
+            let dwells = moves.len() as f64 * phi < period - 1e-9 * period;
+            let j_max = if moves.is_empty() { 0.0 } else { extreme(1.0) };
+            let j_min = if dwells || moves.is_empty() { 0.0 } else { extreme(-1.0) };
+            mechanisms.push(MechanismInertia {
+                name: format!("frame {}", i + 1),
+                j_min_kg_m2: j_min,
+                j_max_kg_m2: j_max,
+                j_mean_kg_m2: mean,
+            });
+            // Onto the total's grid.
+            let Some(first) = moves.first() else { continue };
+            if aligned {
+                let per_turn = per_turn.round() as i64;
+                let w0 = first.start_deg - 360.0 * first.pick as f64;
+                let k0 = (w0 / h - 1e-12).ceil() as i64;
+                let x0 = (k0 as f64 * h - w0) / phi;
+                let dx = h / phi;
+                let cnt = ((1.0 - x0) / dx).ceil().max(0.0) as usize;
+                let t = tables.len();
+                tables.push((0..cnt).map(|j| j_of(true, x0 + j as f64 * dx)).collect());
+                tables.push((0..cnt).map(|j| j_of(false, x0 + j as f64 * dx)).collect());
+                for m in &moves {
+                    let start = (k0 + per_turn * m.pick as i64).rem_euclid(n as i64) as usize;
+                    adds.push((start, t + usize::from(!m.rising)));
+                }
+            } else {
+                for (k, t) in total.iter_mut().enumerate() {
+                    *t += self.frame_inertia(i, k as f64 * h).0;
+                }
+            }
+        }
+        adds.sort_unstable();
+        for (start, t) in adds {
+            add_wrapped(&mut total, start, &tables[t]);
+        }
+        if self.sley.is_some() {
+            // The sley repeats every turn: one turn's J on the grid, tiled when the step divides 360°.
+            if aligned {
+                let m = per_turn.round() as usize;
+                let turn: Vec<f64> = (0..m).map(|k| self.sley_inertia(k as f64 * h).0).collect();
+                for chunk in total.chunks_mut(m) {
+                    chunk.iter_mut().zip(&turn).for_each(|(t, v)| *t += v);
+                }
+            } else {
+                for (k, t) in total.iter_mut().enumerate() {
+                    *t += self.sley_inertia(k as f64 * h).0;
+                }
+            }
+            let f = |x: f64| self.sley_inertia(x).0;
+            let grid: Vec<f64> = (0..3600).map(|k| f(k as f64 * 0.1)).collect();
+            let mut st = stats(&grid, 0.1, 360.0, &f, 0.0);
+            // Mean over a turn: 16-point Gauss–Legendre on 36 panels of 10°.
+            st.j_mean_kg_m2 = (0..36)
+                .map(|p| rule.iter().map(|&(x, wt)| 5.0 * wt * f(10.0 * p as f64 + 5.0 + 5.0 * x)).sum::<f64>())
+                .sum::<f64>()
+                / 360.0;
+            mean_total += st.j_mean_kg_m2;
+            mechanisms.push(MechanismInertia {
+                name: "sley".into(),
+                j_min_kg_m2: st.j_min_kg_m2,
+                j_max_kg_m2: st.j_max_kg_m2,
+                j_mean_kg_m2: st.j_mean_kg_m2,
+            });
+        }
+        let rot = self.loom.drive.rotating_inertia_kg_m2;
+        mean_total += rot;
+        mechanisms.push(MechanismInertia {
+            name: "rotating parts".into(),
+            j_min_kg_m2: rot,
+            j_max_kg_m2: rot,
+            j_mean_kg_m2: rot,
+        });
+        let total = stats(&total, h, period, &|x| self.inertia_at(x).0, mean_total);
+        Ok(InertiaReport {
+            picks: motion.picks(),
+            repeat_deg: period,
+            j_min_kg_m2: total.j_min_kg_m2,
+            j_max_kg_m2: total.j_max_kg_m2,
+            j_mean_kg_m2: total.j_mean_kg_m2,
+            total,
+            mechanisms,
+        })
+    }
+}
+
+/// `tab` added to `total` from index `start` on, wrapping past the end (a move across the repeat's end).
+fn add_wrapped(total: &mut [f64], start: usize, tab: &[f64]) {
+    let n = total.len();
+    let mut at = start;
+    let mut rest = tab;
+    while !rest.is_empty() {
+        let len = rest.len().min(n - at);
+        total[at..at + len].iter_mut().zip(&rest[..len]).for_each(|(t, v)| *t += v);
+        rest = &rest[len..];
+        at = 0;
+    }
+}
+
+/// Extremes of `f` near the grid's (golden section on the two intervals beside each of the few
+/// best grid points) and the mean given.
+fn stats(grid: &[f64], h: f64, period: f64, f: &dyn Fn(f64) -> f64, mean: f64) -> InertiaStats {
+    let n = grid.len();
+    let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
+    // The grid's extremes and its largest step between neighbours `d`: a maximum hidden between
+    // a grid point b and its neighbours a, c exceeds b by at most (b − min(a, c))/4 ≤ d/4, so only
+    // points within d of the grid's extreme need a look.
+    let (mut gmax, mut gmin, mut d) = (f64::NEG_INFINITY, f64::INFINITY, 0.0_f64);
+    for k in 0..n {
+        let x = grid[k];
+        gmax = gmax.max(x);
+        gmin = gmin.min(x);
+        d = d.max((x - grid[next(k)]).abs());
+    }
+    let find = |sign: f64| -> (f64, f64) {
+        let v = |k: usize| sign * grid[k];
+        let floor = if sign > 0.0 { gmax } else { -gmin } - d;
+        // The four largest local extremes at or above the floor (a flat stretch makes every point
+        // a local extreme: the first few suffice).
+        let mut idx: Vec<usize> = Vec::with_capacity(5);
+        for k in 0..n {
+            let x = v(k);
+            if x < floor || (idx.len() == 4 && x <= v(idx[3])) {
+                continue;
+            }
+            if x >= v(prev(k)) && x >= v(next(k)) {
+                let at = idx.partition_point(|&j| v(j) >= x);
+                idx.insert(at, k);
+                idx.truncate(4);
+            }
+        }
+        let mut best = (f64::NEG_INFINITY, 0.0);
+        for k in idx {
+            let x = k as f64 * h;
+            if v(k) > best.0 {
+                best = (v(k), x);
+            }
+            let m = loomkin_numeric::golden_max(|t| sign * f(t), x - h, x + h);
+            if m.value > best.0 {
+                best = (m.value, m.at.rem_euclid(period));
+            }
+        }
+        (sign * best.0, best.1)
+    };
+    let (max, at_max) = find(1.0);
+    let (min, at_min) = find(-1.0);
+    InertiaStats {
+        j_min_kg_m2: min,
+        j_min_angle_deg: at_min,
+        j_max_kg_m2: max,
+        j_max_angle_deg: at_max,
+        j_mean_kg_m2: mean,
+    }
+}
+
+impl Shaft for LoomShaft<'_> {
+    fn period_rad(&self) -> f64 {
+        self.motion().repeat_deg().to_radians()
+    }
+
+    fn inertia(&self, phi_rad: f64) -> (f64, f64) {
+        self.inertia_at(phi_rad.to_degrees())
+    }
+
+    fn load_torque(&self, phi_rad: f64) -> f64 {
+        self.load_at(phi_rad.to_degrees())
+    }
+
+    fn breaks_rad(&self) -> Vec<f64> {
+        let mut out: Vec<f64> = self.motion().joints().into_iter().map(f64::to_radians).collect();
+        if let Some(s) = self.sley {
+            let range = s.table().beat_up_range_deg.to_radians();
+            if s.table().beat_up_force_n > 0.0 && range > 0.0 {
+                for p in 0..self.motion().picks() {
+                    let front = s.front_dead_centre_rad() + TAU * p as f64;
+                    out.push(front);
+                    out.push(front - range);
+                }
+            }
+        }
+        let period = self.period_rad();
+        out.iter_mut().for_each(|x| *x = x.rem_euclid(period));
+        out
+    }
+}
+
+/// Reads the `[drive]` table's values (all optional) into a [`DriveSpec`], each checked against
+/// its descriptor and named `drive.KEY`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn drive_spec(
+    rotating: Option<f64>,
+    friction: Option<f64>,
+    flywheel: Option<f64>,
+    motor: MotorSpec,
+) -> Result<DriveSpec> {
+    let check = |f: &Field, v: Option<f64>| -> Result<f64> {
+        Ok(f.check_as(&format!("drive.{}", f.name), v.unwrap_or_else(|| f.default_value()))?)
+    };
+    Ok(DriveSpec {
+        rotating_inertia_kg_m2: check(&DriveSpec::ROTATING_INERTIA_KG_M2, rotating)?,
+        friction_torque_n_m: check(&DriveSpec::FRICTION_TORQUE_N_M, friction)?,
+        flywheel_kg_m2: check(&loomkin_drive::ripple::FLYWHEEL_KG_M2, flywheel)?,
+        motor,
+    })
+}
+
+impl From<loomkin_drive::RippleError> for LoomError {
+    fn from(e: loomkin_drive::RippleError) -> Self {
+        match e {
+            loomkin_drive::RippleError::Range(r) => LoomError::Range(r),
+            loomkin_drive::RippleError::Field { field, reason } => LoomError::Field { field, reason },
+            loomkin_drive::RippleError::Infeasible { field, reason } => LoomError::Infeasible { field, reason },
+            other => LoomError::Field { field: "drive".into(), reason: other.to_string() },
+        }
+    }
+}
+
+/// The speed ripple plotted: the shaft speed ω(φ) with its mean and extremes, and the motor and
+/// load torques, over the repeat (`loomkin drive ripple -o`).
+pub fn ripple_figure<S: Shaft + ?Sized>(sol: &loomkin_drive::Solution<'_, '_, S>, title: &str) -> loomkin_plot::Figure {
+    use loomkin_plot::{Figure, Note, Panel, Rule, Series, sig4};
+    let r = &sol.report;
+    let deg: Vec<f64> = sol.angles_rad().iter().map(|a| a.to_degrees()).collect();
+    let rpm: Vec<(f64, f64)> =
+        deg.iter().zip(sol.omega()).map(|(a, w)| (*a, loomkin_units::rpm_from_rad_per_s(w))).collect();
+    let motor: Vec<(f64, f64)> = deg.iter().copied().zip(sol.motor_torque()).collect();
+    let load: Vec<(f64, f64)> = deg.iter().copied().zip(sol.load_torque()).collect();
+    let speed = Panel::new("speed [rpm]", vec![Series::line("ω", rpm)])
+        .with_rule(Rule::y(r.mean_speed_rpm, format!("mean {} rpm", sig4(r.mean_speed_rpm))))
+        .with_notes([
+            Note::new(r.max_speed_angle_deg, r.max_speed_rpm, format!("max {} rpm", sig4(r.max_speed_rpm))),
+            Note::new(r.min_speed_angle_deg, r.min_speed_rpm, format!("min {} rpm", sig4(r.min_speed_rpm))),
+        ]);
+    let torque = Panel::new("torque [N·m]", vec![Series::line("motor", motor), Series::line("load", load)]);
+    let full = format!(
+        "{title}: {} motor, ripple {} %, ΔE {} J, flywheel {} kg·m²",
+        r.motor,
+        sig4(r.speed_ripple_pct),
+        sig4(r.energy_swing_j),
+        sig4(r.flywheel_kg_m2)
+    );
+    Figure::new(full, "main-shaft angle [deg]", vec![speed, torque])
+}
