@@ -11,7 +11,8 @@
 //! angle `θ`, the rotating parts' constant `J_rot`; primes are derivatives in the main-shaft angle,
 //! exact in closed form). The load is what [`Drive::torque_at`] gives less its inertial part — the
 //! frames' weight, springs and warp by power balance over the shedding drive's efficiency — plus the
-//! sley's beat-up resistance and a constant friction torque on the shaft. At constant speed,
+//! sley's beat-up resistance and weight (`FourBarSley::load_torque_n_m`) and a constant friction
+//! torque on the shaft. At constant speed,
 //! `M_load + ½ω²·dJ/dφ` is `loom torque`'s torque (at efficiency 1; the efficiency divides the
 //! shedding's inertial part there, while the kinetic energy here is exchanged without loss).
 
@@ -175,7 +176,7 @@ impl<'a> LoomShaft<'a> {
     }
 
     /// The load torque at `theta_deg`, N·m: the frames' weight, springs and warp over the shedding
-    /// drive's efficiency, the sley's beat-up resistance, the friction.
+    /// drive's efficiency, the sley's beat-up resistance and weight, the friction.
     pub fn load_at(&self, theta_deg: f64) -> f64 {
         let mut sum = 0.0;
         for i in 0..self.loom.frame_count() {
