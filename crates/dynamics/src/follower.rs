@@ -55,11 +55,15 @@ impl Follower {
         "Damping ratio ζ: 0 ≤ ζ < 1 (the closed-form response is the underdamped oscillator's); 0 when left out.",
     )
     .with_default(0.0);
-    /// `mass_kg`: the moving mass, 0 < m < 10⁶ kg; it makes forces available.
+    /// `mass_kg`: the moving mass, 10⁻⁶ ≤ m < 10⁶ kg; it makes forces available. The lower bound
+    /// keeps the static deflection F/(m·ω_n²) finite: at the ends of the other ranges (F = 10⁹ N,
+    /// f_n = 10⁻³ Hz) it is 2.5·10¹⁹ m at 1 mg, while 5·10⁻³²⁴ kg (accepted before) overflowed to
+    /// a non-finite deflection and printed NaN.
     pub const MASS_KG: Field = Field::new(
         "mass_kg",
-        Range::open(0.0, 1e6, "kg"),
-        "Moving mass: 0 < m < 10⁶ kg; given, the forces (train, contact, loss of contact) are computed.",
+        Range::closed_open(1e-6, 1e6, "kg"),
+        "Moving mass: 10⁻⁶ ≤ m < 10⁶ kg (below a milligram a closing force's static deflection F/(m·ω_n²) \
+         overflows); given, the forces (train, contact, loss of contact) are computed.",
     );
     /// `return_spring_n_m`: k_r, 0 … 10¹² N/m, and below m·ω_n² (checked with the mass); 0.
     pub const RETURN_SPRING_N_M: Field = Field::new(

@@ -7,6 +7,7 @@ mod dobby;
 mod docs;
 mod drive;
 mod dynamics;
+mod ends;
 mod law;
 mod limits;
 mod loom;

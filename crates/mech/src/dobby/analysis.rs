@@ -517,10 +517,34 @@ impl DobbyInputs {
     /// The roller radius in m of `roller_mm` (checked in mm, named `field`) or `roller_m`.
     pub fn roller_m(field_mm: &str, roller_mm: Option<f64>, roller_m: Option<f64>) -> Result<Option<f64>> {
         match roller_mm {
-            Some(mm) => Ok(Some(loomkin_units::m_from_mm(Self::ROLLER_MM.check_as(field_mm, mm)?))),
+            Some(mm) => {
+                let mm = Self::ROLLER_MM.check_as(field_mm, mm)?;
+                check_least_roller(field_mm, mm, 1e3)?;
+                Ok(Some(loomkin_units::m_from_mm(mm)))
+            }
             None => Ok(roller_m),
         }
     }
+
+    /// The least roller radius other than 0 (a knife edge), m: 1 µm. A roller's curvature 1/r is
+    /// drawn and compared with the cams'; below a micrometre it is 10⁶ 1/m and more (the cams'
+    /// is below 10³ 1/m), and 10⁻³⁰⁸ m overflowed the curvature plot's axis (NaN in the SVG).
+    pub const LEAST_ROLLER_M: f64 = 1e-6;
+}
+
+/// A roller radius `r` (in m × `per_m`: 1 for m, 10³ for mm) of 0 (a knife edge) or at least
+/// [`DobbyInputs::LEAST_ROLLER_M`], else the error naming `field` with the range in its unit.
+fn check_least_roller(field: &str, r: f64, per_m: f64) -> Result<()> {
+    let least = DobbyInputs::LEAST_ROLLER_M * per_m;
+    if r > 0.0 && r < least {
+        let most = match ROLLER_M_RANGE.hi {
+            loomkin_units::Bound::Closed(v) | loomkin_units::Bound::Open(v) => v * per_m,
+            loomkin_units::Bound::Unbounded => f64::MAX,
+        };
+        let unit = if per_m == 1.0 { "m (or 0: a knife edge)" } else { "mm (or 0: a knife edge)" };
+        return Err(loomkin_units::RangeError::new(field, r, Range::closed(least, most, unit)).into());
+    }
+    Ok(())
 }
 
 pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit: f64) -> Result<()> {
@@ -529,6 +553,7 @@ pub(crate) fn check_common(step_deg: f64, speed: f64, roller: Option<f64>, limit
     DobbyInputs::PRESSURE_LIMIT_DEG.check(limit)?;
     if let Some(r) = roller {
         DobbyInputs::ROLLER_M.check(r)?;
+        check_least_roller("roller_m", r, 1.0)?;
     }
     Ok(())
 }
