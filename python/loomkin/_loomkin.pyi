@@ -133,14 +133,23 @@ def pick_sweep(
 ) -> Dict[str, Any]: ...
 
 def pick_montecarlo(
-    study_toml: str, shard: _ShardArg = None, from_draws: _FromDraws = None, **model: Any
+    study_toml: str,
+    shard: _ShardArg = None,
+    from_draws: _FromDraws = None,
+    summary: bool = False,
+    from_summaries: Optional[Sequence[str]] = None,
+    **model: Any,
 ) -> Union[Dict[str, Any], _TableLike]:
     """`loomkin pick montecarlo STUDY --json` (units in the keys) and `per_draw`, the `--csv` table;
     with shard: that shard's per-draw table; with from_draws: the report of the finished run."""
 
 # dobby
 def dobby_tolerance(
-    study_toml: str, shard: _ShardArg = None, from_draws: _FromDraws = None
+    study_toml: str,
+    shard: _ShardArg = None,
+    from_draws: _FromDraws = None,
+    summary: bool = False,
+    from_summaries: Optional[Sequence[str]] = None,
 ) -> Union[Dict[str, Any], _TableLike]:
     """`loomkin dobby tolerance STUDY --json` (m, deg in the keys) and `per_draw`, the `--csv` table;
     with shard: that shard's per-draw table; with from_draws: the report of the finished run."""

@@ -72,3 +72,24 @@ def _draw_tables(from_draws: Optional[Any]) -> Optional[Any]:
     items = [from_draws] if one else list(from_draws)
     return [x if isinstance(x, (str, os.PathLike))
             else {str(k): np.ascontiguousarray(v, dtype=np.float64) for k, v in x.items()} for x in items]
+
+
+def _summary_texts(from_summaries: Optional[Any]) -> Optional[Any]:
+    """``from_summaries`` as the extension module takes it: each summary (a dict, as
+    ``summary=True`` returns it) as JSON text, each path as its file's text (one or more
+    summaries, as the CLI's ``--summary`` writes them)."""
+    import json
+    import os
+
+    if from_summaries is None:
+        return None
+    one = isinstance(from_summaries, (Mapping, str, os.PathLike))
+    items = [from_summaries] if one else list(from_summaries)
+    out = []
+    for x in items:
+        if isinstance(x, Mapping):
+            out.append(json.dumps(x))
+        else:
+            with open(os.fspath(x), encoding="utf-8") as f:
+                out.append(f.read())
+    return out

@@ -15,7 +15,7 @@ import numpy as np
 from . import _loomkin as _m
 from ._fields import default as _default
 from ._inputs import study_text
-from ._table import Shard, Table, _draw_tables
+from ._table import Shard, Table, _draw_tables, _summary_texts
 
 __all__ = ["analyze", "synthesize", "tolerance", "sweep"]
 
@@ -61,7 +61,8 @@ def synthesize(dwell_deg: float = _default("OutputLawSpec::DWELL_DEG"),
                                      float(step_deg), **geometry))
 
 
-def tolerance(study: Any, *, shard: Shard = None, from_draws: Optional[Any] = None) -> Any:
+def tolerance(study: Any, *, shard: Shard = None, from_draws: Optional[Any] = None, summary: bool = False,
+              from_summaries: Optional[Any] = None) -> Any:
     """``loomkin dobby tolerance STUDY --json``: the modulator's dimensions drawn from the study
     file's distributions (``study``: a TOML path or a dict with draws, seed, step_deg,
     ``dimensions`` in m and deg, ``limits``): draws, seed, step_deg, not_assembled, failing,
@@ -72,8 +73,10 @@ def tolerance(study: Any, *, shard: Shard = None, from_draws: Optional[Any] = No
 
     For a cluster: ``shard=(i, n)`` runs only shard i of n of the draws and returns their per-draw
     :class:`Table`; ``from_draws=[table_1, …, table_n]`` (or paths, as ``--from-draws`` takes)
-    returns the report of the finished run, equal to the unsharded report (without ``per_draw``)."""
-    return _m.dobby_tolerance(study_text(study), shard, _draw_tables(from_draws))
+    returns the report of the finished run, equal to the unsharded report (without ``per_draw``);
+    ``summary=True`` and ``from_summaries`` as :func:`loomkin.picking.montecarlo`'s."""
+    return _m.dobby_tolerance(study_text(study), shard, _draw_tables(from_draws), summary,
+                              _summary_texts(from_summaries))
 
 
 def sweep(alpha_deg: Any, cam: Union[str, Sequence[Sequence[float]], None] = None, shard: Shard = None,

@@ -15,7 +15,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 from . import _loomkin as _m
 from ._fields import default as _default
 from ._inputs import study_text, text_of
-from ._table import Shard, Table, _draw_tables
+from ._table import Shard, Table, _draw_tables, _summary_texts
 
 __all__ = ["design", "simulate", "history", "sweep", "montecarlo", "SETTINGS"]
 
@@ -60,7 +60,8 @@ def sweep(setting: str, start: float, stop: float, points: int, mechanism: Optio
 
 
 def montecarlo(study: Any, mechanism: Optional[Any] = None, *, shard: Shard = None,
-               from_draws: Optional[Any] = None, **kw: Any) -> Any:
+               from_draws: Optional[Any] = None, summary: bool = False, from_summaries: Optional[Any] = None,
+               **kw: Any) -> Any:
     """``loomkin pick montecarlo STUDY --json``: loom settings drawn from the study file's
     distributions (``study``: a TOML path or a dict with draws, seed, ``settings``, ``limits``), the
     end-of-pick results as distributions: draws, seed, method, failing and fail_share, ``inputs`` and
@@ -73,6 +74,12 @@ def montecarlo(study: Any, mechanism: Optional[Any] = None, *, shard: Shard = No
     :class:`Table` (``--shard i/n --csv``); ``from_draws=[table_1, …, table_n]`` (those tables in
     shard order, DataFrames, or paths of ``--parts`` directories or CSV files as ``--from-draws``
     takes) returns the report of the finished run, equal to the unsharded report (without
-    ``per_draw``)."""
-    return _m.pick_montecarlo(study_text(study), shard, _draw_tables(from_draws), **_kw(mechanism, kw))
+    ``per_draw``).
+
+    Without moving the draws: ``summary=True`` (with ``shard``) returns the shard's mergeable
+    summary, a small dict (the CLI's ``--summary``); ``from_summaries=[…]`` (those dicts, or files
+    of ``--summary``) the report merged from them: counts, failing share, extremes bit for bit,
+    mean and sd to rounding, no percentiles or histograms (docs/design/shards.md)."""
+    return _m.pick_montecarlo(study_text(study), shard, _draw_tables(from_draws), summary,
+                              _summary_texts(from_summaries), **_kw(mechanism, kw))
 

@@ -207,7 +207,7 @@ fn dobby_synthesize<'py>(
     Ok(out)
 }
 
-/// dobby_tolerance(study_toml, shard=None, from_draws=None) -> dict | Table
+/// dobby_tolerance(study_toml, shard=None, from_draws=None, summary=False, from_summaries=None) -> dict | Table
 /// --
 ///
 /// `loomkin dobby tolerance STUDY --json` for the study file's text (draws, seed, step_deg,
@@ -217,17 +217,20 @@ fn dobby_synthesize<'py>(
 /// `per_draw`, the per-draw table of `--csv` as a Table. `shard=(I, N)` runs only shard I of N
 /// of the draws and returns their per-draw Table (`--shard I/N --csv`); `from_draws` (a list of
 /// such tables in shard order, or of paths as `--from-draws` takes) returns the report of the
-/// finished run without `per_draw`. The draws run in parallel with the GIL released, a piece at
-/// a time: Ctrl-C stops the study between pieces.
+/// finished run without `per_draw`. `summary=True` and `from_summaries` as `pick_montecarlo`'s.
+/// The draws run in parallel with the GIL released, a piece at a time: Ctrl-C stops the study
+/// between pieces.
 #[pyfunction]
-#[pyo3(signature = (study_toml, shard=None, from_draws=None))]
+#[pyo3(signature = (study_toml, shard=None, from_draws=None, summary=false, from_summaries=None))]
 fn dobby_tolerance<'py>(
     py: Python<'py>,
     study_toml: &str,
     shard: Option<&Bound<'py, PyAny>>,
     from_draws: Option<&Bound<'py, PyAny>>,
+    summary: bool,
+    from_summaries: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let ask = crate::study::Ask::of(shard, from_draws)?;
+    let ask = crate::study::Ask::with_summaries(shard, from_draws, summary, from_summaries)?;
     let t = loomkin_mech::Tolerance::from_toml(study_toml).or_raise()?;
     crate::study::answer(
         py,
@@ -237,6 +240,8 @@ fn dobby_tolerance<'py>(
             run: &|items| t.run(items, loomkin_study::Progress::Hidden),
             report: &|d| t.report(d),
             report_from: &|source| t.report_from(source),
+            summary: &|items, d| t.summary(items, d),
+            report_from_summaries: &|parts| t.report_from_summaries(parts),
         },
         ask,
     )

@@ -277,7 +277,7 @@ fn pick_sweep(
     Ok(out)
 }
 
-/// pick_montecarlo(study_toml, shard=None, from_draws=None, **model) -> dict | Table
+/// pick_montecarlo(study_toml, shard=None, from_draws=None, summary=False, from_summaries=None, **model) -> dict | Table
 /// --
 ///
 /// `loomkin pick montecarlo STUDY --json` for the study file's text (draws, seed, `[settings]`
@@ -288,15 +288,19 @@ fn pick_sweep(
 /// results, flags 1/0). `shard=(I, N)` runs only shard I of N of the draws and returns their
 /// per-draw Table (`--shard I/N --csv`); `from_draws` (a list of such tables in shard order, or
 /// of paths as `--from-draws` takes) returns the report of the finished run without `per_draw`,
-/// equal to the unsharded report. The draws run in parallel with the GIL released, a piece at a
-/// time: Ctrl-C stops the study between pieces.
+/// equal to the unsharded report. `summary=True` returns the shard's mergeable summary (`--summary`,
+/// a dict) and `from_summaries` (their JSON texts) the report merged from them
+/// (`--from-summaries`: no percentiles or histograms). The draws run in parallel with the GIL
+/// released, a piece at a time: Ctrl-C stops the study between pieces.
 #[pyfunction]
-#[pyo3(signature = (study_toml, shard=None, from_draws=None, **model))]
+#[pyo3(signature = (study_toml, shard=None, from_draws=None, summary=false, from_summaries=None, **model))]
 fn pick_montecarlo<'py>(
     py: Python<'py>,
     study_toml: &str,
     shard: Option<&Bound<'py, PyAny>>,
     from_draws: Option<&Bound<'py, PyAny>>,
+    summary: bool,
+    from_summaries: Option<Vec<String>>,
     model: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let call = Model::from_kw(model)?;
@@ -307,7 +311,7 @@ fn pick_montecarlo<'py>(
             "the loom settings of a Monte-Carlo study come from its file ([settings]); give only mechanism keywords",
         ));
     }
-    let ask = crate::study::Ask::of(shard, from_draws)?;
+    let ask = crate::study::Ask::with_summaries(shard, from_draws, summary, from_summaries)?;
     let mc = loomkin_picking::MonteCarlo::from_toml(study_toml).or_raise()?;
     let mech = call.model.build()?;
     crate::study::answer(
@@ -318,6 +322,8 @@ fn pick_montecarlo<'py>(
             run: &|items| mc.run(&mech, items, loomkin_study::Progress::Hidden),
             report: &|d| mc.report(d),
             report_from: &|source| mc.report_from(&mech, source),
+            summary: &|items, d| mc.summary(&mech, items, d),
+            report_from_summaries: &|parts| mc.report_from_summaries(&mech, parts),
         },
         ask,
     )

@@ -8,6 +8,7 @@ use crate::errors::LoomkinError;
 use loomkin_study::DrawRow;
 use loomkin_study::draws::DrawSource;
 use loomkin_study::parts::PartError;
+use loomkin_study::summary::DrawSummary;
 use loomkin_units::Shard;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -27,6 +28,10 @@ pub enum Ask {
     Tables(Vec<Vec<(String, Vec<f64>)>>),
     /// The report of a finished run from its files (`--from-draws`: parts, a directory, CSV).
     Files(Vec<PathBuf>),
+    /// Shard I of N's mergeable summary (`--shard I/N --summary`).
+    Summary(Shard),
+    /// The report of a finished run from its shards' summaries (`--from-summaries`).
+    Summaries(Vec<DrawSummary>),
 }
 
 impl Ask {
@@ -92,6 +97,41 @@ impl Ask {
     }
 }
 
+impl Ask {
+    /// [`Ask::of`], or with `summary` the shard's summary, or with `from_summaries` (texts of
+    /// summaries, JSON) the report of them.
+    pub fn with_summaries(
+        shard: Option<&Bound<'_, PyAny>>,
+        from_draws: Option<&Bound<'_, PyAny>>,
+        summary: bool,
+        from_summaries: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let given = |x: Option<&Bound<'_, PyAny>>| x.is_some_and(|x| !x.is_none());
+        match (summary, from_summaries) {
+            (false, None) => Self::of(shard, from_draws),
+            (true, Some(_)) => Err(error("from_summaries", "give summary or from_summaries, not both")),
+            (true, None) if given(from_draws) => {
+                Err(error("summary", "give summary or from_draws, not both: from_draws reports a finished run"))
+            }
+            (true, None) => Ok(Self::Summary(crate::convert::shard(shard)?)),
+            (false, Some(_)) if given(shard) || given(from_draws) => Err(error(
+                "from_summaries",
+                "from_summaries reports a finished run: give neither shard nor from_draws with it",
+            )),
+            (false, Some(texts)) => {
+                let mut all = Vec::new();
+                for (k, t) in texts.iter().enumerate() {
+                    all.extend(
+                        loomkin_study::summary::parse_summaries(&format!("summary {}", k + 1), t)
+                            .map_err(|e| part_error_of("from_summaries", e))?,
+                    );
+                }
+                Ok(Self::Summaries(all))
+            }
+        }
+    }
+}
+
 /// A `LoomkinError` naming `field`.
 pub fn error(field: &str, msg: &str) -> PyErr {
     Python::attach(|py| {
@@ -106,9 +146,14 @@ pub fn error(field: &str, msg: &str) -> PyErr {
 /// A reduce's error: the input's fault as a `LoomkinError` naming `from_draws`, a file that
 /// cannot be read as `OSError`.
 pub fn part_error(e: PartError) -> PyErr {
+    part_error_of("from_draws", e)
+}
+
+/// [`part_error`] naming `field`.
+fn part_error_of(field: &str, e: PartError) -> PyErr {
     match e {
         PartError::Io { .. } => pyo3::exceptions::PyOSError::new_err(e.to_string()),
-        _ => error("from_draws", &e.to_string()),
+        _ => error(field, &e.to_string()),
     }
 }
 
@@ -134,6 +179,10 @@ pub struct Study<'a, D, R> {
     pub report: &'a dyn Fn(&[D]) -> R,
     /// The report of a finished run's files, streamed (facts checked).
     pub report_from: &'a (dyn Fn(&DrawSource) -> Result<R, PartError> + Sync),
+    /// The mergeable summary of the draws of a range.
+    pub summary: &'a dyn Fn(std::ops::Range<u64>, &[D]) -> DrawSummary,
+    /// The report of the shards' summaries (checked and merged).
+    pub report_from_summaries: &'a dyn Fn(&[DrawSummary]) -> Result<R, PartError>,
 }
 
 /// Answers `ask` for a study: the report with `per_draw` (the whole run), the per-draw table of a
@@ -160,6 +209,15 @@ pub fn answer<'py, D: DrawRow + Send, R: Serialize + Send>(
             let draws =
                 loomkin_study::draws::draws_of_tables::<D>(study.command, &tables, study.draws).map_err(part_error)?;
             report(&(study.report)(&draws))
+        }
+        Ask::Summary(shard) => {
+            let items = shard.items(study.draws as usize);
+            let items = items.start as u64..items.end as u64;
+            let all = crate::interrupt::chunks(py, items.clone(), PIECE, study.run)?;
+            Ok(to_py(py, &(study.summary)(items, &all))?.into_bound(py))
+        }
+        Ask::Summaries(parts) => {
+            report(&(study.report_from_summaries)(&parts).map_err(|e| part_error_of("from_summaries", e))?)
         }
         Ask::Files(paths) => {
             let source = DrawSource::open(&paths).map_err(part_error)?;

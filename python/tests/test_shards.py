@@ -175,6 +175,47 @@ def test_shard_and_reduce_errors(tmp_path):
     assert e.value.field == "tables"
 
 
+@pytest.mark.parametrize("n", (1, 2, 3, 7, 250))
+def test_montecarlo_report_from_summaries(cli, tmp_path, n):
+    """Summaries instead of draws: the report without percentiles and histograms, counts and
+    extremes bit for bit, mean and sd to 1e-12; the CLI's --summary files are read too."""
+    d, path = _study(tmp_path, "pick-montecarlo.toml", 200)
+    whole = loomkin.picking.montecarlo(d)
+    whole.pop("per_draw")
+    parts = [loomkin.picking.montecarlo(d, shard=(i, n), summary=True) for i in range(1, n + 1)]
+    got = loomkin.picking.montecarlo(d, from_summaries=parts[::-1])
+    same(got, loomkin.picking.montecarlo(d, from_summaries=[str(_write(tmp_path, cli, path, n))]))
+
+    def close(g, w, at="$"):
+        if isinstance(w, dict):
+            keys = [k for k in w if k not in ("percentiles", "histogram")]
+            assert sorted(g) == sorted(keys), at
+            for k in keys:
+                if k in ("mean", "sd"):
+                    assert g[k] == pytest.approx(w[k], rel=1e-12, abs=0), f"{at}.{k}"
+                else:
+                    close(g[k], w[k], f"{at}.{k}")
+        elif isinstance(w, list):
+            assert len(g) == len(w), at
+            for i, (a, b) in enumerate(zip(g, w)):
+                close(a, b, f"{at}[{i}]")
+        else:
+            assert g == w, at
+
+    close(got, whole)
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.picking.montecarlo(d, from_summaries=parts[1:] if n > 1 else [])
+    assert e.value.field == "from_summaries"
+
+
+def _write(tmp_path, cli, path, n):
+    """The CLI's --summary of every shard, concatenated into one file."""
+    f = tmp_path / f"summaries-{n}.jsonl"
+    f.write_text("".join(cli("pick", "montecarlo", path, "--shard", f"{i}/{n}", "--summary", text=True)
+                         for i in range(1, n + 1)))
+    return f
+
+
 def test_dask_local_cluster_matches_the_unsharded_run(tmp_path):
     """The recipe of docs/python.md: shards mapped over a Dask cluster, the reduce on the client."""
     distributed = pytest.importorskip("dask.distributed", reason="dask[distributed] is not installed: "

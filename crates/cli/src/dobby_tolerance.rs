@@ -28,18 +28,37 @@ pub struct ToleranceArgs {
     /// Draws whose manifest names another seed, distributions or model are refused.
     #[arg(long, value_name = "FILE.csv|DIR|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts"])]
     from_draws: Option<Vec<PathBuf>>,
+    /// Print this shard's (or the whole run's) mergeable summary instead of its draws or report: one line of
+    /// JSON with the counts and, per quantity, count, mean, sum of squared deviations, extremes and count
+    /// failing. --from-summaries joins the shards' summaries into the report without moving the draws.
+    #[arg(long, conflicts_with_all = ["csv", "json", "parts", "from_draws"])]
+    summary: bool,
+    /// The report of a finished run from its shards' --summary outputs, in any order: files, each holding one
+    /// or more, or `-` for standard input. Counts, failing share, extremes as the one-machine report, mean and
+    /// sd to rounding (1e-12); no percentiles or histograms, which need the draws (--from-draws).
+    #[arg(long, value_name = "FILE|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts", "from_draws", "summary"])]
+    from_summaries: Option<Vec<PathBuf>>,
 }
 
 /// Runs `dobby tolerance`.
 pub fn run(a: ToleranceArgs) -> Result<()> {
-    a.shard.check(a.format)?;
+    if !a.summary {
+        a.shard.check(a.format)?;
+    }
     let t = Tolerance::from_toml(&util::read_input(&a.file)?)?;
-    let report = match &a.from_draws {
-        Some(inputs) => {
+    if a.summary {
+        let items = draws::items(t.draws, &a.shard);
+        crate::util::budget().check("draws", t.draws, t.cost(items.clone()))?;
+        let drawn = t.run(items.clone(), loomkin_study::Progress::Auto);
+        return draws::print_summary(&t.summary(items, &drawn));
+    }
+    let report = match (&a.from_draws, &a.from_summaries) {
+        (Some(inputs), _) => {
             let source = draws::source(inputs)?;
             t.report_from(&source).map_err(util::part_error)?
         }
-        None => {
+        (None, Some(files)) => t.report_from_summaries(&draws::summaries(files)?).map_err(util::part_error)?,
+        (None, None) => {
             let check = |items| Ok(crate::util::budget().check("draws", t.draws, t.cost(items))?);
             let run = |items, progress| t.run(items, progress);
             let refused = "do not run over the turn";

@@ -9,6 +9,7 @@ use crate::shard::ShardArgs;
 use crate::util::{self, Format};
 use anyhow::Result;
 use loomkin_study::draws::DrawSource;
+use loomkin_study::summary::DrawSummary;
 use loomkin_study::{DrawEntry, DrawRow, Progress, Summary};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -103,6 +104,23 @@ pub fn source(inputs: &[PathBuf]) -> Result<DrawSource> {
     DrawSource::open(inputs).map_err(util::part_error)
 }
 
+/// This shard's draw indices (all of them without `--shard`).
+pub fn items(study_draws: u64, shard: &ShardArgs) -> std::ops::Range<u64> {
+    let items = shard.get().items(study_draws as usize);
+    items.start as u64..items.end as u64
+}
+
+/// Prints a run's mergeable summary ([`loomkin_study::summary`]) as one line of JSON, so the
+/// shards' outputs concatenated are what `--from-summaries` reads.
+pub fn print_summary(s: &DrawSummary) -> Result<()> {
+    outln!("{}", serde_json::to_string(s)?)
+}
+
+/// The summaries of `--from-summaries` (files, or `-` for standard input).
+pub fn summaries(inputs: &[PathBuf]) -> Result<Vec<DrawSummary>> {
+    loomkin_study::summary::read_summaries(inputs).map_err(util::part_error)
+}
+
 /// The summaries as a table (mean, sd, percentiles, count failing) and the results' histograms as bars.
 pub fn summary_table(inputs: &[(&str, &Summary)], results: &[(&str, &Summary)]) -> Result<()> {
     let Some((_, first)) = results.first() else {
@@ -122,6 +140,9 @@ pub fn summary_table(inputs: &[(&str, &Summary)], results: &[(&str, &Summary)]) 
         let failing = if s.limit.is_some() { s.failing.to_string() } else { "—".into() };
         line.push_str(&format!(" {failing:>9}"));
         outln!("{line}")?;
+    }
+    if first.histogram.is_none() {
+        return outln!("(from per-shard summaries: percentiles and histograms need the draws, --from-draws)");
     }
     outln!(
         "histograms, smallest to largest value ({} bins; edges and counts with --json):",

@@ -29,19 +29,38 @@ pub struct MonteCarloArgs {
     /// Draws whose manifest names another seed, distributions or model are refused.
     #[arg(long, value_name = "FILE.csv|DIR|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts"])]
     from_draws: Option<Vec<PathBuf>>,
+    /// Print this shard's (or the whole run's) mergeable summary instead of its draws or report: one line of
+    /// JSON with the counts and, per quantity, count, mean, sum of squared deviations, extremes and count
+    /// failing. --from-summaries joins the shards' summaries into the report without moving the draws.
+    #[arg(long, conflicts_with_all = ["csv", "json", "parts", "from_draws"])]
+    summary: bool,
+    /// The report of a finished run from its shards' --summary outputs, in any order: files, each holding one
+    /// or more, or `-` for standard input. Counts, failing share, extremes as the one-machine report, mean and
+    /// sd to rounding (1e-12); no percentiles or histograms, which need the draws (--from-draws).
+    #[arg(long, value_name = "FILE|-", num_args = 1.., conflicts_with_all = ["csv", "shard", "parts", "from_draws", "summary"])]
+    from_summaries: Option<Vec<PathBuf>>,
 }
 
 /// Runs `pick montecarlo`.
 pub fn run(a: MonteCarloArgs) -> Result<()> {
-    a.shard.check(a.format)?;
+    if !a.summary {
+        a.shard.check(a.format)?;
+    }
     let mc = MonteCarlo::from_toml(&util::read_input(&a.file)?)?;
     let mech: Mechanism = super::pick::mechanism(&a.model)?;
-    let report = match &a.from_draws {
-        Some(inputs) => {
+    if a.summary {
+        let items = draws::items(mc.draws, &a.shard);
+        crate::util::budget().check("draws", mc.draws, mc.cost(items.clone()))?;
+        let drawn = mc.run(&mech, items.clone(), loomkin_study::Progress::Auto);
+        return draws::print_summary(&mc.summary(&mech, items, &drawn));
+    }
+    let report = match (&a.from_draws, &a.from_summaries) {
+        (Some(inputs), _) => {
             let source = draws::source(inputs)?;
             mc.report_from(&mech, &source).map_err(util::part_error)?
         }
-        None => {
+        (None, Some(files)) => mc.report_from_summaries(&mech, &draws::summaries(files)?).map_err(util::part_error)?,
+        (None, None) => {
             let check = |items| Ok(crate::util::budget().check("draws", mc.draws, mc.cost(items))?);
             let run = |items, progress| mc.run(&mech, items, progress);
             let facts = mc.facts(&mech);

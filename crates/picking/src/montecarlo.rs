@@ -23,6 +23,10 @@
 
 use crate::{Mechanism, Method, PickEnd, PickError, Result, Setting, Settings, StartRule, simulate};
 use loomkin_study::draws::DrawSource;
+use loomkin_study::summary::DrawSummary;
+
+/// The study's command, named in summaries and messages.
+const COMMAND: &str = "pick montecarlo";
 use loomkin_study::{DistSpec, Distribution, DrawRow, Drawn, Limit, Named, Progress, tally, uniform};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -222,7 +226,7 @@ impl MonteCarlo {
         let (inputs, results) = self.reported();
         let (t, flags) = loomkin_study::draws::tally_stream::<Draw>(
             source,
-            "pick montecarlo",
+            COMMAND,
             self.draws,
             &self.percentiles,
             self.bins,
@@ -230,6 +234,26 @@ impl MonteCarlo {
             &results,
         )?;
         Ok(self.report_of(t, &flags))
+    }
+
+    /// The mergeable summary of `draws`, the draws `items` of this study (one shard's, see
+    /// [`loomkin_study::summary`]): what its report needs, without the rows.
+    pub fn summary(&self, mechanism: &Mechanism, items: std::ops::Range<u64>, draws: &[Draw]) -> DrawSummary {
+        let (inputs, results) = self.reported();
+        DrawSummary::of(COMMAND, self.facts(mechanism), items, draws, &inputs, &results)
+    }
+
+    /// The report of a run from its shards' summaries ([`MonteCarlo::summary`], any order): the
+    /// counts, failing counts and share, extremes bit for bit, mean and sd to rounding, no
+    /// percentiles or histograms (they need the draws: [`MonteCarlo::report_from`]). Summaries
+    /// of another study, or missing or repeating draws, are refused.
+    pub fn report_from_summaries(
+        &self,
+        mechanism: &Mechanism,
+        parts: &[DrawSummary],
+    ) -> std::result::Result<Report, loomkin_study::parts::PartError> {
+        let s = DrawSummary::merge(parts, COMMAND, &self.facts(mechanism), self.draws, &self.reported())?;
+        Ok(self.report_of(s.tally(), &s.flags))
     }
 
     /// What makes the draws of this study what they are, for a part's manifest: the seed, the

@@ -440,17 +440,17 @@ pub fn tally_stream<D: DrawRow>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{Drawn, tally};
     use proptest::prelude::*;
 
     #[derive(Debug, Clone)]
-    struct D {
+    pub(crate) struct D {
         index: u64,
         inputs: Vec<f64>,
-        results: Option<Vec<f64>>,
-        flag: bool,
+        pub(crate) results: Option<Vec<f64>>,
+        pub(crate) flag: bool,
     }
 
     impl Drawn for D {
@@ -516,7 +516,7 @@ mod tests {
         std::fs::remove_file(path).unwrap();
     }
 
-    fn draw(i: u64, a: f64, x: f64, refused: bool) -> D {
+    pub(crate) fn draw(i: u64, a: f64, x: f64, refused: bool) -> D {
         D { index: i, inputs: vec![a, 2.0], results: (!refused).then(|| vec![x, -x]), flag: i % 2 == 1 }
     }
 

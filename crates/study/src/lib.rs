@@ -8,7 +8,7 @@
 //! result (percentiles, histogram, share failing a [`Limit`]), and the Monte-Carlo runner and
 //! report every such study shares ([`run_draws`], [`tally`]); the parts of a sharded run on disk
 //! ([`parts`]: manifests, the check, the merge) and the reduce of a Monte-Carlo run's per-draw
-//! table at any size ([`draws`]).
+//! table at any size ([`draws`]) or of its shards' mergeable summaries ([`summary`]).
 //!
 //! ```
 //! use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
@@ -37,6 +37,7 @@ mod pareto;
 pub mod parts;
 mod random;
 mod stats;
+pub mod summary;
 
 pub use design::{Design, MAX_POINTS, simplex_rows, stepped_axis};
 pub use error::{Result, StudyError};

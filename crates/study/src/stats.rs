@@ -61,6 +61,14 @@ pub struct Histogram {
 }
 
 impl Histogram {
+    /// No histogram (a report merged from per-shard summaries, where the bins cannot be known).
+    pub const NONE: Histogram = Histogram { edges: Vec::new(), counts: Vec::new() };
+
+    /// Whether this is [`Histogram::NONE`].
+    pub fn is_none(&self) -> bool {
+        self.counts.is_empty()
+    }
+
     /// The histogram of `values` in `bins ≥ 1` bins; each value lies between its bin's edges.
     pub fn of(values: &[f64], bins: usize) -> Self {
         if values.is_empty() {
@@ -169,9 +177,11 @@ pub struct Summary {
     pub min: f64,
     /// Largest value.
     pub max: f64,
-    /// The percentiles asked for.
+    /// The percentiles asked for (none in a report merged from summaries: left out of the JSON).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub percentiles: Vec<Percentile>,
-    /// Equal-width histogram.
+    /// Equal-width histogram ([`Histogram::NONE`] in a report merged from summaries: left out).
+    #[serde(skip_serializing_if = "Histogram::is_none")]
     pub histogram: Histogram,
     /// The limit, if one was stated.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -335,3 +335,114 @@ fn a_budget_lifts_the_per_run_limit() {
         assert!(child.wait().unwrap().success());
     }
 }
+
+/// `want`, the one-machine report, with what summaries cannot merge (percentiles, histograms)
+/// left out; `got` the report from the summaries: every number equal (counts, failing share,
+/// extremes, limits) except `mean` and `sd`, equal to 1e-12 relative.
+fn same_report_but_rounding(got: &serde_json::Value, want: &serde_json::Value, at: &str) {
+    use serde_json::Value;
+    match (got, want) {
+        (Value::Object(g), Value::Object(w)) => {
+            let keys = |m: &serde_json::Map<String, Value>| {
+                m.keys().filter(|k| *k != "percentiles" && *k != "histogram").cloned().collect::<Vec<_>>()
+            };
+            assert_eq!(keys(g), keys(w), "{at}");
+            assert!(!g.contains_key("percentiles") && !g.contains_key("histogram"), "{at}");
+            for k in keys(w) {
+                if k == "mean" || k == "sd" {
+                    let (a, b) = (g[&k].as_f64().unwrap(), w[&k].as_f64().unwrap());
+                    assert!(a == b || (a - b).abs() <= 1e-12 * a.abs().max(b.abs()), "{at}.{k}: {a} vs {b}");
+                } else {
+                    same_report_but_rounding(&g[&k], &w[&k], &format!("{at}.{k}"));
+                }
+            }
+        }
+        (Value::Array(g), Value::Array(w)) => {
+            assert_eq!(g.len(), w.len(), "{at}");
+            for (i, (a, b)) in g.iter().zip(w).enumerate() {
+                same_report_but_rounding(a, b, &format!("{at}[{i}]"));
+            }
+        }
+        _ => assert_eq!(got, want, "{at}"),
+    }
+}
+
+/// `--summary` per shard and `--from-summaries`: the one-machine report without percentiles and
+/// histograms at N = 2, 3, 7 and 12 (> 9 draws), the summaries in any order, in files or on
+/// standard input; a missing shard, a shard twice, another seed or other limits are refused.
+#[test]
+fn montecarlo_reduce_from_summaries() {
+    let dir = tmp("sum");
+    let st = study(&dir, "mc.toml", MC);
+    let st = s(&st);
+    let json = |args: &[&str]| serde_json::from_slice::<serde_json::Value>(&ok(args)).unwrap();
+    let direct = json(&["pick", "montecarlo", st, "--json"]);
+    let summary = |n: u32, i: u32| ok(&["pick", "montecarlo", st, "--shard", &format!("{i}/{n}"), "--summary"]);
+    for n in [1, 2, 3, 7, 12] {
+        let files: Vec<PathBuf> = (1..=n)
+            .rev()
+            .map(|i| {
+                let f = dir.join(format!("s{n}-{i}.json"));
+                std::fs::write(&f, summary(n, i)).unwrap();
+                f
+            })
+            .collect();
+        let mut args = vec!["pick", "montecarlo", st, "--json", "--from-summaries"];
+        args.extend(files.iter().map(|f| s(f)));
+        same_report_but_rounding(&json(&args), &direct, &format!("N = {n}"));
+        // Concatenated on standard input, and as text.
+        let cat: Vec<u8> = files.iter().flat_map(|f| std::fs::read(f).unwrap()).collect();
+        let piped =
+            loomkin().args(["pick", "montecarlo", st, "--from-summaries", "-"]).write_stdin(cat).output().unwrap();
+        let text = String::from_utf8(piped.stdout).unwrap();
+        assert!(text.contains("percentiles and histograms need the draws"), "{text}");
+    }
+    let three: Vec<PathBuf> = (1..=3)
+        .map(|i| {
+            let f = dir.join(format!("t{i}.json"));
+            std::fs::write(&f, summary(3, i)).unwrap();
+            f
+        })
+        .collect();
+    let reduce = |st: &str, files: &[&PathBuf]| {
+        let mut a = vec!["pick", "montecarlo", st, "--from-summaries"];
+        a.extend(files.iter().map(|f| s(f)));
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let refused = |args: Vec<String>, needles: &[&str]| {
+        usage_error(&args.iter().map(String::as_str).collect::<Vec<_>>(), needles);
+    };
+    refused(reduce(st, &[&three[0], &three[2]]), &["are in no summary"]);
+    refused(reduce(st, &[&three[0], &three[1], &three[2], &three[1]]), &["in two summaries"]);
+    let seed = study(&dir, "seed.toml", &MC.replace("seed = 3", "seed = 4"));
+    refused(reduce(s(&seed), &[&three[0], &three[1], &three[2]]), &["another study's summary"]);
+    let limit = study(&dir, "limit.toml", &MC.replace("max = 19", "max = 18"));
+    refused(reduce(s(&limit), &[&three[0], &three[1], &three[2]]), &["[limits] changed"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The same for `dobby tolerance`.
+#[test]
+fn tolerance_reduce_from_summaries() {
+    let dir = tmp("tolsum");
+    let st = study(
+        &dir,
+        "tol.toml",
+        "draws = 5\nseed = 8\nstep_deg = 10\n[dimensions]\nl6_m = { dist = \"normal\", mean = 0.4, sd = 0.001 }\n",
+    );
+    let st = s(&st);
+    let direct: serde_json::Value = serde_json::from_slice(&ok(&["dobby", "tolerance", st, "--json"])).unwrap();
+    for n in [2, 7] {
+        let cat: Vec<u8> = (1..=n)
+            .flat_map(|i| ok(&["dobby", "tolerance", st, "--shard", &format!("{i}/{n}"), "--summary"]))
+            .collect();
+        let out = loomkin()
+            .args(["dobby", "tolerance", st, "--json", "--from-summaries", "-"])
+            .write_stdin(cat)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        same_report_but_rounding(&serde_json::from_slice(&out.stdout).unwrap(), &direct, &format!("N = {n}"));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

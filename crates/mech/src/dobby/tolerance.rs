@@ -32,6 +32,9 @@ use crate::{AnalysisOptions, Cam, MechError, ModulatorGeometry, Result, analyze}
 use loomkin_study::{DistSpec, Distribution, DrawRow, Drawn, Limit, Progress, tally, uniform};
 use serde::{Deserialize, Serialize};
 
+/// The study's command, named in summaries and messages.
+const COMMAND: &str = "dobby tolerance";
+
 /// The dimensions that may be drawn, in the order of their stream variables.
 pub const DIMENSIONS: [&str; 8] = ["l2_m", "l3_m", "l3p_m", "l6_m", "alpha_deg", "theta_deg", "cam_a_m", "cam_b_m"];
 
@@ -255,7 +258,7 @@ impl Tolerance {
         let (dims, results) = self.reported();
         let (t, _) = loomkin_study::draws::tally_stream::<Draw>(
             source,
-            "dobby tolerance",
+            COMMAND,
             self.draws,
             &self.percentiles,
             self.bins,
@@ -263,6 +266,26 @@ impl Tolerance {
             &results,
         )?;
         Ok(self.report_of(t))
+    }
+
+    /// The mergeable summary of `draws`, the draws `items` of this study (one shard's, see
+    /// [`loomkin_study::summary`]): what its report needs, without the rows.
+    pub fn summary(&self, items: std::ops::Range<u64>, draws: &[Draw]) -> loomkin_study::summary::DrawSummary {
+        let (dims, results) = self.reported();
+        loomkin_study::summary::DrawSummary::of(COMMAND, self.facts(), items, draws, &dims, &results)
+    }
+
+    /// The report of a run from its shards' summaries ([`Tolerance::summary`], any order): the
+    /// counts, failing counts and share, extremes bit for bit, mean and sd to rounding, no
+    /// percentiles or histograms (they need the draws: [`Tolerance::report_from`]). Summaries
+    /// of another study, or missing or repeating draws, are refused.
+    pub fn report_from_summaries(
+        &self,
+        parts: &[loomkin_study::summary::DrawSummary],
+    ) -> std::result::Result<Report, loomkin_study::parts::PartError> {
+        let s =
+            loomkin_study::summary::DrawSummary::merge(parts, COMMAND, &self.facts(), self.draws, &self.reported())?;
+        Ok(self.report_of(s.tally()))
     }
 
     /// What makes the draws of this study what they are, for a part's manifest: the seed, the
