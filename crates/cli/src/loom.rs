@@ -192,7 +192,7 @@ fn run_check(a: CheckArgs) -> Result<()> {
         r.rms_torque_n_m
     )?;
     outln!(
-        "shed clears the carrier from {:.2}° to {:.2}° in every pick ({:.2}°); insertion {}° to {}°, least clearance {:.2} mm",
+        "shed clears the carrier from {:.2}° to {:.2}° in every pick ({:.2}°); insertion {:.2}° to {:.2}°, least clearance {:.2} mm",
         r.window_open_deg,
         r.window_close_deg,
         r.window_deg,

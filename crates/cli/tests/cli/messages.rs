@@ -89,3 +89,18 @@ fn a_refused_roller_is_named_in_the_unit_typed() {
         assert!(!std::path::Path::new(dxf).exists(), "an undercut cam is never drawn");
     }
 }
+
+/// `loom check` prints the insertion angles as it prints the window's, to 0.01° (on main:
+/// `insertion 126.13003095975229° to 233.86996904024772°`).
+#[test]
+fn loom_check_rounds_the_insertion_angles() {
+    let out = loomkin()
+        .args(["loom", "check", &examples("shuttle-loom.toml"), "--wif", &examples("twill-2-2.wif")])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let line = text.lines().find(|l| l.starts_with("shed clears the carrier")).expect("the window line");
+    assert!(line.contains("insertion 126.13° to 233.87°"), "{line}");
+    assert!(longest_digits(line) <= 3, "{line}");
+}
