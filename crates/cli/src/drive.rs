@@ -62,7 +62,7 @@ pub struct RippleArgs {
     loom: PathBuf,
     #[command(flatten)]
     pattern: PatternArgs,
-    /// The motor (default: the file's [drive] motor, else constant).
+    /// The motor (default: the file's `[drive]` motor, else constant).
     #[arg(long, value_enum)]
     motor: Option<MotorArg>,
     /// The induction motor's torque curve (default: the file's, else linear).
@@ -92,7 +92,7 @@ pub struct RippleArgs {
     /// Servo: torque limit at the main shaft, N·m.
     #[arg(long, allow_hyphen_values = true)]
     servo_torque_limit_n_m: Option<f64>,
-    /// Inertia added to the main shaft, kg·m² (default: the file's [drive] flywheel_kg_m2, else 0).
+    /// Inertia added to the main shaft, kg·m² (default: the file's `[drive] flywheel_kg_m2`, else 0).
     #[arg(long, allow_hyphen_values = true, conflicts_with = "target_ripple_pct")]
     flywheel_kg_m2: Option<f64>,
     /// Size the least flywheel that holds the speed ripple at this value, %.

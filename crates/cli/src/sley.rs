@@ -47,7 +47,7 @@ pub struct SynthesizeArgs {
 /// `loomkin sley analyze`.
 #[derive(Debug, Args)]
 pub struct AnalyzeArgs {
-    /// The loom file (TOML) with a [sley] table.
+    /// The loom file (TOML) with a `[sley]` table.
     loom: PathBuf,
     /// Main-shaft speed in rpm (default: the loom file's `speed_rpm`).
     #[arg(long)]
