@@ -608,7 +608,8 @@ fn pareto(a: ParetoArgs) -> Result<()> {
                 "--from reads the table made before: it takes no --family, --shapes, --step, --min-k, --max-k or --motion-deg"
             );
         }
-        let lines = loomkin_study::parts::Lines::open(inputs).map_err(util::part_error)?;
+        // Named part files may be some of a run's parts (a task's own front); a directory is the run.
+        let lines = loomkin_study::parts::Lines::open_some(inputs).map_err(util::part_error)?;
         loomkin_shed::front_of_table(&lines, &cond).map_err(util::part_error)?
     } else if a.design == DesignKind::Presets {
         let d = &a.d;

@@ -373,17 +373,37 @@ impl Lines {
     /// The table named by `inputs`: `-` alone is standard input; files without manifests are read
     /// as they are; anything else must be the complete, checked parts of one run.
     pub fn open(inputs: &[PathBuf]) -> Result<Self> {
+        match Self::open_plain(inputs) {
+            Some(lines) => Ok(lines),
+            None => Ok(Self::Parts(find(inputs)?.check()?)),
+        }
+    }
+
+    /// Standard input, or files without manifests; `None` when `inputs` name parts.
+    fn open_plain(inputs: &[PathBuf]) -> Option<Self> {
         if let [one] = inputs
             && one.as_os_str() == "-"
         {
-            return Ok(Self::Stdin);
+            return Some(Self::Stdin);
         }
         let plain =
             |p: &PathBuf| p.is_file() && !p.to_string_lossy().ends_with(MANIFEST_SUFFIX) && !manifest_path(p).exists();
         if !inputs.is_empty() && inputs.iter().all(plain) {
-            return Ok(Self::Files(inputs.to_vec()));
+            return Some(Self::Files(inputs.to_vec()));
         }
-        Ok(Self::Parts(find(inputs)?.check()?))
+        None
+    }
+
+    /// [`Lines::open`], but part files named one by one may be some of one run's parts
+    /// ([`Found::check_some`]): the rows of the parts given — what a task's own front reads
+    /// (`shed pareto --from DIR/part-00017-of-01000.csv`). A directory still stands for the whole
+    /// run: every part of it must be there.
+    pub fn open_some(inputs: &[PathBuf]) -> Result<Self> {
+        match Self::open_plain(inputs) {
+            Some(lines) => Ok(lines),
+            None if inputs.iter().any(|p| p.is_dir()) => Ok(Self::Parts(find(inputs)?.check()?)),
+            None => Ok(Self::Parts(find(inputs)?.check_some()?)),
+        }
     }
 
     /// Calls `header` with the table's header line, then `row` with each later line (the file
@@ -539,6 +559,18 @@ impl Found {
     /// the rows are read), one header. The error names the missing parts (as Slurm's `--array`
     /// takes them) and the damaged ones.
     pub fn check(self) -> Result<PartSet> {
+        self.check_parts(true)
+    }
+
+    /// [`Found::check`] without the demand that every part be present: the parts given (each
+    /// complete, one study, one N, one header, none twice), in shard order. For a reduce whose answer
+    /// over some parts means something — the Pareto front of the rows they hold — never for a
+    /// merge or a report of the whole run.
+    pub fn check_some(self) -> Result<PartSet> {
+        self.check_parts(false)
+    }
+
+    fn check_parts(self, all: bool) -> Result<PartSet> {
         let Some(first) = self.parts.first() else {
             let more = if self.orphans.is_empty() {
                 String::new()
@@ -575,7 +607,7 @@ impl Found {
             *slot = Some(p);
         }
         let missing: Vec<u32> = (1..=count).filter(|&i| by_index[i as usize - 1].is_none()).collect();
-        if !missing.is_empty() {
+        if all && !missing.is_empty() {
             let which = if missing.len() == 1 { "shard" } else { "shards" };
             let list = ranges(&missing);
             return Err(PartError::Check(format!(

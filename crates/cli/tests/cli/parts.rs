@@ -308,6 +308,39 @@ fn pareto_reduce_from_a_table() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The front of the shards' fronts, as docs/scale.md gives it (on main a part named alone was
+/// refused as an incomplete run): each task's front from its own part file, then the front of
+/// those small files — the one-machine front. A directory still stands for the whole run.
+#[test]
+fn pareto_front_of_the_shards_fronts() {
+    let dir = tmp("fronts");
+    let design = ["--design", "fig1", "--step", "0.05", "--motion-deg", "200:360:40"];
+    let table: Vec<&str> = [&["shed", "table"][..], &design, &["--csv"]].concat();
+    let want = ok(&[&["shed", "pareto"][..], &design, &["--csv"]].concat());
+    for n in [2u32, 3, 7] {
+        let p = dir.join(format!("p{n}"));
+        parts(&table, n, &p);
+        let fronts = dir.join(format!("fronts{n}"));
+        std::fs::create_dir_all(&fronts).unwrap();
+        let mut files = Vec::new();
+        for i in 1..=n {
+            let part = p.join(format!("part-{i:05}-of-{n:05}.csv"));
+            let front = fronts.join(format!("{i}.csv"));
+            std::fs::write(&front, ok(&["shed", "pareto", "--from", s(&part), "--csv"])).unwrap();
+            files.push(front);
+        }
+        let args: Vec<&str> =
+            [&["shed", "pareto", "--from"][..], &files.iter().map(|f| s(f)).collect::<Vec<_>>(), &["--csv"]].concat();
+        assert_eq!(String::from_utf8(ok(&args)).unwrap(), String::from_utf8(want.clone()).unwrap(), "N = {n}");
+        // One part missing from the directory: the run is incomplete, and said so.
+        std::fs::remove_file(p.join(format!("part-{n:05}-of-{n:05}.csv.manifest.json"))).unwrap();
+        std::fs::remove_file(p.join(format!("part-{n:05}-of-{n:05}.csv"))).unwrap();
+        let out = exec(&["shed", "pareto", "--from", s(&p), "--csv"]);
+        assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("parts missing"), "N = {n}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A batch task may lift the per-run limit (on main no option did): the same run refused at the
 /// interactive limit starts with `--budget` or `LOOMKIN_BUDGET` (read until its first line, then
 /// the pipe is closed); a budget below the interactive one is a usage error.
