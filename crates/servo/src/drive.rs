@@ -333,27 +333,47 @@ impl Drive {
         toml::to_string(&table).unwrap_or_default()
     }
 
+    /// `stroke_m`: 1 nm … 100 m, far beyond any slave's stroke; positive (the torque divides by it).
+    pub const STROKE_M: Range = Range::closed(1e-9, 100.0, "m");
+    /// `pinion_radius_m`: 1 nm … 100 m; positive (force = torque / radius).
+    pub const PINION_RADIUS_M: Range = Range::closed(1e-9, 100.0, "m");
+    /// `gear_ratio`: 10⁻⁶ … 10⁶.
+    pub const GEAR_RATIO: Range = Range::closed(1e-6, 1e6, "");
+    /// `efficiency`: 0.001 … 1 (the torque divides by it).
+    pub const EFFICIENCY: Range = Range::closed(1e-3, 1.0, "");
+    /// `moving_mass_kg`: 0 … 10⁶ kg.
+    pub const MOVING_MASS_KG: Range = Range::closed(0.0, 1e6, "kg");
+    /// `motor_inertia_kg_m2`: 0 … 10⁶ kg·m².
+    pub const MOTOR_INERTIA_KG_M2: Range = Range::closed(0.0, 1e6, "kg·m²");
+    /// `spring_n_m`: ±10¹² N/m (a negative rate is a spring pushing away from its rest).
+    pub const SPRING_N_M: Range = Range::closed(-1e12, 1e12, "N/m");
+    /// `spring_preload_n` and `constant_force_n`: ±10⁹ N.
+    pub const FORCE_N: Range = Range::closed(-1e9, 1e9, "N");
+    /// `damping_n_s_m`: ±10⁹ N·s/m.
+    pub const DAMPING_N_S_M: Range = Range::closed(-1e9, 1e9, "N·s/m");
+    /// `motion_angle_deg` and `return_angle_deg`: 10⁻⁶ … 359° (the phases fit in one turn).
+    pub const ANGLE_DEG: Range = Range::closed(1e-6, 359.0, "deg");
+
     /// Checks every field's range (finite, positive where it must be, angles fit in one turn).
     pub fn validate(&self) -> Result<()> {
-        let c = |field: &str, v: f64, lo: f64, hi: f64, unit: &'static str| Range::closed(lo, hi, unit).check(field, v);
-        c("drive.stroke_m", self.stroke_m, 1e-9, 100.0, "m")?;
-        c("drive.pinion_radius_m", self.pinion_radius_m, 1e-9, 100.0, "m")?;
-        c("drive.gear_ratio", self.gear_ratio, 1e-6, 1e6, "")?;
-        c("drive.efficiency", self.efficiency, 1e-3, 1.0, "")?;
-        c("drive.moving_mass_kg", self.moving_mass_kg, 0.0, 1e6, "kg")?;
-        c("drive.motor_inertia_kg_m2", self.motor_inertia_kg_m2, 0.0, 1e6, "kg·m²")?;
-        c("drive.spring_n_m", self.spring_n_m, -1e12, 1e12, "N/m")?;
-        c("drive.spring_preload_n", self.spring_preload_n, -1e9, 1e9, "N")?;
-        c("drive.damping_n_s_m", self.damping_n_s_m, -1e9, 1e9, "N·s/m")?;
-        c("drive.constant_force_n", self.constant_force_n, -1e9, 1e9, "N")?;
+        Self::STROKE_M.check("drive.stroke_m", self.stroke_m)?;
+        Self::PINION_RADIUS_M.check("drive.pinion_radius_m", self.pinion_radius_m)?;
+        Self::GEAR_RATIO.check("drive.gear_ratio", self.gear_ratio)?;
+        Self::EFFICIENCY.check("drive.efficiency", self.efficiency)?;
+        Self::MOVING_MASS_KG.check("drive.moving_mass_kg", self.moving_mass_kg)?;
+        Self::MOTOR_INERTIA_KG_M2.check("drive.motor_inertia_kg_m2", self.motor_inertia_kg_m2)?;
+        Self::SPRING_N_M.check("drive.spring_n_m", self.spring_n_m)?;
+        Self::FORCE_N.check("drive.spring_preload_n", self.spring_preload_n)?;
+        Self::DAMPING_N_S_M.check("drive.damping_n_s_m", self.damping_n_s_m)?;
+        Self::FORCE_N.check("drive.constant_force_n", self.constant_force_n)?;
         self.layout().map(|_| ())
     }
 
     /// The phases of one main-shaft turn (see the module documentation).
     pub fn layout(&self) -> Result<CycleLayout> {
-        let rise = Range::closed(1e-6, 359.0, "deg").check("drive.motion_angle_deg", self.motion_angle_deg)?;
+        let rise = Self::ANGLE_DEG.check("drive.motion_angle_deg", self.motion_angle_deg)?;
         let ret = match self.return_angle_deg {
-            Some(r) => Range::closed(1e-6, 359.0, "deg").check("drive.return_angle_deg", r)?,
+            Some(r) => Self::ANGLE_DEG.check("drive.return_angle_deg", r)?,
             None => rise,
         };
         let rest = CYCLE_DEG - rise - ret;

@@ -174,7 +174,7 @@ pub fn check_count(field: &str, n: usize, min: usize, max: usize) -> Result<usiz
 #[cfg(test)]
 mod tests {
     use super::*;
-    use loomkin_units::Range;
+    use loomkin_units::ShaftSpeed;
 
     #[test]
     fn statuses_are_client_errors_and_name_the_field() {
@@ -188,10 +188,10 @@ mod tests {
 
     #[test]
     fn range_errors_are_data_and_numbers_short() {
-        let e: ApiError = Range::closed(1e-9, 100.0, "m").check("drive.stroke_m", 1e300).unwrap_err().into();
+        let e: ApiError = loomkin_servo::Drive::STROKE_M.check("drive.stroke_m", 1e300).unwrap_err().into();
         assert_eq!(e.to_string(), "drive.stroke_m = 1e300 is out of range: allowed 1e-9 ≤ drive.stroke_m ≤ 100 m");
         // The field of a library error comes from the error, not from its text.
-        let lib = loomkin_laws::LawError::from(Range::open_closed(0.0, 0.25, "").check("ramp", 1.0).unwrap_err());
+        let lib = loomkin_laws::LawError::from(loomkin_laws::RAMP.check("ramp", 1.0).unwrap_err());
         assert_eq!(ApiError::from_library(&lib, "law").field(), "ramp");
     }
 
@@ -202,8 +202,11 @@ mod tests {
         assert_eq!(e.to_string(), "design.drive.stroke_m = -1 is out of range");
         let e = ApiError::invalid("points[3]", "X must increase").within("design");
         assert_eq!((e.field(), e.to_string().as_str()), ("design.points[3]", "design.points[3]: X must increase"));
-        let e = ApiError::from(Range::closed(1.0, 2.0, "").check("speeds_rpm[0]", 0.0).unwrap_err()).within("design");
+        let e = ApiError::from(ShaftSpeed::RANGE.check("speeds_rpm[0]", 0.0).unwrap_err()).within("design");
         assert_eq!(e.field(), "design.speeds_rpm[0]");
-        assert_eq!(e.to_string(), "design.speeds_rpm[0] = 0 is out of range: allowed 1 ≤ design.speeds_rpm[0] ≤ 2");
+        assert_eq!(
+            e.to_string(),
+            "design.speeds_rpm[0] = 0 is out of range: allowed 0.001 ≤ design.speeds_rpm[0] ≤ 100000 rpm"
+        );
     }
 }
