@@ -49,6 +49,9 @@ pub enum LoomError {
     /// An error of the picking study (the shuttle of the loom file).
     #[error("insertion.shuttle: {0}")]
     Pick(#[from] PickError),
+    /// The computation was stopped through its [`loomkin_units::StopFlag`] before it finished.
+    #[error(transparent)]
+    Stopped(#[from] loomkin_units::Stopped),
 }
 
 impl LoomError {
@@ -70,6 +73,7 @@ impl FieldError for LoomError {
             Self::Law(e) => e.field(),
             Self::Shed(e) => e.field(),
             Self::Pick(e) => e.field(),
+            Self::Stopped(_) => None,
         }
     }
 }

@@ -56,5 +56,5 @@ pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismIn
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
-pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger};
+pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger, optimise_stagger_until};
 pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};

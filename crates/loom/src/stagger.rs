@@ -11,6 +11,7 @@
 //! in range gives the window, and the error says how short it falls.
 
 use crate::{Drive, Loom, LoomError, Motion, Pattern, Result, TableCache, Timing};
+use loomkin_units::StopFlag;
 use serde::Serialize;
 
 /// What the stagger minimises.
@@ -77,6 +78,7 @@ struct Search<'a> {
     evaluations: usize,
     clearance_checks: usize,
     cache: TableCache,
+    stop: &'a StopFlag,
 }
 
 impl Search<'_> {
@@ -102,6 +104,7 @@ impl Search<'_> {
     }
 
     fn objective(&mut self, x: &[f64]) -> Result<f64> {
+        self.stop.check()?;
         self.evaluations += 1;
         let (loom, motion) = self.setup(x)?;
         let curve = Drive::new(&loom, &motion, self.pattern).torque_curve_cached(SEARCH_STEP_DEG, &mut self.cache);
@@ -112,6 +115,7 @@ impl Search<'_> {
     }
 
     fn clearance(&mut self, x: &[f64]) -> Result<f64> {
+        self.stop.check()?;
         self.clearance_checks += 1;
         let (loom, motion) = self.setup(x)?;
         Ok(Timing::new(&loom, &motion, self.pattern)?.min_clearance_coarse(SEARCH_STEP_DEG))
@@ -154,6 +158,7 @@ impl Search<'_> {
     }
 
     fn case(&self, label: &str, x: &[f64]) -> Result<StaggerCase> {
+        self.stop.check()?;
         let (loom, motion) = self.setup(x)?;
         let drive = Drive::new(&loom, &motion, self.pattern);
         let timing = Timing::new(&loom, &motion, self.pattern)?;
@@ -175,11 +180,31 @@ impl Search<'_> {
 /// beside no stagger and the two-group baseline. Searches per group when the loom file gives
 /// groups, else per frame.
 pub fn optimise_stagger(loom: &Loom, pattern: &Pattern, objective: Objective) -> Result<StaggerResult> {
+    optimise_stagger_until(loom, pattern, objective, &StopFlag::default())
+}
+
+/// [`optimise_stagger`] that ends with [`LoomError::Stopped`] once `stop` is set: the flag is
+/// checked before every objective evaluation and window check, so it ends within one of them (one
+/// torque curve over the repeat) of the request.
+pub fn optimise_stagger_until(
+    loom: &Loom,
+    pattern: &Pattern,
+    objective: Objective,
+    stop: &StopFlag,
+) -> Result<StaggerResult> {
     let n = loom.frame_count();
     let groups = loom.shedding.groups.clone();
     let dims = groups.as_ref().map_or(n, Vec::len);
-    let mut s =
-        Search { loom, pattern, objective, groups, evaluations: 0, clearance_checks: 0, cache: TableCache::default() };
+    let mut s = Search {
+        loom,
+        pattern,
+        objective,
+        groups,
+        evaluations: 0,
+        clearance_checks: 0,
+        cache: TableCache::default(),
+        stop,
+    };
     let zero = vec![0.0; dims];
     let two: Vec<f64> = match &s.groups {
         None => (0..n).map(|i| if i % 2 == 1 { 7.5f64.min(loom.shedding.max_stagger_deg) } else { 0.0 }).collect(),

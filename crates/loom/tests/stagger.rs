@@ -52,3 +52,48 @@ fn a_window_no_stagger_can_give_is_refused() {
     assert!(matches!(e, LoomError::Infeasible { .. }));
     assert!(e.to_string().starts_with("insertion.entry_deg: no stagger within ±15°"), "{e}");
 }
+
+/// A lift plan of `picks` picks on 24 shafts: at pick p, the 12 shafts (7p + 5j) mod 24 + 1 for
+/// j = 0 … 11 are raised (every shaft changes often, so the search has work at every pick).
+fn long_lift_plan(picks: usize) -> loomkin_loom::Pattern {
+    let rows: Vec<String> = (0..picks)
+        .map(|p| {
+            let mut raised: Vec<usize> = (0..12).map(|j| (7 * p + 5 * j) % 24 + 1).collect();
+            raised.sort_unstable();
+            raised.dedup();
+            raised.iter().map(usize::to_string).collect::<Vec<_>>().join(" ")
+        })
+        .collect();
+    loomkin_loom::Pattern::from_lift_plan(&(rows.join("\n") + "\n")).unwrap()
+}
+
+#[test]
+fn a_stop_ends_the_search_with_stopped() {
+    use loomkin_loom::optimise_stagger_until;
+    use loomkin_units::StopFlag;
+    let loom = rapier();
+    // Not set: the same result as the search without a flag, to the bit.
+    let pat = wif("satin-8.wif");
+    let free = optimise_stagger_until(&loom, &pat, Objective::Peak, &StopFlag::default()).unwrap();
+    assert_eq!(free, optimise_stagger(&loom, &pat, Objective::Peak).unwrap());
+    // Set before the start: nothing is evaluated.
+    let set = StopFlag::default();
+    set.stop();
+    let e = optimise_stagger_until(&loom, &pat, Objective::Peak, &set).unwrap_err();
+    assert_eq!(e, LoomError::Stopped(loomkin_units::Stopped));
+    assert_eq!(loomkin_units::FieldError::field(&e), None);
+    // Set from another thread while a long search runs (100 picks on 24 frames; the full search takes
+    // tens of seconds): the search ends with Stopped instead of a result, so it checked the flag mid-way.
+    let long = long_lift_plan(100);
+    let stop = StopFlag::default();
+    let setter = {
+        let stop = stop.clone();
+        std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            stop.stop();
+        })
+    };
+    let e = optimise_stagger_until(&loom, &long, Objective::Peak, &stop).unwrap_err();
+    setter.join().unwrap();
+    assert_eq!(e, LoomError::Stopped(loomkin_units::Stopped));
+}

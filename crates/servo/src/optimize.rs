@@ -92,28 +92,9 @@ impl PartialEq for Counter {
     }
 }
 
-/// A flag shared between an optimisation and whoever may stop it.
-#[derive(Debug, Clone, Default)]
-pub struct StopFlag(std::sync::Arc<std::sync::atomic::AtomicBool>);
-
-impl StopFlag {
-    /// Asks the optimisation to stop.
-    pub fn stop(&self) {
-        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
-    }
-
-    /// Whether a stop was asked for.
-    pub fn is_set(&self) -> bool {
-        self.0.load(std::sync::atomic::Ordering::Relaxed)
-    }
-}
-
-impl PartialEq for StopFlag {
-    /// Two flags are equal when they are the same flag.
-    fn eq(&self, other: &Self) -> bool {
-        std::sync::Arc::ptr_eq(&self.0, &other.0)
-    }
-}
+/// A flag shared between an optimisation and whoever may stop it: the one of every long
+/// computation, [`loomkin_units::StopFlag`].
+pub use loomkin_units::StopFlag;
 
 impl Default for OptimizeOptions {
     fn default() -> Self {

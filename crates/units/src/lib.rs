@@ -27,6 +27,7 @@ mod format;
 mod range;
 pub mod schema;
 mod speed;
+mod stop;
 mod sweep;
 mod toml_text;
 
@@ -38,6 +39,7 @@ pub use field::{Field, FieldList};
 pub use format::compact;
 pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
+pub use stop::{StopFlag, Stopped};
 pub use sweep::{Shard, Span, SweepError};
 pub use toml_text::toml_reason;
 

@@ -40,6 +40,14 @@ pub enum ApiError {
         /// The limit in bytes.
         limit: usize,
     },
+    /// The client did not send its request body in time (408; the connection is closed).
+    #[error("body: the {what} did not arrive within {} s", loomkin_units::compact(limit.as_secs_f64()))]
+    Timeout {
+        /// What did not arrive (`request body`).
+        what: &'static str,
+        /// The time allowed.
+        limit: std::time::Duration,
+    },
     /// No such endpoint or view (404).
     #[error("{field}: {message}")]
     NotFound {
@@ -119,6 +127,7 @@ impl ApiError {
             ApiError::BadJson { .. } => StatusCode::BAD_REQUEST,
             ApiError::Range(_) | ApiError::Invalid { .. } => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::TooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+            ApiError::Timeout { .. } => StatusCode::REQUEST_TIMEOUT,
             ApiError::NotFound { .. } => StatusCode::NOT_FOUND,
             ApiError::MethodNotAllowed { .. } => StatusCode::METHOD_NOT_ALLOWED,
             ApiError::Forbidden { .. } => StatusCode::FORBIDDEN,
@@ -136,7 +145,7 @@ impl ApiError {
             | ApiError::NotFound { field, .. }
             | ApiError::MethodNotAllowed { field, .. }
             | ApiError::Forbidden { field, .. } => field,
-            ApiError::TooLarge { .. } | ApiError::Busy { .. } => "body",
+            ApiError::TooLarge { .. } | ApiError::Timeout { .. } | ApiError::Busy { .. } => "body",
             ApiError::Internal(_) => "",
         }
     }
@@ -153,8 +162,15 @@ impl IntoResponse for ApiError {
         // A library's message may quote a huge value sent in the request: keep it one short line.
         let body = ErrorBody { error: crate::json::cut(&self.to_string()), field: self.field() };
         let mut res = (self.status(), Json(body)).into_response();
-        if let ApiError::Busy { retry_after_s } = self {
-            res.headers_mut().insert(axum::http::header::RETRY_AFTER, axum::http::HeaderValue::from(retry_after_s));
+        match self {
+            ApiError::Busy { retry_after_s } => {
+                res.headers_mut().insert(axum::http::header::RETRY_AFTER, axum::http::HeaderValue::from(retry_after_s));
+            }
+            // The rest of a late body may still come: end the connection rather than read it as a request.
+            ApiError::Timeout { .. } | ApiError::TooLarge { .. } => {
+                res.headers_mut().insert(axum::http::header::CONNECTION, axum::http::HeaderValue::from_static("close"));
+            }
+            _ => {}
         }
         res
     }

@@ -19,16 +19,29 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for ApiJson<T> {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, Self::Rejection> {
-        let bytes = Bytes::from_request(req, state).await.map_err(|rej| {
-            if rej.status() == StatusCode::PAYLOAD_TOO_LARGE {
-                ApiError::TooLarge { limit: crate::MAX_BODY_BYTES }
-            } else {
-                ApiError::BadJson { field: "body".into(), message: rej.body_text() }
-            }
-        })?;
+        // A body announced larger than the limit is refused at once, before any of it is read (a
+        // client announcing 10¹⁵ bytes was otherwise waited for).
+        let announced = req.headers().get(axum::http::header::CONTENT_LENGTH).and_then(|v| v.to_str().ok());
+        if announced.and_then(|v| v.trim().parse::<u64>().ok()).is_some_and(|n| n > crate::MAX_BODY_BYTES as u64) {
+            return Err(ApiError::TooLarge { limit: crate::MAX_BODY_BYTES });
+        }
+        let timeout = req.extensions().get::<BodyTimeout>().map_or(crate::BODY_READ_TIMEOUT, |t| t.0);
+        let read = tokio::time::timeout(timeout, Bytes::from_request(req, state));
+        let bytes =
+            read.await.map_err(|_| ApiError::Timeout { what: "request body", limit: timeout })?.map_err(|rej| {
+                if rej.status() == StatusCode::PAYLOAD_TOO_LARGE {
+                    ApiError::TooLarge { limit: crate::MAX_BODY_BYTES }
+                } else {
+                    ApiError::BadJson { field: "body".into(), message: rej.body_text() }
+                }
+            })?;
         parse_json(&bytes).map(ApiJson)
     }
 }
+
+/// The body read timeout of a server (a request extension; [`crate::BODY_READ_TIMEOUT`] without it).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyTimeout(pub(crate) std::time::Duration);
 
 /// Longest message of a JSON error (characters): serde quotes the bad value, which may be a
 /// string of 100 000 characters; the middle is cut.

@@ -86,7 +86,8 @@ pub use pool::{HEAVY_BUDGET, RETRY_AFTER_S, heavy_slots};
 pub use schema::{ApiSchema, RouteSchema, SCHEMA_DIALECT, api_schema, request_schema};
 pub use series::{LawSamples, finite};
 pub use server::{
-    Bound, DEFAULT_PORT, HEADER_READ_TIMEOUT, Info, Limits, bind, info_value, open_browser, router, serve_blocking,
+    BODY_READ_TIMEOUT, Bound, DEFAULT_PORT, HEADER_READ_TIMEOUT, Info, Limits, MAX_CONNECTIONS, bind, info_value,
+    open_browser, router, serve_blocking,
 };
 pub use servo_api::{
     DesignResponse, EvaluateRequest, EvaluateResponse, ExportFormat, ExportRequest, ExportResponse, LawReport,

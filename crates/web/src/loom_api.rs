@@ -9,9 +9,9 @@ use axum::Router;
 use axum::routing::{get, post};
 use loomkin_loom::{
     CheckReport, DEFAULT_TIMING_PICKS, DEFAULT_TIMING_STEP_DEG, Drive, Loom, Motion, Objective, Pattern, StaggerResult,
-    TimingCurves, check, optimise_stagger, timing_curves,
+    TimingCurves, check, optimise_stagger_until, timing_curves,
 };
-use loomkin_units::compact;
+use loomkin_units::{StopFlag, compact};
 use serde::{Deserialize, Serialize};
 
 /// The loom files the view offers (`examples/`).
@@ -212,14 +212,28 @@ fn torque_curve(loom: &Loom, pattern: &Pattern) -> Result<TorqueCurve, ApiError>
 
 /// Evaluates the loom weaving the pattern.
 pub fn evaluate(req: &LoomRequest) -> Result<LoomResponse, ApiError> {
+    evaluate_until(req, &StopFlag::default())
+}
+
+/// A set stop flag, as the refusal of a stopped computation (the pool words it; see
+/// [`crate::pool`]).
+fn stopped(stop: &StopFlag) -> Result<(), ApiError> {
+    stop.check().map_err(|e| ApiError::invalid("body", e))
+}
+
+/// [`evaluate`] that ends early once `stop` is set: the flag is checked between its parts (the
+/// check, the timing curves, the torque curve; at [`MAX_WEB_PICKS`] each takes under a second).
+pub(crate) fn evaluate_until(req: &LoomRequest, stop: &StopFlag) -> Result<LoomResponse, ApiError> {
     let (mut loom, pattern) = LoomSource { loom_toml: req.loom_toml.clone(), pattern: req.pattern.clone() }.read()?;
     if let Some(s) = &req.stagger_deg {
         loom = loom.with_stagger(s).map_err(|e| stagger_error(&e))?;
     }
     let picks = crate::error::check_count("picks", req.picks, 1, MAX_TIMING_PICKS)?;
     let report = check(&loom, &pattern).map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
+    stopped(stop)?;
     let timing = timing_curves(&loom, &pattern, req.from_pick % pattern.picks(), picks, req.step_deg)
         .map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
+    stopped(stop)?;
     let torque = torque_curve(&loom, &pattern)?;
     let grid = PatternGrid { shafts: pattern.shafts(), picks: pattern.picks(), rows: pattern.rows().to_vec() };
     Ok(LoomResponse { report, pattern: grid, torque, stagger_deg: loom.shedding.stagger_deg.clone(), timing })
@@ -280,13 +294,21 @@ fn stagger_error(e: &loomkin_loom::LoomError) -> ApiError {
 
 /// The stagger optimisation and its baselines.
 pub fn stagger(req: &StaggerRequest) -> Result<StaggerResponse, ApiError> {
+    stagger_until(req, &StopFlag::default())
+}
+
+/// [`stagger`] that ends early once `stop` is set: the search checks it before every evaluation
+/// ([`loomkin_loom::optimise_stagger_until`]), and it is checked before each torque curve.
+pub(crate) fn stagger_until(req: &StaggerRequest, stop: &StopFlag) -> Result<StaggerResponse, ApiError> {
     let (loom, pattern) = LoomSource { loom_toml: req.loom_toml.clone(), pattern: req.pattern.clone() }.read()?;
     let objective = match req.objective {
         ObjectiveKind::Peak => Objective::Peak,
         ObjectiveKind::Rms => Objective::Rms,
     };
-    let r = optimise_stagger(&loom, &pattern, objective).map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
+    let r = optimise_stagger_until(&loom, &pattern, objective, stop)
+        .map_err(|e| ApiError::from_library(&e, "loom_toml"))?;
     let with = |s: &[f64]| -> Result<TorqueCurve, ApiError> {
+        stopped(stop)?;
         let l = loom.with_stagger(s).map_err(|e| ApiError::from_library(&e, "stagger_deg"))?;
         torque_curve(&l, &pattern)
     };
@@ -312,11 +334,11 @@ pub fn stagger(req: &StaggerRequest) -> Result<StaggerResponse, ApiError> {
 }
 
 async fn post_evaluate(ApiJson(req): ApiJson<LoomRequest>) -> Result<ApiJson<LoomResponse>, ApiError> {
-    crate::pool::heavy(move |_| evaluate(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| evaluate_until(&req, stop)).await.map(ApiJson)
 }
 
 async fn post_stagger(ApiJson(req): ApiJson<StaggerRequest>) -> Result<ApiJson<StaggerResponse>, ApiError> {
-    crate::pool::heavy(move |_| stagger(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| stagger_until(&req, stop)).await.map(ApiJson)
 }
 
 #[cfg(test)]

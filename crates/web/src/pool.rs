@@ -63,10 +63,19 @@ pub(crate) async fn light<T: Send + 'static>(
 }
 
 /// Runs a heavy computation in the bounded heavy pool, or refuses it with 503 and `Retry-After`
-/// when every slot is taken. The computation gets a [`StopFlag`] to check; it is set when the
-/// client goes away or after [`HEAVY_BUDGET`], and a stopped computation is refused (422) with the
-/// budget named.
+/// when every slot is taken. The computation gets a [`StopFlag`] to check between its units of work
+/// (the libraries' long loops take it); it is set when the client goes away or after
+/// [`HEAVY_BUDGET`], and a computation stopped by the budget is refused (422) with the budget named,
+/// whatever it returned.
 pub(crate) async fn heavy<T: Send + 'static>(
+    f: impl FnOnce(&StopFlag) -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    heavy_within(HEAVY_BUDGET, f).await
+}
+
+/// [`heavy`] with another time budget.
+async fn heavy_within<T: Send + 'static>(
+    budget: Duration,
     f: impl FnOnce(&StopFlag) -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
     let permit = HEAVY.clone().try_acquire_owned().map_err(|_| ApiError::Busy { retry_after_s: RETRY_AFTER_S })?;
@@ -75,7 +84,7 @@ pub(crate) async fn heavy<T: Send + 'static>(
     let watchdog = {
         let stop = stop.clone();
         tokio::spawn(async move {
-            tokio::time::sleep(HEAVY_BUDGET).await;
+            tokio::time::sleep(budget).await;
             stop.stop();
         })
     };
@@ -89,16 +98,54 @@ pub(crate) async fn heavy<T: Send + 'static>(
     })
     .await;
     watchdog.abort();
-    let out = out.map_err(|e| ApiError::Internal(format!("the computation failed: {e}")))??;
+    // Stopped (here only by the budget: a client gone no longer awaits this): the computation's
+    // answer, a `Stopped` error or a partial result, is not the answer asked for.
     if stop.is_set() {
-        return Err(ApiError::Invalid {
-            field: "body".into(),
-            message: format!(
-                "body: the computation took longer than its budget of {} s and was stopped; ask for less (fewer \
-                 speeds or points)",
-                HEAVY_BUDGET.as_secs()
-            ),
-        });
+        return Err(over_budget(budget));
     }
-    Ok(out)
+    out.map_err(|e| ApiError::Internal(format!("the computation failed: {e}")))?
+}
+
+/// The refusal of a computation stopped by its time budget.
+fn over_budget(budget: Duration) -> ApiError {
+    ApiError::Invalid {
+        field: "body".into(),
+        message: format!(
+            "body: the computation took longer than its budget of {} s and was stopped; ask for less (fewer speeds, \
+             points or picks)",
+            loomkin_units::compact(budget.as_secs_f64())
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A computation that runs until it is stopped ends at the budget with the budget's refusal,
+    /// not with its own answer.
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn the_budget_stops_the_computation_inside() {
+        let checks = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let seen = checks.clone();
+        let budget = Duration::from_millis(150);
+        let out = heavy_within(budget, move |stop| {
+            // One unit of work between checks, as a library loop does.
+            while stop.check().is_ok() {
+                seen.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            Ok("finished")
+        })
+        .await;
+        assert_eq!(out, Err(over_budget(budget)));
+        assert!(checks.load(std::sync::atomic::Ordering::Relaxed) > 0);
+        assert_eq!(
+            over_budget(HEAVY_BUDGET).to_string(),
+            "body: the computation took longer than its budget of 30 s and was stopped; ask for less (fewer speeds, \
+             points or picks)"
+        );
+        // Within the budget, the answer is the computation's.
+        assert_eq!(heavy_within(Duration::from_secs(60), |_| Ok(7)).await, Ok(7));
+    }
 }

@@ -161,6 +161,9 @@ pub struct Limits {
     pub default_samples: usize,
     /// Most speeds per request.
     pub max_speeds: usize,
+    /// Time budget of one heavy computation, seconds ([`crate::HEAVY_BUDGET`]): the page's
+    /// progress line counts against it.
+    pub heavy_budget_s: f64,
 }
 
 /// The answer of `GET /api/info`.
@@ -175,6 +178,7 @@ pub fn info_value() -> Info {
             max_samples: MAX_SAMPLES,
             default_samples: DEFAULT_SAMPLES,
             max_speeds: MAX_SPEEDS,
+            heavy_budget_s: crate::HEAVY_BUDGET.as_secs_f64(),
         },
     }
 }
@@ -186,19 +190,30 @@ async fn info() -> ApiJson<Info> {
 /// Longest time a client may take to send a request head (request line and headers).
 pub const HEADER_READ_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
 
+/// Longest time a client may take to send a request body once its head has arrived (at most
+/// [`MAX_BODY_BYTES`]); a body shorter than its `Content-Length` is answered 408 and the connection
+/// closed.
+pub const BODY_READ_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Connections served at once; further clients wait in the listener's queue until one ends. With
+/// the body limit this bounds the memory of half-sent requests: at most this many bodies of at most
+/// [`MAX_BODY_BYTES`] (64 MiB), each held at most [`BODY_READ_TIMEOUT`].
+pub const MAX_CONNECTIONS: usize = 256;
+
 /// A listener bound to 127.0.0.1, not yet serving.
 #[derive(Debug)]
 pub struct Bound {
     listener: TcpListener,
     addr: SocketAddr,
     header_timeout: std::time::Duration,
+    body_timeout: std::time::Duration,
 }
 
 /// Binds 127.0.0.1:`port` (0 picks a free port). Never binds another interface.
 pub async fn bind(port: u16) -> std::io::Result<Bound> {
     let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).await?;
     let addr = listener.local_addr()?;
-    Ok(Bound { listener, addr, header_timeout: HEADER_READ_TIMEOUT })
+    Ok(Bound { listener, addr, header_timeout: HEADER_READ_TIMEOUT, body_timeout: BODY_READ_TIMEOUT })
 }
 
 impl Bound {
@@ -213,6 +228,12 @@ impl Bound {
         self
     }
 
+    /// The same listener with another body read timeout (default [`BODY_READ_TIMEOUT`]).
+    pub fn with_body_timeout(mut self, timeout: std::time::Duration) -> Self {
+        self.body_timeout = timeout;
+        self
+    }
+
     /// The page's URL, `http://127.0.0.1:PORT/`.
     pub fn url(&self) -> String {
         format!("http://{}/", self.addr)
@@ -220,11 +241,23 @@ impl Bound {
 
     /// Serves until `shutdown` completes. Each connection is HTTP/1.1 with a header read timeout
     /// (default [`HEADER_READ_TIMEOUT`]): a client that does not finish sending its request head in that
-    /// time is disconnected, so half-sent requests are not held open.
+    /// time is disconnected, so half-sent requests are not held open; a body gets
+    /// [`BODY_READ_TIMEOUT`] (then 408), and at most [`MAX_CONNECTIONS`] are served at once. A
+    /// request hyper refuses before the router sees it (a malformed `Content-Length` or header) is
+    /// answered with the same JSON `{"error", "field"}` as every other refusal.
     pub async fn run_until(self, shutdown: impl Future<Output = ()> + Send + 'static) -> std::io::Result<()> {
-        let (app, header_timeout) = (router(), self.header_timeout);
+        let app = router().layer(axum::Extension(crate::json::BodyTimeout(self.body_timeout)));
+        let header_timeout = self.header_timeout;
+        let connections = std::sync::Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
         let mut shutdown = std::pin::pin!(shutdown);
         loop {
+            let permit = tokio::select! {
+                permit = connections.clone().acquire_owned() => match permit {
+                    Ok(p) => p,
+                    Err(_) => return Ok(()),
+                },
+                () = &mut shutdown => return Ok(()),
+            };
             let (stream, _) = tokio::select! {
                 accepted = self.listener.accept() => match accepted {
                     Ok(pair) => pair,
@@ -238,10 +271,11 @@ impl Bound {
             };
             let service = hyper_util::service::TowerToHyperService::new(app.clone());
             tokio::spawn(async move {
+                let _permit = permit;
                 let _ = hyper::server::conn::http1::Builder::new()
                     .timer(hyper_util::rt::TokioTimer::new())
                     .header_read_timeout(header_timeout)
-                    .serve_connection(hyper_util::rt::TokioIo::new(stream), service)
+                    .serve_connection(hyper_util::rt::TokioIo::new(JsonRefusals::new(stream)), service)
                     .await;
             });
         }
@@ -253,6 +287,131 @@ impl Bound {
             let _ = tokio::signal::ctrl_c().await;
         })
         .await
+    }
+}
+
+/// A connection whose protocol-level refusals are JSON: hyper answers a request it cannot parse
+/// (a `Content-Length` that is not a number or overflows, a malformed header, a head too large)
+/// itself, before the router runs, with a bodiless `4xx`/`5xx` and `connection: close`. The
+/// router never answers an error without a body, so such a head, written alone, is hyper's; it is
+/// replaced by the same status with a JSON body naming what was wrong.
+struct JsonRefusals<S> {
+    inner: S,
+    /// A replacement answer still to be written (its bytes and how many are written).
+    pending: Option<(Vec<u8>, usize)>,
+}
+
+impl<S> JsonRefusals<S> {
+    fn new(inner: S) -> Self {
+        Self { inner, pending: None }
+    }
+
+    /// The JSON answer replacing `head` when it is one of hyper's bodiless refusals.
+    fn replacement(head: &[u8]) -> Option<Vec<u8>> {
+        let text = std::str::from_utf8(head).ok()?;
+        let status: u16 = text.strip_prefix("HTTP/1.1 ")?.get(..3)?.parse().ok()?;
+        let bodiless = text.ends_with("\r\n\r\n") && text.to_ascii_lowercase().contains("\r\ncontent-length: 0\r\n");
+        if !(400..600).contains(&status) || !bodiless {
+            return None;
+        }
+        let code = StatusCode::from_u16(status).ok()?;
+        let message = match status {
+            431 => "the request head is too large".to_string(),
+            400 => "the request is not valid HTTP/1.1: a malformed request line or header (Content-Length must be \
+                    a whole number of bytes)"
+                .to_string(),
+            _ => format!("the request was refused by the HTTP layer ({code})"),
+        };
+        let body = serde_json::json!({"error": format!("head: {message}"), "field": "head"}).to_string();
+        Some(
+            format!(
+                "HTTP/1.1 {code}\r\ncontent-type: application/json\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{body}",
+                body.len()
+            )
+            .into_bytes(),
+        )
+    }
+
+    /// Writes what is left of a replacement answer.
+    fn poll_pending(&mut self, cx: &mut std::task::Context<'_>) -> std::task::Poll<std::io::Result<()>>
+    where
+        S: tokio::io::AsyncWrite + Unpin,
+    {
+        use std::task::Poll;
+        while let Some((bytes, done)) = &mut self.pending {
+            if *done == bytes.len() {
+                self.pending = None;
+                break;
+            }
+            match std::pin::Pin::new(&mut self.inner).poll_write(cx, &bytes[*done..]) {
+                Poll::Ready(Ok(0)) => return Poll::Ready(Err(std::io::ErrorKind::WriteZero.into())),
+                Poll::Ready(Ok(n)) => *done += n,
+                Poll::Ready(Err(e)) => return Poll::Ready(Err(e)),
+                Poll::Pending => return Poll::Pending,
+            }
+        }
+        Poll::Ready(Ok(()))
+    }
+}
+
+impl<S: tokio::io::AsyncRead + Unpin> tokio::io::AsyncRead for JsonRefusals<S> {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.inner).poll_read(cx, buf)
+    }
+}
+
+impl<S: tokio::io::AsyncWrite + Unpin> tokio::io::AsyncWrite for JsonRefusals<S> {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::task::ready!(self.poll_pending(cx))?;
+        if let Some(answer) = Self::replacement(buf) {
+            self.pending = Some((answer, 0));
+            return std::task::Poll::Ready(Ok(buf.len()));
+        }
+        std::pin::Pin::new(&mut self.inner).poll_write(cx, buf)
+    }
+
+    fn poll_write_vectored(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        bufs: &[std::io::IoSlice<'_>],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::task::ready!(self.poll_pending(cx))?;
+        let mut parts = bufs.iter().filter(|b| !b.is_empty());
+        if let (Some(only), None) = (parts.next(), parts.next())
+            && let Some(answer) = Self::replacement(only)
+        {
+            self.pending = Some((answer, 0));
+            return std::task::Poll::Ready(Ok(only.len()));
+        }
+        std::pin::Pin::new(&mut self.inner).poll_write_vectored(cx, bufs)
+    }
+
+    fn is_write_vectored(&self) -> bool {
+        self.inner.is_write_vectored()
+    }
+
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::task::ready!(self.poll_pending(cx))?;
+        std::pin::Pin::new(&mut self.inner).poll_flush(cx)
+    }
+
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::task::ready!(self.poll_pending(cx))?;
+        std::pin::Pin::new(&mut self.inner).poll_shutdown(cx)
     }
 }
 
@@ -316,7 +475,30 @@ fn has_display(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{has_display, is_loopback_authority};
+    use super::{JsonRefusals, has_display, is_loopback_authority};
+
+    #[test]
+    fn only_hypers_bodiless_refusals_are_replaced() {
+        let hyper_400 = b"HTTP/1.1 400 Bad Request\r\nconnection: close\r\ncontent-length: 0\r\ndate: x\r\n\r\n";
+        let text = String::from_utf8(JsonRefusals::<()>::replacement(hyper_400).unwrap()).unwrap();
+        let (head, body) = text.split_once("\r\n\r\n").unwrap();
+        assert!(head.starts_with("HTTP/1.1 400 Bad Request\r\n") && head.contains("application/json"), "{head}");
+        assert!(head.contains(&format!("content-length: {}", body.len())), "{head}");
+        let v: serde_json::Value = serde_json::from_str(body).unwrap();
+        assert_eq!(v["field"], "head");
+        assert!(v["error"].as_str().unwrap().contains("Content-Length"), "{v}");
+        let big = b"HTTP/1.1 431 Request Header Fields Too Large\r\ncontent-length: 0\r\n\r\n";
+        assert!(String::from_utf8(JsonRefusals::<()>::replacement(big).unwrap()).unwrap().contains("too large"));
+        // Answers of the router: a body follows (or is in the same write), or not an error.
+        for kept in [
+            &b"HTTP/1.1 400 Bad Request\r\ncontent-type: application/json\r\ncontent-length: 40\r\n\r\n"[..],
+            b"HTTP/1.1 204 No Content\r\ncontent-length: 0\r\n\r\n",
+            b"HTTP/1.1 400 Bad Request\r\ncontent-length: 0\r\n\r\n{}",
+            b"{\"error\": \"HTTP/1.1 400\"}",
+        ] {
+            assert!(JsonRefusals::<()>::replacement(kept).is_none(), "{}", String::from_utf8_lossy(kept));
+        }
+    }
 
     #[test]
     fn only_the_loopback_names_pass_as_an_authority() {
