@@ -46,11 +46,9 @@ pub struct ProfileArgs {
     /// Prime circle radius R in mm (the least radius of the pitch curve: base circle + roller).
     #[arg(long, value_name = "R", conflicts_with = "max_pressure_deg", allow_hyphen_values = true)]
     prime_radius_mm: Option<f64>,
-    /// Size the cam: the least prime circle whose largest pressure angle is at most A deg (default
-    /// 30 for a roller follower when no --prime-radius-mm is given).
-    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    #[arg(long, value_name = "A", allow_hyphen_values = true, help = util::field_help("Size the cam: the least prime circle whose largest pressure angle is at most A deg (the default applies to a roller follower given no --prime-radius-mm)", &CamDesign::MAX_PRESSURE_DEG))]
     max_pressure_deg: Option<f64>,
-    /// Roller radius in mm (default 0: a knife edge, the profile is the pitch curve).
+    /// Roller radius in mm (0: a knife edge, the profile is the pitch curve).
     #[arg(long, value_name = "r", default_value_t = CamDesign::ROLLER_RADIUS_MM.default_value(), allow_hyphen_values = true)]
     roller_radius_mm: f64,
     /// Offset ε of a translating follower's line of motion in mm (positive: to the right of the
@@ -78,8 +76,7 @@ pub struct ProfileArgs {
     /// Chord tolerance of the DXF polylines in mm.
     #[arg(long, value_name = "T", default_value_t = CamProfile::CHORD_TOL_MM.default_value(), allow_hyphen_values = true, requires = "dxf")]
     chord_tol_mm: f64,
-    /// Bore diameter drawn in the DXF, mm (0: none; default 0.4 × base radius).
-    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf", help = format!("{} (left out: {} × the base radius)", util::field_help("Bore diameter drawn in the DXF, mm (0: none)", &CamProfile::BORE_MM), loomkin_cams::profile::DEFAULT_BORE_PER_BASE_RADIUS))]
     bore_mm: Option<f64>,
     /// Main-shaft angle step of the printed points (deg).
     #[arg(long, value_name = "D", default_value_t = CamProfile::STEP_DEG.default_value(), allow_hyphen_values = true)]
@@ -103,9 +100,7 @@ pub struct TableArgs {
     /// list), st (IEC 61131-3 ARRAY OF SMC_CAMXYVA), xyva (X,Y,V,A points).
     #[arg(long, value_enum, ignore_case = true)]
     format: Format,
-    /// Points on every joint of the law and every D degrees from each joint (a shorter last step
-    /// before a joint; default 1).
-    #[arg(long, value_name = "D", conflicts_with = "tolerance", allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", conflicts_with = "tolerance", allow_hyphen_values = true, help = util::field_help("Points on every joint of the law and every D degrees from each joint (a shorter last step before a joint)", &Spacing::STEP_DEG))]
     step_deg: Option<f64>,
     /// Points on every joint and as few in between as keep the re-interpolation error within T
     /// (slave unit: mm, or deg for a swinging follower).

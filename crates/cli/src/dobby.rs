@@ -32,11 +32,10 @@ pub enum DobbyCommand {
     Tolerance(crate::dobby_tolerance::ToleranceArgs),
 }
 
-/// Link lengths and lever angles; defaults are the paper's (eq. 10, α = 47°).
+/// Link lengths and lever angles; defaults are the paper's (eq. 10).
 #[derive(Debug, Args, Clone)]
 pub struct GeometryArgs {
-    /// Angle α between the slot and the arm AB, deg (the paper: 30…60, figures at 47; default 47).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Angle α between the slot and the arm AB, deg (the paper studies 30…60; its figures and the default are at 47)", &ModulatorGeometry::ALPHA_DEG))]
     alpha_deg: Option<f64>,
     /// Angle θ between the slot and the arm AC, deg (default: θ = α, a symmetric lever).
     #[arg(long, allow_hyphen_values = true)]
@@ -53,8 +52,7 @@ pub struct GeometryArgs {
     /// Output crank OD, m (< l2).
     #[arg(long, default_value_t = ModulatorGeometry::L6_M.default_value(), allow_hyphen_values = true)]
     l6_m: f64,
-    /// Input (main-shaft) speed, rpm (default: ω2 = 1 rad/s as in the paper, so rates read as ratios).
-    #[arg(long, alias = "input-rpm", allow_hyphen_values = true)]
+    #[arg(long, alias = "input-rpm", allow_hyphen_values = true, help = util::field_help("Input (main-shaft) speed, rpm (left out: ω2 = 1 rad/s as in the paper, so rates read as ratios)", &DobbyInputs::SPEED_RPM))]
     speed_rpm: Option<f64>,
     /// Pressure angles above this raise a warning, deg.
     #[arg(long, default_value_t = DobbyInputs::PRESSURE_LIMIT_DEG.default_value(), allow_hyphen_values = true)]
@@ -74,8 +72,7 @@ impl GeometryArgs {
 /// The cam of task 1.
 #[derive(Debug, Args, Clone)]
 pub struct CamArgs {
-    /// The cam's roller-centre curve, `ellipse:a=A,b=B` (m); default the paper's a=0.366, b=0.577.
-    #[arg(long, value_name = "ellipse:a=…,b=…")]
+    #[arg(long, value_name = "ellipse:a=…,b=…", help = format!("The cam's roller-centre curve, `ellipse:a=A,b=B` (m); default the paper's a={}, b={}", loomkin_units::compact(loomkin_mech::Ellipse::PAPER.a_m), loomkin_units::compact(loomkin_mech::Ellipse::PAPER.b_m)))]
     cam: Option<String>,
     /// The cam as a point table of roller-centre points in metres, in order around the curve (≥ 8
     /// distinct points, a repeated closing point is dropped): one point per line, separated by
@@ -153,22 +150,21 @@ impl LawArgs {
 /// profile --roller-radius-mm`, or in m (`--roller-m`, the first flag, kept).
 #[derive(Debug, Args)]
 pub struct RollerArgs {
-    /// Roller radius, mm (default 30 mm where the cams are synthesised; none for a given cam).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, conflicts_with = "roller_m")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, conflicts_with = "roller_m", help = util::field_help("Roller radius, mm (the default where the cams are synthesised; none for a given cam)", &DobbyInputs::ROLLER_MM))]
     roller_mm: Option<f64>,
-    /// Roller radius, m (as --roller-mm).
-    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    #[arg(long, value_name = "M", allow_hyphen_values = true, help = util::field_help("Roller radius, m (as --roller-mm)", &DobbyInputs::ROLLER_M))]
     roller_m: Option<f64>,
 }
 
 impl RollerArgs {
-    /// The roller radius in m, if given. A `--roller-mm` outside 0…10 000 mm is refused here,
-    /// naming the flag and the range in mm; `--roller-m` is checked by the library (0…10 m).
+    /// The roller radius in m, if given; the library checks either flag against its descriptor
+    /// ([`DobbyInputs::ROLLER_MM`], [`DobbyInputs::ROLLER_M`]), naming the flag and the range in its unit.
     fn metres(&self) -> Result<Option<f64>> {
         Ok(DobbyInputs::roller_m("--roller-mm", self.roller_mm, self.roller_m)?)
     }
 
-    /// The roller radius in m, 30 mm unless given (the cams are synthesised with a roller).
+    /// The roller radius in m, [`DobbyInputs::ROLLER_M`]'s default unless given (the cams are
+    /// synthesised with a roller).
     fn metres_or_default(&self) -> Result<f64> {
         Ok(self.metres()?.unwrap_or(DobbyInputs::ROLLER_M.default_value()))
     }
@@ -181,8 +177,7 @@ pub struct AnalyzeArgs {
     geometry: GeometryArgs,
     #[command(flatten)]
     cam: CamArgs,
-    /// Input step, deg (0.01…30).
-    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true, help = util::range_help("Input step, deg", &DobbyInputs::STEP_DEG))]
     step_deg: f64,
     #[command(flatten)]
     roller: RollerArgs,
@@ -199,8 +194,7 @@ pub struct SynthesizeArgs {
     law: LawArgs,
     #[command(flatten)]
     roller: RollerArgs,
-    /// Input step, deg (0.01…30).
-    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DobbyInputs::STEP_DEG.default_value(), allow_hyphen_values = true, help = util::range_help("Input step, deg", &DobbyInputs::STEP_DEG))]
     step_deg: f64,
     #[command(flatten)]
     format: Format,
@@ -219,9 +213,7 @@ pub struct SynthesizeArgs {
         requires = "dxf"
     )]
     chord_tol_mm: f64,
-    /// Bore diameter about the crank centre drawn in the DXF, mm (0: none; default 0.4 × the cams'
-    /// least radius).
-    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf")]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, requires = "dxf", help = format!("Bore diameter about the crank centre drawn in the DXF, mm (0: none; left out: {} × the cams' least radius)", loomkin_io::drawing::DEFAULT_BORE_FRACTION))]
     bore_mm: Option<f64>,
     /// Write the cam point tables (centre curves and walls of Γ and Γ′) as CSV to this file.
     #[arg(long, value_name = "FILE")]

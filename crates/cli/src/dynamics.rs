@@ -75,8 +75,7 @@ pub struct OptimizeArgs {
     file: PathBuf,
     #[arg(long, help = util::speed_help("Design speed in rpm (left out: the file's `speed_rpm`, else the default)"))]
     speed_rpm: Option<f64>,
-    /// Half-width of the speed band around the design speed, in % (0 < band < 90).
-    #[arg(long, default_value_t = Optimized::BAND_PCT.default_value())]
+    #[arg(long, default_value_t = Optimized::BAND_PCT.default_value(), help = util::range_help("Half-width of the speed band around the design speed, in %", &Optimized::BAND_PCT))]
     band_pct: f64,
     #[command(flatten)]
     model: ModelArgs,
@@ -213,9 +212,7 @@ pub struct SweepArgs {
     /// Plot to this file (.svg or .png).
     #[arg(short, long, conflicts_with_all = ["json", "csv", "shard"])]
     output: Option<PathBuf>,
-    /// Residual amplitude a design accepts, % of the stroke (0 < L ≤ 100): drawn on the plot, the
-    /// speeds above it shaded as speeds to avoid.
-    #[arg(long, default_value_t = SweepPoint::RESIDUAL_LIMIT_PCT.default_value(), value_name = "L")]
+    #[arg(long, default_value_t = SweepPoint::RESIDUAL_LIMIT_PCT.default_value(), value_name = "L", help = util::range_help("Residual amplitude a design accepts, % of the stroke, drawn on the plot, the speeds above it shaded as speeds to avoid", &SweepPoint::RESIDUAL_LIMIT_PCT))]
     residual_limit_pct: f64,
     #[command(flatten)]
     plot: crate::util::PlotOpts,

@@ -9,8 +9,8 @@ use loomkin_io::Table;
 use loomkin_laws::LawSpec;
 use loomkin_picking::units::M_PER_CM;
 use loomkin_picking::{
-    History, Mechanism, Method, Outcome, PickError, Setting, Settings, StartRule, Sweep, SweepRow, history,
-    required_velocity_crossings, simulate, sweep_observed,
+    DesignSpec, History, Mechanism, Method, Outcome, PickError, RequiredVelocity, Setting, Settings, StartRule, Sweep,
+    SweepRow, history, required_velocity_crossings, simulate, sweep_observed,
 };
 use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
 use std::path::PathBuf;
@@ -45,52 +45,40 @@ pub struct ModelArgs {
     /// A parameter of --law, e.g. `--param ramp=0.1`.
     #[arg(long = "param", value_name = "KEY=VALUE", value_parser = util::parse_key_value)]
     params: Vec<(String, String)>,
-    /// Design: shuttle velocity V at the end of the pick, m/s (paper: 17). Redesigns the cam.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Design: shuttle velocity V at the end of the pick, m/s; redesigns the cam", &DesignSpec::VELOCITY_M_S))]
     velocity_m_s: Option<f64>,
-    /// Design: pick distance X, cm (paper: 22).
+    /// Design: pick distance X, cm (the same as --distance-m, in centimetres).
     #[arg(long, allow_hyphen_values = true, conflicts_with = "distance_m")]
     distance_cm: Option<f64>,
-    /// Design: pick distance X, m (the same as --distance-cm, in metres).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Design: pick distance X, m", &DesignSpec::DISTANCE_M))]
     distance_m: Option<f64>,
-    /// Design: distance X1 of the first (sine) stage, cm (paper: 8.6; 0 < X1 < X).
+    /// Design: distance X1 of the first (sine) stage, cm (the same as --first-stage-m, in centimetres).
     #[arg(long, allow_hyphen_values = true, conflicts_with = "first_stage_m")]
     first_stage_cm: Option<f64>,
-    /// Design: distance X1 of the first stage, m (the same as --first-stage-cm, in metres).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Design: distance X1 of the first (sine) stage, m (X1 < X)", &DesignSpec::FIRST_STAGE_M))]
     first_stage_m: Option<f64>,
-    /// Design: loom speed n1 the cam is designed for, rpm (paper: 200).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Design: loom speed n1 the cam is designed for, rpm", &DesignSpec::SPEED_RPM))]
     design_speed_rpm: Option<f64>,
-    /// Required velocity V_r: retardation p of the shuttle in the shed, % (default 10).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Required velocity V_r: retardation p of the shuttle in the shed, %", &RequiredVelocity::RETARDATION_PCT))]
     retardation_pct: Option<f64>,
-    /// Required velocity V_r: shuttle length plus shuttle race s, m (default 1.53).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Required velocity V_r: shuttle length plus shuttle race s, m", &RequiredVelocity::PATH_M))]
     path_m: Option<f64>,
-    /// Required velocity V_r: free shed opening φ_s as crank angle, degrees (default 120).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Required velocity V_r: free shed opening φ_s as crank angle, degrees", &RequiredVelocity::FREE_SHED_DEG))]
     free_shed_deg: Option<f64>,
 }
 
 /// Loom settings in the paper's practical units; without them the designed setting applies.
 #[derive(Debug, Args, Clone, Default)]
 pub struct SettingsArgs {
-    /// Loom speed, rpm (designed: 200).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Loom speed, rpm (left out: the speed the cam is designed for)", &Settings::SPEED_RPM))]
     speed_rpm: Option<f64>,
-    /// Play of the picking-strap loop s'₀, mm (designed: 0).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Play of the picking-strap loop s'₀, mm (at most the stick length)", &Settings::PLAY_MM))]
     play_mm: Option<f64>,
-    /// Height k of the strap loop on the picking stick, cm (designed: 23; 0 < k < l).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Height k of the strap loop on the picking stick, cm (k < l, the stick length; left out: the mechanism's)", &Settings::STRAP_CM))]
     strap_cm: Option<f64>,
-    /// Shuttle weight, g (designed: 419.7).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Shuttle weight, g (left out: the mechanism's)", &Settings::SHUTTLE_G))]
     shuttle_g: Option<f64>,
-    /// Checking force, kgf (designed: 5).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Checking force, kgf (left out: the mechanism's)", &Settings::CHECKING_KGF))]
     checking_kgf: Option<f64>,
     /// Where the shuttle starts on the nominal curve: the paper's rule or force equilibrium.
     #[arg(long, value_enum, default_value_t = StartArg::Paper)]

@@ -48,9 +48,7 @@ pub struct Physical {
 /// The dwell threshold.
 #[derive(Debug, Args, Clone)]
 pub struct Threshold {
-    /// Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme;
-    /// 0.75 ≤ T ≤ 0.99 (0.95 reproduces the paper's Table 3).
-    #[arg(long, default_value_t = Conditions::THRESHOLD_FIELD.default_value(), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = Conditions::THRESHOLD_FIELD.default_value(), allow_hyphen_values = true, help = util::range_help("Dwell threshold T: the frame counts as still within (1 − T) of its stroke from an extreme (the default reproduces the paper's Table 3)", &Conditions::THRESHOLD_FIELD))]
     threshold: f64,
 }
 
@@ -100,14 +98,11 @@ pub struct DesignArgs {
     /// Custom shapes of the positive phase instead of a family, e.g. "sine-ramp:0:1,constant:1,cosine-ramp:1:0".
     #[arg(long, conflicts_with = "family")]
     shapes: Option<String>,
-    /// Grid step of k (grid and fig1 designs).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = format!("Grid step of k (grid and fig1 designs; default {}; {} for best)", GridSpec::TABLE.step, GridSpec::BEST.step))]
     step: Option<f64>,
-    /// Least relative length in the grid (default 0.05; 0.01 for best; the paper's practical range is 0.005…0.95).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = format!("Least relative length in the grid (default {}; {} for best; the paper's practical least part is {})", GridSpec::TABLE.min_k, GridSpec::BEST.min_k, GridSpec::PRACTICAL_MIN_K))]
     min_k: Option<f64>,
-    /// Largest relative length in the grid (default 0.9; 0.98 for best).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = format!("Largest relative length in the grid (default {}; {} for best)", GridSpec::TABLE.max_k, GridSpec::BEST.max_k))]
     max_k: Option<f64>,
     /// Motion angles φ_дв, deg: DEG, DEG,DEG,… or MIN:MAX:STEP.
     #[arg(long, allow_hyphen_values = true)]
@@ -135,7 +130,7 @@ pub struct TableArgs {
 /// `shed pareto`.
 #[derive(Debug, Args)]
 pub struct ParetoArgs {
-    /// Experiment design (default: the grid, step 0.05, at motion angles 180:360:10).
+    /// Experiment design (default: the grid over the motion angles of --motion-deg's default).
     #[arg(long, value_enum, default_value_t = DesignKind::Grid)]
     design: DesignKind,
     #[command(flatten)]
@@ -170,14 +165,11 @@ pub struct LoomArgs {
     /// Cloth width in the reed, m (default: the reed width).
     #[arg(long, requires = "carrier_speed_m_s", allow_hyphen_values = true)]
     cloth_width_m: Option<f64>,
-    /// Carrier length, m (default 0).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Carrier length, m", &LoomRequirement::CARRIER_LENGTH_M))]
     carrier_length_m: Option<f64>,
-    /// Range of the crossing-point (заступ) setting, deg (default 0).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Range of the crossing-point (заступ) setting, deg", &LoomRequirement::CROSSING_RANGE_DEG))]
     crossing_range_deg: Option<f64>,
-    /// Shed-height excess over the necessary opening, fraction (0.05 = 5 %, the default); sets T = 1/(1 + excess).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Shed-height excess over the necessary opening, a fraction (0.05 = 5 %); sets T = 1/(1 + excess)", &LoomRequirement::SHED_EXCESS))]
     shed_excess: Option<f64>,
 }
 
@@ -230,14 +222,13 @@ pub struct BestArgs {
     window_deg: Option<f64>,
     #[command(flatten)]
     loom: LoomArgs,
-    /// Dwell threshold T, 0.75 ≤ T ≤ 0.99 (default 0.95, or 1/(1 + shed excess) with loom data).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("Dwell threshold T (left out with loom data: 1/(1 + shed excess))", &Conditions::THRESHOLD_FIELD))]
     threshold: Option<f64>,
     /// Upper limit on the peak frame jerk, m/s³ (least acceleration alone favours constant
     /// acceleration with its jerk peaks).
     #[arg(long, allow_hyphen_values = true)]
     max_jerk_m_s3: Option<f64>,
-    /// Experiment design searched (default: the grid of the trapezoid family, step 0.01).
+    /// Experiment design searched (default: the grid of the trapezoid family at best's step).
     #[arg(long, value_enum, default_value_t = DesignKind::Grid)]
     design: DesignKind,
     #[command(flatten)]

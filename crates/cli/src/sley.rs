@@ -36,8 +36,7 @@ pub struct SynthesizeArgs {
     /// Rocking shaft to the reed's beating point, mm.
     #[arg(long, default_value_t = SleyTarget::REED_HEIGHT_MM.default_value())]
     reed_height_mm: f64,
-    /// Rocking shaft to the rod's pin, mm (default: 0.7 of the reed height; it scales crank, rod and pivot only).
-    #[arg(long)]
+    #[arg(long, help = format!("{} (left out: {} of the reed height; it scales crank, rod and pivot only)", util::field_help("Rocking shaft to the rod's pin, mm", &SleyTarget::SWORD_MM), SleyTarget::SWORD_SHARE))]
     sword_mm: Option<f64>,
     /// Print JSON.
     #[arg(long)]

@@ -238,6 +238,12 @@ pub fn field_help(text: &str, field: &loomkin_units::Field) -> String {
     }
 }
 
+/// The help of an option whose default clap shows (`[default: …]`): `text`, then the quantity's
+/// range in words, read from its descriptor.
+pub fn range_help(text: &str, field: &loomkin_units::Field) -> String {
+    format!("{text}: {}", field.describe())
+}
+
 /// `--speed-rpm`'s help where the file may set the speed: the main-shaft speed's range and default.
 pub fn speed_help(text: &str) -> String {
     field_help(text, &loomkin_units::ShaftSpeed::SPEED)

@@ -56,6 +56,15 @@ impl Layered {
     }
 }
 
+/// How far a drawing's polyline chords may leave the curve when none is given, mm: 10 µm, below a
+/// machine shop's tolerance. The cam profile's and the dobby cams' drawings take it from here.
+pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
+
+/// The bore drawn about a cam's centre when none is given, as a fraction of the cam's least
+/// radius (a cam profile's base circle, the dobby cams' least radius): a hub that leaves the cam's
+/// web wider than the bore's radius. Both cam drawings take it from here.
+pub const DEFAULT_BORE_FRACTION: f64 = 0.4;
+
 /// A drawing as the DXF writer's shapes in metres ([`Layered::to_dxf`] of each).
 pub fn into_dxf(drawing: &[Layered], metres_per_unit: f64) -> Vec<DxfShape> {
     drawing.iter().map(|l| l.to_dxf(metres_per_unit)).collect()

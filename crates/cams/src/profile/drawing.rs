@@ -12,9 +12,9 @@ pub const CHORD_TOL_RANGE: Range = Range::closed(1e-6, 10.0, "mm");
 pub const BORE_RANGE: Range = Range::closed(0.0, 1e5, "mm");
 /// The chord tolerance of a drawing when none is given (mm): a hundredth of a millimetre, within
 /// the accuracy of a machined cam.
-pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
+pub const DEFAULT_CHORD_TOL_MM: f64 = loomkin_io::drawing::DEFAULT_CHORD_TOL_MM;
 /// The bore diameter drawn when none is given, as a fraction of the base circle radius.
-pub const DEFAULT_BORE_PER_BASE_RADIUS: f64 = 0.4;
+pub const DEFAULT_BORE_PER_BASE_RADIUS: f64 = loomkin_io::drawing::DEFAULT_BORE_FRACTION;
 
 impl CamProfile {
     /// `chord_tol_mm`: how far a drawing's polyline chords may leave the curve: a nanometre … 10 mm;

@@ -4,17 +4,20 @@
 use super::report::CamProfile;
 use super::synthesis::Synthesis;
 use crate::MechError;
+use loomkin_io::drawing::DEFAULT_BORE_FRACTION;
 use loomkin_io::dxf::DxfShape;
 use loomkin_io::{IoError, Table};
+use loomkin_units::mm_from_m;
 
 /// The default chord tolerance of the drawing, mm (`dobby synthesize --chord-tol-mm`).
-pub const DEFAULT_CHORD_TOL_MM: f64 = 0.01;
+pub const DEFAULT_CHORD_TOL_MM: f64 = loomkin_io::drawing::DEFAULT_CHORD_TOL_MM;
 
 /// The drawing of both cams as DXF shapes ([`Synthesis::drawing`]: closed polylines within
-/// `chord_tol_mm` of the curves, centre, bore, 0° phase and rollers); the bore defaults to 0.4 ×
-/// the cams' least radius.
+/// `chord_tol_mm` of the curves, centre, bore, 0° phase and rollers); the bore defaults to
+/// [`DEFAULT_BORE_FRACTION`] × the cams' least radius.
 pub fn synthesis_shapes(s: &Synthesis, chord_tol_mm: f64, bore_mm: Option<f64>) -> Result<Vec<DxfShape>, MechError> {
-    let bore_mm = bore_mm.unwrap_or(400.0 * s.least_radius_m());
+    // The fraction in mm per metre of radius first (0.4 → exactly 400.0), then one product: one rounding.
+    let bore_mm = bore_mm.unwrap_or(mm_from_m(DEFAULT_BORE_FRACTION) * s.least_radius_m());
     // The drawing is in metres, as the writer takes it.
     Ok(loomkin_io::drawing::into_dxf(&s.drawing(chord_tol_mm, bore_mm)?, 1.0))
 }

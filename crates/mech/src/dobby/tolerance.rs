@@ -45,7 +45,7 @@ pub const RESULTS: [&str; 3] = ["output_angle_error_deg", "pressure_angle_deg", 
 pub const MAX_DRAWS: u64 = 10_000_000;
 
 /// The paper's ellipse cam: semi-axes (m).
-const PAPER_CAM: [f64; 2] = [0.366, 0.577];
+const PAPER_CAM: [f64; 2] = [crate::curve::Ellipse::PAPER.a_m, crate::curve::Ellipse::PAPER.b_m];
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
