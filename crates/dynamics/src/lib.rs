@@ -64,7 +64,7 @@ pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
 pub use optimize::{Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, quiet_law};
 pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, free_roots, series_below};
-pub use peaks::{Extremes, extremes, grid_size};
+pub use peaks::{Extremes, grid_size};
 pub use report::{
     OptimizeReport, ResponseReport, SweepEntry, SweepReport, TwoMassReport, Units, start_name, sweep_columns, sweep_row,
 };

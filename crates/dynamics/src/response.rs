@@ -4,9 +4,10 @@ use crate::Result;
 use crate::excitation::Excitation;
 use crate::follower::Follower;
 use crate::oscillator::free_roots;
-use crate::peaks::{Extremes, extremes, extremes_of, grid_size};
+use crate::peaks::{Extremes, grid_size};
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use loomkin_laws::Cycle;
+use loomkin_numeric::{extremes, extremes_of};
 use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::Serialize;
 
@@ -226,7 +227,7 @@ impl Response {
             let w_sine = ep.accel_sine.map_or(0.0, |h| h.omega);
             let n = grid_size(dur, osc.omega_d().max(w_sine));
             let (k, c) = train.unwrap_or((0.0, 0.0));
-            let [e_err, e_force] = extremes_of(dur, n, |t| {
+            let [e_err, e_force] = extremes_of(0.0, dur, n, |t| {
                 let y = p.sol.derivs_n::<4>(t);
                 [[y[0], y[1], y[2]], [-k * y[0] - c * y[1], -k * y[1] - c * y[2], -k * y[2] - c * y[3]]]
             });
@@ -236,14 +237,14 @@ impl Response {
             }
             if accel {
                 out[1].merge(
-                    &extremes(dur, n, |t| {
+                    &extremes(0.0, dur, n, |t| {
                         let (y, s) = (p.sol.derivs(t), ep.derivs(t));
                         [y[2] + s[2], y[3] + s[3], y[4] + s[4]]
                     }),
                     p.t0,
                 );
                 out[2].merge(
-                    &extremes(dur, grid_size(dur, w_sine), |t| {
+                    &extremes(0.0, dur, grid_size(dur, w_sine), |t| {
                         let s = ep.derivs(t);
                         [s[2], s[3], s[4]]
                     }),

@@ -10,11 +10,12 @@
 //! is each mode's (the 4×4 one-cycle map is block-diagonal in modal coordinates).
 
 use crate::excitation::Excitation;
-use crate::peaks::{Extremes, extremes_of, grid_size};
+use crate::peaks::{Extremes, grid_size};
 use crate::report::{TwoMassReport, Units};
 use crate::response::Located;
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use crate::{Oscillator, Result};
+use loomkin_numeric::extremes_of;
 use loomkin_units::{Range, ShaftSpeed};
 
 /// Highest natural frequency of either mode, Hz (the single-mass model's bound,
@@ -123,7 +124,7 @@ impl TwoMass {
         let w_fast = self.omega[1].max(self.omega[0]);
         for (a, b) in modes[0].iter().zip(&modes[1]) {
             let dur = a.sol.duration();
-            let [e1, e2] = extremes_of(dur, grid_size(dur, w_fast), |t| {
+            let [e1, e2] = extremes_of(0.0, dur, grid_size(dur, w_fast), |t| {
                 let (ya, yb) = (a.sol.derivs_n::<3>(t), b.sol.derivs_n::<3>(t));
                 [
                     [ya[0] + yb[0], ya[1] + yb[1], ya[2] + yb[2]],

@@ -4,7 +4,9 @@
 //! crate: [`bisect`] (to adjacent doubles), [`refine_root`] (Newton kept inside a bracket),
 //! [`illinois_root`] (regula falsi, no derivative needed),
 //! [`golden_max`] (golden-section search keeping the best point), [`brent_max_from`] (parabolic
-//! steps with golden-section fall-back), [`scan_max`] (a grid's local maxima, each refined) and
+//! steps with golden-section fall-back), [`scan_max`] (a grid's local maxima, each refined),
+//! [`extremes_of`] (the least and greatest values of smooth functions known with two derivatives:
+//! the derivatives' sign changes bracketed and refined) and
 //! [`grid_roots`] / [`scan_roots`] (every root on an interval: sign changes of a grid, close pairs
 //! inside one grid interval included, each refined).
 //!
@@ -28,6 +30,7 @@
 
 mod bisect;
 mod brent;
+mod extremes;
 mod golden;
 mod linear;
 mod root;
@@ -36,9 +39,10 @@ mod scan;
 
 pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
+pub use extremes::{Extremes, extremes, extremes_of};
 pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
 pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
-pub use root::{illinois_root, refine_root, refine_root_from};
+pub use root::{illinois_root, refine_root, refine_root_from, try_refine_root_from};
 pub use roots::{grid_roots, scan_roots};
 pub use scan::scan_max;
 

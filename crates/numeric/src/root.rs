@@ -16,19 +16,27 @@ pub fn refine_root(lo: f64, hi: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64
 
 /// [`refine_root`] from a first guess `start` inside `[lo, hi]` (e.g. the secant point of values the
 /// caller already has), which saves the steps from the bracket's middle.
-pub fn refine_root_from(
+pub fn refine_root_from(lo: f64, hi: f64, start: f64, lo_negative: bool, gd: impl Fn(f64) -> (f64, f64)) -> f64 {
+    match try_refine_root_from::<std::convert::Infallible>(lo, hi, start, lo_negative, |t| Ok(gd(t))) {
+        Ok(t) => t,
+        Err(never) => match never {},
+    }
+}
+
+/// [`refine_root_from`] of a function whose evaluation can fail (the first error is returned).
+pub fn try_refine_root_from<E>(
     mut lo: f64,
     mut hi: f64,
     start: f64,
     lo_negative: bool,
-    gd: impl Fn(f64) -> (f64, f64),
-) -> f64 {
+    mut gd: impl FnMut(f64) -> Result<(f64, f64), E>,
+) -> Result<f64, E> {
     let (mut g_lo, mut g_hi): (Option<f64>, Option<f64>) = (None, None);
     let mut t = if start > lo && start < hi { start } else { 0.5 * (lo + hi) };
     for _ in 0..100 {
-        let (gt, d) = gd(t);
+        let (gt, d) = gd(t)?;
         if gt == 0.0 {
-            return t;
+            return Ok(t);
         }
         if (gt < 0.0) == lo_negative {
             (lo, g_lo) = (t, Some(gt));
@@ -39,20 +47,26 @@ pub fn refine_root_from(
         let next = if d != 0.0 && newton > lo && newton < hi {
             newton
         } else {
-            let gl = *g_lo.get_or_insert_with(|| gd(lo).0);
-            let gh = *g_hi.get_or_insert_with(|| gd(hi).0);
+            let gl = match g_lo {
+                Some(g) => g,
+                None => *g_lo.insert(gd(lo)?.0),
+            };
+            let gh = match g_hi {
+                Some(g) => g,
+                None => *g_hi.insert(gd(hi)?.0),
+            };
             if gl == 0.0 || gh == 0.0 {
-                return if gl == 0.0 { lo } else { hi };
+                return Ok(if gl == 0.0 { lo } else { hi });
             }
             let secant = (lo * gh - hi * gl) / (gh - gl);
             if secant > lo && secant < hi { secant } else { 0.5 * (lo + hi) }
         };
         if (next - t).abs() <= 1e-15 * t.abs() || hi - lo <= crate::ulps(lo, hi, 4.0) {
-            return next;
+            return Ok(next);
         }
         t = next;
     }
-    t
+    Ok(t)
 }
 
 /// A root of `d` in `[a, b]` where `d(a) = da` and `d(b) = db` have opposite signs, without its

@@ -223,33 +223,19 @@ fn golden_peak(route: &Route<'_>, lo: f64, hi: f64) -> Result<(f64, f64)> {
 }
 
 /// The largest acceleration in [lo, hi]: the zero of the jerk ȧ where it falls through zero across
-/// the bracket, by Newton's method on ȧ with ä, kept inside the shrinking bracket (bisection when
-/// a step would leave it), to the last bits of t; golden-section search otherwise.
+/// the bracket, by Newton's method on ȧ with ä kept inside the shrinking bracket
+/// ([`loomkin_numeric::try_refine_root_from`], from the secant point of the bracket's jerks), to the
+/// last bits of t; golden-section search otherwise.
 fn refine_peak(route: &Route<'_>, lo: f64, hi: f64) -> Result<(f64, f64)> {
     let (j_lo, j_hi) = (route.jerk(lo)?[0], route.jerk(hi)?[0]);
     if !(j_lo > 0.0 && j_hi < 0.0) {
         return golden_peak(route, lo, hi);
     }
-    let (mut a, mut b) = (lo, hi);
-    let tol = 1e-15 * hi.abs().max(1e-3);
-    let mut t = 0.5 * (a + b);
-    for _ in 0..200 {
+    let start = (lo * j_hi - hi * j_lo) / (j_hi - j_lo);
+    let t = loomkin_numeric::try_refine_root_from(lo, hi, start, false, |t| {
         let [j, dj] = route.jerk(t)?;
-        if j > 0.0 {
-            a = t;
-        } else if j < 0.0 {
-            b = t;
-        } else {
-            break;
-        }
-        let newton = t - j / dj;
-        let next = if newton > a && newton < b { newton } else { 0.5 * (a + b) };
-        let done = (next - t).abs() <= tol || b - a <= tol;
-        t = next;
-        if done {
-            break;
-        }
-    }
+        Ok::<_, PickError>((j, dj))
+    })?;
     Ok((t, route.state(t)?.a_m_s2))
 }
 

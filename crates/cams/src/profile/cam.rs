@@ -378,48 +378,61 @@ impl CamProfile {
     }
 
     fn track_extremes(&self, t: usize) -> TrackExtremes {
-        let (mut phi, mut kap) = (Extremes::empty(), Extremes::empty());
+        let (mut phi, mut kap) = (Extremes::EMPTY, Extremes::EMPTY);
         for sp in self.spans() {
-            phi.merge(extremes(sp, |psi| {
-                let p = self.track_jets(t, sp.piece, psi).phi;
-                [p.v(), p.d(1), p.d(2)]
-            }));
-            kap.merge(extremes(sp, |psi| {
-                let k = curvature(self.track_jets(t, sp.piece, psi).p);
-                [k.v(), k.d(1), k.d(2)]
-            }));
+            phi.merge(
+                &extremes(sp, |psi| {
+                    let p = self.track_jets(t, sp.piece, psi).phi;
+                    [p.v(), p.d(1), p.d(2)]
+                }),
+                0.0,
+            );
+            kap.merge(
+                &extremes(sp, |psi| {
+                    let k = curvature(self.track_jets(t, sp.piece, psi).p);
+                    [k.v(), k.d(1), k.d(2)]
+                }),
+                0.0,
+            );
         }
-        let (pm, pm_at) = if phi.max.abs() >= phi.min.abs() { (phi.max, phi.max_at) } else { (phi.min, phi.min_at) };
+        let (pm, pm_at) =
+            if phi.max.0.abs() >= phi.min.0.abs() { (phi.max.0, phi.max.1) } else { (phi.min.0, phi.min.1) };
         TrackExtremes {
             max_pressure_angle_deg: pm.abs().to_degrees(),
             max_pressure_angle_at_deg: self.lift.deg(pm_at),
             max_pressure_angle_signed_deg: pm.to_degrees(),
-            max_convex_curvature_per_mm: kap.max,
-            max_convex_curvature_at_deg: self.lift.deg(kap.max_at),
-            max_concave_curvature_per_mm: -kap.min,
-            max_concave_curvature_at_deg: self.lift.deg(kap.min_at),
+            max_convex_curvature_per_mm: kap.max.0,
+            max_convex_curvature_at_deg: self.lift.deg(kap.max.1),
+            max_concave_curvature_per_mm: -kap.min.0,
+            max_concave_curvature_at_deg: self.lift.deg(kap.min.1),
         }
     }
 
     fn flat_extremes(&self) -> FlatExtremes {
-        let (mut rho, mut face) = (Extremes::empty(), Extremes::empty());
+        let (mut rho, mut face) = (Extremes::EMPTY, Extremes::EMPTY);
         for sp in self.spans() {
-            rho.merge(extremes(sp, |psi| {
-                let s = self.lift.jet(sp.piece, psi);
-                [s.v() + s.d(2), s.d(1) + s.d(3), s.d(2) + s.d(4)]
-            }));
-            face.merge(extremes(sp, |psi| {
-                let s = self.lift.jet(sp.piece, psi);
-                [s.d(1), s.d(2), s.d(3)]
-            }));
+            rho.merge(
+                &extremes(sp, |psi| {
+                    let s = self.lift.jet(sp.piece, psi);
+                    [s.v() + s.d(2), s.d(1) + s.d(3), s.d(2) + s.d(4)]
+                }),
+                0.0,
+            );
+            face.merge(
+                &extremes(sp, |psi| {
+                    let s = self.lift.jet(sp.piece, psi);
+                    [s.d(1), s.d(2), s.d(3)]
+                }),
+                0.0,
+            );
         }
         let rb = self.prime_radius_mm;
         FlatExtremes {
-            min_radius_profile_mm: rb + rho.min,
-            min_radius_profile_at_deg: self.lift.deg(rho.min_at),
-            least_prime_radius_mm: (-rho.min).max(0.0),
-            face_min_mm: face.min,
-            face_max_mm: face.max,
+            min_radius_profile_mm: rb + rho.min.0,
+            min_radius_profile_at_deg: self.lift.deg(rho.min.1),
+            least_prime_radius_mm: (-rho.min.0).max(0.0),
+            face_min_mm: face.min.0,
+            face_max_mm: face.max.0,
         }
     }
 
@@ -436,7 +449,7 @@ impl CamProfile {
                 let m = Jet::dot(d2, d2);
                 [m.v(), m.d(1), m.d(2)]
             };
-            let m = extremes(sp, acc).max.max(0.0).sqrt();
+            let m = extremes(sp, acc).max.0.max(0.0).sqrt();
             let h = (8.0 * tol_mm / m.max(1e-300)).sqrt();
             let n = ((sp.b - sp.a) / h).ceil().clamp(1.0, 1e7) as usize;
             for i in 0..n {

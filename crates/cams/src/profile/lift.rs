@@ -69,17 +69,20 @@ impl Lift {
                 ),
             });
         }
-        let mut ext = Extremes::empty();
+        let mut ext = Extremes::EMPTY;
         for sp in lift.spans() {
-            ext.merge(extremes(sp, |psi| {
-                let j = lift.jet(sp.piece, psi);
-                [j.v(), j.d(1), j.d(2)]
-            }));
+            ext.merge(
+                &extremes(sp, |psi| {
+                    let j = lift.jet(sp.piece, psi);
+                    [j.v(), j.d(1), j.d(2)]
+                }),
+                0.0,
+            );
         }
-        lift.y_min = ext.min / to_unit;
-        lift.stroke = ext.max - ext.min;
-        lift.min_at_deg = lift.deg(ext.min_at);
-        lift.max_at_deg = lift.deg(ext.max_at);
+        lift.y_min = ext.min.0 / to_unit;
+        lift.stroke = ext.max.0 - ext.min.0;
+        lift.min_at_deg = lift.deg(ext.min.1);
+        lift.max_at_deg = lift.deg(ext.max.1);
         if lift.stroke.is_nan() || lift.stroke <= 0.0 {
             return Err(CamError::Law { field: "segment".into(), reason: "the follower never moves".into() });
         }

@@ -53,7 +53,7 @@ pub(crate) fn max_pressure(lift: &Lift, tracks: &[Track]) -> f64 {
                 let p = t.jets(psi, lift.jet(sp.piece, psi)).phi;
                 [p.v(), p.d(1), p.d(2)]
             });
-            m = m.max(e.max.abs()).max(e.min.abs());
+            m = m.max(e.max.0.abs()).max(e.min.0.abs());
         }
     }
     m
@@ -73,24 +73,27 @@ pub(crate) fn least_prime_radius(lift: &Lift, design: &CamDesign, a_deg: f64) ->
     match design.follower {
         Follower::Translating { offset_mm: eps } => {
             let h = lift.stroke();
-            let mut ext = Extremes::empty();
+            let mut ext = Extremes::EMPTY;
             let conj = design.closure == Closure::Conjugate;
             for sp in lift.spans() {
                 for sign in [1.0, -1.0] {
                     // counter-cam: distance y + H − s, i.e. the same with −s (and H added after).
                     for (k, shift) in [(1.0, 0.0), (-1.0, h)].into_iter().take(if conj { 2 } else { 1 }) {
-                        ext.merge(extremes(sp, |psi| {
-                            let s = lift.jet(sp.piece, psi);
-                            [
-                                sign * (s.d(1) - eps) / ta - k * s.v() - shift,
-                                sign * s.d(2) / ta - k * s.d(1),
-                                sign * s.d(3) / ta - k * s.d(2),
-                            ]
-                        }));
+                        ext.merge(
+                            &extremes(sp, |psi| {
+                                let s = lift.jet(sp.piece, psi);
+                                [
+                                    sign * (s.d(1) - eps) / ta - k * s.v() - shift,
+                                    sign * s.d(2) / ta - k * s.d(1),
+                                    sign * s.d(3) / ta - k * s.d(2),
+                                ]
+                            }),
+                            0.0,
+                        );
                     }
                 }
             }
-            let y = ext.max;
+            let y = ext.max.0;
             if y.is_nan() || y <= 0.0 {
                 return Err(CamError::Usage {
                     field: "max_pressure_deg".into(),
