@@ -337,6 +337,31 @@ fn least_prime_radius_meets_the_pressure_angle() {
     }
 }
 
+/// A target just above the least pressure angle an oscillating follower can reach: the feasible
+/// radii are a band narrower than the sizing grid around a minimum of the largest pressure angle.
+/// The radius found meets the target (not the rounding of a bracket's midpoint past it), and a
+/// hair less radius does not.
+#[test]
+fn least_prime_radius_in_a_narrow_band() {
+    let m = Motion::from_cycle(&Cycle::from_toml(include_str!("../../../examples/sley-cycle.toml")).unwrap());
+    let f = Follower::Oscillating { arm_mm: 150.0, pivot_mm: 180.0 };
+    // The least largest pressure angle over the prime radius (37.5846732521° at 86.4985905099 mm,
+    // as `cam profile` reports when a target below it is refused).
+    let least = 37.584_673_252_1;
+    for a in [least + 1e-6, least + 1e-4, least + 1e-2] {
+        let cam = CamProfile::new(&m, &design(f, Closure::Single, 15.0, Size::MaxPressureDeg(a))).unwrap();
+        let rp = cam.prime_radius_mm();
+        let (pmax, _, _) = cam.max_pressure_angle();
+        assert!(pmax <= a, "{a}°: {pmax}° at R_p {rp}");
+        let smaller = CamProfile::new(&m, &design(f, Closure::Single, 15.0, Size::PrimeRadiusMm(rp * (1.0 - 1e-9))));
+        if let Ok(smaller) = smaller {
+            assert!(smaller.max_pressure_angle().0 > a, "{a}°: a smaller radius meets it too");
+        }
+    }
+    let below = CamProfile::new(&m, &design(f, Closure::Single, 15.0, Size::MaxPressureDeg(least - 1e-6)));
+    assert!(below.is_err(), "{least}° − 1e-6 is below the least reachable");
+}
+
 #[test]
 fn undercut_and_the_largest_roller() {
     // A steep rise (50 mm in 60°) on a small cam: the pitch curve is sharper than the prime circle.

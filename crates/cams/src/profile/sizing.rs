@@ -154,7 +154,9 @@ pub(crate) fn least_prime_radius(lift: &Lift, design: &CamDesign, a_deg: f64) ->
                 }
                 if -m.value <= target {
                     let feasible = |rp: f64| f(rp).is_ok_and(|v| v <= target);
-                    return Ok(loomkin_numeric::bisect(a, m.at, |rp| !feasible(rp)));
+                    // The feasible end of the last bracket, not its midpoint: the radius returned
+                    // must meet the target (the midpoint of adjacent doubles may be the other one).
+                    return Ok(loomkin_numeric::bisect_bracket(a, m.at, |rp| !feasible(rp)).1);
                 }
             }
             Err(CamError::Usage {
