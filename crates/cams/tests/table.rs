@@ -5,25 +5,8 @@ use loomkin_cams::table::{CamTable, Format, Interval, Motion, Spacing, reinterpo
 use loomkin_laws::{Cycle, LawSpec, StrokeUnit};
 use proptest::prelude::*;
 
-const CYCLE_MM: &str = r#"
-unit = "mm"
-stroke = 100
-[[segment]]
-kind = "dwell"
-to_deg = 60
-[[segment]]
-kind = "rise"
-to_deg = 180
-law = "modified-sine"
-[[segment]]
-kind = "dwell"
-to_deg = 240
-[[segment]]
-kind = "return"
-to_deg = 360
-law = "modified-trapezoid"
-params = { ramp = 0.125 }
-"#;
+/// The heald-frame cycle of examples/ (dwell, modified-sine rise, dwell, modified-trapezoid return).
+const CYCLE_MM: &str = include_str!("../../../examples/heald-frame-cycle.toml");
 
 const CYCLE_DEG: &str = r#"
 unit = "deg"

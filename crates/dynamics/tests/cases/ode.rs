@@ -90,25 +90,8 @@ fn check(text: &str, rpm: f64, fn_hz: f64, zeta: f64, start: Start, cycles: usiz
     assert!(worst < 1e-9, "relative deviation {worst:e} at {rpm} rpm, f_n {fn_hz} Hz, ζ {zeta}");
 }
 
-const HEALD: &str = r#"
-unit = "mm"
-stroke = 100
-[[segment]]
-kind = "dwell"
-to_deg = 60
-[[segment]]
-kind = "rise"
-to_deg = 180
-law = "modified-sine"
-[[segment]]
-kind = "dwell"
-to_deg = 240
-[[segment]]
-kind = "return"
-to_deg = 360
-law = "modified-trapezoid"
-params = { ramp = 0.125 }
-"#;
+/// The heald-frame cycle of examples/ (dwell, modified-sine rise, dwell, modified-trapezoid return).
+const HEALD: &str = include_str!("../../../../examples/heald-frame-cycle.toml");
 
 #[test]
 fn heald_cycle_from_rest_matches_dop853() {
