@@ -1,7 +1,8 @@
 //! Benchmarks of the loom model: the torque over a 24-frame, 48-pick repeat at 0.5° (target
-//! < 5 ms) and the stagger optimisation for 24 frames (target < 1 s).
+//! < 5 ms), the stagger optimisation for 24 frames (target < 1 s), and `loom check` of a long
+//! repeat (the 48-pick draft 200 times, 9,600 picks; target: 10⁵ picks in seconds).
 
-use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, optimise_stagger};
+use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger};
 
 fn main() {
     divan::main();
@@ -37,4 +38,22 @@ fn torque_peak_and_rms_24_frames_48_picks(bencher: divan::Bencher) {
 fn stagger_24_frames(bencher: divan::Bencher) {
     let (loom, pattern) = setup();
     bencher.bench_local(|| optimise_stagger(&loom, &pattern, Objective::Peak).unwrap().best.peak_torque_n_m);
+}
+
+/// The 48-pick draft repeated `times` times.
+fn repeated(times: usize) -> Pattern {
+    let (_, pattern) = setup();
+    let rows = (0..times * pattern.picks())
+        .map(|p| (0..24).map(|s| pattern.is_up(p % pattern.picks(), s)).collect())
+        .collect();
+    Pattern::new(24, rows).unwrap()
+}
+
+/// `loom check` (geometry, refined peak, RMS, every pick's window) of 9,600 picks: each distinct
+/// turn computed once, the torque grid read a turn at a time.
+#[divan::bench(sample_count = 5)]
+fn check_24_frames_9600_picks(bencher: divan::Bencher) {
+    let (loom, _) = setup();
+    let pattern = repeated(200);
+    bencher.bench_local(|| check(&loom, &pattern).unwrap().peak_torque_n_m);
 }

@@ -70,7 +70,7 @@ pub struct CheckReport {
 pub fn check(loom: &Loom, pattern: &Pattern) -> Result<CheckReport> {
     let motion = Motion::new(loom, pattern)?;
     let drive = Drive::new(loom, &motion, pattern);
-    let timing: TimingReport = Timing::new(loom, &motion, pattern)?.report()?;
+    let timing: TimingReport = Timing::new(loom, &motion, pattern)?.report_of(false)?;
     let g = &loom.geometry;
     let equal = equal_strain_strokes(&g.frame_m, g.back_rest_m, g.warp_line_m, g.stroke_m[0]);
     let frames: Vec<FrameCheck> = (0..loom.frame_count())
@@ -94,7 +94,7 @@ pub fn check(loom: &Loom, pattern: &Pattern) -> Result<CheckReport> {
                 max_strain,
                 equal_strain_stroke_mm: equal[i] * 1e3,
                 ends: drive.ends()[i],
-                moves: motion.moves(i).len(),
+                moves: motion.move_count(i),
             }
         })
         .collect();

@@ -14,6 +14,7 @@
 //! ([`Drive::energy_j`]) — the independent route the tests take.
 
 use crate::geometry::{straight_length, thread_length};
+use crate::turns::Turns;
 use crate::{FrameKin, G_M_S2, Loom, Motion, Pattern};
 use loomkin_laws::gauss_legendre;
 use serde::Serialize;
@@ -198,46 +199,96 @@ impl<'a> Drive<'a> {
     }
 
     /// The torques of [`Drive::torque_curve_cached`] without their angles, and the step `h`
-    /// between them (the k-th at `k·h`): half the memory of the curve, for the peak alone.
+    /// between them (the k-th at `k·h`).
     fn torque_values_cached(&self, step_deg: f64, cache: &mut TableCache) -> (f64, Vec<f64>) {
+        let g = self.grid(step_deg, cache);
+        let mut t = Vec::with_capacity(g.n);
+        self.for_each_value(&g, cache, |v| t.push(v));
+        (g.h, t)
+    }
+
+    /// The grid of a torque curve at `step_deg`, with every frame's power tables put in `cache`.
+    fn grid(&self, step_deg: f64, cache: &mut TableCache) -> Grid {
         let period = self.motion.repeat_deg();
         let n = (period / step_deg).round().max(1.0) as usize;
         let h = period / n as f64;
         let per_turn = 360.0 / h;
         if (per_turn - per_turn.round()).abs() > 1e-9 * per_turn {
-            return (h, (0..n).map(|k| self.torque_at(k as f64 * h)).collect());
+            return Grid { h, n, per_turn: 0, frames: Vec::new() };
         }
-        let per_turn = per_turn.round() as i64;
         let phi = self.motion.motion_deg();
-        let mut t = vec![0.0; n];
-        for i in 0..self.loom.frame_count() {
-            let moves = self.motion.moves(i);
-            let Some(first) = moves.first() else { continue };
-            // Grid index of the first point at or after the start of the move into pick 0.
-            let w0 = first.start_deg - 360.0 * first.pick as f64;
-            let k0 = (w0 / h - 1e-12).ceil() as i64;
-            let x0 = (k0 as f64 * h - w0) / phi;
-            let dx = h / phi;
-            let count = ((1.0 - x0) / dx).ceil().max(0.0) as usize;
-            let table = |rising: bool| -> Vec<f64> {
-                (0..count)
-                    .map(|j| {
-                        let k = self.motion.moving(i, rising, x0 + j as f64 * dx);
-                        self.force(i, &k).total_n * k.dy / self.loom.efficiency
-                    })
-                    .collect()
-            };
-            let key = (i, x0.to_bits(), count);
-            let (up, down) = cache.0.entry(key).or_insert_with(|| (table(true), table(false)));
-            for m in &moves {
-                let tab = if m.rising { &*up } else { &*down };
-                let start = k0 + per_turn * m.pick as i64;
-                for (j, p) in tab.iter().enumerate() {
-                    t[(start + j as i64).rem_euclid(n as i64) as usize] += p;
+        let frames = (0..self.loom.frame_count())
+            .map(|i| {
+                if self.motion.move_count(i) == 0 {
+                    return None;
+                }
+                // Grid index of the first point at or after the start of a move into pick 0.
+                let w0 = self.motion.centre0_deg(i) - phi / 2.0;
+                let k0 = (w0 / h - 1e-12).ceil() as i64;
+                let x0 = (k0 as f64 * h - w0) / phi;
+                let dx = h / phi;
+                let count = ((1.0 - x0) / dx).ceil().max(0.0) as usize;
+                let table = |rising: bool| -> Vec<f64> {
+                    (0..count)
+                        .map(|j| {
+                            let k = self.motion.moving(i, rising, x0 + j as f64 * dx);
+                            self.force(i, &k).total_n * k.dy / self.loom.efficiency
+                        })
+                        .collect()
+                };
+                let key = (i, x0.to_bits(), count);
+                cache.0.entry(key).or_insert_with(|| (table(true), table(false)));
+                Some((k0, key))
+            })
+            .collect();
+        Grid { h, n, per_turn: per_turn.round() as usize, frames }
+    }
+
+    /// Calls `f` with the torque at every point of grid `g`, in order (`k·h`, k = 0 … n − 1),
+    /// holding one turn of points at a time.
+    ///
+    /// When `h` divides 360°, every move of a frame in one direction meets the grid at the same
+    /// fractions of its motion, so its power tables (computed once, in `cache`) are added at
+    /// every move: the points of turn `p` get, frame by frame in order, the tables of the moves
+    /// into the picks around `p` (the move into pick `q` meets the grid from index
+    /// `k0 + q·per_turn`). Otherwise every point is evaluated directly.
+    fn for_each_value(&self, g: &Grid, cache: &TableCache, mut f: impl FnMut(f64)) {
+        if g.per_turn == 0 {
+            (0..g.n).for_each(|k| f(self.torque_at(k as f64 * g.h)));
+            return;
+        }
+        let mut buf = vec![0.0; g.per_turn];
+        for p in 0..self.motion.picks() {
+            self.fill_turn(g, cache, p, &mut buf);
+            buf.iter().for_each(|&v| f(v));
+        }
+    }
+
+    /// The torques of turn `p`'s points of grid `g` (one whose step divides 360°) into `buf`.
+    fn fill_turn(&self, g: &Grid, cache: &TableCache, p: usize, buf: &mut [f64]) {
+        buf.fill(0.0);
+        let pt = g.per_turn as i64;
+        for (i, frame) in g.frames.iter().enumerate() {
+            let Some((k0, key)) = frame else { continue };
+            let Some((up, down)) = cache.0.get(key) else { continue };
+            let count = up.len() as i64;
+            // Moves into picks p + dq with a point in the turn: 0 ≤ k0 + dq·pt + j < pt, j < count.
+            let lo = -(k0 + count - 1).div_euclid(pt);
+            let hi = (pt - 1 - k0).div_euclid(pt);
+            for dq in lo..=hi {
+                let q = p as i64 + dq;
+                let rising = self.motion.is_up(i, q);
+                if rising == self.motion.is_up(i, q - 1) {
+                    continue;
+                }
+                let tab = if rising { up } else { down };
+                let off = k0 + dq * pt;
+                let (from, to) = ((-off).max(0), count.min(pt - off));
+                for j in from..to {
+                    buf[(off + j) as usize] += tab[j as usize];
                 }
             }
         }
-        (h, t)
     }
 
     /// The torque report of a curve already computed ([`Drive::torque_curve`]).
@@ -256,46 +307,48 @@ impl<'a> Drive<'a> {
     }
 
     /// The largest |torque| over the repeat: the grid's largest local maxima of |T| (at
-    /// `step_deg`) refined by golden-section search between their neighbours. Holds the grid's
-    /// torques only (8 bytes a point, 5.8 kB a pick at 0.5°), not the curve's angles too.
+    /// `step_deg`) refined by golden-section search between their neighbours. The grid is read
+    /// one turn at a time (see [`Drive::torque_curve`]): what it holds does not grow with the
+    /// number of picks.
     pub fn peak(&self, step_deg: f64) -> Peak {
-        let (h, t) = self.torque_values_cached(step_deg, &mut TableCache::default());
-        self.peak_among(t.len(), h, |k| k as f64 * h, |k| t[k])
+        let mut cache = TableCache::default();
+        let g = self.grid(step_deg, &mut cache);
+        let last = if g.per_turn == 0 {
+            self.torque_at((g.n - 1) as f64 * g.h)
+        } else {
+            let mut buf = vec![0.0; g.per_turn];
+            self.fill_turn(&g, &cache, self.motion.picks() - 1, &mut buf);
+            buf[g.per_turn - 1]
+        };
+        let mut top = TopPeaks::new(g.n, last);
+        self.for_each_value(&g, &cache, |v| top.push(v));
+        self.refine_peaks(g.h, |k| k as f64 * g.h, top.finish())
     }
 
     /// [`Drive::peak`] from a torque curve already computed.
     pub fn peak_of(&self, curve: &[(f64, f64)]) -> Peak {
         let n = curve.len();
-        let h = if n > 1 { curve[1].0 - curve[0].0 } else { self.motion.repeat_deg() };
-        self.peak_among(n, h, |k| curve[k].0, |k| curve[k].1)
-    }
-
-    /// The peak of a grid of `n` points `h` apart, the k-th at `angle(k)` with torque `value(k)`:
-    /// the six largest local maxima of |T| (a tie to the earlier point), each refined on its two
-    /// neighbouring intervals ([`loomkin_numeric::golden_max`]); of peaks within 1e-13 of the
-    /// highest, the earliest in the repeat. The six are kept as the grid is
-    /// read, so nothing per point is stored (a dwell's flat torque makes every point a local maximum).
-    fn peak_among(&self, n: usize, h: f64, angle: impl Fn(usize) -> f64, value: impl Fn(usize) -> f64) -> Peak {
-        const CANDIDATES: usize = 6;
         if n == 0 {
             return Peak { torque_n_m: 0.0, angle_deg: 0.0 };
         }
-        let mut top: Vec<(f64, usize)> = Vec::with_capacity(CANDIDATES + 1);
-        for k in 0..n {
-            let a = value(k).abs();
-            if a >= value((k + n - 1) % n).abs() && a >= value((k + 1) % n).abs() {
-                let at = top.partition_point(|&(v, _)| v >= a);
-                if at < CANDIDATES {
-                    top.insert(at, (a, k));
-                    top.truncate(CANDIDATES);
-                }
-            }
-        }
+        let h = if n > 1 { curve[1].0 - curve[0].0 } else { self.motion.repeat_deg() };
+        let mut top = TopPeaks::new(n, curve[n - 1].1);
+        curve.iter().for_each(|&(_, t)| top.push(t));
+        self.refine_peaks(h, |k| curve[k].0, top.finish())
+    }
+
+    /// The peak among the candidates of a grid `h` apart (the k-th at `angle(k)`, see
+    /// [`TopPeaks`]): each refined on its two neighbouring intervals
+    /// ([`loomkin_numeric::golden_max`]); of peaks within 1e-13 of the highest, the earliest in
+    /// the repeat.
+    fn refine_peaks(&self, h: f64, angle: impl Fn(usize) -> f64, top: Vec<(f64, usize, f64)>) -> Peak {
+        let Some(&(a0, k0, t0)) = top.first() else {
+            return Peak { torque_n_m: 0.0, angle_deg: 0.0 };
+        };
         let repeat = self.motion.repeat_deg();
-        let first = top.first().map_or(0, |&(_, k)| k);
         // (|T|, angle within the repeat, T) of the grid's best point and of every refined candidate.
-        let mut found = vec![(value(first).abs(), angle(first), value(first))];
-        for &(_, k) in &top {
+        let mut found = vec![(a0, angle(k0), t0)];
+        for &(_, k, _) in &top {
             let m = loomkin_numeric::golden_max(|x| self.torque_at(x).abs(), angle(k) - h, angle(k) + h);
             found.push((m.value, m.at.rem_euclid(repeat), self.torque_at(m.at)));
         }
@@ -336,10 +389,25 @@ impl<'a> Drive<'a> {
         self.rms_scaled(k) / k
     }
 
-    /// [`Drive::rms`] of the torque times `k` (a power of two: exact).
+    /// [`Drive::rms`] of the torque times `k` (a power of two: exact): the integral of `(kT)²`
+    /// turn by turn, once per distinct turn (turns whose frames move alike, see
+    /// [`crate::turns`]) times the picks that repeat it.
     fn rms_scaled(&self, k: f64) -> f64 {
-        let joints = self.motion.joints();
+        let turns = Turns::new(self.motion, 0.0, 360.0);
         let rule = gauss_legendre(16);
+        let mut splits = 0usize;
+        let mut sum = 0.0;
+        for (&p, &count) in turns.first.iter().zip(&turns.count) {
+            let a = 360.0 * p as f64;
+            sum += count as f64 * self.square_integral(a, a + 360.0, k, &rule, &mut splits);
+        }
+        (sum / self.motion.repeat_deg()).sqrt()
+    }
+
+    /// `∫(kT)²dθ` over `[from, to]` (one turn): 16-point Gauss–Legendre on panels between the
+    /// joints (at most 20° wide), halved where a panel and its two halves disagree (see
+    /// [`Drive::rms`]); `splits` counts the halvings, [`MAX_RMS_SPLITS`] in all.
+    fn square_integral(&self, from: f64, to: f64, k: f64, rule: &[(f64, f64)], splits: &mut usize) -> f64 {
         let gl = |a: f64, b: f64| -> f64 {
             let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
             rule.iter()
@@ -350,7 +418,7 @@ impl<'a> Drive<'a> {
                 .sum()
         };
         let mut panels = Vec::new();
-        for w in joints.windows(2) {
+        for w in self.motion.joints_between(from, to).windows(2) {
             let (a, b) = (w[0], w[1]);
             let parts = ((b - a) / 20.0).ceil().max(1.0) as usize;
             let hp = (b - a) / parts as f64;
@@ -360,28 +428,94 @@ impl<'a> Drive<'a> {
             }
         }
         let first: f64 = panels.iter().map(|p| p.2).sum();
-        let repeat = self.motion.repeat_deg();
+        let span = to - from;
         let mut sum = 0.0;
         let mut stack: Vec<(f64, f64, f64, u32)> = panels.into_iter().map(|(a, b, i)| (a, b, i, 0)).collect();
-        let mut splits = 0usize;
         while let Some((a, b, whole, depth)) = stack.pop() {
             let m = 0.5 * (a + b);
             let (left, right) = (gl(a, m), gl(m, b));
-            let tol = (1e-13 * first * (b - a) / repeat).max(1e-13 * (left + right));
+            let tol = (1e-13 * first * (b - a) / span).max(1e-13 * (left + right));
             // A sum that is not finite (a torque that overflows) is not refined further, and the
             // halvings are bounded in all: a torque whose rounding noise stays above the
             // tolerance (a loom of micrometres with a million ends) would halve every panel to
             // the depth limit.
             let settled = (left + right - whole).abs() <= tol || !(left + right).is_finite();
-            if settled || depth >= 30 || splits >= MAX_RMS_SPLITS {
+            if settled || depth >= 30 || *splits >= MAX_RMS_SPLITS {
                 sum += left + right;
             } else {
-                splits += 1;
+                *splits += 1;
                 stack.push((a, m, left, depth + 1));
                 stack.push((m, b, right, depth + 1));
             }
         }
-        (sum / repeat).sqrt()
+        sum
+    }
+}
+
+/// The grid of a torque curve: `n` points `h` apart over the repeat; when `h` divides 360°
+/// (`per_turn` points a turn, else 0), per moving frame the grid index `k0` at which its moves
+/// into pick 0 meet the grid and the key of its power tables in the [`TableCache`].
+struct Grid {
+    h: f64,
+    n: usize,
+    per_turn: usize,
+    frames: Vec<Option<(i64, TableKey)>>,
+}
+
+/// A frame's power tables in the [`TableCache`]: the frame, the grid's phase in its move (bits), the points.
+type TableKey = (usize, u64, usize);
+
+/// The six largest local maxima of |T| of a periodic grid read in order, kept as it is read (a
+/// dwell's flat torque makes every point a local maximum): `(|T|, k, T)`, largest first, a tie
+/// to the earlier point.
+struct TopPeaks {
+    n: usize,
+    /// The two latest values (the point before the one under test, and it).
+    prev: f64,
+    cur: f64,
+    /// Values read so far.
+    read: usize,
+    first: f64,
+    top: Vec<(f64, usize, f64)>,
+}
+
+impl TopPeaks {
+    const CANDIDATES: usize = 6;
+
+    /// For a grid of `n` points whose last value is `last` (the first point's neighbour).
+    fn new(n: usize, last: f64) -> Self {
+        Self { n, prev: f64::NAN, cur: last, read: 0, first: 0.0, top: Vec::with_capacity(Self::CANDIDATES + 1) }
+    }
+
+    /// The next value of the grid.
+    fn push(&mut self, v: f64) {
+        if self.read == 0 {
+            self.first = v;
+        } else {
+            self.test(self.read - 1, v);
+        }
+        (self.prev, self.cur) = (self.cur, v);
+        self.read += 1;
+    }
+
+    /// Whether point `k` (value `cur`, neighbours `prev` and `next`) is a candidate.
+    fn test(&mut self, k: usize, next: f64) {
+        let a = self.cur.abs();
+        if a >= self.prev.abs() && a >= next.abs() {
+            let at = self.top.partition_point(|&(v, _, _)| v >= a);
+            if at < Self::CANDIDATES {
+                self.top.insert(at, (a, k, self.cur));
+                self.top.truncate(Self::CANDIDATES);
+            }
+        }
+    }
+
+    /// The candidates, once all `n` values are read.
+    fn finish(mut self) -> Vec<(f64, usize, f64)> {
+        if self.read == self.n && self.n > 0 {
+            self.test(self.n - 1, self.first);
+        }
+        self.top
     }
 }
 

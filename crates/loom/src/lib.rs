@@ -39,6 +39,7 @@ mod motion;
 mod pattern;
 mod stagger;
 mod timing;
+mod turns;
 
 pub use check::{CheckReport, FrameCheck, check};
 pub use diagram::{

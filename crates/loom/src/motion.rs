@@ -122,6 +122,38 @@ impl Motion {
             .collect()
     }
 
+    /// The number of frame `i`'s moves over one repeat ([`Motion::moves`] without the list).
+    pub fn move_count(&self, i: usize) -> usize {
+        (0..self.picks).filter(|&p| self.is_up(i, p as i64) != self.is_up(i, p as i64 - 1)).count()
+    }
+
+    /// The angles in `[from_deg, to_deg]` (any angles, not wrapped into the repeat) where some
+    /// frame's motion is not smooth, as [`Motion::joints`] lists them over the repeat, sorted, with
+    /// both ends (a joint within 1e-9° of an end is the end): the panels of exact quadrature over
+    /// a part of the repeat.
+    pub fn joints_between(&self, from_deg: f64, to_deg: f64) -> Vec<f64> {
+        let phi = self.motion_deg();
+        let mut out = vec![from_deg, to_deg];
+        for i in 0..self.frames() {
+            let c = self.centre0_deg[i];
+            let first = ((from_deg - c - phi / 2.0) / 360.0).floor() as i64;
+            let last = ((to_deg - c + phi / 2.0) / 360.0).ceil() as i64;
+            for q in first..=last {
+                let rising = self.is_up(i, q);
+                if rising == self.is_up(i, q - 1) {
+                    continue;
+                }
+                let start = 360.0 * q as f64 + c - phi / 2.0;
+                let law = self.law.law(rising);
+                let xs = std::iter::once(0.0).chain(law.joints()).chain(std::iter::once(1.0));
+                out.extend(xs.map(|x| start + x * phi).filter(|&t| t > from_deg + 1e-9 && t < to_deg - 1e-9));
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
+        out
+    }
+
     /// The height of a frame at a state, m.
     fn level(&self, i: usize, up: bool) -> f64 {
         if up { self.stroke_m[i] / 2.0 } else { -self.stroke_m[i] / 2.0 }

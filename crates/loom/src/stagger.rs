@@ -162,9 +162,7 @@ impl Search<'_> {
         let (loom, motion) = self.setup(x)?;
         let drive = Drive::new(&loom, &motion, self.pattern);
         let timing = Timing::new(&loom, &motion, self.pattern)?;
-        let ins = &loom.insertion;
-        let min_clear =
-            (0..motion.picks()).map(|p| timing.min_over(p, ins.entry_deg, ins.exit_deg)).fold(f64::INFINITY, f64::min);
+        let min_clear = timing.min_clearance_m();
         Ok(StaggerCase {
             label: label.into(),
             stagger_deg: self.per_frame(x),

@@ -14,6 +14,7 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
+use crate::turns::Turns;
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
 
@@ -162,25 +163,50 @@ impl<'a> Timing<'a> {
         best
     }
 
+    /// The picks grouped by what the frames do over the span a pick's timing reads (its turn,
+    /// from the crossing, and the insertion): each group's numbers are those of its first pick.
+    fn turns(&self) -> Turns {
+        let ins = &self.loom.insertion;
+        let (a, b) = self.turn();
+        Turns::new(self.motion, a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
+    }
+
     /// The least clearance over the required insertion of every pick, m (a cheap form for the
-    /// stagger search: on a grid of `step_deg` and the ends, not refined).
+    /// stagger search: on a grid of `step_deg` and the ends, not refined), once per distinct turn.
     pub fn min_clearance_coarse(&self, step_deg: f64) -> f64 {
         let ins = &self.loom.insertion;
         let n = ((ins.exit_deg - ins.entry_deg) / step_deg).ceil().max(1.0) as usize;
         let h = (ins.exit_deg - ins.entry_deg) / n as f64;
-        (0..self.upper.len())
-            .flat_map(|p| (0..=n).map(move |k| (p, ins.entry_deg + k as f64 * h)))
+        self.turns()
+            .first
+            .iter()
+            .flat_map(|&p| (0..=n).map(move |k| (p, ins.entry_deg + k as f64 * h)))
             .map(|(p, t)| self.clearance_m(p, t))
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// The report: every pick's window, the common window and its length, the least clearance,
-    /// and the highest speed. Fails when the carrier is taller than the shed ever opens.
-    pub fn report(&self) -> Result<TimingReport> {
-        let picks: Vec<PickWindow> = (0..self.upper.len()).map(|p| self.pick_window(p)).collect();
+    /// The least clearance over the required insertion of every pick, m ([`Timing::min_over`]
+    /// from entry to exit), once per distinct turn.
+    pub fn min_clearance_m(&self) -> f64 {
         let ins = &self.loom.insertion;
-        if picks.iter().any(|w| w.open_deg.is_nan()) {
-            let max_clear = self.max_clear_m();
+        self.turns().first.iter().map(|&p| self.min_over(p, ins.entry_deg, ins.exit_deg)).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The report: every pick's window, the common window and its length, the least clearance,
+    /// and the highest speed. Fails when the carrier is taller than the shed ever opens. Each
+    /// distinct turn is computed once (picks that repeat one get its numbers).
+    pub fn report(&self) -> Result<TimingReport> {
+        self.report_of(true)
+    }
+
+    /// [`Timing::report`] with no per-pick list when `picks` is false (what `loom check` prints:
+    /// memory that does not grow with the repeat).
+    pub fn report_of(&self, picks: bool) -> Result<TimingReport> {
+        let turns = self.turns();
+        let windows: Vec<PickWindow> = turns.first.iter().map(|&p| self.pick_window(p)).collect();
+        let ins = &self.loom.insertion;
+        if windows.iter().any(|w| w.open_deg.is_nan()) {
+            let max_clear = self.max_clear_of(&turns);
             return Err(LoomError::Infeasible {
                 field: "insertion.carrier_height_mm".into(),
                 reason: format!(
@@ -191,11 +217,16 @@ impl<'a> Timing<'a> {
                 ),
             });
         }
-        let open_deg = picks.iter().map(|w| w.open_deg).fold(f64::NEG_INFINITY, f64::max);
-        let close_deg = picks.iter().map(|w| w.close_deg).fold(f64::INFINITY, f64::min);
+        let open_deg = windows.iter().map(|w| w.open_deg).fold(f64::NEG_INFINITY, f64::max);
+        let close_deg = windows.iter().map(|w| w.close_deg).fold(f64::INFINITY, f64::min);
         let window_deg = (close_deg - open_deg).max(0.0);
-        let min_clearance_mm = picks.iter().map(|w| w.min_clearance_mm).fold(f64::INFINITY, f64::min);
+        let min_clearance_mm = windows.iter().map(|w| w.min_clearance_mm).fold(f64::INFINITY, f64::min);
         let v = ins.mean_speed_m_s(self.loom.speed.rpm());
+        let picks = if picks {
+            turns.of.iter().enumerate().map(|(p, &c)| PickWindow { pick: p + 1, ..windows[c as usize] }).collect()
+        } else {
+            Vec::new()
+        };
         Ok(TimingReport {
             picks,
             open_deg,
@@ -204,17 +235,23 @@ impl<'a> Timing<'a> {
             min_clearance_mm,
             mean_speed_m_s: v,
             max_speed_rpm: max_speed_rpm(v, window_deg, ins.reed_width_m, ins.carrier_length_m),
-            max_clear_mm: self.max_clear_m() * 1e3,
+            max_clear_mm: self.max_clear_of(&turns) * 1e3,
         })
     }
 
     /// The largest clear height at the carrier's front edge over the repeat, m: per pick the
     /// largest of a 5° grid, refined by golden-section search between its neighbours.
     pub fn max_clear_m(&self) -> f64 {
+        self.max_clear_of(&self.turns())
+    }
+
+    fn max_clear_of(&self, turns: &Turns) -> f64 {
         let (a, b) = self.turn();
         let h = (b - a) / 72.0;
-        (0..self.upper.len())
-            .map(|p| {
+        turns
+            .first
+            .iter()
+            .map(|&p| {
                 let f = |t: f64| self.clear_m(p, self.x_c, 360.0 * p as f64 + t);
                 let (k, v) = (0..=72)
                     .map(|k| (k, f(a + h * k as f64)))

@@ -45,12 +45,14 @@ impl RequiredVelocity {
          paper's 10 %.",
     )
     .with_default(10.0);
-    /// `path_m`: s, 0 < s ≤ 100 m; 1.53 m (with φ_s = 120°, V_r = 17 m/s at 200 rpm as Fig. 5 requires).
+    /// `path_m`: s, 0.01 ≤ s ≤ 100 m; 1.53 m (with φ_s = 120°, V_r = 17 m/s at 200 rpm as Fig. 5
+    /// requires). The path is at least the carrier's own length, so 1 cm is below any shuttle or
+    /// projectile; a shorter path made the comparison with V_r a 310-digit percentage (1e-300 m).
     pub const PATH_M: Field = Field::new(
         "path_m",
-        Range::open_closed(0.0, 100.0, "m"),
-        "Shuttle length plus shuttle race s: 0 < s ≤ 100 m; 1.53 m, which with φ_s = 120° gives the \
-         paper's V_r = 17 m/s at 200 rpm.",
+        Range::closed(0.01, 100.0, "m"),
+        "Shuttle length plus shuttle race s: 0.01 ≤ s ≤ 100 m (the path includes the shuttle's own \
+         length); 1.53 m, which with φ_s = 120° gives the paper's V_r = 17 m/s at 200 rpm.",
     )
     .with_default(1.53);
     /// `free_shed_deg`: φ_s, 0 < φ_s ≤ 360°; 120°.
@@ -62,7 +64,7 @@ impl RequiredVelocity {
     )
     .with_default(120.0);
 
-    /// Checks 0 ≤ p < 100, s > 0, 0 < φ_s ≤ 360.
+    /// Checks 0 ≤ p < 100, 0.01 ≤ s ≤ 100 m, 0 < φ_s ≤ 360.
     pub fn validate(&self) -> Result<()> {
         Self::RETARDATION_PCT.check(self.retardation_pct)?;
         Self::PATH_M.check(self.path_m)?;
@@ -96,5 +98,22 @@ mod tests {
         assert!(r.validate().unwrap_err().to_string().contains("retardation_pct"));
         let r = RequiredVelocity { free_shed_deg: 0.0, ..Default::default() };
         assert!(r.validate().is_err());
+    }
+
+    #[test]
+    fn path_range_ends_give_finite_comparisons() {
+        // A path far below a shuttle's length (1e-300 m) gave a 310-digit percentage: refused,
+        // naming the field; the ends of the range give finite, modest velocities.
+        for bad in [1e-300, 5e-324, 0.009_999, 100.000_001] {
+            let r = RequiredVelocity { path_m: bad, ..Default::default() };
+            assert!(r.validate().unwrap_err().to_string().contains("path_m"), "{bad}");
+        }
+        for ok in [0.01, 100.0] {
+            let r = RequiredVelocity { path_m: ok, ..Default::default() };
+            r.validate().unwrap();
+            // Linear in s: the end's velocity is the default's scaled by s / 1.53.
+            let v = r.at(200.0);
+            assert!((v - 17.0 * ok / 1.53).abs() <= 1e-12 * v, "{ok}: {v}");
+        }
     }
 }

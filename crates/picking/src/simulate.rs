@@ -310,14 +310,16 @@ fn evaluate(
         }
     }
     let vr = m.required().at(st.speed_rpm);
-    // The required velocity is the divisor of the percentage: a path so short that it underflows
-    // (path_m = 5e-324) leaves no finite comparison.
+    // The required velocity is the divisor of the percentage: a free-shed angle so small that it
+    // overflows (free_shed_deg = 5e-324) leaves no finite comparison (path_m's range keeps V_r
+    // from underflowing).
     let pct = (last.v_m_s / vr - 1.0) * 100.0;
-    if !(vr >= f64::MIN_POSITIVE && pct.is_finite()) {
+    if !(vr >= f64::MIN_POSITIVE && vr.is_finite() && pct.is_finite()) {
         let r = m.required();
+        let (field, value) = if vr.is_finite() { ("path_m", r.path_m) } else { ("free_shed_deg", r.free_shed_deg) };
         return Err(PickError::NonFiniteResult {
-            field: "path_m".into(),
-            value: r.path_m,
+            field: field.into(),
+            value,
             quantity: "the required velocity (path over the free-shed time) and the comparison with it".into(),
         });
     }

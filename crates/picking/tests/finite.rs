@@ -34,10 +34,20 @@ fn extreme_design_inputs_are_refused_with_the_right_field() {
 fn extreme_mechanism_constants_and_path_are_refused() {
     let p = Params { c4_m_per_n: 1e-320, ..Params::paper() };
     assert_eq!(blamed(Mechanism::new(p, DesignSpec::paper()).unwrap_err()), "c4_m_per_n");
+    // A path below the carrier's own length is refused when the mechanism is built (it made the
+    // comparison with V_r infinite at 5e-324 m and a 310-digit percentage at 1e-300 m).
+    for path_m in [5e-324, 1e-300] {
+        let e = Mechanism::paper_default()
+            .with_required(RequiredVelocity { path_m, ..RequiredVelocity::default() })
+            .unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.starts_with("path_m = ") && msg.contains("0.01 ≤ path_m ≤ 100 m"), "{msg}");
+    }
+    // A free-shed angle so small that V_r overflows still stops at the comparison, naming it.
     let m = Mechanism::paper_default()
-        .with_required(RequiredVelocity { path_m: 5e-324, ..RequiredVelocity::default() })
+        .with_required(RequiredVelocity { free_shed_deg: 5e-324, ..RequiredVelocity::default() })
         .unwrap();
     let settings = loomkin_picking::Settings::designed(&m);
     let e = simulate(&m, &settings, loomkin_picking::Method::Closed).unwrap_err();
-    assert_eq!(blamed(e), "path_m");
+    assert_eq!(blamed(e), "free_shed_deg");
 }

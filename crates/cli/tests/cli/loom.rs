@@ -206,3 +206,44 @@ fn every_command_reads_and_refuses_drafts_alike() {
     assert_eq!(serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap(), plain);
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// `loom check` of a long repeat holds little more than the pattern (issue 27: ~17 kB a pick
+/// on main, 1.68 GB at 10⁵ picks): the torque's grid is read a turn at a time and each distinct
+/// turn is computed once. 480 and 19,200 picks of a 48-pick point draft: 213 bytes a pick
+/// measured (the file's text, the lifts and their copies in the motion and the timing); 17 kB a
+/// pick before. The same numbers for both, the repeat being periodic.
+#[test]
+fn check_memory_hardly_grows_with_the_repeat() {
+    let dir = scratch("long-check");
+    let row = |p: usize| {
+        let s = if p % 48 < 24 { p % 48 } else { 47 - p % 48 };
+        (0..12).map(|k| ((s + 2 * k) % 24 + 1).to_string()).collect::<Vec<_>>().join(" ")
+    };
+    let mut runs = Vec::new();
+    for picks in [480usize, 19_200] {
+        let plan = dir.join(format!("point-{picks}.txt"));
+        std::fs::write(&plan, (0..picks).map(row).collect::<Vec<_>>().join("\n") + "\n").unwrap();
+        let args = ["loom", "check", &ex("rapier-loom.toml"), "--lift-plan", plan.to_str().unwrap(), "--json"];
+        let Some((peak, _)) = crate::output::peak_memory_while_reading(&args) else { return };
+        let v = stdout_json(&args);
+        runs.push((picks, peak, v));
+    }
+    let (small, large) = (&runs[0], &runs[1]);
+    let per_pick = (large.1 as f64 - small.1 as f64) / (large.0 - small.0) as f64;
+    assert!(
+        per_pick < 400.0,
+        "{per_pick:.0} bytes a pick: {} at {} picks, {} at {}",
+        small.1,
+        small.0,
+        large.1,
+        large.0
+    );
+    for key in ["min_clearance_mm", "window_deg", "max_speed_rpm"] {
+        assert_eq!(small.2[key], large.2[key], "{key}");
+    }
+    for key in ["peak_torque_n_m", "rms_torque_n_m"] {
+        let (a, b) = (small.2[key].as_f64().unwrap(), large.2[key].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-13 * a, "{key}: {a} vs {b}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -159,7 +159,7 @@ fn every_output_is_checked_before_any_is_written() {
 
 /// The peak memory (VmHWM, bytes) of `loomkin ARGS` seen while its standard output is read to the
 /// end, and the output's line count; `None` where /proc is not there.
-fn peak_memory_while_reading(args: &[&str]) -> Option<(u64, usize)> {
+pub(crate) fn peak_memory_while_reading(args: &[&str]) -> Option<(u64, usize)> {
     if !std::path::Path::new("/proc/self/status").exists() {
         return None;
     }

@@ -1,0 +1,70 @@
+//! The turns of a repeat grouped by what happens in them, so that a quantity of one turn (its
+//! clearance, its torque's square integrated) is computed once per distinct turn, not once per pick.
+//!
+//! What the frames do over a span `[360p + from, 360p + to]` of the main shaft depends only on
+//! which frames are up at a few picks around `p`: [`Motion::frame`] at angle θ reads the picks
+//! `q − 1` and `q`, `q` the move centre nearest θ. Two picks whose lifts agree over that window
+//! see the same motion over the span (shifted by whole turns), so a draft repeated many times —
+//! 10⁵ picks of a 48-pick point — has 48 distinct turns or fewer. The window is wide enough for
+//! every frame's centre (crossing angle plus stagger), which the tests check against a direct
+//! evaluation pick by pick.
+
+use crate::Motion;
+use std::collections::HashMap;
+
+/// Picks grouped by the lifts of the window around each (see the module's text).
+#[derive(Debug, Clone)]
+pub(crate) struct Turns {
+    /// The first pick of each class, in order of first appearance.
+    pub first: Vec<usize>,
+    /// Picks in each class.
+    pub count: Vec<usize>,
+    /// The class of each pick.
+    pub of: Vec<u32>,
+}
+
+impl Turns {
+    /// The picks of `motion` grouped by what the frames do over `[360p + from_deg, 360p + to_deg]`.
+    pub fn new(motion: &Motion, from_deg: f64, to_deg: f64) -> Self {
+        let frames = motion.frames();
+        let (cmin, cmax) = (0..frames)
+            .map(|i| motion.centre0_deg(i))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c), b.max(c)));
+        let (lo, hi) = if frames == 0 {
+            (0, 0)
+        } else {
+            // The nearest centre to θ lies at q = round((θ − c)/360) picks; q − 1 and q are read.
+            (((from_deg - cmax) / 360.0).floor() as i64 - 2, ((to_deg - cmin) / 360.0).ceil() as i64 + 1)
+        };
+        let bits = frames * (hi - lo + 1) as usize;
+        let words = bits.div_ceil(64).max(1);
+        let mut classes: HashMap<Vec<u64>, usize> = HashMap::new();
+        let (mut first, mut count) = (Vec::new(), Vec::new());
+        let mut of = Vec::with_capacity(motion.picks());
+        let mut key = vec![0u64; words];
+        for p in 0..motion.picks() {
+            key.iter_mut().for_each(|w| *w = 0);
+            let mut b = 0usize;
+            for d in lo..=hi {
+                for i in 0..frames {
+                    if motion.is_up(i, p as i64 + d) {
+                        key[b / 64] |= 1 << (b % 64);
+                    }
+                    b += 1;
+                }
+            }
+            let c = match classes.get(&key) {
+                Some(&c) => c,
+                None => {
+                    classes.insert(key.clone(), first.len());
+                    first.push(p);
+                    count.push(0);
+                    first.len() - 1
+                }
+            };
+            count[c] += 1;
+            of.push(c as u32);
+        }
+        Self { first, count, of }
+    }
+}
