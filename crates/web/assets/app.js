@@ -9,24 +9,83 @@ const $ = (sel) => document.querySelector(sel);
 const loomkin = (window.loomkin = { ready: false, evalCount: 0, busy: false, charts: {}, errors: [] });
 window.addEventListener("error", (e) => loomkin.errors.push(String(e.message)));
 window.addEventListener("unhandledrejection", (e) => loomkin.errors.push(String(e.reason)));
+// Per view, the field the page itself refused ({input}), until it is corrected: see refuseField.
+const refusals = {};
 
 // ---------------------------------------------------------------- API and status
 
+// Every request can be cancelled: one that lasts over PROGRESS_AFTER_MS shows a progress line
+// (what runs, for how long, against the server's time budget from /api/info) with a cancel button
+// that aborts it; the server stops the computation when its client goes away.
+const PROGRESS_AFTER_MS = 500;
+const running = new Set(); // {path, t0, ctl}
+let progressTimer = null;
+
 async function api(path, body) {
-  const init = body === undefined ? {} : { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) };
-  const res = await fetch("/api" + path, init);
-  let data = null;
-  try { data = await res.json(); } catch (_) { /* not JSON */ }
-  if (!res.ok) {
-    const msg = data && data.error ? data.error : `${res.status} ${res.statusText}`;
-    const err = new Error(msg);
-    err.field = data && data.field;
-    throw err;
+  const ctl = new AbortController();
+  const job = { path, t0: performance.now(), ctl };
+  const init = body === undefined ? { signal: ctl.signal } : { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body), signal: ctl.signal };
+  running.add(job);
+  if (!progressTimer) progressTimer = setInterval(showProgress, 200);
+  try {
+    let res;
+    try {
+      res = await fetch("/api" + path, init);
+    } catch (e) {
+      if (ctl.signal.aborted) {
+        const err = new Error("cancelled");
+        err.cancelled = true;
+        throw err;
+      }
+      throw e;
+    }
+    let data = null;
+    try { data = await res.json(); } catch (_) { /* not JSON */ }
+    if (!res.ok) {
+      const msg = data && data.error ? data.error : `${res.status} ${res.statusText}`;
+      const err = new Error(msg);
+      err.field = data && data.field;
+      throw err;
+    }
+    return data;
+  } finally {
+    running.delete(job);
+    showProgress();
   }
-  return data;
+}
+
+// The progress line of the longest-running request, if it has run over PROGRESS_AFTER_MS.
+function showProgress() {
+  let box = $("#progress");
+  if (!box) {
+    box = el("div", { id: "progress", hidden: true }, el("span", { id: "progress-text" }), el("progress", { id: "progress-bar", max: 1, value: 0 }),
+      el("button", { type: "button", id: "progress-cancel", textContent: "cancel", title: "stop this computation" }));
+    box.setAttribute("role", "status");
+    box.querySelector("button").addEventListener("click", () => { const j = longest(); if (j) j.ctl.abort(); });
+    document.body.append(box);
+  }
+  const j = longest();
+  if (!j) {
+    box.hidden = true;
+    if (!running.size && progressTimer) { clearInterval(progressTimer); progressTimer = null; }
+    return;
+  }
+  const s = (performance.now() - j.t0) / 1000, budget = loomkin.limits && loomkin.limits.heavy_budget_s;
+  box.hidden = false;
+  $("#progress-text").textContent = `computing ${j.path.replace(/^\//, "")}: ${s.toFixed(0)} s` + (budget ? ` (stopped after ${budget} s)` : "");
+  $("#progress-bar").value = budget ? Math.min(1, s / budget) : 0;
+}
+
+function longest() {
+  let best = null;
+  for (const j of running) if (performance.now() - j.t0 > PROGRESS_AFTER_MS && (!best || j.t0 < best.t0)) best = j;
+  return best;
 }
 
 function status(text, isError) {
+  // A value the page refused stays the news until it is corrected (an answer to an earlier state may
+  // still arrive).
+  if (!isError && refusals[currentView]) return;
   const el = $("#status");
   el.textContent = text || "";
   el.className = isError ? "error" : "";
@@ -154,12 +213,13 @@ function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCom
     // its span, e.g. a 720° cycle).
     const v = +field.value;
     if (field.value === "" || outOfLimits(field, v)) {
-      field.classList.add("bad");
       const allowed = limits ? limitsText(field, label, unit) : `${field.min} … ${field.max} ${unit}`;
-      status(`${label}: ${field.value || "(empty)"} is out of range: allowed ${allowed}`, true);
+      const typed = field.validity && field.validity.badInput ? "not a number" : field.value || "(empty)";
+      refuseField("", field, `${label}: ${typed} is out of range: allowed ${allowed}`);
       return;
     }
     field.classList.remove("bad");
+    acceptField(field);
     range.value = String(v);
     onInput(v);
     if (onCommit) onCommit(v);
@@ -171,27 +231,114 @@ function sliderWithNumber(id, label, unit, min, max, step, value, onInput, onCom
 }
 
 // Marks the inputs a refused request names (error.field, a JSON path such as
-// "design.points[2]") and says which table row it is, counted from 1 as the table shows.
-// fields(path) → {inputs: [elements], row?: <tr>, rowNumber?: n, label?: text} or null.
+// "design.points[2]"), writes the message beside them (the header scrolls away) and in the header,
+// and marks the view's charts stale: they keep the last valid result until a request succeeds.
+// A table row is named as the table shows it, counted from 1 ("row 3 y", never
+// "design.points[2][1]"). fields(path) → {inputs: [elements], row?: <tr>, rowNumber?: n,
+// label?: text} or null.
 function showFieldError(prefix, e, fields) {
-  for (const x of document.querySelectorAll(".bad-api")) x.classList.remove("bad", "bad-api");
+  if (e.cancelled) { status((prefix ? prefix + ": " : "") + "cancelled"); return; }
+  clearFieldErrors();
   let msg = e.message;
   const hit = e.field && fields ? fields(e.field) : null;
   if (hit) {
     for (const i of hit.inputs || []) if (i) i.classList.add("bad", "bad-api");
     if (hit.row) hit.row.classList.add("bad", "bad-api");
+    let name = hit.label;
     if (hit.rowNumber) {
-      // The API names the field by its 0-based index; the table counts rows from 1.
-      msg = `row ${hit.rowNumber}: ` + msg.replace(/^[\w.]+\[\d+\]:\s*/, "");
-    } else if (hit.label) {
-      msg = `${hit.label}: ` + msg.replace(/^[\w.\[\]]+:\s*/, "");
+      // The API counts from 0 and may name a cell ("[2][1]": row 3, second column).
+      const cell = /\]\[(\d+)\]$/.exec(e.field);
+      name = `row ${hit.rowNumber}` + (cell && hit.columns ? ` ${hit.columns[+cell[1]]}` : "");
     }
+    if (name) {
+      msg = msg.split(e.field).join(name);
+      if (!msg.startsWith(name)) msg = `${name}: ` + msg.replace(/^[\w.\[\]]+:\s*/, "");
+    }
+    const at = (hit.inputs || []).find((i) => i);
+    if (at) fieldNote(at, msg);
   }
+  markStale(true);
   status((prefix ? prefix + ": " : "") + msg, true);
 }
 
+// A refusal made by the page itself (a value that is not a number, out of the schema's limits):
+// shown as a refused request's is, nothing is sent, and it stays shown (answers to earlier states
+// that arrive meanwhile do not clear it) until the field is corrected (acceptField) or the state
+// replaced (undo, redo, the address): see refusals.
+function refuseField(prefix, input, message) {
+  const e = new Error(message);
+  e.field = "(page)";
+  delete refusals[currentView];
+  showFieldError(prefix, e, () => ({ inputs: [input] }));
+  // Marked "bad" but not "bad-api": a value never recorded, which Ctrl+Z takes back first (undo).
+  input.classList.remove("bad-api");
+  refusals[currentView] = { input };
+}
+
+// The state shown is replaced (undo, redo, the address): a value the page refused is dropped with it.
+function dropRefusal(view) {
+  if (refusals[view]) refusals[view].input.classList.remove("bad");
+  delete refusals[view];
+  clearFieldErrors();
+}
+
+// A field holds a valid value again: its refusal, if any, is over.
+function acceptField(input) {
+  for (const v of Object.keys(refusals)) if (refusals[v].input === input) delete refusals[v];
+}
+
+// The message of a refused field, written just below it (below its table, for a table cell).
+function fieldNote(input, text) {
+  const anchor = input.closest("table") || input.closest(".num-slider") || input;
+  let note = anchor.nextElementSibling;
+  if (!note || !note.classList.contains("field-msg")) {
+    note = el("small", { className: "field-msg" });
+    note.setAttribute("role", "alert");
+    anchor.insertAdjacentElement("afterend", note);
+  }
+  note.textContent = text;
+}
+
+// Marks (or clears) the charts of the view shown as stale: dimmed, with a note that they show the
+// last valid result.
+function markStale(on) {
+  if (!currentView) return;
+  for (const c of document.querySelectorAll(`#view-${currentView} .chart`)) c.classList.toggle("stale", on);
+}
+
 function clearFieldErrors() {
+  if (refusals[currentView]) return;
   for (const x of document.querySelectorAll(".bad-api")) x.classList.remove("bad", "bad-api");
+  // (A refusal of another view stays at its field until that view is shown and corrected.)
+  for (const x of document.querySelectorAll(".field-msg")) if (!refusals[(x.closest(".view") || { id: "" }).id.replace(/^view-/, "")]) x.remove();
+  markStale(false);
+}
+
+// The numbers of a list typed in a text field ("600, 750"), or null after refusing the field with
+// the first entry that is not a number, named by its place in the list.
+function numberList(prefix, input, label) {
+  const words = input.value.split(/[,;\s]+/).filter((t) => t);
+  const bad = words.findIndex((t) => !isFinite(Number(t)));
+  if (bad >= 0) {
+    refuseField(prefix, input, `${label}: entry ${bad + 1} ('${words[bad]}') is not a number`);
+    return null;
+  }
+  if (!words.length) {
+    refuseField(prefix, input, `${label}: give at least one number`);
+    return null;
+  }
+  input.classList.remove("bad");
+  acceptField(input);
+  return words.map(Number);
+}
+
+// A number typed in a field, or null after refusing the field ("not a number" or "empty").
+function numberIn(prefix, input, label) {
+  const v = parseFloat(input.value);
+  if (input.value.trim() !== "" && isFinite(v)) { input.classList.remove("bad"); acceptField(input); return v; }
+  const why = input.validity && input.validity.badInput ? "is not a number" : input.value.trim() === "" ? "is empty" : `'${input.value}' is not a number`;
+  refuseField(prefix, input, `${label}: ${why}`);
+  return null;
 }
 
 // ---------------------------------------------------------------- undo, redo and the URL
@@ -230,7 +377,8 @@ function viewHistory(view, get, set) {
     snapshot() { return JSON.stringify(get()); },
     // Records the state now shown (if it differs from the last one) and writes the address.
     commit(replace) {
-      if (!h.isReady) return;
+      // A state holding a value the page refused is not recorded (Ctrl+Z first takes the value back).
+      if (!h.isReady || refusals[view]) return;
       const snap = h.snapshot();
       if (snap !== h.states[h.at]) {
         h.states = h.states.slice(0, h.at + 1);
@@ -244,6 +392,7 @@ function viewHistory(view, get, set) {
     undo() { if (h.at > 0) { h.at--; h.apply(); } },
     redo() { if (h.at < h.states.length - 1) { h.at++; h.apply(); } },
     apply() {
+      dropRefusal(view);
       set(JSON.parse(h.states[h.at]));
       writeHash(view, false);
       updateHistoryButtons();
@@ -253,6 +402,7 @@ function viewHistory(view, get, set) {
       let state;
       try { state = decodeState(text); } catch (_) { status(`address: the ${view} state in the URL cannot be read; kept the one shown`, true); return; }
       if (JSON.stringify(state) === h.states[h.at]) return;
+      dropRefusal(view);
       set(state);
       const snap = h.snapshot();
       h.states = h.states.slice(0, h.at + 1);
@@ -302,10 +452,8 @@ function undo() {
 // (the schema's, scaled to mm by applyLimits), so that a refusal names the field in the unit it is
 // typed in (the API's message would give metres).
 function mmRefused(prefix, input, label, value) {
-  if (input.value !== "" && !outOfLimits(input, value)) return false;
-  const e = new Error(`${input.value || "(empty)"} mm is out of range: allowed ${limitsText(input, label, "mm")}`);
-  e.field = label;
-  showFieldError(prefix, e, () => ({ inputs: [input], label }));
+  if (input.value !== "" && !outOfLimits(input, value)) { acceptField(input); return false; }
+  refuseField(prefix, input, `${label}: ${input.value || "(empty)"} mm is out of range: allowed ${limitsText(input, label, "mm")}`);
   return true;
 }
 
@@ -326,7 +474,7 @@ document.addEventListener("keydown", (e) => {
 });
 
 Object.assign(loomkin, { histories: {}, undo, redo, encodeState, decodeState });
-window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, viewHistory, download, api, status, el, num, applyLimits };
+window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, refuseField, numberIn, numberList, viewHistory, download, api, status, el, num, applyLimits };
 
 // ---------------------------------------------------------------- tabs
 
@@ -412,11 +560,11 @@ function initServo() {
   const form = $("#drive-form");
   for (const [key, label, unit, optional] of DRIVE_FIELDS) {
     const input = el("input", { type: "number", step: "any", name: key, id: "drive-" + key, placeholder: optional || "" }); // optional: blank = default
-    input.addEventListener("input", () => { readDrive(); evaluate(); });
+    input.addEventListener("input", () => { if (readDrive()) evaluate(); });
     input.addEventListener("change", () => servo.history.commit());
     form.append(el("label", {}, `${label} (${unit})`, input));
   }
-  $("#speeds").addEventListener("input", () => { readSpeeds(); evaluate(); });
+  $("#speeds").addEventListener("input", () => { if (readSpeeds()) evaluate(); });
   $("#speeds").addEventListener("change", () => servo.history.commit());
   $("#spline-end").addEventListener("change", (e) => { servo.design.end = e.target.value; evaluate(); servo.history.commit(); });
   $("#point-add").addEventListener("click", addPoint);
@@ -450,22 +598,24 @@ function setDesign(design) {
   evaluate();
 }
 
+// Reads the drive fields into the design; false (the first bad field refused at the field) when
+// one is not a number.
 function readDrive() {
-  for (const [key, , , optional] of DRIVE_FIELDS) {
+  for (const [key, label, , optional] of DRIVE_FIELDS) {
     const input = $("#drive-" + key);
-    if (optional && input.value.trim() === "") { delete servo.design.drive[key]; input.classList.remove("bad"); continue; }
-    const v = parseFloat(input.value);
-    input.classList.toggle("bad", !isFinite(v));
-    if (isFinite(v)) servo.design.drive[key] = v;
+    if (optional && input.value.trim() === "" && !(input.validity && input.validity.badInput)) { delete servo.design.drive[key]; continue; }
+    const v = numberIn("", input, label);
+    if (v === null) return false;
+    servo.design.drive[key] = v;
   }
+  return true;
 }
 
 function readSpeeds() {
-  const input = $("#speeds");
-  const v = input.value.split(/[,;\s]+/).filter((t) => t).map(Number);
-  const ok = v.length > 0 && v.every((x) => isFinite(x));
-  input.classList.toggle("bad", !ok);
-  if (ok) servo.design.speeds_rpm = v;
+  const v = numberList("", $("#speeds"), "main-shaft speeds");
+  if (v === null) return false;
+  servo.design.speeds_rpm = v;
+  return true;
 }
 
 function renderPointsTable() {
@@ -477,10 +627,9 @@ function renderPointsTable() {
     const xi = el("input", { type: "number", step: "any", value: String(+x.toFixed(6)), disabled: fixed, id: `pt-x-${i}` });
     const yi = el("input", { type: "number", step: "any", value: String(+y.toFixed(6)), disabled: fixed, id: `pt-y-${i}` });
     const onInput = () => {
-      const nx = parseFloat(xi.value), ny = parseFloat(yi.value);
-      xi.classList.toggle("bad", !isFinite(nx));
-      yi.classList.toggle("bad", !isFinite(ny));
-      if (isFinite(nx) && isFinite(ny)) { pts[i] = [nx, ny]; evaluate(); servo.history.commit(); }
+      const nx = numberIn("", xi, `row ${i + 1} x`);
+      const ny = nx === null ? null : numberIn("", yi, `row ${i + 1} y`);
+      if (nx !== null && ny !== null) { pts[i] = [nx, ny]; evaluate(); servo.history.commit(); }
     };
     xi.addEventListener("change", onInput);
     yi.addEventListener("change", onInput);
@@ -556,7 +705,7 @@ function servoField(path) {
   let m = /^design\.points\[(\d+)\]/.exec(path);
   if (m) {
     const i = +m[1];
-    return { inputs: [$(`#pt-x-${i}`), $(`#pt-y-${i}`)], row: $(`#pt-row-${i}`), rowNumber: i + 1 };
+    return { inputs: [$(`#pt-x-${i}`), $(`#pt-y-${i}`)], row: $(`#pt-row-${i}`), rowNumber: i + 1, columns: ["x", "y"] };
   }
   m = /^design\.drive\.(\w+)/.exec(path);
   if (m) return { inputs: [$(`#drive-${m[1]}`)], label: (DRIVE_FIELDS.find((f) => f[0] === m[1]) || [m[1], m[1]])[1] };
@@ -945,7 +1094,8 @@ async function computePareto(chosen) {
   const i = shed.inputs;
   // 0 < h ≤ 1 m, as the library's Conditions.
   if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value)) return;
-  const motions_deg = i.motions.value.split(/[,;\s]+/).filter((t) => t).map(Number);
+  const motions_deg = numberList("shedding", i.motions, "motion angles");
+  if (motions_deg === null) return;
   status("evaluating the grid…");
   const req = { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() };
   const jl = shedJerkLimit();
@@ -1347,7 +1497,7 @@ async function start() {
   await loadSchemas();
   applyLimits($("#cam-rows"), "/api/servo/export", "rows");
   let views = ["servo", "catalogue"];
-  try { views = (await api("/info")).views; } catch (e) { status("info: " + e.message, true); }
+  try { const info = await api("/info"); views = info.views; loomkin.limits = info.limits; } catch (e) { status("info: " + e.message, true); }
   const tabs = $("#tabs");
   for (const v of views) {
     const b = el("button", { type: "button", textContent: VIEW_TITLES[v] || v, role: "tab" });

@@ -151,7 +151,7 @@ class Chart {
 
   // The data ranges, widened to nice ticks; fixed ranges are kept.
   layout() {
-    const dpr = window.devicePixelRatio || 1;
+    const dpr = this.pixelScale || window.devicePixelRatio || 1;
     const w = this.canvas.clientWidth || 600, h = this.canvas.clientHeight || 220;
     if (this.canvas.width !== Math.round(w * dpr) || this.canvas.height !== Math.round(h * dpr)) {
       this.canvas.width = Math.round(w * dpr);
@@ -563,7 +563,7 @@ function addTools(chart, kinds) {
   const reset = mk(bar, "⟲", "reset", "reset zoom and pan (or double-click the chart)", () => chart.resetView());
   reset.hidden = true;
   mk(bar, "save ▾", "save", "save the chart: PNG, SVG or CSV", () => { menu.hidden = !menu.hidden; });
-  if (kinds.includes("png")) mk(menu, "PNG picture", "png", "the chart as drawn, as a PNG picture", () => chart.canvas.toBlob((b) => dl("png", b, "image/png"), "image/png"));
+  if (kinds.includes("png")) mk(menu, `PNG picture (${PNG_SCALE}×)`, "png", `the chart as drawn, on white, at ${PNG_SCALE}× its size on screen`, () => renderPNG(chart, PNG_SCALE, (b) => dl("png", b, "image/png")));
   if (kinds.includes("svg")) mk(menu, "SVG drawing", "svg", "the chart as an SVG drawing", () => dl("svg", chart.toSVG(), "image/svg+xml"));
   if (kinds.includes("csv")) mk(menu, "CSV data", "csv", "the curves as CSV (units in the header)", () => dl("csv", chart.toCSV(), "text/csv"));
   bar.appendChild(menu);
@@ -656,6 +656,32 @@ function r2(v) {
 
 function esc(t) {
   return String(t).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;").replace(/"/g, "&quot;");
+}
+
+// Pixels per CSS pixel of a PNG download: sharp on paper and on a high-density screen.
+const PNG_SCALE = 2;
+
+// Draws a Chart or Scene once at `scale` pixels per CSS pixel onto white (the canvas itself is
+// transparent outside the lines) and passes the PNG Blob to `done`; the chart is drawn again as it was.
+function renderPNG(chart, scale, done) {
+  const hover = chart.hoverX;
+  chart.pixelScale = scale;
+  chart.hoverX = null;
+  let out;
+  try {
+    chart.draw();
+    out = document.createElement("canvas");
+    out.width = chart.canvas.width; out.height = chart.canvas.height;
+    const c = out.getContext("2d");
+    c.fillStyle = "#fff";
+    c.fillRect(0, 0, out.width, out.height);
+    c.drawImage(chart.canvas, 0, 0);
+  } finally {
+    chart.pixelScale = null;
+    chart.hoverX = hover;
+    chart.draw();
+  }
+  out.toBlob(done, "image/png");
 }
 
 // Draws a Chart or Scene once into an SvgContext and returns the document.
@@ -765,7 +791,7 @@ class Scene {
   }
 
   draw() {
-    const dpr = window.devicePixelRatio || 1;
+    const dpr = this.pixelScale || window.devicePixelRatio || 1;
     const w = this.canvas.clientWidth || 600, h = this.canvas.clientHeight || 420;
     this.canvas.width = Math.round(w * dpr); this.canvas.height = Math.round(h * dpr);
     const c = this.ctx;
@@ -848,5 +874,5 @@ class Scene {
   }
 }
 
-window.LoomkinCharts = { Chart, Scene, PALETTE, fmtValue, interp, niceTicks, download, addTools, SvgContext, renderSVG };
+window.LoomkinCharts = { Chart, Scene, PALETTE, fmtValue, interp, niceTicks, download, addTools, SvgContext, renderSVG, renderPNG, PNG_SCALE };
 })();

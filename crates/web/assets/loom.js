@@ -9,6 +9,9 @@ const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
 const { viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
 
 const loom = { inflight: false, queued: false, result: null, stagger: null, loomText: null, patternText: null, patternKind: null };
+// Longest loaded file (characters) carried in the page's address: a WIF draft of 1000 picks on 24
+// shafts is about 40 000; browsers take addresses of a few MB, but links this long break in mail.
+const LINK_MAX_CHARS = 200000;
 // Colours for up to 24 frames (front frame first).
 const FRAME_COLOURS = ["#1d4ed8", "#dc2626", "#16a34a", "#9333ea", "#ea580c", "#0891b2", "#be123c", "#4d7c0f",
   "#7c3aed", "#b45309", "#0f766e", "#db2777", "#2563eb", "#b91c1c", "#15803d", "#a21caf", "#c2410c", "#0e7490",
@@ -89,13 +92,13 @@ async function initLoom() {
   });
   loomFile.addEventListener("change", async () => {
     const f = loomFile.files[0]; if (!f) return;
-    loom.loomText = await f.text(); loomName.textContent = f.name; loomSel.value = "upload";
+    loom.loomText = await f.text(); loom.loomName = f.name; loomName.textContent = f.name; loomSel.value = "upload";
     document.querySelector("#loom-upload-label").hidden = false; resetStagger(); evaluate(); commit();
   });
   patFile.addEventListener("change", async () => {
     const f = patFile.files[0]; if (!f) return;
     loom.patternText = await f.text(); loom.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(loom.patternText) ? "wif" : "lift_plan";
-    patName.textContent = f.name; patSel.value = "upload";
+    loom.patternName = f.name; patName.textContent = f.name; patSel.value = "upload";
     document.querySelector("#loom-pattern-upload-label").hidden = false; resetStagger(); evaluate(); commit();
   });
   for (const e of [fromPick, picks]) e.addEventListener("change", () => { evaluate(); commit(); });
@@ -105,14 +108,32 @@ async function initLoom() {
   save.addEventListener("click", () => { if (loom.stagger) download("loom-staggered.toml", loom.stagger.loom_toml, "text/plain"); });
   loom.save = save;
   // The state: loom, pattern, the timing picks, the objective and whether the optimised stagger
-  // is drawn. Loaded files stay in the page only: a state naming one without it shows the first
-  // example; the stagger is kept while the loom and pattern stay (it is computed, not stored).
+  // is drawn. A loaded file travels in the state (so in the address, and a shared link reopens it)
+  // up to LINK_MAX_CHARS; a larger one stays in the page, the link shows the first example, and the
+  // page says so beside the file's name. The stagger is kept while the loom and pattern stay (it is
+  // computed, not stored).
   const firstLoom = ex.looms[0].name;
-  loom.history = viewHistory("loom", () => ({
-    loom: loomSel.value === "upload" && !loom.loomText ? firstLoom : loomSel.value,
-    pattern: patSel.value === "upload" && !loom.patternText ? "plain-default" : patSel.value,
-    from_pick: fromPick.value, picks: picks.value, objective: objective.value, stagger_drawn: apply.checked,
-  }), (st) => {
+  const carried = (text, name, extra) => (text && text.length <= LINK_MAX_CHARS ? { name, text, ...extra } : undefined);
+  const tooLarge = (text) => (text && text.length > LINK_MAX_CHARS ? ` (${text.length} characters: too large for the page's address, a link to this state opens ` : "");
+  loom.history = viewHistory("loom", () => {
+    const st = {
+      loom: loomSel.value === "upload" && !loom.loomText ? firstLoom : loomSel.value,
+      pattern: patSel.value === "upload" && !loom.patternText ? "plain-default" : patSel.value,
+      from_pick: fromPick.value, picks: picks.value, objective: objective.value, stagger_drawn: apply.checked,
+    };
+    if (st.loom === "upload") st.loom_file = carried(loom.loomText, loom.loomName);
+    if (st.pattern === "upload") st.pattern_file = carried(loom.patternText, loom.patternName, { kind: loom.patternKind });
+    loomName.textContent = (loom.loomName || "") + (tooLarge(loom.loomText) && `${tooLarge(loom.loomText)}${firstLoom})`);
+    patName.textContent = (loom.patternName || "") + (tooLarge(loom.patternText) && `${tooLarge(loom.patternText)}plain weave)`);
+    return st;
+  }, (st) => {
+    if (st.loom === "upload" && st.loom_file) {
+      loom.loomText = st.loom_file.text; loom.loomName = st.loom_file.name; loomName.textContent = st.loom_file.name;
+    }
+    if (st.pattern === "upload" && st.pattern_file) {
+      loom.patternText = st.pattern_file.text; loom.patternKind = st.pattern_file.kind === "wif" ? "wif" : "lift_plan";
+      loom.patternName = st.pattern_file.name; patName.textContent = st.pattern_file.name;
+    }
     const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
     const before = loomSel.value + "\n" + patSel.value;
     pick(loomSel, st.loom, !!loom.loomText, firstLoom);
@@ -167,6 +188,9 @@ function resetStagger() {
 
 // The first pick is counted from 1 here (as the pattern grid numbers them), from 0 by the API;
 // the number of picks goes as typed: the API refuses what it cannot draw, naming the field.
+// The view's examples and last answer, for tests and the console.
+loomkin.loomView = () => ({ examples: loom.examples, result: loom.result });
+
 loomkin.loomRequest = () => {
   const i = loom.inputs, q = source();
   q.from_pick = +i.fromPick.value - 1;
@@ -259,7 +283,7 @@ function drawGrid() {
   const cell = Math.max(3, Math.min(16, Math.floor((w - 50) / g.shafts), Math.floor(360 / maxRows)));
   const h = 34 + cell * maxRows + 6;
   cv.style.height = h + "px";
-  const dpr = window.devicePixelRatio || 1;
+  const dpr = loom.gridChart.pixelScale || window.devicePixelRatio || 1;
   const c = loom.gridChart.ctx;
   if (c === cv.getContext("2d")) { cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr); }
   c.setTransform(dpr, 0, 0, dpr, 0, 0);
