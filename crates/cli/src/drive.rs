@@ -7,6 +7,7 @@ use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_drive::ripple::{FLYWHEEL_KG_M2, STEP_DEG};
 use loomkin_drive::{MotorCurve, MotorKind, MotorSpec, Table, flywheel_for, solve};
+use loomkin_dynamics::Follower;
 use loomkin_io::Table as Csv;
 use loomkin_loom::{Drive, LoomShaft, Motion, ripple_figure};
 use serde::Serialize;
@@ -19,6 +20,8 @@ pub enum DriveCommand {
     Inertia(InertiaArgs),
     /// The main shaft's periodic speed under a motor: speed ripple, energy swing, motor torque, flywheel.
     Ripple(Box<RippleArgs>),
+    /// Time-true cams: the frames' laws corrected for the shaft's speed ripple, written as cycle files.
+    Correct(Box<CorrectArgs>),
 }
 
 /// `loomkin drive inertia`.
@@ -55,13 +58,9 @@ enum CurveArg {
     Kloss,
 }
 
-/// `loomkin drive ripple`.
+/// The motor flags of `drive ripple` and `drive correct`.
 #[derive(Debug, Args)]
-pub struct RippleArgs {
-    /// The loom file (TOML).
-    loom: PathBuf,
-    #[command(flatten)]
-    pattern: PatternArgs,
+pub struct MotorArgs {
     /// The motor (default: the file's `[drive]` motor, else constant).
     #[arg(long, value_enum)]
     motor: Option<MotorArg>,
@@ -92,6 +91,43 @@ pub struct RippleArgs {
     /// Servo: torque limit at the main shaft, N·m.
     #[arg(long, allow_hyphen_values = true)]
     servo_torque_limit_n_m: Option<f64>,
+}
+
+impl MotorArgs {
+    /// The loom file's `[drive]` motor with these flags over it.
+    fn motor(&self, loom: &loomkin_loom::Loom) -> Result<loomkin_drive::Motor> {
+        let over = MotorSpec {
+            motor: self.motor.map(|m| match m {
+                MotorArg::Constant => MotorKind::Constant,
+                MotorArg::Induction => MotorKind::Induction,
+                MotorArg::Servo => MotorKind::Servo,
+            }),
+            motor_curve: self.motor_curve.map(|c| match c {
+                CurveArg::Linear => MotorCurve::Linear,
+                CurveArg::Kloss => MotorCurve::Kloss,
+            }),
+            synchronous_rpm: self.synchronous_rpm,
+            rated_rpm: self.rated_rpm,
+            rated_power_kw: self.rated_power_kw,
+            breakdown_ratio: self.breakdown_ratio,
+            gear_ratio: self.gear_ratio,
+            servo_gain_n_m_s: self.servo_gain_n_m_s,
+            servo_integral_s: self.servo_integral_s,
+            servo_torque_limit_n_m: self.servo_torque_limit_n_m,
+        };
+        Ok(loom.drive.motor.overridden(&over).build(loom.speed.rpm(), "drive.")?)
+    }
+}
+
+/// `loomkin drive ripple`.
+#[derive(Debug, Args)]
+pub struct RippleArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    #[command(flatten)]
+    motor: MotorArgs,
     /// Inertia added to the main shaft, kg·m² (default: the file's `[drive] flywheel_kg_m2`, else 0).
     #[arg(long, allow_hyphen_values = true, conflicts_with = "target_ripple_pct")]
     flywheel_kg_m2: Option<f64>,
@@ -110,11 +146,42 @@ pub struct RippleArgs {
     plot: util::PlotOpts,
 }
 
+/// `loomkin drive correct`.
+#[derive(Debug, Args)]
+pub struct CorrectArgs {
+    /// The loom file (TOML).
+    loom: PathBuf,
+    #[command(flatten)]
+    pattern: PatternArgs,
+    #[command(flatten)]
+    motor: MotorArgs,
+    /// Inertia added to the main shaft, kg·m² (default: the file's `[drive] flywheel_kg_m2`, else 0).
+    #[arg(long, allow_hyphen_values = true)]
+    flywheel_kg_m2: Option<f64>,
+    /// Step of the speed-ripple grid, deg.
+    #[arg(long, default_value_t = STEP_DEG.default_value())]
+    step_deg: f64,
+    /// The frames' natural frequency on their drive, Hz: the residual vibration before and after
+    /// through the elastic model (left out: not computed).
+    #[arg(long, allow_hyphen_values = true)]
+    natural_hz: Option<f64>,
+    /// The frames' damping ratio ζ (with --natural-hz).
+    #[arg(long, allow_hyphen_values = true, default_value_t = Follower::DAMPING_RATIO.default_value())]
+    damping_ratio: f64,
+    /// Directory for the cycle files, one per moving frame (frame-01.toml …), read by `cam` and `dyn`.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print machine-readable JSON.
+    #[arg(long)]
+    json: bool,
+}
+
 /// Runs `loomkin drive …`.
 pub fn run(cmd: DriveCommand) -> Result<()> {
     match cmd {
         DriveCommand::Inertia(a) => run_inertia(a),
         DriveCommand::Ripple(a) => run_ripple(*a),
+        DriveCommand::Correct(a) => run_correct(*a),
     }
 }
 
@@ -179,26 +246,7 @@ struct RippleJson<'a> {
 fn run_ripple(a: RippleArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     STEP_DEG.check_as("--step-deg", a.step_deg)?;
-    let over = MotorSpec {
-        motor: a.motor.map(|m| match m {
-            MotorArg::Constant => MotorKind::Constant,
-            MotorArg::Induction => MotorKind::Induction,
-            MotorArg::Servo => MotorKind::Servo,
-        }),
-        motor_curve: a.motor_curve.map(|c| match c {
-            CurveArg::Linear => MotorCurve::Linear,
-            CurveArg::Kloss => MotorCurve::Kloss,
-        }),
-        synchronous_rpm: a.synchronous_rpm,
-        rated_rpm: a.rated_rpm,
-        rated_power_kw: a.rated_power_kw,
-        breakdown_ratio: a.breakdown_ratio,
-        gear_ratio: a.gear_ratio,
-        servo_gain_n_m_s: a.servo_gain_n_m_s,
-        servo_integral_s: a.servo_integral_s,
-        servo_torque_limit_n_m: a.servo_torque_limit_n_m,
-    };
-    let motor = loom.drive.motor.overridden(&over).build(loom.speed.rpm(), "drive.")?;
+    let motor = a.motor.motor(&loom)?;
     let motion = Motion::new(&loom, &pattern)?;
     let shaft = LoomShaft::new(&loom, &motion, &pattern);
     let table = Table::new(&shaft, a.step_deg)?;
@@ -251,4 +299,106 @@ fn run_ripple(a: RippleArgs) -> Result<()> {
         Some(t) => outln!("flywheel {:.6} kg·m² holds the ripple at {t} %", r.flywheel_kg_m2),
         None => outln!("flywheel {} kg·m²", r.flywheel_kg_m2),
     }
+}
+
+/// `drive correct --json`: the report and the files written.
+#[derive(Debug, Serialize)]
+struct CorrectJson<'a> {
+    #[serde(flatten)]
+    report: &'a loomkin_loom::CorrectionReport,
+    files: Vec<String>,
+}
+
+fn run_correct(a: CorrectArgs) -> Result<()> {
+    let (loom, pattern) = read(&a.loom, &a.pattern)?;
+    STEP_DEG.check_as("--step-deg", a.step_deg)?;
+    let motor = a.motor.motor(&loom)?;
+    let jf = match a.flywheel_kg_m2 {
+        Some(v) => FLYWHEEL_KG_M2.check_as("--flywheel-kg-m2", v)?,
+        None => loom.drive.flywheel_kg_m2,
+    };
+    let follower = a.natural_hz.map(|f| Follower::new(f, a.damping_ratio)).transpose()?;
+    let motion = Motion::new(&loom, &pattern)?;
+    let c = loomkin_loom::correct(&loom, &motion, &pattern, &motor, jf, a.step_deg, follower.as_ref())?;
+    std::fs::create_dir_all(&a.output)
+        .map_err(|e| anyhow::anyhow!("-o {}: cannot create the directory: {e}", a.output.display()))?;
+    let title = if loom.name.is_empty() { util::file_name(&a.loom) } else { loom.name.clone() };
+    let mut files = Vec::new();
+    for (i, f) in c.report.frames.iter().enumerate() {
+        if f.moves == 0 {
+            continue;
+        }
+        let spec = c.frames.cycle_spec(i, loomkin_units::rpm_from_rad_per_s(c.corrected_map.mean_speed_rad_s()));
+        let name = format!("frame-{:02}.toml", i + 1);
+        let text = format!(
+            "# {title}, {}: time-true cam (loomkin drive correct), {} motor; positions from the frame's place before the first move\n{}",
+            f.name,
+            c.report.motor,
+            spec.to_toml()?
+        );
+        let path = a.output.join(&name);
+        std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
+        files.push(path.display().to_string());
+    }
+    let r = &c.report;
+    if a.json {
+        return output::json(&CorrectJson { report: r, files });
+    }
+    outln!(
+        "time-true cams over {} picks, {} motor, mean {:.3} rpm: ripple {:.4} % with the design cams, {:.4} % with the corrected ({} rounds)",
+        r.picks,
+        r.motor,
+        r.mean_speed_rpm,
+        r.speed_ripple_pct,
+        r.speed_ripple_pct_after,
+        r.rounds
+    )?;
+    let vib = follower.is_some();
+    if vib {
+        outln!(
+            "{:<10} {:>6} {:>14} {:>14} {:>15} {:>15} {:>15}",
+            "frame",
+            "moves",
+            "timing before",
+            "timing after",
+            "residual before",
+            "residual after",
+            "at const speed"
+        )?;
+    } else {
+        outln!("{:<10} {:>6} {:>14} {:>14}", "frame", "moves", "timing before", "timing after")?;
+    }
+    let mm = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6} mm"));
+    for f in &r.frames {
+        let (b, af) =
+            (format!("{:.4}°", f.max_timing_error_deg_before), format!("{:.2e}°", f.max_timing_error_deg_after));
+        if vib {
+            outln!(
+                "{:<10} {:>6} {:>14} {:>14} {:>15} {:>15} {:>15}",
+                f.name,
+                f.moves,
+                b,
+                af,
+                mm(f.residual_vibration_mm_before),
+                mm(f.residual_vibration_mm_after),
+                mm(f.residual_vibration_constant_speed_mm)
+            )?;
+        } else {
+            outln!("{:<10} {:>6} {:>14} {:>14}", f.name, f.moves, b, af)?;
+        }
+    }
+    outln!(
+        "largest timing error {:.4}° before, {:.2e}° after; {} cycle files in {}",
+        r.max_timing_error_deg_before,
+        r.max_timing_error_deg_after,
+        files.len(),
+        a.output.display()
+    )?;
+    for n in &r.not_corrected {
+        outln!("not corrected: {n}")?;
+    }
+    if !vib {
+        outln!("(give --natural-hz for the frames' residual vibration before and after)")?;
+    }
+    Ok(())
 }

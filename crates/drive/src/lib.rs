@@ -13,10 +13,12 @@
 pub mod motor;
 pub mod ripple;
 pub mod sley;
+pub mod timetrue;
 
 pub use motor::{Induction, Motor, MotorCurve, MotorKind, MotorSpec, Servo};
 pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for, solve};
 pub use sley::synth::{SleySynthesis, SleyTarget};
+pub use timetrue::{CorrectedMove, Span, TimeMap, correct_move, time_excitation};
 
 pub use sley::{Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyState, SleyTable};
 

@@ -86,6 +86,11 @@ pub trait Shaft {
     fn breaks_rad(&self) -> Vec<f64> {
         Vec::new()
     }
+    /// The prefix of the shaft's keys in its input (`drive.` for a loom file's `[drive]` table):
+    /// refusals name `PREFIXrotating_inertia_kg_m2`, `PREFIXmotor`.
+    fn key_prefix(&self) -> &str {
+        ""
+    }
 }
 
 /// `J`, `dJ/dφ` and `M_load` on the integration grid: at every grid point and every midpoint.
@@ -281,6 +286,8 @@ struct Record {
     de: Vec<f64>,
     z: Vec<f64>,
     dz: Vec<f64>,
+    /// Time from the repeat's start, s.
+    t: Vec<f64>,
 }
 
 impl Record {
@@ -289,13 +296,15 @@ impl Record {
         self.de.clear();
         self.z.clear();
         self.dz.clear();
+        self.t.clear();
     }
 
-    fn push(&mut self, e: f64, z: f64, de: f64, dz: f64) {
+    fn push(&mut self, e: f64, z: f64, de: f64, dz: f64, t: f64) {
         self.e.push(e);
         self.de.push(de);
         self.z.push(z);
         self.dz.push(dz);
+        self.t.push(t);
     }
 }
 
@@ -350,7 +359,7 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
             let h = self.nodes[k + 1] - self.nodes[k];
             let s1 = self.stage(inv_j, drive, 2 * k, e, z)?;
             if let Some(r) = rec.as_deref_mut() {
-                r.push(e, z, s1.f[0], s1.f[1]);
+                r.push(e, z, s1.f[0], s1.f[1], t);
             }
             let s2 = self.stage(inv_j, drive, 2 * k + 1, e + 0.5 * h * s1.f[0], z + 0.5 * h * s1.f[1])?;
             let s3 = self.stage(inv_j, drive, 2 * k + 1, e + 0.5 * h * s2.f[0], z + 0.5 * h * s2.f[1])?;
@@ -396,7 +405,7 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
         }
         if let Some(r) = rec {
             let s1 = self.stage(inv_j, drive, 2 * m, e, z)?;
-            r.push(e, z, s1.f[0], s1.f[1]);
+            r.push(e, z, s1.f[0], s1.f[1], t);
         }
         Some(End { e, z, t, q, w, jac: p, dt })
     }
@@ -625,6 +634,28 @@ impl<S: Shaft + ?Sized> Solution<'_, '_, S> {
     pub fn load_torque(&self) -> Vec<f64> {
         (0..self.table.nodes.len()).map(|k| self.table.ml[2 * k]).collect()
     }
+
+    /// Time from the repeat's start at the grid points, s (the rule's own integral of `dφ/ω`,
+    /// whose last value is the repeat's time).
+    pub fn time_s(&self) -> &[f64] {
+        &self.rec.t
+    }
+
+    /// The shaft's time as a function of its angle ([`crate::timetrue::TimeMap`]): at the grid
+    /// points the time, `1/ω` and `−ω′/ω²` (with `ω′ = ω/2·(E′/E − J′/J)`, `E′` the balance's
+    /// `M_motor − M_load`), a quintic Hermite interpolant between them.
+    pub fn time_map(&self) -> crate::timetrue::TimeMap {
+        let w = self.omega();
+        let dw: Vec<f64> = (0..w.len())
+            .map(|k| {
+                let phi = self.table.nodes[k];
+                let (_, dj) = self.table.shaft.inertia(phi.rem_euclid(self.table.period));
+                let j = self.table.j[2 * k] + self.extra;
+                0.5 * w[k] * (self.rec.de[k] / self.rec.e[k] - dj / j)
+            })
+            .collect();
+        crate::timetrue::TimeMap::new(self.table.nodes.clone(), self.rec.t.clone(), w, dw)
+    }
 }
 
 /// The largest value of `f` over the repeat: the grid's largest `values` refined by golden section
@@ -674,9 +705,10 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
     let jmax = table.j.iter().copied().fold(f64::NEG_INFINITY, f64::max) + extra;
     // A shaft whose inertia all but vanishes somewhere (the frames dwelling, the sley at a dead
     // centre, nothing rotating) would spin up without bound there: ω = √(2E/J).
+    let prefix = table.shaft.key_prefix();
     if jmin.is_nan() || jmin <= MIN_INERTIA_RATIO * jmax {
         return Err(RippleError::field(
-            "rotating_inertia_kg_m2",
+            format!("{prefix}rotating_inertia_kg_m2"),
             format!(
                 "the shaft's inertia falls to {} kg·m² (largest {} kg·m²) where the mechanisms stand still: give the rotating parts' inertia (> 0 kg·m²)",
                 loomkin_units::compact(jmin),
@@ -688,7 +720,7 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
     let j0 = table.j[0] + extra;
     let mean_load = table.mean_load_n_m();
     let inv_j: Vec<f64> = table.j.iter().map(|j| 1.0 / (j + extra)).collect();
-    let motor_field = |what: &str| RippleError::infeasible("motor", what.to_string());
+    let motor_field = |what: &str| RippleError::infeasible(format!("{prefix}motor"), what.to_string());
     let stops = || motor_field("the motor cannot keep the shaft turning: it stops");
     let mut rec = Record::default();
     let (drive, (start, found)) = match *motor {
@@ -751,8 +783,10 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
             let scale = [guess[0], sv.torque_limit_n_m];
             let (x, end) = table.newton(&inv_j, &drive, guess, scale, true, &residual, &mut rec).ok_or_else(|| {
                 RippleError::infeasible(
-                    "motor",
-                    "the servo finds no periodic running from its set-point: raise servo_torque_limit_n_m or the gain",
+                    format!("{prefix}motor"),
+                    format!(
+                        "the servo finds no periodic running from its set-point: raise {prefix}servo_torque_limit_n_m or {prefix}servo_gain_n_m_s"
+                    ),
                 )
             })?;
             (drive, (x, Some(end)))

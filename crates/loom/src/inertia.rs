@@ -16,7 +16,7 @@
 //! `M_load + ½ω²·dJ/dφ` is `loom torque`'s torque (at efficiency 1; the efficiency divides the
 //! shedding's inertial part there, while the kinetic energy here is exchanged without loss).
 
-use crate::{Drive, Loom, LoomError, Motion, Pattern, Result};
+use crate::{CorrectedFrames, Drive, FrameKin, Loom, LoomError, Motion, Pattern, Result};
 use loomkin_drive::{FourBarSley, MotorSpec, Shaft};
 use loomkin_laws::gauss_legendre;
 use loomkin_units::{Field, Range};
@@ -111,13 +111,29 @@ pub struct LoomShaft<'a> {
     loom: &'a Loom,
     drive: Drive<'a>,
     sley: Option<&'a FourBarSley>,
+    corrected: Option<&'a CorrectedFrames>,
 }
 
 impl<'a> LoomShaft<'a> {
     /// The shaft of `loom` moving `motion` (its frames weaving `pattern`), with the loom's sley if
     /// it has one.
     pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Self {
-        Self { loom, drive: Drive::new(loom, motion, pattern), sley: loom.sley.as_ref() }
+        Self { loom, drive: Drive::new(loom, motion, pattern), sley: loom.sley.as_ref(), corrected: None }
+    }
+
+    /// The same shaft with the frames driven by time-true cams (`loomkin drive correct`) instead
+    /// of the design law; [`LoomShaft::report`] still describes the design law.
+    pub fn with_corrected(mut self, frames: &'a CorrectedFrames) -> Self {
+        self.corrected = Some(frames);
+        self
+    }
+
+    /// Frame `i` at `theta_deg`: the design law's motion, or the time-true cam's.
+    pub fn frame_kin(&self, i: usize, theta_deg: f64) -> FrameKin {
+        match self.corrected {
+            Some(c) => c.frame(i, theta_deg),
+            None => self.motion().frame(i, theta_deg),
+        }
     }
 
     /// The frames' motion.
@@ -132,7 +148,7 @@ impl<'a> LoomShaft<'a> {
 
     /// Frame `i`'s reduced inertia `m·y'²` and its rate `2m·y'·y''` at `theta_deg`.
     pub fn frame_inertia(&self, i: usize, theta_deg: f64) -> (f64, f64) {
-        let k = self.motion().frame(i, theta_deg);
+        let k = self.frame_kin(i, theta_deg);
         let m = self.loom.frames[i].mass_kg;
         (m * k.dy * k.dy, 2.0 * m * k.dy * k.d2y)
     }
@@ -180,7 +196,7 @@ impl<'a> LoomShaft<'a> {
     pub fn load_at(&self, theta_deg: f64) -> f64 {
         let mut sum = 0.0;
         for i in 0..self.loom.frame_count() {
-            let k = self.motion().frame(i, theta_deg);
+            let k = self.frame_kin(i, theta_deg);
             if k.dy != 0.0 {
                 let f = self.drive.force(i, &k);
                 sum += (f.weight_n + f.spring_n + f.warp_n) * k.dy;
@@ -414,6 +430,10 @@ fn stats(grid: &[f64], h: f64, period: f64, f: &dyn Fn(f64) -> f64, mean: f64) -
 }
 
 impl Shaft for LoomShaft<'_> {
+    fn key_prefix(&self) -> &str {
+        "drive."
+    }
+
     fn period_rad(&self) -> f64 {
         self.motion().repeat_deg().to_radians()
     }
@@ -427,7 +447,11 @@ impl Shaft for LoomShaft<'_> {
     }
 
     fn breaks_rad(&self) -> Vec<f64> {
-        let mut out: Vec<f64> = self.motion().joints().into_iter().map(f64::to_radians).collect();
+        let joints = match self.corrected {
+            Some(c) => c.joints(),
+            None => self.motion().joints(),
+        };
+        let mut out: Vec<f64> = joints.into_iter().map(f64::to_radians).collect();
         if let Some(s) = self.sley {
             let range = s.table().beat_up_range_deg.to_radians();
             if s.table().beat_up_force_n > 0.0 && range > 0.0 {

@@ -38,6 +38,7 @@ mod law;
 mod motion;
 mod pattern;
 mod stagger;
+mod timetrue;
 mod timing;
 mod turns;
 
@@ -58,4 +59,7 @@ pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
 pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger, optimise_stagger_until};
+pub use timetrue::{
+    CorrectedFrames, Correction, CorrectionReport, FrameCorrection, MAX_ROUNDS, TIMING_TOL_DEG, correct,
+};
 pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};

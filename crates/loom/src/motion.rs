@@ -7,7 +7,7 @@
 //! turn of pick `p` starts) and `σ_i` the frame's stagger.
 
 use crate::{FrameLaw, Loom, Pattern, Result};
-use loomkin_laws::{CycleSpec, Kinematics, SegmentKind, SegmentSpec, StrokeUnit};
+use loomkin_laws::{CycleSpec, Kinematics, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
 
 /// A frame's height over mid-stroke and its derivatives with respect to the main-shaft angle.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -214,31 +214,37 @@ impl Motion {
     /// add `−H/2` (down) or `+H/2` (up) to read the height over mid-stroke.
     pub fn cycle_spec(&self, i: usize) -> CycleSpec {
         let phi = self.motion_deg();
-        let period = self.repeat_deg();
-        let moves = self.moves(i);
-        let mut segment = Vec::new();
-        let start = moves.first().map_or(0.0, |m| m.start_deg);
-        let mut at = start;
-        for m in &moves {
-            if m.start_deg > at + 1e-9 {
-                segment.push(SegmentSpec::dwell(m.start_deg - at));
-            }
-            let kind = if m.rising { SegmentKind::Rise } else { SegmentKind::Return };
-            segment.push(SegmentSpec::moving(kind, phi, self.law.spec(m.rising)));
-            at = m.start_deg + phi;
-        }
-        if start + period > at + 1e-9 {
-            segment.push(SegmentSpec::dwell(start + period - at));
-        }
-        if let Some(first) = segment.first_mut() {
-            first.from_deg = Some(start);
-        }
-        CycleSpec {
-            period_deg: period,
-            unit: StrokeUnit::Mm,
-            stroke: Some(self.stroke_m[i] * 1e3),
-            speed_rpm: None,
-            segment,
-        }
+        let moves: Vec<(f64, f64, bool, &LawSpec)> =
+            self.moves(i).iter().map(|m| (m.start_deg, phi, m.rising, self.law.spec(m.rising))).collect();
+        machine_cycle(&moves, self.repeat_deg(), self.stroke_m[i] * 1e3, None)
     }
+}
+
+/// A frame's moves `(start, length, rising, law)` (deg, in order over one repeat) as a machine
+/// cycle of the law core: dwells between them, period `period_deg`, strokes in mm, starting at the
+/// first move (or at 0 when there is none).
+pub(crate) fn machine_cycle(
+    moves: &[(f64, f64, bool, &LawSpec)],
+    period_deg: f64,
+    stroke_mm: f64,
+    speed_rpm: Option<f64>,
+) -> CycleSpec {
+    let mut segment = Vec::new();
+    let start = moves.first().map_or(0.0, |m| m.0);
+    let mut at = start;
+    for &(s, l, rising, law) in moves {
+        if s > at + 1e-9 {
+            segment.push(SegmentSpec::dwell(s - at));
+        }
+        let kind = if rising { SegmentKind::Rise } else { SegmentKind::Return };
+        segment.push(SegmentSpec::moving(kind, l, law));
+        at = s + l;
+    }
+    if start + period_deg > at + 1e-9 {
+        segment.push(SegmentSpec::dwell(start + period_deg - at));
+    }
+    if let Some(first) = segment.first_mut() {
+        first.from_deg = Some(start);
+    }
+    CycleSpec { period_deg, unit: StrokeUnit::Mm, stroke: Some(stroke_mm), speed_rpm, segment }
 }

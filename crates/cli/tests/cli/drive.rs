@@ -73,9 +73,60 @@ fn ripple_json_has_the_contract_keys_and_a_flywheel_holds_its_target() {
 #[test]
 fn ripple_refuses_bad_input_naming_the_field() {
     let loom = rapier_with_drive();
-    usage_error(&["drive", "ripple", &rapier_with_drive_table("none", "")], &["rotating_inertia_kg_m2"]);
+    usage_error(&["drive", "ripple", &rapier_with_drive_table("none", "")], &["error: drive.rotating_inertia_kg_m2:"]);
     usage_error(&["drive", "ripple", &loom, "--motor", "induction"], &["drive.rated_power_kw", "required"]);
     usage_error(&["drive", "ripple", &loom, "--flywheel-kg-m2", "-1"], &["--flywheel-kg-m2 = -1 is out of range"]);
     usage_error(&["drive", "ripple", &loom, "--target-ripple-pct", "0"], &["target_ripple_pct = 0 is out of range"]);
     usage_error(&["drive", "ripple", &loom, "--step-deg", "20"], &["--step-deg = 20 is out of range"]);
+}
+
+#[test]
+fn correct_writes_cycle_files_that_cam_and_dyn_read() {
+    let dir = std::env::temp_dir().join(format!("loomkin-drive-correct-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let v = stdout_json(&[
+        "drive",
+        "correct",
+        &ex("rapier-loom.toml"),
+        "--wif",
+        &ex("twill-2-2.wif"),
+        "-o",
+        d,
+        "--natural-hz",
+        "80",
+        "--damping-ratio",
+        "0.05",
+        "--json",
+    ]);
+    let before = v["max_timing_error_deg_before"].as_f64().unwrap();
+    let after = v["max_timing_error_deg_after"].as_f64().unwrap();
+    assert!(before > 0.1 && after < 1e-5, "{before} {after}");
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 24);
+    // twill-2-2 moves frames 1-4 only: one file each.
+    let files = v["files"].as_array().unwrap();
+    assert_eq!(files.len(), 4);
+    for f in &frames[..4] {
+        for key in [
+            "max_timing_error_deg_before",
+            "max_timing_error_deg_after",
+            "residual_vibration_mm_before",
+            "residual_vibration_mm_after",
+            "residual_vibration_constant_speed_mm",
+        ] {
+            assert!(f[key].as_f64().unwrap() >= 0.0, "{key}");
+        }
+    }
+    assert_eq!(v["not_corrected"][0], "sley (a four-bar linkage, not a cam)");
+    let file = files[0].as_str().unwrap();
+    let r = stdout_json(&["dyn", "response", file, "--natural-hz", "80", "--json"]);
+    assert!(r["residual_amplitude_mm"].as_f64().unwrap().is_finite());
+    let out = loomkin().args(["cam", "profile", file, "--follower", "translating", "--json"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+    // The residual vibration needs a valid natural frequency; the error names the flag's field.
+    usage_error(
+        &["drive", "correct", &ex("rapier-loom.toml"), "--wif", &ex("twill-2-2.wif"), "-o", d, "--natural-hz", "0"],
+        &["natural_hz"],
+    );
 }

@@ -50,6 +50,8 @@ fn has_unit(key: &str) -> bool {
         "_per_s",
         "_bytes",
     ];
+    // A quantity before and after a change (`max_timing_error_deg_before`, issue 29's keys).
+    let key = key.strip_suffix("_before").or_else(|| key.strip_suffix("_after")).unwrap_or(key);
     UNITS.iter().any(|u| key.ends_with(u))
 }
 
@@ -112,6 +114,8 @@ const DIMENSIONLESS: &[&str] = &[
     "row",
     "frame",
     "moves",
+    // rounds of the time-true cams' correction (drive correct)
+    "rounds",
     "ends",
     "count",
     "counts",

@@ -1,0 +1,402 @@
+//! Time-true cams for the loom's frames (`loomkin drive correct`): each frame's shedding law
+//! corrected for the main shaft's real speed ω(φ), so that every frame moves in time as the law
+//! designed for a constant speed prescribes (loomkin-drive's [`loomkin_drive::timetrue`] holds the
+//! mapping and its equations).
+//!
+//! Every move keeps its middle (the crossing, timed against the beat-up on the shaft) at its
+//! angle and is reshaped around it: `ψ(φ) = c + ω̄·(t(φ) − t(c))` for a move centred at `c`.
+//! Corrected cams change the frames' reduced inertia and load, hence ω(φ) itself: the correction is
+//! repeated against the speed the corrected cams give until the timing moves by less than
+//! [`TIMING_TOL_DEG`] (a fixed point; the ripple's effect on itself is second order, so a few
+//! rounds suffice). The timing error of a cam is the largest `|ψ(φ) − phase(φ)|` over its moves,
+//! `phase` being the angle of the design law the cam's follower is at: `φ` for the design cams
+//! (`max_timing_error_deg_before`), the time-true angle they were built for for the corrected ones,
+//! measured against the speed those give (`…_after`).
+
+use crate::{FrameKin, Loom, LoomError, LoomShaft, Motion, Pattern, Result};
+use loomkin_drive::{CorrectedMove, Motor, Span, Table, TimeMap, correct_move, solve, time_excitation};
+use loomkin_dynamics::{Follower, Response, Start};
+use loomkin_laws::{CycleSpec, LawSpec};
+use serde::Serialize;
+
+/// The timing change below which the correction has converged, deg of the shaft.
+pub const TIMING_TOL_DEG: f64 = 1e-6;
+
+/// Rounds of correction at most.
+pub const MAX_ROUNDS: usize = 12;
+
+/// One corrected move of a frame.
+#[derive(Debug, Clone)]
+struct FrameMove {
+    rising: bool,
+    /// The design move's middle, deg (the anchor).
+    centre_deg: f64,
+    cam: CorrectedMove,
+}
+
+/// The frames driven by time-true cams: every move of every frame over the repeat.
+#[derive(Debug, Clone)]
+pub struct CorrectedFrames {
+    period_deg: f64,
+    stroke_m: Vec<f64>,
+    /// Per frame, its moves in order of start.
+    moves: Vec<Vec<FrameMove>>,
+    /// Per frame, whether it is up before its first move (frames that never move: their level).
+    up0: Vec<bool>,
+}
+
+impl CorrectedFrames {
+    /// The frames of `motion` with every move corrected for the shaft of `map`.
+    pub fn new(motion: &Motion, map: &TimeMap) -> Result<Self> {
+        let phi = motion.motion_deg();
+        let mut moves = Vec::with_capacity(motion.frames());
+        let mut up0 = Vec::with_capacity(motion.frames());
+        for i in 0..motion.frames() {
+            let design = motion.moves(i);
+            up0.push(design.first().map_or(motion.is_up(i, 0), |m| !m.rising));
+            let mut out: Vec<FrameMove> = Vec::with_capacity(design.len());
+            for m in &design {
+                let centre = m.start_deg + phi / 2.0;
+                let cam = correct_move(
+                    map,
+                    motion.law().law(m.rising),
+                    m.start_deg.to_radians(),
+                    phi.to_radians(),
+                    centre.to_radians(),
+                )?;
+                out.push(FrameMove { rising: m.rising, centre_deg: centre, cam });
+            }
+            // Consecutive moves (the last against the first one repeat on) must not overlap.
+            let period = motion.repeat_deg().to_radians();
+            for k in 0..out.len() {
+                let a = &out[k].cam;
+                let (b_start, wrap) =
+                    if k + 1 < out.len() { (out[k + 1].cam.start_rad, 0.0) } else { (out[0].cam.start_rad, period) };
+                if out.len() > 1 && a.start_rad + a.length_rad > b_start + wrap + 1e-12 {
+                    return Err(LoomError::Infeasible {
+                        field: "shedding.motion_deg".into(),
+                        reason: format!(
+                            "frame {}: corrected for the shaft's speed ripple, two moves overlap: a shorter motion angle leaves room",
+                            i + 1
+                        ),
+                    });
+                }
+            }
+            moves.push(out);
+        }
+        Ok(Self {
+            period_deg: motion.repeat_deg(),
+            stroke_m: (0..motion.frames()).map(|i| motion.stroke_m(i)).collect(),
+            moves,
+            up0,
+        })
+    }
+
+    /// Frames.
+    pub fn frames(&self) -> usize {
+        self.moves.len()
+    }
+
+    /// Frame `i`'s corrected moves: (start, length) in deg, rising.
+    pub fn moves(&self, i: usize) -> Vec<(f64, f64, bool)> {
+        self.moves[i].iter().map(|m| (m.cam.start_rad.to_degrees(), m.cam.length_rad.to_degrees(), m.rising)).collect()
+    }
+
+    fn level(&self, i: usize, up: bool) -> f64 {
+        if up { self.stroke_m[i] / 2.0 } else { -self.stroke_m[i] / 2.0 }
+    }
+
+    /// Frame `i` at `theta_deg` (any angle; periodic over the repeat).
+    pub fn frame(&self, i: usize, theta_deg: f64) -> FrameKin {
+        let moves = &self.moves[i];
+        let p = self.period_deg;
+        let Some(first) = moves.first() else {
+            return FrameKin { y_m: self.level(i, self.up0[i]), ..FrameKin::default() };
+        };
+        // Wrapped into [first start, first start + repeat).
+        let s0 = first.cam.start_rad.to_degrees();
+        let th = s0 + (theta_deg - s0).rem_euclid(p);
+        let k = moves.partition_point(|m| m.cam.start_rad.to_degrees() <= th).max(1) - 1;
+        let m = &moves[k];
+        let (start, len) = (m.cam.start_rad.to_degrees(), m.cam.length_rad.to_degrees());
+        if th <= start + len {
+            let x = (th - start) / len;
+            let kin = m.cam.law.eval(x);
+            let h = self.stroke_m[i];
+            let r = 1.0 / m.cam.length_rad;
+            let sign = if m.rising { 1.0 } else { -1.0 };
+            return FrameKin {
+                y_m: -sign * h / 2.0 + sign * h * kin.s,
+                dy: sign * h * kin.v * r,
+                d2y: sign * h * kin.a * r * r,
+                d3y: sign * h * kin.j * r * r * r,
+            };
+        }
+        FrameKin { y_m: self.level(i, m.rising), ..FrameKin::default() }
+    }
+
+    /// Angles in `[0, repeat)` where some frame's corrected motion is not smooth (moves' ends and
+    /// the laws' panel joints), deg.
+    pub fn joints(&self) -> Vec<f64> {
+        let p = self.period_deg;
+        let mut out = vec![0.0, p];
+        for frame in &self.moves {
+            for m in frame {
+                let (s, l) = (m.cam.start_rad.to_degrees(), m.cam.length_rad.to_degrees());
+                out.push(s.rem_euclid(p));
+                out.push((s + l).rem_euclid(p));
+                out.extend(m.cam.law.joints().map(|x| (s + x * l).rem_euclid(p)));
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
+        out
+    }
+
+    /// Frame `i`'s time-true cam as a machine cycle of the law core (as [`Motion::cycle_spec`]:
+    /// period the repeat, strokes in mm, starting at the first move, positions relative to the
+    /// frame's place before it), with the loom's speed.
+    pub fn cycle_spec(&self, i: usize, speed_rpm: f64) -> CycleSpec {
+        let moves: Vec<(f64, f64, bool, &LawSpec)> = self.moves[i]
+            .iter()
+            .map(|m| (m.cam.start_rad.to_degrees(), m.cam.length_rad.to_degrees(), m.rising, &m.cam.spec))
+            .collect();
+        crate::motion::machine_cycle(&moves, self.period_deg, self.stroke_m[i] * 1e3, Some(speed_rpm))
+    }
+}
+
+/// One frame's correction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameCorrection {
+    /// `frame 1` … (front first).
+    pub name: String,
+    /// Moves of the frame over the repeat (a frame that never moves needs no cam correction).
+    pub moves: usize,
+    /// The design cam's largest timing error at the real speed, deg of the shaft.
+    pub max_timing_error_deg_before: f64,
+    /// The time-true cam's, at the speed it gives, deg.
+    pub max_timing_error_deg_after: f64,
+    /// Residual vibration of the design cam at the real speed: the largest over the frame's
+    /// dwells, mm (with a follower given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_vibration_mm_before: Option<f64>,
+    /// The time-true cam's at its speed, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_vibration_mm_after: Option<f64>,
+    /// The design cam's at a constant speed (what the time-true cam aims at), mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_vibration_constant_speed_mm: Option<f64>,
+}
+
+/// `loomkin drive correct --json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CorrectionReport {
+    /// Picks in the repeat.
+    pub picks: usize,
+    /// The motor model.
+    pub motor: &'static str,
+    /// Mean speed of the shaft with the design cams, rpm.
+    pub mean_speed_rpm: f64,
+    /// Speed ripple with the design cams, %.
+    pub speed_ripple_pct: f64,
+    /// Speed ripple with the time-true cams, %.
+    pub speed_ripple_pct_after: f64,
+    /// Largest timing error over the frames, design cams, deg.
+    pub max_timing_error_deg_before: f64,
+    /// Largest over the time-true cams, deg.
+    pub max_timing_error_deg_after: f64,
+    /// Rounds of correction against the speed the corrected cams give.
+    pub rounds: usize,
+    /// The cam-driven mechanisms corrected (the frames); mechanisms on the shaft but not cams
+    /// (a four-bar sley) are named in `not_corrected`.
+    pub frames: Vec<FrameCorrection>,
+    /// Mechanisms that are not cam-driven, hence not corrected.
+    pub not_corrected: Vec<String>,
+}
+
+/// The correction of a loom's frames and its report.
+#[derive(Debug, Clone)]
+pub struct Correction {
+    /// The time-true frames.
+    pub frames: CorrectedFrames,
+    /// The report.
+    pub report: CorrectionReport,
+    /// The shaft's time map with the design cams.
+    pub design_map: TimeMap,
+    /// The shaft's time map with the time-true cams.
+    pub corrected_map: TimeMap,
+}
+
+/// The largest of `|f|` over `[a, b]`: a grid of about 0.25° refined by golden section.
+fn max_abs(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let n = ((b - a) / 0.25_f64.to_radians()).ceil().max(2.0) as usize;
+    let xs: Vec<f64> = (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect();
+    let vals: Vec<f64> = xs.iter().map(|x| f(*x).abs()).collect();
+    let (k, mut best) = vals.iter().enumerate().fold((0, 0.0), |m, (k, v)| if *v > m.1 { (k, *v) } else { m });
+    let (lo, hi) = (xs[k.saturating_sub(1)], xs[(k + 1).min(n)]);
+    let r = loomkin_numeric::golden_max(|x| f(x).abs(), lo, hi);
+    if r.value > best {
+        best = r.value;
+    }
+    best
+}
+
+/// The frames' residual vibrations (mm) on the shaft of `map`, each frame's input given by `kin`.
+fn residuals(
+    frames: usize,
+    spans: impl Fn(usize) -> Vec<Span>,
+    kin: impl Fn(usize, f64) -> FrameKin,
+    stroke: impl Fn(usize) -> f64,
+    map: &TimeMap,
+    follower: &Follower,
+) -> Result<Vec<Option<f64>>> {
+    (0..frames)
+        .map(|i| {
+            let sp = spans(i);
+            if !sp.iter().any(|s| s.moving) {
+                return Ok(None);
+            }
+            let exc = time_excitation(
+                map,
+                &sp,
+                |_, phi| {
+                    let k = kin(i, phi.to_degrees());
+                    [k.y_m, k.dy, k.d2y]
+                },
+                stroke(i),
+            );
+            let r = Response::from_excitation(exc, follower, Start::Steady, 1)
+                .map_err(|e| LoomError::field("natural_hz", e.to_string()))?;
+            Ok(Some(r.summary().residual_amplitude_si * 1e3))
+        })
+        .collect()
+}
+
+/// The spans (moving, standing) of a frame over one repeat from its moves `(start, length)` in deg.
+fn spans_of(moves: &[(f64, f64)], period_deg: f64) -> Vec<Span> {
+    let mut out = Vec::new();
+    let Some(first) = moves.first() else { return out };
+    let end = first.0 + period_deg;
+    for (k, (s, l)) in moves.iter().enumerate() {
+        out.push(Span { start_rad: s.to_radians(), end_rad: (s + l).to_radians(), moving: true });
+        let next = moves.get(k + 1).map_or(end, |m| m.0);
+        if next > s + l + 1e-9 {
+            out.push(Span { start_rad: (s + l).to_radians(), end_rad: next.to_radians(), moving: false });
+        }
+    }
+    out
+}
+
+/// The time-true cams of `loom`'s frames weaving `pattern` on the shaft turned by `motor` with
+/// `flywheel_kg_m2` added, on the ripple grid of `step_deg`; with a follower (the frames' elastic
+/// model), the residual vibration of each before and after.
+pub fn correct(
+    loom: &Loom,
+    motion: &Motion,
+    pattern: &Pattern,
+    motor: &Motor,
+    flywheel_kg_m2: f64,
+    step_deg: f64,
+    follower: Option<&Follower>,
+) -> Result<Correction> {
+    let shaft = LoomShaft::new(loom, motion, pattern);
+    let table = Table::new(&shaft, step_deg)?;
+    let sol = solve(&table, motor, flywheel_kg_m2)?;
+    let design_map = sol.time_map();
+    let phi = motion.motion_deg();
+    let n = motion.frames();
+    // Before: the design cams' timing against the speed they give.
+    let before: Vec<f64> = (0..n)
+        .map(|i| {
+            motion
+                .moves(i)
+                .iter()
+                .map(|m| {
+                    let c = (m.start_deg + phi / 2.0).to_radians();
+                    max_abs(m.start_deg.to_radians(), (m.start_deg + phi).to_radians(), |x| {
+                        design_map.time_true(x, c)[0] - x
+                    })
+                    .to_degrees()
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    // The fixed point: cams corrected for the speed the previous cams give.
+    let mut map = design_map.clone();
+    let mut rounds = 0;
+    let (frames, after, corrected_map, ripple_after) = loop {
+        rounds += 1;
+        let frames = CorrectedFrames::new(motion, &map)?;
+        let (next, ripple) = {
+            let shaft = LoomShaft::new(loom, motion, pattern).with_corrected(&frames);
+            let table = Table::new(&shaft, step_deg)?;
+            let sol = solve(&table, motor, flywheel_kg_m2)?;
+            (sol.time_map(), sol.report.speed_ripple_pct)
+        };
+        let after: Vec<f64> = (0..n)
+            .map(|i| {
+                frames.moves[i]
+                    .iter()
+                    .map(|m| {
+                        let c = m.centre_deg.to_radians();
+                        let (a, b) = (m.cam.start_rad, m.cam.start_rad + m.cam.length_rad);
+                        max_abs(a, b, |x| next.time_true(x, c)[0] - map.time_true(x, c)[0]).to_degrees()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let worst = after.iter().copied().fold(0.0, f64::max);
+        if worst <= TIMING_TOL_DEG || rounds >= MAX_ROUNDS {
+            break (frames, after, next, ripple);
+        }
+        map = next;
+    };
+    let mut residual = [vec![None; n], vec![None; n], vec![None; n]];
+    if let Some(f) = follower {
+        let p = motion.repeat_deg();
+        let design_spans = |i: usize| {
+            let m: Vec<(f64, f64)> = motion.moves(i).iter().map(|m| (m.start_deg, phi)).collect();
+            spans_of(&m, p)
+        };
+        let stroke = |i: usize| motion.stroke_m(i);
+        residual[0] = residuals(n, design_spans, |i, th| motion.frame(i, th), stroke, &design_map, f)?;
+        let corr_spans = |i: usize| {
+            let m: Vec<(f64, f64)> = frames.moves(i).iter().map(|(s, l, _)| (*s, *l)).collect();
+            spans_of(&m, p)
+        };
+        residual[1] = residuals(n, corr_spans, |i, th| frames.frame(i, th), stroke, &corrected_map, f)?;
+        // The design cam at a constant speed: a uniform map.
+        let w = design_map.mean_speed_rad_s();
+        let period = design_map.period_rad();
+        let uniform = TimeMap::new(vec![0.0, period], vec![0.0, period / w], vec![w, w], vec![0.0, 0.0]);
+        residual[2] = residuals(n, design_spans, |i, th| motion.frame(i, th), stroke, &uniform, f)?;
+    }
+    let frame_reports: Vec<FrameCorrection> = (0..n)
+        .map(|i| FrameCorrection {
+            name: format!("frame {}", i + 1),
+            moves: frames.moves[i].len(),
+            max_timing_error_deg_before: before[i],
+            max_timing_error_deg_after: after[i],
+            residual_vibration_mm_before: residual[0][i],
+            residual_vibration_mm_after: residual[1][i],
+            residual_vibration_constant_speed_mm: residual[2][i],
+        })
+        .collect();
+    let mut not_corrected = Vec::new();
+    if loom.sley.is_some() {
+        not_corrected.push("sley (a four-bar linkage, not a cam)".to_string());
+    }
+    let report = CorrectionReport {
+        picks: motion.picks(),
+        motor: motor.name(),
+        mean_speed_rpm: sol.report.mean_speed_rpm,
+        speed_ripple_pct: sol.report.speed_ripple_pct,
+        speed_ripple_pct_after: ripple_after,
+        max_timing_error_deg_before: before.iter().copied().fold(0.0, f64::max),
+        max_timing_error_deg_after: after.iter().copied().fold(0.0, f64::max),
+        rounds,
+        frames: frame_reports,
+        not_corrected,
+    };
+    Ok(Correction { frames, report, design_map, corrected_map })
+}
