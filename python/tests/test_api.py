@@ -65,6 +65,7 @@ NO_PYTHON_CALL = {
     # CLI; the Python module loomkin.drive is the issue's item 5, not written yet.
     "drive inertia": "loomkin.drive not written yet (issue 29 item 5)",
     "drive ripple": "loomkin.drive not written yet (issue 29 item 5)",
+    "drive correct": "loomkin.drive not written yet (issue 29 item 5)",
 }
 
 
