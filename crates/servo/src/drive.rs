@@ -28,7 +28,7 @@
 //! `k·u + F_pre + F_c`. The RMS torque is taken over this whole turn.
 
 use crate::{Result, ServoError};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the drive (SI units). See the module documentation for the model.
@@ -52,7 +52,7 @@ pub struct Drive {
     #[serde(default)]
     pub pinion_radius_m: f64,
     /// Gear ratio `i`, motor turns per pinion turn, > 0 (default 1: direct drive).
-    #[serde(default = "one")]
+    #[serde(default = "default_gear_ratio")]
     pub gear_ratio: f64,
     /// Motor (and pinion, reduced to the motor) inertia `J_m` (kg·m²), ≥ 0.
     #[serde(default)]
@@ -70,7 +70,7 @@ pub struct Drive {
     #[serde(default)]
     pub constant_force_n: f64,
     /// Efficiency `η` of gear and rack, 0 < η ≤ 1 (default 1).
-    #[serde(default = "one")]
+    #[serde(default = "default_efficiency")]
     pub efficiency: f64,
     /// Main-shaft angle of the return stroke (deg); default: `motion_angle_deg`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -81,8 +81,12 @@ pub struct Drive {
     pub dwell_after_rise_deg: Option<f64>,
 }
 
-fn one() -> f64 {
-    1.0
+fn default_gear_ratio() -> f64 {
+    Drive::GEAR_RATIO.default_value()
+}
+
+fn default_efficiency() -> f64 {
+    Drive::EFFICIENCY.default_value()
 }
 
 /// The keys of a `[drive]` table and their units.
@@ -283,7 +287,11 @@ impl Drive {
             }
             Some(Ok(e)) => e,
         };
-        let mut d = Self { gear_ratio: 1.0, efficiency: 1.0, ..Self::pure_inertia(0.0, 0.0, 0.0, 0.0) };
+        let mut d = Self {
+            gear_ratio: default_gear_ratio(),
+            efficiency: default_efficiency(),
+            ..Self::pure_inertia(0.0, 0.0, 0.0, 0.0)
+        };
         for (key, entry) in entries {
             let Some(&(_, unit)) = DRIVE_KEYS.iter().find(|(k, _)| *k == key) else {
                 let keys: Vec<&str> = DRIVE_KEYS.iter().map(|(k, _)| *k).collect();
@@ -334,46 +342,98 @@ impl Drive {
     }
 
     /// `stroke_m`: 1 nm … 100 m, far beyond any slave's stroke; positive (the torque divides by it).
-    pub const STROKE_M: Range = Range::closed(1e-9, 100.0, "m");
+    pub const STROKE_M: Field = Field::new(
+        "drive.stroke_m",
+        Range::closed(1e-9, 100.0, "m"),
+        "Stroke of the slave (rack): 1 nm … 100 m, far beyond any slave's; positive (the torque divides by it).",
+    );
     /// `pinion_radius_m`: 1 nm … 100 m; positive (force = torque / radius).
-    pub const PINION_RADIUS_M: Range = Range::closed(1e-9, 100.0, "m");
+    pub const PINION_RADIUS_M: Field = Field::new(
+        "drive.pinion_radius_m",
+        Range::closed(1e-9, 100.0, "m"),
+        "Pitch radius of the pinion on the rack: 1 nm … 100 m; positive (force = torque / radius).",
+    );
     /// `gear_ratio`: 10⁻⁶ … 10⁶.
-    pub const GEAR_RATIO: Range = Range::closed(1e-6, 1e6, "");
+    pub const GEAR_RATIO: Field = Field::new(
+        "drive.gear_ratio",
+        Range::closed(1e-6, 1e6, ""),
+        "Gear ratio i between the motor and the pinion (motor turns per pinion turn): 10⁻⁶ … 10⁶; 1 (a direct \
+         drive) when left out.",
+    )
+    .with_default(1.0);
     /// `efficiency`: 0.001 … 1 (the torque divides by it).
-    pub const EFFICIENCY: Range = Range::closed(1e-3, 1.0, "");
+    pub const EFFICIENCY: Field = Field::new(
+        "drive.efficiency",
+        Range::closed(1e-3, 1.0, ""),
+        "Efficiency η of the gear and rack: 0.001 … 1 (the motor torque divides by it); 1 when left out.",
+    )
+    .with_default(1.0);
     /// `moving_mass_kg`: 0 … 10⁶ kg.
-    pub const MOVING_MASS_KG: Range = Range::closed(0.0, 1e6, "kg");
+    pub const MOVING_MASS_KG: Field =
+        Field::new("drive.moving_mass_kg", Range::closed(0.0, 1e6, "kg"), "Mass moved with the rack: 0 … 10⁶ kg.");
     /// `motor_inertia_kg_m2`: 0 … 10⁶ kg·m².
-    pub const MOTOR_INERTIA_KG_M2: Range = Range::closed(0.0, 1e6, "kg·m²");
+    pub const MOTOR_INERTIA_KG_M2: Field = Field::new(
+        "drive.motor_inertia_kg_m2",
+        Range::closed(0.0, 1e6, "kg·m²"),
+        "Moment of inertia of the motor's rotor (and what turns with it): 0 … 10⁶ kg·m².",
+    );
     /// `spring_n_m`: ±10¹² N/m (a negative rate is a spring pushing away from its rest).
-    pub const SPRING_N_M: Range = Range::closed(-1e12, 1e12, "N/m");
-    /// `spring_preload_n` and `constant_force_n`: ±10⁹ N.
-    pub const FORCE_N: Range = Range::closed(-1e9, 1e9, "N");
+    pub const SPRING_N_M: Field = Field::new(
+        "drive.spring_n_m",
+        Range::closed(-1e12, 1e12, "N/m"),
+        "Spring rate on the slave: ±10¹² N/m (a negative rate is a spring pushing away from its rest).",
+    );
+    /// `spring_preload_n`: ±10⁹ N.
+    pub const SPRING_PRELOAD_N: Field = Field::new(
+        "drive.spring_preload_n",
+        Range::closed(-1e9, 1e9, "N"),
+        "Spring force at the slave's rest: ±10⁹ N.",
+    );
+    /// `constant_force_n`: ±10⁹ N.
+    pub const CONSTANT_FORCE_N: Field = Field::new(
+        "drive.constant_force_n",
+        Range::closed(-1e9, 1e9, "N"),
+        "A constant force on the slave (weight, a process force): ±10⁹ N.",
+    );
     /// `damping_n_s_m`: ±10⁹ N·s/m.
-    pub const DAMPING_N_S_M: Range = Range::closed(-1e9, 1e9, "N·s/m");
-    /// `motion_angle_deg` and `return_angle_deg`: 10⁻⁶ … 359° (the phases fit in one turn).
-    pub const ANGLE_DEG: Range = Range::closed(1e-6, 359.0, "deg");
+    pub const DAMPING_N_S_M: Field = Field::new(
+        "drive.damping_n_s_m",
+        Range::closed(-1e9, 1e9, "N·s/m"),
+        "Viscous damping on the slave: ±10⁹ N·s/m.",
+    );
+    /// `motion_angle_deg`: 10⁻⁶ … 359° (the phases fit in one turn).
+    pub const MOTION_ANGLE_DEG: Field = Field::new(
+        "drive.motion_angle_deg",
+        Range::closed(1e-6, 359.0, "deg"),
+        "Main-shaft angle of the rise: 10⁻⁶ … 359° (with the return it fits in one turn).",
+    );
+    /// `return_angle_deg`: as [`Drive::MOTION_ANGLE_DEG`]; left out, the rise's.
+    pub const RETURN_ANGLE_DEG: Field = Field::new(
+        "drive.return_angle_deg",
+        Range::closed(1e-6, 359.0, "deg"),
+        "Main-shaft angle of the return: 10⁻⁶ … 359° (with the rise it fits in one turn); left out, the rise's.",
+    );
 
     /// Checks every field's range (finite, positive where it must be, angles fit in one turn).
     pub fn validate(&self) -> Result<()> {
-        Self::STROKE_M.check("drive.stroke_m", self.stroke_m)?;
-        Self::PINION_RADIUS_M.check("drive.pinion_radius_m", self.pinion_radius_m)?;
-        Self::GEAR_RATIO.check("drive.gear_ratio", self.gear_ratio)?;
-        Self::EFFICIENCY.check("drive.efficiency", self.efficiency)?;
-        Self::MOVING_MASS_KG.check("drive.moving_mass_kg", self.moving_mass_kg)?;
-        Self::MOTOR_INERTIA_KG_M2.check("drive.motor_inertia_kg_m2", self.motor_inertia_kg_m2)?;
-        Self::SPRING_N_M.check("drive.spring_n_m", self.spring_n_m)?;
-        Self::FORCE_N.check("drive.spring_preload_n", self.spring_preload_n)?;
-        Self::DAMPING_N_S_M.check("drive.damping_n_s_m", self.damping_n_s_m)?;
-        Self::FORCE_N.check("drive.constant_force_n", self.constant_force_n)?;
+        Self::STROKE_M.check(self.stroke_m)?;
+        Self::PINION_RADIUS_M.check(self.pinion_radius_m)?;
+        Self::GEAR_RATIO.check(self.gear_ratio)?;
+        Self::EFFICIENCY.check(self.efficiency)?;
+        Self::MOVING_MASS_KG.check(self.moving_mass_kg)?;
+        Self::MOTOR_INERTIA_KG_M2.check(self.motor_inertia_kg_m2)?;
+        Self::SPRING_N_M.check(self.spring_n_m)?;
+        Self::SPRING_PRELOAD_N.check(self.spring_preload_n)?;
+        Self::DAMPING_N_S_M.check(self.damping_n_s_m)?;
+        Self::CONSTANT_FORCE_N.check(self.constant_force_n)?;
         self.layout().map(|_| ())
     }
 
     /// The phases of one main-shaft turn (see the module documentation).
     pub fn layout(&self) -> Result<CycleLayout> {
-        let rise = Self::ANGLE_DEG.check("drive.motion_angle_deg", self.motion_angle_deg)?;
+        let rise = Self::MOTION_ANGLE_DEG.check(self.motion_angle_deg)?;
         let ret = match self.return_angle_deg {
-            Some(r) => Self::ANGLE_DEG.check("drive.return_angle_deg", r)?,
+            Some(r) => Self::RETURN_ANGLE_DEG.check(r)?,
             None => rise,
         };
         let rest = CYCLE_DEG - rise - ret;

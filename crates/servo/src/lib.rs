@@ -104,8 +104,23 @@ impl ServoInputs {
 }
 
 /// The descriptors of this crate's inputs.
-pub const FIELDS: loomkin_units::FieldList =
-    loomkin_units::field_list![ServoInputs::STARTS, ServoInputs::CURVE_POINTS, ServoInputs::EXPORT_STEP_DEG];
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    ServoInputs::STARTS,
+    ServoInputs::CURVE_POINTS,
+    ServoInputs::EXPORT_STEP_DEG,
+    Drive::STROKE_M,
+    Drive::MOTION_ANGLE_DEG,
+    Drive::RETURN_ANGLE_DEG,
+    Drive::MOVING_MASS_KG,
+    Drive::PINION_RADIUS_M,
+    Drive::GEAR_RATIO,
+    Drive::MOTOR_INERTIA_KG_M2,
+    Drive::SPRING_N_M,
+    Drive::SPRING_PRELOAD_N,
+    Drive::DAMPING_N_S_M,
+    Drive::CONSTANT_FORCE_N,
+    Drive::EFFICIENCY,
+];
 pub use report::{
     DriveReport, LAW_UNITS, LawReport, LayoutDeg, OptimizeSummary, ReinterpolationRow, TorqueReport, WorstTorque,
 };

@@ -204,7 +204,7 @@ mod tests {
 
     #[test]
     fn range_errors_are_data_and_numbers_short() {
-        let e: ApiError = loomkin_servo::Drive::STROKE_M.check("drive.stroke_m", 1e300).unwrap_err().into();
+        let e: ApiError = loomkin_servo::Drive::STROKE_M.check(1e300).unwrap_err().into();
         assert_eq!(e.to_string(), "drive.stroke_m = 1e300 is out of range: allowed 1e-9 ≤ drive.stroke_m ≤ 100 m");
         // The field of a library error comes from the error, not from its text.
         let lib = loomkin_laws::LawError::from(loomkin_laws::RAMP.check("ramp", 1.0).unwrap_err());
