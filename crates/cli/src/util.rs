@@ -273,14 +273,17 @@ pub fn budget() -> loomkin_units::Budget {
 /// Size, resolution and title of a plot file, shared by every command that plots.
 #[derive(Debug, Clone, Args, Default)]
 pub struct PlotOpts {
-    /// Plot width in pixels at 96 dpi (200 to 8000; default 1000).
-    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_width, allow_hyphen_values = true)]
+    /// Plot width in pixels at 96 dpi.
+    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_width, allow_hyphen_values = true,
+          help = field_help("Plot width in pixels at 96 dpi (a figure names the least width its texts need)", &loomkin_plot::Page::WIDTH))]
     pub width: Option<f64>,
-    /// Plot height in pixels at 96 dpi (200 to 8000; default from the number of panels).
-    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_height, allow_hyphen_values = true)]
+    /// Plot height in pixels at 96 dpi.
+    #[arg(long, value_name = "PX", help_heading = "Plot", value_parser = page_height, allow_hyphen_values = true,
+          help = field_help("Plot height in pixels at 96 dpi (left out: from the number of panels; a figure names the least height its panels need)", &loomkin_plot::Page::HEIGHT))]
     pub height: Option<f64>,
-    /// PNG resolution in dots per inch (24 to 1200; 96 draws one pixel per SVG pixel).
-    #[arg(long, help_heading = "Plot", value_parser = page_dpi, allow_hyphen_values = true)]
+    /// PNG resolution in dots per inch.
+    #[arg(long, help_heading = "Plot", value_parser = page_dpi, allow_hyphen_values = true,
+          help = field_help("PNG resolution in dots per inch (96 draws one pixel per SVG pixel)", &loomkin_plot::Page::DPI))]
     pub dpi: Option<f64>,
     /// Plot title (default: the input's file name and the run's settings).
     #[arg(long, help_heading = "Plot")]

@@ -174,18 +174,20 @@ pub fn torque_figure(loom: &Loom, pattern: &Pattern, step_deg: f64) -> Result<Fi
     let rms = drive.rms();
     let mut pts = curve.clone();
     pts.push((motion.repeat_deg(), curve.first().map_or(0.0, |c| c.1)));
+    let many = pattern.picks() > TURNS_AXIS_FROM_PICKS;
+    let at = if many { in_pick(peak.angle_deg) } else { format!("{}°", sig4(peak.angle_deg)) };
     let title = format!(
-        "shedding torque at {} rpm, {} picks: peak {:.2} N·m at {:.1}°, RMS {:.2} N·m",
+        "shedding torque at {} rpm, {} picks: peak {:.2} N·m at {}, RMS {:.2} N·m",
         loom.speed.rpm(),
         pattern.picks(),
         peak.torque_n_m,
-        peak.angle_deg,
+        if many { in_pick(peak.angle_deg) } else { format!("{:.1}°", peak.angle_deg) },
         rms
     );
     let mut panel = Panel::new("torque [N·m]", vec![Series::line("torque", pts)]).with_notes([Note::new(
         peak.angle_deg,
         peak.torque_n_m,
-        format!("peak {} N·m at {}°", sig4(peak.torque_n_m), sig4(peak.angle_deg)),
+        format!("peak {} N·m at {at}", sig4(peak.torque_n_m)),
     )]);
     // The motor's limit both ways (the drive brakes the frames as well as lifting them).
     if let Some(limit) = loom.motor_torque_n_m {
@@ -194,5 +196,24 @@ pub fn torque_figure(loom: &Loom, pattern: &Pattern, step_deg: f64) -> Result<Fi
             .with_rule(Rule::y(limit, format!("motor torque limit ±{} N·m{over}", sig4(limit))))
             .with_rule(Rule::y(-limit, ""));
     }
-    Ok(Figure::new(title, "main-shaft angle [deg]", vec![panel]))
+    Ok(repeat_figure(title, vec![panel], many))
+}
+
+/// Repeats of more picks than this are drawn against picks (main-shaft turns), fewer in degrees.
+pub(crate) const TURNS_AXIS_FROM_PICKS: usize = 2;
+
+/// A figure over a repeat: in main-shaft degrees, or against picks with the degrees within a pick
+/// as minor ticks (`many`), so a repeat of 48 picks does not read "17280°".
+pub(crate) fn repeat_figure(title: String, panels: Vec<Panel>, many: bool) -> Figure {
+    if many {
+        Figure::new(title, "picks from the repeat's start (one main-shaft turn each)", panels).with_turns_axis()
+    } else {
+        Figure::new(title, "main-shaft angle [deg]", panels)
+    }
+}
+
+/// An angle over the repeat as its pick (counted from 1) and the angle within it: `pick 18 at 350.3°`.
+pub(crate) fn in_pick(angle_deg: f64) -> String {
+    let turn = (angle_deg / 360.0).floor();
+    format!("pick {} at {}°", turn as i64 + 1, sig4(angle_deg - 360.0 * turn))
 }

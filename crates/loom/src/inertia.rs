@@ -502,7 +502,7 @@ impl From<loomkin_drive::RippleError> for LoomError {
 /// The speed ripple plotted: the shaft speed ω(φ) with its mean and extremes, and the motor and
 /// load torques, over the repeat (`loomkin drive ripple -o`).
 pub fn ripple_figure<S: Shaft + ?Sized>(sol: &loomkin_drive::Solution<'_, '_, S>, title: &str) -> loomkin_plot::Figure {
-    use loomkin_plot::{Figure, Note, Panel, Rule, Series, sig4};
+    use loomkin_plot::{Note, Panel, Rule, Series, sig4};
     let r = &sol.report;
     let deg: Vec<f64> = sol.angles_rad().iter().map(|a| a.to_degrees()).collect();
     let rpm: Vec<(f64, f64)> =
@@ -523,5 +523,6 @@ pub fn ripple_figure<S: Shaft + ?Sized>(sol: &loomkin_drive::Solution<'_, '_, S>
         sig4(r.energy_swing_j),
         sig4(r.flywheel_kg_m2)
     );
-    Figure::new(full, "main-shaft angle [deg]", vec![speed, torque])
+    let picks = deg.last().map_or(0.0, |d| (d / 360.0).round());
+    crate::diagram::repeat_figure(full, vec![speed, torque], picks > crate::diagram::TURNS_AXIS_FROM_PICKS as f64)
 }

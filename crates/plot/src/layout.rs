@@ -1,6 +1,6 @@
 //! Where everything goes, in SVG pixels: axes and their ticks, plot rectangles, notes, legends.
 
-use super::raster::text_width;
+use super::font::text_width;
 use super::{Dash, Figure, Legend, Panel, RuleAxis, Scale, panel_weight};
 
 pub(crate) const FONT_TITLE: f64 = 20.0;
@@ -150,6 +150,9 @@ pub(crate) struct PanelLayout {
     pub band_strip: bool,
     /// The vertical axis label: its centre line and font size (it stays inside the panel's slot).
     pub y_label_at: (f64, f64),
+    /// Whether the horizontal tick labels and axis label are drawn (a short panel over another
+    /// of the same horizontal axis leaves them to the panel below).
+    pub x_ticks_labelled: bool,
 }
 
 impl PanelLayout {
@@ -159,6 +162,11 @@ impl PanelLayout {
     pub fn py(&self, y: f64) -> f64 {
         self.plot.y1 - self.y.frac(y) * self.plot.h()
     }
+    /// A band's ends in pixels, cut to the axis (`None` when nothing of it is on the axis).
+    pub fn band_px(&self, b: &super::XBand) -> Option<(f64, f64)> {
+        let (a, z) = (b.from.min(b.to).max(self.x.lo), b.from.max(b.to).min(self.x.hi));
+        (a.partial_cmp(&z) == Some(std::cmp::Ordering::Less)).then(|| (self.px(a), self.px(z)))
+    }
 }
 
 /// The whole figure in pixels.
@@ -166,7 +174,81 @@ impl PanelLayout {
 pub(crate) struct Layout {
     pub width: f64,
     pub height: f64,
+    /// The title's lines (none for an empty title) and its font size.
+    pub title: Vec<String>,
+    pub title_font: f64,
     pub panels: Vec<PanelLayout>,
+}
+
+/// Smallest font a long title is shrunk to before it is wrapped onto more lines.
+const MIN_FONT_TITLE: f64 = 14.0;
+/// Most lines of a wrapped title; the last is cut short (`…`) beyond them.
+const MAX_TITLE_LINES: usize = 3;
+
+/// Baseline of the title's first line for a font size (28 px for the usual 20 px).
+pub(crate) fn title_baseline(font: f64) -> f64 {
+    8.0 + font
+}
+
+/// Line spacing of a wrapped title.
+pub(crate) fn title_line(font: f64) -> f64 {
+    1.2 * font
+}
+
+/// The title in lines that fit `width` pixels, and their font: one line at the usual size when it
+/// fits, else one line in a smaller font (down to [`MIN_FONT_TITLE`]), else wrapped at spaces (a
+/// word longer than a line is broken) onto at most [`MAX_TITLE_LINES`] lines, the last cut short
+/// with `…` if the title is longer still.
+pub(crate) fn fit_title(title: &str, width: f64) -> (Vec<String>, f64) {
+    let title = title.trim();
+    if title.is_empty() {
+        return (Vec::new(), FONT_TITLE);
+    }
+    let room = width - 16.0;
+    let full = text_width(title, FONT_TITLE);
+    if full <= room {
+        return (vec![title.to_string()], FONT_TITLE);
+    }
+    if text_width(title, MIN_FONT_TITLE) <= room {
+        let font = (FONT_TITLE * room / full).floor().max(MIN_FONT_TITLE);
+        let font = if text_width(title, font) <= room { font } else { MIN_FONT_TITLE };
+        return (vec![title.to_string()], font);
+    }
+    let font = MIN_FONT_TITLE;
+    let fits = |s: &str| text_width(s, font) <= room;
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in title.split_whitespace() {
+        let joined = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
+        if fits(&joined) {
+            line = joined;
+            continue;
+        }
+        if !line.is_empty() {
+            lines.push(std::mem::take(&mut line));
+        }
+        // A word wider than a line: broken where it must be.
+        for c in word.chars() {
+            line.push(c);
+            if !fits(&line) {
+                line.pop();
+                lines.push(std::mem::take(&mut line));
+                line.push(c);
+            }
+        }
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    if lines.len() > MAX_TITLE_LINES {
+        lines.truncate(MAX_TITLE_LINES);
+        let last = &mut lines[MAX_TITLE_LINES - 1];
+        while !last.is_empty() && !fits(&format!("{last}…")) {
+            last.pop();
+        }
+        last.push('…');
+    }
+    (lines, font)
 }
 
 /// Whether a label names an angle in degrees.
@@ -177,7 +259,11 @@ pub(crate) fn is_angle(label: &str) -> bool {
 pub(crate) fn layout(fig: &Figure) -> Layout {
     let (w, h) = fig.pixel_size();
     let (w, h) = (f64::from(w), f64::from(h));
-    let top = if fig.title.trim().is_empty() { 8.0 } else { 40.0 };
+    let (title, title_font) = fit_title(&fig.title, w);
+    let top = match title.len() {
+        0 => 8.0,
+        n => title_baseline(title_font) + title_line(title_font) * (n - 1) as f64 + 12.0,
+    };
     let total: f64 = fig.panels.iter().map(|p| panel_weight(p.weight)).sum();
     let mut slots = Vec::new();
     let mut y = top;
@@ -195,10 +281,19 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
     // every stacked panel gives up the legend's width.
     let mut above = vec![false; fig.panels.len()];
     let mut tops = vec![0.0; fig.panels.len()];
+    // Short stacked panels on one horizontal axis leave its ticks and label to the lowest.
+    let mut shared = vec![false; fig.panels.len()];
+    if slots.iter().any(|s| s.h() < COMPACT_SLOT) {
+        let first = place_panels(fig, &slots, 18.0, &tops, &shared);
+        for i in 0..first.len().saturating_sub(1) {
+            let (a, b) = (&first[i], &first[i + 1]);
+            shared[i] = a.x_label == b.x_label && a.x == b.x;
+        }
+    }
     let mut panels = Vec::new();
     for _ in 0..6 {
         let right = outside.iter().zip(&sizes).filter(|(o, _)| **o).map(|(_, s)| s.0 + 30.0).fold(18.0, f64::max);
-        panels = place_panels(fig, &slots, right, &tops);
+        panels = place_panels(fig, &slots, right, &tops, &shared);
         let mut changed = false;
         for (i, (pl, p)) in panels.iter_mut().zip(&fig.panels).enumerate() {
             pl.entries = entries[i].clone();
@@ -222,7 +317,12 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
                 pl.legend = free_spot(pl, p, lw, lh);
                 if pl.legend.is_none() {
                     let (_, rh, _) = legend_rows(&entries[i], pl.plot.w());
-                    if rh + LEGEND_GAP <= (1.0 - MAX_HEIGHT_FOR_LEGEND) * pl.plot.h() {
+                    // On a narrow figure a column on the right would take the plot's width:
+                    // rows above then, while the plot keeps some height.
+                    let narrow = lw + 30.0 > NARROW_SHARE * w;
+                    let rows_fit = rh + LEGEND_GAP <= (1.0 - MAX_HEIGHT_FOR_LEGEND) * pl.plot.h()
+                        || (narrow && pl.plot.h() - rh - LEGEND_GAP >= MIN_PLOT_UNDER_LEGEND);
+                    if rows_fit {
                         above[i] = true;
                     } else {
                         outside[i] = true;
@@ -243,13 +343,24 @@ pub(crate) fn layout(fig: &Figure) -> Layout {
             break;
         }
     }
-    Layout { width: w, height: h, panels }
+    Layout { width: w, height: h, title, title_font, panels }
 }
+
+/// Room under a plot for its tick labels and axis label.
+const X_AXIS_ROOM: f64 = 50.0;
+/// Space under a plot whose horizontal axis is labelled by the panel below.
+const SHARED_AXIS_GAP: f64 = 14.0;
+/// Panels of a figure whose slots are shorter share their horizontal axis (when it is the same).
+const COMPACT_SLOT: f64 = 200.0;
 
 /// Space between a legend in rows and the plot below it.
 const LEGEND_GAP: f64 = 8.0;
 /// Share of a plot's height a legend in rows above it may take; a larger legend goes to the right.
 const MAX_HEIGHT_FOR_LEGEND: f64 = 0.35;
+/// A legend column wider than this share of the figure makes it narrow: rows above instead.
+const NARROW_SHARE: f64 = 0.3;
+/// Least plot height left under a legend in rows on a narrow figure.
+const MIN_PLOT_UNDER_LEGEND: f64 = 60.0;
 /// Space between two entries of a row.
 const ENTRY_GAP: f64 = 18.0;
 
@@ -400,7 +511,16 @@ pub(crate) fn decade_label(k: i32) -> String {
 /// Linear ticks at least `min_px` apart on an axis `len_px` long.
 fn linear_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     let n = (len_px / min_px).floor().max(2.0);
-    let step = nice_step((hi - lo) / n);
+    let mut step = nice_step((hi - lo) / n);
+    // At least two labelled ticks: the next smaller round step (50 → 20 → 10) while the labels
+    // keep more than half the usual room.
+    while multiples(lo, hi, step).len() < 2 {
+        let smaller = nice_step(0.39 * step);
+        if smaller >= step || len_px * smaller / (hi - lo) < 0.55 * min_px {
+            break;
+        }
+        step = smaller;
+    }
     ticks_axis(lo, hi, step)
 }
 
@@ -427,6 +547,25 @@ pub(crate) fn angle_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     ticks_axis(lo, hi, step)
 }
 
+/// A degree axis ticked at whole turns (labelled with their count, at least `min_px` apart) with
+/// minor ticks at degrees within a turn (30°, 45°, 90° or 180°, the first at least
+/// [`MIN_MINOR_PX`] apart; none when even 180° is closer). Returns the axis and the minor step.
+pub(crate) fn turns_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> (Axis, Option<f64>) {
+    let span = (hi - lo).max(1e-9);
+    let px_per_turn = len_px * 360.0 / span;
+    let turns = nice_step((min_px / px_per_turn).max(1.0));
+    let ticks = multiples(lo, hi, 360.0 * turns);
+    let labels = ticks.iter().map(|t| tick_label(t / 360.0, 1.0)).collect();
+    let minor_step = [30.0, 45.0, 90.0, 180.0].into_iter().find(|s| len_px * s / span >= MIN_MINOR_PX);
+    let minor = minor_step.map_or_else(Vec::new, |m| {
+        multiples(lo, hi, m).into_iter().filter(|v| (v / 360.0 - (v / 360.0).round()).abs() > 1e-9).collect()
+    });
+    (Axis { lo, hi, log: false, ticks, labels, minor }, minor_step)
+}
+
+/// Least spacing of minor ticks within a turn.
+const MIN_MINOR_PX: f64 = 6.0;
+
 /// Decade ticks (every k-th labelled if they would crowd) with 2…9 grid lines when few decades.
 pub(crate) fn log_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     let (k0, k1) = (lo.log10().round() as i32, hi.log10().round() as i32);
@@ -450,13 +589,13 @@ pub(crate) fn log_axis(lo: f64, hi: f64, len_px: f64, min_px: f64) -> Axis {
     }
 }
 
-fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<PanelLayout> {
+fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64], shared: &[bool]) -> Vec<PanelLayout> {
     // Vertical axes first (they depend on heights only), so every plot can share one left edge.
     let mut pre = Vec::new();
-    for ((p, slot), top) in fig.panels.iter().zip(slots).zip(tops) {
+    for (((p, slot), top), &shared) in fig.panels.iter().zip(slots).zip(tops).zip(shared) {
         let band_strip = p.x_bands.iter().any(|b| !b.label.is_empty());
         let y0 = slot.y0 + 10.0 + top + if band_strip { BAND_STRIP } else { 0.0 };
-        let y1 = slot.y1 - 50.0;
+        let y1 = slot.y1 - if shared { SHARED_AXIS_GAP } else { X_AXIS_ROOM };
         let plot_h = (y1 - y0).max(20.0);
         let ys = || {
             p.series
@@ -480,9 +619,9 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<P
     let width = slots.first().map_or(0.0, |s| s.w());
     let x1 = (width - right).max(left + 40.0);
     let mut out = Vec::new();
-    for ((p, slot), (y0, y1, mut y_axis, band_strip)) in fig.panels.iter().zip(slots).zip(pre) {
+    for (((p, slot), (y0, y1, mut y_axis, band_strip)), &shared) in fig.panels.iter().zip(slots).zip(pre).zip(shared) {
         let plot = Rect { x0: left, y0, x1, y1 };
-        let x_label = p.x_label.clone().unwrap_or_else(|| fig.x_label.clone());
+        let mut x_label = p.x_label.clone().unwrap_or_else(|| fig.x_label.clone());
         let xs = || {
             p.series
                 .iter()
@@ -500,6 +639,12 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<P
             let (a, b) = (cy - scale * plot.h() / 2.0, cy + scale * plot.h() / 2.0);
             y_axis = linear_axis(a, b, plot.h(), 28.0);
             linear_axis(lo, hi, plot.w(), 80.0)
+        } else if fig.turns_axis && p.x_label.is_none() {
+            let (axis, minor) = turns_axis(lo, hi, plot.w(), 44.0);
+            if let Some(m) = minor {
+                x_label = format!("{x_label}, minor ticks every {m}°");
+            }
+            axis
         } else if is_angle(&x_label) {
             angle_axis(lo, hi, plot.w(), 44.0)
         } else {
@@ -518,6 +663,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64]) -> Vec<P
             legend_cells: Vec::new(),
             band_strip,
             y_label_at: y_label_place(&p.y_label, slot, &plot),
+            x_ticks_labelled: !shared,
         };
         pl.curves = p.series.iter().map(|s| polylines(&pl, &s.points)).collect();
         pl.notes = place_notes(&pl, p);

@@ -17,6 +17,8 @@
 //! and Bitstream Vera licence) for glyphs it lacks, both embedded from the `epaint_default_fonts`
 //! crate, so plotting needs no system fonts and no C library.
 
+mod font;
+mod labels;
 mod layout;
 mod raster;
 mod svg;
@@ -24,7 +26,7 @@ mod svg;
 pub use layout::PALETTE;
 
 use loomkin_io::IoError;
-use loomkin_units::{Range, RangeError};
+use loomkin_units::{Field, Range, RangeError};
 use std::path::Path;
 
 /// Stroke pattern of a line (drawn the same in the legend swatch).
@@ -367,13 +369,24 @@ pub struct Figure {
     pub size: Option<(u32, u32)>,
     /// Resolution of a PNG: 96 draws one PNG pixel per SVG pixel, 192 two.
     pub dpi: f64,
+    /// The horizontal axis, in main-shaft degrees, is ticked at whole turns (picks) with the
+    /// degrees within a turn as minor ticks (see [`Figure::with_turns_axis`]).
+    pub turns_axis: bool,
 }
 
-/// Allowed figure width and height in SVG pixels.
-pub const SIZE_PX: Range = Range::closed(200.0, 8000.0, "px");
+/// Allowed figure width and height in SVG pixels (a figure may need more than the lower bound to
+/// lay out: see [`Figure::with_page`]).
+pub const SIZE_PX: Range = Range::closed(SIZE_MIN, SIZE_MAX, "px");
+const SIZE_MIN: f64 = 200.0;
+const SIZE_MAX: f64 = 8000.0;
 /// Allowed PNG resolution.
 pub const DPI: Range = Range::closed(DPI_MIN, 1200.0, "dpi");
 const DPI_MIN: f64 = 24.0;
+/// The resolution at which one SVG pixel is one PNG pixel.
+const DPI_NATIVE: f64 = 96.0;
+/// The page fields of this crate (for the field reference and the front ends).
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![Page::WIDTH, Page::HEIGHT, Page::DPI];
+
 /// Largest PNG drawn, in pixels (a 10 000 × 10 000 image takes 400 MB while drawn).
 pub const MAX_PNG_PIXELS: f64 = 1e8;
 /// Longest title, in characters.
@@ -393,16 +406,36 @@ pub struct Page {
 }
 
 impl Page {
+    /// The figure's width in SVG pixels (1/96 in). Below 200 px no plot has room for its axes;
+    /// 8000 px is a poster's width at 96 dpi. A figure refuses a width at which its own labels
+    /// and legends do not fit, naming the least that does.
+    pub const WIDTH: Field = Field::new(
+        "width",
+        SIZE_PX,
+        "Figure width in SVG pixels (1/96 in): from the least that holds a plot's axes to a poster's width; a figure refuses a width at which its texts do not fit and names the least that does.",
+    )
+    .with_default(1000.0);
+    /// The figure's height in SVG pixels; left out, 280 px per panel and 50 px for the title.
+    pub const HEIGHT: Field = Field::new(
+        "height",
+        SIZE_PX,
+        "Figure height in SVG pixels (1/96 in; left out: 280 per panel plus 50): a figure refuses a height at which its panels and texts do not fit and names the least that does.",
+    );
+    /// The PNG's resolution: 96 dpi draws one PNG pixel per SVG pixel.
+    pub const DPI: Field = Field::new(
+        "dpi",
+        DPI,
+        "PNG resolution in dots per inch (96 draws one pixel per SVG pixel): from a thumbnail's to a print's, the image at most 10⁸ pixels.",
+    )
+    .with_default(DPI_NATIVE);
+
     /// Checks each setting against its range: [`SIZE_PX`], [`DPI`], at most
     /// [`MAX_TITLE_CHARS`] characters of title on one line.
     pub fn check(&self) -> Result<(), IoError> {
-        for (field, v) in [("width", self.width), ("height", self.height)] {
+        for (field, v) in [(Self::WIDTH, self.width), (Self::HEIGHT, self.height), (Self::DPI, self.dpi)] {
             if let Some(v) = v {
-                SIZE_PX.check(field, v)?;
+                field.check(v)?;
             }
-        }
-        if let Some(dpi) = self.dpi {
-            DPI.check("dpi", dpi)?;
         }
         if let Some(t) = &self.title {
             let n = t.chars().count();
@@ -420,13 +453,22 @@ impl Page {
 impl Figure {
     /// A figure with a title, a horizontal label and panels.
     pub fn new(title: impl Into<String>, x_label: impl Into<String>, panels: Vec<Panel>) -> Self {
-        Self { title: title.into(), x_label: x_label.into(), panels, size: None, dpi: 96.0 }
+        Self { title: title.into(), x_label: x_label.into(), panels, size: None, dpi: DPI_NATIVE, turns_axis: false }
+    }
+
+    /// The same figure with its horizontal axis (main-shaft degrees, counted from 0) ticked at
+    /// whole turns — one pick per turn — labelled with the number of turns, and the degrees within
+    /// a turn as minor ticks (every 30°, 45°, 90° or 180°, as the width allows; the horizontal
+    /// label says which). For a repeat of many picks, where a degree axis reads "17280°".
+    pub fn with_turns_axis(mut self) -> Self {
+        self.turns_axis = true;
+        self
     }
 
     /// The size in SVG pixels.
     pub fn pixel_size(&self) -> (u32, u32) {
         let weights: f64 = self.panels.iter().map(|p| panel_weight(p.weight)).sum();
-        self.size.unwrap_or((1000, (280.0 * weights.max(1.0)).round() as u32 + 50))
+        self.size.unwrap_or((Page::WIDTH.default_value() as u32, (280.0 * weights.max(1.0)).round() as u32 + 50))
     }
 
     /// The same figure with a user's page settings applied (checked first, see [`Page::check`]).
@@ -442,13 +484,72 @@ impl Figure {
         if let Some(t) = &page.title {
             self.title = t.clone();
         }
-        let px = f64::from(w) * f64::from(h) * (self.dpi / 96.0).powi(2);
+        if page.width.is_some() || page.height.is_some() {
+            self.check_size(page)?;
+        }
+        let px = f64::from(w) * f64::from(h) * (self.dpi / DPI_NATIVE).powi(2);
         if px > MAX_PNG_PIXELS {
-            let most = 96.0 * (MAX_PNG_PIXELS / (f64::from(w) * f64::from(h))).sqrt();
+            let most = DPI_NATIVE * (MAX_PNG_PIXELS / (f64::from(w) * f64::from(h))).sqrt();
             let range = Range::closed(DPI_MIN, most.floor().max(DPI_MIN), "dpi");
             return Err(RangeError::new("dpi", self.dpi, range).into());
         }
         Ok(self)
+    }
+
+    /// What does not fit at the figure's size: a text outside the canvas, two texts over each
+    /// other, a text over a legend, an axis with fewer than two labelled ticks. Empty when the
+    /// figure lays out (every figure does at its default size; [`Figure::with_page`] refuses a
+    /// size at which it does not).
+    pub fn layout_problems(&self) -> Vec<String> {
+        if self.panels.is_empty() {
+            return vec!["a figure needs at least one panel".into()];
+        }
+        labels::problems(self, &layout::layout(self))
+    }
+
+    fn fits(&self, w: u32, h: u32) -> bool {
+        let mut f = self.clone();
+        f.size = Some((w, h));
+        f.layout_problems().is_empty()
+    }
+
+    /// Refuses a size the user chose at which the figure does not lay out, naming the smallest
+    /// width or height that does (the figure's own lower bound: it depends on its panels, legends
+    /// and labels, so it is found by laying the figure out, bisecting between the size asked for
+    /// and [`SIZE_PX`]'s upper bound).
+    fn check_size(&self, page: &Page) -> Result<(), IoError> {
+        let (w, h) = self.pixel_size();
+        let problems = self.layout_problems();
+        let Some(first) = problems.first() else { return Ok(()) };
+        let most = SIZE_MAX as u32;
+        let least = |fits: &dyn Fn(u32) -> bool, from: u32, to: u32| {
+            let (mut lo, mut hi) = (from, to);
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if fits(mid) { hi = mid } else { lo = mid }
+            }
+            hi
+        };
+        if page.height.is_some() && h < most && self.fits(w, most) {
+            let min = least(&|v| self.fits(w, v), h, most);
+            let range = Range::closed(f64::from(min), SIZE_MAX, "px");
+            return Err(RangeError::new("height", f64::from(h), range).into());
+        }
+        if page.width.is_some() && w < most && self.fits(most, h) {
+            let min = least(&|v| self.fits(v, h), w, most);
+            let range = Range::closed(f64::from(min), SIZE_MAX, "px");
+            return Err(RangeError::new("width", f64::from(w), range).into());
+        }
+        // Neither alone: both grown in proportion up to the largest size.
+        let grow = |t: u32| {
+            let at = |v: u32| v + ((most - v) as u64 * u64::from(t) / 1000) as u32;
+            (at(w), at(h))
+        };
+        let t = least(&|t| self.fits(grow(t).0, grow(t).1), 0, 1000);
+        let (lw, lh) = grow(t);
+        Err(IoError::Plot(format!(
+            "width = {w} and height = {h} px are too small for this figure ({first}); it lays out at {lw} × {lh} px"
+        )))
     }
 
     /// Renders to `path`; the extension (`.svg` or `.png`) chooses the format (see [`plot_format`]).
@@ -473,6 +574,14 @@ impl Figure {
     pub fn to_png(&self) -> Result<Vec<u8>, IoError> {
         raster::png(&self.to_svg()?, self.pixel_size(), self.dpi)
     }
+}
+
+/// The texts of an SVG written by [`Figure::to_svg`] as a renderer draws them: each text (its
+/// `aria-label`) with the box `[x0, y0, x1, y1]` (SVG pixels, y down) that its glyph outlines
+/// fill, read back by usvg. A check of a figure's layout that does not trust the layout's own
+/// boxes: tests use it to find texts that overlap or leave the canvas.
+pub fn drawn_texts(svg: &str) -> Result<Vec<(String, [f64; 4])>, IoError> {
+    raster::drawn_texts(svg)
 }
 
 /// The file format of a plot, chosen by the file's extension.

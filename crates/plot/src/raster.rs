@@ -1,40 +1,13 @@
-//! Text metrics of the embedded font, and the SVG rasterised to PNG.
+//! The SVG rasterised to PNG.
 
-use epaint_default_fonts::{HACK_REGULAR, UBUNTU_LIGHT};
 use loomkin_io::IoError;
 use resvg::{tiny_skia, usvg};
-use skrifa::instance::{LocationRef, Size};
-use skrifa::{FontRef, MetadataProvider};
-
-/// Advance width of `text` at `size` pixels in the embedded font (Hack for glyphs Ubuntu lacks),
-/// without kerning (a slight overestimate, which is the safe side for boxes around text).
-pub(crate) fn text_width(text: &str, size: f64) -> f64 {
-    let fonts: Vec<FontRef<'static>> =
-        [UBUNTU_LIGHT, HACK_REGULAR].iter().filter_map(|d| FontRef::new(d).ok()).collect();
-    let sz = Size::new(size as f32);
-    let tables: Vec<_> = fonts.iter().map(|f| (f.charmap(), f.glyph_metrics(sz, LocationRef::default()))).collect();
-    text.chars()
-        .map(|c| {
-            tables
-                .iter()
-                .find_map(|(cmap, metrics)| cmap.map(c).and_then(|g| metrics.advance_width(g)))
-                .map_or(0.6 * size, f64::from)
-        })
-        .sum()
-}
 
 /// The SVG (of `size` SVG pixels) drawn at `dpi` (96: one PNG pixel per SVG pixel) as PNG bytes
 /// carrying that resolution.
 pub(crate) fn png(svg: &str, size: (u32, u32), dpi: f64) -> Result<Vec<u8>, IoError> {
-    let mut opt = usvg::Options::default();
-    let db = opt.fontdb_mut();
-    db.load_font_data(UBUNTU_LIGHT.to_vec());
-    db.load_font_data(HACK_REGULAR.to_vec());
-    let family = db.faces().next().and_then(|f| f.families.first()).map(|f| f.0.clone());
-    if let Some(family) = family {
-        db.set_sans_serif_family(family.clone());
-        opt.font_family = family;
-    }
+    // The SVG draws its text as glyph outlines (see `svg.rs`): no font is loaded here.
+    let opt = usvg::Options::default();
     let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| IoError::Plot(format!("SVG not rendered: {e}")))?;
     let scale = dpi / 96.0;
     let (w, h) = ((f64::from(size.0) * scale).round() as u32, (f64::from(size.1) * scale).round() as u32);
@@ -78,4 +51,39 @@ pub(crate) fn crc32(data: &[u8]) -> u32 {
         }
     }
     !crc
+}
+
+/// The texts of an SVG this crate wrote, as a renderer draws them: each text's glyph outlines,
+/// read back by usvg, bounded by their ink box `[x0, y0, x1, y1]` in SVG pixels, with the text
+/// (its group's `aria-label`), in drawing order.
+pub(crate) fn drawn_texts(svg: &str) -> Result<Vec<(String, [f64; 4])>, IoError> {
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+        .map_err(|e| IoError::Plot(format!("SVG not read: {e}")))?;
+    let mut out = Vec::new();
+    collect(tree.root(), svg, &mut out);
+    Ok(out)
+}
+
+fn collect(g: &usvg::Group, svg: &str, out: &mut Vec<(String, [f64; 4])>) {
+    for node in g.children() {
+        if let usvg::Node::Group(child) = node {
+            let id = child.id();
+            if id.len() > 1 && id.starts_with('t') && id[1..].bytes().all(|b| b.is_ascii_digit()) {
+                let b = child.abs_bounding_box();
+                let b = [b.left(), b.top(), b.right(), b.bottom()].map(f64::from);
+                out.push((aria_label(svg, id), b));
+            } else {
+                collect(child, svg, out);
+            }
+        }
+    }
+}
+
+/// The `aria-label` written beside `id="…"`, unescaped.
+fn aria_label(svg: &str, id: &str) -> String {
+    let key = format!(r#"id="{id}" aria-label=""#);
+    let Some(at) = svg.find(&key) else { return String::new() };
+    let rest = &svg[at + key.len()..];
+    let text = &rest[..rest.find('"').unwrap_or(rest.len())];
+    text.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&apos;", "'").replace("&amp;", "&")
 }

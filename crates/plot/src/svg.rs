@@ -1,15 +1,11 @@
 //! The figure as an SVG document.
 
-use super::layout::{
-    FONT_BAND, FONT_LABEL, FONT_LEGEND, FONT_NOTE, FONT_TICK, FONT_TITLE, Layout, MARKER_R, PanelLayout, SWATCH, Swatch,
-};
-use super::raster::text_width;
+use super::font::{Glyph, UNITS, fonts};
+use super::labels::{Label, labels};
+use super::layout::{Layout, MARKER_R, PanelLayout, SWATCH, Swatch};
 use super::{Dash, Figure, Panel, RuleAxis};
+use std::collections::HashMap;
 use std::fmt::Write;
-
-/// Fonts named in the document: the embedded one first (the PNG renderer has only that one),
-/// then common ones for other SVG viewers.
-const FONT_FAMILY: &str = "Ubuntu, 'Ubuntu Light', 'DejaVu Sans', Arial, sans-serif";
 
 fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
@@ -31,37 +27,90 @@ fn hex([r, g, b]: [u8; 3]) -> String {
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
-/// A colour mixed towards black (for text on a tinted band).
-fn darker([r, g, b]: [u8; 3]) -> [u8; 3] {
-    let d = |c: u8| (f64::from(c) * 0.6).round() as u8;
-    [d(r), d(g), d(b)]
-}
-
 fn dash_attr(d: Dash) -> String {
     d.dasharray().map_or(String::new(), |a| format!(r#" stroke-dasharray="{a}""#))
 }
 
+/// The SVG document. Text is drawn as the embedded font's glyph outlines (each glyph once, in
+/// `<defs>`, placed with `<use>`), so every viewer draws what the PNG shows without the font;
+/// each text's group carries the text as its `aria-label`.
 pub(crate) fn write(fig: &Figure, lay: &Layout) -> String {
-    let mut s = String::new();
+    let mut body = String::new();
     let (w, h) = (lay.width, lay.height);
+    let _ = writeln!(body, r##"<rect width="{w}" height="{h}" fill="#ffffff"/>"##);
+    for (i, (p, pl)) in fig.panels.iter().zip(&lay.panels).enumerate() {
+        panel(&mut body, i, p, pl);
+    }
+    let mut glyphs = Glyphs::default();
+    for (k, l) in labels(fig, lay).iter().enumerate() {
+        text(&mut body, k, l, &mut glyphs);
+    }
+    let mut s = String::with_capacity(body.len() + glyphs.defs.len() + 200);
     let _ = writeln!(
         s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="{FONT_FAMILY}">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
-    let _ = writeln!(s, r##"<rect width="{w}" height="{h}" fill="#ffffff"/>"##);
-    if !fig.title.trim().is_empty() {
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="28" font-size="{FONT_TITLE}" text-anchor="middle" fill="#111111">{}</text>"##,
-            w / 2.0,
-            esc(&fig.title)
-        );
+    if !glyphs.defs.is_empty() {
+        let _ = writeln!(s, "<defs>\n{}</defs>", glyphs.defs);
     }
-    for (i, (p, pl)) in fig.panels.iter().zip(&lay.panels).enumerate() {
-        panel(&mut s, i, p, pl);
-    }
+    s.push_str(&body);
     s.push_str("</svg>\n");
     s
+}
+
+/// The glyphs written so far: each outline once, under a short id.
+#[derive(Default)]
+struct Glyphs {
+    ids: HashMap<Glyph, Option<usize>>,
+    defs: String,
+}
+
+impl Glyphs {
+    /// The id of the glyph's outline (`None` for a glyph that draws nothing, a space).
+    fn id(&mut self, g: Glyph) -> Option<usize> {
+        let next = self.ids.values().filter(|v| v.is_some()).count();
+        let defs = &mut self.defs;
+        *self.ids.entry(g).or_insert_with(|| {
+            let d = fonts().outline(g);
+            if d.is_empty() {
+                return None;
+            }
+            let _ = writeln!(defs, r#"<path id="g{next}" d="{d}"/>"#);
+            Some(next)
+        })
+    }
+}
+
+/// One text as a group of glyphs: placed at its anchor, in font units (y up) scaled to its size.
+fn text(s: &mut String, k: usize, l: &Label, glyphs: &mut Glyphs) {
+    let f = fonts();
+    let scale = l.size / UNITS;
+    let (x, y, d) = (l.x, l.y, l.start_offset());
+    let place = if l.vertical {
+        format!("translate({x:.2} {y:.2}) rotate(-90) translate({d:.2} 0)")
+    } else {
+        format!("translate({:.2} {y:.2})", x + d)
+    };
+    let halo = if l.halo {
+        format!(r##" stroke="#ffffff" stroke-width="{:.0}" stroke-linejoin="round" paint-order="stroke""##, 3.0 / scale)
+    } else {
+        String::new()
+    };
+    let _ = write!(
+        s,
+        r#"<g id="t{k}" aria-label="{}" transform="{place} scale({scale:.5} -{scale:.5})" fill="{}"{halo}>"#,
+        esc(&l.text),
+        hex(l.color)
+    );
+    let mut at = 0.0;
+    for c in l.text.chars() {
+        let (g, advance) = f.glyph(c);
+        if let Some(id) = glyphs.id(g) {
+            let _ = write!(s, r##"<use xlink:href="#g{id}" x="{at:.0}"/>"##);
+        }
+        at += advance;
+    }
+    s.push_str("</g>\n");
 }
 
 fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
@@ -76,27 +125,14 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
     );
     // Shaded intervals, under everything.
     for b in &p.x_bands {
-        let (a, z) = (b.from.min(b.to).max(pl.x.lo), b.from.max(b.to).min(pl.x.hi));
-        if a.partial_cmp(&z) != Some(std::cmp::Ordering::Less) {
-            continue;
-        }
-        let (xa, xz) = (pl.px(a), pl.px(z));
-        let _ = writeln!(
-            s,
-            r#"<rect x="{xa:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{}" fill-opacity="0.13"/>"#,
-            r.y0,
-            xz - xa,
-            r.h(),
-            hex(b.color)
-        );
-        if pl.band_strip && !b.label.is_empty() && text_width(&b.label, FONT_BAND) + 6.0 <= xz - xa {
+        if let Some((xa, xz)) = pl.band_px(b) {
             let _ = writeln!(
                 s,
-                r#"<text x="{:.2}" y="{:.2}" font-size="{FONT_BAND}" text-anchor="middle" fill="{}">{}</text>"#,
-                (xa + xz) / 2.0,
-                r.y0 - 5.0,
-                hex(darker(b.color)),
-                esc(&b.label)
+                r#"<rect x="{xa:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{}" fill-opacity="0.13"/>"#,
+                r.y0,
+                xz - xa,
+                r.h(),
+                hex(b.color)
             );
         }
     }
@@ -173,20 +209,8 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
         }
     }
     s.push_str("</g>\n");
-    for (n, nl) in p.notes.iter().zip(&pl.notes) {
-        if n.text.is_empty() {
-            let _ = writeln!(s, r##"<circle cx="{:.2}" cy="{:.2}" r="3.5" fill="#222222"/>"##, nl.at.0, nl.at.1);
-            continue;
-        }
-        let _ = writeln!(
-            s,
-            r##"<circle cx="{:.2}" cy="{:.2}" r="3.5" fill="#222222"/><text x="{:.2}" y="{:.2}" font-size="{FONT_NOTE}" fill="#222222" stroke="#ffffff" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text>"##,
-            nl.at.0,
-            nl.at.1,
-            nl.text.x0 + 2.0,
-            nl.text.y1 - 4.5,
-            esc(&n.text)
-        );
+    for nl in &pl.notes {
+        let _ = writeln!(s, r##"<circle cx="{:.2}" cy="{:.2}" r="3.5" fill="#222222"/>"##, nl.at.0, nl.at.1);
     }
     // Frame, ticks and labels.
     let _ = writeln!(
@@ -197,15 +221,13 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
         r.w(),
         r.h()
     );
-    for (v, l) in pl.x.ticks.iter().zip(&pl.x.labels) {
+    for v in &pl.x.ticks {
         let x = pl.px(*v);
         vline(s, x, r.y1, r.y1 + 5.0, "#777777");
-        let _ = writeln!(
-            s,
-            r##"<text x="{x:.2}" y="{:.2}" font-size="{FONT_TICK}" text-anchor="middle" fill="#333333">{}</text>"##,
-            r.y1 + 19.0,
-            esc(l)
-        );
+    }
+    // Short unlabelled ticks within a turn.
+    for v in &pl.x.minor {
+        vline(s, pl.px(*v), r.y1, r.y1 + 3.0, "#777777");
     }
     if pl.y.log {
         // Short unlabelled ticks at the 2…9 of each decade.
@@ -213,34 +235,9 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
             hline(s, pl.py(*v), r.x0 - 3.0, r.x0, "#777777");
         }
     }
-    for (v, l) in pl.y.ticks.iter().zip(&pl.y.labels) {
-        let y = pl.py(*v);
-        hline(s, y, r.x0 - 5.0, r.x0, "#777777");
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.2}" y="{:.2}" font-size="{FONT_TICK}" text-anchor="end" fill="#333333">{}</text>"##,
-            r.x0 - 8.0,
-            y + 4.5,
-            esc(l)
-        );
+    for v in &pl.y.ticks {
+        hline(s, pl.py(*v), r.x0 - 5.0, r.x0, "#777777");
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="{:.2}" y="{:.2}" font-size="{FONT_LABEL}" text-anchor="middle" fill="#111111">{}</text>"##,
-        (r.x0 + r.x1) / 2.0,
-        r.y1 + 40.0,
-        esc(&pl.x_label)
-    );
-    let (ly, font) = pl.y_label_at;
-    let lx = 12.0 + FONT_LABEL - 2.0;
-    // The usual size written as before (the SVG of a figure whose labels fit is unchanged).
-    let font = if font == FONT_LABEL { format!("{FONT_LABEL}") } else { format!("{font:.2}") };
-    let _ = writeln!(
-        s,
-        r##"<text x="{lx:.2}" y="{ly:.2}" font-size="{}" text-anchor="middle" fill="#111111" transform="rotate(-90 {lx:.2} {ly:.2})">{}</text>"##,
-        font,
-        esc(&p.y_label)
-    );
     if let Some(box_) = pl.legend {
         let _ = writeln!(
             s,
@@ -251,7 +248,6 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
             box_.h()
         );
         for (e, &(sx, cy)) in pl.entries.iter().zip(&pl.legend_cells) {
-            let tx = sx + SWATCH + 7.0;
             match &e.swatch {
                 Swatch::Line { color, dash } => {
                     let _ = writeln!(
@@ -278,12 +274,6 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
                     );
                 }
             }
-            let _ = writeln!(
-                s,
-                r##"<text x="{tx:.2}" y="{:.2}" font-size="{FONT_LEGEND}" fill="#111111">{}</text>"##,
-                cy + 4.5,
-                esc(&e.text)
-            );
         }
     }
 }

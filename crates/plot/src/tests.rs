@@ -21,7 +21,7 @@ fn svg_has_labels_legend_and_dash_swatches() {
     let svg = fig.to_svg().unwrap();
     assert!(svg.contains("#010203"), "the chosen colour is used");
     for text in ["x [-]", "s [-]", "one", "two", "test"] {
-        assert!(svg.contains(&format!(">{text}<")), "{text} missing");
+        assert!(svg.contains(&format!(r#"aria-label="{text}""#)), "{text} missing");
     }
     // The dash-dot pattern appears twice: on the curve and on its legend swatch.
     assert_eq!(svg.matches(r#"stroke-dasharray="10 4 2 4""#).count(), 2);
@@ -182,7 +182,7 @@ fn a_legend_with_no_room_inside_goes_in_rows_above_its_plot() {
     // The SVG draws every entry.
     let svg = fig.to_svg().unwrap();
     for i in 0..10 {
-        assert!(svg.contains(&format!(">curve with a long name {i}<")), "curve {i}");
+        assert!(svg.contains(&format!(r#"aria-label="curve with a long name {i}""#)), "curve {i}");
     }
 }
 
@@ -287,9 +287,9 @@ fn crc32_matches_the_check_value() {
 
 #[test]
 fn text_is_measured_with_the_embedded_font() {
-    let w = super::raster::text_width("cycloidal", 15.0);
+    let w = super::font::text_width("cycloidal", 15.0);
     assert!(w > 40.0 && w < 80.0, "{w}");
-    assert!(super::raster::text_width("ii", 15.0) < super::raster::text_width("MM", 15.0));
+    assert!(super::font::text_width("ii", 15.0) < super::font::text_width("MM", 15.0));
 }
 
 #[test]
@@ -379,7 +379,7 @@ fn log_floor_moves_no_point_and_breaks_at_zeros() {
     assert!(drawn.contains(&(pl.px(pts[300].0), pl.py(1e-13))));
     // The decade labels are written as 10ᵏ in the SVG.
     let svg = fig.to_svg().unwrap();
-    assert!(svg.contains(">10⁻⁴<") && svg.contains(">10⁰<"), "decade labels");
+    assert!(svg.contains(r#"aria-label="10⁻⁴""#) && svg.contains(r#"aria-label="10⁰""#), "decade labels");
 }
 
 /// The shaded intervals and bands are drawn at their data coordinates.
@@ -403,12 +403,12 @@ fn bands_are_drawn_at_their_data_coordinates() {
     assert!(svg.contains(&rect(xa, pl.plot.y0, xz - xa, pl.plot.h())), "window rectangle");
     let (ya, yz) = (pl.py(45.0), pl.py(50.0));
     assert!(svg.contains(&rect(pl.plot.x0, yz, pl.plot.w(), ya - yz)), "threshold band rectangle");
-    assert!(svg.contains(">window<") && svg.contains(">threshold band<"));
+    assert!(svg.contains(r#"aria-label="window""#) && svg.contains(r#"aria-label="threshold band""#));
 }
 
 #[test]
 fn vertical_labels_of_short_stacked_panels_do_not_overlap() {
-    use super::raster::text_width;
+    use super::font::text_width;
     // Labels longer than a short panel at the usual size, short enough at 10 px (what the
     // seven-law `law plot --width 700 --height 600` draws).
     let label = |q: &str| format!("{q}: a = d²s/dx² [m/s²]");
@@ -436,4 +436,165 @@ fn vertical_labels_of_short_stacked_panels_do_not_overlap() {
     let tall = layout(&Figure::new("t", "x", vec![Panel::new("y [m]", sine_series())]));
     let pl = &tall.panels[0];
     assert_eq!(pl.y_label_at, ((pl.plot.y0 + pl.plot.y1) / 2.0, 15.0));
+}
+
+/// A figure with every kind of text: a title, band labels, notes, legends inside and crowded,
+/// a log axis, a long vertical label.
+fn every_text(panels: usize) -> Figure {
+    let mut out = vec![
+        Panel::new("displacement s [mm]", sine_series())
+            .with_x_bands([
+                XBand::new(0.0, 120.0, "rise", XBand::RISE),
+                XBand::new(120.0, 360.0, "dwell", XBand::DWELL),
+            ])
+            .with_notes([Note::new(90.0, 1.0, "peak 1 mm at 90°")]),
+        Panel::new("spectrum |X| [m]", vec![Series::line("", (1..200).map(|i| (i as f64, 1.0 / i as f64)).collect())])
+            .with_log_y()
+            .with_x_label("frequency f [Hz]"),
+        Panel::new("acceleration a = d²s/dx² [m/s²]", crowded(5, "a curve with a long legend entry"))
+            .with_rule(Rule::y(0.5, "limit 0.5 m/s²")),
+        Panel::new("torque M [N·m]", sine_series()).with_y_band(YBand::new(-0.2, 0.2, "threshold band", [200, 0, 0])),
+    ];
+    out.truncate(panels);
+    Figure::new("A long title naming the input file, the speed and every setting of this run", "angle [deg]", out)
+}
+
+#[test]
+fn text_is_drawn_as_glyph_outlines_once_each() {
+    let svg = every_text(4).to_svg().unwrap();
+    assert!(!svg.contains("<text") && !svg.contains("font-family"), "no text element, no font named");
+    let lay = layout(&every_text(4));
+    let labels = super::labels::labels(&every_text(4), &lay);
+    let mut glyphs = std::collections::HashSet::new();
+    for l in &labels {
+        assert!(svg.contains(&format!(r#"aria-label="{}""#, l.text.replace('&', "&amp;"))), "{}", l.text);
+        glyphs.extend(l.text.chars().filter(|c| !c.is_whitespace()));
+    }
+    // Each character's outline is written once (a character Ubuntu lacks maps to Hack's glyph).
+    assert_eq!(svg.matches(r#"<path id="g"#).count(), glyphs.len());
+}
+
+#[test]
+fn layout_boxes_hold_the_drawn_ink() {
+    // The boxes the layout checks against each other hold what a renderer draws (read back from
+    // the SVG by usvg, not from the layout).
+    for (fig, size) in [(every_text(4), None), (every_text(2), Some((420, 520))), (every_text(1), Some((300, 260)))] {
+        let mut fig = fig;
+        fig.size = size;
+        let lay = layout(&fig);
+        let labels = super::labels::labels(&fig, &lay);
+        let drawn = drawn_texts(&fig.to_svg().unwrap()).unwrap();
+        assert_eq!(drawn.len(), labels.len());
+        for (l, (text, b)) in labels.iter().zip(&drawn) {
+            assert_eq!(&l.text, text);
+            let r = l.rect().grow(1.0);
+            assert!(r.contains(&Rect { x0: b[0], y0: b[1], x1: b[2], y1: b[3] }), "{text}: ink {b:?} outside {r:?}");
+            // And the box is not loose: the ink spans most of the advance.
+            let along = if l.vertical { b[3] - b[1] } else { b[2] - b[0] };
+            let advance = if l.vertical { l.rect().h() } else { l.rect().w() };
+            assert!(along > 0.5 * advance || text.chars().count() < 3, "{text}: ink {along} of {advance}");
+        }
+    }
+}
+
+/// Whether any two drawn texts overlap or one leaves the canvas (from the SVG alone).
+fn drawn_clashes(svg: &str, w: f64, h: f64) -> Vec<String> {
+    let drawn = drawn_texts(svg).unwrap();
+    let mut out = Vec::new();
+    for (i, (a, ab)) in drawn.iter().enumerate() {
+        if ab[0] < -0.5 || ab[1] < -0.5 || ab[2] > w + 0.5 || ab[3] > h + 0.5 {
+            out.push(format!("'{a}' off the canvas {ab:?}"));
+        }
+        for (b, bb) in &drawn[i + 1..] {
+            if ab[0] < bb[2] && bb[0] < ab[2] && ab[1] < bb[3] && bb[1] < ab[3] {
+                out.push(format!("'{a}' meets '{b}'"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_accepted_size_lays_out_and_a_refusal_names_a_size_that_does() {
+    let sizes = [200.0, 260.0, 330.0, 400.0, 500.0, 600.0, 700.0, 850.0, 1000.0, 1600.0, 8000.0];
+    for panels in 1..=4 {
+        let fig = every_text(panels);
+        assert!(fig.layout_problems().is_empty(), "{panels} panels at the default size: {:?}", fig.layout_problems());
+        let mut accepted = 0;
+        for &w in &sizes {
+            for &h in &sizes {
+                if w * h > 4e7 {
+                    continue; // a poster both ways: nothing new, and slow to read back
+                }
+                let page = Page { width: Some(w), height: Some(h), ..Page::default() };
+                match fig.clone().with_page(&page) {
+                    Ok(f) => {
+                        accepted += 1;
+                        assert!(f.layout_problems().is_empty());
+                        let clashes = drawn_clashes(&f.to_svg().unwrap(), w, h);
+                        assert!(clashes.is_empty(), "{panels} panels at {w} × {h}: {clashes:?}");
+                    }
+                    Err(IoError::Range(e)) => {
+                        // The least size named lays out.
+                        let least = match &e.range.lo {
+                            loomkin_units::Bound::Closed(v) | loomkin_units::Bound::Open(v) => *v,
+                            other => panic!("{other:?}"),
+                        };
+                        let page = match e.field.as_str() {
+                            "width" => Page { width: Some(least), height: Some(h), ..Page::default() },
+                            "height" => Page { width: Some(w), height: Some(least), ..Page::default() },
+                            other => panic!("{other}"),
+                        };
+                        assert!(least > w.min(h), "{e}");
+                        let f = fig.clone().with_page(&page).unwrap_or_else(|e| panic!("{panels} at {w} × {h}: {e}"));
+                        assert!(f.layout_problems().is_empty());
+                    }
+                    Err(e) => assert!(e.to_string().contains("too small for this figure"), "{e}"),
+                }
+            }
+        }
+        assert!(accepted > 20, "{panels} panels: only {accepted} sizes accepted");
+    }
+}
+
+#[test]
+fn a_long_title_shrinks_then_wraps_and_stays_on_the_canvas() {
+    use super::layout::fit_title;
+    let (lines, font) = fit_title("Normalised motion laws", 1000.0);
+    assert_eq!((lines.len(), font), (1, 20.0));
+    let long = "Servo motion law from definition points and motor torque over one turn";
+    let (lines, font) = fit_title(long, 600.0);
+    assert_eq!(lines.len(), 1);
+    assert!((14.0..20.0).contains(&font) && super::font::text_width(long, font) <= 584.0);
+    let (lines, font) = fit_title(long, 300.0);
+    assert_eq!(font, 14.0);
+    assert!(lines.len() > 1 && lines.iter().all(|l| super::font::text_width(l, font) <= 284.0));
+    assert_eq!(lines.join(" "), long, "wrapped at spaces, nothing lost");
+    let (lines, _) = fit_title(&"word ".repeat(200), 200.0);
+    assert_eq!(lines.len(), 3);
+    assert!(lines[2].ends_with('…'));
+}
+
+#[test]
+fn a_turns_axis_is_ticked_at_whole_turns_with_degrees_as_minor_ticks() {
+    use super::layout::turns_axis;
+    // 48 picks on 900 px: 18.75 px a turn, labels every 5 turns (≥ 44 px), minor ticks every 180°.
+    let (a, minor) = turns_axis(0.0, 17_280.0, 900.0, 44.0);
+    assert_eq!(
+        a.ticks.iter().map(|t| t / 360.0).collect::<Vec<_>>(),
+        (0..=9).map(|k| 5.0 * k as f64).collect::<Vec<_>>()
+    );
+    assert_eq!(a.labels[1], "5");
+    assert_eq!(minor, Some(180.0));
+    assert!(a.minor.iter().all(|m| (m % 180.0).abs() < 1e-9 && (m % 360.0).abs() > 1e-9));
+    assert_eq!(a.minor.len(), 48);
+    // 4 picks: every turn labelled, minor ticks every 30°, none on a whole turn.
+    let (a, minor) = turns_axis(0.0, 1440.0, 900.0, 44.0);
+    assert_eq!(a.labels, ["0", "1", "2", "3", "4"]);
+    assert_eq!(minor, Some(30.0));
+    assert_eq!(a.minor.len(), 4 * 11);
+    // The figure says the minor step in its horizontal label.
+    let fig = Figure::new("", "picks", vec![Panel::new("M [N·m]", vec![Series::line("", sine(400, 1440.0, 1.0))])])
+        .with_turns_axis();
+    assert!(fig.to_svg().unwrap().contains(r#"aria-label="picks, minor ticks every 30°""#));
 }

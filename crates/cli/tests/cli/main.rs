@@ -15,6 +15,7 @@ mod messages;
 mod output;
 mod parts;
 mod pick;
+mod plots;
 mod scripts;
 mod serve;
 mod servo;
