@@ -118,11 +118,13 @@ pub(crate) fn labels(fig: &Figure, lay: &Layout) -> Vec<Label> {
     for (i, (p, pl)) in fig.panels.iter().zip(&lay.panels).enumerate() {
         let r = pl.plot;
         for b in &p.x_bands {
-            if let Some((xa, xz)) = pl.band_px(b) {
-                if pl.band_strip && !b.label.is_empty() && text_width(&b.label, FONT_BAND) + 6.0 <= xz - xa {
-                    let at = ((xa + xz) / 2.0, r.y0 - 5.0);
-                    out.push(Label::new(&b.label, at, FONT_BAND, Anchor::Middle, darker(b.color), Role::Band(i)));
-                }
+            if let Some((xa, xz)) = pl.band_px(b)
+                && pl.band_strip
+                && !b.label.is_empty()
+                && text_width(&b.label, FONT_BAND) + 6.0 <= xz - xa
+            {
+                let at = ((xa + xz) / 2.0, r.y0 - 5.0);
+                out.push(Label::new(&b.label, at, FONT_BAND, Anchor::Middle, darker(b.color), Role::Band(i)));
             }
         }
         for (n, nl) in p.notes.iter().zip(&pl.notes) {

@@ -584,6 +584,25 @@ pub fn drawn_texts(svg: &str) -> Result<Vec<(String, [f64; 4])>, IoError> {
     raster::drawn_texts(svg)
 }
 
+/// What [`drawn_texts`] finds wrong with an SVG written by [`Figure::to_svg`]: a text whose ink
+/// leaves the canvas or meets another text's. Empty for a figure that lays out.
+pub fn drawn_text_problems(svg: &str) -> Result<Vec<String>, IoError> {
+    let (w, h) = raster::canvas(svg)?;
+    let drawn = drawn_texts(svg)?;
+    let mut out = Vec::new();
+    for (i, (a, ab)) in drawn.iter().enumerate() {
+        if ab[0] < -0.5 || ab[1] < -0.5 || ab[2] > w + 0.5 || ab[3] > h + 0.5 {
+            out.push(format!("'{a}' leaves the {w} × {h} canvas: {ab:?}"));
+        }
+        for (b, bb) in &drawn[i + 1..] {
+            if ab[0] < bb[2] && bb[0] < ab[2] && ab[1] < bb[3] && bb[1] < ab[3] {
+                out.push(format!("'{a}' meets '{b}'"));
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// The file format of a plot, chosen by the file's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PlotFormat {

@@ -87,3 +87,10 @@ fn aria_label(svg: &str, id: &str) -> String {
     let text = &rest[..rest.find('"').unwrap_or(rest.len())];
     text.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&apos;", "'").replace("&amp;", "&")
 }
+
+/// The SVG's canvas, width and height in SVG pixels.
+pub(crate) fn canvas(svg: &str) -> Result<(f64, f64), IoError> {
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+        .map_err(|e| IoError::Plot(format!("SVG not read: {e}")))?;
+    Ok((f64::from(tree.size().width()), f64::from(tree.size().height())))
+}

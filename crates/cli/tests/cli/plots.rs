@@ -33,23 +33,6 @@ fn kinds() -> Vec<Vec<String>> {
     ]
 }
 
-/// Texts that leave the canvas or meet another text, from the SVG alone.
-fn clashes(svg: &str, w: f64, h: f64) -> Vec<String> {
-    let drawn = loomkin_plot::drawn_texts(svg).unwrap();
-    let mut out = Vec::new();
-    for (i, (a, ab)) in drawn.iter().enumerate() {
-        if ab[0] < -0.5 || ab[1] < -0.5 || ab[2] > w + 0.5 || ab[3] > h + 0.5 {
-            out.push(format!("'{a}' leaves the canvas: {ab:?}"));
-        }
-        for (b, bb) in &drawn[i + 1..] {
-            if ab[0] < bb[2] && bb[0] < ab[2] && ab[1] < bb[3] && bb[1] < ab[3] {
-                out.push(format!("'{a}' meets '{b}'"));
-            }
-        }
-    }
-    out
-}
-
 /// Runs `args` at `w × h`; on success the drawn texts are checked, on refusal the message is one
 /// line naming the flag, and the least size it names is drawn (and checked) in turn.
 fn draw(args: &[String], w: u32, h: u32, dir: &std::path::Path) -> bool {
@@ -63,7 +46,7 @@ fn draw(args: &[String], w: u32, h: u32, dir: &std::path::Path) -> bool {
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     if out.status.success() {
         let svg = std::fs::read_to_string(&file).unwrap();
-        let bad = clashes(&svg, f64::from(w), f64::from(h));
+        let bad = loomkin_plot::drawn_text_problems(&svg).unwrap();
         assert!(bad.is_empty(), "{args:?} at {w} × {h}: {bad:?}");
         return true;
     }
@@ -101,20 +84,12 @@ fn every_plot_kind_lays_out_at_every_accepted_size() {
         let out = loomkin().args(&args).arg("-o").arg(dir.join("default.svg")).output().unwrap();
         assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
         let svg = std::fs::read_to_string(dir.join("default.svg")).unwrap();
-        let (w, h) = size_of(&svg);
-        assert!(clashes(&svg, w, h).is_empty(), "{args:?} at its default size: {:?}", clashes(&svg, w, h));
+        let bad = loomkin_plot::drawn_text_problems(&svg).unwrap();
+        assert!(bad.is_empty(), "{args:?} at its default size: {bad:?}");
         for (w, h) in [(200, 200), (400, 400), (500, 500), (600, 700), (1000, 260), (330, 1200), (4000, 600)] {
             draw(&args, w, h, &dir);
         }
         assert!(draw(&args, 1000, 900, &dir), "{args:?} refused at 1000 × 900");
     }
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn size_of(svg: &str) -> (f64, f64) {
-    let attr = |name: &str| -> f64 {
-        let at = svg.find(&format!(r#" {name}=""#)).unwrap() + name.len() + 3;
-        svg[at..].split('"').next().unwrap().parse().unwrap()
-    };
-    (attr("width"), attr("height"))
 }
