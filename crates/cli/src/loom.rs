@@ -5,7 +5,10 @@ use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_io::Table;
-use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger, timing_diagram, torque_figure};
+use loomkin_loom::{
+    Drive, Loom, Motion, Objective, Pattern, StaggerOptions, check, optimise_stagger_with, timing_diagram,
+    torque_figure,
+};
 use std::path::{Path, PathBuf};
 
 /// `loomkin loom`.
@@ -82,6 +85,16 @@ pub struct StaggerArgs {
     /// What to minimise.
     #[arg(long, value_enum, default_value = "peak")]
     objective: ObjectiveArg,
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = StaggerOptions::MIN_CLEARANCE_MM.default_value(),
+        help = util::field_help(
+            "Least clearance to the carrier to keep in every pick from entry to exit, mm",
+            &StaggerOptions::MIN_CLEARANCE_MM
+        )
+    )]
+    min_clearance_mm: f64,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -252,7 +265,14 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
         ObjectiveArg::Peak => Objective::Peak,
         ObjectiveArg::Rms => Objective::Rms,
     };
-    let r = optimise_stagger(&loom, &pattern, objective)?;
+    StaggerOptions::MIN_CLEARANCE_MM.check_as("--min-clearance-mm", a.min_clearance_mm)?;
+    let options = StaggerOptions { objective, min_clearance_mm: a.min_clearance_mm };
+    let bar = util::Progress::new(0, "stagger search");
+    let r = optimise_stagger_with(&loom, &pattern, &options, &Default::default(), &|done, all| {
+        bar.set_length(all as u64);
+        bar.set(done as u64);
+    })?;
+    bar.finish();
     if let Some(out) = &a.output {
         let toml = Loom::stagger_toml(&text, &r.best.stagger_deg, r.groups.as_deref())?;
         output::text_to(out, &toml)?;
@@ -260,15 +280,26 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
     if a.json {
         return output::json(&r);
     }
-    outln!("{:<40} {:>12} {:>12} {:>15} {:>7}", "stagger", "peak[N·m]", "RMS[N·m]", "clearance[mm]", "window")?;
+    outln!(
+        "{:<40} {:>12} {:>12} {:>15} {:>7} {:>13} {:>14}",
+        "stagger",
+        "peak[N·m]",
+        "RMS[N·m]",
+        "clearance[mm]",
+        "window",
+        "clear[deg]",
+        "top speed[rpm]"
+    )?;
     for c in [&r.none, &r.two_groups, &r.best] {
         outln!(
-            "{:<40} {:>12.3} {:>12.3} {:>15.2} {:>7}",
+            "{:<40} {:>12.3} {:>12.3} {:>15.2} {:>7} {:>13.2} {:>14.1}",
             c.label,
             c.peak_torque_n_m,
             c.rms_torque_n_m,
             c.min_clearance_mm,
-            if c.window_kept { "kept" } else { "LOST" }
+            if c.window_kept { "kept" } else { "LOST" },
+            c.window_deg,
+            c.max_speed_rpm
         )?;
     }
     let list: Vec<String> = r.best.stagger_deg.iter().map(|s| format!("{s}")).collect();
@@ -278,5 +309,16 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
         r.peak_reduction_pct,
         r.two_groups_peak_reduction_pct,
         r.evaluations
+    )?;
+    let (n, b) = (&r.none, &r.best);
+    outln!(
+        "what the optimum costs against no stagger: least clearance {:.2} → {:.2} mm (kept ≥ {} mm), clear shed {:.2}° → {:.2}°, top speed {:.1} → {:.1} rpm",
+        n.min_clearance_mm,
+        b.min_clearance_mm,
+        r.min_clearance_kept_mm,
+        n.window_deg,
+        b.window_deg,
+        n.max_speed_rpm,
+        b.max_speed_rpm
     )
 }

@@ -196,6 +196,13 @@ impl Progress {
         self.show_after_a_second();
     }
 
+    /// The items in all (a length known once the work has started).
+    pub fn set_length(&self, len: u64) {
+        if let Some(bar) = &self.bar {
+            bar.set_length(len);
+        }
+    }
+
     /// `n` items done in all (for a count kept elsewhere, read now and then).
     pub fn set(&self, n: u64) {
         let Some(bar) = &self.bar else { return };

@@ -264,6 +264,32 @@ impl<'a> Drive<'a> {
         }
     }
 
+    /// The largest |T| (or, with `rms`, the RMS) of the torque at every `step_deg` over the
+    /// repeat (the values of [`Drive::torque_curve_cached`]), each distinct turn of `turns` (a
+    /// grouping that holds for this motion) read once: what the stagger search minimises.
+    pub(crate) fn grid_objective(&self, step_deg: f64, cache: &mut TableCache, turns: &Turns, rms: bool) -> f64 {
+        let g = self.grid(step_deg, cache);
+        if g.per_turn == 0 {
+            let (_, t) = self.torque_values_cached(step_deg, cache);
+            return if rms {
+                (t.iter().map(|t| t * t).sum::<f64>() / t.len() as f64).sqrt()
+            } else {
+                t.iter().map(|t| t.abs()).fold(0.0, f64::max)
+            };
+        }
+        let mut buf = vec![0.0; g.per_turn];
+        let (mut max, mut squares) = (0.0, 0.0);
+        for (&p, &count) in turns.first.iter().zip(&turns.count) {
+            self.fill_turn(&g, cache, p, &mut buf);
+            if rms {
+                squares += count as f64 * buf.iter().map(|t| t * t).sum::<f64>();
+            } else {
+                max = buf.iter().map(|t| t.abs()).fold(max, f64::max);
+            }
+        }
+        if rms { (squares / g.n as f64).sqrt() } else { max }
+    }
+
     /// The torques of turn `p`'s points of grid `g` (one whose step divides 360°) into `buf`.
     fn fill_turn(&self, g: &Grid, cache: &TableCache, p: usize, buf: &mut [f64]) {
         buf.fill(0.0);

@@ -50,15 +50,22 @@ pub use diagram::{
 pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorqueReport};
 
 /// The descriptors of this crate's inputs.
-pub const FIELDS: loomkin_units::FieldList =
-    loomkin_units::field_list![Drive::STEP_DEG, DriveSpec::ROTATING_INERTIA_KG_M2, DriveSpec::FRICTION_TORQUE_N_M];
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Drive::STEP_DEG,
+    DriveSpec::ROTATING_INERTIA_KG_M2,
+    DriveSpec::FRICTION_TORQUE_N_M,
+    StaggerOptions::MIN_CLEARANCE_MM
+];
 pub use error::{LoomError, Result};
 pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
 pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismInertia, ripple_figure};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
-pub use stagger::{Objective, StaggerCase, StaggerResult, optimise_stagger, optimise_stagger_until};
+pub use stagger::{
+    Objective, StaggerCase, StaggerOptions, StaggerResult, optimise_stagger, optimise_stagger_until,
+    optimise_stagger_with,
+};
 pub use timetrue::{
     CorrectedFrames, Correction, CorrectionReport, FrameCorrection, MAX_ROUNDS, TIMING_TOL_DEG, correct,
 };

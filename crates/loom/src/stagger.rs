@@ -9,10 +9,50 @@
 //! then evaluated exactly (refined peak, quadrature RMS, refined clearance). When no start keeps
 //! the window, the search first maximises the least clearance; if that stays negative, no stagger
 //! in range gives the window, and the error says how short it falls.
+//!
+//! The optimum spends clearance, clear-shed window and top speed for its torque: each case
+//! reports all three, and [`StaggerOptions::min_clearance_mm`] keeps a least clearance (the
+//! window check above asks for that much instead of none). The objective and the clearance are
+//! computed once per distinct turn of the repeat (see `crate::turns`): a 1,000-pick repeat of a
+//! 48-pick draft costs what the draft does.
 
+use crate::turns::Turns;
 use crate::{Drive, Loom, LoomError, Motion, Pattern, Result, TableCache, Timing};
-use loomkin_units::StopFlag;
+use loomkin_units::{Field, Range, StopFlag};
 use serde::Serialize;
+
+/// What the stagger search minimises and what it keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StaggerOptions {
+    /// What to minimise.
+    pub objective: Objective,
+    /// The least clearance to the carrier every pick must keep from entry to exit, mm
+    /// ([`StaggerOptions::MIN_CLEARANCE_MM`]).
+    pub min_clearance_mm: f64,
+}
+
+impl StaggerOptions {
+    /// `min_clearance_mm`: 0 … 1000 mm; 0 (the window just kept: the carrier may graze the warp)
+    /// when left out.
+    pub const MIN_CLEARANCE_MM: Field = Field::new(
+        "min_clearance_mm",
+        Range::closed(0.0, 1000.0, "mm"),
+        "Least clearance to the carrier that the stagger must keep in every pick from entry to exit: \
+         0 … 1000 mm; 0 (the window just kept, the carrier may graze the warp) when left out.",
+    )
+    .with_default(0.0);
+
+    /// Minimise `objective` keeping the default least clearance.
+    pub fn new(objective: Objective) -> Self {
+        Self { objective, min_clearance_mm: Self::MIN_CLEARANCE_MM.default_value() }
+    }
+
+    /// Checks the least clearance against its range.
+    pub fn validate(&self) -> Result<()> {
+        Self::MIN_CLEARANCE_MM.check(self.min_clearance_mm)?;
+        Ok(())
+    }
+}
 
 /// What the stagger minimises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -39,6 +79,10 @@ pub struct StaggerCase {
     pub min_clearance_mm: f64,
     /// Whether every pick keeps its insertion window (clearance ≥ 0 throughout).
     pub window_kept: bool,
+    /// The window common to every pick in which the shed clears the carrier, deg (0: none).
+    pub window_deg: f64,
+    /// The highest loom speed at which the carrier passes in that window, rpm.
+    pub max_speed_rpm: f64,
 }
 
 /// The optimised stagger beside the two baselines.
@@ -63,6 +107,8 @@ pub struct StaggerResult {
     pub evaluations: usize,
     /// Window (clearance) checks made by the search.
     pub clearance_checks: usize,
+    /// The least clearance the search kept, mm ([`StaggerOptions::min_clearance_mm`]).
+    pub min_clearance_kept_mm: f64,
 }
 
 /// Grid of the search, deg.
@@ -74,11 +120,18 @@ struct Search<'a> {
     loom: &'a Loom,
     pattern: &'a Pattern,
     objective: Objective,
+    /// The least clearance to keep, m.
+    need_m: f64,
     groups: Option<Vec<Vec<usize>>>,
     evaluations: usize,
     clearance_checks: usize,
     cache: TableCache,
+    /// The picks grouped by their turn's lifts, for every stagger within range.
+    turns: Turns,
+    /// Called with (compass stages done, stages in all).
+    progress: &'a dyn Fn(usize, usize),
     stop: &'a StopFlag,
+    stages: (usize, usize),
 }
 
 impl Search<'_> {
@@ -107,11 +160,8 @@ impl Search<'_> {
         self.stop.check()?;
         self.evaluations += 1;
         let (loom, motion) = self.setup(x)?;
-        let curve = Drive::new(&loom, &motion, self.pattern).torque_curve_cached(SEARCH_STEP_DEG, &mut self.cache);
-        Ok(match self.objective {
-            Objective::Peak => curve.iter().map(|(_, t)| t.abs()).fold(0.0, f64::max),
-            Objective::Rms => (curve.iter().map(|(_, t)| t * t).sum::<f64>() / curve.len() as f64).sqrt(),
-        })
+        let drive = Drive::new(&loom, &motion, self.pattern);
+        Ok(drive.grid_objective(SEARCH_STEP_DEG, &mut self.cache, &self.turns, self.objective == Objective::Rms))
     }
 
     fn clearance(&mut self, x: &[f64]) -> Result<f64> {
@@ -132,6 +182,8 @@ impl Search<'_> {
     ) -> Result<(Vec<f64>, f64)> {
         let m = self.loom.shedding.max_stagger_deg;
         for step in STEPS {
+            self.stages.0 += 1;
+            (self.progress)(self.stages.0.min(self.stages.1), self.stages.1);
             for _sweep in 0..50 {
                 let mut improved = false;
                 for j in 0..x.len() {
@@ -163,6 +215,9 @@ impl Search<'_> {
         let drive = Drive::new(&loom, &motion, self.pattern);
         let timing = Timing::new(&loom, &motion, self.pattern)?;
         let min_clear = timing.min_clearance_m();
+        // No pick with a shed that clears the carrier: no window, no speed.
+        let (window_deg, max_speed_rpm) =
+            timing.report_of(false).map_or((0.0, 0.0), |r| (r.window_deg, r.max_speed_rpm));
         Ok(StaggerCase {
             label: label.into(),
             stagger_deg: self.per_frame(x),
@@ -170,6 +225,8 @@ impl Search<'_> {
             rms_torque_n_m: drive.rms(),
             min_clearance_mm: min_clear * 1e3,
             window_kept: min_clear >= 0.0,
+            window_deg,
+            max_speed_rpm,
         })
     }
 }
@@ -190,19 +247,43 @@ pub fn optimise_stagger_until(
     objective: Objective,
     stop: &StopFlag,
 ) -> Result<StaggerResult> {
+    optimise_stagger_with(loom, pattern, &StaggerOptions::new(objective), stop, &|_, _| {})
+}
+
+/// [`optimise_stagger_until`] with a least clearance to keep ([`StaggerOptions`]), calling
+/// `progress(done, all)` as the search passes its stages (for a progress bar).
+pub fn optimise_stagger_with(
+    loom: &Loom,
+    pattern: &Pattern,
+    options: &StaggerOptions,
+    stop: &StopFlag,
+    progress: &dyn Fn(usize, usize),
+) -> Result<StaggerResult> {
+    options.validate()?;
+    let objective = options.objective;
     let n = loom.frame_count();
     let groups = loom.shedding.groups.clone();
     let dims = groups.as_ref().map_or(n, Vec::len);
+    let motion = Motion::new(loom, pattern)?;
+    // Every centre the search may move a frame to: the crossing plus any stagger in range.
+    let delta = crate::crossing_offset_deg(loom.shedding.crossing_deg);
+    let m = loom.shedding.max_stagger_deg;
+    let turns = Turns::spanning(&motion, 0.0, 360.0, delta - m, delta + m);
     let mut s = Search {
         loom,
         pattern,
         objective,
+        need_m: options.min_clearance_mm * 1e-3,
         groups,
         evaluations: 0,
         clearance_checks: 0,
         cache: TableCache::default(),
+        turns,
+        progress,
         stop,
+        stages: (0, 2 * STEPS.len()),
     };
+    let need = s.need_m;
     let zero = vec![0.0; dims];
     let two: Vec<f64> = match &s.groups {
         None => (0..n).map(|i| if i % 2 == 1 { 7.5f64.min(loom.shedding.max_stagger_deg) } else { 0.0 }).collect(),
@@ -226,33 +307,50 @@ pub fn optimise_stagger_until(
     };
     let mut starts = Vec::new();
     for x0 in [zero.clone(), two] {
-        if s.clearance(&x0)? >= 0.0 {
+        if s.clearance(&x0)? >= need {
             starts.push(x0);
         }
     }
     if starts.is_empty() {
         // Phase 1: the stagger that opens the shed most over the insertion.
+        s.stages.1 += STEPS.len();
         let g0 = s.clearance(&zero)?;
         let (x1, neg) = s.compass(zero.clone(), -g0, &|s, y| Ok(-s.clearance(y)?), &|_, _| Ok(true))?;
-        if -neg < 0.0 {
+        if -neg < need {
             let ins = &loom.insertion;
-            return Err(LoomError::Infeasible {
-                field: "insertion.entry_deg".into(),
-                reason: format!(
-                    "no stagger within ±{}° (shedding.max_stagger_deg) keeps the carrier clear from {}° to {}°: the best still leaves {:.2} mm of interference",
-                    loom.shedding.max_stagger_deg,
-                    ins.entry_deg,
-                    ins.exit_deg,
-                    neg * 1e3
-                ),
-            });
+            let (field, reason) = if need > 0.0 {
+                (
+                    "min_clearance_mm",
+                    format!(
+                        "no stagger within ±{}° (shedding.max_stagger_deg) keeps {} mm of clearance to the carrier from {}° to {}°: the best keeps {:.2} mm",
+                        loom.shedding.max_stagger_deg,
+                        options.min_clearance_mm,
+                        ins.entry_deg,
+                        ins.exit_deg,
+                        -neg * 1e3
+                    ),
+                )
+            } else {
+                (
+                    "insertion.entry_deg",
+                    format!(
+                        "no stagger within ±{}° (shedding.max_stagger_deg) keeps the carrier clear from {}° to {}°: the best still leaves {:.2} mm of interference",
+                        loom.shedding.max_stagger_deg,
+                        ins.entry_deg,
+                        ins.exit_deg,
+                        neg * 1e3
+                    ),
+                )
+            };
+            return Err(LoomError::Infeasible { field: field.into(), reason });
         }
         starts.push(x1);
     }
+    s.stages.1 = s.stages.0 + starts.len() * STEPS.len();
     let mut best: Option<(Vec<f64>, f64)> = None;
     for x0 in starts {
         let f0 = s.objective(&x0)?;
-        let (x, fx) = s.compass(x0, f0, &|s, y| s.objective(y), &|s, y| Ok(s.clearance(y)? >= 0.0))?;
+        let (x, fx) = s.compass(x0, f0, &|s, y| s.objective(y), &|s, y| Ok(s.clearance(y)? >= s.need_m))?;
         if best.as_ref().is_none_or(|(_, fb)| fx < *fb) {
             best = Some((x, fx));
         }
@@ -270,5 +368,6 @@ pub fn optimise_stagger_until(
         best: best_case,
         evaluations: s.evaluations,
         clearance_checks: s.clearance_checks,
+        min_clearance_kept_mm: options.min_clearance_mm,
     })
 }

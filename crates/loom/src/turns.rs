@@ -26,10 +26,16 @@ pub(crate) struct Turns {
 impl Turns {
     /// The picks of `motion` grouped by what the frames do over `[360p + from_deg, 360p + to_deg]`.
     pub fn new(motion: &Motion, from_deg: f64, to_deg: f64) -> Self {
-        let frames = motion.frames();
-        let (cmin, cmax) = (0..frames)
+        let (cmin, cmax) = (0..motion.frames())
             .map(|i| motion.centre0_deg(i))
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c), b.max(c)));
+        Self::spanning(motion, from_deg, to_deg, cmin, cmax)
+    }
+
+    /// [`Turns::new`] for every motion whose frames' move centres (into pick 0) lie within
+    /// `[cmin, cmax]` deg: a wider window, so a grouping that holds while a search moves them.
+    pub fn spanning(motion: &Motion, from_deg: f64, to_deg: f64, cmin: f64, cmax: f64) -> Self {
+        let frames = motion.frames();
         let (lo, hi) = if frames == 0 {
             (0, 0)
         } else {
