@@ -13,7 +13,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 /// Every library crate's descriptors, with the crate's name.
-const LISTS: [(&str, FieldList); 11] = [
+const LISTS: [(&str, FieldList); 12] = [
     ("loomkin-units", loomkin_units::FIELDS),
     ("loomkin-laws", loomkin_laws::FIELDS),
     ("loomkin-picking", loomkin_picking::FIELDS),
@@ -25,6 +25,7 @@ const LISTS: [(&str, FieldList); 11] = [
     ("loomkin-servo", loomkin_servo::FIELDS),
     ("loomkin-drive", loomkin_drive::FIELDS),
     ("loomkin-plot", loomkin_plot::FIELDS),
+    ("loomkin-eshed", loomkin_eshed::FIELDS),
 ];
 
 fn repo() -> PathBuf {

@@ -22,6 +22,8 @@ pub enum LoomCommand {
     Stagger(StaggerArgs),
     /// The classic timing diagram (frame lifts, shed, insertion window, carrier path, beat-up).
     Timing(TimingArgs),
+    /// Electronic shedding: one servo per frame, laws per pick, per-frame torques and the shared DC bus.
+    Servo(crate::loom_servo::ServoArgs),
 }
 
 /// The weave pattern: a WIF file or a plain lift plan (default: plain weave on the loom's frames).
@@ -123,6 +125,7 @@ pub fn run(cmd: LoomCommand) -> Result<()> {
         LoomCommand::Check(a) => run_check(a),
         LoomCommand::Torque(a) => run_torque(a),
         LoomCommand::Stagger(a) => run_stagger(a),
+        LoomCommand::Servo(a) => crate::loom_servo::run(a),
         LoomCommand::Timing(a) => {
             output::check_outputs([Some(Out::plot("--output", &a.output))])?;
             let (loom, pattern) = read(&a.loom, &a.pattern)?;

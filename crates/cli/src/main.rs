@@ -16,6 +16,7 @@ mod fields_doc;
 mod front_end_literals;
 mod law;
 mod loom;
+mod loom_servo;
 mod merge;
 mod output;
 mod pick;

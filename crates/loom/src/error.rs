@@ -52,6 +52,9 @@ pub enum LoomError {
     /// The computation was stopped through its [`loomkin_units::StopFlag`] before it finished.
     #[error(transparent)]
     Stopped(#[from] loomkin_units::Stopped),
+    /// An error of electronic shedding (`[shedding.servo]`, a frame's plan or drive).
+    #[error(transparent)]
+    Eshed(#[from] loomkin_eshed::EshedError),
 }
 
 impl LoomError {
@@ -74,6 +77,7 @@ impl FieldError for LoomError {
             Self::Shed(e) => e.field(),
             Self::Pick(e) => e.field(),
             Self::Stopped(_) => None,
+            Self::Eshed(e) => e.field(),
         }
     }
 }

@@ -104,6 +104,8 @@ struct SheddingFile {
     stagger_deg: Option<Vec<f64>>,
     groups: Option<Vec<Vec<i64>>>,
     max_stagger_deg: Option<f64>,
+    drive: Option<String>,
+    servo: Option<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -244,6 +246,9 @@ pub struct Shedding {
     pub groups: Option<Vec<Vec<usize>>>,
     /// Largest stagger the optimiser may choose, deg.
     pub max_stagger_deg: f64,
+    /// The frames' servo drives when `drive = "servo"` (`[shedding.servo]`); `None` for the
+    /// mechanical dobby (the default, `drive = "dobby"`).
+    pub servo: Option<loomkin_eshed::ServoShedding>,
 }
 
 /// A checked loom.
@@ -673,7 +678,22 @@ fn read_shedding(s: &SheddingFile, n: usize) -> Result<Shedding> {
                 .collect::<Result<_, _>>()?
         }
     };
-    Ok(Shedding { law, crossing_deg, stagger_deg, groups, max_stagger_deg })
+    let servo = read_servo(s, n)?;
+    Ok(Shedding { law, crossing_deg, stagger_deg, groups, max_stagger_deg, servo })
+}
+
+/// `drive` and `[shedding.servo]`: the frames' servo drives, or none for the dobby.
+fn read_servo(s: &SheddingFile, n: usize) -> Result<Option<loomkin_eshed::ServoShedding>> {
+    match (s.drive.as_deref().unwrap_or("dobby"), &s.servo) {
+        ("dobby", None) => Ok(None),
+        ("dobby", Some(_)) => Err(LoomError::field("shedding.servo", "only with drive = \"servo\"")),
+        ("servo", Some(t)) => Ok(Some(loomkin_eshed::ServoShedding::from_toml(t.clone(), n, "shedding.servo")?)),
+        ("servo", None) => Err(LoomError::field(
+            "shedding.servo",
+            "drive = \"servo\" needs a [shedding.servo] table (motor, transmission, bus)",
+        )),
+        (other, _) => Err(LoomError::field("shedding.drive", format!("\"{other}\": allowed \"dobby\" or \"servo\""))),
+    }
 }
 
 fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<Insertion> {

@@ -37,6 +37,7 @@ mod inertia;
 mod law;
 mod motion;
 mod pattern;
+mod servo_shedding;
 mod stagger;
 mod timetrue;
 mod timing;
@@ -62,6 +63,7 @@ pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismIn
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
+pub use servo_shedding::{SERVO_PLOT_POINTS, servo_curves, servo_figure, servo_laws, servo_setups, servo_study};
 pub use stagger::{
     Objective, StaggerCase, StaggerOptions, StaggerResult, optimise_stagger, optimise_stagger_until,
     optimise_stagger_with,

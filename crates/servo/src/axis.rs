@@ -236,6 +236,33 @@ impl Axis {
         (self.load_mass() / (k * k) + self.load.extra_inertia_kg_m2) / self.motor.rotor_inertia_kg_m2
     }
 
+    /// The motor torque (N·m) with the slave at position `s`, velocity `v` and acceleration `a`
+    /// (SI: m, m/s, m/s² or rad, rad/s, rad/s²): `T = (J_m + J_x)·k·a + F/(k·η)` with the load
+    /// force `F` of the model above (the Coulomb friction zero where `v = 0`). What
+    /// [`crate::operating_points`] and [`crate::check_axis`] evaluate.
+    pub fn torque_at(&self, s: f64, v: f64, a: f64) -> f64 {
+        let k = self.motor_rad_per_unit();
+        let ke = k * self.load.efficiency;
+        let l = &self.load;
+        let fric = if v == 0.0 { 0.0 } else { l.friction_n * v.signum() };
+        self.torque_inertia() * a + (l.viscous_n_s_m * v + fric + l.spring_n_m * s + l.constant_force_n) / ke
+    }
+
+    /// The time derivative of [`Axis::torque_at`] away from a sign change of the velocity (N·m/s),
+    /// from the velocity, acceleration and jerk: `(J_m + J_x)·k·j + (c·a + k_s·v)/(k·η)`.
+    pub fn torque_rate(&self, v: f64, a: f64, j: f64) -> f64 {
+        let ke = self.motor_rad_per_unit() * self.load.efficiency;
+        self.torque_inertia() * j + (self.load.viscous_n_s_m * a + self.load.spring_n_m * v) / ke
+    }
+
+    /// The motor torque per unit slave acceleration, `(J_m + J_x)·k + m/(k·η)` (N·m per m/s², or
+    /// per rad/s²).
+    pub fn torque_inertia(&self) -> f64 {
+        let k = self.motor_rad_per_unit();
+        (self.motor.rotor_inertia_kg_m2 + self.load.extra_inertia_kg_m2) * k
+            + self.load_mass() / (k * self.load.efficiency)
+    }
+
     /// The peak-torque line at motor speed `|n|` (rpm) and its slope (N·m per rpm); `None` beyond
     /// the maximum speed.
     pub fn peak_envelope(&self, n_rpm: f64) -> Option<(f64, f64)> {

@@ -242,12 +242,11 @@ pub fn operating_point_at(axis: &Axis, cycle: &Cycle, speed_rpm: f64, angle_deg:
 
 fn operating_point(axis: &Axis, angle_deg: f64, q: &loomkin_laws::Kinematics) -> OperatingPoint {
     let k = axis.motor_rad_per_unit();
-    let ke = k * axis.load.efficiency;
-    let l = &axis.load;
-    let a_eff = (axis.motor.rotor_inertia_kg_m2 + l.extra_inertia_kg_m2) * k + axis.load_mass() / ke;
-    let fric = if q.v == 0.0 { 0.0 } else { l.friction_n * q.v.signum() };
-    let t = a_eff * q.a + (l.viscous_n_s_m * q.v + fric + l.spring_n_m * q.s + l.constant_force_n) / ke;
-    OperatingPoint { angle_deg, motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(k * q.v), torque_nm: t }
+    OperatingPoint {
+        angle_deg,
+        motor_speed_rpm: loomkin_units::rpm_from_rad_per_s(k * q.v),
+        torque_nm: axis.torque_at(q.s, q.v, q.a),
+    }
 }
 
 /// A polyline of (speed in rpm, torque in N·m).

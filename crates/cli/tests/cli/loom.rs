@@ -240,3 +240,42 @@ fn check_memory_hardly_grows_with_the_repeat() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn servo_json_has_the_contract_keys_and_the_plot_is_written() {
+    let dir = scratch("servo");
+    let png = dir.join("servo.png");
+    let args = ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("point-24.wif")];
+    let mut with_json = args.to_vec();
+    with_json.push("--json");
+    let v = stdout_json(&with_json);
+    for key in ["peak_bus_power_w", "mean_bus_power_w", "regenerated_energy_j", "braking_energy_j"] {
+        assert!(v[key].as_f64().unwrap().is_finite() && v[key].as_f64().unwrap() >= 0.0, "{key}");
+    }
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 24);
+    for (i, f) in frames.iter().enumerate() {
+        assert_eq!(f["frame"], i + 1);
+        for key in ["peak_torque_n_m", "rms_torque_n_m", "peak_speed_rpm", "peak_power_w"] {
+            assert!(f[key].as_f64().unwrap() > 0.0, "{key}");
+        }
+        assert_eq!(f["motor_ok"], true);
+        assert!(f["checks"].as_array().unwrap().iter().all(|c| c["margin"].as_f64().unwrap() > 0.0));
+    }
+    let mut with_plot = args.to_vec();
+    with_plot.extend(["-o", png.to_str().unwrap()]);
+    let out = loomkin().args(&with_plot).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+}
+
+#[test]
+fn servo_on_a_dobby_loom_or_with_a_bad_table_is_one_usage_line() {
+    usage_error(&["loom", "servo", &ex("rapier-loom.toml")], &["shedding.drive", "drive = \"servo\""]);
+    let dir = scratch("servo-bad");
+    let bad = dir.join("bad.toml");
+    let text =
+        std::fs::read_to_string(ex("servo-shedding-loom.toml")).unwrap().replace("voltage_v = 560", "voltage_v = -1");
+    std::fs::write(&bad, text).unwrap();
+    usage_error(&["loom", "servo", bad.to_str().unwrap()], &["shedding.servo.bus.voltage_v = -1 is out of range"]);
+}

@@ -8,7 +8,7 @@ use serde_json::Value;
 
 /// A unit at the end of a key (`peak_torque_n_m`, `omega6_rad_s`, `slave_v_mm_per_deg`, …).
 fn has_unit(key: &str) -> bool {
-    const UNITS: [&str; 40] = [
+    const UNITS: [&str; 41] = [
         "_mm",
         "_m",
         "_cm",
@@ -49,6 +49,7 @@ fn has_unit(key: &str) -> bool {
         "_percent",
         "_per_s",
         "_bytes",
+        "_a",
     ];
     // A quantity before and after a change (`max_timing_error_deg_before`, issue 29's keys).
     let key = key.strip_suffix("_before").or_else(|| key.strip_suffix("_after")).unwrap_or(key);
@@ -83,6 +84,7 @@ const DIMENSIONLESS: &[&str] = &[
     "scale",
     "ramp",
     "continuity_class",
+    "rest_continuity",
     "continuous_up_to",
     "class",
     "segments",
@@ -105,6 +107,7 @@ const DIMENSIONLESS: &[&str] = &[
     "points",
     "picks",
     "evaluations",
+    "distinct_windows",
     "laws_searched",
     "draws",
     "seed",

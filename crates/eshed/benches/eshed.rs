@@ -1,0 +1,92 @@
+//! Benches of electronic shedding: 24 frames over a 10⁴-pick repeat (issue 31: < 50 ms).
+//!
+//! `cargo bench -p loomkin-eshed --bench eshed`. Two lift plans: a 12/12 twill on 24 shafts tiled to
+//! 10⁴ picks (24 distinct picks: the bus windows are reused), and a pseudo-random plan (every pick's
+//! window distinct: the bus's worst case).
+
+use loomkin_eshed::{
+    Bus, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Transmission, Winding, analyse,
+};
+use loomkin_laws::LawSpec;
+use loomkin_servo::Motor;
+
+fn main() {
+    divan::main();
+}
+
+const FRAMES: usize = 24;
+const PICKS: usize = 10_000;
+
+fn setups(plan: &[Vec<bool>]) -> Vec<FrameSetup> {
+    let servo = FrameServo {
+        motor: Motor {
+            rated_torque_nm: 10.0,
+            peak_torque_nm: 30.0,
+            rated_speed_rpm: 3000.0,
+            max_speed_rpm: 4500.0,
+            rotor_inertia_kg_m2: 1.2e-3,
+            torque_at_max_speed_nm: None,
+        },
+        transmission: Transmission {
+            travel_mm_per_rev: 100.0,
+            efficiency: 0.95,
+            friction_n: 0.0,
+            viscous_n_s_m: 0.0,
+            extra_inertia_kg_m2: 0.0,
+        },
+        winding: Winding { resistance_ohm: 1.5, torque_constant_n_m_a: 1.7 },
+        motion_deg: None,
+    };
+    plan.iter()
+        .enumerate()
+        .map(|(i, up)| {
+            let stroke = 0.09 * (1.0 + 0.06 * i as f64);
+            let p = FramePlan::new(&FrameInput { up, stroke_m: stroke, centre_deg: -10.0, motion_deg: 280.0 }, false)
+                .unwrap();
+            let load = FrameLoad {
+                mass_kg: 5.5,
+                spring_n_m: 0.0,
+                preload_n: 0.0,
+                stroke_m: stroke,
+                start_level_m: p.start_level_m(),
+            };
+            FrameSetup { plan: p, load, servo: servo.clone() }
+        })
+        .collect()
+}
+
+fn laws() -> MoveLaws {
+    let spec = LawSpec::ModifiedSine;
+    let law = spec.build().unwrap();
+    MoveLaws { rise: (spec.clone(), law.clone()), fall: (spec, law) }
+}
+
+fn twill() -> Vec<Vec<bool>> {
+    (0..FRAMES).map(|i| (0..PICKS).map(|p| (p + i) % FRAMES < FRAMES / 2).collect()).collect()
+}
+
+fn random() -> Vec<Vec<bool>> {
+    let mut x = 12345u64;
+    (0..FRAMES)
+        .map(|_| {
+            (0..PICKS)
+                .map(|_| {
+                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    (x >> 33) % 2 == 1
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[divan::bench(sample_count = 5)]
+fn twill_24_frames_10k_picks(b: divan::Bencher) {
+    let (s, l) = (setups(&twill()), laws());
+    b.bench(|| analyse(&s, &l, &Bus::default(), 500.0, false).unwrap());
+}
+
+#[divan::bench(sample_count = 3)]
+fn random_24_frames_10k_picks(b: divan::Bencher) {
+    let (s, l) = (setups(&random()), laws());
+    b.bench(|| analyse(&s, &l, &Bus::default(), 500.0, false).unwrap());
+}

@@ -1,0 +1,378 @@
+//! Every frame's drive on the shared DC bus over the pattern repeat.
+//!
+//! Frame `i` draws `P_i(t)` ([`crate::FrameDrive`]); a braking drive (`P_i < 0`) returns
+//! `η_r·|P_i|` to the bus, so the bus carries
+//!
+//! $$ P_{bus}(t) = \sum_i g(P_i(t)), \qquad g(P) = \begin{cases} P & P \ge 0 \\ \eta_r P & P < 0 \end{cases} $$
+//!
+//! The supply gives `max(P_bus, 0)`; what braking frames return beyond what the others use at the
+//! same instant (`max(−P_bus, 0)`) goes to the braking resistor (no storage on the bus is
+//! modelled: its capacitors are taken as small).
+//!
+//! **Exact values.** Every quantity is evaluated on the closed form of the laws: the repeat is cut
+//! at every joint of every frame's motion (ends of moves, joints of the laws, the velocity's sign
+//! changes when there is Coulomb friction); between cuts each frame's power is smooth, and the
+//! maxima of `P_bus`, of `−P_bus` and of each `|P_i|` are the ends and the roots of their
+//! derivatives, bracketed on 16 sub-intervals and located by bisection to rounding; the integrals
+//! are Gauss–Legendre (8 points, exact for the polynomial laws' powers of degree ≤ 15) between the
+//! zeros of `P_bus` and of each `P_i`, located the same way. Each pick's turn is one window; a
+//! window whose frames do exactly what an earlier one's did (the same pieces at the same offsets,
+//! to 2⁻³⁰°) reuses its values, so a repeat costs as many windows as it has distinct picks.
+
+use crate::drive::{DrivePoint, FrameDrive};
+use loomkin_laws::{Cycle, SegmentKind};
+use std::collections::HashMap;
+
+/// Sub-intervals on which a derivative's sign changes are bracketed.
+const SCAN: usize = 16;
+/// Window keys round offsets to 2⁻³⁰ degree.
+const KEY_SCALE: f64 = (1u64 << 30) as f64;
+
+/// One smooth piece of a frame's motion within `[0, period)`.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    a: f64,
+    b: f64,
+    seg: usize,
+    /// Law segment, `None` for a dwell.
+    lseg: Option<usize>,
+    /// Angle (deg) where the law segment's local coordinate is 0.
+    anchor: f64,
+    /// Length of the cycle segment, deg.
+    len: f64,
+    /// Interned identity of (cycle segment shape, law segment).
+    ty: u64,
+}
+
+/// A frame's cycle cut into smooth pieces over `[0, period)`.
+pub(crate) struct Timeline<'a> {
+    cycle: &'a Cycle,
+    drive: &'a FrameDrive,
+    pieces: Vec<Piece>,
+}
+
+impl<'a> Timeline<'a> {
+    /// `segments`: the cycle's segments in degrees (`(kind, start, length)`, as the plan gives them).
+    pub(crate) fn new(
+        cycle: &'a Cycle,
+        segments: &[(SegmentKind, f64, f64)],
+        drive: &'a FrameDrive,
+        types: &mut HashMap<[u64; 4], u64>,
+    ) -> Self {
+        let period = cycle.period_rad.to_degrees();
+        let mut raw = Vec::new();
+        let friction = drive.axis.load.friction_n > 0.0;
+        for (si, (seg, &(_, s0, len))) in cycle.segments.iter().zip(segments).enumerate() {
+            let shape = [seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits()];
+            let mut intern = |l: u64| {
+                let n = types.len() as u64;
+                *types.entry([shape[0], shape[1], shape[2], l]).or_insert(n)
+            };
+            match &seg.law {
+                None => {
+                    raw.push(Piece { a: s0, b: s0 + len, seg: si, lseg: None, anchor: s0, len, ty: intern(u64::MAX) })
+                }
+                Some((_, law)) => {
+                    for (li, l) in law.segments().iter().enumerate() {
+                        let anchor = s0 + l.x0() * len;
+                        let end = if li + 1 == law.segments().len() { s0 + len } else { s0 + l.x1() * len };
+                        let mut cuts = vec![anchor];
+                        if friction {
+                            cuts.extend(
+                                l.derivative_roots(1)
+                                    .into_iter()
+                                    .filter(|&t| t > 0.0 && t < l.width())
+                                    .map(|t| anchor + t * len),
+                            );
+                        }
+                        cuts.push(end);
+                        let ty = intern(li as u64);
+                        for w in cuts.windows(2) {
+                            if w[1] > w[0] {
+                                raw.push(Piece { a: w[0], b: w[1], seg: si, lseg: Some(li), anchor, len, ty });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Into [0, period): shift by whole periods, splitting a piece that straddles a boundary.
+        let mut pieces = Vec::with_capacity(raw.len() + 2);
+        for p in raw {
+            let k = (p.a / period).floor();
+            let shift = -k * period;
+            let (a, b) = (p.a + shift, p.b + shift);
+            if b <= period {
+                pieces.push(Piece { a: a.max(0.0), b, anchor: p.anchor + shift, ..p });
+            } else {
+                pieces.push(Piece { a: a.max(0.0), b: period, anchor: p.anchor + shift, ..p });
+                pieces.push(Piece { a: 0.0, b: b - period, anchor: p.anchor + shift - period, ..p });
+            }
+        }
+        pieces.retain(|p| p.b > p.a);
+        pieces.sort_by(|x, y| x.a.total_cmp(&y.a));
+        Self { cycle, drive, pieces }
+    }
+
+    fn eval(&self, p: &Piece, theta: f64) -> DrivePoint {
+        let seg = &self.cycle.segments[p.seg];
+        match p.lseg {
+            None => self.drive.at_rest(seg.base_si),
+            Some(li) => {
+                let Some((_, law)) = &seg.law else { return self.drive.at_rest(seg.base_si) };
+                let t = (theta - p.anchor) / p.len;
+                self.drive.at_law(seg, &law.segments()[li], t)
+            }
+        }
+    }
+}
+
+/// Values of one window, angles relative to its start.
+#[derive(Debug, Clone, Default)]
+struct WindowValues {
+    peak: (f64, f64),
+    trough: (f64, f64),
+    supplied_j: f64,
+    braking_j: f64,
+    regenerated_j: f64,
+    /// Per frame: ∫P_i dt, and the largest |P_i| with where.
+    frame_energy_j: Vec<f64>,
+    frame_peak: Vec<(f64, f64)>,
+}
+
+/// The bus over the repeat.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BusTotals {
+    /// Largest bus power, W, and where, deg.
+    pub peak_w: (f64, f64),
+    /// Least bus power (most negative: braking), W, and where, deg.
+    pub trough_w: (f64, f64),
+    /// Energy the supply gives per repeat, J.
+    pub supplied_j: f64,
+    /// Energy the braking resistor takes per repeat, J.
+    pub braking_j: f64,
+    /// Energy braking frames return to the bus per repeat (after η_r), J.
+    pub regenerated_j: f64,
+    /// Per frame: the electrical energy drawn over the repeat, J.
+    pub frame_energy_j: Vec<f64>,
+    /// Per frame: the largest |P_i|, W, and where, deg.
+    pub frame_peak_w: Vec<(f64, f64)>,
+    /// Distinct windows evaluated (the rest reused).
+    pub distinct_windows: usize,
+}
+
+fn take_max(best: &mut (f64, f64), v: f64, at: f64) {
+    if v > best.0 {
+        *best = (v, at);
+    }
+}
+
+/// The bus of `frames` over a repeat of `picks` turns, braking drives returning `eta_r`.
+pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64) -> BusTotals {
+    let n = frames.len();
+    let mut cursor = vec![0usize; n];
+    let mut memo: HashMap<Vec<u64>, WindowValues> = HashMap::new();
+    let mut tot = BusTotals {
+        peak_w: (f64::NEG_INFINITY, 0.0),
+        trough_w: (f64::NEG_INFINITY, 0.0),
+        supplied_j: 0.0,
+        braking_j: 0.0,
+        regenerated_j: 0.0,
+        frame_energy_j: vec![0.0; n],
+        frame_peak_w: vec![(f64::NEG_INFINITY, 0.0); n],
+        distinct_windows: 0,
+    };
+    let q = |x: f64| (x * KEY_SCALE).round() as i64 as u64;
+    let mut items: Vec<Vec<(Piece, f64, f64)>> = vec![Vec::new(); n];
+    let mut key = Vec::new();
+    for p in 0..picks {
+        let (w0, w1) = (360.0 * p as f64, 360.0 * (p + 1) as f64);
+        key.clear();
+        for (i, f) in frames.iter().enumerate() {
+            items[i].clear();
+            while cursor[i] < f.pieces.len() && f.pieces[cursor[i]].b <= w0 {
+                cursor[i] += 1;
+            }
+            let mut j = cursor[i];
+            while j < f.pieces.len() && f.pieces[j].a < w1 {
+                let pc = f.pieces[j];
+                let (a, b) = (pc.a.max(w0), pc.b.min(w1));
+                if b > a {
+                    items[i].push((pc, a, b));
+                    key.extend([pc.ty, q(a - w0), q(b - w0), q(pc.anchor - w0)]);
+                }
+                j += 1;
+            }
+            key.push(u64::MAX);
+        }
+        let v = match memo.get(&key) {
+            Some(v) => v.clone(),
+            None => {
+                let v = window(frames, &items, w0, w1, eta_r, omega);
+                memo.insert(key.clone(), v.clone());
+                v
+            }
+        };
+        take_max(&mut tot.peak_w, v.peak.0, w0 + v.peak.1);
+        take_max(&mut tot.trough_w, v.trough.0, w0 + v.trough.1);
+        tot.supplied_j += v.supplied_j;
+        tot.braking_j += v.braking_j;
+        tot.regenerated_j += v.regenerated_j;
+        for i in 0..n {
+            tot.frame_energy_j[i] += v.frame_energy_j[i];
+            take_max(&mut tot.frame_peak_w[i], v.frame_peak[i].0, w0 + v.frame_peak[i].1);
+        }
+    }
+    tot.trough_w.0 = -tot.trough_w.0;
+    tot.distinct_windows = memo.len();
+    tot
+}
+
+/// One window `[w0, w1)`: `items[i]` the pieces of frame `i` within it, clipped.
+fn window(
+    frames: &[Timeline<'_>],
+    items: &[Vec<(Piece, f64, f64)>],
+    w0: f64,
+    w1: f64,
+    eta_r: f64,
+    omega: f64,
+) -> WindowValues {
+    let n = frames.len();
+    let mut cuts: Vec<f64> = vec![w0, w1];
+    for it in items {
+        for &(_, a, b) in it {
+            cuts.push(a);
+            cuts.push(b);
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|x, y| *x - *y <= 1e-12 * w1.max(1.0));
+    let g = |p: f64| if p >= 0.0 { p } else { eta_r * p };
+    let dg = |p: f64| if p >= 0.0 { 1.0 } else { eta_r };
+    // Seconds per degree of the main shaft.
+    let dt = std::f64::consts::PI / 180.0 / omega;
+    let mut out = WindowValues {
+        peak: (f64::NEG_INFINITY, 0.0),
+        trough: (f64::NEG_INFINITY, 0.0),
+        frame_energy_j: vec![0.0; n],
+        frame_peak: vec![(f64::NEG_INFINITY, 0.0); n],
+        ..WindowValues::default()
+    };
+    let rule = loomkin_laws::gauss_legendre(8);
+    let mut active: Vec<Option<Piece>> = vec![None; n];
+    let mut pts: Vec<DrivePoint> = vec![DrivePoint::default(); n];
+    for c in cuts.windows(2) {
+        let (u, v) = (c[0], c[1]);
+        if v <= u {
+            continue;
+        }
+        let mid = 0.5 * (u + v);
+        for i in 0..n {
+            active[i] = items[i].iter().find(|(_, a, b)| *a <= mid && mid < *b).map(|x| x.0);
+        }
+        let eval_all = |theta: f64, pts: &mut [DrivePoint]| {
+            for i in 0..n {
+                pts[i] = match &active[i] {
+                    Some(p) => frames[i].eval(p, theta),
+                    None => DrivePoint::default(),
+                };
+            }
+        };
+        let net = |pts: &[DrivePoint]| -> (f64, f64) {
+            pts.iter().fold((0.0, 0.0), |(s, d), q| (s + g(q.power_w), d + dg(q.power_w) * q.power_rate))
+        };
+        // Scan.
+        let h = (v - u) / SCAN as f64;
+        let grid: Vec<f64> = (0..=SCAN).map(|k| if k == SCAN { v } else { u + k as f64 * h }).collect();
+        let mut vals: Vec<Vec<DrivePoint>> = Vec::with_capacity(SCAN + 1);
+        for &th in &grid {
+            eval_all(th, &mut pts);
+            vals.push(pts.clone());
+        }
+        let nets: Vec<(f64, f64)> = vals.iter().map(|p| net(p)).collect();
+        for k in 0..=SCAN {
+            take_max(&mut out.peak, nets[k].0, grid[k] - w0);
+            take_max(&mut out.trough, -nets[k].0, grid[k] - w0);
+            for i in 0..n {
+                take_max(&mut out.frame_peak[i], vals[k][i].power_w.abs(), grid[k] - w0);
+            }
+        }
+        let mut zeros = vec![u, v];
+        let mut scratch = vec![DrivePoint::default(); n];
+        for k in 0..SCAN {
+            let (a, b) = (grid[k], grid[k + 1]);
+            // Bus maxima and minima: sign changes of the derivative.
+            let (d0, d1) = (nets[k].1, nets[k + 1].1);
+            if (d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0) {
+                let rising = d0 > 0.0;
+                let r = loomkin_numeric::bisect(a, b, |t| {
+                    eval_all(t, &mut scratch);
+                    (net(&scratch).1 > 0.0) == rising
+                });
+                eval_all(r, &mut scratch);
+                let p = net(&scratch).0;
+                take_max(&mut out.peak, p, r - w0);
+                take_max(&mut out.trough, -p, r - w0);
+            }
+            // Zeros of the bus power.
+            if (nets[k].0 > 0.0) != (nets[k + 1].0 > 0.0) {
+                let pos = nets[k].0 > 0.0;
+                zeros.push(loomkin_numeric::bisect(a, b, |t| {
+                    eval_all(t, &mut scratch);
+                    (net(&scratch).0 > 0.0) == pos
+                }));
+            }
+            for i in 0..n {
+                let Some(pc) = &active[i] else { continue };
+                if pc.lseg.is_none() {
+                    continue;
+                }
+                let (p0, p1) = (vals[k][i], vals[k + 1][i]);
+                // Largest |P_i|: sign changes of d(P²)/dt = 2·P·P'.
+                let (s0, s1) = (p0.power_w * p0.power_rate, p1.power_w * p1.power_rate);
+                if s0 > 0.0 && s1 < 0.0 {
+                    let r = loomkin_numeric::bisect(a, b, |t| {
+                        let q = frames[i].eval(pc, t);
+                        q.power_w * q.power_rate > 0.0
+                    });
+                    take_max(&mut out.frame_peak[i], frames[i].eval(pc, r).power_w.abs(), r - w0);
+                }
+                if (p0.power_w > 0.0) != (p1.power_w > 0.0) {
+                    let pos = p0.power_w > 0.0;
+                    zeros.push(loomkin_numeric::bisect(a, b, |t| (frames[i].eval(pc, t).power_w > 0.0) == pos));
+                }
+            }
+        }
+        zeros.sort_by(f64::total_cmp);
+        for z in zeros.windows(2) {
+            let (a, b) = (z[0], z[1]);
+            if b <= a {
+                continue;
+            }
+            // Two panels of 8-point Gauss–Legendre.
+            let half = 0.5 * (b - a);
+            for panel in 0..2 {
+                let lo = a + panel as f64 * half;
+                for &(x, w) in &rule {
+                    let th = lo + 0.5 * half * (x + 1.0);
+                    let wt = 0.5 * half * w * dt;
+                    eval_all(th, &mut scratch);
+                    let p = net(&scratch).0;
+                    if p >= 0.0 {
+                        out.supplied_j += wt * p;
+                    } else {
+                        out.braking_j -= wt * p;
+                    }
+                    for i in 0..n {
+                        let pi = scratch[i].power_w;
+                        out.frame_energy_j[i] += wt * pi;
+                        if pi < 0.0 {
+                            out.regenerated_j -= wt * eta_r * pi;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,51 @@
+//! # loomkin-eshed — electronic shedding: one servo per heald frame, the shared DC bus
+//!
+//! The newest looms drop the dobby: each heald frame has its own servo motor. Every frame then
+//! gets its own motion for every pick from the weave (stay, rise, fall, or pass through without a
+//! stop), each rest transition at least C², and the frames share a DC bus, so the peak *bus* power
+//! sizes the supply and braking frames return energy that others use.
+//!
+//! * [`FramePlan`] — one frame's moves over the pattern repeat from its row of the lift plan
+//!   (crossing angle, stagger, motion angle, pass-through), as a machine cycle of the law core
+//!   ([`loomkin_laws::Cycle`]: every joint exact).
+//! * [`ServoShedding`] — the `[shedding.servo]` table of a loom file: motor (as `loomkin servo
+//!   check` takes it), transmission, winding, bus; per-frame overrides.
+//! * [`FrameDrive`] — the servo axis model of loomkin-servo ([`loomkin_servo::Axis`]) moving one
+//!   frame, and its electrical power `P = T·ω_m + R·(T/k_t)²`.
+//! * [`analyse`] — per frame the servo check ([`loomkin_servo::check_axis`]) and the peak power,
+//!   on the bus the peak and mean power, the regenerated and braking energy, all on the closed
+//!   form with peaks root-found.
+//!
+//! The loom file and the lift plan are read by loomkin-loom, which builds the [`FrameSetup`]s
+//! (`loomkin_loom::servo_study`).
+#![deny(missing_docs)]
+
+mod bus;
+pub mod continuity;
+mod drive;
+mod error;
+mod plan;
+mod report;
+mod spec;
+
+pub use bus::BusTotals;
+pub use continuity::{JointClass, joint_class};
+pub use drive::{DrivePoint, FrameDrive, FrameLoad, axis};
+pub use error::{EshedError, Result};
+pub use plan::{FrameInput, FramePlan, MoveLaws, PlannedMove};
+pub use report::{Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves};
+pub use spec::{Bus, FrameServo, ServoShedding, Transmission, Winding};
+
+/// The descriptors of this crate's inputs.
+pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
+    Transmission::TRAVEL_MM_PER_REV,
+    Transmission::EFFICIENCY,
+    Transmission::FRICTION_N,
+    Transmission::VISCOUS_N_S_M,
+    Transmission::EXTRA_INERTIA_KG_M2,
+    Winding::RESISTANCE_OHM,
+    Winding::TORQUE_CONSTANT_N_M_A,
+    Bus::VOLTAGE_V,
+    Bus::REGENERATION_EFFICIENCY,
+    Bus::BRAKING_RESISTOR_OHM
+];

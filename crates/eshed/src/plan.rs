@@ -1,0 +1,230 @@
+//! The move planner: one heald frame's motion over the pattern repeat from its row of the lift plan.
+//!
+//! Pick `p` is inserted in the turn `[360p, 360(p + 1))` of the main shaft. A frame that keeps its
+//! place from pick `p − 1` to pick `p` dwells; one that changes moves by the rise law (going up) or
+//! the fall law (going down) over its motion angle `φ`, centred on `360p + c`, `c` the frame's
+//! centre (the crossing angle taken into `[−180°, 180°)` plus the frame's stagger) — the plan of the
+//! mechanical dobby, [`loomkin_laws`] segments in closed form.
+//!
+//! **Pass-through.** Where the designer allows it, a frame that changes on consecutive picks (up on
+//! pick `p`, down on `p + 1`, …) does not stop between: a run of `k + 1` consecutive changes, from
+//! the start of its first move (`360p + c − φ/2`) to the end of its last (`360(p + k) + c + φ/2`),
+//! is split into `k + 1` moves of equal length `(360k + φ)/(k + 1)` laid end to end, each by the
+//! rise or fall law. With rest laws (velocity and acceleration zero at both ends) the frame turns
+//! at the top or the bottom without a dwell, and the joint is as smooth as the law's ends (C² for
+//! every law whose acceleration starts and ends at zero, [`crate::continuity`]). When every pick is
+//! a change (a plain weave on this frame) the frame oscillates without a stop: every move 360°
+//! long, centred on `360p + c`.
+
+use crate::{EshedError, Result};
+use loomkin_laws::{Cycle, CycleSegment, CycleSpec, Law, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
+
+/// The laws of a frame's moves: a normalised rise (0 → 1 over `x ∈ [0, 1]`) for a frame going up
+/// and one for a frame going down (`y = top − H·s(x)`), each with the catalogue form a cycle file
+/// holds.
+#[derive(Debug, Clone)]
+pub struct MoveLaws {
+    /// Going up: the spec and the built law.
+    pub rise: (LawSpec, Law),
+    /// Going down.
+    pub fall: (LawSpec, Law),
+}
+
+impl MoveLaws {
+    /// The law going up (`rising`) or down.
+    pub fn law(&self, rising: bool) -> &(LawSpec, Law) {
+        if rising { &self.rise } else { &self.fall }
+    }
+}
+
+/// One move of a frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlannedMove {
+    /// The pick the frame moves into (0-based, within the repeat).
+    pub pick: usize,
+    /// Start, deg of the main shaft (may lie before 0 or past the repeat: the motion is periodic).
+    pub start_deg: f64,
+    /// Length, deg.
+    pub length_deg: f64,
+    /// Going up.
+    pub rising: bool,
+}
+
+/// One frame's row of the lift plan and its timing.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameInput<'a> {
+    /// Up at pick `p`, for every pick of the repeat.
+    pub up: &'a [bool],
+    /// Full stroke, m (> 0).
+    pub stroke_m: f64,
+    /// Centre of the move into pick 0, deg (crossing offset plus stagger).
+    pub centre_deg: f64,
+    /// Motion angle of a move, deg (0 < φ ≤ 360).
+    pub motion_deg: f64,
+}
+
+/// A frame's moves over one repeat, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FramePlan {
+    /// The moves, in increasing angle; none when the frame keeps its place.
+    pub moves: Vec<PlannedMove>,
+    /// Where the plan starts, deg: the first move's start (0 without moves).
+    pub start_deg: f64,
+    /// The repeat, deg (`360 · picks`).
+    pub period_deg: f64,
+    /// Whether the frame is up at the start.
+    pub start_up: bool,
+    /// Full stroke, m.
+    pub stroke_m: f64,
+}
+
+impl FramePlan {
+    /// Plans one frame; `pass_through` lays consecutive changes end to end (see the module).
+    pub fn new(input: &FrameInput<'_>, pass_through: bool) -> Result<Self> {
+        let picks = input.up.len();
+        if picks == 0 {
+            return Err(EshedError::field("pattern", "a lift plan needs at least one pick"));
+        }
+        let phi = input.motion_deg;
+        if !(phi > 0.0 && phi <= 360.0) {
+            return Err(EshedError::field(
+                "motion_deg",
+                format!("{phi}°: a move must fit in one pick's turn (0 < motion_deg ≤ 360°)"),
+            ));
+        }
+        let up = |p: i64| input.up[p.rem_euclid(picks as i64) as usize];
+        let change = |p: i64| up(p) != up(p - 1);
+        let c = input.centre_deg;
+        let period_deg = 360.0 * picks as f64;
+        let moves: Vec<PlannedMove> = if !pass_through {
+            (0..picks as i64)
+                .filter(|&p| change(p))
+                .map(|p| PlannedMove {
+                    pick: p as usize,
+                    start_deg: 360.0 * p as f64 + c - phi / 2.0,
+                    length_deg: phi,
+                    rising: up(p),
+                })
+                .collect()
+        } else if (0..picks as i64).all(change) {
+            (0..picks as i64)
+                .map(|p| PlannedMove {
+                    pick: p as usize,
+                    start_deg: 360.0 * p as f64 + c - 180.0,
+                    length_deg: 360.0,
+                    rising: up(p),
+                })
+                .collect()
+        } else {
+            // Runs of consecutive changes, starting from a change whose previous pick is none.
+            let first = (0..picks as i64).find(|&p| change(p) && !change(p - 1));
+            let mut out = Vec::new();
+            if let Some(p0) = first {
+                let mut p = p0;
+                while p < p0 + picks as i64 {
+                    if !change(p) {
+                        p += 1;
+                        continue;
+                    }
+                    let mut k = 0;
+                    while p + k + 1 < p0 + picks as i64 && change(p + k + 1) {
+                        k += 1;
+                    }
+                    let s = 360.0 * p as f64 + c - phi / 2.0;
+                    let len = (360.0 * k as f64 + phi) / (k + 1) as f64;
+                    for j in 0..=k {
+                        out.push(PlannedMove {
+                            pick: (p + j).rem_euclid(picks as i64) as usize,
+                            start_deg: s + j as f64 * len,
+                            length_deg: len,
+                            rising: up(p + j),
+                        });
+                    }
+                    p += k + 1;
+                }
+            }
+            out
+        };
+        let start_deg = moves.first().map_or(0.0, |m| m.start_deg);
+        let start_up = moves.first().map_or(input.up[0], |m| !m.rising);
+        Ok(Self { moves, start_deg, period_deg, start_up, stroke_m: input.stroke_m })
+    }
+
+    /// The segments of the plan as `(kind, start_deg, length_deg)`: dwells between the moves,
+    /// gaps of 10⁻⁹° or less left out (as [`FramePlan::cycle_spec`] writes them).
+    pub fn segments(&self) -> Vec<(SegmentKind, f64, f64)> {
+        let mut out = Vec::with_capacity(2 * self.moves.len() + 1);
+        let mut at = self.start_deg;
+        for m in &self.moves {
+            if m.start_deg > at + 1e-9 {
+                out.push((SegmentKind::Dwell, at, m.start_deg - at));
+            }
+            let kind = if m.rising { SegmentKind::Rise } else { SegmentKind::Return };
+            out.push((kind, m.start_deg, m.length_deg));
+            at = m.start_deg + m.length_deg;
+        }
+        if self.start_deg + self.period_deg > at + 1e-9 {
+            out.push((SegmentKind::Dwell, at, self.start_deg + self.period_deg - at));
+        }
+        out
+    }
+
+    /// The plan as a checked machine cycle of the law core (stroke unit mm, positions in m from
+    /// the frame's place at the start: add `−H/2` when it starts down, `+H/2` up, to read the
+    /// height over mid-stroke). Built segment by segment, so a repeat of any length is held (a
+    /// cycle file is limited to 36 000°, 100 picks).
+    pub fn cycle(&self, laws: &MoveLaws) -> Cycle {
+        let h = self.stroke_m;
+        let mut pos = 0.0;
+        let segments = self
+            .segments()
+            .into_iter()
+            .map(|(kind, start, len)| {
+                let (law, stroke) = match kind {
+                    SegmentKind::Dwell => (None, 0.0),
+                    SegmentKind::Rise => (Some(laws.rise.clone()), h),
+                    SegmentKind::Return => (Some(laws.fall.clone()), -h),
+                };
+                let seg = CycleSegment {
+                    kind,
+                    start_rad: start.to_radians(),
+                    length_rad: len.to_radians(),
+                    law,
+                    base_si: pos,
+                    stroke_si: stroke,
+                };
+                pos += stroke;
+                seg
+            })
+            .collect();
+        Cycle { unit: StrokeUnit::Mm, period_rad: self.period_deg.to_radians(), speed_rpm: None, segments }
+    }
+
+    /// The plan as a cycle file of the law core (strokes in mm; what the cam-table export and
+    /// `loomkin cycle` read, within the cycle file's 36 000°).
+    pub fn cycle_spec(&self, laws: &MoveLaws) -> CycleSpec {
+        let mut segment: Vec<SegmentSpec> = self
+            .segments()
+            .into_iter()
+            .map(|(kind, _, len)| match kind {
+                SegmentKind::Dwell => SegmentSpec::dwell(len),
+                k => SegmentSpec::moving(k, len, &laws.law(k == SegmentKind::Rise).0),
+            })
+            .collect();
+        if let Some(first) = segment.first_mut() {
+            first.from_deg = Some(self.start_deg);
+        }
+        CycleSpec {
+            period_deg: self.period_deg,
+            unit: StrokeUnit::Mm,
+            stroke: Some(self.stroke_m * 1e3),
+            speed_rpm: None,
+            segment,
+        }
+    }
+
+    /// The height over mid-stroke at the plan's start, m.
+    pub fn start_level_m(&self) -> f64 {
+        if self.start_up { self.stroke_m / 2.0 } else { -self.stroke_m / 2.0 }
+    }
+}

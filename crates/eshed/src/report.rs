@@ -1,0 +1,283 @@
+//! The servo-shedding study of a loom weaving a pattern: per frame and on the bus.
+
+use crate::bus::{Timeline, bus};
+use crate::continuity::joint_class;
+use crate::drive::{FrameDrive, FrameLoad, axis};
+use crate::{Bus, EshedError, FramePlan, FrameServo, MoveLaws, Result};
+use loomkin_servo::{Check, check_axis};
+use serde::Serialize;
+use std::collections::HashMap;
+
+/// One frame: its plan, the frame as a load, its servo.
+#[derive(Debug, Clone)]
+pub struct FrameSetup {
+    /// The moves over the repeat.
+    pub plan: FramePlan,
+    /// The frame as a load.
+    pub load: FrameLoad,
+    /// The servo drive.
+    pub servo: FrameServo,
+}
+
+/// One frame's drive over the repeat (`frames` of `loomkin loom servo --json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameReport {
+    /// The frame (1 = front).
+    pub frame: usize,
+    /// Moves over the repeat.
+    pub moves: usize,
+    /// Its motion angle, deg (before pass-through lengthens moves).
+    pub motion_deg: f64,
+    /// Largest |motor torque|, N·m (located exactly by the servo check).
+    pub peak_torque_n_m: f64,
+    /// Where, deg of the repeat.
+    pub peak_torque_at_deg: f64,
+    /// RMS motor torque over the repeat, N·m.
+    pub rms_torque_n_m: f64,
+    /// Largest |motor speed|, rpm.
+    pub peak_speed_rpm: f64,
+    /// Largest |electrical power| (drawn or returned), W.
+    pub peak_power_w: f64,
+    /// Where, deg of the repeat (within `[0, repeat)`).
+    pub peak_power_at_deg: f64,
+    /// Electrical energy drawn over the repeat (losses, as the motion is periodic), J.
+    pub energy_j: f64,
+    /// Load inertia reflected to the motor over the rotor's.
+    pub inertia_ratio: f64,
+    /// Every check of `loomkin servo check` passes.
+    pub motor_ok: bool,
+    /// The checks (peak torque, RMS torque, peak speed, torque–speed envelope, inertia ratio) with
+    /// their margins `(limit − value)/limit`.
+    pub checks: Vec<Check>,
+    /// Highest derivative continuous at every rest transition (2: C², acceleration continuous).
+    pub rest_continuity: i32,
+    /// Where the least smooth rest transition is, deg (absent without joints).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rest_continuity_at_deg: Option<f64>,
+}
+
+/// The study (`loomkin loom servo --json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ServoReport {
+    /// Main-shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// Picks in the repeat.
+    pub picks: usize,
+    /// The repeat, deg.
+    pub repeat_deg: f64,
+    /// Its duration, s.
+    pub repeat_s: f64,
+    /// Consecutive changes laid end to end without a stop.
+    pub pass_through: bool,
+    /// Largest power the bus draws from the supply, W.
+    pub peak_bus_power_w: f64,
+    /// Where, deg of the repeat.
+    pub peak_bus_power_at_deg: f64,
+    /// `peak_bus_power_w` over the bus voltage, A.
+    pub peak_bus_current_a: f64,
+    /// Mean power drawn from the supply over the repeat, W.
+    pub mean_bus_power_w: f64,
+    /// Energy braking frames return to the bus per repeat (after the regeneration efficiency), J.
+    pub regenerated_energy_j: f64,
+    /// What the braking resistor must take per repeat: the returned energy no other frame uses at
+    /// the same instant, J.
+    pub braking_energy_j: f64,
+    /// Largest power into the braking resistor, W.
+    pub peak_braking_power_w: f64,
+    /// What the braking resistor can take at the bus voltage, `V²/R`, W (absent without a resistor).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub braking_resistor_max_w: Option<f64>,
+    /// `peak_braking_power_w ≤ braking_resistor_max_w` (absent without a resistor).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub braking_resistor_ok: Option<bool>,
+    /// Energy the supply gives per repeat, J.
+    pub supplied_energy_j: f64,
+    /// Every frame's motor passes.
+    pub motors_ok: bool,
+    /// Distinct pick windows evaluated (the others reuse one of them).
+    pub distinct_windows: usize,
+    /// The frames, in shaft order (front first).
+    pub frames: Vec<FrameReport>,
+}
+
+/// The frames' drives and cycles, built once.
+pub struct Study {
+    /// Per frame: the cycle of the law core.
+    pub cycles: Vec<loomkin_laws::Cycle>,
+    /// Per frame: the drive.
+    pub drives: Vec<FrameDrive>,
+    /// Per frame: the plan's segments in degrees.
+    pub segments: Vec<Vec<(loomkin_laws::SegmentKind, f64, f64)>>,
+}
+
+impl Study {
+    /// The drives of `frames` moving by `laws` at `speed_rpm`.
+    pub fn new(frames: &[FrameSetup], laws: &MoveLaws, speed_rpm: f64) -> Result<Self> {
+        let omega = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rad_per_s();
+        let mut cycles = Vec::with_capacity(frames.len());
+        let mut drives = Vec::with_capacity(frames.len());
+        let mut segments = Vec::with_capacity(frames.len());
+        for f in frames {
+            cycles.push(f.plan.cycle(laws));
+            segments.push(f.plan.segments());
+            drives.push(FrameDrive {
+                axis: axis(&f.servo.motor, &f.servo.transmission, &f.load),
+                load: f.load,
+                loss: f.servo.winding.loss_w_per_n_m2(),
+                omega,
+            });
+        }
+        Ok(Self { cycles, drives, segments })
+    }
+}
+
+/// The study of `frames` (front first) moving by `laws` at `speed_rpm` on `bus` (`pass_through`:
+/// how the plans were made, for the report). Fails when a rest transition of some frame is less
+/// smooth than C² (the laws' acceleration must start and end at zero), naming the law.
+pub fn analyse(
+    frames: &[FrameSetup],
+    laws: &MoveLaws,
+    bus_spec: &Bus,
+    speed_rpm: f64,
+    pass_through: bool,
+) -> Result<ServoReport> {
+    let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
+    let picks = (first.plan.period_deg / 360.0).round() as usize;
+    let study = Study::new(frames, laws, speed_rpm)?;
+    let omega = study.drives[0].omega;
+    let mut types = HashMap::new();
+    let lines: Vec<Timeline<'_>> = (0..frames.len())
+        .map(|i| Timeline::new(&study.cycles[i], &study.segments[i], &study.drives[i], &mut types))
+        .collect();
+    let tot = bus(&lines, picks, bus_spec.regeneration_efficiency, omega);
+    let repeat_deg = first.plan.period_deg;
+    let repeat_s = repeat_deg.to_radians() / omega;
+    let mut reports = Vec::with_capacity(frames.len());
+    for (i, f) in frames.iter().enumerate() {
+        let check = check_axis(&study.drives[i].axis, &study.cycles[i], speed_rpm)?;
+        let class = joint_class(&study.cycles[i], laws, omega);
+        if class.rest < 2 {
+            let label = if laws.rise.0 == laws.fall.0 {
+                laws.rise.0.label()
+            } else {
+                format!("rise {}, fall {}", laws.rise.0.label(), laws.fall.0.label())
+            };
+            return Err(EshedError::field(
+                "shedding",
+                format!(
+                    "frame {}: the law {label} is only C{} where the frame starts or stops (at {:.3}°); electronic \
+                     shedding needs every rest transition C² (acceleration continuous): choose a law whose \
+                     acceleration is zero at both ends",
+                    i + 1,
+                    class.rest.max(0),
+                    class.rest_at_deg.unwrap_or(0.0).rem_euclid(first.plan.period_deg)
+                ),
+            ));
+        }
+        reports.push(FrameReport {
+            frame: i + 1,
+            moves: f.plan.moves.len(),
+            motion_deg: f.plan.moves.first().map_or(0.0, |m| m.length_deg),
+            peak_torque_n_m: check.peak_torque_nm,
+            peak_torque_at_deg: check.peak_torque_at_deg.rem_euclid(repeat_deg),
+            rms_torque_n_m: check.rms_torque_nm,
+            peak_speed_rpm: check.peak_motor_speed_rpm,
+            peak_power_w: tot.frame_peak_w[i].0,
+            peak_power_at_deg: tot.frame_peak_w[i].1,
+            energy_j: tot.frame_energy_j[i],
+            inertia_ratio: check.inertia_ratio,
+            motor_ok: check.pass,
+            checks: check.checks,
+            rest_continuity: class.rest,
+            rest_continuity_at_deg: class.rest_at_deg.map(|a| a.rem_euclid(repeat_deg)),
+        });
+    }
+    let peak_braking_power_w = (-tot.trough_w.0).max(0.0);
+    let resistor = bus_spec.braking_resistor_ohm.map(|r| bus_spec.voltage_v * bus_spec.voltage_v / r);
+    Ok(ServoReport {
+        speed_rpm,
+        picks,
+        repeat_deg,
+        repeat_s,
+        pass_through,
+        peak_bus_power_w: tot.peak_w.0,
+        peak_bus_power_at_deg: tot.peak_w.1,
+        peak_bus_current_a: tot.peak_w.0.max(0.0) / bus_spec.voltage_v,
+        mean_bus_power_w: tot.supplied_j / repeat_s,
+        regenerated_energy_j: tot.regenerated_j,
+        braking_energy_j: tot.braking_j,
+        peak_braking_power_w,
+        braking_resistor_max_w: resistor,
+        braking_resistor_ok: resistor.map(|m| peak_braking_power_w <= m),
+        supplied_energy_j: tot.supplied_j,
+        motors_ok: reports.iter().all(|r| r.motor_ok),
+        distinct_windows: tot.distinct_windows,
+        frames: reports,
+    })
+}
+
+/// Curves of the study at evenly spaced angles over the repeat (for plots and arrays).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Curves {
+    /// Main-shaft angle, deg, from 0 to the repeat (both ends).
+    pub angle_deg: Vec<f64>,
+    /// Per frame (front first): the frame's height over mid-stroke, m.
+    pub position_m: Vec<Vec<f64>>,
+    /// Per frame: motor speed, rpm.
+    pub speed_rpm: Vec<Vec<f64>>,
+    /// Per frame: motor torque, N·m.
+    pub torque_n_m: Vec<Vec<f64>>,
+    /// Per frame: electrical power, W.
+    pub power_w: Vec<Vec<f64>>,
+    /// The bus power (braking drives' power times the regeneration efficiency), W.
+    pub bus_power_w: Vec<f64>,
+}
+
+/// `points` (≥ 2) samples of every frame and the bus over the repeat, from 0° to its end.
+pub fn curves(frames: &[FrameSetup], laws: &MoveLaws, bus_spec: &Bus, speed_rpm: f64, points: usize) -> Result<Curves> {
+    let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
+    let study = Study::new(frames, laws, speed_rpm)?;
+    let period = first.plan.period_deg;
+    let n = points.max(2);
+    let angle_deg: Vec<f64> = (0..n).map(|k| period * k as f64 / (n - 1) as f64).collect();
+    let mut out = Curves {
+        angle_deg: angle_deg.clone(),
+        position_m: Vec::new(),
+        speed_rpm: Vec::new(),
+        torque_n_m: Vec::new(),
+        power_w: Vec::new(),
+        bus_power_w: vec![0.0; n],
+    };
+    let eta_r = bus_spec.regeneration_efficiency;
+    for (i, f) in frames.iter().enumerate() {
+        let cycle = &study.cycles[i];
+        let segs = &study.segments[i];
+        let d = &study.drives[i];
+        let (mut y, mut sp, mut tq, mut pw) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        // Angles from the cycle's start, in order: a cursor over the segments.
+        let start = f.plan.start_deg;
+        let mut order: Vec<(f64, usize)> =
+            angle_deg.iter().enumerate().map(|(k, &a)| ((a - start).rem_euclid(period), k)).collect();
+        order.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut j = 0;
+        for (rel, k) in order {
+            let th = start + rel;
+            while j + 1 < segs.len() && th >= segs[j + 1].1 {
+                j += 1;
+            }
+            let (seg, (_, s0, len)) = (&cycle.segments[j], segs[j]);
+            let kin = crate::continuity::kin(seg, ((th - s0) / len).clamp(0.0, 1.0), d.omega);
+            let p = d.point(kin[0], kin[1], kin[2], kin[3]);
+            y[k] = f.plan.start_level_m() + kin[0];
+            sp[k] = loomkin_units::rpm_from_rad_per_s(p.motor_rad_s);
+            tq[k] = p.torque_n_m;
+            pw[k] = p.power_w;
+            out.bus_power_w[k] += if p.power_w >= 0.0 { p.power_w } else { eta_r * p.power_w };
+        }
+        out.position_m.push(y);
+        out.speed_rpm.push(sp);
+        out.torque_n_m.push(tq);
+        out.power_w.push(pw);
+    }
+    Ok(out)
+}

@@ -1,0 +1,253 @@
+//! Electronic shedding against independent routes: the servo axis model point by point, the energy
+//! balance over the repeat in closed form, the bus peaks against dense scans, the C² claim.
+
+use loomkin_eshed::{
+    Bus, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Study, Transmission, Winding, analyse,
+    curves, joint_class,
+};
+use loomkin_laws::{Cycle, LawSpec};
+use loomkin_servo::{Motor, operating_point_at};
+
+const SPEED_RPM: f64 = 500.0;
+
+fn laws(spec: LawSpec) -> MoveLaws {
+    let law = spec.build().unwrap();
+    MoveLaws { rise: (spec.clone(), law.clone()), fall: (spec, law) }
+}
+
+fn motor() -> Motor {
+    Motor {
+        rated_torque_nm: 10.0,
+        peak_torque_nm: 30.0,
+        rated_speed_rpm: 3000.0,
+        max_speed_rpm: 4500.0,
+        rotor_inertia_kg_m2: 1.2e-3,
+        torque_at_max_speed_nm: None,
+    }
+}
+
+fn servo(efficiency: f64, friction_n: f64, viscous_n_s_m: f64, resistance_ohm: f64) -> FrameServo {
+    FrameServo {
+        motor: motor(),
+        transmission: Transmission {
+            travel_mm_per_rev: 100.0,
+            efficiency,
+            friction_n,
+            viscous_n_s_m,
+            extra_inertia_kg_m2: 2e-4,
+        },
+        winding: Winding { resistance_ohm, torque_constant_n_m_a: 1.7 },
+        motion_deg: None,
+    }
+}
+
+/// A pseudo-random lift plan, `frames × picks`, every frame changing at least twice.
+fn lift_plan(frames: usize, picks: usize, seed: u64) -> Vec<Vec<bool>> {
+    let mut x = seed;
+    (0..frames)
+        .map(|i| {
+            let mut row: Vec<bool> = (0..picks)
+                .map(|_| {
+                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    (x >> 33) % 2 == 1
+                })
+                .collect();
+            row[i % picks] = true;
+            row[(i + 1) % picks] = false;
+            row
+        })
+        .collect()
+}
+
+fn setups(plan: &[Vec<bool>], pass_through: bool, s: &FrameServo, stagger: f64) -> Vec<FrameSetup> {
+    plan.iter()
+        .enumerate()
+        .map(|(i, up)| {
+            let stroke = 0.09 + 0.005 * i as f64;
+            let p = FramePlan::new(
+                &FrameInput {
+                    up,
+                    stroke_m: stroke,
+                    centre_deg: -10.0 + stagger * (i as f64 - 1.5),
+                    motion_deg: 250.0 + 5.0 * i as f64,
+                },
+                pass_through,
+            )
+            .unwrap();
+            let load = FrameLoad {
+                mass_kg: 5.0 + 0.3 * i as f64,
+                spring_n_m: 300.0 * (i % 2) as f64,
+                preload_n: 40.0,
+                stroke_m: stroke,
+                start_level_m: p.start_level_m(),
+            };
+            FrameSetup { plan: p, load, servo: s.clone() }
+        })
+        .collect()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1e-300)
+}
+
+#[test]
+fn each_frames_torque_is_the_servo_axis_model_run_on_its_own_cycle() {
+    let plan = lift_plan(4, 12, 7);
+    for pass in [false, true] {
+        let fs = setups(&plan, pass, &servo(0.93, 6.0, 15.0, 1.5), 4.0);
+        let l = laws(LawSpec::Poly345);
+        let c = curves(&fs, &l, &Bus::default(), SPEED_RPM, 2001).unwrap();
+        let study = Study::new(&fs, &l, SPEED_RPM).unwrap();
+        let mut worst = 0.0f64;
+        for i in 0..fs.len() {
+            for (k, &a) in c.angle_deg.iter().enumerate() {
+                let op =
+                    operating_point_at(&study.drives[i].axis, &study.cycles[i], SPEED_RPM, a.to_radians().to_degrees())
+                        .unwrap();
+                let scale = c.torque_n_m[i].iter().fold(0.0f64, |m, t| m.max(t.abs()));
+                worst = worst.max((op.torque_nm - c.torque_n_m[i][k]).abs() / scale);
+                assert!((op.motor_speed_rpm - c.speed_rpm[i][k]).abs() <= 1e-9 * op.motor_speed_rpm.abs().max(1.0));
+            }
+        }
+        // The same model (loomkin_servo::Axis::torque_at) on the same closed form: rounding only
+        // (the two locate the angle in the cycle through degrees and through radians).
+        assert!(worst <= 1e-12, "largest difference {worst:e} of the peak torque");
+    }
+}
+
+#[test]
+fn energy_drawn_over_the_repeat_is_the_losses_in_closed_form() {
+    // Over a periodic repeat the kinetic and potential energy return to their start, so the
+    // electrical energy drawn is the losses: the copper loss R/k_t²·∫T² dt (∫T² from the servo
+    // check's own RMS), and per move the Coulomb friction F_μ·H and the viscous c·H²/τ·∫v̂²dx
+    // (∫v̂²dx = 3/2 for the cycloid), both divided by η (the model's transmission), and the
+    // transmission loss of the conservative rule, (1/η − 1)∫F·v dt, which is zero over the repeat.
+    let plan = lift_plan(5, 16, 11);
+    let (eta, fmu, c, r) = (0.9, 8.0, 25.0, 2.0);
+    for pass in [false, true] {
+        let fs = setups(&plan, pass, &servo(eta, fmu, c, r), 6.0);
+        let l = laws(LawSpec::Cycloidal);
+        let rep = analyse(&fs, &l, &Bus { regeneration_efficiency: 1.0, ..Bus::default() }, SPEED_RPM, pass).unwrap();
+        let omega = loomkin_units::rad_per_s_from_rpm(SPEED_RPM);
+        let mut expected_total = 0.0;
+        for (i, f) in fs.iter().enumerate() {
+            let copper = r / (1.7 * 1.7) * rep.frames[i].rms_torque_n_m.powi(2) * rep.repeat_s;
+            let h = f.plan.stroke_m;
+            let moves: f64 = f
+                .plan
+                .moves
+                .iter()
+                .map(|m| {
+                    let tau = m.length_deg.to_radians() / omega;
+                    (fmu * h + c * h * h / tau * 1.5) / eta
+                })
+                .sum();
+            let expected = copper + moves;
+            assert!(
+                rel(rep.frames[i].energy_j, expected) < 1e-9,
+                "frame {i}: {} vs {expected}",
+                rep.frames[i].energy_j
+            );
+            expected_total += expected;
+        }
+        // With every braking watt returned (η_r = 1) the bus balances: supplied − braking = Σ drawn.
+        assert!(rel(rep.supplied_energy_j - rep.braking_energy_j, expected_total) < 1e-9);
+        assert!(rel(rep.mean_bus_power_w * rep.repeat_s, rep.supplied_energy_j) < 1e-12);
+    }
+}
+
+#[test]
+fn peaks_are_at_least_every_point_of_a_dense_scan_and_close_to_its_best() {
+    let plan = lift_plan(6, 10, 3);
+    for pass in [false, true] {
+        let fs = setups(&plan, pass, &servo(0.95, 3.0, 10.0, 1.2), 5.0);
+        let l = laws(LawSpec::ModifiedSine);
+        let bus = Bus { regeneration_efficiency: 0.8, ..Bus::default() };
+        let rep = analyse(&fs, &l, &bus, SPEED_RPM, pass).unwrap();
+        let c = curves(&fs, &l, &bus, SPEED_RPM, 3600 * 10 + 1).unwrap();
+        let scan_max = c.bus_power_w.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let scan_min = c.bus_power_w.iter().copied().fold(f64::INFINITY, f64::min);
+        let tol = 1e-12 * scan_max.abs();
+        assert!(rep.peak_bus_power_w >= scan_max - tol, "{} < {scan_max}", rep.peak_bus_power_w);
+        assert!(rel(rep.peak_bus_power_w, scan_max) < 1e-4, "{} vs {scan_max}", rep.peak_bus_power_w);
+        assert!(rep.peak_braking_power_w >= -scan_min - tol);
+        for (i, f) in rep.frames.iter().enumerate() {
+            let m = c.power_w[i].iter().fold(0.0f64, |m, p| m.max(p.abs()));
+            assert!(f.peak_power_w >= m - 1e-12 * m, "frame {i}: {} < {m}", f.peak_power_w);
+            assert!(rel(f.peak_power_w, m) < 1e-4);
+            let t = c.torque_n_m[i].iter().fold(0.0f64, |m, p| m.max(p.abs()));
+            assert!(f.peak_torque_n_m >= t - 1e-12 * t);
+        }
+        // The peak's place: the curve there is the peak.
+        let at = rep.peak_bus_power_at_deg;
+        let c1 = curves(&fs, &l, &bus, SPEED_RPM, 2).unwrap();
+        assert_eq!(c1.angle_deg.len(), 2);
+        assert!(at >= 0.0 && at < rep.repeat_deg);
+    }
+}
+
+#[test]
+fn rest_transitions_are_c2_for_rest_laws_and_refused_otherwise() {
+    let plan = lift_plan(3, 8, 5);
+    let omega = loomkin_units::rad_per_s_from_rpm(SPEED_RPM);
+    for pass in [false, true] {
+        let fs = setups(&plan, pass, &servo(1.0, 0.0, 0.0, 0.0), 0.0);
+        for spec in [LawSpec::Cycloidal, LawSpec::Poly345, LawSpec::Poly4567, LawSpec::ModifiedSine] {
+            let l = laws(spec.clone());
+            for f in &fs {
+                let cyc: Cycle = f.plan.cycle(&l);
+                let class = joint_class(&cyc, &l, omega);
+                assert!(class.rest >= 2, "{spec:?}: rest class {}", class.rest);
+            }
+        }
+        // The harmonic law starts and stops with a jump of acceleration: C1, refused.
+        let l = laws(LawSpec::Harmonic);
+        let cyc = fs[0].plan.cycle(&l);
+        assert_eq!(joint_class(&cyc, &l, omega).rest, 1);
+        let e = analyse(&fs, &l, &Bus::default(), SPEED_RPM, pass).unwrap_err().to_string();
+        assert!(e.contains("C²") && e.contains("harmonic"), "{e}");
+    }
+}
+
+#[test]
+fn pass_through_lays_runs_end_to_end() {
+    // Frame up on pick 1 only, then on picks 3 and 4, then a run 5-6-7 of changes.
+    let up = [false, true, false, true, true, false, true, false];
+    let p = FramePlan::new(&FrameInput { up: &up, stroke_m: 0.1, centre_deg: -20.0, motion_deg: 240.0 }, true).unwrap();
+    // Changes at picks 1, 2 (a run of 2), 3, 5, 6, 7 (a run of 3 with 3: picks 5, 6, 7; pick 3 is a run of 1 from pick 3? no: 2→3 also a change).
+    let starts: Vec<f64> = p.moves.iter().map(|m| m.start_deg).collect();
+    for w in p.moves.windows(2) {
+        let end = w[0].start_deg + w[0].length_deg;
+        assert!(w[1].start_deg >= end - 1e-9, "{starts:?}");
+    }
+    // Every run covers from its first change's start to its last change's end, equally split.
+    let mut i = 0;
+    while i < p.moves.len() {
+        let mut j = i;
+        while j + 1 < p.moves.len()
+            && (p.moves[j + 1].start_deg - p.moves[j].start_deg - p.moves[j].length_deg).abs() < 1e-9
+        {
+            j += 1;
+        }
+        let k = (j - i) as f64;
+        let first = p.moves[i].pick as f64;
+        assert!((p.moves[i].start_deg - (360.0 * first - 20.0 - 120.0)).abs() < 1e-9);
+        let end = p.moves[j].start_deg + p.moves[j].length_deg;
+        assert!((end - (360.0 * (first + k) - 20.0 + 120.0)).abs() < 1e-9);
+        for m in &p.moves[i..=j] {
+            assert!((m.length_deg - (360.0 * k + 240.0) / (k + 1.0)).abs() < 1e-9);
+        }
+        i = j + 1;
+    }
+    // Without pass-through: one move per change, each 240°.
+    let q =
+        FramePlan::new(&FrameInput { up: &up, stroke_m: 0.1, centre_deg: -20.0, motion_deg: 240.0 }, false).unwrap();
+    assert_eq!(q.moves.len(), p.moves.len());
+    assert!(q.moves.iter().all(|m| m.length_deg == 240.0));
+    // A plain weave: every move a full turn, no dwell at all.
+    let plain = [true, false, true, false];
+    let p =
+        FramePlan::new(&FrameInput { up: &plain, stroke_m: 0.1, centre_deg: 0.0, motion_deg: 200.0 }, true).unwrap();
+    assert!(p.moves.iter().all(|m| m.length_deg == 360.0));
+    assert_eq!(p.segments().len(), 4);
+}
