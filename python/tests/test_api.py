@@ -66,6 +66,9 @@ NO_PYTHON_CALL = {
     "drive inertia": "loomkin.drive not written yet (issue 29 item 5)",
     "drive ripple": "loomkin.drive not written yet (issue 29 item 5)",
     "drive correct": "loomkin.drive not written yet (issue 29 item 5)",
+    # Issue 31's servo shedding: the library (loomkin_eshed) and the CLI landed first; the Python
+    # call loomkin.loom.servo is the issue's item 6, not written yet.
+    "loom servo": "loomkin.loom.servo not written yet (issue 31 item 6)",
 }
 
 
