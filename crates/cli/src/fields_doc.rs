@@ -13,7 +13,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 /// Every library crate's descriptors, with the crate's name.
-const LISTS: [(&str, FieldList); 12] = [
+const LISTS: [(&str, FieldList); 13] = [
     ("loomkin-units", loomkin_units::FIELDS),
     ("loomkin-laws", loomkin_laws::FIELDS),
     ("loomkin-picking", loomkin_picking::FIELDS),
@@ -26,6 +26,7 @@ const LISTS: [(&str, FieldList); 12] = [
     ("loomkin-drive", loomkin_drive::FIELDS),
     ("loomkin-plot", loomkin_plot::FIELDS),
     ("loomkin-eshed", loomkin_eshed::FIELDS),
+    ("loomkin-insertion", loomkin_insertion::FIELDS),
 ];
 
 fn repo() -> PathBuf {

@@ -37,6 +37,13 @@ pub struct PatternArgs {
     lift_plan: Option<PathBuf>,
 }
 
+impl PatternArgs {
+    /// Whether a pattern file is given.
+    pub(crate) fn given(&self) -> bool {
+        self.wif.is_some() || self.lift_plan.is_some()
+    }
+}
+
 /// `loomkin loom check`.
 #[derive(Debug, Args)]
 pub struct CheckArgs {

@@ -14,6 +14,7 @@ mod dynamics;
 mod fields_doc;
 #[cfg(test)]
 mod front_end_literals;
+mod insert;
 mod law;
 mod loom;
 mod loom_servo;
@@ -82,6 +83,9 @@ enum Command {
     /// The main shaft: reduced inertia of the mechanisms, speed ripple under a motor, flywheel.
     #[command(subcommand)]
     Drive(drive::DriveCommand),
+    /// Weft insertion: the time budget of any carrier; rapier drives and their clearance in the shed.
+    #[command(subcommand)]
+    Insert(insert::InsertCommand),
     /// The parts of a sharded run (--parts DIR) checked and joined into the one-machine output.
     Merge(merge::MergeArgs),
     /// The workbench: a local web page with live plots and draggable definition points (127.0.0.1 only).
@@ -107,6 +111,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Loom(cmd) => loom::run(cmd),
         Command::Sley(cmd) => sley::run(cmd),
         Command::Drive(cmd) => drive::run(cmd),
+        Command::Insert(cmd) => insert::run(cmd),
         Command::Merge(args) => merge::run(args),
         Command::Serve(args) => serve::run(args),
     }

@@ -10,11 +10,13 @@
 //! their own bounds; the whole loom (its file, its frames over a pattern repeat) assembles them.
 #![deny(missing_docs)]
 
+pub mod fourbar;
 pub mod motor;
 pub mod ripple;
 pub mod sley;
 pub mod timetrue;
 
+pub use fourbar::{CrankRocker, LoopState};
 pub use motor::{Induction, Motor, MotorCurve, MotorKind, MotorSpec, Servo};
 pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for, solve};
 pub use sley::synth::{SleySynthesis, SleyTarget};

@@ -32,6 +32,7 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::fourbar::{Breaks, CrankRocker};
 use loomkin_units::{Field, FieldError, Range, RangeError, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -378,13 +379,6 @@ fn wrap(a: f64) -> f64 {
     if w > PI { w - TAU } else { w }
 }
 
-/// The angle at the vertex between sides `p` and `q` of a triangle whose third side is `o`:
-/// `atan2(√((p+q+o)(−p+q+o)(p−q+o)(p+q−o)), p² + q² − o²)`, exact at every shape (no `acos`).
-fn triangle_angle(p: f64, q: f64, o: f64) -> f64 {
-    let area16 = ((p + q + o) * (-p + q + o) * (p - q + o) * (p + q - o)).max(0.0);
-    area16.sqrt().atan2(p * p + q * q - o * o)
-}
-
 impl FourBarSley {
     /// Checks a `[sley]` table: every number against its field's range, then the linkage exactly.
     /// A crank-rocker that assembles at every crank angle needs (with `d = |Q|`):
@@ -409,7 +403,8 @@ impl FourBarSley {
         let force = SleyTable::BEAT_UP_FORCE_N.check(t.beat_up_force_n)?;
         let range = SleyTable::BEAT_UP_RANGE_DEG.check(t.beat_up_range_deg)?;
         let d = px.hypot(py);
-        if r >= d {
+        let breaks = CrankRocker::check(r, b, c, px, py);
+        if breaks == Some(Breaks::CrankReachesPivot) {
             return Err(SleyError::infeasible(
                 "sley.crank_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
@@ -419,7 +414,7 @@ impl FourBarSley {
                 ),
             ));
         }
-        if d + r >= b + c {
+        if breaks == Some(Breaks::OpensAway) {
             return Err(SleyError::infeasible(
                 "sley.crank_mm, sley.rod_mm, sley.sword_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
@@ -430,7 +425,7 @@ impl FourBarSley {
                 ),
             ));
         }
-        if d - r <= (b - c).abs() {
+        if breaks == Some(Breaks::OpensToward) {
             return Err(SleyError::infeasible(
                 "sley.crank_mm, sley.rod_mm, sley.sword_mm, sley.pivot_x_mm, sley.pivot_y_mm",
                 format!(
@@ -497,27 +492,14 @@ impl FourBarSley {
         Ok(s)
     }
 
-    /// The crank angle α and the rocker angle θ of a dead centre: the sword's pin at `b + r`
-    /// (`extended`) or `b − r` from O, on the circle of radius c about Q, on this linkage's branch.
+    /// The loop of this sley: crank, rod, sword and rocking shaft on its branch (lengths in m).
+    pub fn linkage(&self) -> CrankRocker {
+        CrankRocker { r: self.r, b: self.b, c: self.c, qx: self.qx, qy: self.qy, kappa: self.kappa }
+    }
+
+    /// The crank angle α and the rocker angle θ of a dead centre ([`CrankRocker::dead_centre`]).
     fn dead_centre(&self, extended: bool) -> (f64, f64) {
-        let l = if extended { self.b + self.r } else { self.b - self.r };
-        let d = self.qx.hypot(self.qy);
-        // In the triangle O-Q-B: the angle at Q between Q→O and Q→B.
-        let at_q = triangle_angle(d, self.c, l);
-        let to_o = (-self.qy).atan2(-self.qx);
-        let mut best = (0.0, 0.0);
-        for sign in [1.0, -1.0] {
-            let theta = to_o + sign * at_q;
-            let (bx, by) = (self.qx + self.c * theta.cos(), self.qy + self.c * theta.sin());
-            let toward_b = by.atan2(bx);
-            let alpha = if extended { toward_b } else { toward_b + PI };
-            let (ax, ay) = (self.r * alpha.cos(), self.r * alpha.sin());
-            let cross = (ax - self.qx) * (by - self.qy) - (ay - self.qy) * (bx - self.qx);
-            if cross * self.kappa > 0.0 {
-                best = (alpha, theta);
-            }
-        }
-        best
+        self.linkage().dead_centre(extended)
     }
 
     /// The branch the linkage is assembled on: [`Assembly::Left`] or [`Assembly::Right`] (`up` and
@@ -566,50 +548,21 @@ impl FourBarSley {
         phi_rad + self.phase
     }
 
-    /// The rocker angle θ at crank angle α, closed form (the position only, no rates).
-    fn rocker_at_crank(&self, alpha: f64) -> f64 {
-        let (dx, dy) = (self.r * alpha.cos() - self.qx, self.r * alpha.sin() - self.qy);
-        let s = (dx * dx + dy * dy).sqrt();
-        dy.atan2(dx) + self.kappa * triangle_angle(s, self.c, self.b)
-    }
-
     /// The linkage at main-shaft angle φ: positions in closed form and the rocker's first three and
-    /// the rod's first two rates per radian of main shaft (the formulas of the module's notes).
+    /// the rod's first two rates per radian of main shaft ([`CrankRocker::at_crank`]; the crank turns
+    /// with the main shaft, so its rates are the main shaft's).
     pub fn state(&self, phi_rad: f64) -> SleyState {
-        let alpha = self.crank_rad(phi_rad);
-        let theta = self.rocker_at_crank(alpha);
-        let (r, b, c) = (self.r, self.b, self.c);
-        // Unit vectors of crank, sword and rod; the sines and cosines of the angles between them
-        // are their cross and dot products (sin(y − x) = e(x) × e(y), cos(y − x) = e(x)·e(y)).
-        let (sa, ca) = alpha.sin_cos();
-        let (st, ct) = theta.sin_cos();
-        let (rx, ry) = (self.qx + c * ct - r * ca, self.qy + c * st - r * sa);
-        let beta = ry.atan2(rx);
-        let (cb, sb) = (rx / b, ry / b);
-        let sin = |(x1, y1): (f64, f64), (x2, y2): (f64, f64)| x1 * y2 - y1 * x2;
-        let cos = |(x1, y1): (f64, f64), (x2, y2): (f64, f64)| x1 * x2 + y1 * y2;
-        let (ea, et, eb) = ((ca, sa), (ct, st), (cb, sb));
-        let sbt = sin(et, eb);
-        let cbt = cos(et, eb);
-        let sba = sin(ea, eb);
-        let cab = cos(ea, eb);
-        let sat = sin(et, ea);
-        let cat = cos(et, ea);
-        let d1 = r * sba / (c * sbt);
-        let b1 = -r * sat / (b * sbt);
-        let d2 = (c * d1 * d1 * cbt - r * cab - b * b1 * b1) / (c * sbt);
-        let b2 = -(r * cat + b * b1 * b1 * cbt - c * d1 * d1) / (b * sbt);
-        let d3 = d1 * d1 * d1 + (3.0 * c * d1 * d2 * cbt - r * sba - 3.0 * b * b1 * b2) / (c * sbt);
+        let l = self.linkage().at_crank(self.crank_rad(phi_rad));
         SleyState {
             phi_rad,
-            crank_rad: alpha,
-            rocker_rad: theta,
-            rocker_d1: d1,
-            rocker_d2: d2,
-            rocker_d3: d3,
-            rod_rad: beta,
-            rod_d1: b1,
-            rod_d2: b2,
+            crank_rad: l.crank_rad,
+            rocker_rad: l.rocker_rad,
+            rocker_d1: l.rocker_d1,
+            rocker_d2: l.rocker_d2,
+            rocker_d3: l.rocker_d3,
+            rod_rad: l.rod_rad,
+            rod_d1: l.rod_d1,
+            rod_d2: l.rod_d2,
         }
     }
 
@@ -718,14 +671,7 @@ impl FourBarSley {
     /// sword is extreme where the crank lies on the line O–Q (`|A − Q| = d ∓ r`), so the least is the
     /// smaller of those two positions' acute angles.
     pub fn min_transmission_rad(&self) -> f64 {
-        let d = self.qx.hypot(self.qy);
-        [d - self.r, d + self.r]
-            .into_iter()
-            .map(|s| {
-                let mu = triangle_angle(self.b, self.c, s);
-                mu.min(PI - mu)
-            })
-            .fold(f64::INFINITY, f64::min)
+        self.linkage().min_transmission_rad()
     }
 
     /// The back dwell for a tolerance `tol_m`: the main-shaft angles `(start, end)` (rad, `end >

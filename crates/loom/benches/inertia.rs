@@ -4,32 +4,15 @@
 use loomkin_drive::{Table, solve};
 use loomkin_loom::{Loom, LoomShaft, Motion, Pattern};
 
+mod common;
+use common::random_plan;
+
 fn main() {
     divan::main();
 }
 
 fn rapier() -> Loom {
     Loom::from_toml(include_str!("../../../examples/rapier-loom.toml")).unwrap()
-}
-
-/// A lift plan of `picks` picks on 24 shafts, each shaft up or down at random (a fixed LCG).
-fn random_plan(picks: usize) -> Pattern {
-    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut text = String::new();
-    for _ in 0..picks {
-        let mut up = Vec::new();
-        for s in 1..=24 {
-            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            if state >> 63 == 1 {
-                up.push(s.to_string());
-            }
-        }
-        if up.is_empty() {
-            up.push("1".into());
-        }
-        text += &(up.join(" ") + "\n");
-    }
-    Pattern::from_lift_plan(&text).unwrap()
 }
 
 /// `drive inertia`'s report: J min/max/mean of 24 frames, the sley and the total over 10⁴ picks at 0.5°.

@@ -2,6 +2,7 @@
 
 use crate::{FrameLaw, LoomError, Result};
 use loomkin_drive::{FourBarSley, SleyError, SleyTable};
+use loomkin_insertion::{PickBudget, required_speed_m_s, window_needed_deg};
 use loomkin_laws::{CycleSpec, LawSpec};
 use loomkin_picking::{Mechanism, Method, Settings, simulate};
 use loomkin_shed::{ShedLaw, preset};
@@ -123,6 +124,10 @@ struct InsertionFile {
     centre_deg: Option<f64>,
     mean_speed_m_s: Option<f64>,
     shuttle: Option<toml::Table>,
+    kind: Option<String>,
+    rapier: Option<toml::Table>,
+    projectile: Option<toml::Table>,
+    airjet: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -201,9 +206,37 @@ pub enum CarrierSpeed {
     FromWindow,
 }
 
+/// Which carrier inserts the weft: `[insertion] kind`, with the carrier's own sub-table
+/// (`[insertion.rapier]`, `[insertion.projectile]`, `[insertion.airjet]`).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
+pub enum InsertionKind {
+    /// `kind = "shuttle"` (the default): a carrier known by its size and speed, the shuttle of the
+    /// picking study (`[insertion.shuttle]`) or a mean speed.
+    #[default]
+    Shuttle,
+    /// `kind = "rapier"`: a double rapier, its heads' drives in `[insertion.rapier]`.
+    Rapier(Box<loomkin_insertion::Rapier>),
+}
+
+impl InsertionKind {
+    /// The kinds `[insertion] kind` takes.
+    pub const NAMES: [&'static str; 4] = ["shuttle", "rapier", "projectile", "airjet"];
+
+    /// The kind's name as the file writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Shuttle => "shuttle",
+            Self::Rapier(_) => "rapier",
+        }
+    }
+}
+
 /// The weft insertion: the carrier and the window it needs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Insertion {
+    /// Which carrier (`kind`), with its model.
+    pub kind: InsertionKind,
     /// Carrier height, m.
     pub carrier_height_m: f64,
     /// Carrier width along the warp, from the reed toward the fell, m.
@@ -212,6 +245,9 @@ pub struct Insertion {
     pub reed_width_m: f64,
     /// Carrier length (shuttle length), m.
     pub carrier_length_m: f64,
+    /// The reed space and the carrier length in mm as the file gives them (the budget reports
+    /// them in mm; mm → m → mm does not give back every number).
+    pub written_mm: [f64; 2],
     /// Angle at which the carrier enters the shed, deg (within one turn).
     pub entry_deg: f64,
     /// Angle at which it leaves, deg.
@@ -227,7 +263,7 @@ impl Insertion {
             CarrierSpeed::Mean(v) => v,
             CarrierSpeed::Shuttle { release_m_s, retardation_pct } => release_m_s * (1.0 - retardation_pct / 200.0),
             CarrierSpeed::FromWindow => {
-                6.0 * speed_rpm * (self.reed_width_m + self.carrier_length_m) / (self.exit_deg - self.entry_deg)
+                required_speed_m_s(speed_rpm, self.exit_deg - self.entry_deg, self.reed_width_m, self.carrier_length_m)
             }
         }
     }
@@ -702,9 +738,11 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
     let reed_mm = g.reed_m * 1e3;
     let carrier_width_m =
         mm(Range::closed_open(0.0, reed_mm, "mm").check("insertion.carrier_width_mm", i.carrier_width_mm)?);
-    let reed_width_m = mm(Range::open_closed(0.0, 20_000.0, "mm").check("insertion.reed_width_mm", i.reed_width_mm)?);
-    let carrier_length_m =
-        mm(Range::closed(0.0, 5000.0, "mm").check("insertion.carrier_length_mm", i.carrier_length_mm)?);
+    let written_mm = [
+        PickBudget::REED_WIDTH_MM.check_as("insertion.reed_width_mm", i.reed_width_mm)?,
+        PickBudget::CARRIER_LENGTH_MM.check_as("insertion.carrier_length_mm", i.carrier_length_mm)?,
+    ];
+    let (reed_width_m, carrier_length_m) = (mm(written_mm[0]), mm(written_mm[1]));
     let path = reed_width_m + carrier_length_m;
     let speed_src = match (i.mean_speed_m_s, &i.shuttle) {
         (Some(_), Some(_)) => {
@@ -713,9 +751,7 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
                 "give mean_speed_m_s or [insertion.shuttle], not both",
             ));
         }
-        (Some(v), None) => {
-            CarrierSpeed::Mean(Range::open_closed(0.0, 1000.0, "m/s").check("insertion.mean_speed_m_s", v)?)
-        }
+        (Some(v), None) => CarrierSpeed::Mean(PickBudget::SPEED_M_S.check_as("insertion.mean_speed_m_s", v)?),
         (None, Some(t)) => {
             let text = toml::to_string(t).map_err(|e| LoomError::field("insertion.shuttle", e.to_string()))?;
             let mech = Mechanism::from_toml(&text)?;
@@ -731,7 +767,7 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
         CarrierSpeed::Shuttle { release_m_s, retardation_pct } => Some(release_m_s * (1.0 - retardation_pct / 200.0)),
         CarrierSpeed::FromWindow => None,
     };
-    let flight = |v: f64| 6.0 * speed.rpm() * path / v;
+    let flight = |v: f64| window_needed_deg(speed.rpm(), path, v);
     let (entry, exit) = match (i.entry_deg, i.exit_deg, i.window_deg) {
         (Some(a), Some(b), None) => {
             let a = Range::closed_open(0.0, 360.0, "deg").check("insertion.entry_deg", a)?;
@@ -743,7 +779,7 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
             (a, a + flight(mean.unwrap_or(1.0)))
         }
         (None, None, Some(w)) => {
-            let w = Range::open(0.0, 360.0, "deg").check("insertion.window_deg", w)?;
+            let w = PickBudget::WINDOW_DEG.check_as("insertion.window_deg", w)?;
             (centre - w / 2.0, centre + w / 2.0)
         }
         (None, None, None) if mean.is_some() => {
@@ -763,13 +799,66 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
             reason: format!("the carrier needs {entry:.2}° to {exit:.2}°, which does not fit in one turn (0° to 360°)"),
         });
     }
+    let kind = read_kind(i, reed_width_m)?;
     Ok(Insertion {
+        kind,
         carrier_height_m,
         carrier_width_m,
         reed_width_m,
         carrier_length_m,
+        written_mm,
         entry_deg: entry,
         exit_deg: exit,
         speed: speed_src,
     })
+}
+
+/// `[insertion] kind` and the carrier's sub-table: a sub-table goes with its kind only.
+fn read_kind(i: &InsertionFile, reed_width_m: f64) -> Result<InsertionKind> {
+    let kind = i.kind.as_deref().map(str::trim).unwrap_or("shuttle");
+    let unknown = |kind: &str| {
+        LoomError::field("insertion.kind", format!("'{kind}': expected one of {}", InsertionKind::NAMES.join(", ")))
+    };
+    if !InsertionKind::NAMES.contains(&kind) {
+        return Err(unknown(kind));
+    }
+    let tables =
+        [("rapier", i.rapier.is_some()), ("projectile", i.projectile.is_some()), ("airjet", i.airjet.is_some())];
+    for (name, given) in tables {
+        if given && kind != name {
+            return Err(LoomError::field(
+                format!("insertion.{name}"),
+                format!("[insertion.{name}] goes with kind = \"{name}\" (the file's kind is \"{kind}\")"),
+            ));
+        }
+    }
+    if i.shuttle.is_some() && kind != "shuttle" {
+        return Err(LoomError::field(
+            "insertion.shuttle",
+            format!("[insertion.shuttle] goes with kind = \"shuttle\" (the file's kind is \"{kind}\")"),
+        ));
+    }
+    match kind {
+        "shuttle" => Ok(InsertionKind::Shuttle),
+        // Each carrier's arm reads its sub-table into its loomkin-insertion model.
+        "rapier" => {
+            let t = i.rapier.clone().ok_or_else(|| {
+                LoomError::field(
+                    "insertion.rapier",
+                    "kind = \"rapier\" needs [insertion.rapier.bringer] and [insertion.rapier.taker]",
+                )
+            })?;
+            let table: loomkin_insertion::RapierTable = toml::Value::Table(t)
+                .try_into()
+                .map_err(|e: toml::de::Error| LoomError::field("insertion.rapier", e.message().to_string()))?;
+            let r = loomkin_insertion::Rapier::new(&table, reed_width_m, "insertion.rapier")
+                .map_err(crate::insertion::rapier_error)?;
+            Ok(InsertionKind::Rapier(Box::new(r)))
+        }
+        "projectile" | "airjet" => Err(LoomError::field(
+            "insertion.kind",
+            format!("\"{kind}\" is not modelled yet: allowed \"shuttle\" or \"rapier\""),
+        )),
+        other => Err(unknown(other)),
+    }
 }

@@ -11,6 +11,7 @@
 //! * [`Motion`] — every frame's motion over the repeat, in closed form (a machine cycle of the law
 //!   core per frame, [`Motion::cycle_spec`]).
 //! * [`geometry`] — clean-shed lifts, shed angles and depths, warp strain.
+//! * [`insertion`] — the weft carrier on the loom: the time budget, the clearance in the shed.
 //!
 //! ```
 //! use loomkin_loom::{Loom, Pattern, Motion};
@@ -34,6 +35,7 @@ mod error;
 mod file;
 pub mod geometry;
 mod inertia;
+pub mod insertion;
 mod law;
 mod motion;
 mod pattern;
@@ -58,7 +60,9 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     StaggerOptions::MIN_CLEARANCE_MM
 ];
 pub use error::{LoomError, Result};
-pub use file::{CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, Lifts, Loom, MAX_FRAMES, Shedding, Warp};
+pub use file::{
+    CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, InsertionKind, Lifts, Loom, MAX_FRAMES, Shedding, Warp,
+};
 pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismInertia, ripple_figure};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};

@@ -18,11 +18,7 @@ use crate::turns::Turns;
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
 
-/// The highest loom speed at which a carrier of mean speed `mean_speed_m_s` crosses a reed space
-/// `reed_width_m` plus its length `carrier_length_m` within `window_deg` of the main shaft, rpm.
-pub fn max_speed_rpm(mean_speed_m_s: f64, window_deg: f64, reed_width_m: f64, carrier_length_m: f64) -> f64 {
-    mean_speed_m_s * window_deg / (6.0 * (reed_width_m + carrier_length_m))
-}
+pub use loomkin_insertion::max_speed_rpm;
 
 /// The window of one pick in which the shed clears the carrier.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

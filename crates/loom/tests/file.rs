@@ -64,7 +64,7 @@ fn bad_fields_are_named() {
     assert!(e.starts_with("insertion.carrier_width_mm = 110 is out of range"), "{e}");
     let e = err(&edited(&r, "[beat_up]", "[beat_up]\nspeed = 3"));
     // Placed by line and column, as every file reader words a TOML error (loomkin_units::toml_reason).
-    assert!(e.starts_with("loom file: line 42, column 1: unknown field `speed`"), "{e}");
+    assert!(e.starts_with("loom file: line 75, column 1: unknown field `speed`"), "{e}");
     let e = err(&edited(&r, "lifts = \"clean\"", "lifts = \"nice\""));
     assert!(e.starts_with("geometry.lifts: 'nice'"), "{e}");
     let e = err(&edited(&s, "centre_deg = 180", "centre_deg = 340"));

@@ -8,6 +8,7 @@ mod docs;
 mod drive;
 mod dynamics;
 mod ends;
+mod insert;
 mod law;
 mod limits;
 mod loom;

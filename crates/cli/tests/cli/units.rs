@@ -8,7 +8,7 @@ use serde_json::Value;
 
 /// A unit at the end of a key (`peak_torque_n_m`, `omega6_rad_s`, `slave_v_mm_per_deg`, …).
 fn has_unit(key: &str) -> bool {
-    const UNITS: [&str; 41] = [
+    const UNITS: [&str; 42] = [
         "_mm",
         "_m",
         "_cm",
@@ -50,6 +50,7 @@ fn has_unit(key: &str) -> bool {
         "_per_s",
         "_bytes",
         "_a",
+        "_per_min",
     ];
     // A quantity before and after a change (`max_timing_error_deg_before`, issue 29's keys).
     let key = key.strip_suffix("_before").or_else(|| key.strip_suffix("_after")).unwrap_or(key);
@@ -134,6 +135,8 @@ const DIMENSIONLESS: &[&str] = &[
     "clearance_checks",
     "max_strain_frame",
     "p",
+    "worst_pick",
+    "distinct_states",
     // statistics of a quantity named by the object's `name` (`speed_rpm`, …)
     "mean",
     "sd",

@@ -1,0 +1,261 @@
+//! The weft carrier on the whole loom: the time budget of a loom file, and the carrier's
+//! clearance in the shed over a pattern repeat.
+
+use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result, Timing};
+use loomkin_insertion::{PickBudget, Rapier, RapierError, RapierReport, WindowSource};
+use loomkin_plot::{Figure, Note, Panel, Rule, Series, XBand, sig4};
+use loomkin_units::ShaftSpeed;
+use serde::Serialize;
+
+/// The time budget of a loom file's carrier: its reed space and length, its mean speed at the
+/// loom's speed, the loom's speed, and the window — the clear-shed window of `pattern` (as
+/// `loom check` finds it) when one is given, else the file's entry and exit angles.
+pub fn budget_of(loom: &Loom, pattern: Option<&Pattern>) -> Result<PickBudget> {
+    let ins = &loom.insertion;
+    let (window_deg, window_source) = match pattern {
+        Some(p) => {
+            let motion = Motion::new(loom, p)?;
+            (Timing::new(loom, &motion, p)?.report()?.window_deg, WindowSource::ClearShed)
+        }
+        None => (ins.exit_deg - ins.entry_deg, WindowSource::EntryExit),
+    };
+    Ok(PickBudget {
+        reed_width_mm: ins.written_mm[0],
+        carrier_length_mm: ins.written_mm[1],
+        window_deg,
+        window_source,
+        speed_m_s: ins.mean_speed_m_s(loom.speed.rpm()),
+        speed_rpm: Some(loom.speed.rpm()),
+        carrier_mass_g: None,
+    })
+}
+
+/// A carrier's path through the shed in one turn of the main shaft: when it is in the shed and
+/// where it is across the reed. The clearance over a repeat ([`clearance`]) takes any path: the
+/// rapier's heads, a projectile's guide teeth.
+pub trait CarrierPath {
+    /// The main-shaft angles (deg, `from < to`, in a pick's turn, 0° the previous beat-up; they may
+    /// reach below 0° or past 360°) between which the carrier is in the shed.
+    fn in_shed_deg(&self) -> (f64, f64);
+    /// Where the carrier is across the reed at `angle_deg`, m from the selvedge where the weft enters.
+    fn position_m(&self, angle_deg: f64) -> f64;
+}
+
+impl CarrierPath for loomkin_insertion::Rapier {
+    /// From the first head's entry to the last head's exit.
+    fn in_shed_deg(&self) -> (f64, f64) {
+        let spans: Vec<(f64, f64)> = (0..2).filter_map(|k| self.in_shed(k)).collect();
+        let from = spans.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+        let to = spans.iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+        (from.to_degrees(), to.to_degrees())
+    }
+
+    /// The bringer's tip while it is inside its selvedge, else the taker's (from the bringer's
+    /// selvedge).
+    fn position_m(&self, angle_deg: f64) -> f64 {
+        let phi = angle_deg.to_radians();
+        let b = self.tip(0, phi).u_m;
+        if b >= 0.0 { b } else { self.reed_width_m - self.tip(1, phi).u_m }
+    }
+}
+
+/// The least clearance of a carrier in the shed over a pattern repeat.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Clearance {
+    /// The least clearance over every angle in the shed of every pick, mm (negative: it touches).
+    pub min_clearance_mm: f64,
+    /// The pick where it is least (1 = first; the first such pick).
+    pub worst_pick: usize,
+    /// The angle in that pick's turn, deg.
+    pub worst_angle_deg: f64,
+    /// Where the carrier is across the reed then, mm from the weft's entry selvedge.
+    pub worst_position_mm: f64,
+    /// The angles between which the carrier is in the shed, deg.
+    pub in_shed_deg: [f64; 2],
+    /// The distinct frame states (the picks whose frames move alike) computed.
+    pub distinct_states: usize,
+}
+
+/// The shed seen by a carrier moving with the reed: its front edge's distance from the fell at
+/// each angle (the reed's distance less the carrier's width; with a `[sley]`, the reed moves).
+pub struct CarrierShed<'a> {
+    timing: Timing<'a>,
+    loom: &'a Loom,
+}
+
+impl<'a> CarrierShed<'a> {
+    /// The shed of `loom` moving `motion` (weaving `pattern`).
+    pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Result<Self> {
+        Ok(Self { timing: Timing::new(loom, motion, pattern)?, loom })
+    }
+
+    /// The carrier's front edge from the fell at `angle_deg`, m: `x_r(φ) − w`, the reed at its
+    /// insertion position (`geometry.reed_mm`) less the sley's displacement from its back dead centre.
+    pub fn front_edge_m(&self, angle_deg: f64) -> f64 {
+        let back = self.loom.geometry.reed_m - self.loom.insertion.carrier_width_m;
+        match &self.loom.sley {
+            Some(s) => back - s.reed(angle_deg.to_radians()).x_m,
+            None => back,
+        }
+    }
+
+    /// The clearance at `angle_deg` of pick `pick`'s turn, m: the clear shed at the front edge
+    /// less the carrier's height.
+    pub fn clearance_m(&self, pick: usize, angle_deg: f64) -> f64 {
+        self.timing.clear_m(pick, self.front_edge_m(angle_deg), 360.0 * pick as f64 + angle_deg)
+            - self.loom.insertion.carrier_height_m
+    }
+}
+
+/// Grid step of the clearance's scan, deg: every local minimum of the grid is then refined by
+/// golden section ([`loomkin_numeric::scan_max`]).
+const SCAN_STEP_DEG: f64 = 1.0;
+
+/// The least clearance of `path` in the shed over every pick of `pattern`.
+///
+/// The clearance of pick `p` at angle φ depends on the frames' states in the picks whose moves
+/// reach into the carrier's span (the move nearest to each angle and the state before it), so
+/// picks with the same states there are computed once: a repeat of 10⁴ picks that repeats frame
+/// states costs its distinct states only. Per distinct state the clearance is scanned on a 1° grid
+/// and every local minimum refined by golden section; the span's ends are grid points.
+pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Result<Clearance> {
+    let motion = Motion::new(loom, pattern)?;
+    let shed = CarrierShed::new(loom, &motion, pattern)?;
+    let (from, to) = path.in_shed_deg();
+    let picks = pattern.picks() as i64;
+    // The picks (relative) whose states any frame's position in [from, to] reads.
+    let n = loom.frame_count();
+    let rel = |a: f64, i: usize| ((a - motion.centre0_deg(i)) / 360.0).round() as i64;
+    let lo = (0..n).map(|i| rel(from, i)).min().unwrap_or(0) - 1;
+    let hi = (0..n).map(|i| rel(to, i)).max().unwrap_or(0);
+    let key = |p: i64| -> Vec<bool> {
+        (lo..=hi).flat_map(|q| (0..n).map(move |i| (q, i))).map(|(q, i)| motion.is_up(i, p + q)).collect()
+    };
+    let intervals = ((to - from) / SCAN_STEP_DEG).ceil().max(2.0) as usize;
+    let mut seen: std::collections::HashMap<Vec<bool>, (f64, f64)> = std::collections::HashMap::new();
+    let mut worst = (f64::INFINITY, 0usize, from);
+    for p in 0..picks {
+        let (value, at) = *seen.entry(key(p)).or_insert_with(|| {
+            let m = loomkin_numeric::scan_max(from, to, intervals, |t| -shed.clearance_m(p as usize, t));
+            (-m.value, m.at)
+        });
+        if value < worst.0 {
+            worst = (value, p as usize, at);
+        }
+    }
+    let (value, pick, at) = worst;
+    Ok(Clearance {
+        min_clearance_mm: value * 1e3,
+        worst_pick: pick + 1,
+        worst_angle_deg: at,
+        worst_position_mm: path.position_m(at) * 1e3,
+        in_shed_deg: [from, to],
+        distinct_states: seen.len(),
+    })
+}
+
+/// A rapier error as a loom error (the field kept).
+pub(crate) fn rapier_error(e: RapierError) -> LoomError {
+    match e {
+        RapierError::Range(r) => LoomError::Range(r),
+        other => {
+            let field = other.field_name().to_string();
+            let text = other.to_string();
+            let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
+            LoomError::field(field, reason)
+        }
+    }
+}
+
+/// The loom file's rapier, or an error naming `insertion.kind` when its carrier is another.
+pub fn rapier_of(loom: &Loom) -> Result<&Rapier> {
+    match &loom.insertion.kind {
+        InsertionKind::Rapier(r) => Ok(r),
+        other => Err(LoomError::field(
+            "insertion.kind",
+            format!(
+                "the loom's carrier is a {}: give kind = \"rapier\" with [insertion.rapier.bringer] and \
+                 [insertion.rapier.taker] (docs/insertion.md)",
+                other.name()
+            ),
+        )),
+    }
+}
+
+/// The rapier of a loom on its shed: the heads' figures and their clearance over the repeat.
+#[derive(Debug, Clone, Serialize)]
+pub struct RapierCheck {
+    /// The heads and the transfer.
+    #[serde(flatten)]
+    pub rapier: RapierReport,
+    /// The clearance over every pick.
+    #[serde(flatten)]
+    pub clearance: Clearance,
+    /// Picks in the repeat.
+    pub picks: usize,
+}
+
+/// The rapier of `loom` at `speed` weaving `pattern`: [`Rapier::report`] and [`clearance`].
+pub fn rapier_check(loom: &Loom, pattern: &Pattern, speed: ShaftSpeed) -> Result<RapierCheck> {
+    let r = rapier_of(loom)?;
+    let rapier = r.report(speed).map_err(rapier_error)?;
+    let clearance = clearance(loom, pattern, r)?;
+    Ok(RapierCheck { rapier, clearance, picks: pattern.picks() })
+}
+
+/// Points per turn of the rapier's plot.
+const PLOT_POINTS: usize = 720;
+
+/// The rapier's plot: both tips across the reed (from the bringer's selvedge), the heads' speeds,
+/// and the clearance of the worst pick while a head is in the shed, its least value marked.
+pub fn rapier_figure(loom: &Loom, pattern: &Pattern, c: &RapierCheck, speed: ShaftSpeed) -> Result<Figure> {
+    let r = rapier_of(loom)?;
+    let motion = Motion::new(loom, pattern)?;
+    let shed = CarrierShed::new(loom, &motion, pattern)?;
+    let w = speed.rad_per_s();
+    let width_mm = r.reed_width_m * 1e3;
+    let angles: Vec<f64> = (0..=PLOT_POINTS).map(|k| 360.0 * k as f64 / PLOT_POINTS as f64).collect();
+    let tip = |k: usize, deg: f64| r.tip(k, deg.to_radians());
+    let bringer: Vec<(f64, f64)> = angles.iter().map(|&a| (a, tip(0, a).u_m * 1e3)).collect();
+    let taker: Vec<(f64, f64)> = angles.iter().map(|&a| (a, width_mm - tip(1, a).u_m * 1e3)).collect();
+    let vb: Vec<(f64, f64)> = angles.iter().map(|&a| (a, tip(0, a).du * w)).collect();
+    let vt: Vec<(f64, f64)> = angles.iter().map(|&a| (a, -tip(1, a).du * w)).collect();
+    let cl = &c.clearance;
+    let [from, to] = cl.in_shed_deg;
+    let n = ((to - from) / 0.5).ceil().max(2.0) as usize;
+    let worst: Vec<(f64, f64)> = (0..=n)
+        .map(|k| from + (to - from) * k as f64 / n as f64)
+        .map(|a| (a, shed.clearance_m(cl.worst_pick - 1, a) * 1e3))
+        .collect();
+    let rep = &c.rapier;
+    let transfer_at = rep.transfer_deg;
+    let transfer_y = tip(0, transfer_at).u_m * 1e3;
+    let panels = vec![
+        Panel::new("tip across the reed [mm]", vec![Series::line("bringer", bringer), Series::line("taker", taker)])
+            .with_rule(Rule::y(0.0, "bringer's selvedge"))
+            .with_rule(Rule::y(width_mm, "taker's selvedge"))
+            .with_notes([Note::new(
+                transfer_at,
+                transfer_y,
+                format!("overlap {} mm at {}°", sig4(rep.transfer_overlap_mm), sig4(transfer_at)),
+            )]),
+        Panel::new("velocity across the reed [m/s]", vec![Series::line("bringer", vb), Series::line("taker", vt)]),
+        Panel::new(format!("clearance, pick {} [mm]", cl.worst_pick), vec![Series::line("clearance", worst)])
+            .with_x_bands([XBand::new(from, to, "a head in the shed", XBand::WINDOW)])
+            .with_rule(Rule::y(0.0, "touching").with_color(Rule::LIMIT))
+            .with_notes([Note::new(
+                cl.worst_angle_deg,
+                cl.min_clearance_mm,
+                format!("least {} mm at {}°", sig4(cl.min_clearance_mm), sig4(cl.worst_angle_deg)),
+            )]),
+    ];
+    let title = format!(
+        "rapier at {} rpm: overlap {} mm, peak head speed {} m/s, least clearance {} mm (pick {})",
+        sig4(speed.rpm()),
+        sig4(rep.transfer_overlap_mm),
+        sig4(rep.peak_head_speed_m_s),
+        sig4(cl.min_clearance_mm),
+        cl.worst_pick
+    );
+    Ok(Figure::new(title, "main-shaft angle [deg]", panels))
+}
