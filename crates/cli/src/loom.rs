@@ -4,7 +4,6 @@ use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
-use loomkin_io::Table;
 use loomkin_loom::{
     Drive, Loom, Motion, Objective, Pattern, StaggerOptions, check, optimise_stagger_with, timing_diagram,
     torque_figure,
@@ -237,24 +236,29 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
+    let motion = Motion::new(&loom, &pattern)?;
+    let drive = Drive::new(&loom, &motion, &pattern);
+    // A table streams a turn at a time (its time is the limit); a plot holds every point.
+    let tabled = a.format.csv || a.format.json;
+    if tabled || a.output.is_some() {
+        let points = format!("{} ({} points)", loomkin_units::compact(a.step_deg), drive.curve_len(a.step_deg));
+        util::budget().check("step_deg", points, drive.curve_cost(a.step_deg, !tabled))?;
+    }
     if let Some(out) = &a.output {
         return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out, &a.plot);
     }
-    let motion = Motion::new(&loom, &pattern)?;
-    let drive = Drive::new(&loom, &motion, &pattern);
-    let curve = drive.torque_curve(a.step_deg);
     if a.format.csv {
-        let mut t = Table::new(["angle_deg", "torque_n_m", "power_w"]);
         let w = loom.speed.rad_per_s();
-        for (th, tq) in &curve {
-            t.push(vec![*th, *tq, tq * w])?;
-        }
-        return output::csv(&t);
+        let rows = drive.torque_points(a.step_deg).map(|(th, tq)| [th, tq, tq * w]);
+        return output::csv_rows(&["angle_deg", "torque_n_m", "power_w"], true, rows);
     }
     if a.format.json {
-        return output::json(&drive.torque_report(&curve));
+        let points = drive
+            .torque_points(a.step_deg)
+            .map(|(angle_deg, torque_n_m)| loomkin_loom::TorquePoint { angle_deg, torque_n_m });
+        return output::json_streamed(&drive.torque_summary(a.step_deg, output::Streamed::new(points)));
     }
-    let peak = drive.peak_of(&curve);
+    let peak = drive.peak(a.step_deg);
     let rms = drive.rms();
     outln!(
         "shedding torque over {} picks ({}°) at {} rpm: peak {:.3} N·m at {:.3}°, RMS {:.3} N·m",

@@ -57,3 +57,14 @@ fn check_24_frames_9600_picks(bencher: divan::Bencher) {
     let pattern = repeated(200);
     bencher.bench_local(|| check(&loom, &pattern).unwrap().peak_torque_n_m);
 }
+
+/// The torque curve of 480 picks at 0.1° (1.7·10⁶ points) made a turn at a time, as `loom torque
+/// --csv` streams it: what [`Drive::CPU_S_PER_POINT`] adds the printing to.
+#[divan::bench(sample_count = 3)]
+fn torque_points_24_frames_480_picks(bencher: divan::Bencher) {
+    let (loom, _) = setup();
+    let pattern = repeated(10);
+    let motion = Motion::new(&loom, &pattern).unwrap();
+    let drive = Drive::new(&loom, &motion, &pattern);
+    bencher.bench_local(|| drive.torque_points(divan::black_box(0.1)).map(|(_, t)| t).sum::<f64>());
+}

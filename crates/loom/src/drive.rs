@@ -57,9 +57,11 @@ pub struct TorquePoint {
     pub torque_n_m: f64,
 }
 
-/// The shedding torque over the repeat (`loomkin loom torque --json`).
+/// The shedding torque over the repeat (`loomkin loom torque --json`). The points are a
+/// `Vec<TorquePoint>`, or anything serialised as their list (a stream of them, see
+/// [`Drive::torque_summary`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TorqueReport {
+pub struct TorqueReport<P = Vec<TorquePoint>> {
     /// Main-shaft speed, rpm.
     pub speed_rpm: f64,
     /// Picks in the repeat.
@@ -75,7 +77,7 @@ pub struct TorqueReport {
     /// Step of the points, deg (the repeat divided into a whole number of steps).
     pub step_deg: f64,
     /// The curve.
-    pub points: Vec<TorquePoint>,
+    pub points: P,
 }
 
 /// The shedding drive of a loom weaving a pattern.
@@ -99,6 +101,20 @@ impl Drive<'_> {
          (720 samples a turn) when left out.",
     )
     .with_default(0.5);
+
+    /// CPU seconds per point of a torque curve made a turn at a time and written as a CSV row
+    /// or a JSON object (`loom torque --csv`/`--json`): 0.6 µs, measured on the reference
+    /// machine (release) as the CLI's user time over 1.7·10⁷ points (4,800 picks of 24 frames at
+    /// 0.1°: 5.6 s for CSV, 10.4 s for JSON); the `torque_points_24_frames_480_picks` bench
+    /// times the points alone.
+    pub const CPU_S_PER_POINT: f64 = 0.6e-6;
+    /// Bytes held per point of a drawn torque curve ([`crate::torque_figure`]): the curve, the
+    /// series and the figure's copies of it, and the drawing's path: 130 bytes, measured as the
+    /// CLI's peak memory over 1.7·10⁶ points (480 picks at 0.1°: 229 MB).
+    pub const PLOT_BYTES_PER_POINT: f64 = 130.0;
+    /// CPU seconds per drawn point, measured as [`Drive::PLOT_BYTES_PER_POINT`] (user time: 2.1 s
+    /// over 1.7·10⁶ points to PNG, 10.4 s over 6.9·10⁶ to SVG).
+    pub const PLOT_CPU_S_PER_POINT: f64 = 1.5e-6;
 }
 
 impl<'a> Drive<'a> {
@@ -198,6 +214,59 @@ impl<'a> Drive<'a> {
         t.into_iter().enumerate().map(|(k, v)| (k as f64 * h, v)).collect()
     }
 
+    /// The points of [`Drive::torque_curve`] (the same values, in order) made a turn at a time as
+    /// they are read: what is held does not grow with the number of picks (a table of 10⁵ picks
+    /// at 0.1° is 3.6·10⁸ points).
+    pub fn torque_points(&self, step_deg: f64) -> TorquePoints<'_, 'a> {
+        let mut cache = TableCache::default();
+        let grid = self.grid(step_deg, &mut cache);
+        TorquePoints { drive: self, buf: vec![0.0; grid.per_turn], grid, cache, k: 0 }
+    }
+
+    /// The number of points of the torque curve at `step_deg` (the repeat divided into a whole
+    /// number of steps), known before any is made.
+    pub fn curve_len(&self, step_deg: f64) -> usize {
+        Self::curve_len_of(self.motion.repeat_deg(), step_deg)
+    }
+
+    fn curve_len_of(period: f64, step_deg: f64) -> usize {
+        (period / step_deg).round().max(1.0) as usize
+    }
+
+    /// What the torque curve at `step_deg` costs, estimated before it is made: streamed as a
+    /// table (`plot` false: a turn held, [`Drive::CPU_S_PER_POINT`] each) or drawn (every point
+    /// held, [`Drive::PLOT_BYTES_PER_POINT`] each).
+    pub fn curve_cost(&self, step_deg: f64, plot: bool) -> loomkin_units::Cost {
+        let n = self.motion.repeat_deg() / step_deg;
+        if plot {
+            loomkin_units::Cost::cpu_items(n, Self::PLOT_BYTES_PER_POINT, Self::PLOT_CPU_S_PER_POINT)
+        } else {
+            loomkin_units::Cost::cpu_items(n, 0.0, Self::CPU_S_PER_POINT)
+        }
+    }
+
+    /// The torque report at `step_deg` with `points` for its curve (a list, or a stream of
+    /// [`Drive::torque_points`] serialised as it is read): the peak found a turn at a time
+    /// ([`Drive::peak`], equal to [`Drive::peak_of`] of the whole curve), so the same report as
+    /// [`Drive::torque_report`] of [`Drive::torque_curve`] without the curve held.
+    pub fn torque_summary<P>(&self, step_deg: f64, points: P) -> TorqueReport<P> {
+        self.report_with(self.peak(step_deg), self.curve_len(step_deg), points)
+    }
+
+    /// The torque report of a curve of `n` points whose peak is `peak`.
+    fn report_with<P>(&self, peak: Peak, n: usize, points: P) -> TorqueReport<P> {
+        TorqueReport {
+            speed_rpm: self.loom.speed.rpm(),
+            picks: self.motion.picks(),
+            repeat_deg: self.motion.repeat_deg(),
+            peak_torque_n_m: peak.torque_n_m.abs(),
+            peak_angle_deg: peak.angle_deg,
+            rms_torque_n_m: self.rms(),
+            step_deg: self.motion.repeat_deg() / n as f64,
+            points,
+        }
+    }
+
     /// The torques of [`Drive::torque_curve_cached`] without their angles, and the step `h`
     /// between them (the k-th at `k·h`).
     fn torque_values_cached(&self, step_deg: f64, cache: &mut TableCache) -> (f64, Vec<f64>) {
@@ -210,7 +279,7 @@ impl<'a> Drive<'a> {
     /// The grid of a torque curve at `step_deg`, with every frame's power tables put in `cache`.
     fn grid(&self, step_deg: f64, cache: &mut TableCache) -> Grid {
         let period = self.motion.repeat_deg();
-        let n = (period / step_deg).round().max(1.0) as usize;
+        let n = Self::curve_len_of(period, step_deg);
         let h = period / n as f64;
         let per_turn = 360.0 / h;
         if (per_turn - per_turn.round()).abs() > 1e-9 * per_turn {
@@ -319,17 +388,8 @@ impl<'a> Drive<'a> {
 
     /// The torque report of a curve already computed ([`Drive::torque_curve`]).
     pub fn torque_report(&self, curve: &[(f64, f64)]) -> TorqueReport {
-        let peak = self.peak_of(curve);
-        TorqueReport {
-            speed_rpm: self.loom.speed.rpm(),
-            picks: self.motion.picks(),
-            repeat_deg: self.motion.repeat_deg(),
-            peak_torque_n_m: peak.torque_n_m.abs(),
-            peak_angle_deg: peak.angle_deg,
-            rms_torque_n_m: self.rms(),
-            step_deg: self.motion.repeat_deg() / curve.len() as f64,
-            points: curve.iter().map(|&(angle_deg, torque_n_m)| TorquePoint { angle_deg, torque_n_m }).collect(),
-        }
+        let points = curve.iter().map(|&(angle_deg, torque_n_m)| TorquePoint { angle_deg, torque_n_m }).collect();
+        self.report_with(self.peak_of(curve), curve.len(), points)
     }
 
     /// The largest |torque| over the repeat: the grid's largest local maxima of |T| (at
@@ -481,6 +541,50 @@ impl<'a> Drive<'a> {
 /// The grid of a torque curve: `n` points `h` apart over the repeat; when `h` divides 360°
 /// (`per_turn` points a turn, else 0), per moving frame the grid index `k0` at which its moves
 /// into pick 0 meet the grid and the key of its power tables in the [`TableCache`].
+/// The points of a torque curve made a turn at a time ([`Drive::torque_points`]):
+/// `(angle_deg, torque_n_m)`.
+#[derive(Debug)]
+pub struct TorquePoints<'d, 'a> {
+    drive: &'d Drive<'a>,
+    grid: Grid,
+    cache: TableCache,
+    /// The turn being read (empty when every point is evaluated directly).
+    buf: Vec<f64>,
+    /// The next point.
+    k: usize,
+}
+
+impl Iterator for TorquePoints<'_, '_> {
+    type Item = (f64, f64);
+
+    fn next(&mut self) -> Option<(f64, f64)> {
+        let Self { drive, grid, cache, buf, k } = self;
+        if *k >= grid.n {
+            return None;
+        }
+        let at = *k as f64 * grid.h;
+        let v = if grid.per_turn == 0 {
+            drive.torque_at(at)
+        } else {
+            let j = *k % grid.per_turn;
+            if j == 0 {
+                drive.fill_turn(grid, cache, *k / grid.per_turn, buf);
+            }
+            buf[j]
+        };
+        *k += 1;
+        Some((at, v))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.grid.n - self.k;
+        (left, Some(left))
+    }
+}
+
+impl ExactSizeIterator for TorquePoints<'_, '_> {}
+
+#[derive(Debug)]
 struct Grid {
     h: f64,
     n: usize,

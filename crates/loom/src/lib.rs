@@ -50,7 +50,7 @@ pub use diagram::{
     DEFAULT_TIMING_PICKS, DEFAULT_TIMING_STEP_DEG, TIMING_STEP_RANGE, TimingCurves, timing_curves, timing_diagram,
     torque_figure,
 };
-pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorqueReport};
+pub use drive::{Drive, FrameForce, MAX_RMS_SPLITS, Peak, TableCache, TorquePoint, TorquePoints, TorqueReport};
 
 /// The descriptors of this crate's inputs.
 pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![

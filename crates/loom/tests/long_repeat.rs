@@ -114,3 +114,38 @@ fn the_streamed_peak_is_the_curves() {
         }
     }
 }
+
+/// The streamed curve (`loom torque --csv/--json` of a long repeat) is the whole curve, point for
+/// point and bit for bit, at steps that divide 360° (a turn at a time from the power tables) and
+/// steps that do not (each point evaluated); its report is the whole curve's report; its cost is
+/// counted before any point is made.
+#[test]
+fn the_streamed_curve_is_the_curve() {
+    for (loom, pattern) in
+        [(rapier(), wif("point-24.wif")), (rapier(), scrambled(60, 24)), (shuttle(), wif("twill-2-2.wif"))]
+    {
+        let motion = Motion::new(&loom, &pattern).unwrap();
+        let d = Drive::new(&loom, &motion, &pattern);
+        for step in [0.1, 0.5, 0.7, 2.0, 10.0] {
+            let curve = d.torque_curve(step);
+            let points = d.torque_points(step);
+            assert_eq!(points.len(), curve.len(), "step {step}");
+            assert_eq!(d.curve_len(step), curve.len(), "step {step}");
+            let streamed: Vec<(f64, f64)> = points.collect();
+            assert_eq!(streamed.len(), curve.len());
+            for (k, (s, c)) in streamed.iter().zip(&curve).enumerate() {
+                assert_eq!(s.0.to_bits(), c.0.to_bits(), "step {step}, point {k}: angle");
+                assert_eq!(s.1.to_bits(), c.1.to_bits(), "step {step}, point {k}: torque");
+            }
+            let whole = d.torque_report(&curve);
+            let summary = d.torque_summary(step, whole.points.clone());
+            assert_eq!(summary, whole, "step {step}");
+            // Streamed, a turn is held; drawn, every point.
+            let (table, plot) = (d.curve_cost(step, false), d.curve_cost(step, true));
+            let n = motion.repeat_deg() / step;
+            assert_eq!(table.bytes, 0.0);
+            assert!(close(plot.bytes, n * Drive::PLOT_BYTES_PER_POINT, 1e-12));
+            assert!(close(table.seconds, loomkin_units::Cost::SHARED * n * Drive::CPU_S_PER_POINT, 1e-12));
+        }
+    }
+}
