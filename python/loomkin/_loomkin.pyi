@@ -14,7 +14,8 @@ __all__ = [
     "servo_spline_law", "servo_law", "servo_torque", "servo_torque_curve", "servo_optimize", "servo_export",
     "servo_check", "Cycle", "pick_design", "pick_simulate", "pick_history", "pick_sweep", "pick_montecarlo",
     "dobby_analyze", "dobby_synthesize", "dobby_tolerance", "dobby_sweep", "shed_presets", "shed_law", "shed_table",
-    "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "loom_sley", "loom_sley_synthesize", "dyn_response",
+    "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "loom_sley", "loom_sley_synthesize",
+    "drive_inertia", "drive_ripple", "drive_correct", "dyn_response",
     "dyn_sweep", "dyn_spectrum", "dyn_compensate", "dyn_optimize", "dyn_two_mass", "dyn_default_ratios",
     "cam_table", "cam_profile", "rise_return_cycle",
 ]
@@ -286,6 +287,34 @@ def loom_sley(
     loom_toml: str, speed_rpm: Optional[float] = None, dwell_tolerance_mm: float = ..., points: int = ...
 ) -> Dict[str, Any]:
     """`loomkin sley analyze LOOM.toml --json` (mm, deg, m/s, N, N·m in the keys) and `curve`, the `--csv` table."""
+
+# the main shaft (texts of the loom file and the weave; motor keywords as the CLI's motor flags)
+def drive_inertia(
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, step_deg: float = ...
+) -> Dict[str, Any]:
+    """`loomkin drive inertia --json` (kg·m², deg) and `curve`, the `--csv` columns (J, dJ/dφ per mechanism)."""
+def drive_ripple(
+    loom_toml: str,
+    wif: Optional[Union[str, bytes]] = None,
+    lift_plan: Optional[str] = None,
+    flywheel_kg_m2: Optional[float] = None,
+    target_ripple_pct: Optional[float] = None,
+    step_deg: float = ...,
+    **motor: Any,
+) -> Dict[str, Any]:
+    """`loomkin drive ripple --json` (rpm, %, J, N·m) and `curve`, the `--csv` columns (ω, torques, energy)."""
+def drive_correct(
+    loom_toml: str,
+    wif: Optional[Union[str, bytes]] = None,
+    lift_plan: Optional[str] = None,
+    title: Optional[str] = None,
+    flywheel_kg_m2: Optional[float] = None,
+    step_deg: float = ...,
+    natural_hz: Optional[float] = None,
+    damping_ratio: float = ...,
+    **motor: Any,
+) -> Dict[str, Any]:
+    """`loomkin drive correct --json` (deg, %, mm) and `cycles`, the cycle files' texts by file name."""
 
 # dynamics
 def dyn_response(

@@ -13,6 +13,7 @@ mod cams;
 mod convert;
 mod cycles;
 mod dobby;
+mod drive;
 mod dynamics;
 mod errors;
 mod fields;
@@ -39,6 +40,7 @@ fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
     dobby::register(m)?;
     shed::register(m)?;
     loom::register(m)?;
+    drive::register(m)?;
     dynamics::register(m)?;
     cams::register(m)?;
     Ok(())

@@ -47,7 +47,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// A WIF as its text or as the file's bytes (decoded as every front end decodes a WIF:
 /// `Pattern::from_wif_bytes`).
 #[derive(FromPyObject)]
-enum Wif {
+pub(crate) enum Wif {
     Text(String),
     Bytes(Vec<u8>),
 }
@@ -55,7 +55,12 @@ enum Wif {
 /// The loom file's text and the pattern (a WIF's text or bytes, a lift plan's text, or neither:
 /// plain weave over the loom's frames), as the CLI reads `LOOM.toml --wif | --lift-plan`. A WIF
 /// read in the Windows code page gives a `UserWarning` with the library's note.
-fn read(py: Python<'_>, loom_toml: &str, wif: Option<Wif>, lift_plan: Option<&str>) -> PyResult<(Loom, Pattern)> {
+pub(crate) fn read(
+    py: Python<'_>,
+    loom_toml: &str,
+    wif: Option<Wif>,
+    lift_plan: Option<&str>,
+) -> PyResult<(Loom, Pattern)> {
     let loom = Loom::from_toml(loom_toml).or_raise()?;
     let pattern = match (wif, lift_plan) {
         (Some(Wif::Text(w)), _) => Pattern::from_wif(&w).or_raise()?,

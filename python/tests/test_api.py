@@ -44,6 +44,9 @@ PYTHON_CALL = {
     "loom stagger": loomkin.loom.stagger,
     "sley analyze": loomkin.loom.sley,
     "sley synthesize": loomkin.loom.sley_synthesize,
+    "drive inertia": loomkin.drive.inertia,
+    "drive ripple": loomkin.drive.ripple,
+    "drive correct": loomkin.drive.correct,
 }
 
 # CLI commands with no Python call, and why.
@@ -61,11 +64,6 @@ NO_PYTHON_CALL = {
     "merge": "a file tool for --parts; in Python loomkin.concat and from_draws",
     # The local web workbench is a server, not a computation.
     "serve": "the web workbench (a server)",
-    # Issue 29's drive: the library (loomkin_drive::ripple, loomkin_loom::LoomShaft) landed with the
-    # CLI; the Python module loomkin.drive is the issue's item 5, not written yet.
-    "drive inertia": "loomkin.drive not written yet (issue 29 item 5)",
-    "drive ripple": "loomkin.drive not written yet (issue 29 item 5)",
-    "drive correct": "loomkin.drive not written yet (issue 29 item 5)",
     # Issue 31's servo shedding: the library (loomkin_eshed) and the CLI landed first; the Python
     # call loomkin.loom.servo is the issue's item 6, not written yet.
     "loom servo": "loomkin.loom.servo not written yet (issue 31 item 6)",

@@ -185,39 +185,16 @@ pub fn run(cmd: DriveCommand) -> Result<()> {
     }
 }
 
-/// A mechanism's name as a CSV column word (`frame 3` → `frame3`, `rotating parts` → `rotating`).
-fn column(name: &str) -> String {
-    name.split_whitespace().take(if name.starts_with("frame") { 2 } else { 1 }).collect::<Vec<_>>().concat()
-}
-
 fn run_inertia(a: InertiaArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
     let motion = Motion::new(&loom, &pattern)?;
     let shaft = LoomShaft::new(&loom, &motion, &pattern);
-    let names = shaft.mechanism_names();
     if a.format.csv {
-        let mut header = vec!["angle_deg".to_string()];
-        for n in names.iter().map(|n| column(n)).chain(std::iter::once("total".to_string())) {
-            header.push(format!("j_{n}_kg_m2"));
-            header.push(format!("dj_{n}_kg_m2_per_rad"));
-        }
-        let mut t = Csv::new(header);
-        let period = motion.repeat_deg();
-        let n = (period / a.step_deg).round().max(1.0) as usize;
-        let h = period / n as f64;
-        for k in 0..n {
-            let th = k as f64 * h;
-            let mut row = vec![th];
-            let parts = shaft.mechanism_inertia(th);
-            for (j, dj) in &parts {
-                row.push(*j);
-                row.push(*dj);
-            }
-            let (j, dj) = shaft.inertia_at(th);
-            row.push(j);
-            row.push(dj);
-            t.push(row)?;
+        let cols = shaft.inertia_columns(a.step_deg)?;
+        let mut t = Csv::new(cols.iter().map(|(name, _)| name.clone()));
+        for k in 0..cols[0].1.len() {
+            t.push(cols.iter().map(|(_, c)| c[k]).collect())?;
         }
         return output::csv(&t);
     }
@@ -266,10 +243,10 @@ fn run_ripple(a: RippleArgs) -> Result<()> {
         return output::figure(&ripple_figure(&sol, &title), out, &a.plot);
     }
     if a.format.csv {
-        let mut t = Csv::new(["angle_deg", "speed_rpm", "motor_torque_n_m", "load_torque_n_m", "energy_j"]);
-        let (w, m, l) = (sol.omega(), sol.motor_torque(), sol.load_torque());
-        for (k, phi) in sol.angles_rad().iter().enumerate() {
-            t.push(vec![phi.to_degrees(), loomkin_units::rpm_from_rad_per_s(w[k]), m[k], l[k], sol.energy_j()[k]])?;
+        let cols = sol.columns();
+        let mut t = Csv::new(cols.iter().map(|(name, _)| *name));
+        for k in 0..cols[0].1.len() {
+            t.push(cols.iter().map(|(_, c)| c[k]).collect())?;
         }
         return output::csv(&t);
     }
@@ -324,18 +301,7 @@ fn run_correct(a: CorrectArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("-o {}: cannot create the directory: {e}", a.output.display()))?;
     let title = if loom.name.is_empty() { util::file_name(&a.loom) } else { loom.name.clone() };
     let mut files = Vec::new();
-    for (i, f) in c.report.frames.iter().enumerate() {
-        if f.moves == 0 {
-            continue;
-        }
-        let spec = c.frames.cycle_spec(i, loomkin_units::rpm_from_rad_per_s(c.corrected_map.mean_speed_rad_s()));
-        let name = format!("frame-{:02}.toml", i + 1);
-        let text = format!(
-            "# {title}, {}: time-true cam (loomkin drive correct), {} motor; positions from the frame's place before the first move\n{}",
-            f.name,
-            c.report.motor,
-            spec.to_toml()?
-        );
+    for (name, text) in c.cycle_files(&title)? {
         let path = a.output.join(&name);
         std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
         files.push(path.display().to_string());

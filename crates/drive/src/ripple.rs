@@ -635,6 +635,19 @@ impl<S: Shaft + ?Sized> Solution<'_, '_, S> {
         (0..self.table.nodes.len()).map(|k| self.table.ml[2 * k]).collect()
     }
 
+    /// `loomkin drive ripple --csv`'s columns at the grid points: `angle_deg`, `speed_rpm`,
+    /// `motor_torque_n_m`, `load_torque_n_m`, `energy_j`.
+    pub fn columns(&self) -> Vec<(&'static str, Vec<f64>)> {
+        let w = self.omega();
+        vec![
+            ("angle_deg", self.table.nodes.iter().map(|phi| phi.to_degrees()).collect()),
+            ("speed_rpm", w.iter().map(|w| rpm_from_rad_per_s(*w)).collect()),
+            ("motor_torque_n_m", self.motor_torque()),
+            ("load_torque_n_m", self.load_torque()),
+            ("energy_j", self.rec.e.clone()),
+        ]
+    }
+
     /// Time from the repeat's start at the grid points, s (the rule's own integral of `dφ/ω`,
     /// whose last value is the repeat's time).
     pub fn time_s(&self) -> &[f64] {

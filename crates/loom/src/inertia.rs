@@ -191,6 +191,33 @@ impl<'a> LoomShaft<'a> {
         (j, dj)
     }
 
+    /// `loomkin drive inertia --csv`'s columns over the repeat on a grid of about `step_deg`
+    /// ([`Drive::STEP_DEG`]): `angle_deg`, then `j_NAME_kg_m2` and `dj_NAME_kg_m2_per_rad` for every
+    /// mechanism (NAME as [`LoomShaft::mechanism_names`] in one word: `frame3`, `sley`, `rotating`)
+    /// and for the `total`; every value exact at its grid point.
+    pub fn inertia_columns(&self, step_deg: f64) -> Result<Vec<(String, Vec<f64>)>> {
+        Drive::STEP_DEG.check(step_deg)?;
+        let period = self.motion().repeat_deg();
+        let n = (period / step_deg).round().max(1.0) as usize;
+        let h = period / n as f64;
+        let names = self.mechanism_names();
+        let mut cols: Vec<(String, Vec<f64>)> = vec![("angle_deg".into(), Vec::with_capacity(n))];
+        for name in names.iter().map(|n| column_word(n)).chain(std::iter::once("total".to_string())) {
+            cols.push((format!("j_{name}_kg_m2"), Vec::with_capacity(n)));
+            cols.push((format!("dj_{name}_kg_m2_per_rad"), Vec::with_capacity(n)));
+        }
+        for k in 0..n {
+            let th = k as f64 * h;
+            cols[0].1.push(th);
+            let parts = self.mechanism_inertia(th);
+            for (m, (j, dj)) in parts.into_iter().chain(std::iter::once(self.inertia_at(th))).enumerate() {
+                cols[1 + 2 * m].1.push(j);
+                cols[2 + 2 * m].1.push(dj);
+            }
+        }
+        Ok(cols)
+    }
+
     /// The load torque at `theta_deg`, N·m: the frames' weight, springs and warp over the shedding
     /// drive's efficiency, the sley's beat-up resistance and weight, the friction.
     pub fn load_at(&self, theta_deg: f64) -> f64 {
@@ -427,6 +454,12 @@ fn stats(grid: &[f64], h: f64, period: f64, f: &dyn Fn(f64) -> f64, mean: f64) -
         j_max_angle_deg: at_max,
         j_mean_kg_m2: mean,
     }
+}
+
+/// A mechanism's name as one word of a column name (`frame 3` → `frame3`, `rotating parts` →
+/// `rotating`).
+fn column_word(name: &str) -> String {
+    name.split_whitespace().take(if name.starts_with("frame") { 2 } else { 1 }).collect::<Vec<_>>().concat()
 }
 
 impl Shaft for LoomShaft<'_> {

@@ -227,6 +227,30 @@ pub struct Correction {
     pub corrected_map: TimeMap,
 }
 
+impl Correction {
+    /// `loomkin drive correct -o DIR`'s cycle files: `(file name, text)` for every frame that moves
+    /// (`frame-01.toml` …), each a [`CorrectedFrames::cycle_spec`] at the mean speed corrected for,
+    /// under a comment naming `title` (the loom), the frame and the motor.
+    pub fn cycle_files(&self, title: &str) -> Result<Vec<(String, String)>> {
+        let speed_rpm = loomkin_units::rpm_from_rad_per_s(self.corrected_map.mean_speed_rad_s());
+        let mut out = Vec::new();
+        for (i, f) in self.report.frames.iter().enumerate() {
+            if f.moves == 0 {
+                continue;
+            }
+            let spec = self.frames.cycle_spec(i, speed_rpm);
+            let text = format!(
+                "# {title}, {}: time-true cam (loomkin drive correct), {} motor; positions from the frame's place before the first move\n{}",
+                f.name,
+                self.report.motor,
+                spec.to_toml()?
+            );
+            out.push((format!("frame-{:02}.toml", i + 1), text));
+        }
+        Ok(out)
+    }
+}
+
 /// The largest of `|f|` over `[a, b]`: a grid of about 0.25° refined by golden section.
 fn max_abs(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
     let n = ((b - a) / 0.25_f64.to_radians()).ceil().max(2.0) as usize;
