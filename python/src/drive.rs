@@ -29,45 +29,10 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The motor keywords of `drive_ripple` and `drive_correct` (the CLI's motor flags): every one
-/// optional, over the loom file's `[drive]` table.
-#[derive(Default)]
-struct MotorKw {
-    motor: Option<String>,
-    motor_curve: Option<String>,
-    synchronous_rpm: Option<f64>,
-    rated_rpm: Option<f64>,
-    rated_power_kw: Option<f64>,
-    breakdown_ratio: Option<f64>,
-    gear_ratio: Option<f64>,
-    servo_gain_n_m_s: Option<f64>,
-    servo_integral_s: Option<f64>,
-    servo_torque_limit_n_m: Option<f64>,
-}
-
-impl MotorKw {
-    /// The loom file's `[drive]` motor with these keywords over it; refusals name the keys as the
-    /// CLI does (`drive.rated_power_kw`, `motor`).
-    fn motor(&self, loom: &Loom) -> PyResult<loomkin_drive::Motor> {
-        let over = MotorSpec {
-            motor: self.motor.as_deref().map(|m| MotorKind::parse("motor", m)).transpose().or_raise()?,
-            motor_curve: self
-                .motor_curve
-                .as_deref()
-                .map(|c| MotorCurve::parse("motor_curve", c))
-                .transpose()
-                .or_raise()?,
-            synchronous_rpm: self.synchronous_rpm,
-            rated_rpm: self.rated_rpm,
-            rated_power_kw: self.rated_power_kw,
-            breakdown_ratio: self.breakdown_ratio,
-            gear_ratio: self.gear_ratio,
-            servo_gain_n_m_s: self.servo_gain_n_m_s,
-            servo_integral_s: self.servo_integral_s,
-            servo_torque_limit_n_m: self.servo_torque_limit_n_m,
-        };
-        loom.drive.motor.overridden(&over).build(loom.speed.rpm(), "drive.").or_raise()
-    }
+/// The loom file's `[drive]` motor with the keywords' `over` it; refusals name the keys as the
+/// CLI does (`drive.rated_power_kw`).
+fn motor_of(loom: &Loom, over: &MotorSpec) -> PyResult<loomkin_drive::Motor> {
+    loom.drive.motor.overridden(over).build(loom.speed.rpm(), "drive.").or_raise()
 }
 
 /// The flywheel: the keyword when given (checked against [`FLYWHEEL_KG_M2`]), else the file's.
@@ -155,7 +120,7 @@ fn drive_ripple<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     STEP_DEG.check(step_deg).map_err(raise)?;
-    let motor = motor_kw(motor)?.motor(&loom)?;
+    let motor = motor_of(&loom, &motor_kw(motor)?)?;
     if flywheel_kg_m2.is_some() && target_ripple_pct.is_some() {
         return Err(crate::study::error(
             "target_ripple_pct",
@@ -174,9 +139,10 @@ fn drive_ripple<'py>(
     Ok(out)
 }
 
-/// The motor keywords out of `**motor`; an unknown one is refused naming it.
-fn motor_kw(kw: Option<&Bound<'_, PyDict>>) -> PyResult<MotorKw> {
-    let Some(kw) = kw else { return Ok(MotorKw::default()) };
+/// The motor keywords out of `**motor` (the CLI's motor flags, every one optional); an unknown
+/// one or a value of the wrong type is refused naming it.
+fn motor_kw(kw: Option<&Bound<'_, PyDict>>) -> PyResult<MotorSpec> {
+    let Some(kw) = kw else { return Ok(MotorSpec::default()) };
     const KNOWN: [&str; 10] = [
         "motor",
         "motor_curve",
@@ -221,9 +187,9 @@ fn motor_kw(kw: Option<&Bound<'_, PyDict>>) -> PyResult<MotorKw> {
             _ => Ok(None),
         }
     };
-    Ok(MotorKw {
-        motor: name("motor")?,
-        motor_curve: name("motor_curve")?,
+    Ok(MotorSpec {
+        motor: name("motor")?.map(|m| MotorKind::parse("motor", &m)).transpose().or_raise()?,
+        motor_curve: name("motor_curve")?.map(|c| MotorCurve::parse("motor_curve", &c)).transpose().or_raise()?,
         synchronous_rpm: number("synchronous_rpm")?,
         rated_rpm: number("rated_rpm")?,
         rated_power_kw: number("rated_power_kw")?,
@@ -264,7 +230,7 @@ fn drive_correct<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     STEP_DEG.check(step_deg).map_err(raise)?;
-    let motor = motor_kw(motor)?.motor(&loom)?;
+    let motor = motor_of(&loom, &motor_kw(motor)?)?;
     let jf = flywheel(&loom, flywheel_kg_m2)?;
     let follower = natural_hz.map(|f| Follower::new(f, damping_ratio)).transpose().or_raise()?;
     let title = if loom.name.is_empty() { title.unwrap_or_default() } else { loom.name.clone() };
