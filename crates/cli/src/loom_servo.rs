@@ -4,7 +4,8 @@ use crate::loom::PatternArgs;
 use crate::output::{self, Out, outln};
 use anyhow::Result;
 use clap::Args;
-use std::path::PathBuf;
+use loomkin_cams::table::{Format, Spacing};
+use std::path::{Path, PathBuf};
 
 /// `loomkin loom servo`.
 #[derive(Debug, Args)]
@@ -21,15 +22,33 @@ pub struct ServoArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     plot: crate::util::PlotOpts,
+    /// Write one cam table per frame over the pattern repeat (frame-01.csv, …), the frames' cycle
+    /// files where the repeat fits one, and manifest.json (the master axis, offsets, errors) to DIR.
+    #[arg(long, value_name = "DIR")]
+    emit_tables: Option<PathBuf>,
+    /// The table formats, comma-separated or repeated, as `cam table --format` takes them (default:
+    /// csv, xyvaj, poly5, twincat, st).
+    #[arg(long, value_enum, ignore_case = true, value_delimiter = ',', requires = "emit_tables")]
+    format: Vec<Format>,
+    #[arg(long, value_name = "D", conflicts_with = "tolerance", requires = "emit_tables", allow_hyphen_values = true, help = crate::util::field_help("Table points on every joint of the law and every D degrees from each joint (a shorter last step before a joint)", &Spacing::STEP_DEG))]
+    step_deg: Option<f64>,
+    /// Table points on every joint and as few in between as keep the re-interpolation error within
+    /// T mm (as `cam table --tolerance`).
+    #[arg(long, value_name = "T", requires = "emit_tables", allow_hyphen_values = true)]
+    tolerance: Option<f64>,
 }
 
 /// Runs `loomkin loom servo`.
 pub fn run(a: ServoArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
+    let spacing = table_spacing(&a)?;
     let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
     let r = loomkin_loom::servo_study(&loom, &pattern)?;
     if let Some(out) = &a.output {
         output::figure(&loomkin_loom::servo_figure(&loom, &pattern, &r)?, out, &a.plot)?;
+    }
+    if let Some(dir) = &a.emit_tables {
+        emit_tables(&loom, &pattern, dir, spacing, &a.format)?;
     }
     if a.json {
         return output::json(&r);
@@ -85,5 +104,49 @@ pub fn run(a: ServoArgs) -> Result<()> {
     if !r.motors_ok {
         output::warning("a frame's motor fails the servo check (see its margins; `--json` lists every check)");
     }
+    Ok(())
+}
+
+/// The tables' spacing, checked before anything is computed; and `--emit-tables` must name a
+/// folder (or nothing yet).
+fn table_spacing(a: &ServoArgs) -> Result<Spacing> {
+    let step = a.step_deg.map(|s| Spacing::STEP_DEG.check_as("--step-deg", s)).transpose()?;
+    let tolerance = a.tolerance.map(|t| Spacing::TOLERANCE.check_as("--tolerance", t)).transpose()?;
+    if let Some(dir) = &a.emit_tables
+        && dir.exists()
+        && !dir.is_dir()
+    {
+        let cause = std::io::Error::new(std::io::ErrorKind::NotADirectory, "it is not a folder");
+        return Err(output::WriteError::file(&dir.display().to_string(), cause).into());
+    }
+    Ok(Spacing::of(step, tolerance))
+}
+
+/// `--emit-tables DIR`: every file of [`loomkin_loom::servo_tables`] into `dir`.
+fn emit_tables(
+    loom: &loomkin_loom::Loom,
+    pattern: &loomkin_loom::Pattern,
+    dir: &Path,
+    spacing: Spacing,
+    formats: &[Format],
+) -> Result<()> {
+    let tables = loomkin_loom::servo_tables(loom, pattern, spacing, formats)?;
+    std::fs::create_dir_all(dir).map_err(|e| output::WriteError::file(&dir.display().to_string(), e))?;
+    for f in &tables.files {
+        let path = dir.join(&f.name);
+        std::fs::write(&path, &f.text).map_err(|e| output::WriteError::file(&path.display().to_string(), e))?;
+    }
+    let m = &tables.manifest;
+    let worst = m.frames.iter().flat_map(|f| &f.tables).map(|t| t.report.error.max_position_error).fold(0.0, f64::max);
+    output::note(format_args!(
+        "wrote {} files to {}: {} frames' cam tables over a master axis of {}° ({} picks) and {}; worst re-interpolation error {} mm",
+        tables.files.len(),
+        dir.display(),
+        m.frames.len(),
+        loomkin_units::compact(m.master_axis_deg),
+        m.picks,
+        loomkin_eshed::MANIFEST_FILE,
+        loomkin_units::compact(worst)
+    ));
     Ok(())
 }

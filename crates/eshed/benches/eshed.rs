@@ -4,11 +4,11 @@
 //! 10⁴ picks (24 distinct picks: the bus windows are reused), and a pseudo-random plan (every pick's
 //! window distinct: the bus's worst case).
 
-use loomkin_eshed::{
-    Bus, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Transmission, Winding, analyse,
-};
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use loomkin_eshed::{Bus, FrameInput, FrameLoad, FramePlan, FrameSetup, MoveLaws, analyse};
 use loomkin_laws::LawSpec;
-use loomkin_servo::Motor;
 
 fn main() {
     divan::main();
@@ -18,25 +18,7 @@ const FRAMES: usize = 24;
 const PICKS: usize = 10_000;
 
 fn setups(plan: &[Vec<bool>]) -> Vec<FrameSetup> {
-    let servo = FrameServo {
-        motor: Motor {
-            rated_torque_nm: 10.0,
-            peak_torque_nm: 30.0,
-            rated_speed_rpm: 3000.0,
-            max_speed_rpm: 4500.0,
-            rotor_inertia_kg_m2: 1.2e-3,
-            torque_at_max_speed_nm: None,
-        },
-        transmission: Transmission {
-            travel_mm_per_rev: 100.0,
-            efficiency: 0.95,
-            friction_n: 0.0,
-            viscous_n_s_m: 0.0,
-            extra_inertia_kg_m2: 0.0,
-        },
-        winding: Winding { resistance_ohm: 1.5, torque_constant_n_m_a: 1.7 },
-        motion_deg: None,
-    };
+    let servo = common::servo();
     plan.iter()
         .enumerate()
         .map(|(i, up)| {

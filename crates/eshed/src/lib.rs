@@ -15,6 +15,8 @@
 //! * [`analyse`] — per frame the servo check ([`loomkin_servo::check_axis`]) and the peak power,
 //!   on the bus the peak and mean power, the regenerated and braking energy, all on the closed
 //!   form with peaks root-found.
+//! * [`frame_tables`] — one cam table per frame over the repeat for the controllers (the cam-table
+//!   engine of loomkin-cams) and the manifest of the master axis.
 //!
 //! The loom file and the lift plan are read by loomkin-loom, which builds the [`FrameSetup`]s
 //! (`loomkin_loom::servo_study`).
@@ -27,6 +29,7 @@ mod error;
 mod plan;
 mod report;
 mod spec;
+mod tables;
 
 pub use bus::BusTotals;
 pub use continuity::{JointClass, joint_class};
@@ -35,6 +38,10 @@ pub use error::{EshedError, Result};
 pub use plan::{FrameInput, FramePlan, MoveLaws, PlannedMove};
 pub use report::{Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves};
 pub use spec::{Bus, FrameServo, ServoShedding, Transmission, Winding};
+pub use tables::{
+    FrameTables, MANIFEST_FILE, TABLE_FORMATS, TableEntry, TableFile, Tables, TablesManifest, frame_tables,
+    table_file_name,
+};
 
 /// The descriptors of this crate's inputs.
 pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![

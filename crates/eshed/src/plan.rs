@@ -172,14 +172,18 @@ impl FramePlan {
     /// The plan as a checked machine cycle of the law core (stroke unit mm, positions in m from
     /// the frame's place at the start: add `−H/2` when it starts down, `+H/2` up, to read the
     /// height over mid-stroke). Built segment by segment, so a repeat of any length is held (a
-    /// cycle file is limited to 36 000°, 100 picks).
+    /// cycle file is limited to 36 000°, 100 picks), with the arithmetic of
+    /// [`Cycle::new`] on [`FramePlan::cycle_spec`]: where the cycle file can be written, the two
+    /// cycles are the same bit for bit (so a cam table of either is the same file).
     pub fn cycle(&self, laws: &MoveLaws) -> Cycle {
-        let h = self.stroke_m;
+        let deg = std::f64::consts::PI / 180.0;
+        let h = self.stroke_mm() * StrokeUnit::Mm.to_si();
         let mut pos = 0.0;
+        let mut at = self.start_deg;
         let segments = self
             .segments()
             .into_iter()
-            .map(|(kind, start, len)| {
+            .map(|(kind, _, len)| {
                 let (law, stroke) = match kind {
                     SegmentKind::Dwell => (None, 0.0),
                     SegmentKind::Rise => (Some(laws.rise.clone()), h),
@@ -187,17 +191,18 @@ impl FramePlan {
                 };
                 let seg = CycleSegment {
                     kind,
-                    start_rad: start.to_radians(),
-                    length_rad: len.to_radians(),
+                    start_rad: at * deg,
+                    length_rad: len * deg,
                     law,
                     base_si: pos,
                     stroke_si: stroke,
                 };
                 pos += stroke;
+                at += len;
                 seg
             })
             .collect();
-        Cycle { unit: StrokeUnit::Mm, period_rad: self.period_deg.to_radians(), speed_rpm: None, segments }
+        Cycle { unit: StrokeUnit::Mm, period_rad: self.period_deg * deg, speed_rpm: None, segments }
     }
 
     /// The plan as a cycle file of the law core (strokes in mm; what the cam-table export and
@@ -217,10 +222,15 @@ impl FramePlan {
         CycleSpec {
             period_deg: self.period_deg,
             unit: StrokeUnit::Mm,
-            stroke: Some(self.stroke_m * 1e3),
+            stroke: Some(self.stroke_mm()),
             speed_rpm: None,
             segment,
         }
+    }
+
+    /// The full stroke in the cycle file's unit, mm.
+    pub fn stroke_mm(&self) -> f64 {
+        self.stroke_m * 1e3
     }
 
     /// The height over mid-stroke at the plan's start, m.

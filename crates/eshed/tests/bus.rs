@@ -1,12 +1,14 @@
 //! Electronic shedding against independent routes: the servo axis model point by point, the energy
 //! balance over the repeat in closed form, the bus peaks against dense scans, the C² claim.
 
+mod common;
+
 use loomkin_eshed::{
     Bus, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Study, Transmission, Winding, analyse,
     curves, joint_class,
 };
 use loomkin_laws::{Cycle, LawSpec};
-use loomkin_servo::{Motor, operating_point_at};
+use loomkin_servo::operating_point_at;
 
 const SPEED_RPM: f64 = 500.0;
 
@@ -15,20 +17,9 @@ fn laws(spec: LawSpec) -> MoveLaws {
     MoveLaws { rise: (spec.clone(), law.clone()), fall: (spec, law) }
 }
 
-fn motor() -> Motor {
-    Motor {
-        rated_torque_nm: 10.0,
-        peak_torque_nm: 30.0,
-        rated_speed_rpm: 3000.0,
-        max_speed_rpm: 4500.0,
-        rotor_inertia_kg_m2: 1.2e-3,
-        torque_at_max_speed_nm: None,
-    }
-}
-
 fn servo(efficiency: f64, friction_n: f64, viscous_n_s_m: f64, resistance_ohm: f64) -> FrameServo {
     FrameServo {
-        motor: motor(),
+        motor: common::motor(),
         transmission: Transmission {
             travel_mm_per_rev: 100.0,
             efficiency,

@@ -67,7 +67,9 @@ pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismIn
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
-pub use servo_shedding::{SERVO_PLOT_POINTS, servo_curves, servo_figure, servo_laws, servo_setups, servo_study};
+pub use servo_shedding::{
+    SERVO_PLOT_POINTS, servo_curves, servo_figure, servo_laws, servo_setups, servo_study, servo_tables,
+};
 pub use stagger::{
     Objective, StaggerCase, StaggerOptions, StaggerResult, optimise_stagger, optimise_stagger_until,
     optimise_stagger_with,

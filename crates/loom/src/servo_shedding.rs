@@ -69,6 +69,18 @@ pub fn servo_study(loom: &Loom, pattern: &Pattern) -> Result<ServoReport> {
     Ok(loomkin_eshed::analyse(&setups, &servo_laws(loom), &servo.bus, loom.speed.rpm(), servo.pass_through)?)
 }
 
+/// Every frame's cam table over the repeat in `formats` (the default set when empty), points
+/// placed by `spacing`, and the manifest (`loomkin loom servo --emit-tables`).
+pub fn servo_tables(
+    loom: &Loom,
+    pattern: &Pattern,
+    spacing: loomkin_cams::table::Spacing,
+    formats: &[loomkin_cams::table::Format],
+) -> Result<loomkin_eshed::Tables> {
+    let setups = servo_setups(loom, pattern, None, None)?;
+    Ok(loomkin_eshed::frame_tables(&setups, &servo_laws(loom), spacing, formats, loom.speed.rpm())?)
+}
+
 /// Curves of the servo-shedding study: `points` samples over the repeat.
 pub fn servo_curves(loom: &Loom, pattern: &Pattern, points: usize) -> Result<loomkin_eshed::Curves> {
     let setups = servo_setups(loom, pattern, None, None)?;

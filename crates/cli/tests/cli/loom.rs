@@ -315,3 +315,55 @@ fn servo_on_a_dobby_loom_or_with_a_bad_table_is_one_usage_line() {
     std::fs::write(&bad, text).unwrap();
     usage_error(&["loom", "servo", bad.to_str().unwrap()], &["shedding.servo.bus.voltage_v = -1 is out of range"]);
 }
+
+#[test]
+fn servo_emit_tables_writes_what_cam_table_writes_on_each_frames_cycle() {
+    let dir = scratch("servo-tables");
+    let out = dir.join("tables");
+    let args = ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("point-24.wif")];
+    let mut emit = args.to_vec();
+    emit.extend(["--json", "--emit-tables", out.to_str().unwrap(), "--format", "csv,st", "--step-deg", "2"]);
+    let report = stdout_json(&emit);
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("manifest.json")).unwrap()).unwrap();
+    // The master axis is the repeat: picks × 360°.
+    assert_eq!(manifest["picks"], report["picks"]);
+    assert_eq!(manifest["master_axis_deg"].as_f64().unwrap(), 360.0 * report["picks"].as_f64().unwrap());
+    assert_eq!(manifest["master_axis_deg"], report["repeat_deg"]);
+    let frames = manifest["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 24);
+    for (i, f) in frames.iter().enumerate() {
+        assert_eq!(f["frame"], i + 1);
+        let cycle = out.join(f["cycle_file"].as_str().unwrap());
+        for t in f["tables"].as_array().unwrap() {
+            assert!(t["max_position_error_mm"].as_f64().unwrap() < 1e-6, "{t}");
+            if i % 11 != 0 {
+                continue;
+            }
+            // `cam table` on the frame's cycle file writes the same file, byte for byte.
+            let format = t["format"].as_str().unwrap();
+            let cam = ["cam", "table", cycle.to_str().unwrap(), "--format", format, "--step-deg", "2", "-o", "-"];
+            let run = loomkin().args(cam).output().unwrap();
+            assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+            let file = std::fs::read(out.join(t["file"].as_str().unwrap())).unwrap();
+            assert!(run.stdout == file, "frame {} {format}: differs from cam table", i + 1);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn servo_emit_tables_with_a_bad_step_or_a_file_for_a_folder_stops_before_any_output() {
+    let args = ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("point-24.wif"), "--emit-tables"];
+    let tmp = std::env::temp_dir().to_string_lossy().into_owned();
+    let mut bad_step = args.to_vec();
+    bad_step.extend([tmp.as_str(), "--step-deg", "0"]);
+    usage_error(&bad_step, &["--step-deg = 0 is out of range", "3600"]);
+    let mut file = args.to_vec();
+    let wif = ex("point-24.wif");
+    file.push(&wif);
+    let out = loomkin().args(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a folder"));
+}

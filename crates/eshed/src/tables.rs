@@ -1,0 +1,162 @@
+//! Cam tables for the controllers: one per frame over the pattern repeat, written by the
+//! workspace's one cam-table engine ([`loomkin_cams::table`]), and a manifest of the master axis
+//! they share.
+//!
+//! **Master and slave.** The master is the main-shaft angle in degrees, `0` at the beat-up of the
+//! repeat's first pick, over an axis of `master_axis_deg = 360 · picks` that wraps around. A
+//! frame's table starts where its plan starts — its first move's start, so that no move is cut —
+//! at `master_start_deg` (it may be negative: the move into the first pick begins before its
+//! beat-up), and runs over one repeat. The slave is the frame's position in mm from where it
+//! stands at that start; `slave_offset_mm` (`−H/2` down, `+H/2` up) is that place over
+//! mid-stroke.
+//!
+//! **One engine.** Each table is [`CamTable`] on [`Motion::from_cycle`] of the frame's cycle
+//! ([`FramePlan::cycle`](crate::FramePlan::cycle)); where the repeat fits a cycle file (36 000°,
+//! 100 picks) the cycle file is written too, and `loomkin cam table` run on it writes the same
+//! table byte for byte (the plan's cycle is built with the cycle file's own arithmetic).
+
+use crate::{FrameSetup, MoveLaws, Result};
+use loomkin_cams::table::{CamTable, Format, Motion, Spacing, TableReport};
+use serde::Serialize;
+
+/// The formats `--emit-tables` writes when none is named: every point or segment format a
+/// controller loads (CSV, XYVAJ, poly5, TwinCAT points, Structured Text).
+pub const TABLE_FORMATS: [Format; 5] = [Format::Csv, Format::Xyvaj, Format::Poly5, Format::Twincat, Format::St];
+
+/// The manifest's file name.
+pub const MANIFEST_FILE: &str = "manifest.json";
+
+/// A file to write: its name in the output directory and its text.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableFile {
+    /// File name (`frame-01.csv`).
+    pub name: String,
+    /// The text.
+    pub text: String,
+}
+
+/// One table of a frame in the manifest: the file and the cam-table report of `loomkin cam
+/// table --json` (points, spacing, decimals, the exact re-interpolation error).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TableEntry {
+    /// The file name.
+    pub file: String,
+    /// The report (its `source` names the frame's cycle file, or the frame).
+    #[serde(flatten)]
+    pub report: TableReport,
+}
+
+/// One frame of the manifest.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameTables {
+    /// The frame (1 = front).
+    pub frame: usize,
+    /// Master angle of the table's first point, deg (the first move's start; `0` without moves).
+    pub master_start_deg: f64,
+    /// The frame's height over mid-stroke where its table's slave position is `0`, mm.
+    pub slave_offset_mm: f64,
+    /// Full stroke, mm.
+    pub stroke_mm: f64,
+    /// Moves over the repeat.
+    pub moves: usize,
+    /// The frame's cycle file (absent when the repeat is longer than a cycle file holds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle_file: Option<String>,
+    /// The tables, one per format.
+    pub tables: Vec<TableEntry>,
+}
+
+/// What a controller needs besides the tables (the manifest of `--emit-tables`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TablesManifest {
+    /// Length of the master axis: the pattern repeat, deg of the main shaft (`360 · picks`).
+    pub master_axis_deg: f64,
+    /// Picks in the repeat.
+    pub picks: usize,
+    /// Main-shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// The slave unit.
+    pub slave_unit: &'static str,
+    /// Per frame, front first.
+    pub frames: Vec<FrameTables>,
+}
+
+/// Every frame's tables and the manifest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tables {
+    /// The files, the manifest last.
+    pub files: Vec<TableFile>,
+    /// The manifest (also in `files`, as JSON).
+    pub manifest: TablesManifest,
+}
+
+/// The name of frame `frame`'s file with extension `ext` (`frame-01.csv`).
+pub fn table_file_name(frame: usize, ext: &str) -> String {
+    format!("frame-{frame:02}.{ext}")
+}
+
+/// Every frame's cam table in each of `formats` (every one of [`TABLE_FORMATS`] when empty),
+/// points placed by `spacing`, over the repeat of `frames` (front first) moving by `laws`; the
+/// frames' cycle files where they can be written; and the manifest (the shaft at `speed_rpm`).
+pub fn frame_tables(
+    frames: &[FrameSetup],
+    laws: &MoveLaws,
+    spacing: Spacing,
+    formats: &[Format],
+    speed_rpm: f64,
+) -> Result<Tables> {
+    let first = frames.first().ok_or_else(|| crate::EshedError::field("frames", "no frames"))?;
+    let formats = if formats.is_empty() { &TABLE_FORMATS[..] } else { formats };
+    let mut files = Vec::new();
+    let mut entries = Vec::with_capacity(frames.len());
+    for (i, f) in frames.iter().enumerate() {
+        let frame = i + 1;
+        let spec = f.plan.cycle_spec(laws);
+        let cycle_file = match loomkin_laws::Cycle::new(&spec) {
+            Ok(_) => {
+                let name = table_file_name(frame, "cycle.toml");
+                files.push(TableFile { name: name.clone(), text: spec.to_toml()? });
+                Some(name)
+            }
+            Err(_) => None,
+        };
+        let table = CamTable::new(Motion::from_cycle(&f.plan.cycle(laws)), spacing).map_err(|e| in_frame(frame, e))?;
+        let source = cycle_file.clone().unwrap_or_else(|| format!("frame {frame}"));
+        let mut tables = Vec::with_capacity(formats.len());
+        for &format in formats {
+            let export = table.export(format).map_err(|e| in_frame(frame, e))?;
+            let name = table_file_name(frame, format.name());
+            tables.push(TableEntry { file: name.clone(), report: table.report(source.clone(), format, &export) });
+            files.push(TableFile { name, text: export.text });
+        }
+        entries.push(FrameTables {
+            frame,
+            master_start_deg: f.plan.start_deg,
+            slave_offset_mm: f.plan.start_level_m() * 1e3,
+            stroke_mm: f.plan.stroke_mm(),
+            moves: f.plan.moves.len(),
+            cycle_file,
+            tables,
+        });
+    }
+    let manifest = TablesManifest {
+        master_axis_deg: first.plan.period_deg,
+        picks: (first.plan.period_deg / 360.0).round() as usize,
+        speed_rpm,
+        slave_unit: "mm",
+        frames: entries,
+    };
+    let text =
+        serde_json::to_string_pretty(&manifest).map_err(|e| crate::EshedError::field("manifest", e.to_string()))?;
+    files.push(TableFile { name: MANIFEST_FILE.to_string(), text: text + "\n" });
+    Ok(Tables { files, manifest })
+}
+
+/// A cam-table error of frame `frame`, naming the frame.
+fn in_frame(frame: usize, e: loomkin_cams::CamError) -> crate::EshedError {
+    use loomkin_units::FieldError;
+    let field = e.field().map_or_else(|| "table".to_string(), str::to_string);
+    let text = e.to_string();
+    let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text);
+    crate::EshedError::field(field, format!("frame {frame}: {reason}"))
+}
