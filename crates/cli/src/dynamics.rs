@@ -711,7 +711,12 @@ fn optimize_cmd(a: OptimizeArgs) -> Result<()> {
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
-    let opt = loomkin_dynamics::optimize_cycle(&text, speed, a.band_pct, &follower)?;
+    let bar = util::Progress::new(0, "dyn optimize: responses");
+    let opt = loomkin_dynamics::optimize_cycle_with(&text, speed, a.band_pct, &follower, &|done, all| {
+        bar.set_length(all as u64);
+        bar.set(done as u64);
+    })?;
+    bar.finish();
     let u = units(&cycle);
     let p = u.pos;
     if let Some(out) = &a.output {

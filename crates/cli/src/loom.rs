@@ -5,7 +5,7 @@ use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand, ValueEnum};
 use loomkin_loom::{
-    Drive, Loom, Motion, Objective, Pattern, StaggerOptions, check, optimise_stagger_with, timing_diagram,
+    Drive, Loom, Motion, Objective, Pattern, StaggerOptions, check_with, optimise_stagger_with, timing_diagram,
     torque_figure,
 };
 use std::path::{Path, PathBuf};
@@ -168,7 +168,12 @@ fn read_pattern(loom: &Loom, p: &PatternArgs) -> Result<Pattern> {
 
 fn run_check(a: CheckArgs) -> Result<()> {
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
-    let r = check(&loom, &pattern)?;
+    let bar = util::Progress::new(0, "loom check: picks");
+    let r = check_with(&loom, &pattern, &|done, all| {
+        bar.set_length(all as u64);
+        bar.set(done as u64);
+    })?;
+    bar.finish();
     if a.json {
         return output::json(&r);
     }

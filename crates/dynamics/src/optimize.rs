@@ -325,6 +325,19 @@ pub fn optimize_cycle(
     band_pct: f64,
     follower: &crate::Follower,
 ) -> Result<Optimized> {
+    optimize_cycle_with(text, speed, band_pct, follower, &|_, _| {})
+}
+
+/// [`optimize_cycle`], calling `progress(done, all)` as it goes, for a progress bar: one step per
+/// rise or return shaped and per response over the speed band (the optimised cycle's, then the
+/// modified sine's); `all` is an estimate until the last call, where `done == all`.
+pub fn optimize_cycle_with(
+    text: &str,
+    speed: loomkin_units::ShaftSpeed,
+    band_pct: f64,
+    follower: &crate::Follower,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Optimized> {
     let band = Optimized::BAND_PCT.check(band_pct)? / 100.0;
     // The band's ends are speeds the responses run at: both inside the shaft-speed range, said
     // in the user's two inputs rather than as a speed they never typed.
@@ -349,6 +362,16 @@ pub fn optimize_cycle(
     let mut ms_spec = spec.clone();
     let (fn_hz, zeta) = (follower.natural_hz(), follower.damping_ratio());
     let mut segments = Vec::new();
+    let moves = original.segments.iter().filter(|s| s.law.is_some()).count();
+    // The band's responses: the grid's points and as many again for the refinement, taken as an
+    // estimate that grows should the refinement take more.
+    let all = std::cell::Cell::new(moves + 4 * (BAND_GRID + 1));
+    let done = std::cell::Cell::new(0);
+    let step = || {
+        done.set(done.get() + 1);
+        all.set(all.get().max(done.get() + 1));
+        progress(done.get(), all.get());
+    };
     for (i, seg) in original.segments.iter().enumerate() {
         if seg.law.is_none() {
             continue;
@@ -374,12 +397,14 @@ pub fn optimize_cycle(
         spec.segment[i].params = params;
         ms_spec.segment[i].law = Some("modified-sine".into());
         ms_spec.segment[i].params = Default::default();
+        step();
     }
     let quiet = loomkin_laws::Cycle::new(&spec)?;
     let reference = loomkin_laws::Cycle::new(&ms_spec)?;
     let band_residual = |c: &loomkin_laws::Cycle| -> Result<f64> {
         let failure = std::cell::RefCell::new(None);
         let at = |rpm: f64| -> f64 {
+            step();
             let r = loomkin_units::ShaftSpeed::from_rpm(rpm)
                 .map_err(DynError::from)
                 .and_then(|n| crate::Response::new(c, n, follower, crate::Start::Rest, 1));
@@ -403,13 +428,15 @@ pub fn optimize_cycle(
         Ok(r.summary().peak_input_acceleration.value)
     };
     let cycle_toml = toml::to_string(&spec).map_err(|e| DynError::Optimizer { reason: e.to_string() })?;
-    Ok(Optimized {
+    let optimized = Optimized {
         cycle_toml,
         segments,
         cycle_residual_si: band_residual(&quiet)?,
         cycle_residual_modified_sine_si: band_residual(&reference)?,
         peak_acceleration_ratio: peak(&quiet)? / peak(&reference)?,
-    })
+    };
+    progress(done.get(), done.get());
+    Ok(optimized)
 }
 
 #[cfg(test)]
@@ -429,6 +456,28 @@ mod tests {
             assert!(matches!(&e, DynError::Input { field, .. } if field == "band_pct"), "{rpm} rpm ± {pct} %: {e}");
             assert!(e.to_string().contains("narrow --band-pct"), "{e}");
         }
+    }
+
+    /// The progress of an optimisation counts up, ends at `done == all` (one step per shaped move
+    /// and per band response), and the result is the one without progress, bit for bit.
+    #[test]
+    fn progress_counts_up_to_the_end_and_changes_nothing() {
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/heald-frame-cycle.toml"))
+                .unwrap();
+        let f = crate::Follower::new(60.0, 0.0).unwrap();
+        let speed = loomkin_units::ShaftSpeed::from_rpm(300.0).unwrap();
+        let calls = std::cell::RefCell::new(Vec::new());
+        let with = optimize_cycle_with(&text, speed, 10.0, &f, &|d, a| calls.borrow_mut().push((d, a))).unwrap();
+        let without = optimize_cycle(&text, speed, 10.0, &f).unwrap();
+        assert_eq!(with.cycle_toml, without.cycle_toml);
+        assert_eq!(with.cycle_residual_si.to_bits(), without.cycle_residual_si.to_bits());
+        let calls = calls.into_inner();
+        assert!(calls.windows(2).all(|w| w[1].0 >= w[0].0 && w[1].0 <= w[1].1), "{calls:?}");
+        let &(done, all) = calls.last().unwrap();
+        assert_eq!(done, all);
+        // Two moves shaped, then at least the band grid's points twice.
+        assert!(done >= 2 + 2 * (BAND_GRID + 1), "{done}");
     }
 
     /// The hat-function rows reproduce the residual of a law built from the same knots.

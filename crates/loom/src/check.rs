@@ -68,9 +68,17 @@ pub struct CheckReport {
 
 /// Checks `loom` weaving `pattern`.
 pub fn check(loom: &Loom, pattern: &Pattern) -> Result<CheckReport> {
+    check_with(loom, pattern, &|_, _| {})
+}
+
+/// [`check`], calling `progress(done, all)` as it goes (`all` is the number of picks and 2: the
+/// windows, each pick's turn of the torque grid, the RMS), for a progress bar on a long repeat.
+pub fn check_with(loom: &Loom, pattern: &Pattern, progress: &dyn Fn(usize, usize)) -> Result<CheckReport> {
+    let all = pattern.picks() + 2;
     let motion = Motion::new(loom, pattern)?;
     let drive = Drive::new(loom, &motion, pattern);
     let timing: TimingReport = Timing::new(loom, &motion, pattern)?.report_of(false)?;
+    progress(1, all);
     let g = &loom.geometry;
     let equal = equal_strain_strokes(&g.frame_m, g.back_rest_m, g.warp_line_m, g.stroke_m[0]);
     let frames: Vec<FrameCheck> = (0..loom.frame_count())
@@ -99,7 +107,9 @@ pub fn check(loom: &Loom, pattern: &Pattern) -> Result<CheckReport> {
         })
         .collect();
     let max_strain_frame = frames.iter().max_by(|a, b| a.max_strain.total_cmp(&b.max_strain)).map_or(1, |f| f.frame);
-    let peak = drive.peak(0.5);
+    let peak = drive.peak_with(0.5, &|p| progress(1 + p, all));
+    let rms_torque_n_m = drive.rms();
+    progress(all, all);
     Ok(CheckReport {
         loom: loom.name.clone(),
         speed_rpm: loom.speed.rpm(),
@@ -110,7 +120,7 @@ pub fn check(loom: &Loom, pattern: &Pattern) -> Result<CheckReport> {
         picks: pattern.picks(),
         peak_torque_n_m: peak.torque_n_m.abs(),
         peak_angle_deg: peak.angle_deg,
-        rms_torque_n_m: drive.rms(),
+        rms_torque_n_m,
         min_clearance_mm: timing.min_clearance_mm,
         window_deg: timing.window_deg,
         window_open_deg: timing.open_deg,

@@ -272,7 +272,7 @@ impl<'a> Drive<'a> {
     fn torque_values_cached(&self, step_deg: f64, cache: &mut TableCache) -> (f64, Vec<f64>) {
         let g = self.grid(step_deg, cache);
         let mut t = Vec::with_capacity(g.n);
-        self.for_each_value(&g, cache, |v| t.push(v));
+        self.for_each_value(&g, cache, &|_| {}, |v| t.push(v));
         (g.h, t)
     }
 
@@ -321,15 +321,19 @@ impl<'a> Drive<'a> {
     /// every move: the points of turn `p` get, frame by frame in order, the tables of the moves
     /// into the picks around `p` (the move into pick `q` meets the grid from index
     /// `k0 + q·per_turn`). Otherwise every point is evaluated directly.
-    fn for_each_value(&self, g: &Grid, cache: &TableCache, mut f: impl FnMut(f64)) {
+    /// `turn_done(p)` is called once the first `p` turns are read (at the end only when every
+    /// point is evaluated directly).
+    fn for_each_value(&self, g: &Grid, cache: &TableCache, turn_done: &dyn Fn(usize), mut f: impl FnMut(f64)) {
         if g.per_turn == 0 {
             (0..g.n).for_each(|k| f(self.torque_at(k as f64 * g.h)));
+            turn_done(self.motion.picks());
             return;
         }
         let mut buf = vec![0.0; g.per_turn];
         for p in 0..self.motion.picks() {
             self.fill_turn(g, cache, p, &mut buf);
             buf.iter().for_each(|&v| f(v));
+            turn_done(p + 1);
         }
     }
 
@@ -397,6 +401,11 @@ impl<'a> Drive<'a> {
     /// one turn at a time (see [`Drive::torque_curve`]): what it holds does not grow with the
     /// number of picks.
     pub fn peak(&self, step_deg: f64) -> Peak {
+        self.peak_with(step_deg, &|_| {})
+    }
+
+    /// [`Drive::peak`], calling `turn_done(p)` once the grid's first `p` turns are read.
+    pub(crate) fn peak_with(&self, step_deg: f64, turn_done: &dyn Fn(usize)) -> Peak {
         let mut cache = TableCache::default();
         let g = self.grid(step_deg, &mut cache);
         let last = if g.per_turn == 0 {
@@ -407,7 +416,7 @@ impl<'a> Drive<'a> {
             buf[g.per_turn - 1]
         };
         let mut top = TopPeaks::new(g.n, last);
-        self.for_each_value(&g, &cache, |v| top.push(v));
+        self.for_each_value(&g, &cache, turn_done, |v| top.push(v));
         self.refine_peaks(g.h, |k| k as f64 * g.h, top.finish())
     }
 

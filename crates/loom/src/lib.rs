@@ -45,7 +45,7 @@ mod timetrue;
 mod timing;
 mod turns;
 
-pub use check::{CheckReport, FrameCheck, check};
+pub use check::{CheckReport, FrameCheck, check, check_with};
 pub use diagram::{
     DEFAULT_TIMING_PICKS, DEFAULT_TIMING_STEP_DEG, TIMING_STEP_RANGE, TimingCurves, timing_curves, timing_diagram,
     torque_figure,

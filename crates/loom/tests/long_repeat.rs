@@ -5,7 +5,7 @@
 
 mod common;
 use common::*;
-use loomkin_loom::{Drive, Loom, Motion, Pattern, Timing, check};
+use loomkin_loom::{Drive, Loom, Motion, Pattern, Timing, check, check_with};
 /// `pattern` repeated `times` times.
 fn repeated(pattern: &Pattern, shafts: usize, times: usize) -> Pattern {
     let rows: Vec<Vec<bool>> = (0..times)
@@ -148,4 +148,19 @@ fn the_streamed_curve_is_the_curve() {
             assert!(close(table.seconds, loomkin_units::Cost::SHARED * n * Drive::CPU_S_PER_POINT, 1e-12));
         }
     }
+}
+
+/// `check_with`'s progress counts every pick's turn, ends at `done == all` (the picks and 2), and
+/// the report is `check`'s.
+#[test]
+fn check_progress_counts_the_picks() {
+    let (loom, pattern) = (rapier(), scrambled(120, 24));
+    let calls = std::cell::RefCell::new(Vec::new());
+    let with = check_with(&loom, &pattern, &|d, a| calls.borrow_mut().push((d, a))).unwrap();
+    assert_eq!(format!("{with:?}"), format!("{:?}", check(&loom, &pattern).unwrap()));
+    let calls = calls.into_inner();
+    assert!(calls.iter().all(|&(_, a)| a == 122));
+    assert!(calls.windows(2).all(|w| w[1].0 == w[0].0 + 1), "{calls:?}");
+    assert_eq!(calls.first(), Some(&(1, 122)));
+    assert_eq!(calls.last(), Some(&(122, 122)));
 }

@@ -4,7 +4,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::io::IsTerminal;
 
-/// Rows evaluated per parallel task (and per progress-bar update).
+/// Rows evaluated per parallel task (and per progress-bar update), at most: a table of fewer
+/// than 64 such chunks is cut into 64 (a few thousand heavy draws still move the bar).
 const CHUNK: usize = 2048;
 
 /// Whether and how to show progress while a table is evaluated.
@@ -18,17 +19,35 @@ pub enum Progress {
 }
 
 impl Progress {
-    fn bar(self, len: usize, label: &str) -> ProgressBar {
-        let show = self == Progress::Auto && std::io::stderr().is_terminal() && len >= 4 * CHUNK;
-        if !show {
-            return ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::hidden());
+    /// The bar: hidden unless `Auto` and standard error is a terminal, and drawn only once the
+    /// run has lasted a second ([`Bar::inc`]), so a quick table shows nothing.
+    fn bar(self, len: usize, label: &str) -> Bar {
+        let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::hidden());
+        let live = self == Progress::Auto && std::io::stderr().is_terminal();
+        if live {
+            if let Ok(style) = ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} ({per_sec}, eta {eta})") {
+                bar.set_style(style);
+            }
+            bar.set_message(label.to_string());
         }
-        let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) = ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} ({per_sec}, eta {eta})") {
-            bar.set_style(style);
+        Bar { bar, live, start: std::time::Instant::now(), shown: std::sync::Once::new() }
+    }
+}
+
+/// A progress bar that appears after a second (see [`Progress::bar`]).
+struct Bar {
+    bar: ProgressBar,
+    live: bool,
+    start: std::time::Instant,
+    shown: std::sync::Once,
+}
+
+impl Bar {
+    fn inc(&self, n: u64) {
+        self.bar.inc(n);
+        if self.live && self.start.elapsed().as_secs_f64() > 1.0 {
+            self.shown.call_once(|| self.bar.set_draw_target(ProgressDrawTarget::stderr()));
         }
-        bar.set_message(label.to_string());
-        bar
     }
 }
 
@@ -42,17 +61,18 @@ where
     F: Fn(usize) -> R + Sync,
 {
     let bar = progress.bar(n, label);
-    let chunks: Vec<Vec<R>> = (0..n.div_ceil(CHUNK))
+    let chunk = (n / 64).clamp(1, CHUNK);
+    let chunks: Vec<Vec<R>> = (0..n.div_ceil(chunk))
         .into_par_iter()
         .map(|c| {
-            let lo = c * CHUNK;
-            let hi = (lo + CHUNK).min(n);
+            let lo = c * chunk;
+            let hi = (lo + chunk).min(n);
             let out: Vec<R> = (lo..hi).map(&f).collect();
             bar.inc((hi - lo) as u64);
             out
         })
         .collect();
-    bar.finish_and_clear();
+    bar.bar.finish_and_clear();
     let mut out = Vec::with_capacity(n);
     for c in chunks {
         out.extend(c);

@@ -367,3 +367,26 @@ fn servo_emit_tables_with_a_bad_step_or_a_file_for_a_folder_stops_before_any_out
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("not a folder"));
 }
+
+/// Long runs draw a progress bar on a terminal only: on a pipe, standard error stays empty
+/// (`loom check` of 9,600 picks, `dyn optimize`, `dobby tolerance`; the bars themselves are
+/// checked by hand under `script`, see docs/design/robustness.md).
+#[test]
+fn long_runs_print_no_progress_on_a_pipe() {
+    let dir = scratch("quiet");
+    let plan = dir.join("plan.txt");
+    let row = |p: usize| (0..12).map(|k| ((p % 48 + 2 * k) % 24 + 1).to_string()).collect::<Vec<_>>().join(" ");
+    std::fs::write(&plan, (0..9_600).map(row).collect::<Vec<_>>().join("\n") + "\n").unwrap();
+    let runs: [&[&str]; 3] = [
+        &["loom", "check", &ex("rapier-loom.toml"), "--lift-plan", plan.to_str().unwrap()],
+        &["dyn", "optimize", &ex("heald-frame-cycle.toml"), "--natural-hz", "60", "--band-pct", "50"],
+        &["dobby", "tolerance", &ex("dobby-tolerance.toml")],
+    ];
+    for args in runs {
+        let out = loomkin().args(args).output().unwrap();
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(!out.stdout.is_empty(), "{args:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
