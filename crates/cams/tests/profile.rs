@@ -726,3 +726,91 @@ fn steep_cam_sharpest_bend_is_found() {
     assert!((rmin - want).abs() < 1e-9 * want, "{rmin} mm at {at}° vs {want} mm at {x}°");
     assert!((at_rise - x).abs() < 1e-7, "{rmin} mm at {at}° vs {want} mm at {x}°");
 }
+
+/// A conjugate pair reports each cam's own extremes (issue 27: an asymmetric cycle's pair
+/// reported the counter-cam's 26.25° as its one pressure angle, the cam's own 23.30° nowhere):
+/// each against the cam's points sampled every 0.01° (an independent route: the grid's largest
+/// |pressure angle| and least convex radius), and the pair's keys as the larger / smaller of the two.
+#[test]
+fn a_conjugate_pair_reports_each_cam() {
+    let asymmetric = Cycle::from_toml(
+        "unit = \"mm\"\nstroke = 60\n[[segment]]\nkind = \"rise\"\nto_deg = 100\nlaw = \"cycloidal\"\n\
+         [[segment]]\nkind = \"dwell\"\nto_deg = 150\n[[segment]]\nkind = \"return\"\nto_deg = 330\n\
+         law = \"poly345\"\n[[segment]]\nkind = \"dwell\"\nto_deg = 360\n",
+    )
+    .unwrap();
+    let cases = [
+        (Motion::from_cycle(&asymmetric), Follower::Translating { offset_mm: 10.0 }, 80.0),
+        (heald(), Follower::Translating { offset_mm: 9.0 }, 70.0),
+        (
+            rise_return("modified-sine", StrokeUnit::Deg, 25.0, 100.0),
+            Follower::Oscillating { arm_mm: 90.0, pivot_mm: 110.0 },
+            40.0,
+        ),
+    ];
+    for (m, f, rp) in cases {
+        let cam = CamProfile::new(&m, &design(f, Closure::Conjugate, 6.0, Size::PrimeRadiusMm(rp))).unwrap();
+        let report = cam.report("t", 1.0);
+        let cams = report.cams.clone().unwrap();
+        assert_eq!(cams.iter().map(|c| c.cam).collect::<Vec<_>>(), ["cam", "counter"]);
+        for (t, c) in cams.iter().enumerate() {
+            let pts = cam.sample(t, 0.01);
+            let (p, at) = pts
+                .iter()
+                .map(|q| (q.pressure_angle_deg.abs(), q.angle_deg))
+                .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+            assert!(
+                c.max_pressure_angle_deg >= p - 1e-9 && c.max_pressure_angle_deg - p < 1e-4,
+                "track {t}: {} vs {p}",
+                c.max_pressure_angle_deg
+            );
+            assert!(
+                (c.max_pressure_angle_at_deg - at).abs() < 0.02,
+                "track {t}: at {} vs {at}",
+                c.max_pressure_angle_at_deg
+            );
+            let kmax = pts.iter().map(|q| q.curvature_pitch_per_mm).fold(f64::NEG_INFINITY, f64::max);
+            assert!(
+                c.min_convex_radius_pitch_mm <= 1.0 / kmax + 1e-9
+                    && (c.min_convex_radius_pitch_mm * kmax - 1.0).abs() < 1e-4,
+                "track {t}"
+            );
+            assert_eq!(c.min_convex_radius_profile_mm, Some(c.min_convex_radius_pitch_mm - 6.0));
+        }
+        let e = report.extremes;
+        assert_eq!(e.max_pressure_angle_deg, cams[0].max_pressure_angle_deg.max(cams[1].max_pressure_angle_deg));
+        assert_eq!(
+            e.min_convex_radius_pitch_mm,
+            cams[0].min_convex_radius_pitch_mm.min(cams[1].min_convex_radius_pitch_mm)
+        );
+        assert_eq!(report.counter_max_pressure_angle_deg, Some(cams[1].max_pressure_angle_deg));
+    }
+    // An oscillating pair of an asymmetric cycle: each cam's largest angle is at its own place
+    // (the pair's, before the only one reported, is the counter-cam's).
+    let swing = Cycle::from_toml(
+        "unit = \"deg\"\nstroke = 25\n[[segment]]\nkind = \"rise\"\nto_deg = 100\nlaw = \"cycloidal\"\n\
+         [[segment]]\nkind = \"dwell\"\nto_deg = 150\n[[segment]]\nkind = \"return\"\nto_deg = 330\n\
+         law = \"poly345\"\n[[segment]]\nkind = \"dwell\"\nto_deg = 360\n",
+    )
+    .unwrap();
+    let cam = CamProfile::new(
+        &Motion::from_cycle(&swing),
+        &design(
+            Follower::Oscillating { arm_mm: 90.0, pivot_mm: 110.0 },
+            Closure::Conjugate,
+            6.0,
+            Size::PrimeRadiusMm(40.0),
+        ),
+    )
+    .unwrap();
+    let cams = cam.cam_reports().unwrap();
+    assert!((cams[0].max_pressure_angle_at_deg - cams[1].max_pressure_angle_at_deg).abs() > 1.0, "{cams:?}");
+    assert_eq!(cam.max_pressure_angle().0, cams[0].max_pressure_angle_deg.max(cams[1].max_pressure_angle_deg));
+    // A single cam has no `cams`.
+    let single = CamProfile::new(
+        &heald(),
+        &design(Follower::Translating { offset_mm: 0.0 }, Closure::Single, 6.0, Size::PrimeRadiusMm(70.0)),
+    )
+    .unwrap();
+    assert!(single.cam_reports().is_none() && single.report("t", 1.0).cams.is_none());
+}

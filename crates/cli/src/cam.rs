@@ -288,6 +288,16 @@ fn print_profile(a: &ProfileArgs, cam: &CamProfile, design: &CamDesign, undercut
     )?;
     outln!("  pressure angle        max {}° at {}°", compact(pmax), compact(pat))?;
     outln!("  pitch curve           least convex radius of curvature {} mm at {}°", compact(rmin), compact(rat))?;
+    for c in cam.cam_reports().unwrap_or_default() {
+        outln!(
+            "  {:<21} pressure angle max {}° at {}°; least convex pitch radius {} mm at {}°",
+            c.description(),
+            compact(c.max_pressure_angle_deg),
+            compact(c.max_pressure_angle_at_deg),
+            compact(c.min_convex_radius_pitch_mm),
+            compact(c.min_convex_radius_pitch_at_deg)
+        )?;
+    }
     if let Some(rmax) = cam.roller_max_mm() {
         outln!("  roller                {} mm; largest without undercut {} mm", compact(r), compact(rmax))?;
     }

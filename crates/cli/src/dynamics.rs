@@ -533,14 +533,21 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
 }
 
 /// The laws named on the command line: `(label, column key, law)`.
+/// The laws of `dyn spectrum`: label, column key and law. The key is the law's name, with the
+/// parameters given (`modified-trapezoid_ramp_0.1`) or the cycle file's name and the segment
+/// (`heald-frame-cycle_modified-sine_seg1`); a key given twice gets `_2`, `_3`, … so every CSV
+/// column has its own name.
 fn spectrum_laws(tokens: &[String]) -> Result<Vec<(String, String, loomkin_laws::Law)>> {
-    let mut out = Vec::new();
+    let mut out: Vec<(String, String, loomkin_laws::Law)> = Vec::new();
     for tok in tokens {
         if tok.ends_with(".toml") {
-            let cycle = read_cycle(Path::new(tok))?;
+            let path = Path::new(tok);
+            let cycle = read_cycle(path)?;
+            let stem = path.file_stem().map_or_else(|| tok.clone(), |s| s.to_string_lossy().into_owned());
             for (i, seg) in cycle.segments.iter().enumerate() {
                 if let Some((spec, law)) = &seg.law {
-                    out.push((format!("{tok} #{i}: {}", spec.label()), format!("{}_seg{i}", spec.name()), law.clone()));
+                    let key = format!("{stem}_{}_seg{i}", spec.name());
+                    out.push((format!("{tok} #{i}: {}", spec.label()), key, law.clone()));
                 }
             }
             continue;
@@ -550,7 +557,16 @@ fn spectrum_laws(tokens: &[String]) -> Result<Vec<(String, String, loomkin_laws:
             None => (tok.as_str(), Vec::new()),
         };
         let (spec, law) = crate::law::build(name, &params)?;
-        out.push((spec.label(), spec.name().to_string(), law));
+        let key = params.iter().fold(spec.name().to_string(), |k, (p, v)| format!("{k}_{p}_{v}"));
+        out.push((spec.label(), key, law));
+    }
+    let mut seen = std::collections::HashMap::<String, usize>::new();
+    for (_, key, _) in &mut out {
+        let n = seen.entry(key.clone()).or_insert(0);
+        *n += 1;
+        if *n > 1 {
+            *key = format!("{key}_{n}");
+        }
     }
     Ok(out)
 }

@@ -33,6 +33,6 @@ pub use lift::Lift;
 /// The drawing's shapes (here in mm, cam frame: the cam centre at the origin, the follower at
 /// main-shaft angle 0° along the phase mark), the one drawing type of loomkin-io.
 pub use loomkin_io::drawing::{Layered, Shape};
-pub use report::{PointReport, ProfileExtremes, ProfileReport};
+pub use report::{CamReport, PointReport, ProfileExtremes, ProfileReport};
 pub use track::{Track, TrackJets, curvature, offset};
 pub use undercut::{Undercut, UndercutKind};

@@ -68,19 +68,49 @@ impl From<&CamPoint> for PointReport {
 }
 
 /// The extremes every report of a cam states (keys of `loomkin cam profile --json`, flattened into
-/// [`ProfileReport`] and the web's cam report).
+/// [`ProfileReport`] and the web's cam report). For a conjugate pair each is the pair's: the
+/// larger pressure angle, the smaller radius, of the two cams (each cam's own are in
+/// [`ProfileReport::cams`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ProfileExtremes {
-    /// Largest |pressure angle| of every track (deg).
+    /// Largest |pressure angle| of every track (deg): a conjugate pair's larger of its two cams'.
     pub max_pressure_angle_deg: f64,
     /// Where it occurs (main-shaft deg).
     pub max_pressure_angle_at_deg: f64,
-    /// Least radius of curvature of the pitch curve where it is convex (mm).
+    /// Least radius of curvature of the pitch curve where it is convex (mm): a conjugate pair's
+    /// smaller of its two cams'.
     pub min_convex_radius_pitch_mm: f64,
     /// Where it occurs (main-shaft deg).
     pub min_convex_radius_pitch_at_deg: f64,
     /// Whether the profile is undercut (or has a cusp).
     pub undercut: bool,
+}
+
+/// One cam of a conjugate pair with its own extremes (`loomkin cam profile --conjugate --json`,
+/// key `cams`: the cam, then the counter-cam).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CamReport {
+    /// `cam` (the main cam, whose points are `points`) or `counter` (the counter-cam, `counter_points`).
+    pub cam: &'static str,
+    /// Largest |pressure angle| of this cam (deg).
+    pub max_pressure_angle_deg: f64,
+    /// Where it occurs (main-shaft deg).
+    pub max_pressure_angle_at_deg: f64,
+    /// Least radius of curvature of this cam's pitch curve where it is convex (mm).
+    pub min_convex_radius_pitch_mm: f64,
+    /// Where it occurs (main-shaft deg).
+    pub min_convex_radius_pitch_at_deg: f64,
+    /// Roller follower: least convex radius of this cam's working profile (mm), pitch radius less
+    /// the roller.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_convex_radius_profile_mm: Option<f64>,
+}
+
+impl CamReport {
+    /// `cam` or `counter` in words: `main cam`, `counter-cam`.
+    pub fn description(&self) -> &'static str {
+        if self.cam == "cam" { "main cam" } else { "counter-cam" }
+    }
 }
 
 /// A cam profile's report: the design, the sizes and extremes, and the points of each track.
@@ -147,6 +177,9 @@ pub struct ProfileReport {
     /// Conjugate pair: where it occurs (main-shaft deg).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub counter_max_pressure_angle_at_deg: Option<f64>,
+    /// Conjugate pair: each cam's own extremes, the cam then the counter-cam ([`CamProfile::cam_reports`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cams: Option<Vec<CamReport>>,
     /// The cam's points.
     pub points: Vec<PointReport>,
     /// Conjugate pair: the counter-cam's points.
@@ -155,6 +188,26 @@ pub struct ProfileReport {
 }
 
 impl CamProfile {
+    /// A conjugate pair's two cams, each with its own extremes; `None` for a single or groove cam.
+    pub fn cam_reports(&self) -> Option<Vec<CamReport>> {
+        if self.track_count() != 2 {
+            return None;
+        }
+        let roller = self.roller_max_mm().map(|_| self.design().roller_radius_mm);
+        let cams = self.track_extremes_all().iter().zip(["cam", "counter"]).map(|(e, cam)| {
+            let radius = 1.0 / e.max_convex_curvature_per_mm;
+            CamReport {
+                cam,
+                max_pressure_angle_deg: e.max_pressure_angle_deg,
+                max_pressure_angle_at_deg: e.max_pressure_angle_at_deg,
+                min_convex_radius_pitch_mm: radius,
+                min_convex_radius_pitch_at_deg: e.max_convex_curvature_at_deg,
+                min_convex_radius_profile_mm: roller.map(|r| radius - r),
+            }
+        });
+        Some(cams.collect())
+    }
+
     /// The report of this cam with its points every `step_deg` (see [`CamProfile::sample`]);
     /// `source` names where the motion came from.
     pub fn report(&self, source: impl Into<String>, step_deg: f64) -> ProfileReport {
@@ -201,6 +254,7 @@ impl CamProfile {
             face_max_mm: flat.map(|f| f.face_max_mm),
             counter_max_pressure_angle_deg: counter.map(|e| e.max_pressure_angle_deg),
             counter_max_pressure_angle_at_deg: counter.map(|e| e.max_pressure_angle_at_deg),
+            cams: self.cam_reports(),
             points: points(0),
             counter_points: counter.map(|_| points(1)),
         }

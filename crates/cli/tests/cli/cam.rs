@@ -384,3 +384,54 @@ fn oscillating_sizing_finds_a_narrow_minimum() {
     let p = v["max_pressure_angle_deg"].as_f64().unwrap();
     assert!(p <= 38.35344 + 1e-12 && p > 38.3534, "{p}");
 }
+
+/// `cam profile --conjugate` reports each cam (issue 27: one pressure angle and radius for the
+/// pair, the main cam's own nowhere): `cams` in JSON, the cam then the counter-cam, whose values
+/// the pair's keys are the larger / smaller of; a line per cam in the text.
+#[test]
+fn a_conjugate_pair_reports_each_cam() {
+    let args = [
+        "cam",
+        "profile",
+        "../../examples/heald-frame-cycle.toml",
+        "--follower",
+        "translating",
+        "--offset-mm",
+        "10",
+        "--conjugate",
+        "--prime-radius-mm",
+        "60",
+        "--roller-radius-mm",
+        "6",
+    ];
+    let mut json = args.to_vec();
+    json.push("--json");
+    let v = stdout_json(&json);
+    let cams = v["cams"].as_array().unwrap();
+    assert_eq!(cams.len(), 2);
+    assert_eq!((cams[0]["cam"].as_str(), cams[1]["cam"].as_str()), (Some("cam"), Some("counter")));
+    let f = |c: &serde_json::Value, k: &str| c[k].as_f64().unwrap();
+    let pmax = f(&cams[0], "max_pressure_angle_deg").max(f(&cams[1], "max_pressure_angle_deg"));
+    assert_eq!(f(&v, "max_pressure_angle_deg"), pmax);
+    assert_eq!(f(&v, "counter_max_pressure_angle_deg"), f(&cams[1], "max_pressure_angle_deg"));
+    let rmin = f(&cams[0], "min_convex_radius_pitch_mm").min(f(&cams[1], "min_convex_radius_pitch_mm"));
+    assert_eq!(f(&v, "min_convex_radius_pitch_mm"), rmin);
+    for c in cams {
+        assert_eq!(f(c, "min_convex_radius_profile_mm"), f(c, "min_convex_radius_pitch_mm") - 6.0);
+    }
+    let out = loomkin().args(args).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("  main cam              pressure angle max"), "{text}");
+    assert!(text.contains("  counter-cam           pressure angle max"), "{text}");
+    // A single cam has no `cams`.
+    let single = stdout_json(&[
+        "cam",
+        "profile",
+        "../../examples/heald-frame-cycle.toml",
+        "--follower",
+        "translating",
+        "--json",
+    ]);
+    assert!(single.get("cams").is_none());
+}

@@ -219,3 +219,47 @@ fn a_tiny_two_mass_mass_is_named() {
     let args = run("10", "1e-12");
     usage_error(&args.iter().map(String::as_str).collect::<Vec<_>>(), &["frame_mass_kg = ", "allowed", "kg"]);
 }
+
+/// Every `dyn spectrum --csv` column has its own name (issue 27: two parameters of one law, or
+/// two cycle files, gave the same name): the parameters given and the file's name are in it, a
+/// law given twice is numbered; a plain catalogue law keeps its name.
+#[test]
+fn spectrum_columns_are_unique_and_say_which_law() {
+    let out = loomkin()
+        .args([
+            "dyn",
+            "spectrum",
+            "modified-trapezoid:ramp=0.1",
+            "modified-trapezoid:ramp=0.2",
+            "cycloidal",
+            "cycloidal",
+            HEALD,
+            "--ratio",
+            "1:2:1",
+            "--damping-ratio",
+            "0,0.1",
+            "--csv",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let unique: std::collections::BTreeSet<&str> = head.iter().copied().collect();
+    assert_eq!(unique.len(), head.len(), "{head:?}");
+    assert_eq!(head.len(), 1 + 2 * 6);
+    for name in [
+        "residual_pct_of_stroke_modified-trapezoid_ramp_0.1_zeta_0",
+        "residual_pct_of_stroke_modified-trapezoid_ramp_0.2_zeta_0.1",
+        "residual_pct_of_stroke_cycloidal_zeta_0",
+        "residual_pct_of_stroke_cycloidal_2_zeta_0",
+        "residual_pct_of_stroke_heald-frame-cycle_modified-sine_seg1_zeta_0",
+        "residual_pct_of_stroke_heald-frame-cycle_modified-trapezoid_seg3_zeta_0.1",
+    ] {
+        assert!(head.contains(&name), "{name} not in {head:?}");
+    }
+    // The two parameters give two curves.
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert!(rows.iter().any(|r| (r[1] - r[3]).abs() > 1e-6), "{rows:?}");
+}
