@@ -71,6 +71,7 @@ NO_PYTHON_CALL = {
     # landed first; the Python module loomkin.insertion is the issue's item 6, not written yet.
     "insert budget": "loomkin.insertion not written yet (issue 30 item 6)",
     "insert rapier": "loomkin.insertion not written yet (issue 30 item 6)",
+    "insert projectile": "loomkin.insertion not written yet (issue 30 item 6)",
 }
 
 

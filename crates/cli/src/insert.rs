@@ -19,6 +19,9 @@ pub enum InsertCommand {
     /// A double rapier (`[insertion] kind = "rapier"`): the transfer, the heads' peaks, their clearance in the shed
     /// over every pick of the pattern.
     Rapier(RapierArgs),
+    /// Torsion-bar projectile picking (`[insertion] kind = "projectile"`): the bar's energy, the launch speed, the
+    /// flight and arrival angle, the brake, the sley's dwell, the guide teeth's clearance over every pick.
+    Projectile(crate::insert_air::ProjectileArgs),
 }
 
 /// `loomkin insert budget`.
@@ -59,6 +62,7 @@ pub fn run(cmd: InsertCommand) -> Result<()> {
     match cmd {
         InsertCommand::Budget(a) => run_budget(a),
         InsertCommand::Rapier(a) => run_rapier(a),
+        InsertCommand::Projectile(a) => crate::insert_air::run_projectile(a),
     }
 }
 
@@ -160,21 +164,62 @@ pub struct RapierArgs {
     plot: crate::util::PlotOpts,
 }
 
-fn run_rapier(a: RapierArgs) -> Result<()> {
-    output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
-    let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
-    let speed = match a.speed_rpm {
-        Some(v) => ShaftSpeed::from_rpm_field("--speed-rpm", v)?,
-        None => loom.speed,
-    };
-    let named = |e: loomkin_loom::LoomError| anyhow!("{}: {e}", a.loom.display());
-    let c = loomkin_loom::insertion::rapier_check(&loom, &pattern, speed).map_err(named)?;
-    if let Some(out) = &a.output {
-        let fig = loomkin_loom::insertion::rapier_figure(&loom, &pattern, &c, speed).map_err(named)?;
-        return output::figure(&fig, out, &a.plot);
+/// What a carrier's command does first and last: its output path checked, the loom file and the
+/// pattern read, the speed (the flag's, else the file's); then the check run and, when asked, its
+/// plot written or its JSON printed.
+pub(crate) struct CarrierRun<'a> {
+    pub(crate) loom_path: &'a Path,
+    pub(crate) output: Option<&'a PathBuf>,
+    pub(crate) plot: &'a crate::util::PlotOpts,
+    pub(crate) json: bool,
+}
+
+impl CarrierRun<'_> {
+    /// The loom, the pattern and the speed.
+    pub(crate) fn read(
+        &self,
+        pattern: &PatternArgs,
+        speed_rpm: Option<f64>,
+    ) -> Result<(Loom, loomkin_loom::Pattern, ShaftSpeed)> {
+        output::check_outputs([self.output.map(|p| Out::plot("--output", p))])?;
+        let (loom, pattern) = crate::loom::read(self.loom_path, pattern)?;
+        let speed = match speed_rpm {
+            Some(v) => ShaftSpeed::from_rpm_field("--speed-rpm", v)?,
+            None => loom.speed,
+        };
+        Ok((loom, pattern, speed))
     }
-    if a.json {
-        return output::json(&c);
+
+    /// A loom error named with the file.
+    pub(crate) fn named(&self, e: loomkin_loom::LoomError) -> anyhow::Error {
+        anyhow!("{}: {e}", self.loom_path.display())
+    }
+
+    /// The plot (with `-o`) or the JSON (with `--json`) of `check`; `false` when neither was asked.
+    pub(crate) fn plot_or_json<T: serde::Serialize>(
+        &self,
+        check: &T,
+        figure: impl FnOnce() -> loomkin_loom::Result<loomkin_plot::Figure>,
+    ) -> Result<bool> {
+        if let Some(out) = self.output {
+            let fig = figure().map_err(|e| self.named(e))?;
+            output::figure(&fig, out, self.plot)?;
+            return Ok(true);
+        }
+        if self.json {
+            output::json(check)?;
+            return Ok(true);
+        }
+        Ok(false)
+    }
+}
+
+fn run_rapier(a: RapierArgs) -> Result<()> {
+    let run = CarrierRun { loom_path: &a.loom, output: a.output.as_ref(), plot: &a.plot, json: a.json };
+    let (loom, pattern, speed) = run.read(&a.pattern, a.speed_rpm)?;
+    let c = loomkin_loom::insertion::rapier_check(&loom, &pattern, speed).map_err(|e| run.named(e))?;
+    if run.plot_or_json(&c, || loomkin_loom::insertion::rapier_figure(&loom, &pattern, &c, speed))? {
+        return Ok(());
     }
     let r = &c.rapier;
     outln!(

@@ -15,6 +15,7 @@ mod fields_doc;
 #[cfg(test)]
 mod front_end_literals;
 mod insert;
+mod insert_air;
 mod law;
 mod loom;
 mod loom_servo;

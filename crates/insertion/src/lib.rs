@@ -10,13 +10,35 @@
 //!
 //! * [`budget`] — the time budget `n = v̄·θ/(6·(W + L))`, its converse, energy and power per pick.
 //! * [`rapier`] — the double rapier: bringer and taker drives (crank, cam, servo), the transfer.
+//! * [`projectile`] — torsion-bar picking: the bar's energy, the launch, the flight, the brake.
 #![deny(missing_docs)]
 
 pub mod budget;
+pub mod projectile;
 pub mod rapier;
 
 pub use budget::{BudgetReport, PickBudget, WindowSource, max_speed_rpm, required_speed_m_s, window_needed_deg};
+pub use projectile::{
+    CarrierError, Flight, Projectile, ProjectilePath, ProjectileReport, ProjectileTable, torsion_stiffness,
+};
 pub use rapier::{DriveTable, HeadDrive, HeadMotion, HeadReport, Rapier, RapierError, RapierReport, RapierTable};
+
+/// The air the carriers move through, and gravity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Atmosphere;
+
+impl Atmosphere {
+    /// `air_density_kg_m3`: 0.5 ≤ ρ ≤ 2 kg/m³, default 1.2 kg/m³.
+    pub const AIR_DENSITY_KG_M3: loomkin_units::Field = loomkin_units::Field::new(
+        "air_density_kg_m3",
+        loomkin_units::Range::closed(0.5, 2.0, "kg/m³"),
+        "Density of the air in the weaving room: 0.5 ≤ ρ ≤ 2 kg/m³; 1.2 kg/m³ (20 °C at sea level) when left \
+         out.",
+    )
+    .with_default(1.2);
+    /// Standard gravity, m/s².
+    pub const GRAVITY_M_S2: f64 = 9.806_65;
+}
 
 /// The descriptors of this crate's inputs.
 pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
@@ -36,4 +58,19 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     DriveTable::WHEEL_MM,
     DriveTable::STROKE_MM,
     DriveTable::MOTION_DEG,
+    Atmosphere::AIR_DENSITY_KG_M3,
+    ProjectileTable::BAR_DIAMETER_MM,
+    ProjectileTable::BAR_LENGTH_MM,
+    ProjectileTable::SHEAR_MODULUS_GPA,
+    ProjectileTable::BAR_STIFFNESS_N_M_PER_RAD,
+    ProjectileTable::TWIST_DEG,
+    ProjectileTable::EFFICIENCY,
+    ProjectileTable::PROJECTILE_MASS_G,
+    ProjectileTable::LEVER_MASS_G,
+    ProjectileTable::GUIDE_FRICTION,
+    ProjectileTable::DRAG_AREA_MM2,
+    ProjectileTable::RUN_IN_MM,
+    ProjectileTable::RUN_OUT_MM,
+    ProjectileTable::BRAKE_MM,
+    ProjectileTable::LAUNCH_DEG,
 ];

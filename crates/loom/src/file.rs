@@ -217,6 +217,8 @@ pub enum InsertionKind {
     Shuttle,
     /// `kind = "rapier"`: a double rapier, its heads' drives in `[insertion.rapier]`.
     Rapier(Box<loomkin_insertion::Rapier>),
+    /// `kind = "projectile"`: torsion-bar picking, `[insertion.projectile]`.
+    Projectile(Box<loomkin_insertion::Projectile>),
 }
 
 impl InsertionKind {
@@ -228,6 +230,7 @@ impl InsertionKind {
         match self {
             Self::Shuttle => "shuttle",
             Self::Rapier(_) => "rapier",
+            Self::Projectile(_) => "projectile",
         }
     }
 }
@@ -799,7 +802,7 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
             reason: format!("the carrier needs {entry:.2}° to {exit:.2}°, which does not fit in one turn (0° to 360°)"),
         });
     }
-    let kind = read_kind(i, reed_width_m)?;
+    let kind = read_kind(i, reed_width_m, carrier_length_m)?;
     Ok(Insertion {
         kind,
         carrier_height_m,
@@ -814,7 +817,7 @@ fn read_insertion(i: &InsertionFile, g: &Geometry, speed: ShaftSpeed) -> Result<
 }
 
 /// `[insertion] kind` and the carrier's sub-table: a sub-table goes with its kind only.
-fn read_kind(i: &InsertionFile, reed_width_m: f64) -> Result<InsertionKind> {
+fn read_kind(i: &InsertionFile, reed_width_m: f64, carrier_length_m: f64) -> Result<InsertionKind> {
     let kind = i.kind.as_deref().map(str::trim).unwrap_or("shuttle");
     let unknown = |kind: &str| {
         LoomError::field("insertion.kind", format!("'{kind}': expected one of {}", InsertionKind::NAMES.join(", ")))
@@ -855,9 +858,20 @@ fn read_kind(i: &InsertionFile, reed_width_m: f64) -> Result<InsertionKind> {
                 .map_err(crate::insertion::rapier_error)?;
             Ok(InsertionKind::Rapier(Box::new(r)))
         }
-        "projectile" | "airjet" => Err(LoomError::field(
+        "projectile" => {
+            let t = i.projectile.clone().ok_or_else(|| {
+                LoomError::field("insertion.projectile", "kind = \"projectile\" needs [insertion.projectile]")
+            })?;
+            let table: loomkin_insertion::ProjectileTable = toml::Value::Table(t)
+                .try_into()
+                .map_err(|e: toml::de::Error| LoomError::field("insertion.projectile", e.message().to_string()))?;
+            let p = loomkin_insertion::Projectile::new(&table, reed_width_m, carrier_length_m, "insertion.projectile")
+                .map_err(crate::insertion_air::carrier_error)?;
+            Ok(InsertionKind::Projectile(Box::new(p)))
+        }
+        "airjet" => Err(LoomError::field(
             "insertion.kind",
-            format!("\"{kind}\" is not modelled yet: allowed \"shuttle\" or \"rapier\""),
+            format!("\"{kind}\" is not modelled yet: allowed \"shuttle\", \"rapier\" or \"projectile\""),
         )),
         other => Err(unknown(other)),
     }

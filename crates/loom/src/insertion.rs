@@ -158,13 +158,33 @@ pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Res
 pub(crate) fn rapier_error(e: RapierError) -> LoomError {
     match e {
         RapierError::Range(r) => LoomError::Range(r),
-        other => {
-            let field = other.field_name().to_string();
-            let text = other.to_string();
-            let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
-            LoomError::field(field, reason)
-        }
+        other => field_error(other.field_name(), &other.to_string()),
     }
+}
+
+/// A carrier's `field: reason` message as a loom error on that field.
+pub(crate) fn field_error(field: &str, text: &str) -> LoomError {
+    let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(text).to_string();
+    LoomError::field(field, reason)
+}
+
+/// The clearance of the worst pick while the carrier is in the shed, its least value marked, with
+/// `bands` (the span in the shed first).
+pub(crate) fn clearance_panel(shed: &CarrierShed, cl: &Clearance, bands: Vec<XBand>) -> Panel {
+    let [from, to] = cl.in_shed_deg;
+    let n = ((to - from) / 0.5).ceil().max(2.0) as usize;
+    let worst: Vec<(f64, f64)> = (0..=n)
+        .map(|k| from + (to - from) * k as f64 / n as f64)
+        .map(|a| (a, shed.clearance_m(cl.worst_pick - 1, a) * 1e3))
+        .collect();
+    Panel::new(format!("clearance, pick {} [mm]", cl.worst_pick), vec![Series::line("clearance", worst)])
+        .with_x_bands(bands)
+        .with_rule(Rule::y(0.0, "touching").with_color(Rule::LIMIT))
+        .with_notes([Note::new(
+            cl.worst_angle_deg,
+            cl.min_clearance_mm,
+            format!("least {} mm at {}°", sig4(cl.min_clearance_mm), sig4(cl.worst_angle_deg)),
+        )])
 }
 
 /// The loom file's rapier, or an error naming `insertion.kind` when its carrier is another.
@@ -222,11 +242,6 @@ pub fn rapier_figure(loom: &Loom, pattern: &Pattern, c: &RapierCheck, speed: Sha
     let vt: Vec<(f64, f64)> = angles.iter().map(|&a| (a, -tip(1, a).du * w)).collect();
     let cl = &c.clearance;
     let [from, to] = cl.in_shed_deg;
-    let n = ((to - from) / 0.5).ceil().max(2.0) as usize;
-    let worst: Vec<(f64, f64)> = (0..=n)
-        .map(|k| from + (to - from) * k as f64 / n as f64)
-        .map(|a| (a, shed.clearance_m(cl.worst_pick - 1, a) * 1e3))
-        .collect();
     let rep = &c.rapier;
     let transfer_at = rep.transfer_deg;
     let transfer_y = tip(0, transfer_at).u_m * 1e3;
@@ -240,14 +255,7 @@ pub fn rapier_figure(loom: &Loom, pattern: &Pattern, c: &RapierCheck, speed: Sha
                 format!("overlap {} mm at {}°", sig4(rep.transfer_overlap_mm), sig4(transfer_at)),
             )]),
         Panel::new("velocity across the reed [m/s]", vec![Series::line("bringer", vb), Series::line("taker", vt)]),
-        Panel::new(format!("clearance, pick {} [mm]", cl.worst_pick), vec![Series::line("clearance", worst)])
-            .with_x_bands([XBand::new(from, to, "a head in the shed", XBand::WINDOW)])
-            .with_rule(Rule::y(0.0, "touching").with_color(Rule::LIMIT))
-            .with_notes([Note::new(
-                cl.worst_angle_deg,
-                cl.min_clearance_mm,
-                format!("least {} mm at {}°", sig4(cl.min_clearance_mm), sig4(cl.worst_angle_deg)),
-            )]),
+        clearance_panel(&shed, cl, vec![XBand::new(from, to, "a head in the shed", XBand::WINDOW)]),
     ];
     let title = format!(
         "rapier at {} rpm: overlap {} mm, peak head speed {} m/s, least clearance {} mm (pick {})",

@@ -36,6 +36,7 @@ mod file;
 pub mod geometry;
 mod inertia;
 pub mod insertion;
+pub mod insertion_air;
 mod law;
 mod motion;
 mod pattern;

@@ -9,6 +9,7 @@ mod drive;
 mod dynamics;
 mod ends;
 mod insert;
+mod insert_air;
 mod law;
 mod limits;
 mod loom;
