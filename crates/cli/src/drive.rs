@@ -221,6 +221,7 @@ struct RippleJson<'a> {
 }
 
 fn run_ripple(a: RippleArgs) -> Result<()> {
+    output::check_outputs([a.output.as_ref().map(|p| output::Out::plot("--output", p))])?;
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     STEP_DEG.check_as("--step-deg", a.step_deg)?;
     let motor = a.motor.motor(&loom)?;

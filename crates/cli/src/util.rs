@@ -335,7 +335,16 @@ pub fn page_error(e: loomkin_io::IoError) -> anyhow::Error {
             let flag = format!("--{}", r.field);
             anyhow::Error::new(r.renamed(flag))
         }
-        other => anyhow::anyhow!("--{}", other.to_string().trim_start_matches("plot: ")),
+        // A size no single flag fixes: `width = 200 and height = 200 px are too small …`, each
+        // page setting named as its flag.
+        other => {
+            let text = other.to_string();
+            let text = text.trim_start_matches("plot: ");
+            let named = ["width", "height", "dpi"]
+                .iter()
+                .fold(text.to_string(), |t, k| t.replace(&format!("{k} = "), &format!("--{k} = ")));
+            anyhow::anyhow!("{named}")
+        }
     }
 }
 

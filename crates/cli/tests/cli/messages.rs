@@ -104,3 +104,68 @@ fn loom_check_rounds_the_insertion_angles() {
     assert!(line.contains("insertion 126.13° to 233.87°"), "{line}");
     assert!(longest_digits(line) <= 3, "{line}");
 }
+
+/// A plot size that no single flag fixes names both flags (`--width = 200 and --height = 200 px
+/// are too small …`; the second lacked its `--`).
+#[test]
+fn a_size_too_small_both_ways_names_both_flags() {
+    let out = std::env::temp_dir().join(format!("loomkin-messages-{}-laws.svg", std::process::id()));
+    usage_error(
+        &[
+            "law",
+            "plot",
+            "cycloidal",
+            "modified-sine",
+            "poly345",
+            "-o",
+            out.to_str().unwrap(),
+            "--width",
+            "200",
+            "--height",
+            "200",
+        ],
+        &["--width = 200 and --height = 200 px are too small for this figure"],
+    );
+    assert!(!out.exists());
+}
+
+/// Every output name of a command is checked before anything runs or is written: a bad plot
+/// name beside a DXF writes no DXF (`cam profile`), and `drive ripple` refuses a folder that is
+/// not there before its run (one line, exit 1).
+#[test]
+fn outputs_are_checked_before_anything_is_written() {
+    let dir = std::env::temp_dir().join(format!("loomkin-messages-{}-outs", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let dxf = dir.join("side.dxf");
+    usage_error(
+        &[
+            "cam",
+            "profile",
+            &examples("heald-frame-cycle.toml"),
+            "--follower",
+            "translating",
+            "--dxf",
+            dxf.to_str().unwrap(),
+            "-o",
+            dir.join("plot.jpg").to_str().unwrap(),
+        ],
+        &["--output", "plot.jpg", ".svg or .png"],
+    );
+    assert!(!dxf.exists(), "the DXF was written before the plot name was refused");
+    let missing = dir.join("no-such-folder").join("r.svg");
+    let args = [
+        "drive",
+        "ripple",
+        &examples("shuttle-loom.toml"),
+        "--wif",
+        &examples("twill-2-2.wif"),
+        "-o",
+        missing.to_str().unwrap(),
+    ];
+    let out = loomkin().args(args).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("cannot write") && err.contains("r.svg"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
