@@ -42,6 +42,7 @@ rows=(
   "speed ripple, 3600 angles, induction (Kloss)|loomkin-drive|ripple|periodic_solution_3600_angles|induction|1000|us"
   "speed ripple, 3600 angles, servo|loomkin-drive|ripple|periodic_solution_3600_angles|servo|1000|us"
   "reduced inertia, 24 frames, 10^4 picks|loomkin-loom|inertia|inertia_24_frames_10k_picks|inertia_24_frames_10k_picks|50|ms"
+  "electronic shedding, 24 frames, 10^4 picks (twill)|loomkin-eshed|eshed|twill_24_frames_10k_picks|twill_24_frames_10k_picks|50|ms"
 )
 
 wanted() { [[ -z "$only" || "$1" == *"$only"* ]]; }

@@ -23,6 +23,50 @@ use crate::drive::{DrivePoint, FrameDrive};
 use loomkin_laws::{Cycle, SegmentKind};
 use std::collections::HashMap;
 
+/// A hasher for the windows' keys (words of bits, many per key): multiply-rotate over 64-bit
+/// words, much faster than the default SipHash for keys the program builds itself (no
+/// adversarial input: the map compares whole keys on a collision).
+#[derive(Default, Clone, Copy)]
+pub(crate) struct WordHasher(u64);
+
+impl WordHasher {
+    const K: u64 = 0x9e37_79b9_7f4a_7c15;
+
+    fn mix(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(26) ^ x).wrapping_mul(Self::K);
+    }
+}
+
+impl std::hash::Hasher for WordHasher {
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            self.mix(u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]));
+        }
+        let rest = chunks.remainder();
+        if !rest.is_empty() {
+            let mut w = [0u8; 8];
+            w[..rest.len()].copy_from_slice(rest);
+            self.mix(u64::from_le_bytes(w));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.mix(x);
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.mix(x as u64);
+    }
+}
+
+/// A map keyed by words with [`WordHasher`].
+pub(crate) type WordMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<WordHasher>>;
+
 /// Sub-intervals on which a derivative's sign changes are bracketed.
 const SCAN: usize = 16;
 /// Window keys round offsets to 2⁻³⁰ degree.
@@ -57,10 +101,11 @@ impl<'a> Timeline<'a> {
         cycle: &'a Cycle,
         segments: &[(SegmentKind, f64, f64)],
         drive: &'a FrameDrive,
-        types: &mut HashMap<[u64; 4], u64>,
+        types: &mut WordMap<[u64; 4], u64>,
     ) -> Self {
         let period = cycle.period_rad.to_degrees();
-        let mut raw = Vec::new();
+        let mut raw = Vec::with_capacity(8 * segments.len());
+        let mut cuts: Vec<f64> = Vec::with_capacity(8);
         let friction = drive.axis.load.friction_n > 0.0;
         for (si, (seg, &(_, s0, len))) in cycle.segments.iter().zip(segments).enumerate() {
             let shape = [seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits()];
@@ -76,7 +121,8 @@ impl<'a> Timeline<'a> {
                     for (li, l) in law.segments().iter().enumerate() {
                         let anchor = s0 + l.x0() * len;
                         let end = if li + 1 == law.segments().len() { s0 + len } else { s0 + l.x1() * len };
-                        let mut cuts = vec![anchor];
+                        cuts.clear();
+                        cuts.push(anchor);
                         if friction {
                             cuts.extend(
                                 l.derivative_roots(1)
@@ -171,7 +217,7 @@ fn take_max(best: &mut (f64, f64), v: f64, at: f64) {
 pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64) -> BusTotals {
     let n = frames.len();
     let mut cursor = vec![0usize; n];
-    let mut memo: HashMap<Vec<u64>, WindowValues> = HashMap::new();
+    let mut memo: WordMap<Vec<u64>, WindowValues> = WordMap::default();
     let mut tot = BusTotals {
         peak_w: (f64::NEG_INFINITY, 0.0),
         trough_w: (f64::NEG_INFINITY, 0.0),
@@ -182,37 +228,48 @@ pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64)
         frame_peak_w: vec![(f64::NEG_INFINITY, 0.0); n],
         distinct_windows: 0,
     };
-    let q = |x: f64| (x * KEY_SCALE).round() as i64 as u64;
+    // To the nearest 2⁻³⁰° (half away from zero; the cast truncates, without a call to `round`).
+    let q = |x: f64| {
+        let y = x * KEY_SCALE;
+        (y + 0.5f64.copysign(y)) as i64 as u64
+    };
     let mut items: Vec<Vec<(Piece, f64, f64)>> = vec![Vec::new(); n];
     let mut key = Vec::new();
+    let mut ranges = vec![(0usize, 0usize); n];
     for p in 0..picks {
         let (w0, w1) = (360.0 * p as f64, 360.0 * (p + 1) as f64);
         key.clear();
         for (i, f) in frames.iter().enumerate() {
-            items[i].clear();
             while cursor[i] < f.pieces.len() && f.pieces[cursor[i]].b <= w0 {
                 cursor[i] += 1;
             }
             let mut j = cursor[i];
             while j < f.pieces.len() && f.pieces[j].a < w1 {
-                let pc = f.pieces[j];
+                let pc = &f.pieces[j];
                 let (a, b) = (pc.a.max(w0), pc.b.min(w1));
                 if b > a {
-                    items[i].push((pc, a, b));
                     key.extend([pc.ty, q(a - w0), q(b - w0), q(pc.anchor - w0)]);
                 }
                 j += 1;
             }
+            ranges[i] = (cursor[i], j);
             key.push(u64::MAX);
         }
-        let v = match memo.get(&key) {
-            Some(v) => v.clone(),
-            None => {
-                let v = window(frames, &items, w0, w1, eta_r, omega);
-                memo.insert(key.clone(), v.clone());
-                v
+        if !memo.contains_key(&key) {
+            // A new window: its pieces, clipped to it.
+            for (i, f) in frames.iter().enumerate() {
+                items[i].clear();
+                for pc in &f.pieces[ranges[i].0..ranges[i].1] {
+                    let (a, b) = (pc.a.max(w0), pc.b.min(w1));
+                    if b > a {
+                        items[i].push((*pc, a, b));
+                    }
+                }
             }
-        };
+            let v = window(frames, &items, w0, w1, eta_r, omega);
+            memo.insert(key.clone(), v);
+        }
+        let v = &memo[&key];
         take_max(&mut tot.peak_w, v.peak.0, w0 + v.peak.1);
         take_max(&mut tot.trough_w, v.trough.0, w0 + v.trough.1);
         tot.supplied_j += v.supplied_j;
@@ -261,6 +318,8 @@ fn window(
     let rule = loomkin_laws::gauss_legendre(8);
     let mut active: Vec<Option<Piece>> = vec![None; n];
     let mut pts: Vec<DrivePoint> = vec![DrivePoint::default(); n];
+    let mut still: Vec<DrivePoint> = vec![DrivePoint::default(); n];
+    let mut movers: Vec<usize> = Vec::with_capacity(n);
     for c in cuts.windows(2) {
         let (u, v) = (c[0], c[1]);
         if v <= u {
@@ -270,12 +329,22 @@ fn window(
         for i in 0..n {
             active[i] = items[i].iter().find(|(_, a, b)| *a <= mid && mid < *b).map(|x| x.0);
         }
+        // A frame at rest (or with no piece here) is the same all over the sub-interval: its point
+        // once, the moving frames' at each angle (the same values as evaluating every frame).
+        movers.clear();
+        for i in 0..n {
+            match &active[i] {
+                Some(p) if p.lseg.is_some() => movers.push(i),
+                Some(p) => still[i] = frames[i].eval(p, u),
+                None => still[i] = DrivePoint::default(),
+            }
+        }
         let eval_all = |theta: f64, pts: &mut [DrivePoint]| {
-            for i in 0..n {
-                pts[i] = match &active[i] {
-                    Some(p) => frames[i].eval(p, theta),
-                    None => DrivePoint::default(),
-                };
+            pts.copy_from_slice(&still);
+            for &i in &movers {
+                if let Some(p) = &active[i] {
+                    pts[i] = frames[i].eval(p, theta);
+                }
             }
         };
         let net = |pts: &[DrivePoint]| -> (f64, f64) {

@@ -8,7 +8,6 @@
 
 use crate::MoveLaws;
 use loomkin_laws::{Cycle, CycleSegment, DerivativeScale};
-use std::collections::HashMap;
 
 /// The least smoothness of a cycle's joints.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,7 +39,7 @@ pub(crate) fn kin(seg: &CycleSegment, x: f64, omega: f64) -> [f64; 4] {
 /// values are in time so that two moves of different lengths compare).
 pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
     let segs = &cycle.segments;
-    let mut scales: HashMap<(u8, u64, u64), DerivativeScale<4>> = HashMap::new();
+    let mut scales: crate::bus::WordMap<(u8, u64, u64), DerivativeScale<4>> = Default::default();
     let mut scale = |s: &CycleSegment| {
         let key = (s.kind as u8, s.length_rad.to_bits(), s.stroke_si.to_bits());
         *scales.entry(key).or_insert_with(|| {
@@ -50,18 +49,46 @@ pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
     };
     let mut rest = 3;
     let mut rest_at_deg = None;
+    // A joint between the same two segments (kind, law, length, stroke, base) as an earlier one
+    // is the same joint: its class once.
+    let law_id = |s: &CycleSegment| match &s.law {
+        None => 0u64,
+        Some((_, l)) if *l == laws.rise.1 => 1,
+        Some((_, l)) if *l == laws.fall.1 => 2,
+        Some(_) => 3,
+    };
+    let ids: Vec<u64> = segs.iter().map(law_id).collect();
+    let shape = |i: usize| {
+        let s = &segs[i];
+        [(s.kind as u64) << 8 | ids[i], s.length_rad.to_bits(), s.stroke_si.to_bits(), s.base_si.to_bits()]
+    };
+    let mut classes: crate::bus::WordMap<[u64; 8], i32> = Default::default();
     if segs.len() > 1 {
         for i in 0..segs.len() {
-            let (a, b) = (&segs[i], &segs[(i + 1) % segs.len()]);
-            let mut l = kin(a, 1.0, omega);
-            let r = kin(b, 0.0, omega);
-            if i + 1 == segs.len() {
-                // Around the repeat: the position returns to the start.
-                l[0] -= segs.iter().map(|s| s.stroke_si).sum::<f64>();
-            }
-            let sc = scale(a).max(scale(b));
-            let rounding: [f64; 4] = std::array::from_fn(|k| 64.0 * f64::EPSILON * (l[k].abs() + r[k].abs()));
-            let class = sc.first_jump(&l, &r, &rounding).map_or(3, |k| k as i32 - 1);
+            let j = (i + 1) % segs.len();
+            let (a, b) = (&segs[i], &segs[j]);
+            let wrap = i + 1 == segs.len();
+            let (ka, kb) = (shape(i), shape(j));
+            let key = [ka[0], ka[1], ka[2], ka[3], kb[0], kb[1], kb[2], kb[3]];
+            let known = if wrap || ids[i] == 3 || ids[j] == 3 { None } else { classes.get(&key).copied() };
+            let class = match known {
+                Some(c) => c,
+                None => {
+                    let mut l = kin(a, 1.0, omega);
+                    let r = kin(b, 0.0, omega);
+                    if wrap {
+                        // Around the repeat: the position returns to the start.
+                        l[0] -= segs.iter().map(|s| s.stroke_si).sum::<f64>();
+                    }
+                    let sc = scale(a).max(scale(b));
+                    let rounding: [f64; 4] = std::array::from_fn(|k| 64.0 * f64::EPSILON * (l[k].abs() + r[k].abs()));
+                    let c = sc.first_jump(&l, &r, &rounding).map_or(3, |k| k as i32 - 1);
+                    if !wrap {
+                        classes.insert(key, c);
+                    }
+                    c
+                }
+            };
             if class < rest {
                 rest = class;
                 rest_at_deg = Some((b.start_rad).to_degrees());

@@ -6,7 +6,6 @@ use crate::drive::{FrameDrive, FrameLoad, axis};
 use crate::{Bus, EshedError, FramePlan, FrameServo, MoveLaws, Result};
 use loomkin_servo::{Check, check_axis};
 use serde::Serialize;
-use std::collections::HashMap;
 
 /// One frame: its plan, the frame as a load, its servo.
 #[derive(Debug, Clone)]
@@ -145,7 +144,7 @@ pub fn analyse(
     let picks = (first.plan.period_deg / 360.0).round() as usize;
     let study = Study::new(frames, laws, speed_rpm)?;
     let omega = study.drives[0].omega;
-    let mut types = HashMap::new();
+    let mut types = crate::bus::WordMap::default();
     let lines: Vec<Timeline<'_>> = (0..frames.len())
         .map(|i| Timeline::new(&study.cycles[i], &study.segments[i], &study.drives[i], &mut types))
         .collect();

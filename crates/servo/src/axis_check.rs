@@ -4,6 +4,7 @@
 use crate::{Axis, Result};
 use loomkin_laws::{Cycle, Segment};
 use serde::Serialize;
+use std::collections::HashMap;
 use std::f64::consts::PI;
 
 /// One check: a value against its limit; the margin is `(limit − value)/limit` (negative: fails).
@@ -129,6 +130,67 @@ impl Model {
     }
 }
 
+/// What one moving segment contributes to the check, in order: a candidate peak torque, speed or
+/// envelope ratio at the fraction `u` of the segment (`x0 + t` of its law segment), or a term of
+/// `∫T² dt`.
+#[derive(Debug, Clone, Copy)]
+enum Event {
+    Torque(f64, f64),
+    Speed(f64, f64),
+    Envelope(f64, f64),
+    TorqueSquared(f64),
+}
+
+/// The events of moving segment `seg` (law `law`) of a cycle run at `omega` rad/s.
+fn moving_events(axis: &Axis, seg: &loomkin_laws::CycleSegment, law: &loomkin_laws::Law, omega: f64) -> Vec<Event> {
+    let envelope = |n: f64| axis.peak_envelope(n).unwrap_or_else(|| line_beyond(axis, n));
+    let mut out = Vec::new();
+    let m = Model::moving(axis, seg.base_si, seg.stroke_si, seg.length_rad, omega);
+    for lseg in law.segments() {
+        // Split the segment where the velocity changes sign (the Coulomb friction flips there).
+        let mut cuts = vec![0.0];
+        cuts.extend(lseg.derivative_roots(1).into_iter().filter(|&t| t > 0.0 && t < lseg.width()));
+        cuts.push(lseg.width());
+        for w in cuts.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            if b <= a {
+                continue;
+            }
+            let v_mid = lseg.deriv_local(1, 0.5 * (a + b));
+            let vsign = if v_mid == 0.0 { 0.0 } else { m.sign * v_mid.signum() };
+            let f = |t: f64| m.eval(&lseg.derivs_local(t), vsign);
+            let u = |t: f64| lseg.x0() + t;
+            let n_br = brackets(lseg, a, b);
+            let (v, at) = abs_max(a, b, n_br, |t| {
+                let (tq, _) = f(t);
+                (tq[0], tq[1], tq[2])
+            });
+            out.push(Event::Torque(v, u(at)));
+            let (v, at) = abs_max(a, b, n_br, |t| {
+                let (_, n) = f(t);
+                (n[0], n[1], n[2])
+            });
+            out.push(Event::Speed(v, u(at)));
+            // The ratio has a kink where the motor speed passes the rated or the maximum speed
+            // (the peak line bends there): cut there, so that an interior maximum next to a
+            // kink is bracketed by its own derivative's sign change.
+            for piece in envelope_cuts(lseg, a, b, |t| f(t).1[0].abs(), &axis.motor).windows(2) {
+                let (v, at) = max_by(piece[0], piece[1], n_br, |t| {
+                    let (tq, n) = f(t);
+                    let (e, de) = envelope(n[0]);
+                    let e = e.max(1e-12 * axis.motor.peak_torque_nm);
+                    let q = tq[0].abs() / e;
+                    let dq = (tq[0].signum() * tq[1] * e - tq[0].abs() * de * n[0].signum() * n[1]) / (e * e);
+                    (q, dq)
+                });
+                out.push(Event::Envelope(v, u(at)));
+            }
+            out.push(Event::TorqueSquared(integral_t2(lseg, a, b, |t| f(t).0[0]) * seg.length_rad / omega));
+        }
+    }
+    out
+}
+
 /// Checks `axis` moving `cycle` at `speed_rpm` (main shaft).
 pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
     axis.validate(cycle.unit)?;
@@ -143,6 +205,8 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
         let e = axis.peak_envelope(n).map_or_else(|| line_beyond(axis, n).0, |(e, _)| e);
         t.abs() / e.max(1e-12 * axis.motor.peak_torque_nm)
     };
+    let mut laws: Vec<&loomkin_laws::Law> = Vec::new();
+    let mut memo: HashMap<(usize, u64, u64, u64), Vec<Event>> = HashMap::new();
     for seg in &cycle.segments {
         let start_deg = seg.start_rad.to_degrees();
         let len_deg = seg.length_rad.to_degrees();
@@ -154,47 +218,26 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
             int_t2 += t * t * seg.length_rad / omega;
             continue;
         };
-        let m = Model::moving(axis, seg.base_si, seg.stroke_si, seg.length_rad, omega);
-        for lseg in law.segments() {
-            // Split the segment where the velocity changes sign (the Coulomb friction flips there).
-            let mut cuts = vec![0.0];
-            cuts.extend(lseg.derivative_roots(1).into_iter().filter(|&t| t > 0.0 && t < lseg.width()));
-            cuts.push(lseg.width());
-            for w in cuts.windows(2) {
-                let (a, b) = (w[0], w[1]);
-                if b <= a {
-                    continue;
-                }
-                let v_mid = lseg.deriv_local(1, 0.5 * (a + b));
-                let vsign = if v_mid == 0.0 { 0.0 } else { m.sign * v_mid.signum() };
-                let f = |t: f64| m.eval(&lseg.derivs_local(t), vsign);
-                let deg = |t: f64| start_deg + len_deg * (lseg.x0() + t);
-                let n_br = brackets(lseg, a, b);
-                let (v, at) = abs_max(a, b, n_br, |t| {
-                    let (tq, _) = f(t);
-                    (tq[0], tq[1], tq[2])
-                });
-                take(&mut pk_t, v, deg(at));
-                let (v, at) = abs_max(a, b, n_br, |t| {
-                    let (_, n) = f(t);
-                    (n[0], n[1], n[2])
-                });
-                take(&mut pk_n, v, deg(at));
-                // The ratio has a kink where the motor speed passes the rated or the maximum speed
-                // (the peak line bends there): cut there, so that an interior maximum next to a
-                // kink is bracketed by its own derivative's sign change.
-                for piece in envelope_cuts(lseg, a, b, |t| f(t).1[0].abs(), &axis.motor).windows(2) {
-                    let (v, at) = max_by(piece[0], piece[1], n_br, |t| {
-                        let (tq, n) = f(t);
-                        let (e, de) = axis.peak_envelope(n[0]).unwrap_or_else(|| line_beyond(axis, n[0]));
-                        let e = e.max(1e-12 * axis.motor.peak_torque_nm);
-                        let q = tq[0].abs() / e;
-                        let dq = (tq[0].signum() * tq[1] * e - tq[0].abs() * de * n[0].signum() * n[1]) / (e * e);
-                        (q, dq)
-                    });
-                    take(&mut env, v, deg(at));
-                }
-                int_t2 += integral_t2(lseg, a, b, |t| f(t).0[0]) * seg.length_rad / omega;
+        // A segment of the same law, stroke, base and length as an earlier one gives the same
+        // values at the same fractions: worked out once, replayed in order (bit for bit the same
+        // sums and maxima as working each out, so a long cycle of repeated moves costs its
+        // distinct moves).
+        let law_id = match laws.iter().position(|l| std::ptr::eq(*l, law) || *l == law) {
+            Some(i) => i,
+            None => {
+                laws.push(law);
+                laws.len() - 1
+            }
+        };
+        let key = (law_id, seg.base_si.to_bits(), seg.stroke_si.to_bits(), seg.length_rad.to_bits());
+        let events = memo.entry(key).or_insert_with(|| moving_events(axis, seg, law, omega));
+        let deg = |u: f64| start_deg + len_deg * u;
+        for e in events.iter() {
+            match *e {
+                Event::Torque(v, u) => take(&mut pk_t, v, deg(u)),
+                Event::Speed(v, u) => take(&mut pk_n, v, deg(u)),
+                Event::Envelope(v, u) => take(&mut env, v, deg(u)),
+                Event::TorqueSquared(x) => int_t2 += x,
             }
         }
     }

@@ -156,3 +156,50 @@ fn envelope_ratio_bounds_samples(text: &str, speeds: &[f64]) {
         );
     }
 }
+
+/// A cycle of repeated moves is checked once per distinct move (same law, stroke, base and
+/// length) and the rest replayed: the check of the turn repeated ten times is the check of the
+/// turn (peaks bit for bit at the first turn's angles, RMS to rounding), and moves of the same
+/// law at different bases (a spring makes their torques differ) are not taken for one another:
+/// the peaks bound dense samples and are attained.
+#[test]
+fn repeated_moves_are_checked_once_and_different_bases_apart() {
+    let mut axis = Axis::from_toml(AXIS, StrokeUnit::Mm).unwrap();
+    axis.load.spring_n_m = 900.0;
+    axis.load.constant_force_n = 15.0;
+    let turn = |k: usize| {
+        let mut t = String::from("unit = \"mm\"\nstroke = 40\n");
+        t += &format!("period_deg = {}\n", 360 * k);
+        for _ in 0..k {
+            // Up twice (two bases), down twice.
+            for (kind, len) in [("rise", 70), ("dwell", 20), ("rise", 70), ("dwell", 20)] {
+                t += &format!("[[segment]]\nkind = \"{kind}\"\nlength_deg = {len}\n");
+                if kind != "dwell" {
+                    t += "law = \"modified-sine\"\n";
+                }
+            }
+            for (kind, len) in [("return", 70), ("dwell", 20), ("return", 70), ("dwell", 20)] {
+                t += &format!("[[segment]]\nkind = \"{kind}\"\nlength_deg = {len}\n");
+                if kind != "dwell" {
+                    t += "law = \"cycloidal\"\n";
+                }
+            }
+        }
+        Cycle::from_toml(&t).unwrap()
+    };
+    let (one, ten) = (turn(1), turn(10));
+    let a = check_axis(&axis, &one, 600.0).unwrap();
+    let b = check_axis(&axis, &ten, 600.0).unwrap();
+    assert_eq!(a.peak_torque_nm, b.peak_torque_nm);
+    assert_eq!(a.peak_torque_at_deg, b.peak_torque_at_deg);
+    assert_eq!(a.peak_motor_speed_rpm, b.peak_motor_speed_rpm);
+    assert_eq!(a.envelope_ratio, b.envelope_ratio);
+    assert!((a.rms_torque_nm - b.rms_torque_nm).abs() <= 1e-13 * a.rms_torque_nm, "{a:?} {b:?}");
+    let pts = operating_points(&axis, &ten, 600.0, 400_001).unwrap();
+    let pk_t = pts.iter().map(|p| p.torque_nm.abs()).fold(0.0, f64::max);
+    assert!(pk_t <= b.peak_torque_nm * (1.0 + 1e-9) && pk_t >= b.peak_torque_nm * (1.0 - 1e-6), "{pk_t} {b:?}");
+    let dt = b.cycle_time_s / (pts.len() - 1) as f64;
+    let int: f64 = pts.windows(2).map(|w| 0.5 * (w[0].torque_nm.powi(2) + w[1].torque_nm.powi(2)) * dt).sum();
+    let rms = (int / b.cycle_time_s).sqrt();
+    assert!((rms - b.rms_torque_nm).abs() < 1e-6 * b.rms_torque_nm, "{rms} vs {}", b.rms_torque_nm);
+}
