@@ -4,7 +4,7 @@ use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::Result;
 use clap::Args;
-use loomkin_laws::{Cycle, CyclePoint, SegmentKind, StrokeUnit};
+use loomkin_laws::{Cycle, CyclePoint, SegmentKind};
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
 use loomkin_units::{Cost, ShaftSpeed};
 use std::path::PathBuf;
@@ -146,10 +146,8 @@ pub(crate) fn cycle_bands(cycle: &Cycle, offset_deg: f64) -> Vec<XBand> {
 
 fn cycle_figure(cycle: &Cycle, samples: &[CyclePoint], speed: ShaftSpeed, file: &std::path::Path) -> Figure {
     let [_, vs, as_, js] = cycle.unit.si_units();
-    let (pos_unit, pos_scale) = match cycle.unit {
-        StrokeUnit::Mm => ("mm", 1e3),
-        StrokeUnit::Deg => ("deg", 180.0 / std::f64::consts::PI),
-    };
+    // Positions in the cycle's own unit (mm or deg), from SI.
+    let (pos_unit, pos_scale) = (cycle.unit.stroke_range().unit, 1.0 / cycle.unit.to_si());
     let col = |f: &dyn Fn(&loomkin_laws::Kinematics) -> f64| samples.iter().map(|p| (p.angle_deg, f(&p.kin))).collect();
     let bands = cycle_bands(cycle, 0.0);
     let unlabelled = || bands.iter().map(|b| XBand { label: String::new(), ..b.clone() }).collect::<Vec<_>>();

@@ -9,9 +9,9 @@ use loomkin_io::Table;
 use loomkin_io::dxf::{DxfShape, DxfUnit, save_shapes};
 use loomkin_laws::LawSpec;
 use loomkin_mech::{
-    AlphaSweep, Analysis, AnalysisOptions, Cam, CamProfile, DobbyInputs, MechError, ModulatorGeometry, ModulatorState,
-    OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state, parse_point_table,
-    synthesize,
+    AlphaSweep, Analysis, AnalysisOptions, Cam, CamProfile, DobbyInputs, GivenLength, MechError, ModulatorGeometry,
+    ModulatorState, OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state,
+    parse_point_table, synthesize,
 };
 use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
 use std::path::PathBuf;
@@ -575,22 +575,15 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
     };
     report()?;
     if refused {
-        let s = &res.summary;
-        let at = res
-            .warnings
-            .iter()
-            .find(|w| w.message.starts_with("undercut"))
-            .and_then(|w| w.phi2_deg)
-            .map_or(String::new(), |a| format!(" at φ2 = {a:.2} deg"));
         // Said in the unit the roller was given in (`--roller-mm 400`: a 400 mm roller).
-        let (flag, unit, scale) =
-            if a.roller.roller_mm.is_some() { ("roller_mm", "mm", 1e3) } else { ("roller_m", "m", 1.0) };
-        let length = |m: f64| format!("{} {unit}", loomkin_plot::sig4(m * scale));
-        let largest = s
-            .checks
-            .roller_max_m
-            .map_or(String::new(), |r| format!("; the largest roller without undercut is {}", length(r)));
-        bail!("{flag}: a {} roller undercuts the cams{at}{largest}: no DXF written", length(s.roller_m));
+        let (flag, unit) = if a.roller.roller_mm.is_some() {
+            ("roller_mm", GivenLength::Millimetre)
+        } else {
+            ("roller_m", GivenLength::Metre)
+        };
+        if let Some(why) = res.undercut_refusal(unit) {
+            bail!("{flag}: {why}: no DXF written");
+        }
     }
     Ok(())
 }

@@ -29,8 +29,11 @@ pub enum DynCommand {
     /// Compensation (polydyne): the input law that makes the follower follow the cycle exactly, written
     /// as CSV samples (.csv) or exact pieces (.toml); refuses a cycle whose input would jump.
     Compensate(CompensateArgs),
-    /// Shape the cycle's rises and returns for least residual vibration across a speed band, peak
-    /// acceleration at most 110 % of the modified sine's; compares with modified-sine laws.
+    #[command(about = format!(
+        "Shape the cycle's rises and returns for least residual vibration across a speed band, peak acceleration at \
+         most {} % of the modified sine's; compares with modified-sine laws",
+        loomkin_units::compact(100.0 * loomkin_dynamics::CA_LIMIT_OF_MODIFIED_SINE)
+    ))]
     Optimize(OptimizeArgs),
     /// Two-mass train (drive stiffness to the dobby or cam-box output mass, frame stiffness to the frame):
     /// modal frequencies, the drive's and the frame's peak dynamic errors (located exactly) and the bound
@@ -412,7 +415,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     // Each speed of this shard is one response (closed form per segment of the cycle), in
     // parallel; its row is held until printed (as a JSON object with --json).
     let n = items.len() as f64;
-    let row_bytes = if a.format.json { 1000.0 } else { 0.0 };
+    let row_bytes = if a.format.json { SweepPoint::JSON_ROW_BYTES } else { 0.0 };
     let cost = SweepPoint::cost(n, cycle.segments.len(), util::cores(), row_bytes);
     crate::util::budget().check("speed_rpm", &a.speed_rpm, cost)?;
     let speeds: Vec<f64> = items.map(|i| span.value(i)).collect();

@@ -58,6 +58,20 @@ fn keyword_number(text: &str) -> bool {
     })
 }
 
+/// A unit conversion written as a number (`x * 1e3`, `t / 1000.0`, `rpm / 60.0`): the factor lives
+/// once in `loomkin_units` (`mm_from_m`, `ms_from_s`, `MM_PER_M`, `rad_per_s_from_rpm`, …).
+fn conversion_literal(line: &str) -> bool {
+    const FACTORS: [&str; 7] = ["1e3", "1e-3", "1000.0", "1_000.0", "0.001", "60.0", "1e6"];
+    let b = line.as_bytes();
+    (0..b.len()).filter(|&i| matches!(b[i], b'*' | b'/')).any(|i| {
+        let rest = line[i + 1..].trim_start();
+        FACTORS.iter().any(|f| {
+            rest.strip_prefix(f)
+                .is_some_and(|after| !after.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '.'))
+        })
+    })
+}
+
 /// The offending lines of one front-end source, `path:line: text`.
 fn offences(path: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(path).unwrap_or_default();
@@ -71,11 +85,16 @@ fn offences(path: &Path) -> Vec<String> {
         let mut bad = false;
         match ext {
             "rs" => {
+                // A unit's tests may check against numbers; the front end's code may not.
+                if t.starts_with("#[cfg(test)]") {
+                    break;
+                }
                 if t.starts_with("//") && !t.starts_with("///") {
                     continue;
                 }
                 if !t.starts_with("///") {
                     bad |= line.contains("Range::");
+                    bad |= conversion_literal(line);
                     bad |= numeric_default(line, "default_value_t");
                     bad |= numeric_default(line, "default_value");
                     bad |= numeric_default(line, "default_values_t");
@@ -134,6 +153,7 @@ fn no_range_or_default_literal_in_the_front_ends() {
     let root = repo();
     let mut paths = Vec::new();
     files(&root.join("crates/cli/src"), &["rs"], &mut paths);
+    files(&root.join("crates/web/src"), &["rs"], &mut paths);
     files(&root.join("python/src"), &["rs"], &mut paths);
     files(&root.join("python/loomkin"), &["py", "pyi"], &mut paths);
     assert!(paths.len() > 30, "only {} front-end sources found", paths.len());
@@ -142,8 +162,9 @@ fn no_range_or_default_literal_in_the_front_ends() {
     let found: Vec<String> = paths.iter().flat_map(|p| offences(p)).collect();
     assert!(
         found.is_empty(),
-        "range or default literals in the front ends: put the bound or default on the library type that \
-         owns the quantity (a loomkin_units::Field) and read it from there:\n{}",
+        "range, default or unit-conversion literals in the front ends: put the bound or default on the library \
+         type that owns the quantity (a loomkin_units::Field) and read it from there, convert units with \
+         loomkin_units' functions:\n{}",
         found.join("\n")
     );
 }
@@ -159,4 +180,10 @@ fn the_scanner_finds_what_it_should() {
     assert!(keyword_number("def history(points: int = 201, mechanism=None):"));
     assert!(!keyword_number("def history(points: int = _default(\"History::POINTS\")):"));
     assert!(!keyword_number("if a == 0: pass"));
+    assert!(conversion_literal("t_ms: s.iter().map(|p| finite(p.t_s * 1e3)).collect(),"));
+    assert!(conversion_literal("let w = rpm / 60.0 * tau;"));
+    assert!(conversion_literal("band_mm = marks.band_m *1000.0;"));
+    assert!(!conversion_literal("let n = items * 1e30;"));
+    assert!(!conversion_literal("let x = loomkin_units::mm_from_m(s_m);"));
+    assert!(!conversion_literal("let q = a / 60.05;"));
 }

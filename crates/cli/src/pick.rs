@@ -618,7 +618,7 @@ fn plot(a: PlotArgs) -> Result<()> {
     let designed = Settings::designed(&mech).with_start(st.start);
     let reference =
         if st != designed { Some(history(&mech, &designed, method, a.points).map_err(lib_err)?) } else { None };
-    let ms = |t: f64| t * 1e3;
+    let ms = loomkin_units::ms_from_s;
     let curve = |h: &History, f: &dyn Fn(&loomkin_picking::Sample) -> f64| {
         h.samples.iter().map(|s| (ms(s.t_s), f(s))).collect::<Vec<_>>()
     };
@@ -626,8 +626,8 @@ fn plot(a: PlotArgs) -> Result<()> {
         Panel::new(
             "displacement [mm]",
             vec![
-                Series::line("nominal s", curve(&h, &|s| s.nominal.s_m * 1e3)),
-                Series::line("actual x", curve(&h, &|s| s.actual.x_m * 1e3)),
+                Series::line("nominal s", curve(&h, &|s| loomkin_units::mm_from_m(s.nominal.s_m))),
+                Series::line("actual x", curve(&h, &|s| loomkin_units::mm_from_m(s.actual.x_m))),
             ],
         )
         .with_legend(Legend::Auto),
@@ -649,7 +649,9 @@ fn plot(a: PlotArgs) -> Result<()> {
         .with_legend(Legend::Auto),
     ];
     if let Some(r) = &reference {
-        panels[0].series.push(Series::line("actual x, designed setting", curve(r, &|s| s.actual.x_m * 1e3)));
+        panels[0]
+            .series
+            .push(Series::line("actual x, designed setting", curve(r, &|s| loomkin_units::mm_from_m(s.actual.x_m))));
         panels[1].series.push(Series::line("actual v, designed setting", curve(r, &|s| s.actual.v_m_s)));
         panels[2].series.push(Series::line("actual a, designed setting", curve(r, &|s| s.actual.a_m_s2)));
     }

@@ -281,10 +281,10 @@ fn print_drive(d: &Drive) -> Result<()> {
     let lay = d.layout()?;
     outln!(
         "drive: stroke {} mm over {}°, mass {} kg, pinion r {} mm, i {}, J_m {:e} kg·m², k {} N/m, F_pre {} N, c {} N·s/m, F_c {} N, η {}",
-        d.stroke_m * 1e3,
+        loomkin_units::mm_from_m(d.stroke_m),
         d.motion_angle_deg,
         d.moving_mass_kg,
-        d.pinion_radius_m * 1e3,
+        loomkin_units::mm_from_m(d.pinion_radius_m),
         d.gear_ratio,
         d.motor_inertia_kg_m2,
         d.spring_n_m,

@@ -346,7 +346,7 @@ fn print_criteria(c: &Criteria, cond: &Conditions) -> Result<()> {
         "  at T = {} (frame within {:.1} % of its stroke), stroke {} mm, {} rpm",
         c.threshold,
         100.0 * (1.0 - c.threshold),
-        cond.stroke_m() * 1000.0,
+        loomkin_units::mm_from_m(cond.stroke_m()),
         cond.speed_rpm()
     )?;
     outln!("  motion angle             = {:>10.3} deg", c.motion_deg)?;
@@ -505,7 +505,7 @@ fn print_rows(
         "{} (T = {}, stroke {} mm, {} rpm)",
         form.title,
         cond.threshold(),
-        cond.stroke_m() * 1000.0,
+        loomkin_units::mm_from_m(cond.stroke_m()),
         cond.speed_rpm()
     )
     .map_err(failure)?;
@@ -657,7 +657,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
             format!(
                 "Pareto front: window vs peak acceleration (T = {}, stroke {} mm, {} rpm)",
                 cond.threshold(),
-                cond.stroke_m() * 1000.0,
+                loomkin_units::mm_from_m(cond.stroke_m()),
                 cond.speed_rpm()
             ),
             "weft-insertion window [deg]",
@@ -777,7 +777,7 @@ fn plot(a: PlotArgs) -> Result<()> {
         let pts = loomkin_shed::cycle_curve(law, &cond, a.points)?;
         let marks = loomkin_shed::cycle_marks(law, &cond)?;
         let window = evaluate(law, &cond)?.window_deg;
-        band_mm = marks.band_m * 1000.0;
+        band_mm = loomkin_units::mm_from_m(marks.band_m);
         let (amax, amin) = (marks.accel_max, marks.accel_min);
         // One law: the window shaded and labelled, the peaks noted with their values; several:
         // each law's window edges marked on the band in its colour (shaded windows would pile
@@ -788,7 +788,8 @@ fn plot(a: PlotArgs) -> Result<()> {
             format!("{name} {}°: window {}°, |a| {} m/s²", law.motion_deg(), sig4(window), sig4(amax.1.max(-amin.1)))
         };
         s_series.push(
-            Series::line(label.clone(), pts.iter().map(|p| (p.angle_deg, p.s_m * 1000.0)).collect()).with_color(color),
+            Series::line(label.clone(), pts.iter().map(|p| (p.angle_deg, loomkin_units::mm_from_m(p.s_m))).collect())
+                .with_color(color),
         );
         a_series.push(Series::line(label, pts.iter().map(|p| (p.angle_deg, p.a_m_s2)).collect()).with_color(color));
         if one {

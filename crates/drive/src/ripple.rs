@@ -671,39 +671,11 @@ impl<S: Shaft + ?Sized> Solution<'_, '_, S> {
     }
 }
 
-/// The largest value of `f` over the repeat: the grid's largest `values` refined by golden section
-/// on the intervals on either side of each of the best few; (value, angle).
-///
-/// A grid maximum `b` between `a` and `c` can hide at most `(b − min(a, c))/4` more between its
-/// neighbours (the vertex of the parabola through the three); the candidates that could not reach
-/// the grid's best with twice that margin are not refined.
+/// The largest value of `f` over the repeat, (value, angle): the grid's `values` on `nodes` refined
+/// ([`loomkin_numeric::periodic_scan_max`]).
 fn refined_max(nodes: &[f64], values: &[f64], f: impl Fn(f64) -> f64) -> (f64, f64) {
-    const CANDIDATES: usize = 4;
-    let n = nodes.len() - 1;
-    let reach = |k: usize| {
-        let b = values[k];
-        b + 0.5 * (b - values[(k + n - 1) % n].min(values[(k + 1) % n]))
-    };
-    let mut idx: Vec<usize> =
-        (0..n).filter(|&k| values[k] >= values[(k + n - 1) % n] && values[k] >= values[(k + 1) % n]).collect();
-    idx.sort_by(|a, b| values[*b].total_cmp(&values[*a]));
-    let top = idx.first().map_or(f64::NEG_INFINITY, |&k| values[k]);
-    idx.retain(|&k| reach(k) >= top);
-    idx.truncate(CANDIDATES);
-    let period = nodes[n];
-    let mut best = (f64::NEG_INFINITY, 0.0);
-    for k in idx {
-        if values[k] > best.0 {
-            best = (values[k], nodes[k]);
-        }
-        let a = if k == 0 { nodes[n - 1] - period } else { nodes[k - 1] };
-        let b = nodes[k + 1];
-        let m = loomkin_numeric::golden_max(&f, a, b);
-        if m.value > best.0 {
-            best = (m.value, m.at.rem_euclid(period));
-        }
-    }
-    best
+    let m = loomkin_numeric::periodic_scan_max(nodes.len() - 1, |k| nodes[k], |k| values[k], f);
+    (m.value, m.at)
 }
 
 /// The steady running of the shaft of `table` turned by `motor`, with `flywheel_kg_m2` added to

@@ -317,8 +317,14 @@ pub struct SegmentFigures {
     pub ca_ratio: f64,
 }
 
+/// The bound on an optimised law's peak acceleration, as a multiple of the modified sine's
+/// (`Ca ≤ 1.1·Ca_ms`): the modified sine is the reference law of dobbies and cam boxes, and an
+/// optimised law may cost at most a tenth more peak acceleration (inertia force) than it.
+pub const CA_LIMIT_OF_MODIFIED_SINE: f64 = 1.1;
+
 /// Shapes every rise and return of the cycle in `text` for least residual vibration across
-/// `speed_rpm·(1 ± band_pct/100)`, peak acceleration at most 110 % of the modified sine's.
+/// `speed_rpm·(1 ± band_pct/100)`, peak acceleration at most [`CA_LIMIT_OF_MODIFIED_SINE`] (110 %)
+/// of the modified sine's.
 pub fn optimize_cycle(
     text: &str,
     speed: loomkin_units::ShaftSpeed,
@@ -378,7 +384,7 @@ pub fn optimize_cycle_with(
         }
         let t0 = seg.length_rad / speed.rad_per_s();
         let (r_lo, r_hi) = (fn_hz * t0 / (1.0 + band), fn_hz * t0 / (1.0 - band));
-        let (law_spec, law) = quiet_law(r_lo, r_hi, zeta, 1.1 * ca_ms)?;
+        let (law_spec, law) = quiet_law(r_lo, r_hi, zeta, CA_LIMIT_OF_MODIFIED_SINE * ca_ms)?;
         // The worst over the band, located between the grid's points (not the grid's worst).
         let worst =
             |l: &Law| loomkin_numeric::scan_max(r_lo, r_hi, BAND_GRID, |r| crate::residual_ratio(l, r, zeta)).value;

@@ -29,6 +29,9 @@ impl SweepPoint {
     /// CPU seconds per speed and cycle segment (one closed-form response), measured on the
     /// reference machine (release, one core): 5 µs.
     pub const CPU_S_PER_SEGMENT: f64 = 5e-6;
+    /// Bytes a front end holds per speed for a JSON row until it prints the array (an object of
+    /// a dozen keys and numbers, rounded up).
+    pub const JSON_ROW_BYTES: f64 = 1000.0;
     /// Bytes held per speed: the point, its table row and the list of speeds.
     pub const BYTES_PER_SPEED: f64 = 96.0 + 104.0 + 8.0;
 

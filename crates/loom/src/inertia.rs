@@ -399,51 +399,14 @@ fn add_wrapped(total: &mut [f64], start: usize, tab: &[f64]) {
     }
 }
 
-/// Extremes of `f` near the grid's (golden section on the two intervals beside each of the few
-/// best grid points) and the mean given.
+/// Extremes of `f` near the grid's ([`loomkin_numeric::periodic_scan_max`] on `f` and on `−f`; the
+/// grid's values are `f` every `h` over the period) and the mean given.
 fn stats(grid: &[f64], h: f64, period: f64, f: &dyn Fn(f64) -> f64, mean: f64) -> InertiaStats {
     let n = grid.len();
-    let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
-    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
-    // The grid's extremes and its largest step between neighbours `d`: a maximum hidden between
-    // a grid point b and its neighbours a, c exceeds b by at most (b − min(a, c))/4 ≤ d/4, so only
-    // points within d of the grid's extreme need a look.
-    let (mut gmax, mut gmin, mut d) = (f64::NEG_INFINITY, f64::INFINITY, 0.0_f64);
-    for k in 0..n {
-        let x = grid[k];
-        gmax = gmax.max(x);
-        gmin = gmin.min(x);
-        d = d.max((x - grid[next(k)]).abs());
-    }
+    let node = |k: usize| if k == n { period } else { k as f64 * h };
     let find = |sign: f64| -> (f64, f64) {
-        let v = |k: usize| sign * grid[k];
-        let floor = if sign > 0.0 { gmax } else { -gmin } - d;
-        // The four largest local extremes at or above the floor (a flat stretch makes every point
-        // a local extreme: the first few suffice).
-        let mut idx: Vec<usize> = Vec::with_capacity(5);
-        for k in 0..n {
-            let x = v(k);
-            if x < floor || (idx.len() == 4 && x <= v(idx[3])) {
-                continue;
-            }
-            if x >= v(prev(k)) && x >= v(next(k)) {
-                let at = idx.partition_point(|&j| v(j) >= x);
-                idx.insert(at, k);
-                idx.truncate(4);
-            }
-        }
-        let mut best = (f64::NEG_INFINITY, 0.0);
-        for k in idx {
-            let x = k as f64 * h;
-            if v(k) > best.0 {
-                best = (v(k), x);
-            }
-            let m = loomkin_numeric::golden_max(|t| sign * f(t), x - h, x + h);
-            if m.value > best.0 {
-                best = (m.value, m.at.rem_euclid(period));
-            }
-        }
-        (sign * best.0, best.1)
+        let m = loomkin_numeric::periodic_scan_max(n, node, |k| sign * grid[k], |t| sign * f(t));
+        (sign * m.value, m.at)
     };
     let (max, at_max) = find(1.0);
     let (min, at_min) = find(-1.0);

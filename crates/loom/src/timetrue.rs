@@ -251,18 +251,11 @@ impl Correction {
     }
 }
 
-/// The largest of `|f|` over `[a, b]`: a grid of about 0.25° refined by golden section.
+/// The largest of `|f|` over `[a, b]`: a grid of about 0.25°, every local maximum refined
+/// ([`loomkin_numeric::scan_max`]).
 fn max_abs(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
     let n = ((b - a) / 0.25_f64.to_radians()).ceil().max(2.0) as usize;
-    let xs: Vec<f64> = (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect();
-    let vals: Vec<f64> = xs.iter().map(|x| f(*x).abs()).collect();
-    let (k, mut best) = vals.iter().enumerate().fold((0, 0.0), |m, (k, v)| if *v > m.1 { (k, *v) } else { m });
-    let (lo, hi) = (xs[k.saturating_sub(1)], xs[(k + 1).min(n)]);
-    let r = loomkin_numeric::golden_max(|x| f(x).abs(), lo, hi);
-    if r.value > best {
-        best = r.value;
-    }
-    best
+    loomkin_numeric::scan_max(a, b, n, |x| f(x).abs()).value
 }
 
 /// The frames' residual vibrations (mm) on the shaft of `map`, each frame's input given by `kin`.

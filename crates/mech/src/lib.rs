@@ -81,7 +81,8 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     AlphaSweep::ALPHAS,
 ];
 pub use dobby::synthesis::{
-    Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize, synthesize_into,
+    GivenLength, Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize,
+    synthesize_into,
 };
 pub use dobby::tolerance;
 pub use dobby::tolerance::Tolerance;

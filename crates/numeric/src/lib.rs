@@ -4,7 +4,8 @@
 //! crate: [`bisect`] (to adjacent doubles), [`refine_root`] (Newton kept inside a bracket),
 //! [`illinois_root`] (regula falsi, no derivative needed),
 //! [`golden_max`] (golden-section search keeping the best point), [`brent_max_from`] (parabolic
-//! steps with golden-section fall-back), [`scan_max`] (a grid's local maxima, each refined),
+//! steps with golden-section fall-back), [`scan_max`] (a grid's local maxima, each refined;
+//! [`periodic_scan_max`] over a period),
 //! [`extremes_of`] (the least and greatest values of smooth functions known with two derivatives:
 //! the derivatives' sign changes bracketed and refined) and
 //! [`grid_roots`] / [`scan_roots`] (every root on an interval: sign changes of a grid, close pairs
@@ -44,7 +45,7 @@ pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
 pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
 pub use root::{illinois_root, refine_root, refine_root_from, try_refine_root_from};
 pub use roots::{grid_roots, scan_roots};
-pub use scan::scan_max;
+pub use scan::{periodic_scan_max, scan_max};
 
 /// About `k` units in the last place of the larger of `|a|` and `|b|` (`k·ε·max(|a|, |b|)`, at
 /// least the smallest normal double): the narrowest bracket worth refining between `a` and `b`.

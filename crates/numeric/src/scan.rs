@@ -1,6 +1,6 @@
 //! The maximum of a function known by its values only: a grid's local maxima, each refined.
 
-use crate::{Max, golden_max_from};
+use crate::{Max, golden_max, golden_max_from};
 
 /// The largest value of `f` on `[lo, hi]` and where it is: `f` on a grid of `n` intervals (at
 /// least 2), then every local maximum of the grid (the ends included) refined by golden-section
@@ -26,6 +26,58 @@ pub fn scan_max(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> Max {
             if m.value > best.value {
                 best = m;
             }
+        }
+    }
+    best
+}
+
+/// How many of a periodic grid's local maxima [`periodic_scan_max`] refines at most.
+const PERIODIC_CANDIDATES: usize = 4;
+
+/// The largest value of a periodic `f`, known on `n` intervals of one period, and where it is (in
+/// `[node(0), period)`): `node(k)` rises from 0 to the period (`node(n)` is the period, the nodes
+/// need not be evenly spaced), `value(k) = f(node(k))` for `k < n` (functions of the index, so a
+/// long grid is read where it lies, not copied).
+///
+/// The grid's local maxima (neighbours taken across the period's end) that could reach the grid's
+/// best are each refined by golden-section search on the two intervals beside them. Whether a
+/// grid maximum `b` between `a` and `c` could: through three points a parabola's vertex exceeds
+/// `b` by at most `(b − min(a, c))/8`; a margin of four times that, `(b − min(a, c))/2`, is allowed
+/// for functions that are not parabolas at the grid's scale. Of those, the
+/// [`PERIODIC_CANDIDATES`] highest are refined (a flat stretch makes every point a local maximum:
+/// the first few suffice). The result is the best of the grid and the refinements, so never below
+/// the grid's best.
+///
+/// # Panics
+/// When `n < 2`.
+pub fn periodic_scan_max(
+    n: usize,
+    node: impl Fn(usize) -> f64,
+    value: impl Fn(usize) -> f64,
+    f: impl Fn(f64) -> f64,
+) -> Max {
+    assert!(n >= 2, "a periodic grid needs two intervals");
+    let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
+    let reach = |k: usize| {
+        let b = value(k);
+        b + 0.5 * (b - value(prev(k)).min(value(next(k))))
+    };
+    let mut idx: Vec<usize> = (0..n).filter(|&k| value(k) >= value(prev(k)) && value(k) >= value(next(k))).collect();
+    idx.sort_by(|a, b| value(*b).total_cmp(&value(*a)));
+    let top = idx.first().map_or(f64::NEG_INFINITY, |&k| value(k));
+    idx.retain(|&k| reach(k) >= top);
+    idx.truncate(PERIODIC_CANDIDATES);
+    let period = node(n);
+    let mut best = Max { at: node(0), value: f64::NEG_INFINITY };
+    for k in idx {
+        if value(k) > best.value {
+            best = Max { at: node(k), value: value(k) };
+        }
+        let a = if k == 0 { node(n - 1) - period } else { node(k - 1) };
+        let m = golden_max(&f, a, node(k + 1));
+        if m.value > best.value {
+            best = Max { at: m.at.rem_euclid(period), value: m.value };
         }
     }
     best
@@ -60,6 +112,36 @@ mod tests {
         for n in [7usize, 13, 40, 1000] {
             let m = scan_max(0.0, 3.0, n, f);
             assert!((m.value - 2.0).abs() < 1e-12 && (m.at - 2.37).abs() < 1e-6, "n = {n}: {m:?}");
+        }
+    }
+
+    #[test]
+    fn a_periodic_peak_across_the_end_and_between_uneven_nodes() {
+        // cos(x − c) on [0, 2π): the peak at c, also just before the period's end (found from
+        // the grid's wrap), on uneven nodes.
+        let period = std::f64::consts::TAU;
+        for c in [0.3, 2.0, period - 1e-3, 1e-3] {
+            let f = |x: f64| (x - c).cos();
+            let mut nodes: Vec<f64> = (0..=24).map(|k| period * k as f64 / 24.0).collect();
+            nodes.insert(5, 0.5 * (nodes[4] + nodes[5]));
+            let values: Vec<f64> = nodes.iter().map(|&x| f(x)).collect();
+            let m = periodic_scan_max(nodes.len() - 1, |k| nodes[k], |k| values[k], f);
+            let d = (m.at - c).rem_euclid(period);
+            assert!(d.min(period - d) < 1e-7 && (m.value - 1.0).abs() < 1e-14, "c = {c}: {m:?}");
+        }
+    }
+
+    #[test]
+    fn a_periodic_scan_is_never_below_the_grid_and_finds_the_higher_of_two_peaks() {
+        let period = 360.0;
+        let f = |x: f64| (-(x - 100.3_f64).powi(2) / 8.0).exp() + 1.5 * (-(x - 271.7_f64).powi(2) / 8.0).exp();
+        for n in [90usize, 360, 3600] {
+            let nodes: Vec<f64> = (0..=n).map(|k| period * k as f64 / n as f64).collect();
+            let values: Vec<f64> = nodes.iter().map(|&x| f(x)).collect();
+            let m = periodic_scan_max(nodes.len() - 1, |k| nodes[k], |k| values[k], f);
+            let grid_best = values[..n].iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            assert!(m.value >= grid_best, "n = {n}");
+            assert!((m.at - 271.7).abs() < 1e-5 && (m.value - 1.5).abs() < 1e-12, "n = {n}: {m:?}");
         }
     }
 }

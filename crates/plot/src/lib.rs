@@ -623,31 +623,9 @@ pub fn plot_format(path: &Path) -> Result<PlotFormat, IoError> {
     }
 }
 
-/// A value for a note or a title: four significant digits, no trailing zeros (`12.35`, `0.001235`,
-/// `1.235e-7`, `−3`).
-pub fn sig4(v: f64) -> String {
-    if !v.is_finite() {
-        return if v.is_nan() {
-            "not-a-number".into()
-        } else if v > 0.0 {
-            "∞".into()
-        } else {
-            "−∞".into()
-        };
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let mag = v.abs().log10().floor();
-    let text = if (-3.0..6.0).contains(&mag) {
-        let decimals = (3.0 - mag).max(0.0) as usize;
-        let t = format!("{v:.decimals$}");
-        if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t }
-    } else {
-        format!("{v:.3e}")
-    };
-    text.replace('-', "−")
-}
+/// A value for a note or a title: four significant digits ([`loomkin_units::sig4`], the one
+/// format of figures and messages; re-exported here where figures are made).
+pub use loomkin_units::sig4;
 
 fn panel_weight(w: f64) -> f64 {
     if w.is_finite() && w > 0.0 { w.clamp(0.1, 10.0) } else { 1.0 }

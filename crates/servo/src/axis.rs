@@ -32,7 +32,7 @@
 
 use crate::{Drive, Result, ServoError};
 use loomkin_laws::StrokeUnit;
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -93,11 +93,134 @@ pub struct Load {
 }
 
 fn one() -> f64 {
-    1.0
+    Load::EFFICIENCY.default_value()
 }
 
 fn default_ratio() -> f64 {
-    10.0
+    Limits::MAX_INERTIA_RATIO.default_value()
+}
+
+/// The bounds of an axis file's keys: wide enough for any servo motor from a few grams to a press
+/// drive; what they exclude is what the model cannot take (a zero rated torque or speed, a zero
+/// rotor inertia in the inertia ratio, a zero efficiency the torque divides by).
+impl Motor {
+    /// `rated_torque_nm`: 10⁻⁹ … 10⁹ N·m; positive (the S1 check divides by it).
+    pub const RATED_TORQUE_NM: Field = Field::new(
+        "motor.rated_torque_nm",
+        Range::closed(1e-9, 1e9, "N·m"),
+        "Rated (continuous, S1) torque of the motor: 10⁻⁹ … 10⁹ N·m; positive (the margins divide by it).",
+    );
+    /// `peak_torque_nm`: the rated torque … 10⁹ N·m.
+    pub const PEAK_TORQUE_NM: Field = Field::new(
+        "motor.peak_torque_nm",
+        Range::closed(1e-9, 1e9, "N·m"),
+        "Peak torque of the motor: at least the rated torque, at most 10⁹ N·m.",
+    );
+    /// `rated_speed_rpm`: 10⁻⁶ … 10⁷ rpm.
+    pub const RATED_SPEED_RPM: Field = Field::new(
+        "motor.rated_speed_rpm",
+        Range::closed(1e-6, 1e7, "rpm"),
+        "Rated speed of the motor (the end of its constant-torque range): 10⁻⁶ … 10⁷ rpm.",
+    );
+    /// `max_speed_rpm`: the rated speed … 10⁷ rpm.
+    pub const MAX_SPEED_RPM: Field = Field::new(
+        "motor.max_speed_rpm",
+        Range::closed(1e-6, 1e7, "rpm"),
+        "Maximum speed of the motor: at least the rated speed, at most 10⁷ rpm.",
+    );
+    /// `rotor_inertia_kg_m2`: 10⁻¹² … 10⁶ kg·m²; positive (the inertia ratio divides by it).
+    pub const ROTOR_INERTIA_KG_M2: Field = Field::new(
+        "motor.rotor_inertia_kg_m2",
+        Range::closed(1e-12, 1e6, "kg·m²"),
+        "Rotor inertia J_m of the motor: 10⁻¹² … 10⁶ kg·m²; positive (the inertia ratio divides by it).",
+    );
+    /// `torque_at_max_speed_nm`: 0 … the peak torque; left out, the rated torque.
+    pub const TORQUE_AT_MAX_SPEED_NM: Field = Field::new(
+        "motor.torque_at_max_speed_nm",
+        Range::closed(0.0, 1e9, "N·m"),
+        "Peak torque available at the maximum speed (the voltage-limit line's end): 0 … the peak torque; \
+         the rated torque when left out.",
+    );
+}
+
+impl Load {
+    /// `moving_mass_kg`: 0 … 10⁹ kg (a translating slave).
+    pub const MOVING_MASS_KG: Field = Field::new(
+        "load.moving_mass_kg",
+        Range::closed(0.0, 1e9, "kg"),
+        "Moving mass of a translating slave: 0 … 10⁹ kg.",
+    );
+    /// `load_inertia_kg_m2`: 0 … 10⁹ kg·m² (a swinging slave).
+    pub const LOAD_INERTIA_KG_M2: Field = Field::new(
+        "load.load_inertia_kg_m2",
+        Range::closed(0.0, 1e9, "kg·m²"),
+        "Inertia of a swinging slave about its pivot: 0 … 10⁹ kg·m².",
+    );
+    /// `travel_mm_per_rev`: 10⁻⁹ … 10⁹ mm/rev; positive (the transmission ratio divides by it).
+    pub const TRAVEL_MM_PER_REV: Field = Field::new(
+        "load.travel_mm_per_rev",
+        Range::closed(1e-9, 1e9, "mm/rev"),
+        "Slave travel per motor revolution of a translating slave: 10⁻⁹ … 10⁹ mm/rev; positive.",
+    );
+    /// `gear_ratio`: 10⁻⁹ … 10⁹ motor turns per slave turn.
+    pub const GEAR_RATIO: Field = Field::new(
+        "load.gear_ratio",
+        Range::closed(1e-9, 1e9, ""),
+        "Motor turns per slave turn of a swinging slave: 10⁻⁹ … 10⁹; positive.",
+    );
+    /// `efficiency`: 0.001 … 1; 1 when left out (the motor torque divides by it).
+    pub const EFFICIENCY: Field = Field::new(
+        "load.efficiency",
+        Range::closed(1e-3, 1.0, ""),
+        "Efficiency η of the transmission: 0.001 … 1 (the motor torque divides by it); 1 when left out.",
+    )
+    .with_default(1.0);
+    /// `friction_n`: 0 … 10⁹ N (or N·m).
+    pub const FRICTION_N: Field = Field::new(
+        "load.friction_n",
+        Range::closed(0.0, 1e9, ""),
+        "Coulomb friction F_μ (N, or N·m for a swinging slave): 0 … 10⁹; 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `viscous_n_s_m`: 0 … 10⁹ N·s/m (or N·m·s/rad).
+    pub const VISCOUS_N_S_M: Field = Field::new(
+        "load.viscous_n_s_m",
+        Range::closed(0.0, 1e9, ""),
+        "Viscous friction c (N·s/m, or N·m·s/rad): 0 … 10⁹; 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `spring_n_m`: ±10¹² N/m (or N·m/rad).
+    pub const SPRING_N_M: Field = Field::new(
+        "load.spring_n_m",
+        Range::closed(-1e12, 1e12, ""),
+        "Spring stiffness k_s (N/m, or N·m/rad): ±10¹²; 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `constant_force_n`: ±10⁹ N (or N·m).
+    pub const CONSTANT_FORCE_N: Field = Field::new(
+        "load.constant_force_n",
+        Range::closed(-1e9, 1e9, ""),
+        "Spring force at rest plus any constant force F₀ (N, or N·m): ±10⁹; 0 when left out.",
+    )
+    .with_default(0.0);
+    /// `extra_inertia_kg_m2`: 0 … 10⁶ kg·m².
+    pub const EXTRA_INERTIA_KG_M2: Field = Field::new(
+        "load.extra_inertia_kg_m2",
+        Range::closed(0.0, 1e6, "kg·m²"),
+        "Extra inertia J_x on the motor shaft (coupling, gearbox input): 0 … 10⁶ kg·m²; 0 when left out.",
+    )
+    .with_default(0.0);
+}
+
+impl Limits {
+    /// `max_inertia_ratio`: 10⁻⁶ … 10⁹; 10 when left out (a common rule for a stiff coupling).
+    pub const MAX_INERTIA_RATIO: Field = Field::new(
+        "limits.max_inertia_ratio",
+        Range::closed(1e-6, 1e9, ""),
+        "Largest admissible ratio of the load's reflected inertia to the rotor's: 10⁻⁶ … 10⁹; 10 when left \
+         out (a common rule for a stiff coupling).",
+    )
+    .with_default(10.0);
 }
 
 /// Limits of the check.
@@ -167,21 +290,22 @@ impl Axis {
     /// Checks every field, and that the load is given in the terms of `unit` (mass and travel per
     /// revolution for `mm`, inertia and gear ratio for `deg`).
     pub fn validate(&self, unit: StrokeUnit) -> Result<()> {
-        let c = |field: &str, v: f64, lo: f64, hi: f64, unit: &'static str| Range::closed(lo, hi, unit).check(field, v);
         let m = &self.motor;
-        c("motor.rated_torque_nm", m.rated_torque_nm, 1e-9, 1e9, "N·m")?;
-        c("motor.peak_torque_nm", m.peak_torque_nm, m.rated_torque_nm, 1e9, "N·m")?;
-        c("motor.rated_speed_rpm", m.rated_speed_rpm, 1e-6, 1e7, "rpm")?;
-        c("motor.max_speed_rpm", m.max_speed_rpm, m.rated_speed_rpm, 1e7, "rpm")?;
-        c("motor.rotor_inertia_kg_m2", m.rotor_inertia_kg_m2, 1e-12, 1e6, "kg·m²")?;
+        Motor::RATED_TORQUE_NM.check(m.rated_torque_nm)?;
+        Motor::PEAK_TORQUE_NM.at_least(m.rated_torque_nm).check(m.peak_torque_nm)?;
+        Motor::RATED_SPEED_RPM.check(m.rated_speed_rpm)?;
+        Motor::MAX_SPEED_RPM.at_least(m.rated_speed_rpm).check(m.max_speed_rpm)?;
+        Motor::ROTOR_INERTIA_KG_M2.check(m.rotor_inertia_kg_m2)?;
         if let Some(t) = m.torque_at_max_speed_nm {
-            c("motor.torque_at_max_speed_nm", t, 0.0, m.peak_torque_nm, "N·m")?;
+            Motor::TORQUE_AT_MAX_SPEED_NM.at_most(m.peak_torque_nm).check(t)?;
         }
         let l = &self.load;
-        let (mass_key, ratio_key, other_mass, other_ratio) = match unit {
-            StrokeUnit::Mm => ("moving_mass_kg", "travel_mm_per_rev", l.load_inertia_kg_m2, l.gear_ratio),
-            StrokeUnit::Deg => ("load_inertia_kg_m2", "gear_ratio", l.moving_mass_kg, l.travel_mm_per_rev),
+        let (mass_field, ratio_field, other_mass, other_ratio) = match unit {
+            StrokeUnit::Mm => (Load::MOVING_MASS_KG, Load::TRAVEL_MM_PER_REV, l.load_inertia_kg_m2, l.gear_ratio),
+            StrokeUnit::Deg => (Load::LOAD_INERTIA_KG_M2, Load::GEAR_RATIO, l.moving_mass_kg, l.travel_mm_per_rev),
         };
+        let key = |f: &Field| f.name.strip_prefix("load.").unwrap_or(f.name);
+        let (mass_key, ratio_key) = (key(&mass_field), key(&ratio_field));
         if other_mass.is_some() || other_ratio.is_some() {
             let (a, b) = match unit {
                 StrokeUnit::Mm => ("load_inertia_kg_m2 or gear_ratio", "a translating (mm) motion"),
@@ -197,22 +321,22 @@ impl Axis {
             StrokeUnit::Mm => (l.moving_mass_kg, l.travel_mm_per_rev),
             StrokeUnit::Deg => (l.load_inertia_kg_m2, l.gear_ratio),
         };
-        let need = |key: &str, v: Option<f64>| {
+        let need = |f: &Field, v: Option<f64>| {
             v.ok_or_else(|| ServoError::Parse {
-                field: format!("load.{key}"),
+                field: f.name.into(),
                 text: "missing".into(),
                 expected: format!("a number (the load needs {mass_key} and {ratio_key})"),
             })
         };
-        c(&format!("load.{mass_key}"), need(mass_key, mass)?, 0.0, 1e9, "")?;
-        c(&format!("load.{ratio_key}"), need(ratio_key, ratio)?, 1e-9, 1e9, "")?;
-        c("load.efficiency", l.efficiency, 1e-3, 1.0, "")?;
-        c("load.friction_n", l.friction_n, 0.0, 1e9, "")?;
-        c("load.viscous_n_s_m", l.viscous_n_s_m, 0.0, 1e9, "")?;
-        c("load.spring_n_m", l.spring_n_m, -1e12, 1e12, "")?;
-        c("load.constant_force_n", l.constant_force_n, -1e9, 1e9, "")?;
-        c("load.extra_inertia_kg_m2", l.extra_inertia_kg_m2, 0.0, 1e6, "kg·m²")?;
-        c("limits.max_inertia_ratio", self.limits.max_inertia_ratio, 1e-6, 1e9, "")?;
+        mass_field.check(need(&mass_field, mass)?)?;
+        ratio_field.check(need(&ratio_field, ratio)?)?;
+        Load::EFFICIENCY.check(l.efficiency)?;
+        Load::FRICTION_N.check(l.friction_n)?;
+        Load::VISCOUS_N_S_M.check(l.viscous_n_s_m)?;
+        Load::SPRING_N_M.check(l.spring_n_m)?;
+        Load::CONSTANT_FORCE_N.check(l.constant_force_n)?;
+        Load::EXTRA_INERTIA_KG_M2.check(l.extra_inertia_kg_m2)?;
+        Limits::MAX_INERTIA_RATIO.check(self.limits.max_inertia_ratio)?;
         Ok(())
     }
 

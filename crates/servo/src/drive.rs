@@ -89,23 +89,6 @@ fn default_efficiency() -> f64 {
     Drive::EFFICIENCY.default_value()
 }
 
-/// The keys of a `[drive]` table and their units.
-pub const DRIVE_KEYS: [(&str, &str); 13] = [
-    ("stroke_m", "m"),
-    ("motion_angle_deg", "deg"),
-    ("moving_mass_kg", "kg"),
-    ("pinion_radius_m", "m"),
-    ("gear_ratio", ""),
-    ("motor_inertia_kg_m2", "kg·m²"),
-    ("spring_n_m", "N/m"),
-    ("spring_preload_n", "N"),
-    ("damping_n_s_m", "N·s/m"),
-    ("constant_force_n", "N"),
-    ("efficiency", ""),
-    ("return_angle_deg", "deg"),
-    ("dwell_after_rise_deg", "deg"),
-];
-
 /// The top-level keys of a workbench design file besides `drive` (definition points, spline
 /// start condition, speeds); a drive file may hold them, [`Drive::from_toml`] ignores them.
 pub const DESIGN_KEYS: [&str; 3] = ["points", "end", "speeds_rpm"];
@@ -293,8 +276,10 @@ impl Drive {
             ..Self::pure_inertia(0.0, 0.0, 0.0, 0.0)
         };
         for (key, entry) in entries {
-            let Some(&(_, unit)) = DRIVE_KEYS.iter().find(|(k, _)| *k == key) else {
-                let keys: Vec<&str> = DRIVE_KEYS.iter().map(|(k, _)| *k).collect();
+            let Some(unit) =
+                Drive::TABLE.iter().find(|f| f.name.strip_prefix("drive.") == Some(key.as_str())).map(|f| f.range.unit)
+            else {
+                let keys: Vec<&str> = Drive::TABLE.iter().filter_map(|f| f.name.strip_prefix("drive.")).collect();
                 return Err(ServoError::Parse {
                     field: format!("drive.{key}"),
                     text: format!("unknown key '{key}'"),
@@ -325,7 +310,7 @@ impl Drive {
                 "constant_force_n" => &mut d.constant_force_n,
                 "efficiency" => &mut d.efficiency,
                 "return_angle_deg" => d.return_angle_deg.insert(0.0),
-                // The last key of DRIVE_KEYS (the key was found there above).
+                // The last key of Drive::TABLE (the key was found there above).
                 _ => d.dwell_after_rise_deg.insert(0.0),
             };
             *slot = x;
@@ -414,6 +399,33 @@ impl Drive {
         "Main-shaft angle of the return: 10⁻⁶ … 359° (with the rise it fits in one turn); left out, the rise's.",
     );
 
+    /// `dwell_after_rise_deg`: 0 … 359°, and at most what rise and return leave of the turn (checked
+    /// with the layout); left out, half of that.
+    pub const DWELL_AFTER_RISE_DEG: Field = Field::new(
+        "drive.dwell_after_rise_deg",
+        Range::closed(0.0, 359.0, "deg"),
+        "Main-shaft angle of the dwell after the rise: at most what rise and return leave of the turn; left out, \
+         half of that.",
+    );
+
+    /// The keys of a `[drive]` table, in the order files write them: each key is the descriptor's
+    /// name without `drive.`, its unit the descriptor's.
+    pub const TABLE: [Field; 13] = [
+        Self::STROKE_M,
+        Self::MOTION_ANGLE_DEG,
+        Self::MOVING_MASS_KG,
+        Self::PINION_RADIUS_M,
+        Self::GEAR_RATIO,
+        Self::MOTOR_INERTIA_KG_M2,
+        Self::SPRING_N_M,
+        Self::SPRING_PRELOAD_N,
+        Self::DAMPING_N_S_M,
+        Self::CONSTANT_FORCE_N,
+        Self::EFFICIENCY,
+        Self::RETURN_ANGLE_DEG,
+        Self::DWELL_AFTER_RISE_DEG,
+    ];
+
     /// Checks every field's range (finite, positive where it must be, angles fit in one turn).
     pub fn validate(&self) -> Result<()> {
         Self::STROKE_M.check(self.stroke_m)?;
@@ -446,7 +458,9 @@ impl Drive {
             });
         }
         let d1 = match self.dwell_after_rise_deg {
-            Some(d) => Range::closed(0.0, rest, "deg").check("drive.dwell_after_rise_deg", d)?,
+            Some(d) => Self::DWELL_AFTER_RISE_DEG
+                .within(Range::closed(0.0, rest, "deg"), Self::DWELL_AFTER_RISE_DEG.doc)
+                .check(d)?,
             None => rest / 2.0,
         };
         Ok(CycleLayout { rise_deg: rise, dwell_after_rise_deg: d1, return_deg: ret, dwell_after_return_deg: rest - d1 })

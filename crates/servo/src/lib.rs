@@ -48,7 +48,7 @@ pub use axis_check::{
 };
 pub use cycle_file::spline_cycle;
 pub use design::{DesignFormat, MAX_DEF_POINTS, MAX_SPEEDS, ServoDesign};
-pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, DRIVE_KEYS, Drive};
+pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, Drive};
 pub use error::{Result, ServoError};
 pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
@@ -120,6 +120,24 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     Drive::DAMPING_N_S_M,
     Drive::CONSTANT_FORCE_N,
     Drive::EFFICIENCY,
+    Drive::DWELL_AFTER_RISE_DEG,
+    Motor::RATED_TORQUE_NM,
+    Motor::PEAK_TORQUE_NM,
+    Motor::RATED_SPEED_RPM,
+    Motor::MAX_SPEED_RPM,
+    Motor::ROTOR_INERTIA_KG_M2,
+    Motor::TORQUE_AT_MAX_SPEED_NM,
+    Load::MOVING_MASS_KG,
+    Load::LOAD_INERTIA_KG_M2,
+    Load::TRAVEL_MM_PER_REV,
+    Load::GEAR_RATIO,
+    Load::EFFICIENCY,
+    Load::FRICTION_N,
+    Load::VISCOUS_N_S_M,
+    Load::SPRING_N_M,
+    Load::CONSTANT_FORCE_N,
+    Load::EXTRA_INERTIA_KG_M2,
+    Limits::MAX_INERTIA_RATIO,
 ];
 pub use report::{
     DriveReport, LAW_UNITS, LawReport, LayoutDeg, OptimizeSummary, ReinterpolationRow, TorqueReport, WorstTorque,

@@ -4,8 +4,17 @@
 /// Standard gravity g₀, m/s² (the conventional value, CGPM 1901): the weight of a mass on a loom.
 pub const STANDARD_GRAVITY_M_S2: f64 = 9.806_65;
 
-/// Millimetres per metre.
-const MM_PER_M: f64 = 1000.0;
+/// Millimetres per metre (a scale for descriptors given in mm, `Range::in_unit`).
+pub const MM_PER_M: f64 = 1000.0;
+
+/// Milliseconds per second.
+const MS_PER_S: f64 = 1000.0;
+
+/// Milliseconds from seconds.
+#[inline]
+pub fn ms_from_s(s: f64) -> f64 {
+    s * MS_PER_S
+}
 
 /// Metres from millimetres.
 #[inline]

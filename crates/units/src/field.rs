@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::range::{Range, RangeError};
+use crate::range::{Bound, Range, RangeError};
 
 /// One input of the library: the key it is given under, its allowed range with its unit, its default
 /// and one sentence on what it is and why its range is what it is.
@@ -78,6 +78,19 @@ impl Field {
         }
         self.range = range;
         self.doc = doc;
+        self
+    }
+
+    /// The same field with its lower bound set to `lo` (closed), for a bound that depends on another
+    /// input (a peak torque at least the rated one); the descriptor's `doc` states the dependence.
+    pub const fn at_least(mut self, lo: f64) -> Self {
+        self.range.lo = Bound::Closed(lo);
+        self
+    }
+
+    /// The same field with its upper bound set to `hi` (closed), as [`Field::at_least`].
+    pub const fn at_most(mut self, hi: f64) -> Self {
+        self.range.hi = Bound::Closed(hi);
         self
     }
 

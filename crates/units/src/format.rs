@@ -27,6 +27,40 @@ pub fn compact(v: f64) -> String {
     if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
 }
 
+/// A value for a note, a title or a message in words: four significant digits, no trailing zeros
+/// (`12.35`, `0.001235`, `1.235e−7`, `−3`, with a true minus sign), where [`compact`] keeps up to
+/// twelve for values a user types back.
+///
+/// ```
+/// use loomkin_units::sig4;
+/// assert_eq!(sig4(0.00123456), "0.001235");
+/// assert_eq!(sig4(-3.0), "−3");
+/// assert_eq!(sig4(1.23456e-7), "1.235e−7");
+/// ```
+pub fn sig4(v: f64) -> String {
+    if !v.is_finite() {
+        return if v.is_nan() {
+            "not-a-number".into()
+        } else if v > 0.0 {
+            "∞".into()
+        } else {
+            "−∞".into()
+        };
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor();
+    let text = if (-3.0..6.0).contains(&mag) {
+        let decimals = (3.0 - mag).max(0.0) as usize;
+        let t = format!("{v:.decimals$}");
+        if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t }
+    } else {
+        format!("{v:.3e}")
+    };
+    text.replace('-', "−")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -33,10 +33,11 @@ mod toml_text;
 
 pub use budget::{Budget, BudgetError, BudgetParseError, Cost, bytes_text, seconds_text};
 pub use convert::{
-    STANDARD_GRAVITY_M_S2, deg_from_rad, m_from_mm, mm_from_m, rad_from_deg, rad_per_s_from_rpm, rpm_from_rad_per_s,
+    MM_PER_M, STANDARD_GRAVITY_M_S2, deg_from_rad, m_from_mm, mm_from_m, ms_from_s, rad_from_deg, rad_per_s_from_rpm,
+    rpm_from_rad_per_s,
 };
 pub use field::{Field, FieldList};
-pub use format::compact;
+pub use format::{compact, sig4};
 pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
 pub use stop::{StopFlag, Stopped};

@@ -9,8 +9,8 @@ use axum::routing::{get, post};
 use loomkin_io::dxf::{DxfUnit, write_shapes};
 use loomkin_mech::dobby_export::{DEFAULT_CHORD_TOL_MM, synthesis_points_table, synthesis_shapes};
 use loomkin_mech::{
-    CamProfile, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, ROLLER_M_RANGE, STEP_DEG_RANGE, Synthesis,
-    SynthesisOptions, SynthesisSummary, Warning, synthesize,
+    CamProfile, GivenLength, MechError, MechanismPose, ModulatorGeometry, OutputLawSpec, ROLLER_M_RANGE,
+    STEP_DEG_RANGE, Synthesis, SynthesisOptions, SynthesisSummary, Warning, synthesize,
 };
 use loomkin_units::{FieldError, compact};
 use serde::{Deserialize, Serialize};
@@ -227,20 +227,8 @@ pub struct DobbyExportResponse {
 pub fn dobby_export(req: &DobbyExportRequest) -> Result<DobbyExportResponse, ApiError> {
     let s = synthesis(&req.request).map_err(|e| e.within("request"))?;
     // As the CLI: an undercut cam is reported, never drawn.
-    if s.summary.undercut {
-        let largest = s
-            .summary
-            .checks
-            .roller_max_m
-            .map(|r| format!("; the largest roller without undercut is {} mm", loomkin_units::compact(r * 1e3)));
-        return Err(ApiError::invalid(
-            "request.roller_m",
-            format!(
-                "a {} mm roller undercuts the cams{}",
-                loomkin_units::compact(req.request.roller_m * 1e3),
-                largest.unwrap_or_default()
-            ),
-        ));
+    if let Some(why) = s.undercut_refusal(GivenLength::Metre) {
+        return Err(ApiError::invalid("request.roller_m", why));
     }
     let mut out = Vec::new();
     let (filename, media_type) = match req.format {

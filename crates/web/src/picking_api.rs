@@ -142,9 +142,9 @@ pub fn simulate(req: &PickingRequest) -> Result<PickingResponse, ApiError> {
     let h = history(&mech, &st, req.method, n).map_err(pick_error)?;
     let s = &h.samples;
     let curves = PickingCurves {
-        t_ms: s.iter().map(|p| finite(p.t_s * 1e3)).collect(),
-        nominal_mm: s.iter().map(|p| finite(p.nominal.s_m * 1e3)).collect(),
-        actual_mm: s.iter().map(|p| finite(p.actual.x_m * 1e3)).collect(),
+        t_ms: s.iter().map(|p| finite(loomkin_units::ms_from_s(p.t_s))).collect(),
+        nominal_mm: s.iter().map(|p| finite(loomkin_units::mm_from_m(p.nominal.s_m))).collect(),
+        actual_mm: s.iter().map(|p| finite(loomkin_units::mm_from_m(p.actual.x_m))).collect(),
         nominal_v_m_s: s.iter().map(|p| finite(p.nominal.v_m_s)).collect(),
         actual_v_m_s: s.iter().map(|p| finite(p.actual.v_m_s)).collect(),
         nominal_a_m_s2: s.iter().map(|p| finite(p.nominal.a_m_s2)).collect(),

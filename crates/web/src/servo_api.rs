@@ -136,7 +136,7 @@ pub fn evaluate(req: &EvaluateRequest) -> Result<EvaluateResponse, ApiError> {
         spline: SplineSamples { x: samples.x.clone(), f },
         law: LawReport { metrics: law.metrics(), continuity_class: law.continuity().class, samples },
         speeds,
-        compute_ms: t0.elapsed().as_secs_f64() * 1e3,
+        compute_ms: loomkin_units::ms_from_s(t0.elapsed().as_secs_f64()),
     })
 }
 
@@ -225,7 +225,7 @@ pub(crate) fn optimize_until(
         after: r.after.iter().map(TorquePair::from).collect(),
         def_points: r.law.points().to_vec(),
         evaluations: r.evaluations,
-        elapsed_ms: t0.elapsed().as_secs_f64() * 1e3,
+        elapsed_ms: loomkin_units::ms_from_s(t0.elapsed().as_secs_f64()),
     })
 }
 

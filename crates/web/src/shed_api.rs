@@ -40,7 +40,7 @@ pub struct ShedConditions {
     pub stroke_m: Option<f64>,
     /// The same in mm, the unit of `loomkin shed … --stroke-mm` and of the page (give one of the two).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schemars(transform = loomkin_units::schema::bounds_in_unit(Conditions::STROKE_M, 1e3, "mm"))]
+    #[schemars(transform = loomkin_units::schema::bounds_in_unit(Conditions::STROKE_M, loomkin_units::MM_PER_M, "mm"))]
     pub stroke_mm: Option<f64>,
     /// Main-shaft speed n (1/min), default the library's (300).
     #[serde(default = "default_speed")]
@@ -79,7 +79,7 @@ impl ShedConditions {
         Conditions::new(self.threshold, stroke_m, self.speed_rpm)
             .map_err(|e| match e {
                 ShedError::Range(r) if r.field == "stroke_m" && self.stroke_mm.is_some() => {
-                    ShedError::Range(r.in_unit("stroke_mm", 1e3, "mm"))
+                    ShedError::Range(r.in_unit("stroke_mm", loomkin_units::MM_PER_M, "mm"))
                 }
                 e => e,
             })
@@ -296,7 +296,7 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
     Ok(ShedLawResponse {
         criteria,
         angle_deg: curve.iter().map(|p| finite(p.angle_deg)).collect(),
-        s_mm: curve.iter().map(|p| finite(p.s_m * 1e3)).collect(),
+        s_mm: curve.iter().map(|p| finite(loomkin_units::mm_from_m(p.s_m))).collect(),
         v_m_s: curve.iter().map(|p| finite(p.v_m_s)).collect(),
         a_m_s2: curve.iter().map(|p| finite(p.a_m_s2)).collect(),
         j_m_s3: curve.iter().map(|p| finite(p.j_m_s3)).collect(),

@@ -200,10 +200,46 @@ pub struct SynthesisReport<'a> {
     pub rows: &'a [SynthesisRow],
 }
 
+/// The unit a length was given in, so that a message answers in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GivenLength {
+    /// Metres (`--roller-m`, the workbench's `roller_m`).
+    Metre,
+    /// Millimetres (`--roller-mm`).
+    Millimetre,
+}
+
 impl Synthesis {
     /// The report of this synthesis ([`SynthesisReport`]).
     pub fn report(&self) -> SynthesisReport<'_> {
         SynthesisReport { summary: &self.summary, warnings: &self.warnings, rows: &self.rows }
+    }
+
+    /// Why these cams cannot be drawn, in words, when the roller undercuts them (`None` otherwise):
+    /// the roller, where the undercut begins and the largest roller without undercut, the lengths in
+    /// the unit the roller was given in (`--roller-mm 400` → "a 400 mm roller"). The one wording of
+    /// the refusal: the CLI's `dobby synthesize --dxf` and the workbench's export both give it.
+    pub fn undercut_refusal(&self, unit: GivenLength) -> Option<String> {
+        if !self.summary.undercut {
+            return None;
+        }
+        let (symbol, scale) = match unit {
+            GivenLength::Metre => ("m", 1.0),
+            GivenLength::Millimetre => ("mm", loomkin_units::mm_from_m(1.0)),
+        };
+        let length = |m: f64| format!("{} {symbol}", loomkin_units::sig4(m * scale));
+        let at = self
+            .warnings
+            .iter()
+            .find(|w| w.code == WarningCode::Undercut)
+            .and_then(|w| w.phi2_deg)
+            .map_or(String::new(), |a| format!(" at φ2 = {a:.2} deg"));
+        let largest = self
+            .summary
+            .checks
+            .roller_max_m
+            .map_or(String::new(), |r| format!("; the largest roller without undercut is {}", length(r)));
+        Some(format!("a {} roller undercuts the cams{at}{largest}", length(self.summary.roller_m)))
     }
 
     /// Cam Γ and counter-cam Γ′ every 0.05° of input, whatever the step: the drawing's dense
