@@ -171,42 +171,22 @@ impl Search<'_> {
         Ok(Timing::new(&loom, &motion, self.pattern)?.min_clearance_coarse(SEARCH_STEP_DEG))
     }
 
-    /// Compass search minimising `f` from `x`, taking only moves that `ok` accepts (asked only
-    /// for moves that improve `f`).
+    /// Compass search ([`loomkin_numeric::compass_min`]) minimising `f` from `x` over the steps
+    /// [`STEPS`] within `±max_stagger_deg`, taking only moves that `ok` accepts (asked only for
+    /// moves that improve `f`).
     fn compass(
         &mut self,
-        mut x: Vec<f64>,
-        mut fx: f64,
+        x: Vec<f64>,
+        fx: f64,
         f: &dyn Fn(&mut Self, &[f64]) -> Result<f64>,
         ok: &dyn Fn(&mut Self, &[f64]) -> Result<bool>,
     ) -> Result<(Vec<f64>, f64)> {
         let m = self.loom.shedding.max_stagger_deg;
-        for step in STEPS {
-            self.stages.0 += 1;
-            (self.progress)(self.stages.0.min(self.stages.1), self.stages.1);
-            for _sweep in 0..50 {
-                let mut improved = false;
-                for j in 0..x.len() {
-                    for dir in [1.0, -1.0] {
-                        let mut y = x.clone();
-                        y[j] = (x[j] + dir * step).clamp(-m, m);
-                        if y[j] == x[j] {
-                            continue;
-                        }
-                        let fy = f(self, &y)?;
-                        if fy < fx - 1e-12 * fx.abs().max(1e-300) && ok(self, &y)? {
-                            (x, fx) = (y, fy);
-                            improved = true;
-                            break;
-                        }
-                    }
-                }
-                if !improved {
-                    break;
-                }
-            }
-        }
-        Ok((x, fx))
+        let (lo, hi) = (vec![-m; x.len()], vec![m; x.len()]);
+        loomkin_numeric::compass_min(self, x, fx, &STEPS, &lo, &hi, f, ok, |s| {
+            s.stages.0 += 1;
+            (s.progress)(s.stages.0.min(s.stages.1), s.stages.1);
+        })
     }
 
     fn case(&self, label: &str, x: &[f64]) -> Result<StaggerCase> {

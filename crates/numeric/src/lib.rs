@@ -9,7 +9,8 @@
 //! [`extremes_of`] (the least and greatest values of smooth functions known with two derivatives:
 //! the derivatives' sign changes bracketed and refined) and
 //! [`grid_roots`] / [`scan_roots`] (every root on an interval: sign changes of a grid, close pairs
-//! inside one grid interval included, each refined).
+//! inside one grid interval included, each refined); and one search in several dimensions,
+//! [`compass_min`] (a compass search in a box under a constraint: the loom's stagger search).
 //!
 //! **The stop rule holds at any magnitude.** No search stops on an absolute width such as
 //! `b − a ≤ 1e-10`: at an angle of 5·10⁵° the doubles are 1.2·10⁻¹⁰ apart, so such a bracket can
@@ -31,6 +32,7 @@
 
 mod bisect;
 mod brent;
+mod compass;
 mod extremes;
 mod golden;
 mod linear;
@@ -40,6 +42,7 @@ mod scan;
 
 pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
+pub use compass::{COMPASS_SWEEPS, compass_min};
 pub use extremes::{Extremes, extremes, extremes_of};
 pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
 pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
