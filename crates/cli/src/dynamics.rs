@@ -217,6 +217,10 @@ pub struct SweepArgs {
     output: Option<PathBuf>,
     #[arg(long, default_value_t = SweepPoint::RESIDUAL_LIMIT_PCT.default_value(), value_name = "L", help = util::range_help("Residual amplitude a design accepts, % of the stroke, drawn on the plot, the speeds above it shaded as speeds to avoid", &SweepPoint::RESIDUAL_LIMIT_PCT))]
     residual_limit_pct: f64,
+    /// Plot the residual amplitude and the dynamic error on a logarithmic axis (from five decades
+    /// under the largest value), so a limit near zero and the speeds around it can be read.
+    #[arg(long, requires = "output")]
+    log_y: bool,
     #[command(flatten)]
     plot: crate::util::PlotOpts,
 }
@@ -476,23 +480,31 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             Some(r) => p.with_rule(r.clone()),
             None => p,
         };
+        let residual = col(&|q| q.residual_amplitude_si * u.scale);
+        let error = col(&|q| q.peak_dynamic_error_si * u.scale);
+        // --log-y: each panel from five decades under its largest value (the limit line included).
+        let log = |panel: Panel, values: &[(f64, f64)], also: f64| {
+            if a.log_y { panel.with_log_y_floor(log_floor(values.iter().map(|v| v.1).chain([also]))) } else { panel }
+        };
+        let log_note = if a.log_y { ", log" } else { "" };
         let mut panels = vec![
-            with_vdi(
+            with_vdi(log(
                 Panel::new(
-                    format!("residual amplitude [{p}]"),
-                    vec![Series::line("residual amplitude", col(&|q| q.residual_amplitude_si * u.scale))],
+                    format!("residual amplitude{log_note} [{p}]"),
+                    vec![Series::line("residual amplitude", residual.clone())],
                 )
                 .with_x_bands(bands.clone())
                 .with_rule(limit),
-            ),
-            with_vdi(
-                Panel::new(
-                    format!("peak |x − s| [{p}]"),
-                    vec![Series::line("", col(&|q| q.peak_dynamic_error_si * u.scale))],
-                )
-                .with_legend(Legend::Hidden)
-                .with_x_bands(bands.iter().map(|b| XBand { label: String::new(), ..b.clone() })),
-            ),
+                &residual,
+                level_si * u.scale,
+            )),
+            with_vdi(log(
+                Panel::new(format!("peak |x − s|{log_note} [{p}]"), vec![Series::line("", error.clone())])
+                    .with_legend(Legend::Hidden)
+                    .with_x_bands(bands.iter().map(|b| XBand { label: String::new(), ..b.clone() })),
+                &error,
+                0.0,
+            )),
         ];
         if forces {
             panels.push(with_vdi(
@@ -621,8 +633,7 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
         };
         // The log panel starts five decades under the largest value: the exact zeros of the
         // residual (and the rounding noise around them) are not drawn, nor raised to a floor.
-        let top = series.iter().flat_map(|s| s.3.iter().copied()).filter(|v| v.is_finite()).fold(0.0, f64::max);
-        let floor = if top > 0.0 { 10f64.powf(top.log10().floor() - 5.0) } else { 1e-6 };
+        let floor = log_floor(series.iter().flat_map(|s| s.3.iter().copied()));
         let logs = series
             .iter()
             .map(|(label, _, z, pct)| {
@@ -647,6 +658,13 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
     }
     outln!("(--csv or -o PLOT for the whole spectrum)")?;
     Ok(())
+}
+
+/// The floor of a log panel: the decade five under the largest finite value (1e-6 when none is
+/// above zero), so exact zeros and the rounding noise around them are not drawn.
+fn log_floor(values: impl Iterator<Item = f64>) -> f64 {
+    let top = values.filter(|v| v.is_finite()).fold(0.0, f64::max);
+    if top > 0.0 { 10f64.powf(top.log10().floor() - 5.0) } else { 1e-6 }
 }
 
 fn compensate_cmd(a: CompensateArgs) -> Result<()> {

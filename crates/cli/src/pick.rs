@@ -12,7 +12,7 @@ use loomkin_picking::{
     DesignSpec, History, Mechanism, Method, Outcome, PickError, RequiredVelocity, Setting, Settings, StartRule, Sweep,
     SweepRow, history, required_velocity_crossings, simulate, sweep_observed,
 };
-use loomkin_plot::{Figure, Legend, Note, Panel, Series, XBand, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin pick`.
@@ -655,6 +655,23 @@ fn plot(a: PlotArgs) -> Result<()> {
         panels[1].series.push(Series::line("actual v, designed setting", curve(r, &|s| s.actual.v_m_s)));
         panels[2].series.push(Series::line("actual a, designed setting", curve(r, &|s| s.actual.a_m_s2)));
     }
+    // The end of the pick on every panel (labelled once) and the velocity the shuttle leaves with.
+    let o = &h.outcome;
+    let end = ms(o.t_end_s);
+    let mark = |label: String| Rule::x(end, label).with_color([90, 90, 90]).with_dash(loomkin_plot::Dash::DashDot);
+    let panels: Vec<Panel> = panels
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            p.with_rule(mark(if i == 0 { format!("end of the pick, {} ms", sig4(end)) } else { String::new() }))
+        })
+        .collect();
+    let mut panels = panels;
+    panels[1] = panels[1].clone().with_notes([Note::new(
+        end,
+        o.velocity_m_s,
+        format!("end velocity {} m/s (V_r {} m/s)", sig4(o.velocity_m_s), sig4(o.required_velocity_m_s)),
+    )]);
     let title = format!(
         "Picking: nominal and actual motion (cam {}, {} rpm, play {} mm, k = {} cm)",
         mech.cam().label(),

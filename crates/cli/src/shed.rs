@@ -639,7 +639,7 @@ fn pareto(a: ParetoArgs) -> Result<()> {
         let mut series = vec![Series { markers: true, ..Series::line("Pareto front", line) }];
         for p in PRESETS {
             let c = evaluate(&p.law()?, &cond)?;
-            series.push(Series::markers(p.name, vec![(c.window_deg, c.peak_accel_m_s2)]));
+            series.push(Series::markers(p.name, vec![(c.window_deg, c.peak_accel_m_s2)]).emphasised());
         }
         let (lo, hi) = series
             .iter()

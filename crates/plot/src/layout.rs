@@ -17,6 +17,8 @@ pub(crate) const PAD: f64 = 7.0;
 pub(crate) const SWATCH: f64 = 34.0;
 /// Marker radius.
 pub(crate) const MARKER_R: f64 = 4.0;
+/// Half the diagonal of an emphasised marker's diamond (px), its white outline included.
+pub(crate) const DIAMOND_R: f64 = 7.0;
 /// Strip above a plot holding the labels of its shaded intervals.
 const BAND_STRIP: f64 = 17.0;
 
@@ -114,7 +116,7 @@ impl Axis {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Swatch {
     Line { color: [u8; 3], dash: Dash },
-    Marker { color: [u8; 3] },
+    Marker { color: [u8; 3], diamond: bool },
     Fill { color: [u8; 3] },
 }
 
@@ -408,7 +410,11 @@ fn legend_entries(p: &Panel) -> Vec<Entry> {
             continue;
         }
         let color = series_color(p, i);
-        let swatch = if s.markers { Swatch::Marker { color } } else { Swatch::Line { color, dash: s.dash } };
+        let swatch = if s.markers {
+            Swatch::Marker { color, diamond: s.emphasis }
+        } else {
+            Swatch::Line { color, dash: s.dash }
+        };
         out.push(Entry { swatch, text: s.label.clone() });
     }
     for b in p.y_bands.iter().filter(|b| !b.label.is_empty()) {
@@ -695,10 +701,8 @@ fn blocked(pl: &PanelLayout, p: &Panel, r: &Rect, notes: &[NoteLayout]) -> bool 
     for (s, curve) in p.series.iter().zip(&pl.curves) {
         for run in curve {
             if s.markers {
-                if run
-                    .iter()
-                    .any(|&(x, y)| r.intersects(&Rect::new(x - MARKER_R, y - MARKER_R, 2.0 * MARKER_R, 2.0 * MARKER_R)))
-                {
+                let m = if s.emphasis { DIAMOND_R } else { MARKER_R };
+                if run.iter().any(|&(x, y)| r.intersects(&Rect::new(x - m, y - m, 2.0 * m, 2.0 * m))) {
                     return true;
                 }
             } else if run.len() == 1 {

@@ -68,9 +68,19 @@ pub struct Series {
     pub color: Option<[u8; 3]>,
     /// Stroke pattern.
     pub dash: Dash,
+    /// Markers drawn as larger diamonds with a white outline (see [`Series::emphasised`]).
+    pub emphasis: bool,
 }
 
 impl Series {
+    /// The same markers drawn as larger diamonds with a white outline, so a point of reference
+    /// (a preset beside a Pareto front's dots) stands out wherever it falls; draw it after the
+    /// series it may cover.
+    pub fn emphasised(mut self) -> Self {
+        self.emphasis = true;
+        self
+    }
+
     /// A line through the points.
     pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Self { label: label.into(), points, ..Self::default() }

@@ -2,7 +2,7 @@
 
 use super::font::{Glyph, UNITS, fonts};
 use super::labels::{Label, labels};
-use super::layout::{Layout, MARKER_R, PanelLayout, SWATCH, Swatch};
+use super::layout::{DIAMOND_R, Layout, MARKER_R, PanelLayout, SWATCH, Swatch};
 use super::{Dash, Figure, Panel, RuleAxis};
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -175,8 +175,8 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
         let color = hex(pl.colors[k]);
         for run in curve {
             if ser.markers {
-                for (x, y) in run {
-                    let _ = writeln!(s, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{MARKER_R}" fill="{color}"/>"#);
+                for &(x, y) in run {
+                    marker(s, x, y, &color, ser.emphasis);
                 }
                 continue;
             }
@@ -257,14 +257,7 @@ fn panel(s: &mut String, i: usize, p: &Panel, pl: &PanelLayout) {
                         dash_attr(*dash)
                     );
                 }
-                Swatch::Marker { color } => {
-                    let _ = writeln!(
-                        s,
-                        r#"<circle cx="{:.2}" cy="{cy:.2}" r="{MARKER_R}" fill="{}"/>"#,
-                        sx + SWATCH / 2.0,
-                        hex(*color)
-                    );
-                }
+                Swatch::Marker { color, diamond } => marker(s, sx + SWATCH / 2.0, cy, &hex(*color), *diamond),
                 Swatch::Fill { color } => {
                     let _ = writeln!(
                         s,
@@ -284,4 +277,21 @@ fn vline(s: &mut String, x: f64, y0: f64, y1: f64, color: &str) {
 
 fn hline(s: &mut String, y: f64, x0: f64, x1: f64, color: &str) {
     let _ = writeln!(s, r#"<path d="M{x0:.2} {y:.2} H{x1:.2}" stroke="{color}" stroke-width="1"/>"#);
+}
+
+/// A marker at `(x, y)`: a dot, or (`diamond`) a larger diamond with a white outline.
+fn marker(s: &mut String, x: f64, y: f64, color: &str, diamond: bool) {
+    if diamond {
+        let d = DIAMOND_R - 1.0;
+        let _ = writeln!(
+            s,
+            r#"<path d="M{x:.2} {:.2} L{:.2} {y:.2} L{x:.2} {:.2} L{:.2} {y:.2} Z" fill="{color}" stroke="white" stroke-width="1.5"/>"#,
+            y - d,
+            x + d,
+            y + d,
+            x - d
+        );
+    } else {
+        let _ = writeln!(s, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{MARKER_R}" fill="{color}"/>"#);
+    }
 }

@@ -93,3 +93,46 @@ fn every_plot_kind_lays_out_at_every_accepted_size() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The marks issue 27 asked for, read back from the SVG: `shed pareto` draws each preset as a
+/// white-edged diamond above the front's dots (and in the legend); `pick plot` marks the end of
+/// the pick and the end velocity; `dyn sweep --log-y` draws its residual on a log axis (and wants
+/// a plot file).
+#[test]
+fn presets_pick_end_and_log_sweep_are_drawn() {
+    let dir = std::env::temp_dir().join(format!("loomkin-plot-marks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = |args: &[&str], name: &str| {
+        let file = dir.join(name);
+        let out = loomkin().args(args).arg("-o").arg(&file).output().unwrap();
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        std::fs::read_to_string(&file).unwrap()
+    };
+    let pareto = svg(&["shed", "pareto"], "pareto.svg");
+    // Five presets, each drawn once on the plot and once in the legend.
+    assert_eq!(pareto.matches(r#"stroke="white" stroke-width="1.5""#).count(), 10);
+    let pick = svg(&["pick", "plot"], "pick.svg");
+    assert!(pick.contains(r#"aria-label="end of the pick, "#), "no end-of-pick mark");
+    assert!(pick.contains(r#"aria-label="end velocity "#), "no end-velocity note");
+    let sweep = svg(
+        &["dyn", "sweep", &ex("heald-frame-cycle.toml"), "--natural-hz", "54", "--speed-rpm", "200:1000:20", "--log-y"],
+        "sweep.svg",
+    );
+    assert!(sweep.contains(r#"aria-label="residual amplitude, log [mm]""#));
+    assert!(loomkin_plot::drawn_text_problems(&sweep).unwrap().is_empty());
+    let out = loomkin()
+        .args([
+            "dyn",
+            "sweep",
+            &ex("heald-frame-cycle.toml"),
+            "--natural-hz",
+            "54",
+            "--speed-rpm",
+            "200:400:100",
+            "--log-y",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).ok();
+}
