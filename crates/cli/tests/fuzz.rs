@@ -164,6 +164,20 @@ const NUMBERS: &[&str] = &[
     "10000000",
     "4294967296",
     "18446744073709551616",
+    // The ends of accepted ranges and their neighbouring doubles (issue 27's second fuzz pass).
+    "0.001",
+    "0.0009999999999999998",
+    "100000",
+    "100000.00000000001",
+    "1e-12",
+    "0.01",
+    "10",
+    "89.99999999999999",
+    "90",
+    "0.9999999999999999",
+    "1000",
+    "8000",
+    "2.2250738585072014e-308",
 ];
 
 const STRINGS: &[&str] = &[
@@ -471,6 +485,12 @@ fn run(bin: &Path, case: &Case, out_files: &[PathBuf], cwd: &Path) -> Option<Str
     }
     if let Some(w) = non_finite_word(&String::from_utf8_lossy(&stdout)) {
         return Some(format!("'{w}' on stdout"));
+    }
+    // A run failure that is the input's fault says so (exit 2 naming the option), never
+    // "internal …" or a solver's failure (the output was a pipe, so no write failed).
+    let failed_inside = stderr.contains("error: internal") || stderr.contains("numerical integration failed");
+    if code == 1 && case.sink == Sink::Pipe && failed_inside {
+        return Some(format!("exit 1 for an input: {}", stderr.trim()));
     }
     // On stderr a message may quote an argument or a file the user gave ('nan'); anything else
     // non-finite is a finding.

@@ -63,7 +63,8 @@ pub use error::{DynError, Result};
 pub use excitation::{Excitation, TimePiece};
 pub use follower::{Follower, STANDARD_GRAVITY};
 pub use optimize::{
-    CA_LIMIT_OF_MODIFIED_SINE, Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, optimize_cycle_with, quiet_law,
+    CA_LIMIT_OF_MODIFIED_SINE, Optimized, PIECES, SMOOTHING, SegmentFigures, optimize_cycle, optimize_cycle_with,
+    quiet_law,
 };
 pub use oscillator::{Forcing, Harmonic, NCOEF, NSERIES, Oscillator, PieceSolution, free_roots, series_below};
 pub use peaks::{Extremes, grid_size};
