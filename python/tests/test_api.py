@@ -72,6 +72,7 @@ NO_PYTHON_CALL = {
     "insert budget": "loomkin.insertion not written yet (issue 30 item 6)",
     "insert rapier": "loomkin.insertion not written yet (issue 30 item 6)",
     "insert projectile": "loomkin.insertion not written yet (issue 30 item 6)",
+    "insert airjet": "loomkin.insertion not written yet (issue 30 item 6)",
 }
 
 

@@ -22,6 +22,9 @@ pub enum InsertCommand {
     /// Torsion-bar projectile picking (`[insertion] kind = "projectile"`): the bar's energy, the launch speed, the
     /// flight and arrival angle, the brake, the sley's dwell, the guide teeth's clearance over every pick.
     Projectile(crate::insert_air::ProjectileArgs),
+    /// An air jet (`[insertion] kind = "airjet"`): the yarn tip's flight on the main nozzle's and the relay
+    /// nozzles' air, its arrival, and the relay plan that opens each group least.
+    Airjet(crate::insert_air::AirjetArgs),
 }
 
 /// `loomkin insert budget`.
@@ -63,6 +66,7 @@ pub fn run(cmd: InsertCommand) -> Result<()> {
         InsertCommand::Budget(a) => run_budget(a),
         InsertCommand::Rapier(a) => run_rapier(a),
         InsertCommand::Projectile(a) => crate::insert_air::run_projectile(a),
+        InsertCommand::Airjet(a) => crate::insert_air::run_airjet(a),
     }
 }
 
@@ -183,11 +187,23 @@ impl CarrierRun<'_> {
     ) -> Result<(Loom, loomkin_loom::Pattern, ShaftSpeed)> {
         output::check_outputs([self.output.map(|p| Out::plot("--output", p))])?;
         let (loom, pattern) = crate::loom::read(self.loom_path, pattern)?;
-        let speed = match speed_rpm {
+        let speed = Self::speed(&loom, speed_rpm)?;
+        Ok((loom, pattern, speed))
+    }
+
+    /// The loom and the speed, for a carrier whose figures do not depend on the pattern.
+    pub(crate) fn read_without_pattern(&self, speed_rpm: Option<f64>) -> Result<(Loom, ShaftSpeed)> {
+        output::check_outputs([self.output.map(|p| Out::plot("--output", p))])?;
+        let loom = read_loom(self.loom_path)?;
+        let speed = Self::speed(&loom, speed_rpm)?;
+        Ok((loom, speed))
+    }
+
+    fn speed(loom: &Loom, speed_rpm: Option<f64>) -> Result<ShaftSpeed> {
+        Ok(match speed_rpm {
             Some(v) => ShaftSpeed::from_rpm_field("--speed-rpm", v)?,
             None => loom.speed,
-        };
-        Ok((loom, pattern, speed))
+        })
     }
 
     /// A loom error named with the file.

@@ -86,3 +86,52 @@ pub(crate) fn run_projectile(a: ProjectileArgs) -> Result<()> {
         if cl.min_clearance_mm < 0.0 { ": the guide teeth touch the warp" } else { "" }
     )
 }
+
+/// `loomkin insert airjet`.
+#[derive(Debug, Args)]
+pub struct AirjetArgs {
+    /// The loom file (TOML) with `[insertion] kind = "airjet"` and its `[insertion.airjet]`.
+    loom: PathBuf,
+    /// Main-shaft speed in rpm (default: the loom file's `speed_rpm`).
+    #[arg(long)]
+    speed_rpm: Option<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Plot the tip across the reed and its speed with the relay groups' openings (.svg or .png).
+    #[arg(short, long, conflicts_with = "json")]
+    output: Option<PathBuf>,
+    #[command(flatten)]
+    plot: crate::util::PlotOpts,
+}
+
+pub(crate) fn run_airjet(a: AirjetArgs) -> Result<()> {
+    let run = CarrierRun { loom_path: &a.loom, output: a.output.as_ref(), plot: &a.plot, json: a.json };
+    let (loom, speed) = run.read_without_pattern(a.speed_rpm)?;
+    let r = insertion_air::airjet_check(&loom, speed).map_err(|e| run.named(e))?;
+    if run.plot_or_json(&r, || insertion_air::airjet_figure(&loom, &r, speed))? {
+        return Ok(());
+    }
+    outln!(
+        "air jet at {} rpm: launched at {:.3}°, the tip enters the reed at {:.3}° and reaches the far selvedge at \
+         {:.3}° after {:.3} ms at {:.3} m/s (peak {:.3} m/s)",
+        r.speed_rpm,
+        r.launch_deg,
+        r.reed_entry_deg,
+        r.arrival_deg,
+        r.flight_time_ms,
+        r.tip_speed_at_exit_m_s,
+        r.peak_tip_speed_m_s
+    )?;
+    outln!(
+        "relay plan: {} of {} groups open {:.3} ms ({:.3}°) in all",
+        r.relay_plan.len(),
+        r.groups,
+        r.relay_open_ms,
+        r.relay_open_deg
+    )?;
+    for o in &r.relay_plan {
+        outln!("  group {:>3}: open {:.3}° to {:.3}°", o.group, o.open_deg, o.close_deg)?;
+    }
+    Ok(())
+}

@@ -10,13 +10,16 @@
 //!
 //! * [`budget`] — the time budget `n = v̄·θ/(6·(W + L))`, its converse, energy and power per pick.
 //! * [`rapier`] — the double rapier: bringer and taker drives (crank, cam, servo), the transfer.
+//! * [`airjet`] — the air jet: the jets along the reed, Uno's drag, the tip's flight, the relay plan.
 //! * [`projectile`] — torsion-bar picking: the bar's energy, the launch, the flight, the brake.
 #![deny(missing_docs)]
 
+pub mod airjet;
 pub mod budget;
 pub mod projectile;
 pub mod rapier;
 
+pub use airjet::{Airjet, AirjetReport, AirjetTable, RelayOpen, TipPoint};
 pub use budget::{BudgetReport, PickBudget, WindowSource, max_speed_rpm, required_speed_m_s, window_needed_deg};
 pub use projectile::{
     CarrierError, Flight, Projectile, ProjectilePath, ProjectileReport, ProjectileTable, torsion_stiffness,
@@ -73,4 +76,21 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     ProjectileTable::RUN_OUT_MM,
     ProjectileTable::BRAKE_MM,
     ProjectileTable::LAUNCH_DEG,
+    AirjetTable::YARN_TEX,
+    AirjetTable::YARN_DIAMETER_MM,
+    AirjetTable::TAIL_MM,
+    AirjetTable::DRAW_OFF,
+    AirjetTable::MAIN_SPEED_M_S,
+    AirjetTable::MAIN_CORE_MM,
+    AirjetTable::REED_ENTRY_MM,
+    AirjetTable::RELAY_SPEED_M_S,
+    AirjetTable::RELAY_CORE_MM,
+    AirjetTable::RELAY_PITCH_MM,
+    AirjetTable::FIRST_RELAY_MM,
+    AirjetTable::NOZZLES_PER_GROUP,
+    AirjetTable::GROUPS,
+    AirjetTable::CF_FLOOR,
+    AirjetTable::CF_SCALE_M_S,
+    AirjetTable::CF_OFFSET_M_S,
+    AirjetTable::LAUNCH_DEG,
 ];

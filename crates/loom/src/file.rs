@@ -219,6 +219,8 @@ pub enum InsertionKind {
     Rapier(Box<loomkin_insertion::Rapier>),
     /// `kind = "projectile"`: torsion-bar picking, `[insertion.projectile]`.
     Projectile(Box<loomkin_insertion::Projectile>),
+    /// `kind = "airjet"`: a main nozzle and relay nozzles, `[insertion.airjet]`.
+    Airjet(Box<loomkin_insertion::Airjet>),
 }
 
 impl InsertionKind {
@@ -231,6 +233,7 @@ impl InsertionKind {
             Self::Shuttle => "shuttle",
             Self::Rapier(_) => "rapier",
             Self::Projectile(_) => "projectile",
+            Self::Airjet(_) => "airjet",
         }
     }
 }
@@ -869,10 +872,18 @@ fn read_kind(i: &InsertionFile, reed_width_m: f64, carrier_length_m: f64) -> Res
                 .map_err(crate::insertion_air::carrier_error)?;
             Ok(InsertionKind::Projectile(Box::new(p)))
         }
-        "airjet" => Err(LoomError::field(
-            "insertion.kind",
-            format!("\"{kind}\" is not modelled yet: allowed \"shuttle\", \"rapier\" or \"projectile\""),
-        )),
+        "airjet" => {
+            let t = i
+                .airjet
+                .clone()
+                .ok_or_else(|| LoomError::field("insertion.airjet", "kind = \"airjet\" needs [insertion.airjet]"))?;
+            let table: loomkin_insertion::AirjetTable = toml::Value::Table(t)
+                .try_into()
+                .map_err(|e: toml::de::Error| LoomError::field("insertion.airjet", e.message().to_string()))?;
+            let a = loomkin_insertion::Airjet::new(&table, reed_width_m, "insertion.airjet")
+                .map_err(crate::insertion_air::carrier_error)?;
+            Ok(InsertionKind::Airjet(Box::new(a)))
+        }
         other => Err(unknown(other)),
     }
 }

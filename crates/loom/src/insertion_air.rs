@@ -4,7 +4,7 @@
 use crate::insertion::{CarrierPath, CarrierShed, Clearance, clearance, clearance_panel, field_error};
 use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result};
 use loomkin_drive::SleyAnalysis;
-use loomkin_insertion::{CarrierError, Projectile, ProjectilePath, ProjectileReport};
+use loomkin_insertion::{Airjet, AirjetReport, CarrierError, Projectile, ProjectilePath, ProjectileReport, TipPoint};
 use loomkin_plot::{Figure, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
@@ -142,4 +142,71 @@ pub fn projectile_figure(loom: &Loom, pattern: &Pattern, c: &ProjectileCheck, sp
         cl.worst_pick
     );
     Ok(Figure::new(title, "main-shaft angle [deg]", panels))
+}
+
+/// The loom file's air jet, or an error naming `insertion.kind` when its carrier is another.
+pub fn airjet_of(loom: &Loom) -> Result<&Airjet> {
+    match &loom.insertion.kind {
+        InsertionKind::Airjet(a) => Ok(a),
+        other => Err(LoomError::field(
+            "insertion.kind",
+            format!(
+                "the loom's carrier is a {}: give kind = \"airjet\" with [insertion.airjet] (docs/insertion.md)",
+                other.name()
+            ),
+        )),
+    }
+}
+
+/// The air jet of `loom` at `speed`: the tip's flight and the relay plan.
+pub fn airjet_check(loom: &Loom, speed: ShaftSpeed) -> Result<AirjetReport> {
+    airjet_of(loom)?.report(speed).map_err(carrier_error)
+}
+
+/// The air jet's plot: the tip across the reed, and its speed with the air's at the tip, against
+/// the main-shaft angle, each relay group's opening as a band.
+pub fn airjet_figure(loom: &Loom, r: &AirjetReport, speed: ShaftSpeed) -> Result<Figure> {
+    let a = airjet_of(loom)?;
+    let points = a.trajectory(speed).map_err(carrier_error)?;
+    let angle = |t: f64| r.launch_deg + 6.0 * speed.rpm() * t;
+    // Every step is a point; a plot needs a few hundred.
+    let every = (points.len() / PLOT_POINTS).max(1);
+    let pick: Vec<&TipPoint> =
+        points.iter().enumerate().filter(|(i, _)| i % every == 0 || *i + 1 == points.len()).map(|(_, p)| p).collect();
+    let entry = a.reed_entry_m;
+    let tip: Vec<(f64, f64)> = pick.iter().map(|p| (angle(p.t_s), (p.x_m - entry) * 1e3)).collect();
+    let v: Vec<(f64, f64)> = pick.iter().map(|p| (angle(p.t_s), p.v_m_s)).collect();
+    let air: Vec<(f64, f64)> = pick.iter().map(|p| (angle(p.t_s), p.air_m_s)).collect();
+    let bands = || -> Vec<XBand> {
+        r.relay_plan
+            .iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let color = if i % 2 == 0 { XBand::WINDOW } else { XBand::DWELL };
+                XBand::new(o.open_deg, o.close_deg, format!("{}", o.group), color)
+            })
+            .collect()
+    };
+    let panels = vec![
+        Panel::new("tip across the reed [mm]", vec![Series::line("yarn tip", tip)])
+            .with_rule(Rule::y(0.0, "entering selvedge"))
+            .with_rule(Rule::y(a.reed_width_m * 1e3, "far selvedge"))
+            .with_x_bands(bands()),
+        Panel::new("speed [m/s]", vec![Series::line("yarn tip", v), Series::line("air at the tip", air)])
+            .with_x_bands(bands())
+            .with_notes([Note::new(
+                r.arrival_deg,
+                r.tip_speed_at_exit_m_s,
+                format!("{} m/s at the far selvedge", sig4(r.tip_speed_at_exit_m_s)),
+            )]),
+    ];
+    let title = format!(
+        "air jet at {} rpm: arrives at {}° after {} ms, {} relay groups open {} ms in all",
+        sig4(speed.rpm()),
+        sig4(r.arrival_deg),
+        sig4(r.flight_time_ms),
+        r.relay_plan.len(),
+        sig4(r.relay_open_ms)
+    );
+    Ok(Figure::new(title, "main-shaft angle [deg] (bands: relay groups open)", panels))
 }

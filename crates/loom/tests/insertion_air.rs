@@ -96,3 +96,20 @@ fn the_sley_dwell() {
     let no_sley = Loom::from_toml(&format!("{}{}", &text[..cut], &text[end..])).unwrap();
     assert_eq!(dwell_fit(&no_sley, s, e).unwrap(), None);
 }
+
+/// The air-jet example reads as one; its report is the library's; the refusals name the field.
+#[test]
+fn the_airjet_example() {
+    let text = example("airjet-loom.toml");
+    let loom = Loom::from_toml(&text).unwrap();
+    assert_eq!(loom.insertion.kind.name(), "airjet");
+    let r = loomkin_loom::insertion_air::airjet_check(&loom, loom.speed).unwrap();
+    assert_eq!(r.relay_plan.len(), 20);
+    assert!(r.arrival_deg > r.launch_deg && r.tip_speed_at_exit_m_s > 0.0);
+    let e = Loom::from_toml(&edited(&text, "groups = 20", "groups = 0")).unwrap_err();
+    assert!(e.to_string().starts_with("insertion.airjet.groups = 0 is out of range"), "{e}");
+    let e = Loom::from_toml(&edited(&text, "kind = \"airjet\"", "kind = \"projectile\"")).unwrap_err();
+    assert!(e.to_string().starts_with("insertion.airjet: [insertion.airjet] goes with kind = \"airjet\""), "{e}");
+    let e = loomkin_loom::insertion_air::airjet_check(&rapier(), loom.speed).unwrap_err();
+    assert!(e.to_string().starts_with("insertion.kind: the loom's carrier is a rapier"), "{e}");
+}

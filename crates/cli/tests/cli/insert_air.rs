@@ -51,3 +51,24 @@ fn projectile_plots_and_refuses_a_rapier() {
         &["--speed-rpm = -3 is out of range"],
     );
 }
+
+#[test]
+fn airjet_json_has_the_contract_keys() {
+    let v = stdout_json(&["insert", "airjet", &ex("airjet-loom.toml"), "--json"]);
+    for key in ["arrival_deg", "flight_time_ms", "tip_speed_at_exit_m_s", "relay_open_ms"] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
+    }
+    let plan = v["relay_plan"].as_array().unwrap();
+    assert_eq!(plan.len(), 20);
+    for (i, o) in plan.iter().enumerate() {
+        assert_eq!(o["group"], i + 1);
+        assert!(o["open_deg"].as_f64().unwrap() < o["close_deg"].as_f64().unwrap());
+    }
+    let out = std::env::temp_dir().join(format!("loomkin-insert-airjet-{}.svg", std::process::id()));
+    let o =
+        loomkin().args(["insert", "airjet", &ex("airjet-loom.toml"), "-o", out.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(&out).unwrap().contains("air at the tip"));
+    std::fs::remove_file(&out).ok();
+    usage_error(&["insert", "airjet", &ex("rapier-loom.toml")], &["insertion.kind: the loom's carrier is a rapier"]);
+}

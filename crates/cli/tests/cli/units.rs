@@ -137,6 +137,9 @@ const DIMENSIONLESS: &[&str] = &[
     "p",
     "worst_pick",
     "distinct_states",
+    // the air jet's relay groups: a group's number in the plan, how many along the reed
+    "group",
+    "groups",
     // statistics of a quantity named by the object's `name` (`speed_rpm`, …)
     "mean",
     "sd",
