@@ -108,6 +108,9 @@ fn darker([r, g, b]: [u8; 3]) -> [u8; 3] {
     [d(r), d(g), d(b)]
 }
 
+/// The least space between two bands' names in a panel's strip (px).
+const BAND_LABEL_GAP: f64 = 6.0;
+
 /// Every text of the figure, in drawing order.
 pub(crate) fn labels(fig: &Figure, lay: &Layout) -> Vec<Label> {
     let mut out = Vec::new();
@@ -117,16 +120,38 @@ pub(crate) fn labels(fig: &Figure, lay: &Layout) -> Vec<Label> {
     }
     for (i, (p, pl)) in fig.panels.iter().zip(&lay.panels).enumerate() {
         let r = pl.plot;
-        for b in &p.x_bands {
-            if let Some((xa, xz)) = pl.band_px(b)
-                && pl.band_strip
-                && !b.label.is_empty()
-                && text_width(&b.label, FONT_BAND) + 6.0 <= xz - xa
-            {
-                let at = ((xa + xz) / 2.0, r.y0 - 5.0);
-                out.push(Label::new(&b.label, at, FONT_BAND, Anchor::Middle, darker(b.color), Role::Band(i)));
+        // Each band's name centred over it; where another band's name already stands there (nested or
+        // neighbouring bands), at the band's start or end instead; left out when none is free. The
+        // narrowest bands are named first: a wide band has more room to move its name to.
+        let mut bands: Vec<(usize, f64, f64, &crate::XBand)> = p
+            .x_bands
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| pl.band_strip && !b.label.is_empty())
+            .filter_map(|(k, b)| pl.band_px(b).map(|(xa, xz)| (k, xa, xz, b)))
+            .filter(|(_, xa, xz, b)| text_width(&b.label, FONT_BAND) + 6.0 <= xz - xa)
+            .collect();
+        bands.sort_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
+        let mut placed: Vec<(f64, f64)> = Vec::new();
+        let mut named: Vec<(usize, Label)> = Vec::new();
+        for (k, xa, xz, b) in bands {
+            let w = text_width(&b.label, FONT_BAND);
+            let mid = (xa + xz) / 2.0;
+            let places = [
+                (mid - w / 2.0, mid, Anchor::Middle),
+                (xa + 3.0, xa + 3.0, Anchor::Start),
+                (xz - 3.0 - w, xz - 3.0, Anchor::End),
+            ];
+            let free = |x0: f64| placed.iter().all(|&(a, z)| x0 + w + BAND_LABEL_GAP <= a || x0 >= z + BAND_LABEL_GAP);
+            if let Some(&(x0, x, anchor)) = places.iter().find(|(x0, _, _)| free(*x0)) {
+                placed.push((x0, x0 + w));
+                let label = Label::new(&b.label, (x, r.y0 - 5.0), FONT_BAND, anchor, darker(b.color), Role::Band(i));
+                named.push((k, label));
             }
         }
+        // Drawn in the bands' own order.
+        named.sort_by_key(|(k, _)| *k);
+        out.extend(named.into_iter().map(|(_, l)| l));
         for (n, nl) in p.notes.iter().zip(&pl.notes) {
             if !n.text.is_empty() {
                 let at = (nl.text.x0 + 2.0, nl.text.y1 - 4.5);

@@ -406,6 +406,26 @@ fn bands_are_drawn_at_their_data_coordinates() {
     assert!(svg.contains(r#"aria-label="window""#) && svg.contains(r#"aria-label="threshold band""#));
 }
 
+/// Nested and neighbouring bands name themselves without one name over another: the narrow band's
+/// name stays centred, the wide band's moves to its start (the projectile's "in the shed" around
+/// the sley's "back dwell" wrote one over the other).
+#[test]
+fn names_of_nested_bands_do_not_overlap() {
+    let fig = Figure::new(
+        "",
+        "angle [deg]",
+        vec![Panel::new("s [mm]", vec![Series::line("s", sine(100, 360.0, 50.0))]).with_x_bands([
+            XBand::new(40.0, 320.0, "in the shed", XBand::WINDOW),
+            XBand::new(160.0, 200.0, "sley back dwell", XBand::DWELL),
+        ])],
+    );
+    let svg = fig.to_svg().unwrap();
+    assert!(svg.contains(r#"aria-label="in the shed""#) && svg.contains(r#"aria-label="sley back dwell""#));
+    let problems = crate::drawn_text_problems(&svg).unwrap();
+    assert!(problems.is_empty(), "{problems:?}");
+    assert!(fig.layout_problems().is_empty(), "{:?}", fig.layout_problems());
+}
+
 #[test]
 fn vertical_labels_of_short_stacked_panels_do_not_overlap() {
     use super::font::text_width;
