@@ -4,6 +4,8 @@ damping ratio ζ) at a speed — the tracking error and the residual vibration i
 
 from __future__ import annotations
 
+from os import PathLike
+from pathlib import Path
 from typing import Any, Dict
 
 from . import _loomkin as _m
@@ -47,7 +49,10 @@ def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = _default("Follow
     ending in ``.toml`` or a dict: each of its rises and returns). ``ratio``: an array of ratios
     (each 0 < r < 1e4; default the CLI's 0.5:10:0.01). ``damping_ratio``: one ζ or a list
     (0 ≤ ζ < 1). Returns a :class:`Table`: ``motion_time_over_natural_period`` and one column
-    ``residual_pct_of_stroke_<law>_zeta_<ζ>`` per law and ζ (cycle laws as ``<law>_seg<i>``).
+    ``residual_pct_of_stroke_<key>_zeta_<ζ>`` per law and ζ, the key the law's name with the parameters
+    given (``modified-trapezoid_ramp_0.2``) or, for a cycle, ``<file stem>_<law>_seg<i>`` (``cycle_…`` for a
+    Cycle object or a dict); a key
+    given twice gets ``_2``, ``_3``, … (the CLI's ``--csv`` columns).
     Runs with the GIL released; Ctrl-C stops it."""
     import numpy as np
 
@@ -58,6 +63,9 @@ def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = _default("Follow
     ratio = np.ascontiguousarray(ratio, dtype=np.float64)
     zetas = list(damping_ratio) if isinstance(damping_ratio, (list, tuple, np.ndarray)) else [damping_ratio]
     items = laws if isinstance(laws, (list, tuple)) else [laws]
+    # The CLI's column keys: the law's name with the parameters given (`modified-trapezoid_ramp_0.2`),
+    # or the cycle file's name and the segment (`sley-cycle_cycloidal_seg1`); a key given twice gets
+    # `_2`, `_3`, … (`loomkin dyn spectrum --csv`).
     named = []
     for item in items:
         if isinstance(item, Law):
@@ -69,10 +77,17 @@ def spectrum(laws: Any, ratio: Any = None, damping_ratio: Any = _default("Follow
                 k, _, v = kv.partition("=")
                 params[k.strip()] = v.strip()
             law = Law(name, **params)
-            named.append((law.name, law))
+            named.append((law.name + "".join(f"_{k}_{v}" for k, v in params.items()), law))
         else:
+            # A cycle given as an object or a dict has no file name: `cycle`.
+            stem = Path(item).stem if isinstance(item, (str, PathLike)) else "cycle"
             for i, law in _cycle(item).laws():
-                named.append((f"{law.name}_seg{i}", law))
+                named.append((f"{stem}_{law.name}_seg{i}", law))
+    seen: Dict[str, int] = {}
+    for j, (key, law) in enumerate(named):
+        seen[key] = seen.get(key, 0) + 1
+        if seen[key] > 1:
+            named[j] = (f"{key}_{seen[key]}", law)
     cols = {"motion_time_over_natural_period": ratio}
     for key, law in named:
         for z in zetas:

@@ -74,6 +74,9 @@ def test_spectrum_matches_dyn_spectrum_csv(cli):
     assert list(t) == list(rows[0])
     for k in t:
         np.testing.assert_array_equal(t[k], [float(row[k]) for row in rows])
+    # A law given twice: its own column each, named as the CLI names them (`cycloidal_2`).
+    twice = cli("dyn", "spectrum", "cycloidal", "cycloidal", "--ratio", "0.5:1:0.5", "--csv", text=True)
+    assert ",".join(loomkin.dynamics.spectrum(["cycloidal", "cycloidal"], [0.5, 1.0])) == twice.splitlines()[0]
     # The CLI's default ratios (0.5:10:0.01) are the package's default.
     default = loomkin.dynamics.spectrum(loomkin.Law("cycloidal"))["motion_time_over_natural_period"]
     assert default[0] == 0.5 and default[-1] == 10.0 and len(default) == 951
