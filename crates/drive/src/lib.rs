@@ -22,7 +22,9 @@ pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for
 pub use sley::synth::{SleySynthesis, SleyTarget};
 pub use timetrue::{CorrectedMove, Span, TimeMap, correct_move, time_excitation};
 
-pub use sley::{Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyState, SleyTable};
+pub use sley::{
+    Assembly, FourBarSley, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyJoints, SleyRow, SleyState, SleyTable,
+};
 
 /// The descriptors this crate declares.
 pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![

@@ -311,6 +311,20 @@ pub struct SleyState {
     pub rod_d2: f64,
 }
 
+/// Where the sley's joints are at one main-shaft angle ([`FourBarSley::joints_m`]), m from the
+/// crank centre, x toward the fell, y up.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SleyJoints {
+    /// The crank pin.
+    pub crank_pin: [f64; 2],
+    /// The sword's pin, where the rod drives the sword.
+    pub sword_pin: [f64; 2],
+    /// The rocking shaft (fixed).
+    pub rocking_shaft: [f64; 2],
+    /// The reed's beating point.
+    pub reed: [f64; 2],
+}
+
 /// The reed's motion along its path at one main-shaft angle, per radian of main shaft.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ReedMotion {
@@ -563,6 +577,21 @@ impl FourBarSley {
             rod_rad: l.rod_rad,
             rod_d1: l.rod_d1,
             rod_d2: l.rod_d2,
+        }
+    }
+
+    /// The linkage's joints at main-shaft angle φ, m from the crank centre (x toward the fell, y
+    /// up): the crank pin, the sword's pin (the rod's other end), the rocking shaft and the reed's
+    /// beating point (on the sword's line, `reed_height_mm` from the rocking shaft).
+    pub fn joints_m(&self, phi_rad: f64) -> SleyJoints {
+        let st = self.state(phi_rad);
+        let (sa, ca) = st.crank_rad.sin_cos();
+        let (st_, ct) = st.rocker_rad.sin_cos();
+        SleyJoints {
+            crank_pin: [self.r * ca, self.r * sa],
+            sword_pin: [self.qx + self.c * ct, self.qy + self.c * st_],
+            rocking_shaft: [self.qx, self.qy],
+            reed: [self.qx + self.h * ct, self.qy + self.h * st_],
         }
     }
 

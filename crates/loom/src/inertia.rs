@@ -105,6 +105,35 @@ pub struct InertiaReport {
     pub mechanisms: Vec<MechanismInertia>,
 }
 
+/// The sley seen from the side ([`LoomShaft::side_view`]): its joints, mm behind and over the fell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SleySide {
+    /// The crank centre (the main shaft).
+    pub crank_centre: [f64; 2],
+    /// The crank pin.
+    pub crank_pin: [f64; 2],
+    /// The sword's pin (the rod's other end).
+    pub sword_pin: [f64; 2],
+    /// The rocking shaft.
+    pub rocking_shaft: [f64; 2],
+    /// The reed's beating point (at the fell, `[0, 0]`, at its front dead centre).
+    pub reed: [f64; 2],
+}
+
+/// The loom seen from the side at one main-shaft angle, mm: x behind the fell toward the back rest,
+/// y over the fell.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SideView {
+    /// The main-shaft angle, deg.
+    pub angle_deg: f64,
+    /// The sley, when the loom file has one.
+    pub sley: Option<SleySide>,
+    /// Each frame's heald eye (front first): distance behind the fell and height over it.
+    pub heald_eyes_mm: Vec<[f64; 2]>,
+    /// The back rest: distance behind the fell and height over it (the warp's other end).
+    pub back_rest_mm: [f64; 2],
+}
+
 /// The loom's main shaft weaving a pattern: J(φ), dJ/dφ and M_load(φ) over the repeat.
 #[derive(Debug, Clone)]
 pub struct LoomShaft<'a> {
@@ -189,6 +218,34 @@ impl<'a> LoomShaft<'a> {
             dj += b;
         }
         (j, dj)
+    }
+
+    /// The loom seen from the side at main-shaft angle `theta_deg` (the workbench's animation), in
+    /// mm with x behind the fell (toward the back rest) and y over it: the sley's joints placed so that
+    /// the reed's beating point meets the fell at its front dead centre, and every frame's heald eye on
+    /// its way through the shed (its lift over the level warp line from the fell to the back rest).
+    pub fn side_view(&self, theta_deg: f64) -> SideView {
+        let g = &self.loom.geometry;
+        let mm = 1e3;
+        let sley = self.sley.map(|s| {
+            let fell = s.joints_m(s.front_dead_centre_rad()).reed;
+            let j = s.joints_m(theta_deg.to_radians().rem_euclid(TAU));
+            let place = |p: [f64; 2]| [-(p[0] - fell[0]) * mm, (p[1] - fell[1]) * mm];
+            SleySide {
+                crank_centre: place([0.0, 0.0]),
+                crank_pin: place(j.crank_pin),
+                sword_pin: place(j.sword_pin),
+                rocking_shaft: place(j.rocking_shaft),
+                reed: place(j.reed),
+            }
+        });
+        let heald_eyes_mm = (0..self.loom.frame_count())
+            .map(|i| {
+                let d = g.frame_m[i];
+                [d * mm, (g.warp_line_m * d / g.back_rest_m + self.frame_kin(i, theta_deg).y_m) * mm]
+            })
+            .collect();
+        SideView { angle_deg: theta_deg, sley, heald_eyes_mm, back_rest_mm: [g.back_rest_m * mm, g.warp_line_m * mm] }
     }
 
     /// `loomkin drive inertia --csv`'s columns over the repeat on a grid of about `step_deg`

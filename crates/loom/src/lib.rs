@@ -64,7 +64,9 @@ pub use error::{LoomError, Result};
 pub use file::{
     CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, InsertionKind, Lifts, Loom, MAX_FRAMES, Shedding, Warp,
 };
-pub use inertia::{DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismInertia, ripple_figure};
+pub use inertia::{
+    DriveSpec, InertiaReport, InertiaStats, LoomShaft, MechanismInertia, SideView, SleySide, ripple_figure,
+};
 pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};

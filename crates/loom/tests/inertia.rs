@@ -128,3 +128,47 @@ fn the_rapier_loom_runs_with_each_motor() {
     let e = Loom::from_toml(&format!("{}\n[drive]\nfriction_torque_n_m = -1\n", rapier_text())).unwrap_err();
     assert!(e.to_string().starts_with("drive.friction_torque_n_m = -1 is out of range"), "{e}");
 }
+
+/// The side view (the workbench's animation) keeps every link's length, puts the reed's beating
+/// point at the fell at beat-up and a stroke behind it at the back dead centre, and every heald eye
+/// on the level warp line at mid-stroke, its lift the frame's.
+#[test]
+fn the_side_view_keeps_the_links_and_meets_the_fell_at_beat_up() {
+    let loom = Loom::from_toml(&example("rapier-loom.toml")).unwrap();
+    let pattern = wif("point-24.wif");
+    let motion = Motion::new(&loom, &pattern).unwrap();
+    let shaft = LoomShaft::new(&loom, &motion, &pattern);
+    let t = loom.sley.as_ref().unwrap().table();
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let mut furthest: f64 = 0.0;
+    for k in 0..720 {
+        let th = k as f64 * 0.5;
+        let v = shaft.side_view(th);
+        let s = v.sley.unwrap();
+        for (got, want) in [
+            (dist(s.crank_pin, s.crank_centre), t.crank_mm),
+            (dist(s.sword_pin, s.crank_pin), t.rod_mm),
+            (dist(s.sword_pin, s.rocking_shaft), t.sword_mm),
+            (dist(s.reed, s.rocking_shaft), t.reed_height_mm),
+            (dist(s.rocking_shaft, s.crank_centre), t.pivot_x_mm.hypot(t.pivot_y_mm)),
+        ] {
+            assert!((got - want).abs() < 1e-9 * want, "{th}°: {got} vs {want}");
+        }
+        // The reed never passes the fell; it leaves it by the reed's travel along the arc.
+        assert!(s.reed[0] >= -1e-9, "{th}°: {:?}", s.reed);
+        furthest = furthest.max(dist(s.reed, [0.0, 0.0]));
+        for (i, e) in v.heald_eyes_mm.iter().enumerate() {
+            let g = &loom.geometry;
+            let level = g.warp_line_m * g.frame_m[i] / g.back_rest_m * 1e3;
+            assert!((e[0] - g.frame_m[i] * 1e3).abs() < 1e-9);
+            assert!((e[1] - level - motion.frame(i, th).y_m * 1e3).abs() < 1e-9);
+        }
+    }
+    let beat = shaft.side_view(t.beat_up_deg).sley.unwrap().reed;
+    assert!(beat[0].abs() < 1e-9 && beat[1].abs() < 1e-9, "{beat:?}");
+    // The chord to the back dead centre: the arc's stroke subtends 2·asin(chord / 2h) at the shaft.
+    let stroke_mm = loom.sley.as_ref().unwrap().stroke_m() * 1e3;
+    let h = t.reed_height_mm;
+    let chord = 2.0 * h * (stroke_mm / (2.0 * h)).sin();
+    assert!((furthest - chord).abs() < 1e-3 * chord, "{furthest} vs {chord}");
+}

@@ -15,6 +15,8 @@ pub const APP_JS: &str = include_str!("../assets/app.js");
 pub const CAM_JS: &str = include_str!("../assets/cam.js");
 /// The loom view.
 pub const LOOM_JS: &str = include_str!("../assets/loom.js");
+/// The drive view.
+pub const DRIVE_JS: &str = include_str!("../assets/drive.js");
 
 fn asset(body: &'static str, content_type: &'static str) -> Response {
     ([(header::CONTENT_TYPE, content_type), (header::CACHE_CONTROL, "no-cache")], body).into_response()
@@ -42,4 +44,8 @@ pub(crate) async fn cam() -> Response {
 
 pub(crate) async fn loom() -> Response {
     asset(LOOM_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn drive() -> Response {
+    asset(DRIVE_JS, "text/javascript; charset=utf-8")
 }

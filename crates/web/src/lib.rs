@@ -36,6 +36,7 @@ mod assets;
 mod cam_api;
 mod catalogue;
 mod dobby_api;
+mod drive_api;
 mod dynamics_api;
 mod error;
 mod json;
@@ -50,7 +51,7 @@ mod servo_api;
 mod servo_design;
 mod shed_api;
 
-pub use assets::{APP_JS, CAM_JS, CHARTS_JS, INDEX_HTML, LOOM_JS, STYLE_CSS};
+pub use assets::{APP_JS, CAM_JS, CHARTS_JS, DRIVE_JS, INDEX_HTML, LOOM_JS, STYLE_CSS};
 pub use cam_api::{
     CAM_EXAMPLES, CamDesignRequest, CamDxfRequest, CamExamples, CamFile, CamLaw, CamProfileRequest, CamProfileResponse,
     CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, MIN_WEB_TOLERANCE, ShedSource,
@@ -63,6 +64,10 @@ pub use catalogue::{
 pub use dobby_api::{
     DobbyCurves, DobbyExportFormat, DobbyExportRequest, DobbyExportResponse, DobbyLaw, DobbyRequest, DobbyResponse,
     MAX_DOBBY_ROWS, dobby_export, dobby_synthesize,
+};
+pub use drive_api::{
+    DEFAULT_DRIVE_SWEEP, DriveCurves, DriveRequest, DriveResponse, MAX_DRIVE_POINTS, MAX_DRIVE_SWEEP, MAX_SIDE_ANGLES,
+    MIN_DRIVE_SWEEP, RippleSweep, SideAnimation, SleyPath, evaluate as drive_evaluate,
 };
 pub use dynamics_api::{
     DynamicsCurves, DynamicsRequest, DynamicsResponse, EXAMPLE_CYCLE, Example, LawCycle, MAX_SWEEP_POINTS,
@@ -101,4 +106,4 @@ pub use shed_api::{
 };
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom"];
+pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom", "drive"];

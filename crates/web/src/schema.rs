@@ -93,6 +93,7 @@ pub fn api_schema() -> ApiSchema {
         ),
         ("/api/loom/evaluate", post::<LoomRequest>(json!({}))),
         ("/api/loom/stagger", post::<StaggerRequest>(json!({}))),
+        ("/api/drive/evaluate", post::<crate::DriveRequest>(json!({"sweep_points": 5}))),
     ]);
     ApiSchema { dialect: SCHEMA_DIALECT, routes }
 }

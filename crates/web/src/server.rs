@@ -30,6 +30,7 @@ pub fn router() -> Router {
         .merge(crate::dynamics_api::routes())
         .merge(crate::cam_api::routes())
         .merge(crate::loom_api::routes())
+        .merge(crate::drive_api::routes())
         .merge(crate::schema::routes())
         .fallback(api_not_found);
     Router::new()
@@ -39,6 +40,7 @@ pub fn router() -> Router {
         .route("/app.js", get(assets::app))
         .route("/cam.js", get(assets::cam))
         .route("/loom.js", get(assets::loom))
+        .route("/drive.js", get(assets::drive))
         .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .nest("/api", api)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))

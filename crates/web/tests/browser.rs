@@ -272,7 +272,7 @@ const SETTLED: &str = "return window.loomkin && loomkin.ready && loomkin.evalCou
                        && document.querySelector('#peak-torque-0') !== null";
 
 /// The element each view shows once its first result is in.
-const VIEWS: [(&str, &str); 8] = [
+const VIEWS: [(&str, &str); 9] = [
     ("servo", "#peak-torque-0"),
     ("catalogue", "#catalogue-metrics tbody tr"),
     ("shed", "#shed-peak-jerk"),
@@ -281,6 +281,7 @@ const VIEWS: [(&str, &str); 8] = [
     ("dynamics", "#dyn-residual"),
     ("cam", "#cam-max-pressure-angle"),
     ("loom", "#loom-peak-torque"),
+    ("drive", "#shaft-ripple"),
 ];
 
 /// Replaces the page's file download by a recorder: `window.saved` gets name, type, size and
@@ -965,6 +966,69 @@ fn the_workbench_in_a_real_browser() {
         .collect();
     assert!(severe.is_empty(), "console errors besides refusals and busy answers: {severe:?}");
     lap("progress and cancel of a long request");
+
+    // 13c. The drive view (issue 29): the shuttle loom weaving the twill; the figures against the
+    // API; the scrubber moves the side view to the API's positions at that angle; play advances
+    // the angle; the flywheel slider asks for the ripple with the flywheel and lowers it.
+    d.click("#tabs button[data-view='drive']");
+    d.wait_for("the drive view", "return document.querySelector('#shaft-ripple') !== null && loomkin.histories.drive && loomkin.histories.drive.isReady");
+    d.script(
+        "const l = document.querySelector('#shaft-loom'); l.value = 'shuttle-loom.toml'; l.dispatchEvent(new Event('change')); \
+         const p = document.querySelector('#shaft-pattern'); p.value = 'twill-2-2.wif'; p.dispatchEvent(new Event('change')); return true",
+    );
+    let shown = d.wait_for(
+        "the shuttle loom's shaft",
+        "const r = loomkin.driveView().result; return r && r.inertia.picks === 4 && r.loom.startsWith('shuttle') && !loomkin.busy \
+         ? document.querySelector('#shaft-ripple').textContent : null",
+    );
+    let req = d.script("return loomkin.driveRequest(true)");
+    let api =
+        common::request(server, "POST", "/api/drive/evaluate", Some(req.to_string().as_bytes())).expect("drive").json();
+    let api_pct = api["ripple"]["speed_ripple_pct"].as_f64().expect("ripple");
+    let page_pct = first(shown.as_str().unwrap_or("").to_string());
+    assert!((page_pct - api_pct).abs() < 1e-4, "page {page_pct} % vs API {api_pct} %");
+    // The scrubber: a third of the way through the repeat.
+    let side = &api["side"];
+    let n = side["angle_deg"].as_array().expect("angles").len();
+    let k = n / 3;
+    d.script(&format!(
+        "const s = document.querySelector('#shaft-scrub'); s.value = '{k}'; s.dispatchEvent(new Event('input')); return true"
+    ));
+    let angle = side["angle_deg"][k].as_f64().expect("angle");
+    let reed = side["sley"]["reed"][k][0].as_f64().expect("reed");
+    let text = d.wait_for(
+        "the side view at the scrubbed angle",
+        &format!("return loomkin.driveView().k === {k} && loomkin.charts.shaft_speed.markerX === {angle} ? document.querySelector('#shaft-angle').textContent : null"),
+    );
+    let text = text.as_str().unwrap_or("").to_string();
+    assert!(text.starts_with(&format!("{angle:.1}°")), "{text} at {angle}°");
+    assert!(text.contains(&format!("reed {reed:.1} mm behind the fell")), "{text}: reed {reed}");
+    d.shot("drive-scrubbed");
+    d.click("#shaft-play");
+    d.wait_for("the animation playing", &format!("return loomkin.driveView().k !== {k}"));
+    d.click("#shaft-play");
+    assert_eq!(d.text("#shaft-play"), "▶ Play");
+    // The flywheel slider at 2 kg·m².
+    d.script(
+        "const r = document.querySelector('#shaft-flywheel-range'); r.value = '2'; r.dispatchEvent(new Event('input')); \
+         r.dispatchEvent(new Event('change')); return true",
+    );
+    let with_fw = d.wait_for(
+        "the ripple with a flywheel",
+        "const r = loomkin.driveView().result; return r && r.ripple.flywheel_kg_m2 === 2 && !loomkin.busy ? document.querySelector('#shaft-ripple').textContent : null",
+    );
+    let req = d.script("return loomkin.driveRequest(false)");
+    assert_eq!(req["flywheel_kg_m2"].as_f64(), Some(2.0), "{req}");
+    let api2 =
+        common::request(server, "POST", "/api/drive/evaluate", Some(req.to_string().as_bytes())).expect("drive").json();
+    let api2_pct = api2["ripple"]["speed_ripple_pct"].as_f64().expect("ripple");
+    let page2 = first(with_fw.as_str().unwrap_or("").to_string());
+    assert!(
+        (page2 - api2_pct).abs() < 1e-4 && api2_pct < api_pct,
+        "page {page2} % vs API {api2_pct} % (bare {api_pct} %)"
+    );
+    d.shot("drive");
+    lap("drive view: figures, scrubber, play, flywheel slider");
 
     // 14. Dynamics: undo of the typed speed, the address, a refused stroke marked.
     d.click("#tabs button[data-view='dynamics']");

@@ -31,6 +31,7 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ("GET", "/", None),
         ("GET", "/cam.js", None),
         ("GET", "/loom.js", None),
+        ("GET", "/drive.js", None),
         (
             "POST",
             "/api/laws/compare",
