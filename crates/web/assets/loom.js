@@ -37,6 +37,8 @@ async function initLoom() {
   const picks = el("input", { type: "number", step: "1", id: "loom-picks", className: "short" });
   window.LoomkinShared.applyLimits(picks, "/api/loom/evaluate", "picks");
   const objective = el("select", { id: "loom-objective" }, el("option", { value: "peak", textContent: "peak torque" }), el("option", { value: "rms", textContent: "RMS torque" }));
+  const minClearance = el("input", { type: "number", step: "any", id: "loom-min-clearance", className: "short" });
+  window.LoomkinShared.applyLimits(minClearance, "/api/loom/stagger", "min_clearance_mm");
   const optimise = el("button", { type: "button", id: "loom-optimise", textContent: "Optimise stagger" });
   const apply = el("input", { type: "checkbox", id: "loom-apply-stagger", disabled: true });
   const save = el("button", { type: "button", id: "loom-save", textContent: "Loom file with this stagger", disabled: true });
@@ -51,6 +53,7 @@ async function initLoom() {
     el("h2", { textContent: "Stagger" }),
     el("p", { className: "hint", textContent: "Crossing-angle offsets per frame (or group) that lower the peak or RMS shedding torque while every pick keeps its insertion window." }),
     el("div", { className: "row wrap" }, objective, optimise),
+    el("div", { className: "row" }, "keep a least clearance of", minClearance, "mm"),
     el("label", { className: "check" }, apply, "draw with the optimised stagger"),
     el("div", { className: "row wrap" }, save), staggerNote);
 
@@ -76,7 +79,7 @@ async function initLoom() {
   Object.assign(loomkin.charts, { loom_lifts: loom.lifts, loom_timing: loom.timing, loom_torque: loom.torque });
   loom.grid = gridCanvas;
   if (window.ResizeObserver) new ResizeObserver(() => drawGrid()).observe(gridCanvas);
-  loom.inputs = { loomSel, patSel, fromPick, picks, objective, apply };
+  loom.inputs = { loomSel, patSel, fromPick, picks, objective, apply, minClearance };
 
   // Every edit is recorded for undo and written into the address (#loom/<state>).
   const commit = () => loom.history.commit();
@@ -104,6 +107,7 @@ async function initLoom() {
   for (const e of [fromPick, picks]) e.addEventListener("change", () => { evaluate(); commit(); });
   apply.addEventListener("change", () => { evaluate(); commit(); });
   objective.addEventListener("change", commit);
+  minClearance.addEventListener("change", commit);
   optimise.addEventListener("click", runStagger);
   save.addEventListener("click", () => { if (loom.stagger) download("loom-staggered.toml", loom.stagger.loom_toml, "text/plain"); });
   loom.save = save;
@@ -119,7 +123,7 @@ async function initLoom() {
     const st = {
       loom: loomSel.value === "upload" && !loom.loomText ? firstLoom : loomSel.value,
       pattern: patSel.value === "upload" && !loom.patternText ? "plain-default" : patSel.value,
-      from_pick: fromPick.value, picks: picks.value, objective: objective.value, stagger_drawn: apply.checked,
+      from_pick: fromPick.value, picks: picks.value, objective: objective.value, min_clearance_mm: minClearance.value, stagger_drawn: apply.checked,
     };
     if (st.loom === "upload") st.loom_file = carried(loom.loomText, loom.loomName);
     if (st.pattern === "upload") st.pattern_file = carried(loom.patternText, loom.patternName, { kind: loom.patternKind });
@@ -142,6 +146,7 @@ async function initLoom() {
     document.querySelector("#loom-pattern-upload-label").hidden = patSel.value !== "upload";
     if (loomSel.value + "\n" + patSel.value !== before) resetStagger();
     fromPick.value = st.from_pick; picks.value = st.picks; objective.value = st.objective;
+    if (st.min_clearance_mm !== undefined) minClearance.value = st.min_clearance_mm;
     apply.checked = !!st.stagger_drawn && !!loom.stagger;
     evaluate();
   });
@@ -162,7 +167,7 @@ function patternCSV() {
 function loomField(path) {
   const i = loom.inputs;
   const map = [["picks", i.picks, "picks"], ["from_pick", i.fromPick, "first pick"], ["pattern", i.patSel, "weave pattern"],
-    ["loom_toml", i.loomSel, "loom file"], ["stagger_deg", i.apply, "stagger"], ["objective", i.objective, "objective"]];
+    ["loom_toml", i.loomSel, "loom file"], ["stagger_deg", i.apply, "stagger"], ["objective", i.objective, "objective"], ["min_clearance_mm", i.minClearance, "least clearance"]];
   const hit = map.find(([k]) => path === k || path.startsWith(k + ".") || path.startsWith(k + "["));
   return hit ? { inputs: [hit[1]], label: hit[2] } : null;
 }
@@ -314,6 +319,9 @@ async function runStagger() {
   status("optimising the stagger…");
   const q = source();
   q.objective = loom.inputs.objective.value;
+  // The least clearance as typed: the API refuses what is out of range, naming the field.
+  const mc = loom.inputs.minClearance.value.trim();
+  if (mc !== "") q.min_clearance_mm = +mc;
   try {
     const s = await api("/loom/stagger", q);
     loom.stagger = s;
