@@ -271,7 +271,7 @@ fn side_animation(loom: &Loom, shaft: &LoomShaft<'_>, period: f64) -> SideAnimat
         heald_x_mm: first.as_ref().map_or_else(Vec::new, |v| v.heald_eyes_mm.iter().map(|e| e[0]).collect()),
         heald_y_mm: (0..frames).map(|i| views.iter().map(|v| finite(v.heald_eyes_mm[i][1])).collect()).collect(),
         back_rest_mm: first.as_ref().map_or([0.0, 0.0], |v| v.back_rest_mm),
-        reed_mm: loom.geometry.reed_m * 1e3,
+        reed_mm: loomkin_units::mm_from_m(loom.geometry.reed_m),
         angle_deg: angles,
         sley,
     }
