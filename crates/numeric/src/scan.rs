@@ -44,7 +44,7 @@ const PERIODIC_CANDIDATES: usize = 4;
 /// grid maximum `b` between `a` and `c` could: through three points a parabola's vertex exceeds
 /// `b` by at most `(b − min(a, c))/8`; a margin of four times that, `(b − min(a, c))/2`, is allowed
 /// for functions that are not parabolas at the grid's scale. Of those, the
-/// [`PERIODIC_CANDIDATES`] highest are refined (a flat stretch makes every point a local maximum:
+/// four highest are refined (a flat stretch makes every point a local maximum:
 /// the first few suffice). The result is the best of the grid and the refinements, so never below
 /// the grid's best.
 ///
