@@ -34,6 +34,9 @@ pub enum CamError {
         /// Why.
         reason: String,
     },
+    /// The computation was stopped through its [`loomkin_units::StopFlag`] before it finished.
+    #[error(transparent)]
+    Stopped(#[from] loomkin_units::Stopped),
 }
 
 impl FieldError for CamError {
@@ -41,6 +44,7 @@ impl FieldError for CamError {
         match self {
             CamError::Range(e) => e.field(),
             CamError::Law { field, .. } | CamError::Usage { field, .. } | CamError::Parse { field, .. } => Some(field),
+            CamError::Stopped(_) => None,
         }
     }
 }

@@ -69,6 +69,9 @@ pub enum ServoError {
         /// Why.
         reason: String,
     },
+    /// The computation was stopped through its [`loomkin_units::StopFlag`] before it finished.
+    #[error(transparent)]
+    Stopped(#[from] loomkin_units::Stopped),
 }
 
 impl From<loomkin_cams::CamError> for ServoError {
@@ -76,6 +79,7 @@ impl From<loomkin_cams::CamError> for ServoError {
         use loomkin_units::FieldError;
         match e {
             loomkin_cams::CamError::Range(r) => Self::Range(r),
+            loomkin_cams::CamError::Stopped(s) => Self::Stopped(s),
             e => Self::Table {
                 field: e.field().unwrap_or("table").to_string(),
                 // The message without its leading "field: ".
@@ -92,6 +96,7 @@ impl FieldError for ServoError {
             Self::Range(e) => Some(&e.field),
             Self::Parse { field, .. } | Self::Cycle { field, .. } | Self::Table { field, .. } => Some(field),
             Self::Law(e) => e.field(),
+            Self::Stopped(_) => None,
         }
     }
 }

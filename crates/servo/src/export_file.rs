@@ -7,6 +7,7 @@
 use crate::{Drive, Result, SplineLaw, export_coeffs_text, export_json, format_points, spline_cycle};
 use loomkin_cams::table::{CamTable, Format, Interpolation, Motion, ReinterpolationError, Spacing};
 use loomkin_laws::Cycle;
+use loomkin_units::StopFlag;
 use serde::{Deserialize, Serialize};
 
 /// The file formats of [`export`].
@@ -139,6 +140,19 @@ pub fn spline_motion(spline: &SplineLaw, drive: &Drive) -> Result<Motion> {
 /// [`Spacing::StepDeg`]); poly5 has its segments between the law's joints, where each is the law
 /// itself (the spline law is piecewise quintic), and takes no step.
 pub fn export(spline: &SplineLaw, drive: &Drive, format: ExportFormat, step_deg: f64) -> Result<Export> {
+    export_until(spline, drive, format, step_deg, &StopFlag::default())
+}
+
+/// [`export`] that ends with [`crate::ServoError::Stopped`] once `stop` is set (a client gone, a
+/// time budget spent): the tables' error comparisons look at it as they go. Run to its end it
+/// writes the same file.
+pub fn export_until(
+    spline: &SplineLaw,
+    drive: &Drive,
+    format: ExportFormat,
+    step_deg: f64,
+    stop: &StopFlag,
+) -> Result<Export> {
     let file = |filename, media_type, text| Export { format, filename, media_type, text, table: None };
     Ok(match format {
         ExportFormat::Coeffs => file("servo-coefficients.txt", "text/plain", export_coeffs_text(spline)),
@@ -146,7 +160,7 @@ pub fn export(spline: &SplineLaw, drive: &Drive, format: ExportFormat, step_deg:
         ExportFormat::Poly5 => {
             // A step of a whole turn: the points are the law's joints alone.
             let table = CamTable::new(spline_motion(spline, drive)?, Spacing::StepDeg(crate::CYCLE_DEG))?;
-            file("servo-cam-poly5.csv", "text/csv", table.export(Format::Poly5)?.text)
+            file("servo-cam-poly5.csv", "text/csv", table.export_until(Format::Poly5, stop)?.text)
         }
         ExportFormat::Cycle => file(
             "servo-cycle.toml",
@@ -165,12 +179,16 @@ pub fn export(spline: &SplineLaw, drive: &Drive, format: ExportFormat, step_deg:
             } else {
                 ("servo-cam-xyva.csv", Format::Xyva)
             };
-            let out = table.export(written)?;
+            let out = table.export_until(written, stop)?;
             let reinterpolation = Interpolation::ALL
                 .iter()
                 .map(|&m| {
                     // The quintic's error is the one of the file as written and re-read.
-                    let e = if m == Interpolation::QuinticHermite { out.error } else { table.reinterpolation(m) };
+                    let e = if m == Interpolation::QuinticHermite {
+                        out.error
+                    } else {
+                        table.reinterpolation_until(m, stop)?
+                    };
                     InterpolationError::of(&e, m, step_deg, spline, drive)
                 })
                 .collect::<Result<Vec<_>>>()?;

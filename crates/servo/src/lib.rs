@@ -54,7 +54,7 @@ pub use export::{
     CoefficientExport, IntervalCoeffs, export_coefficients, export_coeffs_text, export_json, read_coeffs_text,
     read_json,
 };
-pub use export_file::{Export, ExportFormat, InterpolationError, TableReport, export, spline_motion};
+pub use export_file::{Export, ExportFormat, InterpolationError, TableReport, export, export_until, spline_motion};
 /// The cam-table engine the exports use (re-exported: one engine for `servo export` and `cam table`).
 pub use loomkin_cams::table::{CamTable, Interpolation};
 pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};

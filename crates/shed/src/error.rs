@@ -62,6 +62,9 @@ pub enum ShedError {
     /// An error of the study tools (design grids).
     #[error(transparent)]
     Study(#[from] StudyError),
+    /// The computation was stopped through its [`loomkin_units::StopFlag`] before it finished.
+    #[error(transparent)]
+    Stopped(#[from] loomkin_units::Stopped),
 }
 
 impl FieldError for ShedError {
@@ -75,6 +78,7 @@ impl FieldError for ShedError {
             Self::UnknownPreset { .. } => Some("law"),
             Self::Law(e) => e.field(),
             Self::Study(e) => e.field(),
+            Self::Stopped(_) => None,
         }
     }
 }

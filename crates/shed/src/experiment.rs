@@ -136,6 +136,17 @@ impl Study {
         evaluate_rows(&self.template, &self.design, threshold, progress)
     }
 
+    /// [`Study::evaluate`] that ends with [`crate::ShedError::Stopped`] once `stop` is set (a
+    /// client gone, a time budget spent); run to its end it gives the same rows bit for bit.
+    pub fn evaluate_until(
+        &self,
+        threshold: f64,
+        progress: Progress,
+        stop: &loomkin_units::StopFlag,
+    ) -> Result<Vec<Option<Dimensionless>>> {
+        crate::evaluate_rows_until(&self.template, &self.design, threshold, progress, 0..self.design.len(), stop)
+    }
+
     /// Every law of the design at every motion angle, evaluated (see [`crate::table`]).
     pub fn table(&self, motions_deg: &[f64], cond: &Conditions, progress: Progress) -> Result<StudyTable> {
         self.table_in(motions_deg, cond, progress, 0..self.design.len())

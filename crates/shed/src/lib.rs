@@ -61,8 +61,8 @@ pub use requirement::LoomRequirement;
 pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
     Candidate, JERK_LIMIT_RANGE, PARETO_MOTION_DEG, TABLE_MOTION_DEG, best, check_window_deg, dominates_in,
-    evaluate_rows, evaluate_rows_in, fig1_design, grid_design, grid_design_rows, pareto, pareto_indices, pareto_within,
-    parse_motion_angles, table, table1_design, within_jerk_limit,
+    evaluate_rows, evaluate_rows_in, evaluate_rows_until, fig1_design, grid_design, grid_design_rows, pareto,
+    pareto_indices, pareto_within, parse_motion_angles, table, table1_design, within_jerk_limit,
 };
 pub use template::{MAX_PARTS, Template};
 

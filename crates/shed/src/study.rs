@@ -4,7 +4,7 @@
 use crate::criteria::check_scales;
 use crate::{Conditions, Criteria, Dimensionless, Result, ShedError, Template, check_motion_deg};
 use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
-use loomkin_units::Range;
+use loomkin_units::{Range, StopFlag};
 use serde::Serialize;
 
 /// The paper's Table 1: eight three-part laws, `k1` (rise) and `k2` (plateau) as printed, and
@@ -66,6 +66,19 @@ pub fn evaluate_rows_in(
     progress: Progress,
     items: std::ops::Range<usize>,
 ) -> Result<Vec<Option<Dimensionless>>> {
+    evaluate_rows_until(template, design, threshold, progress, items, &StopFlag::default())
+}
+
+/// [`evaluate_rows_in`] that ends with [`ShedError::Stopped`] once `stop` is set (looked at
+/// between chunks of laws, see [`loomkin_study::evaluate_indexed_until`]).
+pub fn evaluate_rows_until(
+    template: &Template,
+    design: &Design,
+    threshold: f64,
+    progress: Progress,
+    items: std::ops::Range<usize>,
+    stop: &StopFlag,
+) -> Result<Vec<Option<Dimensionless>>> {
     crate::check_threshold(threshold)?;
     if design.dim() != template.parts() {
         return Err(ShedError::Parse {
@@ -74,9 +87,9 @@ pub fn evaluate_rows_in(
         });
     }
     let (lo, hi) = (items.start.min(design.len()), items.end.min(design.len()));
-    let part = loomkin_study::evaluate_indexed(hi.saturating_sub(lo), progress, "laws", |i| {
+    let part = loomkin_study::evaluate_indexed_until(hi.saturating_sub(lo), progress, "laws", stop, |i| {
         template.evaluate(design.row(lo + i), threshold).ok()
-    });
+    })?;
     let mut out: Vec<Option<Dimensionless>> = vec![None; lo];
     out.extend(part);
     out.resize(design.len(), None);

@@ -1,6 +1,7 @@
 //! Parallel evaluation of experiment tables with an optional progress bar.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use loomkin_units::{StopFlag, Stopped};
 use rayon::prelude::*;
 use std::io::IsTerminal;
 
@@ -60,24 +61,43 @@ where
     R: Send,
     F: Fn(usize) -> R + Sync,
 {
+    loomkin_units::to_the_end(|stop| evaluate_indexed_until(n, progress, label, stop, f))
+}
+
+/// [`evaluate_indexed`] that looks at `stop` before each chunk of rows and ends with [`Stopped`]
+/// once it is set (a client gone, a time budget spent, Ctrl-C), so a long table stops within a
+/// chunk's work. Run to its end it gives [`evaluate_indexed`]'s results bit for bit.
+pub fn evaluate_indexed_until<R, F>(
+    n: usize,
+    progress: Progress,
+    label: &str,
+    stop: &StopFlag,
+    f: F,
+) -> Result<Vec<R>, Stopped>
+where
+    R: Send,
+    F: Fn(usize) -> R + Sync,
+{
     let bar = progress.bar(n, label);
     let chunk = (n / 64).clamp(1, CHUNK);
-    let chunks: Vec<Vec<R>> = (0..n.div_ceil(chunk))
+    let chunks: Result<Vec<Vec<R>>, Stopped> = (0..n.div_ceil(chunk))
         .into_par_iter()
         .map(|c| {
+            stop.check()?;
             let lo = c * chunk;
             let hi = (lo + chunk).min(n);
             let out: Vec<R> = (lo..hi).map(&f).collect();
             bar.inc((hi - lo) as u64);
-            out
+            Ok(out)
         })
         .collect();
     bar.bar.finish_and_clear();
+    let chunks = chunks?;
     let mut out = Vec::with_capacity(n);
     for c in chunks {
         out.extend(c);
     }
-    out
+    Ok(out)
 }
 
 /// Evaluates `f` on every item in parallel, in order (see [`evaluate_indexed`]).
@@ -113,5 +133,27 @@ mod tests {
         let twice = evaluate(&items, Progress::Auto, "t", |x| 2.0 * x);
         assert_eq!(twice[37], 74.0);
         assert!(evaluate_indexed(0, Progress::Hidden, "t", |i| i).is_empty());
+    }
+
+    /// A set flag ends the evaluation before the chunk it is seen at; one set mid-way ends it
+    /// without evaluating every row; an unset one gives the plain evaluation's rows.
+    #[test]
+    fn a_set_flag_stops_the_evaluation() {
+        // Hundreds of chunks: far more than threads in flight when the flag is set.
+        let n = 300 * CHUNK + 3;
+        let stop = StopFlag::default();
+        let all = evaluate_indexed_until(n, Progress::Hidden, "t", &stop, |i| i as f64 * 0.5).unwrap();
+        assert_eq!(all, evaluate_indexed(n, Progress::Hidden, "t", |i| i as f64 * 0.5));
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let out = evaluate_indexed_until(n, Progress::Hidden, "t", &stop, |i| {
+            if done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) == 10 {
+                stop.stop();
+            }
+            i
+        });
+        assert_eq!(out, Err(Stopped));
+        let evaluated = done.into_inner();
+        assert!(evaluated < n, "{evaluated} of {n} rows evaluated after the flag was set");
+        assert_eq!(evaluate_indexed_until(n, Progress::Hidden, "t", &stop, |i| i), Err(Stopped));
     }
 }

@@ -41,7 +41,7 @@ pub mod summary;
 
 pub use design::{Design, MAX_POINTS, simplex_rows, stepped_axis};
 pub use error::{Result, StudyError};
-pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed};
+pub use eval::{Progress, evaluate, evaluate_design, evaluate_indexed, evaluate_indexed_until};
 pub use montecarlo::{
     DEFAULT_BINS, DrawEntry, DrawRow, Drawn, MAX_BINS, Named, Reported, Tally, check_plan, run_draws, tally,
 };

@@ -40,7 +40,7 @@ pub use field::{Field, FieldList};
 pub use format::{compact, sig4};
 pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
-pub use stop::{StopFlag, Stopped};
+pub use stop::{StopFlag, Stopped, to_the_end};
 pub use sweep::{Shard, Span, SweepError};
 pub use toml_text::toml_reason;
 

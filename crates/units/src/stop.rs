@@ -49,6 +49,15 @@ impl StopFlag {
     }
 }
 
+/// Runs a stoppable computation to its end: `f` gets a flag no one else holds, so it is never set
+/// and `f` cannot end with [`Stopped`]. The plain form of a `…_until` function is this call.
+pub fn to_the_end<T>(f: impl FnOnce(&StopFlag) -> Result<T, Stopped>) -> T {
+    match f(&StopFlag::default()) {
+        Ok(out) => out,
+        Err(_) => unreachable!("a stop flag no one else holds was set"),
+    }
+}
+
 impl PartialEq for StopFlag {
     /// Two flags are equal when they are the same flag.
     fn eq(&self, other: &Self) -> bool {
@@ -76,5 +85,19 @@ mod tests {
         std::thread::spawn(move || other.stop()).join().unwrap();
         assert!(stop.is_set());
         assert_eq!(stop.check(), Err(Stopped));
+    }
+
+    /// The flag handed in is a fresh one: a loop that checks it runs to its end.
+    #[test]
+    fn to_the_end_hands_in_an_unset_flag() {
+        let n = to_the_end(|stop| {
+            let mut n = 0;
+            while n < 1000 {
+                stop.check()?;
+                n += 1;
+            }
+            Ok(n)
+        });
+        assert_eq!(n, 1000);
     }
 }

@@ -633,6 +633,15 @@ pub struct CamTableResponse {
 
 /// A controller cam table (`cam table`), its text and exact error.
 pub fn cam_table(req: &CamTableRequest) -> Result<CamTableResponse, ApiError> {
+    cam_table_until(req, &loomkin_units::StopFlag::default())
+}
+
+/// [`cam_table`] that ends early once `stop` is set (the client gone, the budget spent): the
+/// table's error comparison looks at it as it goes.
+pub(crate) fn cam_table_until(
+    req: &CamTableRequest,
+    stop: &loomkin_units::StopFlag,
+) -> Result<CamTableResponse, ApiError> {
     let format = Format::parse(&req.format).map_err(|e| ApiError::from_library(&e, "format"))?;
     let (motion, _) = req.source.motion()?;
     let span = motion.end_deg() - motion.start_deg();
@@ -675,7 +684,7 @@ pub fn cam_table(req: &CamTableRequest) -> Result<CamTableResponse, ApiError> {
         }
     };
     let table = CamTable::new(motion, spacing).map_err(|e| ApiError::from_library(&e, "step_deg"))?;
-    let out = table.export(format).map_err(|e| ApiError::from_library(&e, "format"))?;
+    let out = table.export_until(format, stop).map_err(|e| ApiError::from_library(&e, "format"))?;
     let ext = match format {
         Format::Xyvaj => "txt",
         Format::Poly5 => "txt",
@@ -717,7 +726,7 @@ async fn post_dxf(ApiJson(req): ApiJson<CamDxfRequest>) -> Result<ApiJson<CamFil
 }
 
 async fn post_table(ApiJson(req): ApiJson<CamTableRequest>) -> Result<ApiJson<CamTableResponse>, ApiError> {
-    crate::pool::heavy(move |_| cam_table(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| cam_table_until(&req, stop)).await.map(ApiJson)
 }
 
 #[cfg(test)]
@@ -787,6 +796,22 @@ mod tests {
         assert!(
             t.file.text.starts_with("master_deg,slave_mm,slave_v_mm_per_deg,slave_a_mm_per_deg2,slave_j_mm_per_deg3")
         );
+    }
+
+    /// A set stop flag ends the table request (issue 27: an abandoned request ran on); an unset
+    /// one gives the plain request's file.
+    #[test]
+    fn the_table_stops_when_asked() {
+        let req = CamTableRequest {
+            source: CamSource::default(),
+            format: "xyvaj".into(),
+            step_deg: Some(0.01),
+            tolerance: None,
+        };
+        let stop = loomkin_units::StopFlag::default();
+        assert_eq!(cam_table_until(&req, &stop).unwrap().file.text, cam_table(&req).unwrap().file.text);
+        stop.stop();
+        assert!(cam_table_until(&req, &stop).is_err());
     }
 
     #[test]

@@ -272,6 +272,11 @@ pub struct ExportResponse {
 
 /// Writes the export file (the servo crate's exporter; cam tables with `rows` rows over a turn).
 pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
+    export_until(req, &loomkin_servo::StopFlag::default())
+}
+
+/// [`export`] that ends early once `stop` is set (the client gone, the budget spent).
+pub(crate) fn export_until(req: &ExportRequest, stop: &loomkin_servo::StopFlag) -> Result<ExportResponse, ApiError> {
     let spline = design_spline(&req.design).map_err(|e| e.within("design"))?;
     let step = if req.format.is_cam_table() {
         // At least MIN_CAM_ROWS rows: a step of at most 90°.
@@ -280,10 +285,13 @@ pub fn export(req: &ExportRequest) -> Result<ExportResponse, ApiError> {
     } else {
         1.0
     };
-    let file = loomkin_servo::export(&spline, &req.design.drive, req.format, step).map_err(|e| match req.format {
-        ExportFormat::Csv | ExportFormat::Xyva => servo_error(e),
-        _ => servo_error(e).within("design"),
-    })?;
+    let file =
+        loomkin_servo::export_until(&spline, &req.design.drive, req.format, step, stop).map_err(|e| {
+            match req.format {
+                ExportFormat::Csv | ExportFormat::Xyva => servo_error(e),
+                _ => servo_error(e).within("design"),
+            }
+        })?;
     let (interpolation, note) = match file.table {
         Some(t) => {
             let mode =
@@ -367,7 +375,7 @@ async fn post_optimize(ApiJson(req): ApiJson<OptimizeRequest>) -> Result<ApiJson
 }
 
 async fn post_export(ApiJson(req): ApiJson<ExportRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {
-    crate::pool::heavy(move |_| export(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| export_until(&req, stop)).await.map(ApiJson)
 }
 
 async fn post_save(ApiJson(req): ApiJson<SaveRequest>) -> Result<ApiJson<ExportResponse>, ApiError> {
@@ -438,6 +446,17 @@ mod tests {
         assert!(e.to_string().starts_with("design.drive.efficiency = 2 is out of range"), "{e}");
         let req = ExportRequest { design: ServoDesign::default(), format: ExportFormat::Csv, rows: 10_000_000 };
         assert_eq!(export(&req).unwrap_err().field(), "rows");
+    }
+
+    /// A set stop flag ends the export (issue 27: `servo/export` ran on after its client left);
+    /// an unset one gives the plain export's file.
+    #[test]
+    fn an_export_stops_when_asked() {
+        let req = ExportRequest { design: ServoDesign::default(), format: ExportFormat::Csv, rows: MAX_CAM_ROWS };
+        let stop = loomkin_servo::StopFlag::default();
+        assert_eq!(export_until(&req, &stop).unwrap().text, export(&req).unwrap().text);
+        stop.stop();
+        assert!(export_until(&req, &stop).is_err());
     }
 
     #[test]

@@ -11,7 +11,7 @@ use loomkin_shed::{
     Candidate, Conditions, Criteria, DesignKind, Family, GridSpec, JERK_LIMIT_RANGE, MOTION_DEG, Progress, ShedError,
     Study, cycle_accel_jumps, cycle_curve, evaluate, pareto_within, table, within_jerk_limit,
 };
-use loomkin_units::{FieldError, ShaftSpeed};
+use loomkin_units::{FieldError, ShaftSpeed, StopFlag};
 use serde::{Deserialize, Serialize};
 
 /// Most laws (grid rows) one Pareto request may evaluate.
@@ -90,6 +90,10 @@ impl ShedConditions {
 /// Maps an error of the shedding crate to the request field: the library's `positive` /
 /// `negative` phase is built from the request's `lengths`.
 fn shed_error(default_field: &str, e: ShedError) -> ApiError {
+    if let ShedError::Stopped(s) = e {
+        // The pool words the refusal of a stopped computation; this names no input.
+        return ApiError::invalid("body", s);
+    }
     let field = e.field().unwrap_or(default_field).to_string();
     if field.starts_with("positive") || field.starts_with("negative") {
         let text = e.to_string();
@@ -158,6 +162,13 @@ pub struct ParetoResponse {
 
 /// Evaluates the grid of the family and its Pareto front.
 pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
+    shed_pareto_until(req, &StopFlag::default())
+}
+
+/// [`shed_pareto`] that ends early once `stop` is set (the client gone, the budget spent): the
+/// laws' evaluation looks at it between chunks of laws, and it is looked at again before the cloud
+/// and before the front.
+pub(crate) fn shed_pareto_until(req: &ParetoRequest, stop: &StopFlag) -> Result<ParetoResponse, ApiError> {
     let template = req.family.template();
     let cond = req.conditions.build()?;
     check_count("motions_deg", req.motions_deg.len(), 1, MAX_MOTIONS)?;
@@ -203,7 +214,7 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
             ),
         )
     })?;
-    let rows = study.evaluate(cond.threshold(), Progress::Hidden).map_err(|e| shed_error("family", e))?;
+    let rows = study.evaluate_until(cond.threshold(), Progress::Hidden, stop).map_err(|e| shed_error("family", e))?;
     let laws = rows.iter().filter(|r| r.is_some()).count();
     if laws * req.motions_deg.len() > MAX_SHED_POINTS {
         return Err(ApiError::invalid(
@@ -217,7 +228,9 @@ pub fn shed_pareto(req: &ParetoRequest) -> Result<ParetoResponse, ApiError> {
     if let Some(j) = req.max_jerk_m_s3 {
         JERK_LIMIT_RANGE.check("max_jerk_m_s3", j)?;
     }
+    stop.check().map_err(|s| shed_error("body", s.into()))?;
     let all = table(design, &rows, &req.motions_deg, &cond).map_err(|e| shed_error("motions_deg", e))?;
+    stop.check().map_err(|s| shed_error("body", s.into()))?;
     let front = pareto_within(design, &rows, &req.motions_deg, &cond, req.max_jerk_m_s3)
         .map_err(|e| shed_error("motions_deg", e))?;
     let within = |c: &Candidate| {
@@ -306,7 +319,7 @@ pub fn shed_law(req: &ShedLawRequest) -> Result<ShedLawResponse, ApiError> {
 }
 
 async fn post_pareto(ApiJson(req): ApiJson<ParetoRequest>) -> Result<ApiJson<ParetoResponse>, ApiError> {
-    crate::pool::heavy(move |_| shed_pareto(&req)).await.map(ApiJson)
+    crate::pool::heavy(move |stop| shed_pareto_until(&req, stop)).await.map(ApiJson)
 }
 
 async fn post_law(ApiJson(req): ApiJson<ShedLawRequest>) -> Result<ApiJson<ShedLawResponse>, ApiError> {
@@ -326,6 +339,18 @@ mod tests {
             conditions: ShedConditions::default(),
             max_jerk_m_s3: None,
         }
+    }
+
+    /// A set stop flag ends the Pareto request (issue 27: an abandoned request ran on); an unset
+    /// one gives the plain request's answer.
+    #[test]
+    fn the_pareto_front_stops_when_asked() {
+        let r = req(0.05);
+        let stop = StopFlag::default();
+        assert_eq!(shed_pareto_until(&r, &stop).unwrap(), shed_pareto(&r).unwrap());
+        stop.stop();
+        let e = shed_pareto_until(&r, &stop).unwrap_err();
+        assert_eq!(e.field(), "body", "{e:?}");
     }
 
     /// With a jerk limit the front keeps it, the cloud flags exactly the points over it, and the

@@ -7,7 +7,7 @@ use super::reinterpolation::{ReinterpolationError, reinterpolation_error};
 use super::{Interval, Motion};
 use crate::Result;
 use loomkin_laws::StrokeUnit;
-use loomkin_units::compact;
+use loomkin_units::{StopFlag, compact};
 use serde::Serialize;
 
 /// The interpolation a controller runs between two points of every point format.
@@ -155,9 +155,16 @@ impl CamTable {
     /// written: the text is read back ([`Format::read`]), re-interpolated as the controller does,
     /// and compared with the motion ([`super::reinterpolation_error`]).
     pub fn export(&self, format: Format) -> Result<Export> {
+        self.export_until(format, &StopFlag::default())
+    }
+
+    /// [`CamTable::export`] that ends with [`crate::CamError::Stopped`] once `stop` is set (a
+    /// client gone, a time budget spent): the error's comparison looks at it as it goes
+    /// ([`super::reinterpolation_error_until`]). Run to its end it writes the same text.
+    pub fn export_until(&self, format: Format, stop: &StopFlag) -> Result<Export> {
         let body = format.write(self, &[]);
         let intervals: Vec<Interval> = format.read(&body)?;
-        let error = reinterpolation_error(&self.motion, &intervals);
+        let error = super::reinterpolation_error_until(&self.motion, &intervals, stop)?;
         let text = format.write(self, &self.header(format, &error));
         Ok(Export { text, error, points: intervals.len() + 1 })
     }
@@ -165,6 +172,11 @@ impl CamTable {
     /// The exact re-interpolation error of the table's points (as rounded) joined in `mode`.
     pub fn reinterpolation(&self, mode: super::Interpolation) -> ReinterpolationError {
         reinterpolation_error(&self.motion, &mode.intervals(&self.points))
+    }
+
+    /// [`CamTable::reinterpolation`] that ends with [`crate::CamError::Stopped`] once `stop` is set.
+    pub fn reinterpolation_until(&self, mode: super::Interpolation, stop: &StopFlag) -> Result<ReinterpolationError> {
+        Ok(super::reinterpolation_error_until(&self.motion, &mode.intervals(&self.points), stop)?)
     }
 
     /// The report of `export`, written in `format` from a motion that came from `source`.

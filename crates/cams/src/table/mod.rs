@@ -24,5 +24,5 @@ pub use motion::{MOTION_DEG_RANGE, Motion, Piece, STROKE_RANGE};
 pub use points::{
     CamPoint, DEFAULT_STEP_DEG, Interpolation, MAX_POINTS, STEP_RANGE, Spacing, TOLERANCE_RANGE, hermite_intervals,
 };
-pub use reinterpolation::{ReinterpolationError, reinterpolation_error};
+pub use reinterpolation::{ReinterpolationError, reinterpolation_error, reinterpolation_error_until};
 pub use tolerance::TOLERANCE_MARGIN;

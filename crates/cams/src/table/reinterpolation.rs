@@ -1,6 +1,7 @@
 //! The exact error of a re-interpolated table against the motion it was made from.
 
 use super::{Interval, Motion};
+use loomkin_units::{StopFlag, Stopped};
 use serde::Serialize;
 
 /// The largest differences between a re-interpolated table and the exact motion, in the slave
@@ -36,16 +37,33 @@ impl ReinterpolationError {
 /// derivative on a grid sized to the degree and the sine frequency and refining each root by
 /// safeguarded Newton ([`loomkin_numeric::refine_root`]); the ends of every piece are included.
 pub fn reinterpolation_error(motion: &Motion, intervals: &[Interval]) -> ReinterpolationError {
+    loomkin_units::to_the_end(|stop| reinterpolation_error_until(motion, intervals, stop))
+}
+
+/// Intervals compared between two looks at the stop flag (well under a millisecond of work).
+const STOP_CHECK_INTERVALS: usize = 256;
+
+/// [`reinterpolation_error`] that ends with [`Stopped`] once `stop` is set (a client gone, a time
+/// budget spent), looked at every few hundred intervals; run to its end it gives
+/// the same errors bit for bit.
+pub fn reinterpolation_error_until(
+    motion: &Motion,
+    intervals: &[Interval],
+    stop: &StopFlag,
+) -> Result<ReinterpolationError, Stopped> {
     let mut out = ReinterpolationError {
         max_position_error: 0.0,
         max_position_error_at_deg: intervals.first().map_or(0.0, |i| i.start_deg),
         max_velocity_error: 0.0,
         max_accel_error: 0.0,
     };
-    for iv in intervals {
+    for (i, iv) in intervals.iter().enumerate() {
+        if i % STOP_CHECK_INTERVALS == 0 {
+            stop.check()?;
+        }
         out.merge(&interval_error(motion, iv, true));
     }
-    out
+    Ok(out)
 }
 
 /// The errors on one interval (`all`: velocity and acceleration errors too, else position only).
