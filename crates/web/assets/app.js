@@ -1090,16 +1090,35 @@ function shedField(path) {
   return hit ? { inputs: [hit[0]], label: hit[1] } : null;
 }
 
-async function computePareto(chosen) {
+// One Pareto request in flight at a time: a change made meanwhile is sent when the answer is in,
+// so an earlier, slower answer never overwrites a later one (the promise settles after both). The
+// page's own refusals are made at once, before any wait (the history records no refused state).
+function computePareto(chosen) {
+  const req = paretoRequest();
+  if (req === null) return Promise.resolve();
+  if (shed.inflight) { shed.queued = { chosen }; return shed.inflight; }
+  shed.inflight = computeParetoNow(req, chosen).finally(() => {
+    shed.inflight = null;
+    if (shed.queued) { const q = shed.queued; shed.queued = null; return computePareto(q.chosen); }
+  });
+  return shed.inflight;
+}
+
+// The Pareto request of the fields shown, or null after refusing a field the page can judge.
+function paretoRequest() {
   const i = shed.inputs;
   // 0 < h ≤ 1 m, as the library's Conditions.
-  if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value)) return;
+  if (mmRefused("shedding", i.stroke, "stroke h", +i.stroke.value)) return null;
   const motions_deg = numberList("shedding", i.motions, "motion angles");
-  if (motions_deg === null) return;
-  status("evaluating the grid…");
+  if (motions_deg === null) return null;
   const req = { family: i.family.value, step: +i.step.value, motions_deg, conditions: shedConditions() };
   const jl = shedJerkLimit();
   if (jl !== null) req.max_jerk_m_s3 = jl;
+  return req;
+}
+
+async function computeParetoNow(req, chosen) {
+  status("evaluating the grid…");
   try {
     const r = await api("/shed/pareto", req);
     clearFieldErrors();
@@ -1152,8 +1171,11 @@ async function chooseLaw(k) {
   shed.chosen = k;
   const sel = { label: "chosen", mode: "markers", radius: 7, color: "#f59e0b", hover: false, x: [c.criteria.window_deg], y: [c.criteria.peak_accel_m_s2] };
   shed.pareto.setSeries([...shed.series, sel]);
+  // Only the answer for the law chosen last is drawn (an earlier choice's may arrive after it).
+  const asked = shed.lawAsked = (shed.lawAsked || 0) + 1;
   try {
     const r = await api("/shed/law", { family: shed.inputs.family.value, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shedConditions(), samples: 2881 });
+    if (asked !== shed.lawAsked) return;
     shed.s.setSeries([{ label: "", x: r.angle_deg, y: r.s_mm }]);
     shed.v.setSeries([{ label: "", x: r.angle_deg, y: r.v_m_s }]);
     shed.a.setSeries([{ label: "", x: r.angle_deg, y: r.a_m_s2 }]);
@@ -1176,7 +1198,7 @@ async function chooseLaw(k) {
     ];
     if (jl !== null) rows.push(["within the jerk limit", !jumps && q.peak_jerk_m_s3 <= jl ? `yes (${num(jl)} m/s³)` : `no (${num(jl)} m/s³)`, "shed-jerk-ok"]);
     $("#shed-chosen tbody").replaceChildren(...rows.map(([a, b, id]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b, id: id || "" }))));
-  } catch (e) { showFieldError("shedding law", e, shedField); }
+  } catch (e) { if (asked === shed.lawAsked) showFieldError("shedding law", e, shedField); }
 }
 
 
