@@ -542,8 +542,12 @@ impl ProjectilePath {
         (at(self.shed_m.0), at(self.shed_m.1))
     }
 
-    /// The head's position from the entering selvedge at `angle_deg`, m.
+    /// The head's position from the entering selvedge at `angle_deg`, m (negative before it
+    /// reaches the selvedge). From the entry angle of [`ProjectilePath::in_shed_deg`] on it is
+    /// never below +0: that angle is root-found, and the flight gives back the run-in there only
+    /// to rounding (a head at −1e-16 m would print as "-0.0 mm from the entering selvedge").
     pub fn position_m(&self, angle_deg: f64) -> f64 {
-        self.flight.x_at((angle_deg - self.launch_deg) / self.deg_per_s) - self.run_in_m
+        let x = self.flight.x_at((angle_deg - self.launch_deg) / self.deg_per_s) - self.run_in_m;
+        if x <= 0.0 && angle_deg >= self.in_shed_deg().0 { 0.0 } else { x }
     }
 }

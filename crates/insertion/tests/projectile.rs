@@ -163,6 +163,26 @@ fn refusals_name_the_field() {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
+    /// At its root-found entry angle the head is at the entering selvedge, never behind it by a
+    /// rounding (no "-0.0 mm" printed): the position there is +0 or a positive rounding; just
+    /// before the entry it is behind the selvedge; and inside the shed it never goes back.
+    #[test]
+    fn entry_position_has_no_negative_sign(rpm in 100.0f64..600.0, twist in 20.0f64..60.0, reed in 0.5f64..4.0) {
+        let p = Projectile::new(&ProjectileTable { twist_deg: twist, ..table() }, reed, 0.09, "p").unwrap();
+        let path = p.path(ShaftSpeed::from_rpm(rpm).unwrap());
+        let (a, b) = path.in_shed_deg();
+        let x = path.position_m(a);
+        prop_assert!(x.is_sign_positive() && x < 1e-12, "{x:e}");
+        prop_assert_eq!(format!("{:.1}", x * 1e3), "0.0");
+        prop_assert!(path.position_m(a - 1e-3 * (b - a)) < 0.0);
+        let mut last = x;
+        for k in 1..=50 {
+            let now = path.position_m(a + (b - a) * k as f64 / 50.0);
+            prop_assert!(now >= last, "{now} < {last}");
+            last = now;
+        }
+    }
+
     /// More twist never arrives later; a wider reed never arrives earlier.
     #[test]
     fn monotone(twist in 10.0f64..60.0, extra in 0.0f64..10.0, reed in 0.5f64..4.0, wider in 0.0f64..1.0) {

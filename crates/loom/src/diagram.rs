@@ -1,7 +1,8 @@
 //! Figures: the classic loom timing diagram and the torque over the repeat.
 
+use crate::insertion_timing::{CarrierTiming, carrier_timing};
 use crate::{Drive, Loom, Motion, Pattern, Result, Timing, TimingReport, crossing_offset_deg};
-use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_plot::{Figure, Legend, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_units::Range;
 use serde::Serialize;
 
@@ -144,13 +145,34 @@ pub fn timing_diagram(loom: &Loom, pattern: &Pattern) -> Result<Figure> {
     ];
     shed.extend(per_pick("insertion (entry to exit)", [0, 0, 0], &c.insertion_deg, [-2.0, -2.0]));
     shed.extend(per_pick("clear window (all picks)", [204, 121, 167], &c.clear_window_deg, [-4.0, -4.0]));
-    let mut carrier = per_pick("carrier path", [0, 114, 178], &c.insertion_deg, [0.0, c.reed_width_m]);
-    carrier.push(Series::markers("beat-up", beat).with_color([213, 94, 0]));
-    let panels = vec![
+    let ct = carrier_timing(loom)?;
+    let end = 360.0 * turns as f64;
+    if let Some(d) = ct.sley_back_dwell_deg {
+        let spans: Vec<[f64; 2]> = per_turn(d, turns, end).collect();
+        shed.extend(per_pick("sley back dwell", [120, 120, 120], &spans, [-6.0, -6.0]));
+    }
+    let mut carrier = match ct.kind {
+        "shuttle" => per_pick("carrier path", [0, 114, 178], &c.insertion_deg, [0.0, c.reed_width_m]),
+        _ => carrier_series(&ct, turns),
+    };
+    let beat_up = Series::markers("beat-up", beat).with_color([213, 94, 0]);
+    carrier.push(beat_up.clone());
+    let bands: Vec<XBand> = match ct.kind {
+        "shuttle" => Vec::new(),
+        _ => {
+            per_turn(ct.in_shed_deg, turns, end).map(|s| XBand::new(s[0], s[1], "in the shed", XBand::WINDOW)).collect()
+        }
+    };
+    let mut panels = vec![
         Panel::new("frame lift [mm]", lifts).with_legend(if shown.len() <= 8 { Legend::Auto } else { Legend::Hidden }),
         Panel::new("shed at the carrier [mm]", shed).with_legend(Legend::Auto),
-        Panel::new("carrier across the reed [m]", carrier).with_legend(Legend::Auto),
+        Panel::new(format!("{} across the reed [m]", carrier_noun(ct.kind)), carrier)
+            .with_legend(Legend::Auto)
+            .with_x_bands(bands),
     ];
+    if !ct.relay_plan.is_empty() {
+        panels.push(relay_panel(&ct, turns, beat_up));
+    }
     let title = format!(
         "{} — {} picks, window {:.1}° ({:.1}° to {:.1}°), max {:.0} rpm",
         if loom.name.is_empty() { "loom" } else { &loom.name },
@@ -160,9 +182,68 @@ pub fn timing_diagram(loom: &Loom, pattern: &Pattern) -> Result<Figure> {
         report.close_deg,
         report.max_speed_rpm
     );
+    let tall = panels.len() > 3;
     let mut fig = Figure::new(title, "main-shaft angle [deg] (0 = beat-up)", panels);
-    fig.size = Some((1100, 900));
+    fig.size = Some((1100, if tall { 1150 } else { 900 }));
     Ok(fig)
+}
+
+/// What the carrier panel's axis names: the shuttle's panel keeps its "carrier".
+fn carrier_noun(kind: &str) -> &'static str {
+    match kind {
+        "rapier" => "rapier heads",
+        "projectile" => "projectile",
+        "airjet" => "yarn tip",
+        _ => "carrier",
+    }
+}
+
+/// The turns' copies of a span of one turn (deg) that meet the diagram's axis `[0, end]`, cut to it.
+fn per_turn(span: [f64; 2], turns: usize, end: f64) -> impl Iterator<Item = [f64; 2]> {
+    (-1..=turns as i64).filter_map(move |k| {
+        let (a, b) = (span[0] + 360.0 * k as f64, span[1] + 360.0 * k as f64);
+        (b > 0.0 && a < end).then(|| [a.max(0.0), b.min(end)])
+    })
+}
+
+/// The colours of the carriers' tracks (the shuttle's path colour first).
+const TRACK_COLORS: [[u8; 3]; 2] = [[0, 114, 178], [230, 159, 0]];
+
+/// Each track of `ct` in each of `turns` turns (one series per turn, the first labelled), and the
+/// rapier's transfer in each turn.
+fn carrier_series(ct: &CarrierTiming, turns: usize) -> Vec<Series> {
+    let mut out = Vec::new();
+    for (i, t) in ct.tracks.iter().enumerate() {
+        for p in 0..turns {
+            let shift = 360.0 * p as f64;
+            let pts = t.angle_deg.iter().zip(&t.position_m).map(|(&a, &x)| (a + shift, x)).collect();
+            let label = if p == 0 { t.label } else { "" };
+            out.push(Series::line(label, pts).with_color(TRACK_COLORS[i % TRACK_COLORS.len()]));
+        }
+    }
+    if let Some(tr) = ct.transfer {
+        let pts = (0..turns).map(|p| (tr.angle_deg + 360.0 * p as f64, tr.position_m)).collect();
+        out.push(Series::markers("transfer", pts).with_color([0, 0, 0]));
+    }
+    out
+}
+
+/// The air jet's relay groups as bars: group `g` at height `g`, from its opening to its closing in
+/// each turn; with the beat-ups (which also span the angle axis as the other panels do).
+fn relay_panel(ct: &CarrierTiming, turns: usize, beat_up: Series) -> Panel {
+    let mut bars = Vec::new();
+    for p in 0..turns {
+        let shift = 360.0 * p as f64;
+        for (k, o) in ct.relay_plan.iter().enumerate() {
+            let g = o.group as f64;
+            let label = if p == 0 && k == 0 { "relay group open" } else { "" };
+            bars.push(
+                Series::line(label, vec![(o.open_deg + shift, g), (o.close_deg + shift, g)]).with_color([0, 158, 115]),
+            );
+        }
+    }
+    bars.push(beat_up);
+    Panel::new("relay group", bars).with_legend(Legend::Auto)
 }
 
 /// The shedding torque over the repeat at `step_deg`, with its peak and RMS in the title.

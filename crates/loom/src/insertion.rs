@@ -187,6 +187,17 @@ pub(crate) fn clearance_panel(shed: &CarrierShed, cl: &Clearance, bands: Vec<XBa
         )])
 }
 
+/// The colours of the selvedges' rules in the carriers' plots: the entering selvedge's and the far one's.
+const SELVEDGE_COLORS: [[u8; 3]; 2] = [[0, 158, 115], [204, 121, 167]];
+
+/// A panel of a position across the reed (mm) with the two selvedges as rules, each in its own
+/// colour and named in the legend: `near` at 0, `far` at `width_mm`.
+pub(crate) fn with_selvedges(panel: Panel, width_mm: f64, near: &str, far: &str) -> Panel {
+    panel
+        .with_rule(Rule::y(0.0, near).with_color(SELVEDGE_COLORS[0]))
+        .with_rule(Rule::y(width_mm, far).with_color(SELVEDGE_COLORS[1]))
+}
+
 /// The loom file's rapier, or an error naming `insertion.kind` when its carrier is another.
 pub fn rapier_of(loom: &Loom) -> Result<&Rapier> {
     match &loom.insertion.kind {
@@ -246,14 +257,20 @@ pub fn rapier_figure(loom: &Loom, pattern: &Pattern, c: &RapierCheck, speed: Sha
     let transfer_at = rep.transfer_deg;
     let transfer_y = tip(0, transfer_at).u_m * 1e3;
     let panels = vec![
-        Panel::new("tip across the reed [mm]", vec![Series::line("bringer", bringer), Series::line("taker", taker)])
-            .with_rule(Rule::y(0.0, "bringer's selvedge"))
-            .with_rule(Rule::y(width_mm, "taker's selvedge"))
-            .with_notes([Note::new(
-                transfer_at,
-                transfer_y,
-                format!("overlap {} mm at {}°", sig4(rep.transfer_overlap_mm), sig4(transfer_at)),
-            )]),
+        with_selvedges(
+            Panel::new(
+                "tip across the reed [mm]",
+                vec![Series::line("bringer", bringer), Series::line("taker", taker)],
+            ),
+            width_mm,
+            "bringer's selvedge",
+            "taker's selvedge",
+        )
+        .with_notes([Note::new(
+            transfer_at,
+            transfer_y,
+            format!("overlap {} mm at {}°", sig4(rep.transfer_overlap_mm), sig4(transfer_at)),
+        )]),
         Panel::new("velocity across the reed [m/s]", vec![Series::line("bringer", vb), Series::line("taker", vt)]),
         clearance_panel(&shed, cl, vec![XBand::new(from, to, "a head in the shed", XBand::WINDOW)]),
     ];

@@ -1,11 +1,11 @@
 //! The projectile and the air jet on the whole loom: their flights on the main-shaft angle, the
 //! projectile's clearance in the shed over a pattern repeat and its fit in the sley's back dwell.
 
-use crate::insertion::{CarrierPath, CarrierShed, Clearance, clearance, clearance_panel, field_error};
+use crate::insertion::{CarrierPath, CarrierShed, Clearance, clearance, clearance_panel, field_error, with_selvedges};
 use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result};
 use loomkin_drive::SleyAnalysis;
 use loomkin_insertion::{Airjet, AirjetReport, CarrierError, Projectile, ProjectilePath, ProjectileReport, TipPoint};
-use loomkin_plot::{Figure, Note, Panel, Rule, Series, XBand, sig4};
+use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
 
@@ -58,10 +58,8 @@ pub struct DwellFit {
 
 /// The fit of the span `[from, to]` (deg) in the back dwell of the loom's `[sley]`, when it has one.
 pub fn dwell_fit(loom: &Loom, from: f64, to: f64) -> Result<Option<DwellFit>> {
-    let Some(sley) = &loom.sley else { return Ok(None) };
+    let Some([start, end]) = crate::insertion_timing::sley_back_dwell_deg(loom)? else { return Ok(None) };
     let tol = SleyAnalysis::DWELL_TOLERANCE_MM.default_value();
-    let (start, end) = sley.back_dwell_rad(tol * 1e-3).map_err(|e| LoomError::field("sley", e.to_string()))?;
-    let (start, end) = (start.to_degrees(), end.to_degrees());
     // The dwell's turn nearest the span (their middles closest).
     let k = (((from + to) - (start + end)) / 720.0).round();
     let (s, e) = (start + 360.0 * k, end + 360.0 * k);
@@ -121,10 +119,13 @@ pub fn projectile_figure(loom: &Loom, pattern: &Pattern, c: &ProjectileCheck, sp
     };
     let width_mm = p.reed_width_m * 1e3;
     let panels = vec![
-        Panel::new("head across the reed [mm]", vec![Series::line("projectile", head)])
-            .with_rule(Rule::y(0.0, "entering selvedge"))
-            .with_rule(Rule::y(width_mm, "far selvedge"))
-            .with_x_bands(bands("in the shed")),
+        with_selvedges(
+            Panel::new("head across the reed [mm]", vec![Series::line("projectile", head)]),
+            width_mm,
+            "entering selvedge",
+            "far selvedge",
+        )
+        .with_x_bands(bands("in the shed")),
         Panel::new("speed [m/s]", vec![Series::line("projectile", v)]).with_notes([Note::new(
             a1,
             r.arrival_speed_m_s,
@@ -188,10 +189,13 @@ pub fn airjet_figure(loom: &Loom, r: &AirjetReport, speed: ShaftSpeed) -> Result
             .collect()
     };
     let panels = vec![
-        Panel::new("tip across the reed [mm]", vec![Series::line("yarn tip", tip)])
-            .with_rule(Rule::y(0.0, "entering selvedge"))
-            .with_rule(Rule::y(a.reed_width_m * 1e3, "far selvedge"))
-            .with_x_bands(bands()),
+        with_selvedges(
+            Panel::new("tip across the reed [mm]", vec![Series::line("yarn tip", tip)]),
+            a.reed_width_m * 1e3,
+            "entering selvedge",
+            "far selvedge",
+        )
+        .with_x_bands(bands()),
         Panel::new("speed [m/s]", vec![Series::line("yarn tip", v), Series::line("air at the tip", air)])
             .with_x_bands(bands())
             .with_notes([Note::new(

@@ -37,6 +37,7 @@ pub mod geometry;
 mod inertia;
 pub mod insertion;
 pub mod insertion_air;
+pub mod insertion_timing;
 mod law;
 mod motion;
 mod pattern;
