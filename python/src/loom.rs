@@ -202,16 +202,19 @@ fn loom_sley<'py>(
     let out = to_py(py, &r)?.into_bound(py);
     // The columns of `sley analyze --csv`, in its order.
     let col = |f: fn(&loomkin_drive::SleyRow) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
-    let cols = vec![
+    let mut cols = vec![
         ("angle_deg", col(|q| q.angle_deg)),
         ("reed_mm", col(|q| q.reed_mm)),
         ("velocity_m_s", col(|q| q.velocity_m_s)),
         ("acceleration_m_s2", col(|q| q.acceleration_m_s2)),
         ("jerk_m_s3", col(|q| q.jerk_m_s3)),
         ("inertia_force_n", col(|q| q.inertia_force_n)),
-        ("rod_force_n", col(|q| q.rod_force_n)),
-        ("crank_torque_n_m", col(|q| q.crank_torque_n_m)),
     ];
+    // A cam sley has no rod (the CLI's table leaves that column out too).
+    if rows.first().is_some_and(|q| q.rod_force_n.is_some()) {
+        cols.push(("rod_force_n", rows.iter().filter_map(|q| q.rod_force_n).collect()));
+    }
+    cols.push(("crank_torque_n_m", col(|q| q.crank_torque_n_m)));
     out.set_item("curve", crate::convert::table(py, columns(py, cols)?)?)?;
     Ok(out)
 }

@@ -5,7 +5,7 @@ use crate::output::{self, Out, outln};
 use crate::util::{self, Format};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand};
-use loomkin_drive::{Assembly, FourBarSley, SleyAnalysis, SleyError, SleyRow, SleyTarget};
+use loomkin_drive::{Assembly, Sley, SleyAnalysis, SleyError, SleyRow, SleyTarget};
 use loomkin_io::Table;
 use loomkin_loom::Loom;
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
@@ -75,10 +75,10 @@ pub fn run(cmd: SleyCommand) -> Result<()> {
 }
 
 /// The loom file's sley and speed.
-fn read_sley(path: &Path) -> Result<(FourBarSley, Loom)> {
+fn read_sley(path: &Path) -> Result<(Sley, Loom)> {
     let text = util::read_input(path)?;
     let loom = Loom::from_toml(&text).map_err(|e| anyhow!("{}: {e}", path.display()))?;
-    let sley = loom.sley.ok_or_else(|| {
+    let sley = loom.sley.clone().ok_or_else(|| {
         anyhow!(
             "{}: sley: the loom file has no [sley] table (crank_mm, rod_mm, sword_mm, …; see docs/drive.md)",
             path.display()
@@ -113,27 +113,28 @@ fn run_analyze(a: AnalyzeArgs) -> Result<()> {
         return output::figure(&figure(&name, &sley, &r, &sley.curve(a.points, omega), omega), out, &a.plot);
     }
     if a.format.csv {
-        let mut t = Table::new([
-            "angle_deg",
-            "reed_mm",
-            "velocity_m_s",
-            "acceleration_m_s2",
-            "jerk_m_s3",
-            "inertia_force_n",
-            "rod_force_n",
-            "crank_torque_n_m",
-        ]);
-        for row in sley.curve(a.points, omega) {
-            t.push(vec![
+        // A cam sley has no rod: its table leaves that column out.
+        let rows = sley.curve(a.points, omega);
+        let rod = rows.first().is_some_and(|r| r.rod_force_n.is_some());
+        let mut head =
+            vec!["angle_deg", "reed_mm", "velocity_m_s", "acceleration_m_s2", "jerk_m_s3", "inertia_force_n"];
+        if rod {
+            head.push("rod_force_n");
+        }
+        head.push("crank_torque_n_m");
+        let mut t = Table::new(head);
+        for row in rows {
+            let mut v = vec![
                 row.angle_deg,
                 row.reed_mm,
                 row.velocity_m_s,
                 row.acceleration_m_s2,
                 row.jerk_m_s3,
                 row.inertia_force_n,
-                row.rod_force_n,
-                row.crank_torque_n_m,
-            ])?;
+            ];
+            v.extend(row.rod_force_n);
+            v.push(row.crank_torque_n_m);
+            t.push(v)?;
         }
         return output::csv(&t);
     }
@@ -170,13 +171,23 @@ fn run_analyze(a: AnalyzeArgs) -> Result<()> {
         r.min_inertia_force_n,
         r.min_inertia_force_deg
     )?;
-    outln!(
-        "peak crank torque {:.3} N·m at {:.3}°; peak rod force {:.3} N, peak rocking-shaft force {:.3} N",
-        r.peak_crank_torque_n_m,
-        r.peak_crank_torque_deg,
-        r.peak_rod_force_n,
-        r.peak_rocking_shaft_force_n
-    )
+    match (r.peak_rod_force_n, r.peak_rocking_shaft_force_n, r.max_pressure_angle_deg, r.prime_radius_mm) {
+        (Some(rod), Some(shaft), _, _) => outln!(
+            "peak crank torque {:.3} N·m at {:.3}°; peak rod force {:.3} N, peak rocking-shaft force {:.3} N",
+            r.peak_crank_torque_n_m,
+            r.peak_crank_torque_deg,
+            rod,
+            shaft
+        ),
+        (_, _, Some(pressure), Some(prime)) => outln!(
+            "peak cam-shaft torque {:.3} N·m at {:.3}°; cams: largest pressure angle {:.3}°, prime circle radius {:.3} mm",
+            r.peak_crank_torque_n_m,
+            r.peak_crank_torque_deg,
+            pressure,
+            prime
+        ),
+        _ => Ok(()),
+    }
 }
 
 /// Library errors named by the synthesis's flags.
@@ -239,7 +250,7 @@ fn run_synthesize(a: SynthesizeArgs) -> Result<()> {
 
 /// Four panels over the turn: the reed's displacement (the back dwell shaded), velocity,
 /// acceleration, and the crank torque; peaks noted.
-fn figure(name: &str, sley: &FourBarSley, r: &SleyAnalysis, rows: &[SleyRow], omega: f64) -> Figure {
+fn figure(name: &str, sley: &Sley, r: &SleyAnalysis, rows: &[SleyRow], omega: f64) -> Figure {
     let pts = |f: &dyn Fn(&SleyRow) -> f64| rows.iter().map(|q| (q.angle_deg, f(q))).collect::<Vec<_>>();
     let label = format!("dwell {}°", sig4(r.back_dwell_deg));
     let dwell =
@@ -250,13 +261,14 @@ fn figure(name: &str, sley: &FourBarSley, r: &SleyAnalysis, rows: &[SleyRow], om
     let acc = sley.reed(acc_at.to_radians()).acceleration_m_s2(omega);
     let torque_at = r.peak_crank_torque_deg;
     let torque = sley.forces(torque_at.to_radians(), omega).crank_torque_n_m;
+    let torque_name = if sley.cam().is_some() { "cam-shaft torque" } else { "crank torque" };
     let panels = vec![
         Panel::new("reed [mm]", vec![Series::line("displacement from the back dead centre", pts(&|q| q.reed_mm))])
             .with_x_bands(dwell),
         Panel::new("velocity [m/s]", vec![Series::line("reed velocity", pts(&|q| q.velocity_m_s))]),
         Panel::new("acceleration [m/s²]", vec![Series::line("reed acceleration", pts(&|q| q.acceleration_m_s2))])
             .with_notes([Note::new(acc_at, acc, format!("peak {} m/s² at {}°", sig4(acc), sig4(acc_at)))]),
-        Panel::new("crank torque [N·m]", vec![Series::line("crank torque", pts(&|q| q.crank_torque_n_m))])
+        Panel::new(format!("{torque_name} [N·m]"), vec![Series::line(torque_name, pts(&|q| q.crank_torque_n_m))])
             .with_notes([Note::new(torque_at, torque, format!("peak {} N·m at {}°", sig4(torque), sig4(torque_at)))]),
     ];
     let title = format!(

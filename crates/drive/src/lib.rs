@@ -10,12 +10,14 @@
 //! their own bounds; the whole loom (its file, its frames over a pattern repeat) assembles them.
 #![deny(missing_docs)]
 
+pub mod cam_sley;
 pub mod fourbar;
 pub mod motor;
 pub mod ripple;
 pub mod sley;
 pub mod timetrue;
 
+pub use cam_sley::{CamSley, CamSleyTable, Sley, SleyClosure, SleyDrive};
 pub use fourbar::{CrankRocker, LoopState};
 pub use motor::{Induction, Motor, MotorCurve, MotorKind, MotorSpec, Servo};
 pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for, solve};
@@ -40,6 +42,7 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     SleyTable::BEAT_UP_DEG,
     SleyTable::BEAT_UP_FORCE_N,
     SleyTable::BEAT_UP_RANGE_DEG,
+    CamSleyTable::BACK_ANGLE_DEG,
     SleyAnalysis::DWELL_TOLERANCE_MM,
     SleyAnalysis::POINTS,
     SleyTarget::STROKE_MM,

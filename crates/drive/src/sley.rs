@@ -89,15 +89,15 @@ pub enum Assembly {
     Right,
 }
 
-fn default_beat_up_deg() -> f64 {
+pub(crate) fn default_beat_up_deg() -> f64 {
     SleyTable::BEAT_UP_DEG.default_value()
 }
 
-fn default_zero_force() -> f64 {
+pub(crate) fn default_zero_force() -> f64 {
     SleyTable::BEAT_UP_FORCE_N.default_value()
 }
 
-fn default_zero_range() -> f64 {
+pub(crate) fn default_zero_range() -> f64 {
     SleyTable::BEAT_UP_RANGE_DEG.default_value()
 }
 
@@ -387,6 +387,16 @@ impl SleyForces {
     }
 }
 
+/// The beat-up resistance model (N): rising linearly in main-shaft angle from 0 at `range` (rad)
+/// before the front position `front` (rad) to `force` at it, 0 elsewhere. One model for every sley.
+pub(crate) fn beat_up_model(force: f64, range: f64, front: f64, phi_rad: f64) -> f64 {
+    if force == 0.0 || range == 0.0 {
+        return 0.0;
+    }
+    let before = (front - phi_rad).rem_euclid(TAU);
+    if before <= range { force * (1.0 - before / range) } else { 0.0 }
+}
+
 /// Angle wrapped to (−π, π].
 fn wrap(a: f64) -> f64 {
     let w = a.rem_euclid(TAU);
@@ -624,11 +634,7 @@ impl FourBarSley {
     /// 0 at `beat_up_range_deg` before the front dead centre to `beat_up_force_n` at it, and is 0 from
     /// front dead centre until the next rise (the reed leaves the fell).
     pub fn beat_up_force_n(&self, phi_rad: f64) -> f64 {
-        if self.beat_force == 0.0 || self.beat_range == 0.0 {
-            return 0.0;
-        }
-        let before = (self.phi_front - phi_rad).rem_euclid(TAU);
-        if before <= self.beat_range { self.beat_force * (1.0 - before / self.beat_range) } else { 0.0 }
+        beat_up_model(self.beat_force, self.beat_range, self.phi_front, phi_rad)
     }
 
     /// The sley's weight as a moment about its rocking shaft at rocker angle θ, N·m
@@ -728,71 +734,117 @@ impl FourBarSley {
     /// peaks are refined by golden section), not read off a grid.
     pub fn analyze(&self, speed: ShaftSpeed, dwell_tolerance_mm: f64) -> Result<SleyAnalysis, SleyError> {
         let tol = SleyAnalysis::DWELL_TOLERANCE_MM.check(dwell_tolerance_mm)?;
-        let (start, end) = self.back_dwell_rad(tol * 1e-3)?;
+        let dwell = self.back_dwell_rad(tol * 1e-3)?;
         let w = speed.rad_per_s();
-        let lo = self.phi_front;
-        let hi = lo + TAU;
-        let peak = |f: &dyn Fn(f64) -> f64| {
-            let m = loomkin_numeric::scan_max(lo, hi, SleyAnalysis::SCAN_INTERVALS, f);
-            (m.value, m.at.rem_euclid(TAU).to_degrees())
+        let frame = Frame {
+            front: self.phi_front,
+            back: self.phi_back,
+            stroke_m: self.stroke_m(),
+            inertia: self.j_q,
+            intervals: SleyAnalysis::SCAN_INTERVALS,
         };
-        let acc = |p: f64| self.reed(p).acceleration_m_s2(w);
-        let (acc_max, acc_max_at) = peak(&|p| acc(p).abs());
-        let (f_max, f_max_at) = peak(&|p| self.forces(p, w).inertia_force_n);
-        let (f_min, f_min_at) = peak(&|p| -self.forces(p, w).inertia_force_n);
-        let (t_max, t_max_at) = peak(&|p| self.forces(p, w).crank_torque_n_m.abs());
-        let (rod_max, _) = peak(&|p| self.forces(p, w).rod_force_n.abs());
-        let (shaft_max, _) = peak(&|p| self.forces(p, w).rocking_shaft_magnitude_n());
-        let (v_max, _) = peak(&|p| self.reed(p).velocity_m_s(w).abs());
-        let (j_max, _) = peak(&|p| self.reed(p).jerk_m_s3(w).abs());
-        Ok(SleyAnalysis {
-            speed_rpm: speed.rpm(),
-            reed_stroke_mm: self.stroke_m() * 1e3,
-            back_dwell_deg: (end - start).to_degrees(),
-            dwell_start_deg: start.rem_euclid(TAU).to_degrees(),
-            dwell_end_deg: end.rem_euclid(TAU).to_degrees(),
-            dwell_tolerance_mm: tol,
-            front_dead_centre_deg: self.phi_front.to_degrees(),
-            back_dead_centre_deg: self.phi_back.to_degrees(),
-            peak_reed_velocity_m_s: v_max,
-            peak_reed_acceleration_m_s2: acc_max,
-            peak_reed_acceleration_deg: acc_max_at,
-            peak_reed_jerk_m_s3: j_max,
-            max_inertia_force_n: f_max,
-            max_inertia_force_deg: f_max_at,
-            min_inertia_force_n: -f_min,
-            min_inertia_force_deg: f_min_at,
-            peak_crank_torque_n_m: t_max,
-            peak_crank_torque_deg: t_max_at,
-            peak_rod_force_n: rod_max,
-            peak_rocking_shaft_force_n: shaft_max,
-            min_transmission_angle_deg: self.min_transmission_rad().to_degrees(),
-            inertia_kg_m2: self.j_q,
-        })
+        let mut r = analysis_of(&frame, speed, tol, dwell, &|p| self.reed(p), &|p, w| self.forces(p, w));
+        let peak = |f: &dyn Fn(f64) -> f64| {
+            loomkin_numeric::scan_max(frame.front, frame.front + TAU, SleyAnalysis::SCAN_INTERVALS, f).value
+        };
+        r.peak_rod_force_n = Some(peak(&|p| self.forces(p, w).rod_force_n.abs()));
+        r.peak_rocking_shaft_force_n = Some(peak(&|p| self.forces(p, w).rocking_shaft_magnitude_n()));
+        r.min_transmission_angle_deg = self.min_transmission_rad().to_degrees();
+        Ok(r)
     }
 
     /// Rows of the curves over one revolution from `0` to `360°` in `points` steps (`points + 1`
     /// rows), at the constant speed ω (rad/s).
     pub fn curve(&self, points: usize, omega: f64) -> Vec<SleyRow> {
-        (0..=points)
-            .map(|i| {
-                let deg = 360.0 * i as f64 / points as f64;
-                let st = self.state(deg.to_radians());
-                let m = self.reed_of(&st);
-                let f = self.forces_of(&st, omega);
-                SleyRow {
-                    angle_deg: deg,
-                    reed_mm: m.x_m * 1e3,
-                    velocity_m_s: m.velocity_m_s(omega),
-                    acceleration_m_s2: m.acceleration_m_s2(omega),
-                    jerk_m_s3: m.jerk_m_s3(omega),
-                    inertia_force_n: f.inertia_force_n,
-                    rod_force_n: f.rod_force_n,
-                    crank_torque_n_m: f.crank_torque_n_m,
-                }
-            })
-            .collect()
+        curve_of(points, omega, &|p| {
+            let st = self.state(p);
+            (self.reed_of(&st), self.forces_of(&st, omega), true)
+        })
     }
+}
+
+/// Where a sley's turn is: the front and back positions (main-shaft rad), the stroke (m), J about
+/// the rocking shaft (kg·m²), the grid of the peak scan.
+pub(crate) struct Frame {
+    pub front: f64,
+    pub back: f64,
+    pub stroke_m: f64,
+    pub inertia: f64,
+    pub intervals: usize,
+}
+
+/// The figures of `sley analyze` every sley has, from its reed motion and forces: every extreme
+/// by [`loomkin_numeric::scan_max`] over the turn from the front position (a grid whose peaks are
+/// refined by golden section). The four-bar's own figures (rod, rocking shaft, transmission) are
+/// left `None` / 0 for the caller.
+pub(crate) fn analysis_of(
+    frame: &Frame,
+    speed: ShaftSpeed,
+    tol_mm: f64,
+    (start, end): (f64, f64),
+    reed: &dyn Fn(f64) -> ReedMotion,
+    forces: &dyn Fn(f64, f64) -> SleyForces,
+) -> SleyAnalysis {
+    let w = speed.rad_per_s();
+    let lo = frame.front;
+    let peak = |f: &dyn Fn(f64) -> f64| {
+        let m = loomkin_numeric::scan_max(lo, lo + TAU, frame.intervals, f);
+        (m.value, m.at.rem_euclid(TAU).to_degrees())
+    };
+    let (acc_max, acc_max_at) = peak(&|p| reed(p).acceleration_m_s2(w).abs());
+    let (f_max, f_max_at) = peak(&|p| forces(p, w).inertia_force_n);
+    let (f_min, f_min_at) = peak(&|p| -forces(p, w).inertia_force_n);
+    let (t_max, t_max_at) = peak(&|p| forces(p, w).crank_torque_n_m.abs());
+    let (v_max, _) = peak(&|p| reed(p).velocity_m_s(w).abs());
+    let (j_max, _) = peak(&|p| reed(p).jerk_m_s3(w).abs());
+    SleyAnalysis {
+        speed_rpm: speed.rpm(),
+        reed_stroke_mm: frame.stroke_m * 1e3,
+        back_dwell_deg: (end - start).to_degrees(),
+        dwell_start_deg: start.rem_euclid(TAU).to_degrees(),
+        dwell_end_deg: end.rem_euclid(TAU).to_degrees(),
+        dwell_tolerance_mm: tol_mm,
+        front_dead_centre_deg: frame.front.to_degrees(),
+        back_dead_centre_deg: frame.back.to_degrees(),
+        peak_reed_velocity_m_s: v_max,
+        peak_reed_acceleration_m_s2: acc_max,
+        peak_reed_acceleration_deg: acc_max_at,
+        peak_reed_jerk_m_s3: j_max,
+        max_inertia_force_n: f_max,
+        max_inertia_force_deg: f_max_at,
+        min_inertia_force_n: -f_min,
+        min_inertia_force_deg: f_min_at,
+        peak_crank_torque_n_m: t_max,
+        peak_crank_torque_deg: t_max_at,
+        peak_rod_force_n: None,
+        peak_rocking_shaft_force_n: None,
+        min_transmission_angle_deg: 0.0,
+        inertia_kg_m2: frame.inertia,
+        drive: None,
+        max_pressure_angle_deg: None,
+        prime_radius_mm: None,
+    }
+}
+
+/// Rows of a sley's curves over one turn (`points + 1` rows at ω): `at(φ)` gives the reed's
+/// motion, the forces and whether the sley has a rod (its force in the rows).
+pub(crate) fn curve_of(points: usize, omega: f64, at: &dyn Fn(f64) -> (ReedMotion, SleyForces, bool)) -> Vec<SleyRow> {
+    (0..=points)
+        .map(|i| {
+            let deg = 360.0 * i as f64 / points as f64;
+            let (m, f, rod) = at(deg.to_radians());
+            SleyRow {
+                angle_deg: deg,
+                reed_mm: m.x_m * 1e3,
+                velocity_m_s: m.velocity_m_s(omega),
+                acceleration_m_s2: m.acceleration_m_s2(omega),
+                jerk_m_s3: m.jerk_m_s3(omega),
+                inertia_force_n: f.inertia_force_n,
+                rod_force_n: rod.then_some(f.rod_force_n),
+                crank_torque_n_m: f.crank_torque_n_m,
+            }
+        })
+        .collect()
 }
 
 /// One row of the sley's curves.
@@ -810,8 +862,9 @@ pub struct SleyRow {
     pub jerk_m_s3: f64,
     /// Inertia force along the reed's path, N.
     pub inertia_force_n: f64,
-    /// Rod force, N (tension positive).
-    pub rod_force_n: f64,
+    /// Rod force, N (tension positive); none for a cam sley (no rod).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rod_force_n: Option<f64>,
     /// Crank torque, N·m.
     pub crank_torque_n_m: f64,
 }
@@ -855,14 +908,27 @@ pub struct SleyAnalysis {
     pub peak_crank_torque_n_m: f64,
     /// Where, deg.
     pub peak_crank_torque_deg: f64,
-    /// Largest magnitude of the rod force, N.
-    pub peak_rod_force_n: f64,
-    /// Largest rocking-shaft bearing force, N.
-    pub peak_rocking_shaft_force_n: f64,
-    /// Least transmission angle over the cycle, deg.
+    /// Largest magnitude of the rod force, N (a four-bar's; left out for a cam sley).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_rod_force_n: Option<f64>,
+    /// Largest rocking-shaft bearing force, N (a four-bar's; left out for a cam sley, whose cam
+    /// contact force is not modelled).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_rocking_shaft_force_n: Option<f64>,
+    /// Least transmission angle over the cycle, deg (a cam sley: 90° less the cam's largest
+    /// pressure angle).
     pub min_transmission_angle_deg: f64,
     /// The sley's moment of inertia about its rocking shaft, kg·m².
     pub inertia_kg_m2: f64,
+    /// `cam` for a cam-driven sley (left out for the four-bar).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drive: Option<&'static str>,
+    /// A cam sley's largest pressure angle over its cams, deg (loomkin-cams' profile).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_angle_deg: Option<f64>,
+    /// A cam sley's prime circle radius, mm (given, or the least for its largest pressure angle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prime_radius_mm: Option<f64>,
 }
 
 impl SleyAnalysis {

@@ -1,7 +1,7 @@
 //! The loom file (TOML): one machine on the main-shaft angle.
 
 use crate::{FrameLaw, LoomError, Result};
-use loomkin_drive::{FourBarSley, SleyError, SleyTable};
+use loomkin_drive::{CamSley, CamSleyTable, FourBarSley, Sley, SleyError, SleyTable};
 use loomkin_insertion::{PickBudget, required_speed_m_s, window_needed_deg};
 use loomkin_laws::{CycleSpec, LawSpec};
 use loomkin_picking::{Mechanism, Method, Settings, simulate};
@@ -17,7 +17,7 @@ pub const G_M_S2: f64 = loomkin_units::STANDARD_GRAVITY_M_S2;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct LoomFile {
+struct LoomFile<S = SleyTable> {
     name: Option<String>,
     speed_rpm: f64,
     efficiency: Option<f64>,
@@ -28,8 +28,48 @@ struct LoomFile {
     shedding: SheddingFile,
     insertion: InsertionFile,
     beat_up: Option<BeatUpFile>,
-    sley: Option<SleyTable>,
+    sley: Option<S>,
     drive: Option<DriveFile>,
+}
+
+/// A `[sley]` table as written: the four-bar, or a cam sley (`drive = "cam"`).
+#[derive(Debug)]
+enum SleyFile {
+    FourBar(SleyTable),
+    Cam(Box<CamSleyTable>),
+}
+
+impl<S> LoomFile<S> {
+    fn map_sley(self, g: impl FnOnce(S) -> SleyFile) -> LoomFile<SleyFile> {
+        LoomFile {
+            name: self.name,
+            speed_rpm: self.speed_rpm,
+            efficiency: self.efficiency,
+            motor_torque_n_m: self.motor_torque_n_m,
+            geometry: self.geometry,
+            frames: self.frames,
+            warp: self.warp,
+            shedding: self.shedding,
+            insertion: self.insertion,
+            beat_up: self.beat_up,
+            sley: self.sley.map(g),
+            drive: self.drive,
+        }
+    }
+}
+
+/// The loom file deserialised, its `[sley]` table as the four-bar's or (with `drive` given) the cam
+/// sley's, so that errors in either carry their line and column.
+fn parse_loom_file(text: &str) -> Result<LoomFile<SleyFile>> {
+    let reason = |e: toml::de::Error| LoomError::field("loom file", loomkin_units::toml_reason(text, &e));
+    let cam = toml::from_str::<toml::Table>(text)
+        .ok()
+        .is_some_and(|doc| doc.get("sley").and_then(|s| s.get("drive")).is_some());
+    Ok(if cam {
+        toml::from_str::<LoomFile<CamSleyTable>>(text).map_err(reason)?.map_sley(|t| SleyFile::Cam(Box::new(t)))
+    } else {
+        toml::from_str::<LoomFile>(text).map_err(reason)?.map_sley(SleyFile::FourBar)
+    })
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -317,9 +357,10 @@ pub struct Loom {
     pub insertion: Insertion,
     /// Beat-up angle, deg.
     pub beat_up_deg: f64,
-    /// The sley linkage (`[sley]`), when the file describes it. Its `beat_up_deg` is the file's
-    /// `[beat_up] angle_deg` when the table leaves it out, and must equal it when given.
-    pub sley: Option<FourBarSley>,
+    /// The sley (`[sley]`): a crank-rocker four-bar, or a cam sley (`drive = "cam"`), when the file
+    /// describes it. Its `beat_up_deg` is the file's `[beat_up] angle_deg` when the table leaves it
+    /// out, and must equal it when given.
+    pub sley: Option<Sley>,
     /// The main-shaft drive (`[drive]`): rotating parts, friction, flywheel, motor.
     pub drive: crate::DriveSpec,
 }
@@ -349,8 +390,7 @@ impl Loom {
     /// Reads and checks a loom file. Every number is range-checked and every error names its
     /// field as `section.key` (`geometry.frame_distances_mm[3]`).
     pub fn from_toml(text: &str) -> Result<Self> {
-        let f: LoomFile =
-            toml::from_str(text).map_err(|e| LoomError::field("loom file", loomkin_units::toml_reason(text, &e)))?;
+        let f = parse_loom_file(text)?;
         let speed = ShaftSpeed::from_rpm(f.speed_rpm)?;
         let efficiency = Range::open_closed(0.0, 1.0, "").check("efficiency", f.efficiency.unwrap_or(1.0))?;
         let motor_torque_n_m = match f.motor_torque_n_m {
@@ -562,26 +602,41 @@ impl Loom {
 
 /// The `[sley]` table checked by the drive crate (errors named `sley.…`); a left-out
 /// `beat_up_deg` is the loom's beat-up angle, a given one must equal it.
-fn read_sley(text: &str, mut table: SleyTable, beat_up_deg: f64) -> Result<FourBarSley> {
+fn read_sley(text: &str, table: SleyFile, beat_up_deg: f64) -> Result<Sley> {
     // Whether the table gives beat_up_deg (serde fills in the default when it does not).
     let given = toml::from_str::<toml::Table>(text)
         .ok()
         .and_then(|doc| doc.get("sley").and_then(|s| s.get("beat_up_deg")).map(|_| ()))
         .is_some();
-    if !given {
-        table.beat_up_deg = beat_up_deg;
-    }
-    let sley = FourBarSley::new(table).map_err(|e| match e {
+    let named = |e: SleyError| match e {
         SleyError::Range(r) => LoomError::Range(r),
         SleyError::Infeasible { fields, reason } => LoomError::Infeasible { field: fields, reason },
         other => LoomError::field("sley", other.to_string()),
-    })?;
-    if sley.table().beat_up_deg != beat_up_deg {
+    };
+    let (sley, given_deg): (Sley, f64) = match table {
+        SleyFile::FourBar(mut t) => {
+            if !given {
+                t.beat_up_deg = beat_up_deg;
+            }
+            let s = FourBarSley::new(t).map_err(named)?;
+            let deg = s.table().beat_up_deg;
+            (s.into(), deg)
+        }
+        SleyFile::Cam(mut t) => {
+            if !given {
+                t.beat_up_deg = beat_up_deg;
+            }
+            let s = CamSley::new(*t).map_err(named)?;
+            let deg = s.table().beat_up_deg;
+            (s.into(), deg)
+        }
+    };
+    if given_deg != beat_up_deg {
         return Err(LoomError::field(
             SleyTable::BEAT_UP_DEG.name,
             format!(
                 "{}° but [beat_up] angle_deg is {}°: the reed's front dead centre is the beat-up (leave one out)",
-                loomkin_units::compact(sley.table().beat_up_deg),
+                loomkin_units::compact(given_deg),
                 loomkin_units::compact(beat_up_deg)
             ),
         ));

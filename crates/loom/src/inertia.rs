@@ -17,7 +17,7 @@
 //! shedding's inertial part there, while the kinetic energy here is exchanged without loss).
 
 use crate::{CorrectedFrames, Drive, FrameKin, Loom, LoomError, Motion, Pattern, Result};
-use loomkin_drive::{FourBarSley, MotorSpec, Shaft};
+use loomkin_drive::{MotorSpec, Shaft, Sley};
 use loomkin_laws::gauss_legendre;
 use loomkin_units::{Field, Range};
 use serde::Serialize;
@@ -139,7 +139,7 @@ pub struct SideView {
 pub struct LoomShaft<'a> {
     loom: &'a Loom,
     drive: Drive<'a>,
-    sley: Option<&'a FourBarSley>,
+    sley: Option<&'a Sley>,
     corrected: Option<&'a CorrectedFrames>,
 }
 
@@ -171,7 +171,7 @@ impl<'a> LoomShaft<'a> {
     }
 
     /// The sley, if any.
-    pub fn sley(&self) -> Option<&FourBarSley> {
+    pub fn sley(&self) -> Option<&Sley> {
         self.sley
     }
 
@@ -505,15 +505,24 @@ impl Shaft for LoomShaft<'_> {
             None => self.motion().joints(),
         };
         let mut out: Vec<f64> = joints.into_iter().map(f64::to_radians).collect();
-        if let Some(s) = self.sley {
-            let range = s.table().beat_up_range_deg.to_radians();
-            if s.table().beat_up_force_n > 0.0 && range > 0.0 {
-                for p in 0..self.motion().picks() {
-                    let front = s.front_dead_centre_rad() + TAU * p as f64;
-                    out.push(front);
-                    out.push(front - range);
+        match self.sley {
+            Some(Sley::FourBar(s)) => {
+                let range = s.table().beat_up_range_deg.to_radians();
+                if s.table().beat_up_force_n > 0.0 && range > 0.0 {
+                    for p in 0..self.motion().picks() {
+                        let front = s.front_dead_centre_rad() + TAU * p as f64;
+                        out.push(front);
+                        out.push(front - range);
+                    }
                 }
             }
+            Some(s @ Sley::Cam(_)) => {
+                let turn = s.breaks_rad();
+                for p in 0..self.motion().picks() {
+                    out.extend(turn.iter().map(|b| b + TAU * p as f64));
+                }
+            }
+            None => {}
         }
         let period = self.period_rad();
         out.iter_mut().for_each(|x| *x = x.rem_euclid(period));

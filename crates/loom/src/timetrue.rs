@@ -400,7 +400,7 @@ pub fn correct(
         })
         .collect();
     let mut not_corrected = Vec::new();
-    if loom.sley.is_some() {
+    if let Some(loomkin_drive::Sley::FourBar(_)) = loom.sley {
         not_corrected.push("sley (a four-bar linkage, not a cam)".to_string());
     }
     let report = CorrectionReport {

@@ -138,7 +138,7 @@ fn the_side_view_keeps_the_links_and_meets_the_fell_at_beat_up() {
     let pattern = wif("point-24.wif");
     let motion = Motion::new(&loom, &pattern).unwrap();
     let shaft = LoomShaft::new(&loom, &motion, &pattern);
-    let t = loom.sley.as_ref().unwrap().table();
+    let t = loom.sley.as_ref().and_then(|s| s.four_bar()).unwrap().table();
     let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
     let mut furthest: f64 = 0.0;
     for k in 0..720 {

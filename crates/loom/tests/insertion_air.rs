@@ -73,7 +73,8 @@ fn clearance_against_a_brute_force_scan() {
 }
 
 /// The dwell is the sley's own (`sley analyze`'s 1 mm dwell), in the flight's turn; a span inside
-/// it fits, the example's flight does not (a four-bar dwells some 26°, the flight takes 157°).
+/// it fits, one a degree longer does not; the example's flight fits (its cam sley dwells 215°, the
+/// flight takes 157°; a four-bar's 26° would not hold it).
 #[test]
 fn the_sley_dwell() {
     let loom = projectile_loom();
@@ -82,8 +83,9 @@ fn the_sley_dwell() {
     let d = c.dwell.unwrap();
     assert!((d.sley_back_dwell_deg[0] - a.dwell_start_deg).abs() < 1e-9, "{d:?} vs {a:?}");
     assert!((d.sley_back_dwell_deg[1] - d.sley_back_dwell_deg[0] - a.back_dwell_deg).abs() < 1e-9);
-    assert!(!d.fits_sley_dwell);
+    assert!(d.fits_sley_dwell);
     let [s, e] = d.sley_back_dwell_deg;
+    assert!(!dwell_fit(&loom, s - 1.0, e).unwrap().unwrap().fits_sley_dwell);
     let inside = dwell_fit(&loom, s + 1.0, e - 1.0).unwrap().unwrap();
     assert!(inside.fits_sley_dwell);
     // A turn later is the same dwell a turn later.

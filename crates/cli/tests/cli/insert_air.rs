@@ -21,7 +21,7 @@ fn projectile_json_has_the_contract_keys() {
         assert!(v[key].as_f64().unwrap().is_finite(), "{key}");
     }
     assert_eq!(v["picks"], 48);
-    assert_eq!(v["fits_sley_dwell"], false);
+    assert_eq!(v["fits_sley_dwell"], true);
     // The launch speed does not depend on the loom's speed; the arrival angle's sweep from the
     // launch scales with it.
     let fast = stdout_json(&["insert", "projectile", &ex("projectile-loom.toml"), "--speed-rpm", "600", "--json"]);

@@ -155,3 +155,62 @@ fn synthesize_refuses_infeasible_targets() {
     );
     usage_error(&["sley", "synthesize", "--stroke-mm", "110"], &["--back-dwell-deg"]);
 }
+
+/// The projectile example's cam-driven sley: `sley analyze` reports the four-bar's keys (the crank
+/// torque is the cam shaft's), names the drive and the cams' sizing, leaves the rod out; `drive
+/// inertia` and `drive ripple` take it; its table's errors name the field.
+#[test]
+fn a_cam_sley_reports_the_same_keys() {
+    let p = ex("projectile-loom.toml");
+    let v = stdout_json(&["sley", "analyze", &p, "--json"]);
+    for key in [
+        "reed_stroke_mm",
+        "back_dwell_deg",
+        "dwell_tolerance_mm",
+        "peak_reed_acceleration_m_s2",
+        "max_inertia_force_n",
+        "min_inertia_force_n",
+        "peak_crank_torque_n_m",
+        "min_transmission_angle_deg",
+        "max_pressure_angle_deg",
+        "prime_radius_mm",
+    ] {
+        assert!(v[key].as_f64().unwrap().is_finite(), "{key}: {v}");
+    }
+    assert_eq!(v["drive"], "cam");
+    assert!(v.get("peak_rod_force_n").is_none());
+    // The 200° dwell of the cam law and its near-dwell within 1 mm: the projectile's flight fits.
+    assert!(v["back_dwell_deg"].as_f64().unwrap() > 200.0, "{v}");
+    assert!(v["max_inertia_force_n"].as_f64().unwrap() > 0.0 && v["min_inertia_force_n"].as_f64().unwrap() < 0.0);
+    let out = loomkin().args(["sley", "analyze", &p, "--csv", "--points", "4"]).output().unwrap();
+    let csv = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        csv.starts_with(
+            "angle_deg,reed_mm,velocity_m_s,acceleration_m_s2,jerk_m_s3,inertia_force_n,crank_torque_n_m\n"
+        ),
+        "{csv}"
+    );
+    assert_eq!(csv.lines().count(), 6);
+    let text = String::from_utf8(loomkin().args(["sley", "analyze", &p]).output().unwrap().stdout).unwrap();
+    assert!(text.contains("peak cam-shaft torque") && text.contains("largest pressure angle 35.000°"), "{text}");
+    let wif = ex("point-24.wif");
+    let j = stdout_json(&["drive", "inertia", &p, "--wif", &wif, "--json"]);
+    let sley = j["mechanisms"].as_array().unwrap().iter().find(|m| m["name"] == "sley").unwrap().clone();
+    assert!(sley["j_max_kg_m2"].as_f64().unwrap() > 0.0 && sley["j_min_kg_m2"].as_f64().unwrap() == 0.0, "{sley}");
+    let r = stdout_json(&["drive", "ripple", &p, "--wif", &wif, "--json"]);
+    assert!(r["speed_ripple_pct"].as_f64().unwrap() > 0.0);
+    // Errors in the cam sley's table: one line naming the key.
+    let text = std::fs::read_to_string(&p).unwrap();
+    let dir = scratch("cam");
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        text.replace("unit = \"deg\"                     # the rocking", "unit = \"mm\" # the rocking"),
+    )
+    .unwrap();
+    usage_error(&["sley", "analyze", bad.to_str().unwrap()], &["sley.cycle.unit", "unit = \"deg\""]);
+    std::fs::write(&bad, text.replace("back_angle_deg = 100", "back_angle_deg = 190")).unwrap();
+    usage_error(&["sley", "analyze", bad.to_str().unwrap()], &["sley.back_angle_deg = 190 is out of range"]);
+    std::fs::write(&bad, text.replace("drive = \"cam\"", "drive = \"belt\"")).unwrap();
+    usage_error(&["sley", "analyze", bad.to_str().unwrap()], &["unknown variant `belt`", "line "]);
+}
