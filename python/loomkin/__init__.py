@@ -7,7 +7,7 @@ dicts of float64 numpy arrays (:class:`Table`, with ``.frame()`` for a pandas Da
 
 Modules: :mod:`loomkin.laws`, :mod:`loomkin.cycles`, :mod:`loomkin.servo`, :mod:`loomkin.picking`,
 :mod:`loomkin.dobby`, :mod:`loomkin.shed`, :mod:`loomkin.loom`, :mod:`loomkin.drive`,
-:mod:`loomkin.dynamics`, :mod:`loomkin.cams`.
+:mod:`loomkin.dynamics`, :mod:`loomkin.cams`, :mod:`loomkin.insertion`.
 
 Sweeps and Monte-Carlo studies take ``shard=(i, n)`` (the CLI's ``--shard I/N``) for a cluster
 (Dask, Ray): :func:`concat` joins the shards' tables, and the Monte-Carlo functions' ``from_draws``
@@ -20,7 +20,7 @@ the GIL.
 
 from ._loomkin import __version__, Cycle, Law, LoomkinError, OutOfRangeError
 from ._table import Table, concat
-from . import cams, cycles, dobby, drive, dynamics, laws, loom, picking, servo, shed
+from . import cams, cycles, dobby, drive, dynamics, insertion, laws, loom, picking, servo, shed
 
 __all__ = [
     "__version__",
@@ -35,6 +35,7 @@ __all__ = [
     "dobby",
     "drive",
     "dynamics",
+    "insertion",
     "laws",
     "loom",
     "picking",

@@ -17,7 +17,8 @@ __all__ = [
     "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "loom_sley", "loom_sley_synthesize",
     "drive_inertia", "drive_ripple", "drive_correct", "dyn_response",
     "dyn_sweep", "dyn_spectrum", "dyn_compensate", "dyn_optimize", "dyn_two_mass", "dyn_default_ratios",
-    "cam_table", "cam_profile", "rise_return_cycle",
+    "cam_table", "cam_profile", "rise_return_cycle", "insert_budget", "insert_rapier", "insert_projectile",
+    "insert_airjet",
 ]
 # The libraries' field descriptors by the path of their const ("ShaftSpeed::SPEED"): name, range,
 # default, count, doc. Stubs write defaults as `...`: their values are the descriptors' (loomkin._fields).
@@ -431,3 +432,27 @@ def dyn_two_mass(
 ) -> Dict[str, Any]:
     """`loomkin dyn two-mass --json`: natural_hz (Hz), peak errors in the cycle's unit and where
     (deg), frame residual bound, rigidity ratio."""
+def insert_budget(
+    loom_toml: Optional[str] = None,
+    wif: Optional[Union[str, bytes]] = None,
+    lift_plan: Optional[str] = None,
+    reed_width_mm: Optional[float] = None,
+    carrier_length_mm: Optional[float] = None,
+    window_deg: Optional[float] = None,
+    speed_m_s: Optional[float] = None,
+    speed_rpm: Optional[float] = None,
+    carrier_mass_g: Optional[float] = None,
+) -> Dict[str, Any]:
+    """`loomkin insert budget --json`: max_picks_per_min, required_speed_m_s, energy (J) and power (W)."""
+def insert_rapier(
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None,
+    speed_rpm: Optional[float] = None,
+) -> Dict[str, Any]:
+    """`loomkin insert rapier --json`: the transfer, the heads' peaks, the clearance over the repeat (mm, deg)."""
+def insert_projectile(
+    loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None,
+    speed_rpm: Optional[float] = None,
+) -> Dict[str, Any]:
+    """`loomkin insert projectile --json`: launch speed (m/s), flight (ms), arrival (deg), brake, clearance."""
+def insert_airjet(loom_toml: str, speed_rpm: Optional[float] = None) -> Dict[str, Any]:
+    """`loomkin insert airjet --json`: arrival (deg), flight (ms), exit speed (m/s), relay_plan."""

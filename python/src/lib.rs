@@ -17,6 +17,7 @@ mod drive;
 mod dynamics;
 mod errors;
 mod fields;
+mod insertion;
 mod interrupt;
 mod laws;
 mod loom;
@@ -43,5 +44,6 @@ fn _loomkin(m: &Bound<'_, PyModule>) -> PyResult<()> {
     drive::register(m)?;
     dynamics::register(m)?;
     cams::register(m)?;
+    insertion::register(m)?;
     Ok(())
 }

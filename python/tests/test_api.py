@@ -40,6 +40,10 @@ PYTHON_CALL = {
     "dyn optimize": loomkin.dynamics.optimize,
     "dyn two-mass": loomkin.dynamics.two_mass,
     "loom check": loomkin.loom.check,
+    "insert budget": loomkin.insertion.budget,
+    "insert rapier": loomkin.insertion.rapier,
+    "insert projectile": loomkin.insertion.projectile,
+    "insert airjet": loomkin.insertion.airjet,
     "loom torque": loomkin.loom.torque,
     "loom stagger": loomkin.loom.stagger,
     "sley analyze": loomkin.loom.sley,
@@ -67,12 +71,6 @@ NO_PYTHON_CALL = {
     # Issue 31's servo shedding: the library (loomkin_eshed) and the CLI landed first; the Python
     # call loomkin.loom.servo is the issue's item 6, not written yet.
     "loom servo": "loomkin.loom.servo not written yet (issue 31 item 6)",
-    # Issue 30's insertion: the library (loomkin_insertion, loomkin_loom::insertion) and the CLI
-    # landed first; the Python module loomkin.insertion is the issue's item 6, not written yet.
-    "insert budget": "loomkin.insertion not written yet (issue 30 item 6)",
-    "insert rapier": "loomkin.insertion not written yet (issue 30 item 6)",
-    "insert projectile": "loomkin.insertion not written yet (issue 30 item 6)",
-    "insert airjet": "loomkin.insertion not written yet (issue 30 item 6)",
 }
 
 

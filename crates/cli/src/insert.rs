@@ -5,7 +5,7 @@ use crate::loom::PatternArgs;
 use crate::output::{self, Out, outln};
 use anyhow::{Result, anyhow};
 use clap::{Args, Subcommand};
-use loomkin_insertion::{PickBudget, WindowSource};
+use loomkin_insertion::{BudgetInputs, WindowSource};
 use loomkin_loom::Loom;
 use loomkin_units::ShaftSpeed;
 use std::path::{Path, PathBuf};
@@ -76,47 +76,37 @@ fn read_loom(path: &Path) -> Result<Loom> {
     Loom::from_toml(&text).map_err(|e| anyhow!("{}: {e}", path.display()))
 }
 
-/// A flag the budget needs when no loom file gives it.
-fn needed(flag: &str, v: Option<f64>) -> Result<f64> {
-    v.ok_or_else(|| anyhow!("{flag}: required without a loom file"))
-}
-
 fn run_budget(a: BudgetArgs) -> Result<()> {
-    let mut b = match &a.loom {
+    let base = match &a.loom {
         Some(path) => {
             let loom = read_loom(path)?;
             let given = a.pattern.given();
             let pattern = if given { Some(crate::loom::read(path, &a.pattern)?.1) } else { None };
-            loomkin_loom::insertion::budget_of(&loom, pattern.as_ref())
-                .map_err(|e| anyhow!("{}: {e}", path.display()))?
+            let b = loomkin_loom::insertion::budget_of(&loom, pattern.as_ref())
+                .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+            Some(b)
         }
         None => {
             if a.pattern.given() {
-                return Err(anyhow!("--wif, --lift-plan: the clear-shed window needs a loom file"));
+                return Err(anyhow!("--wif, --lift-plan: {}", loomkin_insertion::budget::PATTERN_NEEDS_LOOM));
             }
-            PickBudget {
-                reed_width_mm: needed("--reed-width-mm", a.reed_width_mm)?,
-                carrier_length_mm: needed("--carrier-length-mm", a.carrier_length_mm)?,
-                window_deg: needed("--window-deg", a.window_deg)?,
-                window_source: WindowSource::Given,
-                speed_m_s: needed("--speed-m-s", a.speed_m_s)?,
-                speed_rpm: None,
-                carrier_mass_g: None,
-            }
+            None
         }
     };
+    let flag_name = |field: &str| format!("--{}", field.replace('_', "-"));
     let flag = |e: loomkin_units::RangeError| -> anyhow::Error {
-        let name = format!("--{}", e.field.replace('_', "-"));
+        let name = flag_name(&e.field);
         e.renamed(name).into()
     };
-    b.reed_width_mm = a.reed_width_mm.unwrap_or(b.reed_width_mm);
-    b.carrier_length_mm = a.carrier_length_mm.unwrap_or(b.carrier_length_mm);
-    if let Some(w) = a.window_deg {
-        (b.window_deg, b.window_source) = (w, WindowSource::Given);
-    }
-    b.speed_m_s = a.speed_m_s.unwrap_or(b.speed_m_s);
-    b.speed_rpm = a.speed_rpm.or(b.speed_rpm);
-    b.carrier_mass_g = a.carrier_mass_g;
+    let inputs = BudgetInputs {
+        reed_width_mm: a.reed_width_mm,
+        carrier_length_mm: a.carrier_length_mm,
+        window_deg: a.window_deg,
+        speed_m_s: a.speed_m_s,
+        speed_rpm: a.speed_rpm,
+        carrier_mass_g: a.carrier_mass_g,
+    };
+    let b = inputs.onto(base).map_err(|m| anyhow!(m.message(&flag_name(m.field))))?;
     let r = b.report().map_err(flag)?;
     if a.json {
         return output::json(&r);

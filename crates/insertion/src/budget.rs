@@ -180,3 +180,70 @@ impl PickBudget {
         })
     }
 }
+
+/// The budget's inputs as a front end takes them (the CLI's flags, Python's keywords), each
+/// optional: a given one replaces the loom file's (its [`PickBudget`] from
+/// `loomkin_loom::insertion::budget_of`), and without a file the reed width, carrier length,
+/// window and speed must all be given.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BudgetInputs {
+    /// Reed space, mm.
+    pub reed_width_mm: Option<f64>,
+    /// Carrier length, mm.
+    pub carrier_length_mm: Option<f64>,
+    /// The insertion window, deg (given: the window's source is [`WindowSource::Given`]).
+    pub window_deg: Option<f64>,
+    /// The carrier's mean speed, m/s.
+    pub speed_m_s: Option<f64>,
+    /// The loom's speed, rpm.
+    pub speed_rpm: Option<f64>,
+    /// The carrier's mass, g.
+    pub carrier_mass_g: Option<f64>,
+}
+
+/// An input of the budget that neither a loom file nor the caller gave.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MissingInput {
+    /// The input's field name (`reed_width_mm`, `carrier_length_mm`, `window_deg`, `speed_m_s`).
+    pub field: &'static str,
+}
+
+/// The refusal of a pattern without a loom file: the clear-shed window is the loom's.
+pub const PATTERN_NEEDS_LOOM: &str = "the clear-shed window needs a loom file";
+
+impl MissingInput {
+    /// The message, the input named as the front end names it (`--reed-width-mm`, `reed_width_mm`).
+    pub fn message(&self, name: &str) -> String {
+        format!("{name}: required without a loom file")
+    }
+}
+
+impl BudgetInputs {
+    /// The budget: `base` (a loom file's) with every given input over it, or the given inputs
+    /// alone without a base (the first missing one of reed width, carrier length, window and speed
+    /// is the error). Not checked here: [`PickBudget::report`] checks every number.
+    pub fn onto(&self, base: Option<PickBudget>) -> Result<PickBudget, MissingInput> {
+        let need = |v: Option<f64>, f: &Field| v.ok_or(MissingInput { field: f.name });
+        let mut b = match base {
+            Some(b) => b,
+            None => PickBudget {
+                reed_width_mm: need(self.reed_width_mm, &PickBudget::REED_WIDTH_MM)?,
+                carrier_length_mm: need(self.carrier_length_mm, &PickBudget::CARRIER_LENGTH_MM)?,
+                window_deg: need(self.window_deg, &PickBudget::WINDOW_DEG)?,
+                window_source: WindowSource::Given,
+                speed_m_s: need(self.speed_m_s, &PickBudget::SPEED_M_S)?,
+                speed_rpm: None,
+                carrier_mass_g: None,
+            },
+        };
+        b.reed_width_mm = self.reed_width_mm.unwrap_or(b.reed_width_mm);
+        b.carrier_length_mm = self.carrier_length_mm.unwrap_or(b.carrier_length_mm);
+        if let Some(w) = self.window_deg {
+            (b.window_deg, b.window_source) = (w, WindowSource::Given);
+        }
+        b.speed_m_s = self.speed_m_s.unwrap_or(b.speed_m_s);
+        b.speed_rpm = self.speed_rpm.or(b.speed_rpm);
+        b.carrier_mass_g = self.carrier_mass_g;
+        Ok(b)
+    }
+}

@@ -20,7 +20,10 @@ pub mod projectile;
 pub mod rapier;
 
 pub use airjet::{Airjet, AirjetReport, AirjetTable, RelayOpen, TipPoint};
-pub use budget::{BudgetReport, PickBudget, WindowSource, max_speed_rpm, required_speed_m_s, window_needed_deg};
+pub use budget::{
+    BudgetInputs, BudgetReport, MissingInput, PickBudget, WindowSource, max_speed_rpm, required_speed_m_s,
+    window_needed_deg,
+};
 pub use projectile::{
     CarrierError, Flight, Projectile, ProjectilePath, ProjectileReport, ProjectileTable, torsion_stiffness,
 };

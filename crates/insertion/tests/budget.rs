@@ -70,3 +70,40 @@ proptest! {
         prop_assert!(((w + l) / v / (theta / (6.0 * n)) - 1.0).abs() < 1e-14);
     }
 }
+
+/// The inputs over a loom file's budget: each given one replaces the file's, a given window is
+/// `given`; without a file the first missing input of reed width, carrier length, window, speed
+/// is named.
+#[test]
+fn inputs_over_a_file() {
+    use loomkin_insertion::{BudgetInputs, MissingInput};
+    let file = PickBudget {
+        reed_width_mm: 1900.0,
+        carrier_length_mm: 100.0,
+        window_deg: 220.0,
+        window_source: WindowSource::ClearShed,
+        speed_m_s: 20.0,
+        speed_rpm: Some(500.0),
+        carrier_mass_g: None,
+    };
+    assert_eq!(BudgetInputs::default().onto(Some(file)), Ok(file));
+    let over = BudgetInputs { window_deg: Some(180.0), carrier_mass_g: Some(300.0), ..Default::default() };
+    let b = over.onto(Some(file)).unwrap();
+    assert_eq!((b.window_deg, b.window_source, b.carrier_mass_g), (180.0, WindowSource::Given, Some(300.0)));
+    assert_eq!((b.reed_width_mm, b.speed_rpm), (1900.0, Some(500.0)));
+    let alone = BudgetInputs {
+        reed_width_mm: Some(1150.0),
+        carrier_length_mm: Some(300.0),
+        window_deg: Some(135.0),
+        speed_m_s: Some(13.75),
+        ..Default::default()
+    };
+    let b = alone.onto(None).unwrap();
+    assert_eq!(b.report().unwrap().max_picks_per_min.floor(), 213.0);
+    assert_eq!(b.window_source, WindowSource::Given);
+    let e = BudgetInputs { window_deg: None, speed_m_s: None, ..alone }.onto(None).unwrap_err();
+    assert_eq!(e, MissingInput { field: "window_deg" });
+    assert_eq!(e.message("--window-deg"), "--window-deg: required without a loom file");
+    let e = BudgetInputs::default().onto(None).unwrap_err();
+    assert_eq!(e.field, "reed_width_mm");
+}
