@@ -128,11 +128,28 @@ pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Res
     let rel = |a: f64, i: usize| ((a - motion.centre0_deg(i)) / 360.0).round() as i64;
     let lo = (0..n).map(|i| rel(from, i)).min().unwrap_or(0) - 1;
     let hi = (0..n).map(|i| rel(to, i)).max().unwrap_or(0);
-    let key = |p: i64| -> Vec<bool> {
-        (lo..=hi).flat_map(|q| (0..n).map(move |i| (q, i))).map(|(q, i)| motion.is_up(i, p + q)).collect()
+    // Each pick's frame states as bits (64 frames a word), read once; a pick's key is its
+    // neighbours' words from `lo` to `hi` (the same partition of the picks as reading every frame
+    // of every neighbour, at a word a neighbour).
+    let words = n.div_ceil(64);
+    let mut rows = vec![0u64; pattern.picks() * words];
+    for p in 0..pattern.picks() {
+        for i in 0..n {
+            if motion.is_up(i, p as i64) {
+                rows[p * words + i / 64] |= 1 << (i % 64);
+            }
+        }
+    }
+    let key = |p: i64| -> Vec<u64> {
+        (lo..=hi)
+            .flat_map(|q| {
+                let r = (p + q).rem_euclid(picks) as usize * words;
+                rows[r..r + words].iter().copied()
+            })
+            .collect()
     };
     let intervals = ((to - from) / SCAN_STEP_DEG).ceil().max(2.0) as usize;
-    let mut seen: std::collections::HashMap<Vec<bool>, (f64, f64)> = std::collections::HashMap::new();
+    let mut seen: std::collections::HashMap<Vec<u64>, (f64, f64)> = std::collections::HashMap::new();
     let mut worst = (f64::INFINITY, 0usize, from);
     for p in 0..picks {
         let (value, at) = *seen.entry(key(p)).or_insert_with(|| {

@@ -86,8 +86,20 @@ impl<'a> Timing<'a> {
     /// `pick`'s sheets, m.
     pub fn clear_m(&self, pick: usize, x: f64, theta_deg: f64) -> f64 {
         let n = self.loom.frame_count();
-        let y: Vec<f64> = (0..n).map(|i| self.motion.frame(i, theta_deg).y_m).collect();
-        self.loom.geometry.clear_height(x, &y, &self.upper[pick % self.upper.len()]).unwrap_or(0.0)
+        // The frames' positions on the stack up to 64 frames (this runs at every angle of every
+        // scan: an allocation per call was a tenth of the clearance's time).
+        let mut stack = [0.0; 64];
+        let mut heap = Vec::new();
+        let y: &mut [f64] = if n <= stack.len() {
+            &mut stack[..n]
+        } else {
+            heap.resize(n, 0.0);
+            &mut heap
+        };
+        for (i, yi) in y.iter_mut().enumerate() {
+            *yi = self.motion.frame(i, theta_deg).y_m;
+        }
+        self.loom.geometry.clear_height(x, y, &self.upper[pick % self.upper.len()]).unwrap_or(0.0)
     }
 
     /// The clearance to the carrier at angle `angle_deg` of pick `pick`'s turn, m.
