@@ -83,6 +83,15 @@ enum ObjectiveArg {
     Rms,
 }
 
+impl From<ObjectiveArg> for Objective {
+    fn from(a: ObjectiveArg) -> Self {
+        match a {
+            ObjectiveArg::Peak => Objective::Peak,
+            ObjectiveArg::Rms => Objective::Rms,
+        }
+    }
+}
+
 /// `loomkin loom stagger`.
 #[derive(Debug, Args)]
 pub struct StaggerArgs {
@@ -228,13 +237,18 @@ fn run_check(a: CheckArgs) -> Result<()> {
         r.min_clearance_mm
     )?;
     outln!("carrier mean speed {:.3} m/s: highest loom speed {:.1} rpm", r.mean_speed_m_s, r.max_speed_rpm)?;
-    if r.min_clearance_mm < 0.0 {
+    warn_interference(r.min_clearance_mm);
+    Ok(())
+}
+
+/// The warning when the carrier touches the warp (a least clearance below zero, mm).
+pub(crate) fn warn_interference(min_clearance_mm: f64) {
+    if min_clearance_mm < 0.0 {
         output::warning(format_args!(
             "the carrier touches the warp: {:.2} mm of interference between entry and exit (insertion.entry_deg, insertion.exit_deg)",
-            -r.min_clearance_mm
+            -min_clearance_mm
         ));
     }
-    Ok(())
 }
 
 fn run_torque(a: TorqueArgs) -> Result<()> {
@@ -280,10 +294,7 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::file("--output", p))])?;
     let (loom, text) = read_loom(&a.loom)?;
     let pattern = read_pattern(&loom, &a.pattern)?;
-    let objective = match a.objective {
-        ObjectiveArg::Peak => Objective::Peak,
-        ObjectiveArg::Rms => Objective::Rms,
-    };
+    let objective = a.objective.into();
     StaggerOptions::MIN_CLEARANCE_MM.check_as("--min-clearance-mm", a.min_clearance_mm)?;
     let options = StaggerOptions { objective, min_clearance_mm: a.min_clearance_mm };
     let bar = util::Progress::new(0, "stagger search");

@@ -36,6 +36,33 @@ pub struct ServoArgs {
     /// T mm (as `cam table --tolerance`).
     #[arg(long, value_name = "T", requires = "emit_tables", allow_hyphen_values = true)]
     tolerance: Option<f64>,
+    /// Search every frame's stagger (within ±shedding.max_stagger_deg) and motion angle for the
+    /// least peak bus power (or `--objective rms`: the worst frame's RMS torque), keeping the
+    /// carrier's insertion clear in every pick; report the gain and what it cost in window and
+    /// clearance; the plot and `--emit-tables` then show the optimised plans.
+    #[arg(long)]
+    optimize: bool,
+    /// What `--optimize` minimises (the names of `loom stagger --objective`).
+    #[arg(long, value_enum, default_value = "peak", requires = "optimize")]
+    objective: ObjectiveArg,
+}
+
+/// What `--optimize` minimises.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+enum ObjectiveArg {
+    /// The peak bus power.
+    Peak,
+    /// The worst frame's RMS motor torque.
+    Rms,
+}
+
+impl From<ObjectiveArg> for loomkin_loom::Objective {
+    fn from(a: ObjectiveArg) -> Self {
+        match a {
+            ObjectiveArg::Peak => Self::Peak,
+            ObjectiveArg::Rms => Self::Rms,
+        }
+    }
 }
 
 /// Runs `loomkin loom servo`.
@@ -43,15 +70,57 @@ pub fn run(a: ServoArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let spacing = table_spacing(&a)?;
     let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
-    let r = loomkin_loom::servo_study(&loom, &pattern)?;
+    let optimum = if a.optimize {
+        let bar = crate::util::Progress::new(0, "servo search");
+        let o =
+            loomkin_loom::optimise_servo(&loom, &pattern, a.objective.into(), &Default::default(), &|done, all| {
+                bar.set_length(all as u64);
+                bar.set(done as u64);
+            })?;
+        bar.finish();
+        Some(o)
+    } else {
+        None
+    };
+    let (r, setups) = match &optimum {
+        Some(o) => (o.report.clone(), o.setups.clone()),
+        None => (loomkin_loom::servo_study(&loom, &pattern)?, loomkin_loom::servo_setups(&loom, &pattern, None, None)?),
+    };
     if let Some(out) = &a.output {
-        output::figure(&loomkin_loom::servo_figure(&loom, &pattern, &r)?, out, &a.plot)?;
+        output::figure(&loomkin_loom::servo_figure_of(&loom, &setups, &r)?, out, &a.plot)?;
     }
     if let Some(dir) = &a.emit_tables {
-        emit_tables(&loom, &pattern, dir, spacing, &a.format)?;
+        emit_tables(&loom, &setups, dir, spacing, &a.format)?;
     }
     if a.json {
-        return output::json(&r);
+        return match &optimum {
+            Some(o) => output::json(o),
+            None => output::json(&r),
+        };
+    }
+    if let Some(o) = &optimum {
+        let what = match o.objective {
+            loomkin_loom::Objective::Peak => "the peak bus power",
+            loomkin_loom::Objective::Rms => "the worst frame's RMS torque",
+        };
+        outln!("optimised for {what} ({} evaluations, {} clearance checks):", o.evaluations, o.clearance_checks)?;
+        outln!(
+            "  peak bus power {:.1} W -> {:.1} W; worst RMS torque {:.3} -> {:.3} N·m",
+            o.peak_bus_power_w_before,
+            o.peak_bus_power_w_after,
+            o.worst_rms_torque_n_m_before,
+            o.worst_rms_torque_n_m_after
+        )?;
+        outln!(
+            "  clear-shed window {:.2}° -> {:.2}°; least clearance {:.2} -> {:.2} mm",
+            o.window_deg_before,
+            o.window_deg_after,
+            o.min_clearance_mm_before,
+            o.min_clearance_mm_after
+        )?;
+        let list = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(", ");
+        outln!("  stagger [deg], front frame first: {}", list(&o.stagger_deg))?;
+        outln!("  motion angle [deg], front frame first: {}", list(&o.motion_deg))?;
     }
     outln!(
         "{} frames on one bus at {} rpm, {} picks ({} s a repeat){}",
@@ -73,6 +142,19 @@ pub fn run(a: ServoArgs) -> Result<()> {
     )?;
     if let (Some(max), Some(ok)) = (r.braking_resistor_max_w, r.braking_resistor_ok) {
         outln!("braking resistor takes up to {:.1} W: {}", max, if ok { "enough" } else { "TOO SMALL" })?;
+    }
+    if let Some(c) = &r.clear_shed {
+        outln!(
+            "shed clears the carrier from {:.2}° to {:.2}° in every pick ({:.2}°); insertion {:.2}° to {:.2}°, least clearance {:.2} mm; highest loom speed {:.1} rpm",
+            c.window_open_deg,
+            c.window_close_deg,
+            c.window_deg,
+            loom.insertion.entry_deg,
+            loom.insertion.exit_deg,
+            c.min_clearance_mm,
+            c.max_speed_rpm
+        )?;
+        crate::loom::warn_interference(c.min_clearance_mm);
     }
     outln!(
         "{:>5} {:>6} {:>12} {:>12} {:>12} {:>12} {:>12} {:>6} {:>9}",
@@ -122,15 +204,15 @@ fn table_spacing(a: &ServoArgs) -> Result<Spacing> {
     Ok(Spacing::of(step, tolerance))
 }
 
-/// `--emit-tables DIR`: every file of [`loomkin_loom::servo_tables`] into `dir`.
+/// `--emit-tables DIR`: every file of [`loomkin_loom::servo_tables_of`] the plans into `dir`.
 fn emit_tables(
     loom: &loomkin_loom::Loom,
-    pattern: &loomkin_loom::Pattern,
+    setups: &[loomkin_eshed::FrameSetup],
     dir: &Path,
     spacing: Spacing,
     formats: &[Format],
 ) -> Result<()> {
-    let tables = loomkin_loom::servo_tables(loom, pattern, spacing, formats)?;
+    let tables = loomkin_loom::servo_tables_of(loom, setups, spacing, formats)?;
     std::fs::create_dir_all(dir).map_err(|e| output::WriteError::file(&dir.display().to_string(), e))?;
     for f in &tables.files {
         let path = dir.join(&f.name);

@@ -213,8 +213,11 @@ fn take_max(best: &mut (f64, f64), v: f64, at: f64) {
     }
 }
 
-/// The bus of `frames` over a repeat of `picks` turns, braking drives returning `eta_r`.
-pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64) -> BusTotals {
+/// The bus of `frames` over a repeat of `picks` turns, braking drives returning `eta_r`. With
+/// `scan_only` only the peak of the bus power is worked out, and only on the scan (16 points
+/// between every two joints, no root finding): a lower bound of the exact peak, what a search
+/// compares (the energies and the frames' peaks are then left at zero).
+pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64, scan_only: bool) -> BusTotals {
     let n = frames.len();
     let mut cursor = vec![0usize; n];
     let mut memo: WordMap<Vec<u64>, WindowValues> = WordMap::default();
@@ -266,7 +269,7 @@ pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64)
                     }
                 }
             }
-            let v = window(frames, &items, w0, w1, eta_r, omega);
+            let v = window(frames, &items, w0, w1, eta_r, omega, scan_only);
             memo.insert(key.clone(), v);
         }
         let v = &memo[&key];
@@ -293,6 +296,7 @@ fn window(
     w1: f64,
     eta_r: f64,
     omega: f64,
+    scan_only: bool,
 ) -> WindowValues {
     let n = frames.len();
     let mut cuts: Vec<f64> = vec![w0, w1];
@@ -365,6 +369,9 @@ fn window(
             for i in 0..n {
                 take_max(&mut out.frame_peak[i], vals[k][i].power_w.abs(), grid[k] - w0);
             }
+        }
+        if scan_only {
+            continue;
         }
         let mut zeros = vec![u, v];
         let mut scratch = vec![DrivePoint::default(); n];

@@ -8,6 +8,8 @@
 //! * [`FramePlan`] — one frame's moves over the pattern repeat from its row of the lift plan
 //!   (crossing angle, stagger, motion angle, pass-through), as a machine cycle of the law core
 //!   ([`loomkin_laws::Cycle`]: every joint exact).
+//! * [`FramePath`] — a frame's height along its plan at any angle (what the shed geometry reads:
+//!   the clear shed and the clearance to the carrier).
 //! * [`ServoShedding`] — the `[shedding.servo]` table of a loom file: motor (as `loomkin servo
 //!   check` takes it), transmission, winding, bus; per-frame overrides.
 //! * [`FrameDrive`] — the servo axis model of loomkin-servo ([`loomkin_servo::Axis`]) moving one
@@ -26,6 +28,7 @@ mod bus;
 pub mod continuity;
 mod drive;
 mod error;
+mod path;
 mod plan;
 mod report;
 mod spec;
@@ -35,8 +38,12 @@ pub use bus::BusTotals;
 pub use continuity::{JointClass, joint_class};
 pub use drive::{DrivePoint, FrameDrive, FrameLoad, axis};
 pub use error::{EshedError, Result};
-pub use plan::{FrameInput, FramePlan, MoveLaws, PlannedMove};
-pub use report::{Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves};
+pub use path::FramePath;
+pub use plan::{FrameInput, FramePlan, MoveLaws, PlanSegment, PlannedMove};
+pub use report::{
+    ClearShed, Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves, peak_bus_power_w,
+    worst_rms_torque_n_m,
+};
 pub use spec::{Bus, FrameServo, ServoShedding, Transmission, Winding};
 pub use tables::{
     FrameTables, MANIFEST_FILE, TABLE_FORMATS, TableEntry, TableFile, Tables, TablesManifest, frame_tables,

@@ -50,6 +50,21 @@ pub struct PlannedMove {
     pub rising: bool,
 }
 
+/// One segment of a plan: what [`FramePlan::cycle`] makes a segment of the cycle from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanSegment {
+    /// Dwell, rise or return.
+    pub kind: SegmentKind,
+    /// Start, deg of the main shaft (the cycle's arithmetic: the plan's start plus the lengths before).
+    pub start_deg: f64,
+    /// Length, deg.
+    pub length_deg: f64,
+    /// Where it starts, m from the frame's place at the plan's start.
+    pub base_m: f64,
+    /// How far it goes, m (`±H`, 0 for a dwell).
+    pub stroke_m: f64,
+}
+
 /// One frame's row of the lift plan and its timing.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameInput<'a> {
@@ -177,32 +192,46 @@ impl FramePlan {
     /// cycles are the same bit for bit (so a cam table of either is the same file).
     pub fn cycle(&self, laws: &MoveLaws) -> Cycle {
         let deg = std::f64::consts::PI / 180.0;
+        let segments = self
+            .levels()
+            .into_iter()
+            .map(|l| CycleSegment {
+                kind: l.kind,
+                start_rad: l.start_deg * deg,
+                length_rad: l.length_deg * deg,
+                law: match l.kind {
+                    SegmentKind::Dwell => None,
+                    SegmentKind::Rise => Some(laws.rise.clone()),
+                    SegmentKind::Return => Some(laws.fall.clone()),
+                },
+                base_si: l.base_m,
+                stroke_si: l.stroke_m,
+            })
+            .collect();
+        Cycle { unit: StrokeUnit::Mm, period_rad: self.period_deg * deg, speed_rpm: None, segments }
+    }
+
+    /// The plan's segments ([`FramePlan::segments`]) with where each starts from and how far it
+    /// goes, m from the frame's place at the plan's start: the numbers of [`FramePlan::cycle`]'s
+    /// segments (one arithmetic for both).
+    pub fn levels(&self) -> Vec<PlanSegment> {
         let h = self.stroke_mm() * StrokeUnit::Mm.to_si();
         let mut pos = 0.0;
         let mut at = self.start_deg;
-        let segments = self
-            .segments()
+        self.segments()
             .into_iter()
             .map(|(kind, _, len)| {
-                let (law, stroke) = match kind {
-                    SegmentKind::Dwell => (None, 0.0),
-                    SegmentKind::Rise => (Some(laws.rise.clone()), h),
-                    SegmentKind::Return => (Some(laws.fall.clone()), -h),
+                let stroke = match kind {
+                    SegmentKind::Dwell => 0.0,
+                    SegmentKind::Rise => h,
+                    SegmentKind::Return => -h,
                 };
-                let seg = CycleSegment {
-                    kind,
-                    start_rad: at * deg,
-                    length_rad: len * deg,
-                    law,
-                    base_si: pos,
-                    stroke_si: stroke,
-                };
+                let seg = PlanSegment { kind, start_deg: at, length_deg: len, base_m: pos, stroke_m: stroke };
                 pos += stroke;
                 at += len;
                 seg
             })
-            .collect();
-        Cycle { unit: StrokeUnit::Mm, period_rad: self.period_deg * deg, speed_rpm: None, segments }
+            .collect()
     }
 
     /// The plan as a cycle file of the law core (strokes in mm; what the cam-table export and

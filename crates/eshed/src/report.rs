@@ -95,8 +95,28 @@ pub struct ServoReport {
     pub motors_ok: bool,
     /// Distinct pick windows evaluated (the others reuse one of them).
     pub distinct_windows: usize,
+    /// The shed the weft carrier passes, over the frames' plans (absent where the caller has no
+    /// carrier: [`analyse`] leaves it out, the loom's study fills it in).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub clear_shed: Option<ClearShed>,
     /// The frames, in shaft order (front first).
     pub frames: Vec<FrameReport>,
+}
+
+/// The shed the weft carrier passes while the frames move by their plans: the keys of `loomkin
+/// loom check`, worked out the same way (the loom's timing) over the servo frames' plans.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ClearShed {
+    /// Least clearance to the carrier from entry to exit over every pick, mm (negative: it touches).
+    pub min_clearance_mm: f64,
+    /// The window common to every pick in which the shed clears the carrier, deg.
+    pub window_deg: f64,
+    /// Its start in the turn, deg.
+    pub window_open_deg: f64,
+    /// Its end in the turn, deg.
+    pub window_close_deg: f64,
+    /// The highest loom speed at which the carrier passes in the window, rpm.
+    pub max_speed_rpm: f64,
 }
 
 /// The frames' drives and cycles, built once.
@@ -128,6 +148,16 @@ impl Study {
         }
         Ok(Self { cycles, drives, segments })
     }
+
+    /// The bus over the repeat (`scan_only`: see [`peak_bus_power_w`]).
+    fn bus(&self, bus_spec: &Bus, scan_only: bool) -> crate::BusTotals {
+        let mut types = crate::bus::WordMap::default();
+        let lines: Vec<Timeline<'_>> = (0..self.cycles.len())
+            .map(|i| Timeline::new(&self.cycles[i], &self.segments[i], &self.drives[i], &mut types))
+            .collect();
+        let picks = (self.cycles[0].period_rad.to_degrees() / 360.0).round() as usize;
+        bus(&lines, picks, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
+    }
 }
 
 /// The study of `frames` (front first) moving by `laws` at `speed_rpm` on `bus` (`pass_through`:
@@ -144,11 +174,7 @@ pub fn analyse(
     let picks = (first.plan.period_deg / 360.0).round() as usize;
     let study = Study::new(frames, laws, speed_rpm)?;
     let omega = study.drives[0].omega;
-    let mut types = crate::bus::WordMap::default();
-    let lines: Vec<Timeline<'_>> = (0..frames.len())
-        .map(|i| Timeline::new(&study.cycles[i], &study.segments[i], &study.drives[i], &mut types))
-        .collect();
-    let tot = bus(&lines, picks, bus_spec.regeneration_efficiency, omega);
+    let tot = study.bus(bus_spec, false);
     let repeat_deg = first.plan.period_deg;
     let repeat_s = repeat_deg.to_radians() / omega;
     let mut reports = Vec::with_capacity(frames.len());
@@ -211,8 +237,37 @@ pub fn analyse(
         supplied_energy_j: tot.supplied_j,
         motors_ok: reports.iter().all(|r| r.motor_ok),
         distinct_windows: tot.distinct_windows,
+        clear_shed: None,
         frames: reports,
     })
+}
+
+/// The peak bus power of `frames` moving by `laws` at `speed_rpm` on `bus_spec`, W: [`analyse`]'s
+/// `peak_bus_power_w` (the same bus, bit for bit) without the frames' checks; with `scan_only`,
+/// the largest of the bus's scan (16 points between every two joints of every frame, no root
+/// finding, no energies: a lower bound, a few times cheaper, what the optimiser's search compares).
+pub fn peak_bus_power_w(
+    frames: &[FrameSetup],
+    laws: &MoveLaws,
+    bus_spec: &Bus,
+    speed_rpm: f64,
+    scan_only: bool,
+) -> Result<f64> {
+    if frames.is_empty() {
+        return Err(EshedError::field("frames", "no frames"));
+    }
+    Ok(Study::new(frames, laws, speed_rpm)?.bus(bus_spec, scan_only).peak_w.0)
+}
+
+/// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the
+/// servo check of each frame, bit for bit) without the bus (what the optimiser minimises).
+pub fn worst_rms_torque_n_m(frames: &[FrameSetup], laws: &MoveLaws, speed_rpm: f64) -> Result<f64> {
+    let study = Study::new(frames, laws, speed_rpm)?;
+    let mut worst = 0.0f64;
+    for (d, c) in study.drives.iter().zip(&study.cycles) {
+        worst = worst.max(check_axis(&d.axis, c, speed_rpm)?.rms_torque_nm);
+    }
+    Ok(worst)
 }
 
 /// Curves of the study at evenly spaced angles over the repeat (for plots and arrays).

@@ -72,7 +72,8 @@ pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
 pub use servo_shedding::{
-    SERVO_PLOT_POINTS, servo_curves, servo_figure, servo_laws, servo_setups, servo_study, servo_tables,
+    SERVO_PLOT_POINTS, ServoMotion, ServoOptimum, optimise_servo, servo_curves, servo_curves_of, servo_figure,
+    servo_figure_of, servo_laws, servo_setups, servo_study, servo_tables, servo_tables_of, servo_timing,
 };
 pub use stagger::{
     Objective, StaggerCase, StaggerOptions, StaggerResult, optimise_stagger, optimise_stagger_until,
@@ -81,4 +82,4 @@ pub use stagger::{
 pub use timetrue::{
     CorrectedFrames, Correction, CorrectionReport, FrameCorrection, MAX_ROUNDS, TIMING_TOL_DEG, correct,
 };
-pub use timing::{PickWindow, Timing, TimingReport, max_speed_rpm};
+pub use timing::{PickWindow, ShedMotion, Timing, TimingReport, max_speed_rpm};

@@ -112,9 +112,9 @@ pub struct StaggerResult {
 }
 
 /// Grid of the search, deg.
-const SEARCH_STEP_DEG: f64 = 2.0;
+pub(crate) const SEARCH_STEP_DEG: f64 = 2.0;
 /// Compass steps, deg.
-const STEPS: [f64; 5] = [4.0, 2.0, 1.0, 0.5, 0.25];
+pub(crate) const STEPS: [f64; 5] = [4.0, 2.0, 1.0, 0.5, 0.25];
 
 struct Search<'a> {
     loom: &'a Loom,

@@ -14,9 +14,49 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
-use crate::turns::Turns;
+use crate::turns::{Turns, lift_key};
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
+
+/// What the timing of the shed reads of the frames: each frame's height at any angle of the main
+/// shaft, and which picks see the same motion. The dobby's [`Motion`] (one law, one motion angle,
+/// a stagger per frame) and the servo frames' plans ([`crate::ServoMotion`]: a motion angle and a
+/// centre per frame, moves laid end to end) both give it, so the clear shed, its window and the
+/// clearance to the carrier are worked out by one code path ([`Timing`]).
+pub trait ShedMotion {
+    /// Frames, front first.
+    fn frame_count(&self) -> usize;
+    /// Picks in the repeat.
+    fn picks(&self) -> usize;
+    /// Frame `i`'s height over mid-stroke at main-shaft angle `theta_deg` (any angle: the motion
+    /// repeats), m.
+    fn frame_y_m(&self, i: usize, theta_deg: f64) -> f64;
+    /// Appends to `key` words naming what every frame does over `[360p + from_deg, 360p +
+    /// to_deg]` (`p = pick`): two picks with equal words see the same heights over their spans.
+    fn turn_key(&self, pick: usize, from_deg: f64, to_deg: f64, key: &mut Vec<u64>);
+}
+
+impl ShedMotion for Motion {
+    fn frame_count(&self) -> usize {
+        self.frames()
+    }
+
+    fn picks(&self) -> usize {
+        Motion::picks(self)
+    }
+
+    fn frame_y_m(&self, i: usize, theta_deg: f64) -> f64 {
+        self.frame(i, theta_deg).y_m
+    }
+
+    /// The lifts of the picks the span reads (see `crate::turns`).
+    fn turn_key(&self, pick: usize, from_deg: f64, to_deg: f64, key: &mut Vec<u64>) {
+        let (cmin, cmax) = (0..self.frames())
+            .map(|i| self.centre0_deg(i))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c), b.max(c)));
+        lift_key(self, pick, from_deg, to_deg, cmin, cmax, key);
+    }
+}
 
 pub use loomkin_insertion::max_speed_rpm;
 
@@ -54,23 +94,30 @@ pub struct TimingReport {
     pub max_clear_mm: f64,
 }
 
-/// The shed seen by the carrier of a loom weaving a pattern.
+/// The shed seen by the carrier of a loom weaving a pattern, the frames moving by `M` (the
+/// dobby's [`Motion`], or the servo frames' plans).
 #[derive(Debug, Clone)]
-pub struct Timing<'a> {
+pub struct Timing<'a, M: ShedMotion + ?Sized = Motion> {
     loom: &'a Loom,
-    motion: &'a Motion,
+    motion: &'a M,
     /// `upper[p][i]`: frame `i` in the upper sheet at pick `p`.
     upper: Vec<Vec<bool>>,
     delta: f64,
     x_c: f64,
 }
 
-impl<'a> Timing<'a> {
+impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
     /// The timing of `loom` moving `motion` (weaving `pattern`). The pattern must be weavable on
     /// the loom ([`crate::check_weavable`], as [`Motion::new`] checks it).
-    pub fn new(loom: &'a Loom, motion: &'a Motion, pattern: &Pattern) -> Result<Self> {
+    pub fn new(loom: &'a Loom, motion: &'a M, pattern: &Pattern) -> Result<Self> {
         let n = loom.frame_count();
         crate::pattern::check_weavable(pattern, n)?;
+        if motion.frame_count() != n {
+            return Err(LoomError::field(
+                "geometry.frames",
+                format!("the motion moves {} frames, the loom has {n}", motion.frame_count()),
+            ));
+        }
         let upper: Vec<Vec<bool>> =
             (0..pattern.picks()).map(|p| (0..n).map(|i| pattern.is_up(p, i)).collect()).collect();
         let x_c = loom.geometry.reed_m - loom.insertion.carrier_width_m;
@@ -97,7 +144,7 @@ impl<'a> Timing<'a> {
             &mut heap
         };
         for (i, yi) in y.iter_mut().enumerate() {
-            *yi = self.motion.frame(i, theta_deg).y_m;
+            *yi = self.motion.frame_y_m(i, theta_deg);
         }
         self.loom.geometry.clear_height(x, y, &self.upper[pick % self.upper.len()]).unwrap_or(0.0)
     }
@@ -176,7 +223,7 @@ impl<'a> Timing<'a> {
     fn turns(&self) -> Turns {
         let ins = &self.loom.insertion;
         let (a, b) = self.turn();
-        Turns::new(self.motion, a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
+        Turns::of(self.motion, a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
     }
 
     /// The least clearance over the required insertion of every pick, m (a cheap form for the

@@ -9,7 +9,7 @@
 //! every frame's centre (crossing angle plus stagger), which the tests check against a direct
 //! evaluation pick by pick.
 
-use crate::Motion;
+use crate::{Motion, ShedMotion};
 use std::collections::HashMap;
 
 /// Picks grouped by the lifts of the window around each (see the module's text).
@@ -35,30 +35,24 @@ impl Turns {
     /// [`Turns::new`] for every motion whose frames' move centres (into pick 0) lie within
     /// `[cmin, cmax]` deg: a wider window, so a grouping that holds while a search moves them.
     pub fn spanning(motion: &Motion, from_deg: f64, to_deg: f64, cmin: f64, cmax: f64) -> Self {
-        let frames = motion.frames();
-        let (lo, hi) = if frames == 0 {
-            (0, 0)
-        } else {
-            // The nearest centre to θ lies at q = round((θ − c)/360) picks; q − 1 and q are read.
-            (((from_deg - cmax) / 360.0).floor() as i64 - 2, ((to_deg - cmin) / 360.0).ceil() as i64 + 1)
-        };
-        let bits = frames * (hi - lo + 1) as usize;
-        let words = bits.div_ceil(64).max(1);
+        Self::by_key(motion.picks(), |p, key| lift_key(motion, p, from_deg, to_deg, cmin, cmax, key))
+    }
+
+    /// The picks of `motion` grouped by what its frames do over `[360p + from_deg, 360p + to_deg]`,
+    /// as its [`ShedMotion::turn_key`] names it.
+    pub fn of<M: ShedMotion + ?Sized>(motion: &M, from_deg: f64, to_deg: f64) -> Self {
+        Self::by_key(motion.picks(), |p, key| motion.turn_key(p, from_deg, to_deg, key))
+    }
+
+    /// `picks` grouped by equal keys (`key(p, words)` appends pick `p`'s words).
+    fn by_key(picks: usize, mut key_of: impl FnMut(usize, &mut Vec<u64>)) -> Self {
         let mut classes: HashMap<Vec<u64>, usize> = HashMap::new();
         let (mut first, mut count) = (Vec::new(), Vec::new());
-        let mut of = Vec::with_capacity(motion.picks());
-        let mut key = vec![0u64; words];
-        for p in 0..motion.picks() {
-            key.iter_mut().for_each(|w| *w = 0);
-            let mut b = 0usize;
-            for d in lo..=hi {
-                for i in 0..frames {
-                    if motion.is_up(i, p as i64 + d) {
-                        key[b / 64] |= 1 << (b % 64);
-                    }
-                    b += 1;
-                }
-            }
+        let mut of = Vec::with_capacity(picks);
+        let mut key = Vec::new();
+        for p in 0..picks {
+            key.clear();
+            key_of(p, &mut key);
             let c = match classes.get(&key) {
                 Some(&c) => c,
                 None => {
@@ -72,5 +66,37 @@ impl Turns {
             of.push(c as u32);
         }
         Self { first, count, of }
+    }
+}
+
+/// The words of pick `p`'s lifts over the picks a span `[360p + from_deg, 360p + to_deg]` reads,
+/// every frame's move centre (into pick 0) within `[cmin, cmax]` deg: one bit a frame and a pick.
+pub(crate) fn lift_key(
+    motion: &Motion,
+    p: usize,
+    from_deg: f64,
+    to_deg: f64,
+    cmin: f64,
+    cmax: f64,
+    key: &mut Vec<u64>,
+) {
+    let frames = motion.frames();
+    let (lo, hi) = if frames == 0 {
+        (0, 0)
+    } else {
+        // The nearest centre to θ lies at q = round((θ − c)/360) picks; q − 1 and q are read.
+        (((from_deg - cmax) / 360.0).floor() as i64 - 2, ((to_deg - cmin) / 360.0).ceil() as i64 + 1)
+    };
+    let bits = frames * (hi - lo + 1) as usize;
+    let at = key.len();
+    key.resize(at + bits.div_ceil(64).max(1), 0);
+    let mut b = 0usize;
+    for d in lo..=hi {
+        for i in 0..frames {
+            if motion.is_up(i, p as i64 + d) {
+                key[at + b / 64] |= 1 << (b % 64);
+            }
+            b += 1;
+        }
     }
 }

@@ -1,7 +1,10 @@
 //! The loom file's `[shedding] drive = "servo"`: the plans against the dobby's motion, the table's
 //! errors, and the study on the example.
 
-use loomkin_loom::{Loom, Motion, Pattern, servo_laws, servo_setups, servo_study};
+use loomkin_loom::{
+    Loom, Motion, Objective, Pattern, ServoMotion, ShedMotion, Timing, check, optimise_servo, servo_laws, servo_setups,
+    servo_study, servo_timing,
+};
 
 const SERVO: &str = include_str!("../../../examples/servo-shedding-loom.toml");
 const RAPIER: &str = include_str!("../../../examples/rapier-loom.toml");
@@ -90,4 +93,135 @@ fn the_example_study_balances_and_every_motor_passes() {
     let balance = r.supplied_energy_j - r.braking_energy_j - drawn - lost_in_regeneration;
     assert!(balance.abs() < 1e-9 * r.supplied_energy_j, "{balance}");
     assert!(r.peak_bus_power_w > 0.0 && r.peak_bus_power_w < r.frames.iter().map(|f| f.peak_power_w).sum::<f64>());
+}
+
+/// The servo example with consecutive changes laid end to end.
+fn pass_through() -> Loom {
+    Loom::from_toml(&SERVO.replace("pass_through = false", "pass_through = true")).unwrap()
+}
+
+#[test]
+fn the_clear_shed_over_plans_equal_to_the_dobby_motion_is_loom_checks() {
+    // Without pass-through every frame's plan is the dobby's motion (test above): the window and
+    // the clearance over the plans are `loom check`'s, found by the same timing on a second
+    // evaluation of the same heights (the law core's cycle against the dobby's closed form).
+    let loom = Loom::from_toml(SERVO).unwrap();
+    for wif in [POINT, include_str!("../../../examples/satin-8.wif"), include_str!("../../../examples/plain.wif")] {
+        let pattern = Pattern::from_wif(wif).unwrap();
+        let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+        let servo = servo_timing(&loom, &pattern, &setups).unwrap();
+        let check = check(&loom, &pattern).unwrap();
+        assert!((servo.window_deg - check.window_deg).abs() < 1e-9, "{} {}", servo.window_deg, check.window_deg);
+        assert!((servo.open_deg - check.window_open_deg).abs() < 1e-9);
+        assert!((servo.close_deg - check.window_close_deg).abs() < 1e-9);
+        assert!((servo.min_clearance_mm - check.min_clearance_mm).abs() < 1e-9);
+        assert!((servo.max_speed_rpm - check.max_speed_rpm).abs() < 1e-9 * check.max_speed_rpm);
+        // And the study reports them.
+        let r = servo_study(&loom, &pattern).unwrap();
+        let c = r.clear_shed.unwrap();
+        assert_eq!((c.window_deg, c.min_clearance_mm), (servo.window_deg, servo.min_clearance_mm));
+    }
+}
+
+#[test]
+fn every_pick_of_a_pass_through_plan_has_the_window_its_class_reports() {
+    // The timing works out one pick of each class of equal turns: against every pick worked out
+    // on its own, for plans with moves laid end to end (runs of different lengths).
+    let loom = pass_through();
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+    let motion = ServoMotion::new(&setups, &servo_laws(&loom));
+    let timing = Timing::new(&loom, &motion, &pattern).unwrap();
+    let report = timing.report().unwrap();
+    assert_eq!(report.picks.len(), pattern.picks());
+    for (p, w) in report.picks.iter().enumerate() {
+        let own = timing.pick_window(p);
+        assert!((own.open_deg - w.open_deg).abs() < 1e-9, "pick {}: {} {}", p + 1, own.open_deg, w.open_deg);
+        assert!((own.close_deg - w.close_deg).abs() < 1e-9, "pick {}", p + 1);
+        assert!((own.min_clearance_mm - w.min_clearance_mm).abs() < 1e-9, "pick {}", p + 1);
+    }
+}
+
+#[test]
+fn the_least_clearance_over_pass_through_plans_bounds_a_dense_scan() {
+    // An independent route: the clearance on a 0.01° scan of every pick's insertion, from the
+    // frames' heights on the exact cycles and the shed geometry. The timing's least clearance
+    // (a 1° grid refined by golden-section search) is no larger than the scan's, and within
+    // what the scan can miss between its points (|y''| h²/8 ≪ 1e-6 mm).
+    let loom = pass_through();
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+    let motion = ServoMotion::new(&setups, &servo_laws(&loom));
+    let t = servo_timing(&loom, &pattern, &setups).unwrap();
+    let ins = &loom.insertion;
+    let x_c = loom.geometry.reed_m - ins.carrier_width_m;
+    let mut scan = f64::INFINITY;
+    for p in 0..pattern.picks() {
+        let upper: Vec<bool> = (0..loom.frame_count()).map(|i| pattern.is_up(p, i)).collect();
+        let n = ((ins.exit_deg - ins.entry_deg) / 0.01).round() as usize;
+        for k in 0..=n {
+            let th = 360.0 * p as f64 + ins.entry_deg + (ins.exit_deg - ins.entry_deg) * k as f64 / n as f64;
+            let y: Vec<f64> = (0..loom.frame_count()).map(|i| motion.frame_y_m(i, th)).collect();
+            let gap = loom.geometry.clear_height(x_c, &y, &upper).unwrap() - ins.carrier_height_m;
+            scan = scan.min(gap * 1e3);
+        }
+    }
+    assert!(t.min_clearance_mm <= scan + 1e-9, "{} {}", t.min_clearance_mm, scan);
+    assert!(scan - t.min_clearance_mm < 1e-6, "{} {}", t.min_clearance_mm, scan);
+    // Pass-through moves are longer than the motion angle: on a plain weave (every frame changes
+    // every pick, oscillating without a stop) the shed is open for less of the turn than the
+    // dobby's, whose frames dwell between moves.
+    let plain = Pattern::from_wif(include_str!("../../../examples/plain.wif")).unwrap();
+    let setups = servo_setups(&loom, &plain, None, None).unwrap();
+    let servo = servo_timing(&loom, &plain, &setups).unwrap();
+    let dobby = check(&loom, &plain).unwrap();
+    assert!(servo.window_deg < dobby.window_deg - 1.0, "{} {}", servo.window_deg, dobby.window_deg);
+    assert!(servo.min_clearance_mm < dobby.min_clearance_mm, "{} {}", servo.min_clearance_mm, dobby.min_clearance_mm);
+}
+
+#[test]
+fn the_optimum_lowers_its_objective_and_keeps_the_carriers_insertion_clear() {
+    let loom = Loom::from_toml(SERVO).unwrap();
+    let pattern = Pattern::from_wif(include_str!("../../../examples/twill-2-2.wif")).unwrap();
+    let laws = servo_laws(&loom);
+    let before = servo_study(&loom, &pattern).unwrap();
+    for objective in [Objective::Peak, Objective::Rms] {
+        let o = optimise_servo(&loom, &pattern, objective, &Default::default(), &|_, _| {}).unwrap();
+        // The before keys are the loom file's design, worked out by the study.
+        assert_eq!(o.peak_bus_power_w_before, before.peak_bus_power_w);
+        let c = before.clear_shed.unwrap();
+        assert_eq!((o.window_deg_before, o.min_clearance_mm_before), (c.window_deg, c.min_clearance_mm));
+        // The report is the study of the plans the optimum names: each frame's moves at its motion
+        // angle, centred on the crossing plus its stagger, within the bounds.
+        let m = loom.shedding.max_stagger_deg;
+        let delta = loomkin_loom::crossing_offset_deg(loom.shedding.crossing_deg);
+        for (i, s) in o.setups.iter().enumerate() {
+            assert!(o.stagger_deg[i].abs() <= m && o.motion_deg[i] > 0.0 && o.motion_deg[i] <= 360.0);
+            for mv in &s.plan.moves {
+                assert_eq!(mv.length_deg, o.motion_deg[i]);
+                let centre = mv.start_deg + mv.length_deg / 2.0 - 360.0 * mv.pick as f64;
+                assert!((centre - (delta + o.stagger_deg[i])).abs() < 1e-9, "frame {}", i + 1);
+            }
+        }
+        let servo = loom.shedding.servo.as_ref().unwrap();
+        let again = loomkin_eshed::analyse(&o.setups, &laws, &servo.bus, loom.speed.rpm(), false).unwrap();
+        assert_eq!(again.peak_bus_power_w, o.peak_bus_power_w_after);
+        assert_eq!(o.report.peak_bus_power_w, o.peak_bus_power_w_after);
+        // It gains what it minimises.
+        match objective {
+            Objective::Peak => assert!(o.peak_bus_power_w_after < 0.9 * o.peak_bus_power_w_before, "{o:?}"),
+            Objective::Rms => {
+                assert!(o.worst_rms_torque_n_m_after < o.worst_rms_torque_n_m_before, "{o:?}");
+                let worst = again.frames.iter().map(|f| f.rms_torque_n_m).fold(0.0, f64::max);
+                assert_eq!(worst, o.worst_rms_torque_n_m_after);
+            }
+        }
+        // The carrier's insertion stays clear: on the search's grid (what it kept), and on the
+        // refined clearance (the grid's 2° can only miss a dip between its points).
+        let motion = ServoMotion::new(&o.setups, &laws);
+        let coarse = Timing::new(&loom, &motion, &pattern).unwrap().min_clearance_coarse(2.0);
+        assert!(coarse >= 0.0, "{coarse}");
+        assert!(o.min_clearance_mm_after >= 0.0 && o.min_clearance_mm_after <= 1e3 * coarse + 1e-9, "{o:?}");
+        assert_eq!(o.min_clearance_kept_mm, 0.0);
+    }
 }

@@ -298,6 +298,14 @@ fn servo_json_has_the_contract_keys_and_the_plot_is_written() {
         assert_eq!(f["motor_ok"], true);
         assert!(f["checks"].as_array().unwrap().iter().all(|c| c["margin"].as_f64().unwrap() > 0.0));
     }
+    // The shed the carrier passes: without pass-through the plans are the dobby's motion, so the
+    // keys are `loom check`'s (the same timing over a second evaluation of the heights).
+    let check =
+        stdout_json(&["loom", "check", &ex("servo-shedding-loom.toml"), "--wif", &ex("point-24.wif"), "--json"]);
+    for key in ["min_clearance_mm", "window_deg", "window_open_deg", "window_close_deg", "max_speed_rpm"] {
+        let (a, b) = (v[key].as_f64().unwrap(), check[key].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-9 * b.abs().max(1.0), "{key}: {a} {b}");
+    }
     let mut with_plot = args.to_vec();
     with_plot.extend(["-o", png.to_str().unwrap()]);
     let out = loomkin().args(&with_plot).output().unwrap();
@@ -388,5 +396,55 @@ fn long_runs_print_no_progress_on_a_pipe() {
         assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
         assert!(!out.stdout.is_empty(), "{args:?}");
     }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn servo_optimize_reports_before_and_after_and_emits_the_optimised_tables() {
+    let dir = scratch("servo-optimize");
+    let out = dir.join("tables");
+    let args = [
+        "loom",
+        "servo",
+        &ex("servo-shedding-loom.toml"),
+        "--wif",
+        &ex("twill-2-2.wif"),
+        "--optimize",
+        "--json",
+        "--emit-tables",
+        out.to_str().unwrap(),
+        "--format",
+        "csv",
+    ];
+    let v = stdout_json(&args);
+    let num = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k}: {v}"));
+    assert_eq!(v["objective"], "peak");
+    assert!(num("peak_bus_power_w_after") < num("peak_bus_power_w_before"));
+    assert_eq!(num("peak_bus_power_w_after"), num("peak_bus_power_w"));
+    for k in ["window_deg", "min_clearance_mm", "worst_rms_torque_n_m"] {
+        assert!(num(&format!("{k}_before")).is_finite() && num(&format!("{k}_after")).is_finite(), "{k}");
+    }
+    assert_eq!(num("window_deg_after"), num("window_deg"));
+    assert!(num("min_clearance_mm_after") >= 0.0);
+    // The tables are the optimised plans': each moving frame's cycle file starts its first move at
+    // the crossing plus the frame's stagger, less half its motion angle, and moves over that angle.
+    let delta = 350.0 - 360.0;
+    let (stagger, motion) = (v["stagger_deg"].as_array().unwrap(), v["motion_deg"].as_array().unwrap());
+    let mut moving = 0;
+    for (i, f) in v["frames"].as_array().unwrap().iter().enumerate() {
+        if f["moves"] == 0 {
+            continue;
+        }
+        moving += 1;
+        let (s, m) = (stagger[i].as_f64().unwrap(), motion[i].as_f64().unwrap());
+        let cycle = std::fs::read_to_string(out.join(format!("frame-{:02}.cycle.toml", i + 1))).unwrap();
+        let start: f64 = cycle.split("from_deg = ").nth(1).unwrap().lines().next().unwrap().parse().unwrap();
+        assert!(((start - (delta + s - m / 2.0)) / 360.0).fract().abs() < 1e-12, "frame {}: {start}", i + 1);
+        assert!(cycle.contains(&format!("length_deg = {m:?}\n")), "frame {}: {cycle}", i + 1);
+    }
+    assert_eq!(moving, 4);
+    // `--objective` needs `--optimize`.
+    let bad = ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("twill-2-2.wif"), "--objective", "rms"];
+    loomkin().args(bad).assert().code(2);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,0 +1,106 @@
+//! A frame's height along its plan at any angle of the main shaft: what the shed geometry reads
+//! (the clear shed, the clearance to the carrier) for frames that each move by their own plan.
+
+use crate::{FramePlan, MoveLaws, PlanSegment};
+use loomkin_laws::{Law, SegmentKind};
+
+/// One frame's height over mid-stroke along its [`FramePlan`]: the numbers of the exact cycle
+/// ([`FramePlan::cycle`], [`FramePlan::levels`]), looked up by angle.
+#[derive(Debug, Clone)]
+pub struct FramePath {
+    segments: Vec<PlanSegment>,
+    /// Per segment: an identity of its shape (kind, length, base, stroke): equal shapes, equal ids.
+    shapes: Vec<u64>,
+    rise: Law,
+    fall: Law,
+    start_deg: f64,
+    period_deg: f64,
+    level0_m: f64,
+}
+
+/// Path keys round offsets to 2⁻³⁰ degree (as the bus's window keys do).
+const KEY_SCALE: f64 = (1u64 << 30) as f64;
+
+/// `x` to the nearest 2⁻³⁰ (half away from zero), as a key word.
+fn key_word(x: f64) -> u64 {
+    let y = x * KEY_SCALE;
+    (y + 0.5f64.copysign(y)) as i64 as u64
+}
+
+impl FramePath {
+    /// The path of `plan` moving by `laws`.
+    pub fn new(plan: &FramePlan, laws: &MoveLaws) -> Self {
+        let segments = plan.levels();
+        let mut ids: std::collections::HashMap<[u64; 4], u64> = std::collections::HashMap::new();
+        let shapes = segments
+            .iter()
+            .map(|s| {
+                let k = [s.kind as u64, key_word(s.length_deg), s.base_m.to_bits(), s.stroke_m.to_bits()];
+                let n = ids.len() as u64;
+                *ids.entry(k).or_insert(n)
+            })
+            .collect();
+        Self {
+            segments,
+            shapes,
+            rise: laws.rise.1.clone(),
+            fall: laws.fall.1.clone(),
+            start_deg: plan.start_deg,
+            period_deg: plan.period_deg,
+            level0_m: plan.start_level_m(),
+        }
+    }
+
+    /// The segment holding absolute angle `theta_deg` (wrapped into the repeat), and the angle
+    /// moved into the plan's span `[start, start + period)`.
+    fn locate(&self, theta_deg: f64) -> (usize, f64) {
+        let th = self.start_deg + (theta_deg - self.start_deg).rem_euclid(self.period_deg);
+        let j = self.segments.partition_point(|s| s.start_deg <= th).saturating_sub(1);
+        (j, th)
+    }
+
+    /// The height over mid-stroke at main-shaft angle `theta_deg` (any angle: the plan repeats),
+    /// m. At a joint the later segment's start is taken (the position is continuous there).
+    pub fn y_m(&self, theta_deg: f64) -> f64 {
+        if self.segments.is_empty() {
+            return self.level0_m;
+        }
+        let (j, th) = self.locate(theta_deg);
+        let s = &self.segments[j];
+        let law = match s.kind {
+            SegmentKind::Dwell => return self.level0_m + s.base_m,
+            SegmentKind::Rise => &self.rise,
+            SegmentKind::Return => &self.fall,
+        };
+        let x = ((th - s.start_deg) / s.length_deg).clamp(0.0, 1.0);
+        self.level0_m + (s.base_m + s.stroke_m * law.eval(x).s)
+    }
+
+    /// Appends to `key` words naming what the frame does over `[origin + from_deg, origin +
+    /// to_deg]` relative to `origin_deg`: every segment that meets the span, its shape (kind,
+    /// length, level) and its place (to 2⁻³⁰°). Two origins with equal words see the same heights
+    /// over the span (shifted by the difference of the origins, to that rounding).
+    pub fn key_words(&self, origin_deg: f64, from_deg: f64, to_deg: f64, key: &mut Vec<u64>) {
+        let n = self.segments.len();
+        if n == 0 {
+            return;
+        }
+        let (a, b) = (origin_deg + from_deg, origin_deg + to_deg);
+        let (mut j, th) = self.locate(a);
+        // Whole repeats between the plan's span and the span's start.
+        let mut shift = ((a - th) / self.period_deg).round() * self.period_deg;
+        loop {
+            let s = &self.segments[j];
+            let start = s.start_deg + shift;
+            key.extend([self.shapes[j], key_word(start - origin_deg)]);
+            if start + s.length_deg >= b {
+                break;
+            }
+            j += 1;
+            if j == n {
+                j = 0;
+                shift += self.period_deg;
+            }
+        }
+    }
+}
