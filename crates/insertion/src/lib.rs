@@ -29,6 +29,47 @@ pub use projectile::{
 };
 pub use rapier::{DriveTable, HeadDrive, HeadMotion, HeadReport, Rapier, RapierError, RapierReport, RapierTable};
 
+/// A wrong carrier description (any kind: the rapier's drives, the projectile, the air jet), or a
+/// carrier that cannot do what is asked of it; every variant names the field at fault.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InsertionError {
+    /// A number outside its range.
+    #[error(transparent)]
+    Range(#[from] loomkin_units::RangeError),
+    /// A field missing, given twice, one that does not go with the rest, or a carrier that cannot
+    /// do what is asked of it.
+    #[error("{field}: {reason}")]
+    Field {
+        /// The field (`insertion.rapier.bringer.crank_mm`, `insertion.projectile.twist_deg`).
+        field: String,
+        /// Why.
+        reason: String,
+    },
+    /// A law or cycle the laws crate refuses (a rapier's cam or servo drive).
+    #[error("{field}: {reason}")]
+    Law {
+        /// The drive's table.
+        field: String,
+        /// The laws crate's message.
+        reason: String,
+    },
+}
+
+impl InsertionError {
+    pub(crate) fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::Field { field: field.into(), reason: reason.into() }
+    }
+
+    /// The field at fault.
+    pub fn field_name(&self) -> &str {
+        match self {
+            Self::Range(e) => &e.field,
+            Self::Field { field, .. } | Self::Law { field, .. } => field,
+        }
+    }
+}
+
 /// The air the carriers move through, and gravity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Atmosphere;

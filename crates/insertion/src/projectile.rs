@@ -36,42 +36,14 @@
 //! **The receiver.** The brake stops the projectile over `brake_mm` with a constant force:
 //! `F = m·v²/(2·s_b)`, energy `½·m·v²`, time `2·s_b/v`.
 
-use loomkin_units::{Field, Range, RangeError, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
-use thiserror::Error;
 
 use crate::Atmosphere;
 
-/// A wrong projectile or air-jet description.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum CarrierError {
-    /// A number outside its range.
-    #[error(transparent)]
-    Range(#[from] RangeError),
-    /// A field missing, given twice, or a carrier that cannot do what is asked of it.
-    #[error("{field}: {reason}")]
-    Field {
-        /// The field (`insertion.projectile.twist_deg`).
-        field: String,
-        /// Why.
-        reason: String,
-    },
-}
-
-impl CarrierError {
-    pub(crate) fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self::Field { field: field.into(), reason: reason.into() }
-    }
-
-    /// The field at fault.
-    pub fn field_name(&self) -> &str {
-        match self {
-            Self::Range(e) => &e.field,
-            Self::Field { field, .. } => field,
-        }
-    }
-}
+/// A wrong projectile or air-jet description: the one [`InsertionError`](crate::InsertionError)
+/// (the name kept for the projectile's and the air jet's callers).
+pub type CarrierError = crate::InsertionError;
 
 /// The `[insertion.projectile]` table: the torsion bar, the projectile, its flight and brake.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]

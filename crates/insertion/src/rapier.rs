@@ -39,48 +39,12 @@ use std::f64::consts::TAU;
 
 use loomkin_drive::fourbar::{Breaks, CrankRocker};
 use loomkin_laws::{Cycle, CycleSpec, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
-use loomkin_units::{Field, Range, RangeError, ShaftSpeed};
+use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
-use thiserror::Error;
 
-/// A wrong rapier description.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum RapierError {
-    /// A number outside its range.
-    #[error(transparent)]
-    Range(#[from] RangeError),
-    /// A field missing, or one that does not go with the drive.
-    #[error("{field}: {reason}")]
-    Field {
-        /// The field (`insertion.rapier.bringer.crank_mm`).
-        field: String,
-        /// Why.
-        reason: String,
-    },
-    /// A law or cycle the laws crate refuses.
-    #[error("{field}: {reason}")]
-    Law {
-        /// The drive's table.
-        field: String,
-        /// The laws crate's message.
-        reason: String,
-    },
-}
-
-impl RapierError {
-    fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self::Field { field: field.into(), reason: reason.into() }
-    }
-
-    /// The field at fault.
-    pub fn field_name(&self) -> &str {
-        match self {
-            Self::Range(e) => &e.field,
-            Self::Field { field, .. } | Self::Law { field, .. } => field,
-        }
-    }
-}
+/// A wrong rapier description: the one [`InsertionError`](crate::InsertionError) (the name kept
+/// for the rapier's callers).
+pub type RapierError = crate::InsertionError;
 
 /// One head's drive as written in the loom file (`[insertion.rapier.bringer]`,
 /// `[insertion.rapier.taker]`). Lengths in mm, angles in degrees of the main shaft.

@@ -913,7 +913,7 @@ fn read_kind(i: &InsertionFile, reed_width_m: f64, carrier_length_m: f64) -> Res
                 .try_into()
                 .map_err(|e: toml::de::Error| LoomError::field("insertion.rapier", e.message().to_string()))?;
             let r = loomkin_insertion::Rapier::new(&table, reed_width_m, "insertion.rapier")
-                .map_err(crate::insertion::rapier_error)?;
+                .map_err(crate::insertion::insertion_error)?;
             Ok(InsertionKind::Rapier(Box::new(r)))
         }
         "projectile" => {
@@ -924,7 +924,7 @@ fn read_kind(i: &InsertionFile, reed_width_m: f64, carrier_length_m: f64) -> Res
                 .try_into()
                 .map_err(|e: toml::de::Error| LoomError::field("insertion.projectile", e.message().to_string()))?;
             let p = loomkin_insertion::Projectile::new(&table, reed_width_m, carrier_length_m, "insertion.projectile")
-                .map_err(crate::insertion_air::carrier_error)?;
+                .map_err(crate::insertion::insertion_error)?;
             Ok(InsertionKind::Projectile(Box::new(p)))
         }
         "airjet" => {
@@ -936,7 +936,7 @@ fn read_kind(i: &InsertionFile, reed_width_m: f64, carrier_length_m: f64) -> Res
                 .try_into()
                 .map_err(|e: toml::de::Error| LoomError::field("insertion.airjet", e.message().to_string()))?;
             let a = loomkin_insertion::Airjet::new(&table, reed_width_m, "insertion.airjet")
-                .map_err(crate::insertion_air::carrier_error)?;
+                .map_err(crate::insertion::insertion_error)?;
             Ok(InsertionKind::Airjet(Box::new(a)))
         }
         other => Err(unknown(other)),

@@ -2,7 +2,7 @@
 //! clearance in the shed over a pattern repeat.
 
 use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result, Timing};
-use loomkin_insertion::{PickBudget, Rapier, RapierError, RapierReport, WindowSource};
+use loomkin_insertion::{InsertionError, PickBudget, Rapier, RapierReport, WindowSource};
 use loomkin_plot::{Figure, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
@@ -171,10 +171,10 @@ pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Res
     })
 }
 
-/// A rapier error as a loom error (the field kept).
-pub(crate) fn rapier_error(e: RapierError) -> LoomError {
+/// A carrier's error (rapier, projectile, air jet) as a loom error (the field kept).
+pub(crate) fn insertion_error(e: InsertionError) -> LoomError {
     match e {
-        RapierError::Range(r) => LoomError::Range(r),
+        InsertionError::Range(r) => LoomError::Range(r),
         other => field_error(other.field_name(), &other.to_string()),
     }
 }
@@ -246,7 +246,7 @@ pub struct RapierCheck {
 /// The rapier of `loom` at `speed` weaving `pattern`: [`Rapier::report`] and [`clearance`].
 pub fn rapier_check(loom: &Loom, pattern: &Pattern, speed: ShaftSpeed) -> Result<RapierCheck> {
     let r = rapier_of(loom)?;
-    let rapier = r.report(speed).map_err(rapier_error)?;
+    let rapier = r.report(speed).map_err(insertion_error)?;
     let clearance = clearance(loom, pattern, r)?;
     Ok(RapierCheck { rapier, clearance, picks: pattern.picks() })
 }

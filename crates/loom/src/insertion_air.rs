@@ -1,21 +1,15 @@
 //! The projectile and the air jet on the whole loom: their flights on the main-shaft angle, the
 //! projectile's clearance in the shed over a pattern repeat and its fit in the sley's back dwell.
 
-use crate::insertion::{CarrierPath, CarrierShed, Clearance, clearance, clearance_panel, field_error, with_selvedges};
+use crate::insertion::{
+    CarrierPath, CarrierShed, Clearance, clearance, clearance_panel, insertion_error, with_selvedges,
+};
 use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result};
 use loomkin_drive::SleyAnalysis;
-use loomkin_insertion::{Airjet, AirjetReport, CarrierError, Projectile, ProjectilePath, ProjectileReport, TipPoint};
+use loomkin_insertion::{Airjet, AirjetReport, Projectile, ProjectilePath, ProjectileReport, TipPoint};
 use loomkin_plot::{Figure, Note, Panel, Series, XBand, sig4};
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
-
-/// A projectile or air-jet error as a loom error (the field kept).
-pub(crate) fn carrier_error(e: CarrierError) -> LoomError {
-    match e {
-        CarrierError::Range(r) => LoomError::Range(r),
-        other => field_error(other.field_name(), &other.to_string()),
-    }
-}
 
 impl CarrierPath for ProjectilePath {
     /// From the head at the entering selvedge to the tail at the far one.
@@ -161,14 +155,14 @@ pub fn airjet_of(loom: &Loom) -> Result<&Airjet> {
 
 /// The air jet of `loom` at `speed`: the tip's flight and the relay plan.
 pub fn airjet_check(loom: &Loom, speed: ShaftSpeed) -> Result<AirjetReport> {
-    airjet_of(loom)?.report(speed).map_err(carrier_error)
+    airjet_of(loom)?.report(speed).map_err(insertion_error)
 }
 
 /// The air jet's plot: the tip across the reed, and its speed with the air's at the tip, against
 /// the main-shaft angle, each relay group's opening as a band.
 pub fn airjet_figure(loom: &Loom, r: &AirjetReport, speed: ShaftSpeed) -> Result<Figure> {
     let a = airjet_of(loom)?;
-    let points = a.trajectory(speed).map_err(carrier_error)?;
+    let points = a.trajectory(speed).map_err(insertion_error)?;
     let angle = |t: f64| r.launch_deg + 6.0 * speed.rpm() * t;
     // Every step is a point; a plot needs a few hundred.
     let every = (points.len() / PLOT_POINTS).max(1);

@@ -2,8 +2,7 @@
 //! reed over a turn, when it is in the shed, the rapier's transfer, the air jet's relay plan and
 //! the sley's back dwell — what `loom timing` draws under the frames and the shed.
 
-use crate::insertion::{CarrierPath, rapier_error};
-use crate::insertion_air::carrier_error;
+use crate::insertion::{CarrierPath, insertion_error};
 use crate::{InsertionKind, Loom, LoomError, Result};
 use loomkin_drive::SleyAnalysis;
 use loomkin_insertion::RelayOpen;
@@ -93,7 +92,7 @@ pub fn carrier_timing_at(loom: &Loom, speed: ShaftSpeed) -> Result<CarrierTiming
             [ins.entry_deg, ins.exit_deg],
         ),
         InsertionKind::Rapier(r) => {
-            let report = r.report(speed).map_err(rapier_error)?;
+            let report = r.report(speed).map_err(insertion_error)?;
             let a = angles(0.0, 360.0, TRACK_POINTS);
             let head = |k: usize, label| {
                 let position_m = a
@@ -119,8 +118,8 @@ pub fn carrier_timing_at(loom: &Loom, speed: ShaftSpeed) -> Result<CarrierTiming
             (vec![CarrierTrack { label: "projectile", angle_deg: a, position_m }], [from, to])
         }
         InsertionKind::Airjet(j) => {
-            let report = j.report(speed).map_err(carrier_error)?;
-            let points = j.trajectory(speed).map_err(carrier_error)?;
+            let report = j.report(speed).map_err(insertion_error)?;
+            let points = j.trajectory(speed).map_err(insertion_error)?;
             // Every integration step is a point; a drawing needs a few hundred.
             let every = (points.len() / TRACK_POINTS).max(1);
             let kept: Vec<_> = points
