@@ -57,17 +57,44 @@ pub fn periodic_scan_max(
     f: impl Fn(f64) -> f64,
 ) -> Max {
     assert!(n >= 2, "a periodic grid needs two intervals");
-    let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
-    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
-    let reach = |k: usize| {
-        let b = value(k);
-        b + 0.5 * (b - value(prev(k)).min(value(next(k))))
-    };
-    let mut idx: Vec<usize> = (0..n).filter(|&k| value(k) >= value(prev(k)) && value(k) >= value(next(k))).collect();
-    idx.sort_by(|a, b| value(*b).total_cmp(&value(*a)));
-    let top = idx.first().map_or(f64::NEG_INFINITY, |&k| value(k));
-    idx.retain(|&k| reach(k) >= top);
-    idx.truncate(PERIODIC_CANDIDATES);
+    // One pass over the grid (a long grid is read once): the running best local maximum `top`
+    // and the local maxima that may yet be refined, in the order of a stable sort by value
+    // (highest first, ties by index). A peak whose reach falls below the running top never could
+    // (the top only rises); one with PERIODIC_CANDIDATES peaks ranked above it that reach at least
+    // as far never will be among the first PERIODIC_CANDIDATES (whenever it reaches the final top,
+    // so do they). So the list stays short even where a flat stretch makes every point a peak, and the
+    // candidates are those of collecting every peak, sorting, keeping those that reach the top and
+    // taking the first PERIODIC_CANDIDATES.
+    let mut top = f64::NEG_INFINITY;
+    let mut cands: Vec<(usize, f64, f64)> = Vec::new();
+    let (mut a, mut b) = (value(n - 1), value(0));
+    for k in 0..n {
+        let c = value(if k + 1 == n { 0 } else { k + 1 });
+        if b >= a && b >= c {
+            if b.total_cmp(&top).is_gt() {
+                top = b;
+                cands.retain(|e| e.2 >= top);
+            }
+            let reach = b + 0.5 * (b - a.min(c));
+            let outranked = cands.iter().filter(|e| e.1.total_cmp(&b).is_ge() && e.2 >= reach).count();
+            if reach >= top && outranked < PERIODIC_CANDIDATES {
+                let at = cands.iter().position(|e| e.1.total_cmp(&b).is_lt()).unwrap_or(cands.len());
+                cands.insert(at, (k, b, reach));
+                if cands.len() > 4 * PERIODIC_CANDIDATES {
+                    let keep: Vec<bool> = (0..cands.len())
+                        .map(|i| cands[..i].iter().filter(|e| e.2 >= cands[i].2).count() < PERIODIC_CANDIDATES)
+                        .collect();
+                    let mut i = 0;
+                    cands.retain(|_| {
+                        i += 1;
+                        keep[i - 1]
+                    });
+                }
+            }
+        }
+        (a, b) = (b, c);
+    }
+    let idx: Vec<usize> = cands.iter().filter(|e| e.2 >= top).take(PERIODIC_CANDIDATES).map(|e| e.0).collect();
     let period = node(n);
     let mut best = Max { at: node(0), value: f64::NEG_INFINITY };
     for k in idx {
@@ -142,6 +169,69 @@ mod tests {
             let grid_best = values[..n].iter().copied().fold(f64::NEG_INFINITY, f64::max);
             assert!(m.value >= grid_best, "n = {n}");
             assert!((m.at - 271.7).abs() < 1e-5 && (m.value - 1.5).abs() < 1e-12, "n = {n}: {m:?}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod one_pass {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The candidates as they were chosen before the one-pass scan: every local maximum collected,
+    /// stably sorted by value (highest first), those that can reach the top kept, the first few.
+    fn candidates_by_sorting(v: &[f64]) -> Vec<usize> {
+        let n = v.len();
+        let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+        let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
+        let reach = |k: usize| v[k] + 0.5 * (v[k] - v[prev(k)].min(v[next(k)]));
+        let mut idx: Vec<usize> = (0..n).filter(|&k| v[k] >= v[prev(k)] && v[k] >= v[next(k)]).collect();
+        idx.sort_by(|a, b| v[*b].total_cmp(&v[*a]));
+        let top = idx.first().map_or(f64::NEG_INFINITY, |&k| v[k]);
+        idx.retain(|&k| reach(k) >= top);
+        idx.truncate(PERIODIC_CANDIDATES);
+        idx
+    }
+
+    /// The grid points the one-pass scan refines: the ends of its golden-section brackets.
+    fn candidates_one_pass(v: &[f64]) -> Vec<usize> {
+        let n = v.len();
+        let seen = std::cell::RefCell::new(Vec::new());
+        periodic_scan_max(
+            n,
+            |k| k as f64,
+            |k| v[k],
+            |x| {
+                seen.borrow_mut().push(x);
+                0.0
+            },
+        );
+        // Each golden search starts from its bracket [k − 1, k + 1]; its first two probes lie
+        // inside it, symmetric about k: k is their mean.
+        let s = seen.into_inner();
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i + 1 < s.len() {
+            let k = (0.5 * (s[i] + s[i + 1])).round().rem_euclid(n as f64) as usize;
+            out.push(k);
+            // Skip the rest of this search: until a probe jumps to another bracket.
+            let mut j = i + 2;
+            while j < s.len() && (s[j] - k as f64).abs() <= 1.0 + 1e-9 {
+                j += 1;
+            }
+            i = j;
+        }
+        out
+    }
+
+    proptest! {
+        /// Grids of a few levels (flat stretches, ties, plateaus) and of random values: the same
+        /// candidates, in the same order, as collecting and sorting every peak.
+        #[test]
+        fn the_same_candidates_as_sorting(v in prop::collection::vec(0u8..4, 3..200), w in prop::collection::vec(-1e3f64..1e3, 3..200)) {
+            for grid in [v.iter().map(|x| f64::from(*x)).collect::<Vec<f64>>(), w] {
+                prop_assert_eq!(candidates_one_pass(&grid), candidates_by_sorting(&grid), "{:?}", grid);
+            }
         }
     }
 }
