@@ -400,8 +400,13 @@ pub fn correct(
         })
         .collect();
     let mut not_corrected = Vec::new();
-    if let Some(loomkin_drive::Sley::FourBar(_)) = loom.sley {
-        not_corrected.push("sley (a four-bar linkage, not a cam)".to_string());
+    match loom.sley {
+        Some(loomkin_drive::Sley::FourBar(_)) => not_corrected.push("sley (a four-bar linkage, not a cam)".to_string()),
+        Some(loomkin_drive::Sley::Cam(_)) => not_corrected.push(
+            "sley (a cam on the main shaft: one profile for every pick; its time-true correction is not implemented)"
+                .to_string(),
+        ),
+        None => {}
     }
     let report = CorrectionReport {
         picks: motion.picks(),

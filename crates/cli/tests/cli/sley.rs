@@ -199,6 +199,10 @@ fn a_cam_sley_reports_the_same_keys() {
     assert!(sley["j_max_kg_m2"].as_f64().unwrap() > 0.0 && sley["j_min_kg_m2"].as_f64().unwrap() == 0.0, "{sley}");
     let r = stdout_json(&["drive", "ripple", &p, "--wif", &wif, "--json"]);
     assert!(r["speed_ripple_pct"].as_f64().unwrap() > 0.0);
+    // drive correct corrects the frames and names the cam sley as not corrected (not yet).
+    let dir = scratch("correct");
+    let c = stdout_json(&["drive", "correct", &p, "--wif", &wif, "-o", dir.to_str().unwrap(), "--json"]);
+    assert!(c["not_corrected"][0].as_str().unwrap().starts_with("sley (a cam on the main shaft"), "{c}");
     // Errors in the cam sley's table: one line naming the key.
     let text = std::fs::read_to_string(&p).unwrap();
     let dir = scratch("cam");
