@@ -172,12 +172,12 @@ fn parse_err(field: &str, text: &str, expected: &str) -> PyErr {
     })
 }
 
-fn settings(mech: &Mechanism, set: &[(Setting, f64)], start: StartRule) -> Settings {
+fn settings(mech: &Mechanism, set: &[(Setting, f64)], start: StartRule) -> PyResult<Settings> {
     let mut st = Settings::designed(mech);
     for (s, v) in set {
-        st = s.apply(st, *v);
+        st = s.set(st, *v, mech).or_raise()?;
     }
-    st.with_start(start)
+    Ok(st.with_start(start))
 }
 
 /// pick_design(**model) -> dict
@@ -203,7 +203,7 @@ fn pick_design(py: Python<'_>, model: Option<&Bound<'_, PyDict>>) -> PyResult<Py
 fn pick_simulate(py: Python<'_>, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
     let Call { model, set, start, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
-    let st = settings(&mech, &set, start);
+    let st = settings(&mech, &set, start)?;
     let o = py.detach(|| simulate(&mech, &st, method)).or_raise()?;
     to_py(py, &o)
 }
@@ -224,7 +224,7 @@ fn pick_history<'py>(
     let points = points.check(&History::POINTS)?;
     let Call { model, set, start, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
-    let st = settings(&mech, &set, start);
+    let st = settings(&mech, &set, start)?;
     let h = py.detach(|| history(&mech, &st, method, points)).or_raise()?;
     let col = |f: &dyn Fn(&loomkin_picking::Sample) -> f64| h.samples.iter().map(f).collect::<Vec<f64>>();
     let cols = vec![
@@ -264,7 +264,7 @@ fn pick_sweep(
     let items = crate::convert::shard(shard)?.items(points);
     let Call { model, set, start: start_rule, method } = Model::from_kw(kw)?;
     let mech = model.build()?;
-    let st = settings(&mech, &set, start_rule);
+    let st = settings(&mech, &set, start_rule)?;
     let s = py
         .detach(|| loomkin_picking::sweep_items(&mech, &st, setting, start, stop, points, method, items))
         .or_raise()?;

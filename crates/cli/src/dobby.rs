@@ -475,14 +475,15 @@ fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
 }
 
 fn print_geometry(g: &ModulatorGeometry, w2: f64, step: f64) -> Result<()> {
+    use loomkin_units::compact;
     outln!(
         "  l2 = {} m, l3 = {} m, l3′ = {} m, l6 = {} m, α = {}°, θ = {}°, ω2 = {:.6} rad/s, step {:.4}°",
-        g.l2_m,
-        g.l3_m,
-        g.l3p_m,
-        g.l6_m,
-        g.alpha_deg,
-        g.theta_deg,
+        compact(g.l2_m),
+        compact(g.l3_m),
+        compact(g.l3p_m),
+        compact(g.l6_m),
+        compact(g.alpha_deg),
+        compact(g.theta_deg),
         w2,
         step
     )

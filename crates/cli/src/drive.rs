@@ -275,7 +275,7 @@ fn run_ripple(a: RippleArgs) -> Result<()> {
     )?;
     match a.target_ripple_pct {
         Some(t) => outln!("flywheel {:.6} kg·m² holds the ripple at {t} %", r.flywheel_kg_m2),
-        None => outln!("flywheel {} kg·m²", r.flywheel_kg_m2),
+        None => outln!("flywheel {} kg·m²", loomkin_units::compact(r.flywheel_kg_m2)),
     }
 }
 

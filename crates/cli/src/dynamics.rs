@@ -397,8 +397,14 @@ fn response(a: ResponseArgs) -> Result<()> {
     if let (Some(f), Some(c)) = (summary.peak_force_n, summary.min_contact_force_n) {
         outln!("peak train force |F|: {:.3} N at {:.3}°", f.value, f.angle_deg)?;
         outln!(
-            "smallest contact force: {:.3} N at {:.3}°{}",
-            c.value,
+            "smallest contact force: {} N at {:.3}°{}",
+            // A force that rounds to nothing at three places is given in four digits: a loss of
+            // contact is never printed as "0.000 N" or "-0.000 N".
+            if loomkin_units::fixed(c.value, 3).trim_start_matches(['0', '.']).is_empty() && c.value != 0.0 {
+                loomkin_units::sig4(c.value)
+            } else {
+                format!("{:.3}", c.value)
+            },
             c.angle_deg,
             if summary.loses_contact { " — a force-closed follower LOSES CONTACT" } else { "" }
         )?;

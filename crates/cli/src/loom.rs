@@ -345,7 +345,7 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
         "what the optimum costs against no stagger: least clearance {:.2} → {:.2} mm (kept ≥ {} mm), clear shed {:.2}° → {:.2}°, top speed {:.1} → {:.1} rpm",
         n.min_clearance_mm,
         b.min_clearance_mm,
-        r.min_clearance_kept_mm,
+        loomkin_units::compact(r.min_clearance_kept_mm),
         n.window_deg,
         b.window_deg,
         n.max_speed_rpm,

@@ -23,6 +23,8 @@ mod merge;
 mod output;
 mod pick;
 mod pick_montecarlo;
+#[cfg(test)]
+mod range_ends;
 mod serve;
 mod servo;
 mod servo_check;
@@ -192,14 +194,21 @@ fn missing_subcommand(help: &str) -> String {
 }
 
 fn main() -> ExitCode {
-    let args = glue_negative_values(std::env::args_os());
+    ExitCode::from(cli_main(std::env::args_os()))
+}
+
+/// The whole program for these arguments (the first is the program's name): parse, run, print,
+/// and the exit code (0, 1 or 2). `main` calls it with the process's arguments; the range-end tests run it
+/// in a child process of the test binary.
+fn cli_main(args: impl IntoIterator<Item = std::ffi::OsString>) -> u8 {
+    let args = glue_negative_values(args);
     let cli = match negatives_allowed(Cli::command()).try_get_matches_from(args).and_then(|m| Cli::from_arg_matches(&m))
     {
         Ok(cli) => cli,
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             // `loomkin law` without a subcommand: name the subcommands, not the group's description.
             output::note(format_args!("loomkin: error: {}", missing_subcommand(&e.render().to_string())));
-            return ExitCode::from(2);
+            return 2;
         }
         Err(e) if e.use_stderr() => {
             // One line: clap's first line (the error itself), without its usage block and tips.
@@ -214,24 +223,24 @@ fn main() -> ExitCode {
                 .collect();
             let line = message.join(" ");
             output::note(format_args!("loomkin: error: {} (see --help)", cut(line.trim_start_matches("error: "))));
-            return ExitCode::from(2);
+            return 2;
         }
         Err(e) => {
             // --help and --version.
             let _ = e.print();
-            return ExitCode::SUCCESS;
+            return 0;
         }
     };
     match run(cli).and_then(|()| output::finish()) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         // The reader of our output went away (`loomkin law list | head -1`): stop quietly.
-        Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(e) if output::is_broken_pipe(&e) => 0,
         Err(e) => {
             // A part being written is dropped: a failed shard leaves no part behind.
             output::abandon_part();
             // One line: the error and its causes joined by ": ".
             output::note(format_args!("loomkin: error: {}", cut(&format!("{e:#}").replace('\n', " "))));
-            ExitCode::from(util::exit_code(&e))
+            util::exit_code(&e)
         }
     }
 }

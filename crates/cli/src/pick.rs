@@ -261,7 +261,7 @@ pub(crate) fn mechanism(m: &ModelArgs) -> Result<Mechanism> {
     }
 }
 
-fn settings(mech: &Mechanism, a: &SettingsArgs) -> Settings {
+fn settings(mech: &Mechanism, a: &SettingsArgs) -> Result<Settings> {
     let mut st = Settings::designed(mech);
     let flags = [
         (Setting::Speed, a.speed_rpm),
@@ -272,13 +272,13 @@ fn settings(mech: &Mechanism, a: &SettingsArgs) -> Settings {
     ];
     for (s, v) in flags {
         if let Some(v) = v {
-            st = s.apply(st, v);
+            st = s.set(st, v, mech)?;
         }
     }
-    st.with_start(match a.start {
+    Ok(st.with_start(match a.start {
         StartArg::Paper => StartRule::Paper,
         StartArg::Equilibrium => StartRule::Equilibrium,
-    })
+    }))
 }
 
 fn note(o: &Outcome) {
@@ -334,10 +334,11 @@ fn history_table(h: &History) -> Result<Table> {
 
 fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     let mech = mechanism(&a.model)?;
-    let st = settings(&mech, &a.settings);
+    let st = settings(&mech, &a.settings)?;
     let method = a.method.into();
+    // Checked whether or not the samples are printed: a value out of range is never taken in silence.
+    History::POINTS.check_count_as("--points", a.points)?;
     if a.format.csv {
-        History::POINTS.check_count_as("--points", a.points)?;
         let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
         note(&h.outcome);
         return output::csv(&history_table(&h)?);
@@ -364,10 +365,10 @@ fn simulate_cmd(a: SimulateArgs) -> Result<()> {
     )?;
     outln!("  distance     = {:.6} m", o.distance_m)?;
     outln!(
-        "  velocity     = {:.4} m/s  (required {:.4} m/s, {:+.2} %)",
+        "  velocity     = {:.4} m/s  (required {:.4} m/s, {} %)",
         o.velocity_m_s,
         o.required_velocity_m_s,
-        o.velocity_vs_required_pct
+        signed(o.velocity_vs_required_pct)
     )?;
     outln!("  accel at end = {:.3} m/s²", o.accel_end_m_s2)?;
     outln!("  accel peak   = {:.3} m/s² at t = {:.6} s", o.accel_peak_m_s2, o.t_peak_s)?;
@@ -505,7 +506,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
         );
     }
     let mech = mechanism(&a.model)?;
-    let st = settings(&mech, &a.settings);
+    let st = settings(&mech, &a.settings)?;
     let progress = util::Progress::new(items.len() as u64, "points");
     if a.format.csv {
         return sweep_csv(&mech, &st, setting, &a, method, items, &progress);
@@ -541,7 +542,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     for r in &s.rows {
         let o = &r.outcome;
         outln!(
-            "{:>14.4} {:>10.6} {:>10.6} {:>12.4} {:>14.3} {:>15.3} {:>13.4} {:>9.2}",
+            "{:>14.4} {:>10.6} {:>10.6} {:>12.4} {:>14.3} {:>15.3} {:>13.4} {:>9}",
             r.value,
             o.t_end_s,
             o.distance_m,
@@ -549,10 +550,17 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
             o.accel_end_m_s2,
             o.accel_peak_m_s2,
             o.required_velocity_m_s,
-            o.velocity_vs_required_pct
+            loomkin_units::fixed(o.velocity_vs_required_pct, 2)
         )?;
     }
     Ok(())
+}
+
+/// A percentage with two places and its sign (`+1.25`, `-0.40`, `+0.00` for a shortfall that
+/// rounds to nothing).
+fn signed(pct: f64) -> String {
+    let text = loomkin_units::fixed(pct, 2);
+    if text.starts_with('-') { text } else { format!("+{text}") }
 }
 
 /// The sweep's end-of-pick values; where the velocity is below the required V_r the setting range
@@ -611,7 +619,7 @@ fn plot(a: PlotArgs) -> Result<()> {
     output::check_outputs([Some(Out::plot("--output", &a.output))])?;
     History::PLOT_POINTS.check_count_as("--points", a.points)?;
     let mech = mechanism(&a.model)?;
-    let st = settings(&mech, &a.settings);
+    let st = settings(&mech, &a.settings)?;
     let method = a.method.into();
     let h = history(&mech, &st, method, a.points).map_err(lib_err)?;
     note(&h.outcome);

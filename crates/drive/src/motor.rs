@@ -360,7 +360,11 @@ impl MotorSpec {
                 if nr >= ns {
                     return Err(RippleError::field(
                         named(&Induction::RATED_RPM),
-                        format!("{nr} rpm: allowed below the synchronous speed {ns} rpm"),
+                        format!(
+                            "{} rpm: allowed below the synchronous speed {} rpm",
+                            loomkin_units::compact(nr),
+                            loomkin_units::compact(ns)
+                        ),
                     ));
                 }
                 let p = check(

@@ -140,6 +140,9 @@ impl Follower {
     ) -> Result<Self> {
         match mass_kg {
             Some(m) => {
+                // Each force against its own range first: a sum out of range would name neither.
+                let preload_n = Self::PRELOAD_N.check(preload_n)?;
+                let force_n = Self::FORCE_N.check(force_n)?;
                 let w = if weight { m * STANDARD_GRAVITY } else { 0.0 };
                 self.with_loads(m, return_spring_n_m, preload_n + w + force_n)
             }

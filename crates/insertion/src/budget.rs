@@ -115,12 +115,13 @@ pub struct BudgetReport {
 }
 
 impl PickBudget {
-    /// `reed_width_mm`: 0 < W ≤ 20000 mm.
+    /// `reed_width_mm`: 1 ≤ W ≤ 20000 mm.
     pub const REED_WIDTH_MM: Field = Field::new(
         "reed_width_mm",
-        Range::open_closed(0.0, 20_000.0, "mm"),
-        "Reed space, the warp's width in the reed: 0 < W ≤ 20000 mm (the widest looms weave about 5.4 m; \
-         20 m leaves room for technical looms without admitting nonsense).",
+        Range::closed(1.0, 20_000.0, "mm"),
+        "Reed space, the warp's width in the reed: 1 ≤ W ≤ 20000 mm (the widest looms weave about 5.4 m; \
+         20 m leaves room for technical looms without admitting nonsense; below a millimetre the highest \
+         loom speed of a point carrier would overflow).",
     );
     /// `carrier_length_mm`: 0 ≤ L ≤ 5000 mm.
     pub const CARRIER_LENGTH_MM: Field = Field::new(
@@ -129,12 +130,13 @@ impl PickBudget {
         "The carrier's length along the weft (a shuttle, a projectile, a rapier head): 0 ≤ L ≤ 5000 mm; it \
          must clear the shed too, so it adds to the path (0: a point carrier, the yarn tip of an air jet).",
     );
-    /// `window_deg`: 0 < θ < 360°.
+    /// `window_deg`: 0.001 ≤ θ < 360°.
     pub const WINDOW_DEG: Field = Field::new(
         "window_deg",
-        Range::open(0.0, 360.0, "deg"),
-        "The insertion window, main-shaft angle from the carrier's entry to its exit: 0 < θ < 360° (the \
-         pick must fit in one turn, which also holds the beat-up).",
+        Range::closed_open(0.001, 360.0, "deg"),
+        "The insertion window, main-shaft angle from the carrier's entry to its exit: 0.001 ≤ θ < 360° (the \
+         pick must fit in one turn, which also holds the beat-up; a narrower window would need a carrier \
+         speed that overflows).",
     );
     /// `speed_m_s`: 0 < v̄ ≤ 1000 m/s.
     pub const SPEED_M_S: Field = Field::new(

@@ -47,7 +47,14 @@ fn converse_energy_and_power() {
 #[test]
 fn bounds_name_the_field() {
     let e = PickBudget { window_deg: 360.0, ..lecture() }.report().unwrap_err();
-    assert_eq!(e.to_string(), "window_deg = 360 is out of range: allowed 0 < window_deg < 360 deg");
+    assert_eq!(e.to_string(), "window_deg = 360 is out of range: allowed 0.001 ≤ window_deg < 360 deg");
+    // At the least reed space and window the results stay finite (5e-324 of either overflowed:
+    // `inf` picks/min, `inf` m/s, found by the CLI's range-end sweep).
+    let tight = PickBudget { reed_width_mm: 1.0, carrier_length_mm: 0.0, window_deg: 0.001, ..lecture() };
+    let r = tight.report().unwrap();
+    assert!(r.max_picks_per_min.is_finite() && r.required_speed_m_s.is_finite(), "{r:?}");
+    let e = PickBudget { window_deg: 0.001_f64.next_down(), ..lecture() }.report().unwrap_err();
+    assert!(e.to_string().starts_with("window_deg"), "{e}");
     let e = PickBudget { reed_width_mm: 0.0, ..lecture() }.report().unwrap_err();
     assert!(e.to_string().starts_with("reed_width_mm = 0 is out of range"), "{e}");
     let e = PickBudget { speed_m_s: f64::NAN, ..lecture() }.report().unwrap_err();

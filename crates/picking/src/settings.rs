@@ -233,6 +233,14 @@ impl Setting {
         }
     }
 
+    /// `settings` with this setting set to `value` (in [`Setting::unit`]), checked first against
+    /// [`Setting::range`] on `mechanism` as typed: a value converted to SI first could round into
+    /// the range (`-5e-324` mm is `-0` m, `1000.0000000000001` kgf is 1000 kgf again).
+    pub fn set(&self, settings: Settings, value: f64, mechanism: &Mechanism) -> Result<Settings> {
+        self.range(mechanism).check(self.field().name, value)?;
+        Ok(self.apply(settings, value))
+    }
+
     /// The value of this setting in `settings`, in [`Setting::unit`].
     pub fn value(&self, settings: &Settings) -> f64 {
         match self {
@@ -293,6 +301,20 @@ mod tests {
         assert!(!Setting::Strap.range(&m).contains(74.0));
         // The speed range is the shaft's.
         assert_eq!(Setting::Speed.range(&m), ShaftSpeed::RANGE);
+    }
+
+    /// A setting is checked as typed: converted to SI first, `-5e-324` mm of play became `-0` m
+    /// and `1000.0000000000001` kgf became 1000 kgf again, and both were taken.
+    #[test]
+    fn a_setting_is_checked_in_the_unit_it_is_given_in() {
+        let m = Mechanism::paper_default();
+        let st = Settings::designed(&m);
+        assert!(Setting::Play.set(st, -5e-324, &m).is_err());
+        assert!(Setting::Checking.set(st, 1000.0_f64.next_up(), &m).is_err());
+        assert!(Setting::Strap.set(st, 74.0, &m).is_err());
+        let ok = Setting::Checking.set(st, 1000.0, &m).unwrap();
+        assert_eq!(ok, Setting::Checking.apply(st, 1000.0));
+        assert!(Setting::Play.set(st, 0.0, &m).is_ok());
     }
 
     #[test]

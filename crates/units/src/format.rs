@@ -27,6 +27,24 @@ pub fn compact(v: f64) -> String {
     if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
 }
 
+/// `v` with `decimals` places, as `format!("{v:.decimals$}")` writes it, except that a value
+/// which rounds to zero never shows a minus sign (`-0.0004` to three places is `0.000`, not
+/// `-0.000`).
+///
+/// ```
+/// use loomkin_units::fixed;
+/// assert_eq!(fixed(-0.0004, 3), "0.000");
+/// assert_eq!(fixed(-0.0006, 3), "-0.001");
+/// assert_eq!(fixed(2.345, 2), format!("{:.2}", 2.345));
+/// ```
+pub fn fixed(v: f64, decimals: usize) -> String {
+    let text = format!("{v:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
+}
+
 /// A value for a note, a title or a message in words: four significant digits, no trailing zeros
 /// (`12.35`, `0.001235`, `1.235e−7`, `−3`, with a true minus sign), where [`compact`] keeps up to
 /// twelve for values a user types back.

@@ -137,7 +137,7 @@ pub fn simulate(req: &PickingRequest) -> Result<PickingResponse, ApiError> {
             message: "unknown setting: known are speed_rpm, play_mm, strap_cm, shuttle_g, checking_kgf".into(),
         })?;
         // The library checks every setting against its range ([`Setting::range`]).
-        st = setting.apply(st, value);
+        st = setting.set(st, value, &mech).map_err(pick_error)?;
     }
     let h = history(&mech, &st, req.method, n).map_err(pick_error)?;
     let s = &h.samples;

@@ -76,7 +76,7 @@ fn budget_errors_name_the_flag() {
             "--speed-m-s",
             "10",
         ],
-        &["--window-deg = 400 is out of range: allowed 0 < --window-deg < 360 deg"],
+        &["--window-deg = 400 is out of range: allowed 0.001 ≤ --window-deg < 360 deg"],
     );
     usage_error(
         &["insert", "budget", "--wif", &ex("point-24.wif")],

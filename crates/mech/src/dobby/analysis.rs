@@ -338,13 +338,13 @@ fn no_reach(g: &ModulatorGeometry, cam: &Cam, phi2: f64, lo: f64, hi: f64) -> Me
         format!(
             "roller B cannot reach cam Γ: the distance from A to Γ spans [{lo:.6}, {hi:.6}] m but the arm AB is \
              l3 = {} m",
-            g.l3_m
+            loomkin_units::compact(g.l3_m)
         )
     } else {
         format!(
             "roller B only touches cam Γ (the circle of radius l3 = {} m about A is tangent to Γ; the distance from A \
              to Γ spans [{lo:.6}, {hi:.6}] m): the arm AB is normal to Γ there",
-            g.l3_m
+            loomkin_units::compact(g.l3_m)
         )
     };
     let admissible = match reach_over_turn(g, cam) {

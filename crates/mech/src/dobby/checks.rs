@@ -113,10 +113,10 @@ pub(crate) fn counter_cam_fold(
             code: WarningCode::CounterCamFold,
             phi2_deg: Some(at),
             message: format!(
-                "fold at roller C at φ2 = {:.3}°: the arm AC is normal to counter-cam Γ′ (φ3 − φ2 = {:.3}°, θ = {:.3}°), \
+                "fold at roller C at φ2 = {:.3}°: the arm AC is normal to counter-cam Γ′ (φ3 − φ2 = {}°, θ = {:.3}°), \
                  Γ′ cannot hold the lever there; admissible θ ∈ ({:.3}, {:.3})°",
                 at,
-                d,
+                loomkin_units::fixed(d, 3),
                 g.theta_deg,
                 theta_range[0],
                 theta_range[1]

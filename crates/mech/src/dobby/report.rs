@@ -181,9 +181,10 @@ pub(crate) fn check_states(
                 code: WarningCode::PressureAngle,
                 phi2_deg: Some(peak.at_deg()),
                 message: format!(
-                    "pressure angle at {name} reaches {:.2}° at φ2 = {:.2}°, above the limit {pressure_limit_deg}°",
+                    "pressure angle at {name} reaches {:.2}° at φ2 = {:.2}°, above the limit {}°",
                     peak.value,
-                    peak.at_deg()
+                    peak.at_deg(),
+                    loomkin_units::compact(pressure_limit_deg)
                 ),
             });
         }

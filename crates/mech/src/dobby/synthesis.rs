@@ -269,8 +269,8 @@ fn law_label(spec: &OutputLawSpec) -> String {
     format!(
         "{} × (dwell {}° centred at {}°, {} rise of {}°)",
         spec.cycles,
-        spec.dwell_deg,
-        spec.dwell_centre_deg,
+        loomkin_units::compact(spec.dwell_deg),
+        loomkin_units::compact(spec.dwell_centre_deg),
         spec.rise.label(),
         360.0 / f64::from(spec.cycles)
     )
