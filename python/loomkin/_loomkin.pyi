@@ -14,7 +14,7 @@ __all__ = [
     "servo_spline_law", "servo_law", "servo_torque", "servo_torque_curve", "servo_optimize", "servo_export",
     "servo_check", "Cycle", "pick_design", "pick_simulate", "pick_history", "pick_sweep", "pick_montecarlo",
     "dobby_analyze", "dobby_synthesize", "dobby_tolerance", "dobby_sweep", "shed_presets", "shed_law", "shed_table",
-    "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "loom_sley", "loom_sley_synthesize",
+    "shed_pareto", "shed_best", "shed_window", "loom_check", "loom_torque", "loom_stagger", "loom_servo", "loom_sley", "loom_sley_synthesize",
     "drive_inertia", "drive_ripple", "drive_correct", "dyn_response",
     "dyn_sweep", "dyn_spectrum", "dyn_compensate", "dyn_optimize", "dyn_two_mass", "dyn_default_ratios",
     "cam_table", "cam_profile", "rise_return_cycle", "insert_budget", "insert_rapier", "insert_projectile",
@@ -275,6 +275,13 @@ def loom_torque(
 ) -> Dict[str, Any]: ...
 def loom_stagger(
     loom_toml: str, wif: Optional[Union[str, bytes]] = None, lift_plan: Optional[str] = None, objective: str = "peak"
+) -> Dict[str, Any]: ...
+def loom_servo(
+    loom_toml: str,
+    wif: Optional[Union[str, bytes]] = None,
+    lift_plan: Optional[str] = None,
+    optimize: bool = False,
+    objective: str = "peak",
 ) -> Dict[str, Any]: ...
 def loom_sley_synthesize(
     stroke_mm: float,

@@ -15,7 +15,7 @@ from ._fields import default as _default
 from ._inputs import bytes_of, required_text, text_of
 from ._table import Table
 
-__all__ = ["check", "torque", "stagger", "sley", "sley_synthesize"]
+__all__ = ["check", "torque", "stagger", "servo", "sley", "sley_synthesize"]
 
 Path = Union[str, "os.PathLike[str]"]
 
@@ -49,6 +49,18 @@ def stagger(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = 
     shedding torque with the window kept, against no stagger and two groups."""
     loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
     return _m.loom_stagger(loom_toml, wif_bytes, plan, objective)
+
+
+def servo(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
+          optimize: bool = False, objective: str = "peak") -> Dict[str, Any]:
+    """``loomkin loom servo --json`` (a loom file with ``[shedding] drive = "servo"``): the shared
+    DC bus (peak and mean power in W, regenerated and braking energy in J per repeat), the shed the
+    carrier passes (window in deg, least clearance in mm) and ``frames`` in shaft order (torques in
+    N·m, speeds in rpm, powers in W, motor checks). With ``optimize`` (``--optimize``): every
+    frame's stagger and motion angle (deg) for the least peak bus power (or "rms": the worst
+    frame's RMS torque), the ``_before``/``_after`` keys and the study of the optimum."""
+    loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
+    return _m.loom_servo(loom_toml, wif_bytes, plan, bool(optimize), objective)
 
 
 def sley(loom: Path, speed_rpm: Optional[float] = None,

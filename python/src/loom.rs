@@ -3,7 +3,9 @@
 
 use crate::convert::{Count, columns, to_py};
 use crate::errors::{Fault, OrRaise, raise};
-use loomkin_loom::{Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_stagger};
+use loomkin_loom::{
+    Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_servo, optimise_stagger, servo_study,
+};
 use loomkin_units::RangeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -39,6 +41,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(loom_check, m)?)?;
     m.add_function(wrap_pyfunction!(loom_torque, m)?)?;
     m.add_function(wrap_pyfunction!(loom_stagger, m)?)?;
+    m.add_function(wrap_pyfunction!(loom_servo, m)?)?;
     m.add_function(wrap_pyfunction!(loom_sley, m)?)?;
     m.add_function(wrap_pyfunction!(loom_sley_synthesize, m)?)?;
     Ok(())
@@ -147,19 +150,53 @@ fn loom_stagger(
     lift_plan: Option<&str>,
     objective: &str,
 ) -> PyResult<Py<PyAny>> {
-    let objective = match objective.trim().to_ascii_lowercase().as_str() {
-        "peak" => Objective::Peak,
-        "rms" => Objective::Rms,
-        other => {
-            return Err(raise(LoomError::Field {
-                field: "objective".into(),
-                reason: format!("'{other}': allowed peak or rms"),
-            }));
-        }
-    };
+    let objective = objective_of(objective)?;
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     let r = py.detach(|| optimise_stagger(&loom, &pattern, objective)).or_raise()?;
     to_py(py, &r)
+}
+
+/// `peak` or `rms` (any case, spaces trimmed), else the error naming the field.
+fn objective_of(objective: &str) -> PyResult<Objective> {
+    match objective.trim().to_ascii_lowercase().as_str() {
+        "peak" => Ok(Objective::Peak),
+        "rms" => Ok(Objective::Rms),
+        other => Err(raise(LoomError::Field {
+            field: "objective".into(),
+            reason: format!("'{other}': allowed peak or rms"),
+        })),
+    }
+}
+
+/// loom_servo(loom_toml, wif=None, lift_plan=None, optimize=False, objective="peak") -> dict
+/// --
+///
+/// `loomkin loom servo LOOM.toml --json` (`[shedding] drive = "servo"`): the bus (peak and mean
+/// power in W, regenerated and braking energy in J per repeat), the shed the carrier passes
+/// (window in deg, least clearance in mm), and `frames` in shaft order (torques in N·m, speeds in
+/// rpm, powers in W, the motor checks). With `optimize`, `--optimize [--objective]`: every frame's
+/// stagger and motion angle for the least peak bus power (or "rms": the worst frame's RMS torque)
+/// with the before/after keys, and the study of the optimum. Runs with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, optimize=false, objective="peak"))]
+fn loom_servo(
+    py: Python<'_>,
+    loom_toml: &str,
+    wif: Option<Wif>,
+    lift_plan: Option<&str>,
+    optimize: bool,
+    objective: &str,
+) -> PyResult<Py<PyAny>> {
+    let objective = objective_of(objective)?;
+    let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
+    if optimize {
+        let stop = loomkin_units::StopFlag::default();
+        let r = py.detach(|| optimise_servo(&loom, &pattern, objective, &stop, &|_, _| {})).or_raise()?;
+        to_py(py, &r)
+    } else {
+        let r = py.detach(|| servo_study(&loom, &pattern)).or_raise()?;
+        to_py(py, &r)
+    }
 }
 
 /// loom_sley(loom_toml, speed_rpm=None, dwell_tolerance_mm=..., points=...) -> dict

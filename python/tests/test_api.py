@@ -46,6 +46,7 @@ PYTHON_CALL = {
     "insert airjet": loomkin.insertion.airjet,
     "loom torque": loomkin.loom.torque,
     "loom stagger": loomkin.loom.stagger,
+    "loom servo": loomkin.loom.servo,
     "sley analyze": loomkin.loom.sley,
     "sley synthesize": loomkin.loom.sley_synthesize,
     "drive inertia": loomkin.drive.inertia,
@@ -68,9 +69,6 @@ NO_PYTHON_CALL = {
     "merge": "a file tool for --parts; in Python loomkin.concat and from_draws",
     # The local web workbench is a server, not a computation.
     "serve": "the web workbench (a server)",
-    # Issue 31's servo shedding: the library (loomkin_eshed) and the CLI landed first; the Python
-    # call loomkin.loom.servo is the issue's item 6, not written yet.
-    "loom servo": "loomkin.loom.servo not written yet (issue 31 item 6)",
 }
 
 

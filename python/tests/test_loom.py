@@ -34,6 +34,22 @@ def test_stagger_matches_loom_stagger(cli):
     same(loomkin.loom.stagger(EX / "shuttle-loom.toml", wif=EX / "twill-2-2.wif"), ref)
 
 
+def test_servo_matches_loom_servo(cli):
+    ref = cli("loom", "servo", "examples/servo-shedding-loom.toml", "--wif", "examples/point-24.wif", "--json")
+    r = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "point-24.wif")
+    same(r, ref)
+    assert len(r["frames"]) == 24 and r["min_clearance_mm"] > 0
+    # --optimize: the same search, the same optimum and the same before/after keys.
+    ref = cli("loom", "servo", "examples/servo-shedding-loom.toml", "--wif", "examples/twill-2-2.wif", "--optimize",
+              "--objective", "rms", "--json")
+    o = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "twill-2-2.wif", optimize=True, objective="rms")
+    same(o, ref)
+    assert o["worst_rms_torque_n_m_after"] < o["worst_rms_torque_n_m_before"]
+    with pytest.raises(loomkin.LoomkinError) as e:
+        loomkin.loom.servo(EX / "rapier-loom.toml", wif=EX / "point-24.wif")
+    assert "shedding.drive" in str(e.value)
+
+
 def test_loom_errors(tmp_path):
     bad = tmp_path / "loom.toml"
     bad.write_text((EX / "shuttle-loom.toml").read_text().replace("speed_rpm = ", "speed_rpm = -"))

@@ -257,9 +257,12 @@ impl FramePlan {
         }
     }
 
-    /// The full stroke in the cycle file's unit, mm.
+    /// The full stroke in the cycle file's unit, mm, to 12 significant digits: the loom file's
+    /// millimetres come back without the noise of their way through metres and the clean-lift
+    /// ratio (`90`, not `89.99999999999999`; a change of 1e-14 relative at most). The plan's cycle
+    /// ([`FramePlan::cycle`]) moves by this stroke too, so it stays the cycle file's bit for bit.
     pub fn stroke_mm(&self) -> f64 {
-        self.stroke_m * 1e3
+        loomkin_units::to_12_digits(loomkin_units::mm_from_m(self.stroke_m))
     }
 
     /// The height over mid-stroke at the plan's start, m.

@@ -18,7 +18,13 @@ fn without_pass_through_every_frames_plan_is_the_dobby_motion() {
     let setups = servo_setups(&loom, &pattern, None, None).unwrap();
     let laws = servo_laws(&loom);
     for (i, s) in setups.iter().enumerate() {
-        assert_eq!(s.plan.cycle_spec(&laws), motion.cycle_spec(i), "frame {}", i + 1);
+        // Segment for segment; the stroke the same to its 12 digits (the plan's drops the noise of
+        // the loom's way through metres, 89.99999999999999 → 90 mm).
+        let (plan, dobby) = (s.plan.cycle_spec(&laws), motion.cycle_spec(i));
+        assert_eq!(plan.segment, dobby.segment, "frame {}", i + 1);
+        assert_eq!((plan.period_deg, plan.unit), (dobby.period_deg, dobby.unit));
+        let (a, b) = (plan.stroke.unwrap(), dobby.stroke.unwrap());
+        assert!(a == loomkin_units::to_12_digits(b) && (a - b).abs() <= 1e-14 * a, "frame {}: {a} {b}", i + 1);
         assert_eq!(s.plan.start_level_m(), motion.frame(i, s.plan.start_deg - 1e-6).y_m);
     }
 }
@@ -223,5 +229,25 @@ fn the_optimum_lowers_its_objective_and_keeps_the_carriers_insertion_clear() {
         assert!(coarse >= 0.0, "{coarse}");
         assert!(o.min_clearance_mm_after >= 0.0 && o.min_clearance_mm_after <= 1e3 * coarse + 1e-9, "{o:?}");
         assert_eq!(o.min_clearance_kept_mm, 0.0);
+    }
+}
+
+#[test]
+fn the_tables_carry_the_loom_files_strokes_in_mm_without_noise() {
+    // The front frame's 90 mm reaches the plan through metres and the clean-lift ratio as
+    // 89.99999999999999 mm; the manifest and the cycle files give 90, and every frame's stroke is
+    // within 1e-14 of the loom's (that the cycle file is the plan's cycle, segment by segment, is
+    // crates/eshed/tests/tables.rs's test).
+    let loom = Loom::from_toml(SERVO).unwrap();
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let spacing = loomkin_cams::table::Spacing::of(Some(30.0), None);
+    let t = loomkin_loom::servo_tables(&loom, &pattern, spacing, &[loomkin_cams::table::Format::Csv]).unwrap();
+    assert_eq!(loom.geometry.stroke_m[0] * 1e3, 89.99999999999999);
+    assert_eq!(t.manifest.frames[0].stroke_mm, 90.0);
+    let cycle = t.files.iter().find(|f| f.name == "frame-01.cycle.toml").unwrap();
+    assert!(cycle.text.contains("stroke = 90.0\n"), "{}", cycle.text);
+    for (f, m) in t.manifest.frames.iter().zip(&loom.geometry.stroke_m) {
+        assert!((f.stroke_mm - m * 1e3).abs() <= 1e-14 * f.stroke_mm, "frame {}", f.frame);
+        assert_eq!(f.stroke_mm, loomkin_units::to_12_digits(f.stroke_mm));
     }
 }

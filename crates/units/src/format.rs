@@ -22,7 +22,7 @@ pub fn compact(v: f64) -> String {
     if v <= f64::MIN {
         return "-∞".into();
     }
-    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    let rounded = to_12_digits(v);
     // `+ 0.0` turns -0 into 0.
     if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
 }
@@ -43,6 +43,17 @@ pub fn fixed(v: f64, decimals: usize) -> String {
         Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
         _ => text,
     }
+}
+
+/// `v` to 12 significant digits: a length worked out from a given one (`90 mm` through metres and a
+/// ratio) without its representation noise (`89.99999999999999` → `90`).
+///
+/// ```
+/// assert_eq!(loomkin_units::to_12_digits(0.08999999999999999 * 1e3), 90.0);
+/// assert_eq!(loomkin_units::to_12_digits(95.40000000000001), 95.4);
+/// ```
+pub fn to_12_digits(v: f64) -> f64 {
+    format!("{v:.11e}").parse().unwrap_or(v)
 }
 
 /// A value for a note, a title or a message in words: four significant digits, no trailing zeros
