@@ -39,7 +39,8 @@ def test_budget_errors():
     assert e.value.field == "window_deg" and "required without a loom file" in str(e.value)
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.insertion.budget(reed_width_mm=-1, carrier_length_mm=300, window_deg=135, speed_m_s=13.75)
-    assert e.value.field == "reed_width_mm" and e.value.low == 0
+    # PickBudget::REED_WIDTH_MM: at least 1 mm (1340aaf: a width of 5e-324 mm gave inf).
+    assert e.value.field == "reed_width_mm" and e.value.low == 1
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.insertion.budget(wif=EX / "point-24.wif", reed_width_mm=1150, carrier_length_mm=300, window_deg=135,
                                  speed_m_s=13.75)
