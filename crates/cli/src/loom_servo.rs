@@ -84,7 +84,10 @@ pub fn run(a: ServoArgs) -> Result<()> {
     };
     let (r, setups) = match &optimum {
         Some(o) => (o.report.clone(), o.setups.clone()),
-        None => (loomkin_loom::servo_study(&loom, &pattern)?, loomkin_loom::servo_setups(&loom, &pattern, None, None)?),
+        None => {
+            let setups = loomkin_loom::servo_setups(&loom, &pattern, None, None)?;
+            (loomkin_loom::servo_study_of(&loom, &pattern, &setups)?, setups)
+        }
     };
     if let Some(out) = &a.output {
         output::figure(&loomkin_loom::servo_figure_of(&loom, &setups, &r)?, out, &a.plot)?;

@@ -21,51 +21,9 @@
 
 use crate::drive::{DrivePoint, FrameDrive};
 use loomkin_laws::{Cycle, SegmentKind};
-use std::collections::HashMap;
 
-/// A hasher for the windows' keys (words of bits, many per key): multiply-rotate over 64-bit
-/// words, much faster than the default SipHash for keys the program builds itself (no
-/// adversarial input: the map compares whole keys on a collision).
-#[derive(Default, Clone, Copy)]
-pub(crate) struct WordHasher(u64);
-
-impl WordHasher {
-    const K: u64 = 0x9e37_79b9_7f4a_7c15;
-
-    fn mix(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(26) ^ x).wrapping_mul(Self::K);
-    }
-}
-
-impl std::hash::Hasher for WordHasher {
-    fn finish(&self) -> u64 {
-        self.0 ^ (self.0 >> 29)
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        let mut chunks = bytes.chunks_exact(8);
-        for c in &mut chunks {
-            self.mix(u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut w = [0u8; 8];
-            w[..rest.len()].copy_from_slice(rest);
-            self.mix(u64::from_le_bytes(w));
-        }
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.mix(x);
-    }
-
-    fn write_usize(&mut self, x: usize) {
-        self.mix(x as u64);
-    }
-}
-
-/// A map keyed by words with [`WordHasher`].
-pub(crate) type WordMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<WordHasher>>;
+/// A map keyed by words (the windows' keys).
+pub(crate) use loomkin_numeric::WordMap;
 
 /// Sub-intervals on which a derivative's sign changes are bracketed.
 const SCAN: usize = 16;

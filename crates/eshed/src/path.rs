@@ -3,10 +3,13 @@
 
 use crate::{FramePlan, MoveLaws, PlanSegment};
 use loomkin_laws::{Law, SegmentKind};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One frame's height over mid-stroke along its [`FramePlan`]: the numbers of the exact cycle
-/// ([`FramePlan::cycle`], [`FramePlan::levels`]), looked up by angle.
-#[derive(Debug, Clone)]
+/// ([`FramePlan::cycle`], [`FramePlan::levels`]), looked up by angle. The segment found last is
+/// tried first (the timing reads angles in order: a scan of a turn, the picks one after another),
+/// then its successor, then a binary search: the same segment, whichever finds it.
+#[derive(Debug)]
 pub struct FramePath {
     segments: Vec<PlanSegment>,
     /// Per segment: an identity of its shape (kind, length, base, stroke): equal shapes, equal ids.
@@ -16,6 +19,23 @@ pub struct FramePath {
     start_deg: f64,
     period_deg: f64,
     level0_m: f64,
+    /// The segment found last (a hint only: any value gives the same answers).
+    last: AtomicUsize,
+}
+
+impl Clone for FramePath {
+    fn clone(&self) -> Self {
+        Self {
+            segments: self.segments.clone(),
+            shapes: self.shapes.clone(),
+            rise: self.rise.clone(),
+            fall: self.fall.clone(),
+            start_deg: self.start_deg,
+            period_deg: self.period_deg,
+            level0_m: self.level0_m,
+            last: AtomicUsize::new(self.last.load(Ordering::Relaxed)),
+        }
+    }
 }
 
 /// Path keys round offsets to 2⁻³⁰ degree (as the bus's window keys do).
@@ -31,7 +51,7 @@ impl FramePath {
     /// The path of `plan` moving by `laws`.
     pub fn new(plan: &FramePlan, laws: &MoveLaws) -> Self {
         let segments = plan.levels();
-        let mut ids: std::collections::HashMap<[u64; 4], u64> = std::collections::HashMap::new();
+        let mut ids: loomkin_numeric::WordMap<[u64; 4], u64> = Default::default();
         let shapes = segments
             .iter()
             .map(|s| {
@@ -48,14 +68,35 @@ impl FramePath {
             start_deg: plan.start_deg,
             period_deg: plan.period_deg,
             level0_m: plan.start_level_m(),
+            last: AtomicUsize::new(0),
         }
     }
 
     /// The segment holding absolute angle `theta_deg` (wrapped into the repeat), and the angle
     /// moved into the plan's span `[start, start + period)`.
     fn locate(&self, theta_deg: f64) -> (usize, f64) {
-        let th = self.start_deg + (theta_deg - self.start_deg).rem_euclid(self.period_deg);
-        let j = self.segments.partition_point(|s| s.start_deg <= th).saturating_sub(1);
+        // `start + (θ − start) mod period`; without the remainder's call when θ − start already
+        // lies in [0, period) (the remainder is then that number itself, bit for bit).
+        let d = theta_deg - self.start_deg;
+        let th = if d >= 0.0 && d < self.period_deg {
+            self.start_deg + d
+        } else {
+            self.start_deg + d.rem_euclid(self.period_deg)
+        };
+        // The last segment starting at or before `th` (the first when none does).
+        let holds = |j: usize| {
+            self.segments.get(j).is_some_and(|s| s.start_deg <= th)
+                && self.segments.get(j + 1).is_none_or(|s| s.start_deg > th)
+        };
+        let hint = self.last.load(Ordering::Relaxed);
+        let j = if holds(hint) {
+            hint
+        } else if holds(hint + 1) {
+            hint + 1
+        } else {
+            self.segments.partition_point(|s| s.start_deg <= th).saturating_sub(1)
+        };
+        self.last.store(j, Ordering::Relaxed);
         (j, th)
     }
 

@@ -133,8 +133,8 @@ pub fn servo_study(loom: &Loom, pattern: &Pattern) -> Result<ServoReport> {
     servo_study_of(loom, pattern, &setups)
 }
 
-/// [`servo_study`] of given plans (the optimiser's).
-fn servo_study_of(loom: &Loom, pattern: &Pattern, setups: &[FrameSetup]) -> Result<ServoReport> {
+/// [`servo_study`] of given plans ([`servo_setups`], or the optimiser's).
+pub fn servo_study_of(loom: &Loom, pattern: &Pattern, setups: &[FrameSetup]) -> Result<ServoReport> {
     let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
     let mut r = loomkin_eshed::analyse(setups, &servo_laws(loom), &servo.bus, loom.speed.rpm(), servo.pass_through)?;
     r.clear_shed = Some(clear_shed(&servo_timing(loom, pattern, setups)?));

@@ -10,7 +10,6 @@
 //! evaluation pick by pick.
 
 use crate::{Motion, ShedMotion};
-use std::collections::HashMap;
 
 /// Picks grouped by the lifts of the window around each (see the module's text).
 #[derive(Debug, Clone)]
@@ -46,7 +45,7 @@ impl Turns {
 
     /// `picks` grouped by equal keys (`key(p, words)` appends pick `p`'s words).
     fn by_key(picks: usize, mut key_of: impl FnMut(usize, &mut Vec<u64>)) -> Self {
-        let mut classes: HashMap<Vec<u64>, usize> = HashMap::new();
+        let mut classes: loomkin_numeric::WordMap<Vec<u64>, usize> = Default::default();
         let (mut first, mut count) = (Vec::new(), Vec::new());
         let mut of = Vec::with_capacity(picks);
         let mut key = Vec::new();

@@ -11,6 +11,7 @@
 //! [`grid_roots`] / [`scan_roots`] (every root on an interval: sign changes of a grid, close pairs
 //! inside one grid interval included, each refined); and one search in several dimensions,
 //! [`compass_min`] (a compass search in a box under a constraint: the loom's stagger search).
+//! Besides, [`WordMap`]: the hash map the studies key their repeated turns by (keys of 64-bit words).
 //!
 //! **The stop rule holds at any magnitude.** No search stops on an absolute width such as
 //! `b − a ≤ 1e-10`: at an angle of 5·10⁵° the doubles are 1.2·10⁻¹⁰ apart, so such a bracket can
@@ -39,6 +40,7 @@ mod linear;
 mod root;
 mod roots;
 mod scan;
+mod words;
 
 pub use bisect::{MAX_HALVINGS, bisect, bisect_bracket, bisect_within, try_bisect_bracket, try_bisect_bracket_within};
 pub use brent::brent_max_from;
@@ -49,6 +51,7 @@ pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
 pub use root::{illinois_root, refine_root, refine_root_from, try_refine_root_from};
 pub use roots::{grid_roots, scan_roots};
 pub use scan::{periodic_scan_max, scan_max};
+pub use words::{WordHasher, WordMap};
 
 /// About `k` units in the last place of the larger of `|a|` and `|b|` (`k·ε·max(|a|, |b|)`, at
 /// least the smallest normal double): the narrowest bracket worth refining between `a` and `b`.
