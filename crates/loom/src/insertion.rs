@@ -185,15 +185,26 @@ pub(crate) fn field_error(field: &str, text: &str) -> LoomError {
     LoomError::field(field, reason)
 }
 
+/// Step of [`worst_pick_clearance`]'s samples, deg (at most: the span is cut into equal steps).
+pub const CLEARANCE_CURVE_STEP_DEG: f64 = 0.5;
+
+/// The clearance of the worst pick of `cl` (`cl.worst_pick`) while the carrier is in the shed:
+/// `(angle deg, clearance mm)` from the span's start to its end, both included, at most
+/// [`CLEARANCE_CURVE_STEP_DEG`] apart — what the carriers' plots and the workbench draw. The located
+/// least value (`cl.min_clearance_mm`) is at or below every sample.
+pub fn worst_pick_clearance(shed: &CarrierShed, cl: &Clearance) -> Vec<(f64, f64)> {
+    let [from, to] = cl.in_shed_deg;
+    let n = ((to - from) / CLEARANCE_CURVE_STEP_DEG).ceil().max(2.0) as usize;
+    (0..=n)
+        .map(|k| from + (to - from) * k as f64 / n as f64)
+        .map(|a| (a, shed.clearance_m(cl.worst_pick - 1, a) * 1e3))
+        .collect()
+}
+
 /// The clearance of the worst pick while the carrier is in the shed, its least value marked, with
 /// `bands` (the span in the shed first).
 pub(crate) fn clearance_panel(shed: &CarrierShed, cl: &Clearance, bands: Vec<XBand>) -> Panel {
-    let [from, to] = cl.in_shed_deg;
-    let n = ((to - from) / 0.5).ceil().max(2.0) as usize;
-    let worst: Vec<(f64, f64)> = (0..=n)
-        .map(|k| from + (to - from) * k as f64 / n as f64)
-        .map(|a| (a, shed.clearance_m(cl.worst_pick - 1, a) * 1e3))
-        .collect();
+    let worst = worst_pick_clearance(shed, cl);
     Panel::new(format!("clearance, pick {} [mm]", cl.worst_pick), vec![Series::line("clearance", worst)])
         .with_x_bands(bands)
         .with_rule(Rule::y(0.0, "touching").with_color(Rule::LIMIT))

@@ -17,6 +17,8 @@ pub const CAM_JS: &str = include_str!("../assets/cam.js");
 pub const LOOM_JS: &str = include_str!("../assets/loom.js");
 /// The drive view.
 pub const DRIVE_JS: &str = include_str!("../assets/drive.js");
+/// The insertion view.
+pub const INSERTION_JS: &str = include_str!("../assets/insertion.js");
 
 fn asset(body: &'static str, content_type: &'static str) -> Response {
     ([(header::CONTENT_TYPE, content_type), (header::CACHE_CONTROL, "no-cache")], body).into_response()
@@ -48,4 +50,8 @@ pub(crate) async fn loom() -> Response {
 
 pub(crate) async fn drive() -> Response {
     asset(DRIVE_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn insertion() -> Response {
+    asset(INSERTION_JS, "text/javascript; charset=utf-8")
 }

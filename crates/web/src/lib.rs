@@ -39,6 +39,7 @@ mod dobby_api;
 mod drive_api;
 mod dynamics_api;
 mod error;
+mod insertion_api;
 mod json;
 mod limits;
 mod loom_api;
@@ -51,7 +52,7 @@ mod servo_api;
 mod servo_design;
 mod shed_api;
 
-pub use assets::{APP_JS, CAM_JS, CHARTS_JS, DRIVE_JS, INDEX_HTML, LOOM_JS, STYLE_CSS};
+pub use assets::{APP_JS, CAM_JS, CHARTS_JS, DRIVE_JS, INDEX_HTML, INSERTION_JS, LOOM_JS, STYLE_CSS};
 pub use cam_api::{
     CAM_EXAMPLES, CamDesignRequest, CamDxfRequest, CamExamples, CamFile, CamLaw, CamProfileRequest, CamProfileResponse,
     CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, MIN_WEB_TOLERANCE, ShedSource,
@@ -74,6 +75,11 @@ pub use dynamics_api::{
     MIN_SWEEP_POINTS, SweepCurves, SweepRequest, respond as dynamics_response,
 };
 pub use error::{ApiError, check_count};
+pub use insertion_api::{
+    AirjetRequest, BudgetOverrides, BudgetRequest, CarrierCheck, CarrierRequest, ClearanceCurve, INSERTION_EXAMPLES,
+    InsertRequest, InsertResponse, TimingCurves as InsertTiming, TrackCurve, insert_airjet, insert_budget,
+    insert_evaluate, insert_projectile, insert_rapier,
+};
 pub use json::{ApiJson, parse_json, parse_toml};
 pub use limits::{
     DEFAULT_CAM_ROWS, DEFAULT_CYCLE_SAMPLES, DEFAULT_PICK_SAMPLES, DEFAULT_SAMPLES, MAX_BODY_BYTES, MAX_CAM_ROWS,
@@ -106,4 +112,5 @@ pub use shed_api::{
 };
 
 /// The views this build serves, in tab order.
-pub const VIEWS: &[&str] = &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom", "drive"];
+pub const VIEWS: &[&str] =
+    &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom", "drive", "insertion"];

@@ -18,6 +18,9 @@ use serde::{Deserialize, Serialize};
 pub const LOOM_EXAMPLES: &[(&str, &str)] = &[
     ("rapier-loom.toml", include_str!("../../../examples/rapier-loom.toml")),
     ("shuttle-loom.toml", include_str!("../../../examples/shuttle-loom.toml")),
+    ("projectile-loom.toml", include_str!("../../../examples/projectile-loom.toml")),
+    ("airjet-loom.toml", include_str!("../../../examples/airjet-loom.toml")),
+    ("servo-shedding-loom.toml", include_str!("../../../examples/servo-shedding-loom.toml")),
 ];
 
 /// The weave patterns the view offers (`examples/`): WIF drafts and a lift plan.

@@ -94,6 +94,16 @@ pub fn api_schema() -> ApiSchema {
         ("/api/loom/evaluate", post::<LoomRequest>(json!({}))),
         ("/api/loom/stagger", post::<StaggerRequest>(json!({}))),
         ("/api/drive/evaluate", post::<crate::DriveRequest>(json!({"sweep_points": 5}))),
+        (
+            "/api/insert/budget",
+            post::<crate::BudgetRequest>(
+                json!({"reed_width_mm": 1900, "carrier_length_mm": 100, "window_deg": 220, "speed_m_s": 20}),
+            ),
+        ),
+        ("/api/insert/rapier", post::<crate::CarrierRequest>(json!({}))),
+        ("/api/insert/projectile", post::<crate::CarrierRequest>(json!({}))),
+        ("/api/insert/airjet", post::<crate::AirjetRequest>(json!({}))),
+        ("/api/insert/evaluate", post::<crate::InsertRequest>(json!({}))),
     ]);
     ApiSchema { dialect: SCHEMA_DIALECT, routes }
 }

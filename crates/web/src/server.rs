@@ -31,6 +31,7 @@ pub fn router() -> Router {
         .merge(crate::cam_api::routes())
         .merge(crate::loom_api::routes())
         .merge(crate::drive_api::routes())
+        .merge(crate::insertion_api::routes())
         .merge(crate::schema::routes())
         .fallback(api_not_found);
     Router::new()
@@ -41,6 +42,7 @@ pub fn router() -> Router {
         .route("/cam.js", get(assets::cam))
         .route("/loom.js", get(assets::loom))
         .route("/drive.js", get(assets::drive))
+        .route("/insertion.js", get(assets::insertion))
         .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .nest("/api", api)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))

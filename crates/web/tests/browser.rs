@@ -272,7 +272,7 @@ const SETTLED: &str = "return window.loomkin && loomkin.ready && loomkin.evalCou
                        && document.querySelector('#peak-torque-0') !== null";
 
 /// The element each view shows once its first result is in.
-const VIEWS: [(&str, &str); 9] = [
+const VIEWS: [(&str, &str); 10] = [
     ("servo", "#peak-torque-0"),
     ("catalogue", "#catalogue-metrics tbody tr"),
     ("shed", "#shed-peak-jerk"),
@@ -282,6 +282,7 @@ const VIEWS: [(&str, &str); 9] = [
     ("cam", "#cam-max-pressure-angle"),
     ("loom", "#loom-peak-torque"),
     ("drive", "#shaft-ripple"),
+    ("insertion", "#insert-max-picks"),
 ];
 
 /// Replaces the page's file download by a recorder: `window.saved` gets name, type, size and
@@ -311,6 +312,19 @@ fn point_px(d: &Driver, i: usize) -> (i64, i64) {
 /// Waits for the evaluation after the state changed (`evalCount` past `evals`).
 fn settled_after(d: &Driver, what: &str, evals: i64) {
     d.wait_for(what, &format!("{SETTLED} && loomkin.evalCount > {evals}"));
+}
+
+/// Whether two JSON values hold the same numbers at the same places (the page writes 500 where
+/// the server wrote 500.0).
+fn same_numbers(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => x.as_f64() == y.as_f64(),
+        (Value::Array(x), Value::Array(y)) => x.len() == y.len() && x.iter().zip(y).all(|(p, q)| same_numbers(p, q)),
+        (Value::Object(x), Value::Object(y)) => {
+            x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| same_numbers(v, w)))
+        }
+        _ => a == b,
+    }
 }
 
 fn evals(d: &Driver) -> i64 {
@@ -1036,6 +1050,71 @@ fn the_workbench_in_a_real_browser() {
     );
     d.shot("drive");
     lap("drive view: figures, scrubber, play, flywheel slider");
+
+    // 13d. The insertion view (issue 30): the rapier loom weaving point-24, its figures the route's
+    // (`insert rapier --json`); the least clearance marked where the route locates it; the air-jet
+    // loom at another speed moves its tip's arrival on the chart; a reed width out of range is
+    // refused at its field with the library's range. Every wait is for the answer asserted on.
+    d.click("#tabs button[data-view='insertion']");
+    d.wait_for("the insertion view", "return document.querySelector('#insert-max-picks') !== null && loomkin.histories.insertion && loomkin.histories.insertion.isReady && !loomkin.busy");
+    d.script("const p = document.querySelector('#insert-pattern'); p.value = 'point-24.wif'; p.dispatchEvent(new Event('change')); return true");
+    let shown = d.wait_for(
+        "the rapier on point-24",
+        "const r = loomkin.insertView().result; return r && r.kind === 'rapier' && r.check.picks === 48 && !loomkin.busy \
+         ? document.querySelector('#insert-min-clearance').textContent : null",
+    );
+    let req = d.script("return loomkin.insertRequest()");
+    let route = json!({"loom_toml": req["loom_toml"], "pattern": req["pattern"]});
+    let api = common::request(server, "POST", "/api/insert/rapier", Some(route.to_string().as_bytes()))
+        .expect("rapier")
+        .json();
+    let view = d.script("return loomkin.insertView().result.check");
+    assert!(same_numbers(&view, &api), "the view's figures are insert rapier's: {view} vs {api}");
+    let least = api["min_clearance_mm"].as_f64().expect("least clearance");
+    assert!(first(shown.as_str().unwrap_or("").to_string()) - least < 1e-3, "{shown} vs {least}");
+    let marked = d.script("const s = loomkin.charts.insert_clearance.series[1]; return [s.x[0], s.y[0]]");
+    assert!(
+        same_numbers(&marked, &json!([api["worst_angle_deg"], api["min_clearance_mm"]])),
+        "the least clearance marked at {marked}"
+    );
+    d.shot("insertion-rapier");
+    // The air jet at 700 rpm against the file's 800: the flight takes the same time, so fewer degrees.
+    d.script("const l = document.querySelector('#insert-loom'); l.value = 'airjet-loom.toml'; l.dispatchEvent(new Event('change')); return true");
+    let at_file = d.wait_for(
+        "the air jet",
+        "const r = loomkin.insertView().result; return r && r.kind === 'airjet' && !loomkin.busy && !document.querySelector('#insert-relay').hidden \
+         ? r.check.arrival_deg : null",
+    );
+    d.type_into("#insert-speed", "700");
+    let at_700 = d.wait_for(
+        "the air jet at 700 rpm",
+        "const r = loomkin.insertView().result; const s = loomkin.charts.insert_track.series[0]; \
+         return r && r.speed_rpm === 700 && !loomkin.busy ? [r.check.arrival_deg, s.x[s.x.length - 1]] : null",
+    );
+    let route = json!({"loom_toml": d.script("return loomkin.insertRequest().loom_toml"), "speed_rpm": 700});
+    let api = common::request(server, "POST", "/api/insert/airjet", Some(route.to_string().as_bytes()))
+        .expect("airjet")
+        .json();
+    assert!(same_numbers(&at_700[0], &api["arrival_deg"]), "the arrival of insert airjet --speed-rpm 700: {at_700}");
+    let (a_file, a_700) = (at_file.as_f64().expect("deg"), at_700[1].as_f64().expect("deg"));
+    assert!(a_700 < a_file, "the tip's track did not move: {a_file}° at the file's speed, {a_700}° at 700 rpm");
+    assert!((a_700 - api["arrival_deg"].as_f64().expect("deg")).abs() < 1e-9, "the track ends at the arrival");
+    d.shot("insertion-airjet");
+    d.type_into("#insert-reed-width-mm", "0");
+    let msg = d.wait_for(
+        "the refused reed width",
+        "const f = document.querySelector('#insert-reed-width-mm'); const m = f.parentElement.querySelector('.field-msg'); \
+         return f.classList.contains('bad') && m && !loomkin.busy && document.querySelector('#status').textContent.startsWith('insertion: reed width') ? m.textContent : null",
+    );
+    let schema = common::request(server, "GET", "/api/schema", None).expect("schema").json();
+    let lo = common::schema_at(&schema["routes"]["/api/insert/evaluate"]["request"], "budget.reed_width_mm")["minimum"]
+        .as_f64()
+        .expect("minimum");
+    assert!(msg.as_str().is_some_and(|m| m.contains(&format!("allowed {lo} ≤ reed width"))), "{msg} (minimum {lo})");
+    d.shot("insertion-invalid");
+    d.ctrl("z");
+    d.wait_for("undo of the reed width", "return document.querySelector('#insert-reed-width-mm').value === '' && !document.querySelector('#insert-reed-width-mm').classList.contains('bad')");
+    lap("insertion view: rapier figures, least clearance, air jet speed, refused reed width");
 
     // 14. Dynamics: undo of the typed speed, the address, a refused stroke marked.
     d.click("#tabs button[data-view='dynamics']");

@@ -32,6 +32,7 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ("GET", "/cam.js", None),
         ("GET", "/loom.js", None),
         ("GET", "/drive.js", None),
+        ("GET", "/insertion.js", None),
         (
             "POST",
             "/api/laws/compare",

@@ -125,3 +125,76 @@ fn rapier_plots_and_refuses_a_shuttle() {
         &["--speed-rpm = 0 is out of range"],
     );
 }
+
+/// The workbench's routes `POST /api/insert/{budget,rapier,projectile,airjet}` answer what
+/// `loomkin insert … --json` prints, key for key and bit for bit, for the examples' rapier,
+/// projectile and air-jet looms (issue 30 item 6): both call the same library functions.
+#[test]
+fn the_workbench_routes_answer_the_cli_json() {
+    let text = |name: &str| std::fs::read_to_string(ex(name)).expect("example");
+    let wif = text("point-24.wif");
+    let pattern = loomkin_web::PatternSource { wif: Some(wif.clone()), lift_plan: None };
+    for (kind, file) in [("rapier", "rapier-loom.toml"), ("projectile", "projectile-loom.toml")] {
+        for speed in [None, Some(350.0)] {
+            let req =
+                loomkin_web::CarrierRequest { loom_toml: Some(text(file)), pattern: pattern.clone(), speed_rpm: speed };
+            let route = match kind {
+                "rapier" => serde_json::to_value(loomkin_web::insert_rapier(&req).expect("rapier")),
+                _ => serde_json::to_value(loomkin_web::insert_projectile(&req).expect("projectile")),
+            }
+            .expect("JSON");
+            let mut args =
+                vec!["insert".to_string(), kind.into(), ex(file), "--wif".into(), ex("point-24.wif"), "--json".into()];
+            if let Some(s) = speed {
+                args.extend(["--speed-rpm".into(), s.to_string()]);
+            }
+            let cli = stdout_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
+            assert_eq!(route, cli, "{kind} at {speed:?}");
+        }
+    }
+    let req = loomkin_web::AirjetRequest { loom_toml: Some(text("airjet-loom.toml")), speed_rpm: None };
+    let route = serde_json::to_value(loomkin_web::insert_airjet(&req).expect("airjet")).expect("JSON");
+    assert_eq!(route, stdout_json(&["insert", "airjet", &ex("airjet-loom.toml"), "--json"]));
+    // The budget: a file with the pattern's clear-shed window and a flag over it, and flags alone.
+    let req = loomkin_web::BudgetRequest {
+        loom_toml: Some(text("rapier-loom.toml")),
+        pattern: Some(pattern),
+        carrier_mass_g: Some(250.0),
+        ..Default::default()
+    };
+    let route = serde_json::to_value(loomkin_web::insert_budget(&req).expect("budget")).expect("JSON");
+    let cli = stdout_json(&[
+        "insert",
+        "budget",
+        &ex("rapier-loom.toml"),
+        "--wif",
+        &ex("point-24.wif"),
+        "--carrier-mass-g",
+        "250",
+        "--json",
+    ]);
+    assert_eq!(route["window_source"], "clear_shed");
+    assert_eq!(route, cli);
+    let req = loomkin_web::BudgetRequest {
+        reed_width_mm: Some(1150.0),
+        carrier_length_mm: Some(300.0),
+        window_deg: Some(135.0),
+        speed_m_s: Some(13.75),
+        ..Default::default()
+    };
+    let route = serde_json::to_value(loomkin_web::insert_budget(&req).expect("budget")).expect("JSON");
+    let cli = stdout_json(&[
+        "insert",
+        "budget",
+        "--reed-width-mm",
+        "1150",
+        "--carrier-length-mm",
+        "300",
+        "--window-deg",
+        "135",
+        "--speed-m-s",
+        "13.75",
+        "--json",
+    ]);
+    assert_eq!(route, cli);
+}
