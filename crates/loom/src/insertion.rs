@@ -3,6 +3,7 @@
 
 use crate::{InsertionKind, Loom, LoomError, Motion, Pattern, Result, Timing};
 use loomkin_insertion::{InsertionError, PickBudget, Rapier, RapierReport, WindowSource};
+use loomkin_numeric::{Max, WordMap};
 use loomkin_plot::{Figure, Note, Panel, Rule, Series, XBand, sig4};
 use loomkin_units::ShaftSpeed;
 use serde::Serialize;
@@ -107,68 +108,160 @@ impl<'a> CarrierShed<'a> {
     }
 }
 
-/// Grid step of the clearance's scan, deg: every local minimum of the grid is then refined by
-/// golden section ([`loomkin_numeric::scan_max`]).
+/// Grid step of the clearance's scan, deg: the local minima of the grid that could be the least
+/// are refined by golden section.
 const SCAN_STEP_DEG: f64 = 1.0;
 
 /// The least clearance of `path` in the shed over every pick of `pattern`.
 ///
-/// The clearance of pick `p` at angle φ depends on the frames' states in the picks whose moves
-/// reach into the carrier's span (the move nearest to each angle and the state before it), so
-/// picks with the same states there are computed once: a repeat of 10⁴ picks that repeats frame
-/// states costs its distinct states only. Per distinct state the clearance is scanned on a 1° grid
-/// and every local minimum refined by golden section; the span's ends are grid points.
+/// The clearance of pick `p` at angle φ is `x(φ)·(min_up y_i/d_i − max_down y_j/d_j) − h` (see
+/// `loomkin_loom::timing`): the carrier's front edge `x(φ)` is the same in every pick, and frame `i`'s
+/// slope `y_i/d_i` over the carrier's span depends only on what that frame does in the picks the
+/// span reads (the move nearest each angle and the state before it). So the scan's 1° grid is
+/// worked out once: the front edge once per angle, each frame's slopes once per distinct run of
+/// its states, and a pick's grid is the min/max of its frames' rows — computed once per distinct
+/// set of frame states (the picks that move alike). Every local minimum of the grids that could
+/// be the least ([`loomkin_numeric::GridPeak::reach`] against the best value found so far) is
+/// refined by golden section on the exact clearance; the span's ends are grid points.
 pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Result<Clearance> {
     let motion = Motion::new(loom, pattern)?;
     let shed = CarrierShed::new(loom, &motion, pattern)?;
     let (from, to) = path.in_shed_deg();
-    let picks = pattern.picks() as i64;
-    // The picks (relative) whose states any frame's position in [from, to] reads.
+    let picks = pattern.picks();
+    // The picks (relative) whose states any frame's position in [from, to] reads, and the pick
+    // itself (its sheets).
     let n = loom.frame_count();
     let rel = |a: f64, i: usize| ((a - motion.centre0_deg(i)) / 360.0).round() as i64;
-    let lo = (0..n).map(|i| rel(from, i)).min().unwrap_or(0) - 1;
-    let hi = (0..n).map(|i| rel(to, i)).max().unwrap_or(0);
-    // Each pick's frame states as bits (64 frames a word), read once; a pick's key is its
-    // neighbours' words from `lo` to `hi` (the same partition of the picks as reading every frame
-    // of every neighbour, at a word a neighbour).
-    let words = n.div_ceil(64);
-    let mut rows = vec![0u64; pattern.picks() * words];
-    for p in 0..pattern.picks() {
-        for i in 0..n {
-            if motion.is_up(i, p as i64) {
-                rows[p * words + i / 64] |= 1 << (i % 64);
+    let lo = ((0..n).map(|i| rel(from, i)).min().unwrap_or(0) - 1).min(0);
+    let hi = (0..n).map(|i| rel(to, i)).max().unwrap_or(0).max(0);
+    let span = (hi - lo + 1) as usize;
+    if span > 64 {
+        return Err(LoomError::field(
+            "insertion",
+            format!("the carrier is in the shed from {from}° to {to}°: more than 64 picks' turns"),
+        ));
+    }
+    let intervals = ((to - from) / SCAN_STEP_DEG).ceil().max(2.0) as usize;
+    let nodes = intervals + 1;
+    let angle = |j: usize| loomkin_numeric::grid_node(from, to, intervals, j);
+    let edge: Vec<f64> = (0..nodes).map(|j| shed.front_edge_m(angle(j))).collect();
+    // Rows of frame slopes (`nodes` each), one per frame and run of states, named by the run's
+    // bits (bit q: up at pick p + lo + q; a frame meets a few runs: a short list is searched).
+    let mut rows: Vec<f64> = Vec::new();
+    let mut runs: Vec<Vec<(u64, u32)>> = vec![Vec::new(); n];
+    let mut state = vec![0u32; n];
+    let mut states: WordMap<Vec<u32>, usize> = WordMap::default();
+    // Per distinct state: its first pick, and its grid's local minima that may be refined.
+    let mut firsts: Vec<usize> = Vec::new();
+    let mut peaks: Vec<(usize, usize, f64, [f64; 3])> = Vec::new();
+    let mut best = Max { at: from, value: f64::NEG_INFINITY };
+    // Per state, its largest −clearance found and where.
+    let mut found: Vec<Max> = Vec::new();
+    let (mut up_min, mut down_max, mut w) = (vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]);
+    let h = loom.insertion.carrier_height_m;
+    // Each frame's run of states at pick p: bit q is its state at pick p + lo + q, shifted in
+    // pick by pick.
+    let up = |i: usize, q: i64| motion.is_up(i, q);
+    let mut bits: Vec<u64> =
+        (0..n).map(|i| (0..span - 1).filter(|&q| up(i, lo + q as i64)).fold(0u64, |b, q| b | 1 << q)).collect();
+    for p in 0..picks {
+        for (i, slot) in state.iter_mut().enumerate() {
+            let newest = (p as i64 + hi).rem_euclid(picks as i64);
+            if p > 0 {
+                bits[i] >>= 1;
+            }
+            bits[i] |= u64::from(up(i, newest)) << (span - 1);
+            let run = bits[i];
+            *slot = match runs[i].iter().find(|r| r.0 == run) {
+                Some(r) => r.1,
+                None => {
+                    let id = (rows.len() / nodes) as u32;
+                    let (base, d) = (360.0 * p as f64, loom.geometry.frame_m[i]);
+                    rows.extend((0..nodes).map(|j| motion.frame(i, base + angle(j)).y_m / d));
+                    runs[i].push((run, id));
+                    id
+                }
+            };
+        }
+        if states.contains_key(&state) {
+            continue;
+        }
+        let s = firsts.len();
+        states.insert(state.clone(), s);
+        firsts.push(p);
+        found.push(Max { at: from, value: f64::NEG_INFINITY });
+        // −clearance on the grid, as `Timing::clear_m` works it out: x·(lo_up − hi_down) − h.
+        up_min.fill(f64::INFINITY);
+        down_max.fill(f64::NEG_INFINITY);
+        for (i, &id) in state.iter().enumerate() {
+            let row = &rows[id as usize * nodes..][..nodes];
+            if pattern.is_up(p, i) {
+                up_min.iter_mut().zip(row).for_each(|(m, &y)| *m = m.min(y));
+            } else {
+                down_max.iter_mut().zip(row).for_each(|(m, &y)| *m = m.max(y));
+            }
+        }
+        for j in 0..nodes {
+            let clear = if up_min[j].is_finite() && down_max[j].is_finite() {
+                edge[j] * (up_min[j] - down_max[j])
+            } else {
+                0.0
+            };
+            w[j] = -(clear - h);
+        }
+        for peak in loomkin_numeric::grid_peaks(&w) {
+            let j = peak.index;
+            offer(&mut found[s], &mut best, w[j], angle(j));
+            if peak.reach >= best.value - TIE_M {
+                let c = j.clamp(1, intervals - 1) - 1;
+                peaks.push((s, j, peak.reach, [w[c], w[c + 1], w[c + 2]]));
             }
         }
     }
-    let key = |p: i64| -> Vec<u64> {
-        (lo..=hi)
-            .flat_map(|q| {
-                let r = (p + q).rem_euclid(picks) as usize * words;
-                rows[r..r + words].iter().copied()
-            })
-            .collect()
-    };
-    let intervals = ((to - from) / SCAN_STEP_DEG).ceil().max(2.0) as usize;
-    let mut seen: std::collections::HashMap<Vec<u64>, (f64, f64)> = std::collections::HashMap::new();
-    let mut worst = (f64::INFINITY, 0usize, from);
-    for p in 0..picks {
-        let (value, at) = *seen.entry(key(p)).or_insert_with(|| {
-            let m = loomkin_numeric::scan_max(from, to, intervals, |t| -shed.clearance_m(p as usize, t));
-            (-m.value, m.at)
-        });
-        if value < worst.0 {
-            worst = (value, p as usize, at);
+    // Refine, in the order of the picks, the minima that may still beat the best found. Picks of
+    // different states often meet the same minimum (the same frames set the sheets' ends there):
+    // brackets whose three nearest grid values are the same are the same parabola at the grid's
+    // scale — what the reach already assumes — and are searched once.
+    let mut searched: WordMap<[u64; 4], Max> = WordMap::default();
+    for &(s, j, reach, near) in &peaks {
+        if reach < best.value - TIE_M {
+            continue;
         }
+        let p = firsts[s];
+        let (a, b) = (angle(j.saturating_sub(1)), angle((j + 1).min(intervals)));
+        let key = [j as u64, near[0].to_bits(), near[1].to_bits(), near[2].to_bits()];
+        let m = *searched.entry(key).or_insert_with(|| {
+            let value = near[j + 1 - j.clamp(1, intervals - 1)];
+            loomkin_numeric::golden_max_from(|t| -shed.clearance_m(p, t), a, b, (angle(j), value))
+        });
+        offer(&mut found[s], &mut best, m.value, m.at);
     }
-    let (value, pick, at) = worst;
+    // The first pick whose least clearance is the least to within TIE_M (picks alike up to
+    // rounding are one answer, the first).
+    let s = found.iter().position(|m| m.value >= best.value - TIE_M).unwrap_or(0);
+    let (pick, at) = (firsts[s], found[s].at);
     Ok(Clearance {
-        min_clearance_mm: value * 1e3,
+        min_clearance_mm: shed.clearance_m(pick, at) * 1e3,
         worst_pick: pick + 1,
         worst_angle_deg: at,
         worst_position_mm: path.position_m(at) * 1e3,
         in_shed_deg: [from, to],
-        distinct_states: seen.len(),
+        distinct_states: firsts.len(),
     })
+}
+
+/// Clearances of two picks closer than this are the same, m: the rounding of a pick's absolute
+/// angle (360° times the pick) moves the clearance by ~10⁻¹⁶ m at 10⁴ picks.
+const TIE_M: f64 = 1e-12;
+
+/// Keeps `value` at `at` if it beats a state's best found so far, and the overall best.
+fn offer(state: &mut Max, best: &mut Max, value: f64, at: f64) {
+    if value > state.value {
+        *state = Max { at, value };
+    }
+    if value > best.value {
+        *best = Max { at, value };
+    }
 }
 
 /// A carrier's error (rapier, projectile, air jet) as a loom error (the field kept).

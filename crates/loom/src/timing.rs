@@ -100,8 +100,9 @@ pub struct TimingReport {
 pub struct Timing<'a, M: ShedMotion + ?Sized = Motion> {
     loom: &'a Loom,
     motion: &'a M,
-    /// `upper[p][i]`: frame `i` in the upper sheet at pick `p`.
-    upper: Vec<Vec<bool>>,
+    /// `upper[p·n + i]`: frame `i` in the upper sheet at pick `p` (`n` frames; one allocation
+    /// however long the repeat).
+    upper: Vec<bool>,
     delta: f64,
     x_c: f64,
 }
@@ -118,8 +119,7 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
                 format!("the motion moves {} frames, the loom has {n}", motion.frame_count()),
             ));
         }
-        let upper: Vec<Vec<bool>> =
-            (0..pattern.picks()).map(|p| (0..n).map(|i| pattern.is_up(p, i)).collect()).collect();
+        let upper: Vec<bool> = (0..pattern.picks()).flat_map(|p| (0..n).map(move |i| pattern.is_up(p, i))).collect();
         let x_c = loom.geometry.reed_m - loom.insertion.carrier_width_m;
         Ok(Self { loom, motion, upper, delta: crossing_offset_deg(loom.shedding.crossing_deg), x_c })
     }
@@ -146,7 +146,8 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
         for (i, yi) in y.iter_mut().enumerate() {
             *yi = self.motion.frame_y_m(i, theta_deg);
         }
-        self.loom.geometry.clear_height(x, y, &self.upper[pick % self.upper.len()]).unwrap_or(0.0)
+        let row = pick % (self.upper.len() / n) * n;
+        self.loom.geometry.clear_height(x, y, &self.upper[row..row + n]).unwrap_or(0.0)
     }
 
     /// The clearance to the carrier at angle `angle_deg` of pick `pick`'s turn, m.

@@ -108,3 +108,72 @@ fn the_state_cache_is_exact() {
         assert!(-m.value * 1e3 >= c.min_clearance_mm - 1e-9);
     }
 }
+
+/// A repeat whose picks are drawn at random (no state repeats, so the shared rows, the reach's
+/// pruning and the searches shared by equal brackets carry the result): the least clearance is
+/// that of each pick scanned alone and refined everywhere (`scan_max`, the direct route), and the
+/// worst pick is the first pick that reaches it. The rapier's least is at its entry (a grid end),
+/// the projectile's at its flight's end; a carrier in the shed around the crossing (a stand-in path)
+/// meets its least between grid points (refined).
+#[test]
+fn a_random_repeat_against_each_pick_scanned_alone() {
+    let projectile = Loom::from_toml(&example("projectile-loom.toml")).unwrap();
+    let path = loomkin_loom::insertion_air::projectile_of(&projectile).unwrap().path(projectile.speed);
+    let rapier = rapier();
+    against_each_pick_alone(&rapier, the_rapier(&rapier));
+    against_each_pick_alone(&projectile, &path);
+    against_each_pick_alone(&rapier, &Span(-20.0, 60.0));
+    against_each_pick_alone(&projectile, &Span(300.0, 380.0));
+}
+
+fn against_each_pick_alone(loom: &Loom, path: &impl CarrierPath) {
+    let (from, to) = path.in_shed_deg();
+    for seed in [1u64, 7, 42] {
+        let pat = random_plan(seed, 120, loom.frame_count());
+        let c = clearance(loom, &pat, path).unwrap();
+        let motion = Motion::new(loom, &pat).unwrap();
+        let shed = CarrierShed::new(loom, &motion, &pat).unwrap();
+        let n = (to - from).ceil() as usize;
+        let per_pick: Vec<f64> = (0..pat.picks())
+            .map(|p| -loomkin_numeric::scan_max(from, to, n, |t| -shed.clearance_m(p, t)).value * 1e3)
+            .collect();
+        let least = per_pick.iter().copied().fold(f64::INFINITY, f64::min);
+        let case = format!("{from}..{to}° seed {seed}");
+        assert!((c.min_clearance_mm - least).abs() < 1e-9, "{case}: {} vs {least}", c.min_clearance_mm);
+        let first = per_pick.iter().position(|&v| v < least + 1e-9).unwrap();
+        assert_eq!(c.worst_pick, first + 1, "{case}: {c:?}");
+        assert_eq!(c.distinct_states, pat.picks(), "{case}: random picks share no state");
+    }
+}
+
+/// A carrier in the shed from one angle to another, at the entering selvedge.
+struct Span(f64, f64);
+
+impl CarrierPath for Span {
+    fn in_shed_deg(&self) -> (f64, f64) {
+        (self.0, self.1)
+    }
+
+    fn position_m(&self, _: f64) -> f64 {
+        0.0
+    }
+}
+
+/// `picks` picks on `frames` shafts, each up or down at random (an LCG from `seed`; at least one
+/// shaft up).
+fn random_plan(seed: u64, picks: usize, frames: usize) -> Pattern {
+    let mut state = seed;
+    let plan: Vec<String> = (0..picks)
+        .map(|_| {
+            let up: Vec<String> = (1..=frames)
+                .filter(|_| {
+                    state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+                    state >> 63 == 1
+                })
+                .map(|s| s.to_string())
+                .collect();
+            if up.is_empty() { "1".to_string() } else { up.join(" ") }
+        })
+        .collect();
+    Pattern::from_lift_plan(&plan.join("\n")).unwrap()
+}

@@ -13,22 +13,56 @@ use crate::{Max, golden_max, golden_max_from};
 /// maximum, and each search costs dozens of evaluations.
 pub fn scan_max(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> Max {
     let n = n.max(2);
-    let x = |j: usize| if j == n { hi } else { lo + (hi - lo) * j as f64 / n as f64 };
+    let x = |j: usize| grid_node(lo, hi, n, j);
     let v: Vec<f64> = (0..=n).map(|j| f(x(j))).collect();
     let mut best = Max { at: lo, value: f64::NEG_INFINITY };
-    for j in 0..=n {
-        let left = if j > 0 { v[j - 1] } else { f64::NEG_INFINITY };
-        let right = if j < n { v[j + 1] } else { f64::NEG_INFINITY };
-        let on_plateau = j > 0 && v[j] == left;
-        if v[j] >= left && v[j] >= right && !on_plateau {
-            let (a, b) = (x(j.saturating_sub(1)), x((j + 1).min(n)));
-            let m = golden_max_from(&f, a, b, (x(j), v[j]));
-            if m.value > best.value {
-                best = m;
-            }
+    for peak in grid_peaks(&v) {
+        let j = peak.index;
+        let (a, b) = (x(j.saturating_sub(1)), x((j + 1).min(n)));
+        let m = golden_max_from(&f, a, b, (x(j), v[j]));
+        if m.value > best.value {
+            best = m;
         }
     }
     best
+}
+
+/// Node `j` of the grid of `n` equal intervals on `[lo, hi]` that [`scan_max`] samples: the last
+/// node is `hi` itself.
+pub fn grid_node(lo: f64, hi: f64, n: usize, j: usize) -> f64 {
+    if j == n { hi } else { lo + (hi - lo) * j as f64 / n as f64 }
+}
+
+/// A local maximum of a grid's values ([`grid_peaks`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridPeak {
+    /// Its node.
+    pub index: usize,
+    /// How high the function may rise between its neighbours: through three points a parabola's
+    /// vertex exceeds the middle value `b` by at most `(b − min(a, c))/8`; the reach allows four
+    /// times that, `b + (b − min(a, c))/2`, for functions that are not parabolas at the grid's
+    /// scale (at an end, the one neighbour stands for both). A peak whose reach is below a value
+    /// already found need not be refined.
+    pub reach: f64,
+}
+
+/// The local maxima of a grid's values (the ends included, against their one neighbour) that
+/// [`scan_max`] refines, in order: a plateau of equal values counts once, at its first node.
+pub fn grid_peaks(v: &[f64]) -> impl Iterator<Item = GridPeak> + '_ {
+    (0..v.len()).filter_map(move |j| {
+        let left = if j > 0 { v[j - 1] } else { f64::NEG_INFINITY };
+        let right = v.get(j + 1).copied().unwrap_or(f64::NEG_INFINITY);
+        let on_plateau = j > 0 && v[j] == left;
+        (v[j] >= left && v[j] >= right && !on_plateau).then(|| {
+            let low = match (j > 0, j + 1 < v.len()) {
+                (true, true) => left.min(right),
+                (true, false) => left,
+                (false, true) => right,
+                (false, false) => v[j],
+            };
+            GridPeak { index: j, reach: v[j] + 0.5 * (v[j] - low) }
+        })
+    })
 }
 
 /// How many of a periodic grid's local maxima [`periodic_scan_max`] refines at most.
@@ -75,7 +109,7 @@ pub fn periodic_scan_max(
                 top = b;
                 cands.retain(|e| e.2 >= top);
             }
-            let reach = b + 0.5 * (b - a.min(c));
+            let reach = b + 0.5 * (b - a.min(c)); // as GridPeak::reach, across the period's end
             let outranked = cands.iter().filter(|e| e.1.total_cmp(&b).is_ge() && e.2 >= reach).count();
             if reach >= top && outranked < PERIODIC_CANDIDATES {
                 let at = cands.iter().position(|e| e.1.total_cmp(&b).is_lt()).unwrap_or(cands.len());
