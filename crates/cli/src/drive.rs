@@ -191,12 +191,8 @@ fn run_inertia(a: InertiaArgs) -> Result<()> {
     let motion = Motion::new(&loom, &pattern)?;
     let shaft = LoomShaft::new(&loom, &motion, &pattern);
     if a.format.csv {
-        let cols = shaft.inertia_columns(a.step_deg)?;
-        let mut t = Csv::new(cols.iter().map(|(name, _)| name.clone()));
-        for k in 0..cols[0].1.len() {
-            t.push(cols.iter().map(|(_, c)| c[k]).collect())?;
-        }
-        return output::csv(&t);
+        // Row by row: a long repeat's table is never held whole.
+        return output::csv_rows(&shaft.inertia_header(), true, shaft.inertia_rows(a.step_deg)?);
     }
     let r = shaft.report(a.step_deg)?;
     if a.format.json {

@@ -50,7 +50,7 @@ pub use golden::{GOLDEN_REL, Max, golden_max, golden_max_from, try_golden_max};
 pub use linear::{solve_cyclic_tridiagonal, solve_tridiagonal};
 pub use root::{illinois_root, refine_root, refine_root_from, try_refine_root_from};
 pub use roots::{grid_roots, scan_roots};
-pub use scan::{GridPeak, grid_node, grid_peaks, periodic_scan_max, scan_max};
+pub use scan::{GridPeak, PeriodicScan, grid_node, grid_peaks, periodic_scan_max, scan_max};
 pub use words::{WordHasher, WordMap};
 
 /// About `k` units in the last place of the larger of `|a|` and `|b|` (`k·ε·max(|a|, |b|)`, at

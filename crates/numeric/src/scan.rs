@@ -65,6 +65,9 @@ pub fn grid_peaks(v: &[f64]) -> impl Iterator<Item = GridPeak> + '_ {
     })
 }
 
+/// The block [`PeriodicScan::extend_from_slice`] passes over at once when it cannot hold a candidate.
+const SKIP_BLOCK: usize = 32;
+
 /// How many of a periodic grid's local maxima [`periodic_scan_max`] refines at most.
 const PERIODIC_CANDIDATES: usize = 4;
 
@@ -91,57 +94,143 @@ pub fn periodic_scan_max(
     f: impl Fn(f64) -> f64,
 ) -> Max {
     assert!(n >= 2, "a periodic grid needs two intervals");
-    // One pass over the grid (a long grid is read once): the running best local maximum `top`
-    // and the local maxima that may yet be refined, in the order of a stable sort by value
-    // (highest first, ties by index). A peak whose reach falls below the running top never could
-    // (the top only rises); one with PERIODIC_CANDIDATES peaks ranked above it that reach at least
-    // as far never will be among the first PERIODIC_CANDIDATES (whenever it reaches the final top,
-    // so do they). So the list stays short even where a flat stretch makes every point a peak, and the
-    // candidates are those of collecting every peak, sorting, keeping those that reach the top and
-    // taking the first PERIODIC_CANDIDATES.
-    let mut top = f64::NEG_INFINITY;
-    let mut cands: Vec<(usize, f64, f64)> = Vec::new();
-    let (mut a, mut b) = (value(n - 1), value(0));
-    for k in 0..n {
-        let c = value(if k + 1 == n { 0 } else { k + 1 });
-        if b >= a && b >= c {
-            if b.total_cmp(&top).is_gt() {
-                top = b;
-                cands.retain(|e| e.2 >= top);
+    let mut scan = PeriodicScan::new(value(n - 1), value(0));
+    scan.extend((1..n).map(&value));
+    scan.finish(n, node, f)
+}
+
+/// [`periodic_scan_max`] fed its grid's values in order, a stretch at a time, so that a long grid
+/// need never be held whole (`loomkin drive inertia` over a 10⁴-pick repeat): give the last and
+/// the first value to [`PeriodicScan::new`], then `value(1)`, `value(2)`, … `value(n − 1)` to
+/// [`PeriodicScan::extend`] (in as many calls as suits), then [`PeriodicScan::finish`]. The
+/// result is [`periodic_scan_max`]'s, bit for bit (that function is this one).
+#[derive(Debug, Clone)]
+pub struct PeriodicScan {
+    /// The running best local maximum.
+    top: f64,
+    /// `(index, value, reach)` of the local maxima that may yet be refined, highest value first.
+    cands: Vec<(usize, f64, f64)>,
+    /// The two latest values, `b` at index `k`.
+    a: f64,
+    b: f64,
+    k: usize,
+    first: f64,
+}
+
+impl PeriodicScan {
+    /// A scan of a periodic grid whose last value (index `n − 1`) is `last` and first (index 0) is
+    /// `first`.
+    pub fn new(last: f64, first: f64) -> Self {
+        Self { top: f64::NEG_INFINITY, cands: Vec::new(), a: last, b: first, k: 0, first }
+    }
+
+    /// The grid's next values, in order from index 1.
+    #[inline]
+    pub fn extend(&mut self, values: impl IntoIterator<Item = f64>) {
+        // One pass over the grid (a long grid is read once): the running best local maximum `top`
+        // and the local maxima that may yet be refined, in the order of a stable sort by value
+        // (highest first, ties by index). A peak whose reach falls below the running top never could
+        // (the top only rises); one with PERIODIC_CANDIDATES peaks ranked above it that reach at least
+        // as far never will be among the first PERIODIC_CANDIDATES (whenever it reaches the final top,
+        // so do they). So the list stays short even where a flat stretch makes every point a peak, and the
+        // candidates are those of collecting every peak, sorting, keeping those that reach the top and
+        // taking the first PERIODIC_CANDIDATES.
+        let (mut a, mut b, mut k) = (self.a, self.b, self.k);
+        for c in values {
+            if b >= a && b >= c {
+                self.peak(k, a, b, c);
             }
-            let reach = b + 0.5 * (b - a.min(c)); // as GridPeak::reach, across the period's end
-            let outranked = cands.iter().filter(|e| e.1.total_cmp(&b).is_ge() && e.2 >= reach).count();
-            if reach >= top && outranked < PERIODIC_CANDIDATES {
-                let at = cands.iter().position(|e| e.1.total_cmp(&b).is_lt()).unwrap_or(cands.len());
-                cands.insert(at, (k, b, reach));
-                if cands.len() > 4 * PERIODIC_CANDIDATES {
-                    let keep: Vec<bool> = (0..cands.len())
-                        .map(|i| cands[..i].iter().filter(|e| e.2 >= cands[i].2).count() < PERIODIC_CANDIDATES)
-                        .collect();
-                    let mut i = 0;
-                    cands.retain(|_| {
-                        i += 1;
-                        keep[i - 1]
-                    });
+            (a, b) = (b, c);
+            k += 1;
+        }
+        (self.a, self.b, self.k) = (a, b, k);
+    }
+
+    /// [`PeriodicScan::extend`] from a slice, passing over a block of it at once where no point of
+    /// the block could be a candidate: every reach `b + (b − min(a, c))/2` is at most
+    /// `M + (M − m)/2` (`M`, `m` the block's extremes with its two neighbours before; rounding is
+    /// monotone), and one below the running top changes nothing. The scan's result is
+    /// [`PeriodicScan::extend`]'s.
+    pub fn extend_from_slice(&mut self, values: &[f64]) {
+        for block in values.chunks(SKIP_BLOCK) {
+            // Extremes in four independent lanes (a chain of comparisons is the loop's latency).
+            let (mut hi, mut lo) = ([self.a.max(self.b); 4], [self.a.min(self.b); 4]);
+            let quads = block.chunks_exact(4);
+            for &v in quads.remainder() {
+                hi[0] = if v > hi[0] { v } else { hi[0] };
+                lo[0] = if v < lo[0] { v } else { lo[0] };
+            }
+            for q in quads {
+                for l in 0..4 {
+                    hi[l] = if q[l] > hi[l] { q[l] } else { hi[l] };
+                    lo[l] = if q[l] < lo[l] { q[l] } else { lo[l] };
                 }
             }
-        }
-        (a, b) = (b, c);
-    }
-    let idx: Vec<usize> = cands.iter().filter(|e| e.2 >= top).take(PERIODIC_CANDIDATES).map(|e| e.0).collect();
-    let period = node(n);
-    let mut best = Max { at: node(0), value: f64::NEG_INFINITY };
-    for k in idx {
-        if value(k) > best.value {
-            best = Max { at: node(k), value: value(k) };
-        }
-        let a = if k == 0 { node(n - 1) - period } else { node(k - 1) };
-        let m = golden_max(&f, a, node(k + 1));
-        if m.value > best.value {
-            best = Max { at: m.at.rem_euclid(period), value: m.value };
+            let big = hi.iter().fold(hi[0], |m, &v| if v > m { v } else { m });
+            let small = lo.iter().fold(lo[0], |m, &v| if v < m { v } else { m });
+            if big + 0.5 * (big - small) < self.top {
+                self.a = if block.len() >= 2 { block[block.len() - 2] } else { self.b };
+                self.b = block[block.len() - 1];
+                self.k += block.len();
+            } else {
+                self.extend(block.iter().copied());
+            }
         }
     }
-    best
+
+    /// Grid point `k` of value `b` between `a` and `c` is a local maximum.
+    #[cold]
+    fn peak(&mut self, k: usize, a: f64, b: f64, c: f64) {
+        let cands = &mut self.cands;
+        if b.total_cmp(&self.top).is_gt() {
+            self.top = b;
+            cands.retain(|e| e.2 >= b);
+        }
+        let top = self.top;
+        let reach = b + 0.5 * (b - a.min(c)); // as GridPeak::reach, across the period's end
+        let outranked = cands.iter().filter(|e| e.1.total_cmp(&b).is_ge() && e.2 >= reach).count();
+        if reach >= top && outranked < PERIODIC_CANDIDATES {
+            let at = cands.iter().position(|e| e.1.total_cmp(&b).is_lt()).unwrap_or(cands.len());
+            cands.insert(at, (k, b, reach));
+            if cands.len() > 4 * PERIODIC_CANDIDATES {
+                let keep: Vec<bool> = (0..cands.len())
+                    .map(|i| cands[..i].iter().filter(|e| e.2 >= cands[i].2).count() < PERIODIC_CANDIDATES)
+                    .collect();
+                let mut i = 0;
+                cands.retain(|_| {
+                    i += 1;
+                    keep[i - 1]
+                });
+            }
+        }
+    }
+
+    /// The maximum of `f` over the period: the candidates refined by golden-section search on the
+    /// grid of `n` intervals (`n − 1` values were given after the first; `node` as
+    /// [`periodic_scan_max`]'s).
+    ///
+    /// # Panics
+    /// When `n < 2` or the values given do not number `n − 1`.
+    pub fn finish(mut self, n: usize, node: impl Fn(usize) -> f64, f: impl Fn(f64) -> f64) -> Max {
+        assert!(n >= 2, "a periodic grid needs two intervals");
+        assert_eq!(self.k + 1, n, "a periodic scan of {n} intervals takes {} values after the first", n - 1);
+        let first = self.first;
+        self.extend(std::iter::once(first));
+        let top = self.top;
+        let period = node(n);
+        let mut best = Max { at: node(0), value: f64::NEG_INFINITY };
+        for &(k, v, _) in self.cands.iter().filter(|e| e.2 >= top).take(PERIODIC_CANDIDATES) {
+            if v > best.value {
+                best = Max { at: node(k), value: v };
+            }
+            let a = if k == 0 { node(n - 1) - period } else { node(k - 1) };
+            let m = golden_max(&f, a, node(k + 1));
+            if m.value > best.value {
+                best = Max { at: m.at.rem_euclid(period), value: m.value };
+            }
+        }
+        best
+    }
 }
 
 #[cfg(test)]
@@ -266,6 +355,39 @@ mod one_pass {
             for grid in [v.iter().map(|x| f64::from(*x)).collect::<Vec<f64>>(), w] {
                 prop_assert_eq!(candidates_one_pass(&grid), candidates_by_sorting(&grid), "{:?}", grid);
             }
+        }
+
+        /// The scan fed its grid in pieces (as a long grid is streamed) is the scan fed it whole.
+        #[test]
+        fn pieces_give_the_whole_grids_maximum(v in prop::collection::vec(0u8..4, 3..200), cuts in prop::collection::vec(1usize..40, 1..20), wave in 0.0f64..20.0) {
+            // Levels on a wave: with a wave, whole stretches lie below the top and are passed over.
+            let grid: Vec<f64> = v.iter().enumerate().map(|(k, x)| f64::from(*x) + wave * (k as f64 * 0.2).sin()).collect();
+            let n = grid.len();
+            // Every probe of the refinements recorded: the same candidates, searched in the same order.
+            let probes = std::cell::RefCell::new(Vec::new());
+            let f = |x: f64| {
+                probes.borrow_mut().push(x.to_bits());
+                grid[(x.round() as usize) % n] + 0.01 * (x - x.round())
+            };
+            let whole = periodic_scan_max(n, |k| k as f64, |k| grid[k], f);
+            let whole_probes = probes.replace(Vec::new());
+            let mut scan = PeriodicScan::new(grid[n - 1], grid[0]);
+            let mut at = 1;
+            for (i, c) in cuts.iter().cycle().enumerate() {
+                let to = (at + c).min(n);
+                if i % 2 == 0 {
+                    scan.extend_from_slice(&grid[at..to]);
+                } else {
+                    scan.extend(grid[at..to].iter().copied());
+                }
+                at = to;
+                if at == n {
+                    break;
+                }
+            }
+            let pieces = scan.finish(n, |k| k as f64, f);
+            prop_assert_eq!(whole_probes, probes.into_inner());
+            prop_assert_eq!((whole.at.to_bits(), whole.value.to_bits()), (pieces.at.to_bits(), pieces.value.to_bits()));
         }
     }
 }
