@@ -35,10 +35,11 @@
 //! located by [`loomkin_numeric::scan_max`] (a grid's peaks refined by golden section) and the
 //! meeting by [`loomkin_numeric::refine_root`], not read off a grid.
 
+use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
 use loomkin_drive::fourbar::{Breaks, CrankRocker};
-use loomkin_laws::{Cycle, CycleSpec, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
+use loomkin_laws::{Cycle, CycleSpec, LawError, LawSpec, SegmentKind, SegmentSpec, StrokeUnit};
 use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::{Deserialize, Serialize};
 
@@ -95,6 +96,10 @@ pub struct DriveTable {
     /// The servo law's name (the law catalogue, `loomkin law list`).
     #[serde(default)]
     pub law: Option<String>,
+    /// The servo law's parameters, e.g. `{ ramp = 0.2 }` for `modified-trapezoid` (as a cycle
+    /// file's segment takes them; `loomkin law list`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub params: BTreeMap<String, toml::Value>,
     /// The servo law's motion out (and back), deg.
     #[serde(default)]
     pub motion_deg: Option<f64>,
@@ -258,8 +263,12 @@ impl HeadDrive {
             ("inner_dead_centre", t.inner_dead_centre.is_some()),
             ("assembly", t.assembly.is_some()),
         ];
-        let servo_keys =
-            [("law", t.law.is_some()), ("motion_deg", t.motion_deg.is_some()), ("stroke_mm", t.stroke_mm.is_some())];
+        let servo_keys = [
+            ("law", t.law.is_some()),
+            ("params", !t.params.is_empty()),
+            ("motion_deg", t.motion_deg.is_some()),
+            ("stroke_mm", t.stroke_mm.is_some()),
+        ];
         match t.drive.trim() {
             "crank" => {
                 unused(&[("cycle", t.cycle.is_some())])?;
@@ -331,8 +340,10 @@ impl HeadDrive {
                 unused(&[("cycle", t.cycle.is_some())])?;
                 let law =
                     t.law.as_deref().ok_or_else(|| RapierError::field(name("law"), "the servo drive needs law"))?;
-                let spec = LawSpec::parse::<&str, &str>(law, &[])
-                    .map_err(|e| RapierError::Law { field: name("law"), reason: e.to_string() })?;
+                let spec = LawSpec::parse_table(law, &t.params).map_err(|e| RapierError::Law {
+                    field: name(if matches!(e, LawError::UnknownLaw { .. }) { "law" } else { "params" }),
+                    reason: e.to_string(),
+                })?;
                 let m = DriveTable::MOTION_DEG.check_as(&name("motion_deg"), need("motion_deg", t.motion_deg)?)?;
                 let stroke = DriveTable::STROKE_MM.check_as(&name("stroke_mm"), need("stroke_mm", t.stroke_mm)?)?;
                 let inner = DriveTable::INNER_DEG.check_as(&name("inner_deg"), t.inner_deg.unwrap_or(180.0))?;

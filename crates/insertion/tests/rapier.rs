@@ -133,6 +133,48 @@ fn servo_law_reaches_its_stroke_at_the_inner_angle() {
     assert!((rep.peak_head_acceleration_m_s2 / a - 1.0).abs() < 1e-9, "{} vs {a}", rep.peak_head_acceleration_m_s2);
 }
 
+/// A servo law with parameters (`params`, as a cycle file's segment takes them): the head's peak
+/// speed and acceleration are the law's own characteristic values (`Law::metrics`, built directly
+/// from the catalogue) scaled by the stroke, the motion angle and the speed, for two ramps.
+#[test]
+fn servo_law_takes_its_parameters() {
+    let w = ShaftSpeed::from_rpm(400.0).unwrap().rad_per_s();
+    let phi = 120f64.to_radians();
+    let mut peaks = Vec::new();
+    for ramp in [0.125, 0.2] {
+        let servo = format!(
+            "drive = \"servo\"\nlaw = \"modified-trapezoid\"\nparams = {{ ramp = {ramp} }}\nmotion_deg = 120\n\
+             stroke_mm = 1100\nouter_mm = 150\ninner_deg = 190\n"
+        );
+        let rep = rapier(&servo, &servo, 1.9).unwrap().report(ShaftSpeed::from_rpm(400.0).unwrap()).unwrap();
+        let law =
+            loomkin_laws::LawSpec::parse("modified-trapezoid", &[("ramp", ramp.to_string())]).unwrap().build().unwrap();
+        let m = law.metrics();
+        assert!((rep.peak_head_speed_m_s / (m.cv * 1.1 / phi * w) - 1.0).abs() < 1e-9, "ramp {ramp}");
+        let a = m.ca * 1.1 / (phi * phi) * w * w;
+        assert!(
+            (rep.peak_head_acceleration_m_s2 / a - 1.0).abs() < 1e-9,
+            "ramp {ramp}: {} vs {a}",
+            rep.peak_head_acceleration_m_s2
+        );
+        peaks.push(rep.peak_head_acceleration_m_s2);
+    }
+    assert!((peaks[0] - peaks[1]).abs() > 1.0, "the ramp changes the law: {peaks:?}");
+    // A parameter the law does not take, or out of its range, is refused at `params`.
+    let bad = "drive = \"servo\"\nlaw = \"cycloidal\"\nparams = { ramp = 0.2 }\nmotion_deg = 120\nstroke_mm = 1100\n";
+    let e = rapier(bad, bad, 1.9).unwrap_err();
+    assert!(e.starts_with("insertion.rapier.bringer.params: "), "{e}");
+    let bad =
+        "drive = \"servo\"\nlaw = \"modified-trapezoid\"\nparams = { ramp = 2 }\nmotion_deg = 120\nstroke_mm = 1100\n";
+    let e = rapier(bad, bad, 1.9).unwrap_err();
+    assert!(e.starts_with("insertion.rapier.bringer.params: ") && e.contains("ramp"), "{e}");
+    let e =
+        rapier("drive = \"servo\"\nlaw = \"trapezoid\"\nmotion_deg = 120\nstroke_mm = 1100\n", bad, 1.9).unwrap_err();
+    assert!(e.starts_with("insertion.rapier.bringer.law: "), "{e}");
+    let e = rapier(&format!("{}params = {{ ramp = 0.2 }}\n", crank(180.0)), &crank(180.0), 1.9).unwrap_err();
+    assert_eq!(e, "insertion.rapier.bringer.params: does not go with drive = \"crank\"");
+}
+
 /// Equal reversing points and equal drives: the heads mirror each other, the tips meet in the
 /// middle of the reed, close at twice one head's speed, and stand still together at the transfer.
 #[test]

@@ -210,6 +210,16 @@ impl LawSpec {
         }
     }
 
+    /// [`LawSpec::parse`] with the parameters as a TOML table, as loom and cycle files write them
+    /// (`params = { ramp = 0.1 }`: numbers or text).
+    pub fn parse_table(name: &str, params: &std::collections::BTreeMap<String, toml::Value>) -> Result<Self> {
+        let params: Vec<(&str, String)> = params
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str().map_or_else(|| v.to_string(), str::to_string)))
+            .collect();
+        LawSpec::parse(name, &params)
+    }
+
     /// Looks a law up by name and applies `key=value` parameters.
     pub fn parse<K: AsRef<str>, V: AsRef<str>>(name: &str, params: &[(K, V)]) -> Result<Self> {
         let mut spec = match name.trim() {

@@ -326,12 +326,7 @@ impl Cycle {
                     None
                 }
                 _ => {
-                    let params: Vec<(String, String)> = s
-                        .params
-                        .iter()
-                        .map(|(k, v)| (k.clone(), v.as_str().map_or_else(|| v.to_string(), str::to_string)))
-                        .collect();
-                    let spec_law = LawSpec::parse(s.law.as_deref().unwrap_or("cycloidal"), &params)
+                    let spec_law = LawSpec::parse_table(s.law.as_deref().unwrap_or("cycloidal"), &s.params)
                         .map_err(|e| LawError::Cycle { field: f("law"), reason: e.to_string() })?;
                     let built =
                         spec_law.build().map_err(|e| LawError::Cycle { field: f("law"), reason: e.to_string() })?;
