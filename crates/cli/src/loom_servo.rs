@@ -45,6 +45,17 @@ pub struct ServoArgs {
     /// What `--optimize` minimises (the names of `loom stagger --objective`).
     #[arg(long, value_enum, default_value = "peak", requires = "optimize")]
     objective: ObjectiveArg,
+    #[arg(
+        long,
+        value_name = "MM",
+        requires = "optimize",
+        default_value_t = loomkin_loom::StaggerOptions::MIN_CLEARANCE_MM.default_value(),
+        help = crate::util::field_help(
+            "Least clearance to the carrier that --optimize keeps in every pick from entry to exit (the design's own when it keeps less), mm",
+            &loomkin_loom::StaggerOptions::MIN_CLEARANCE_MM
+        )
+    )]
+    min_clearance_mm: f64,
 }
 
 /// What `--optimize` minimises.
@@ -69,14 +80,18 @@ impl From<ObjectiveArg> for loomkin_loom::Objective {
 pub fn run(a: ServoArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let spacing = table_spacing(&a)?;
+    let options = loomkin_loom::ServoOptions {
+        objective: a.objective.into(),
+        min_clearance_mm: loomkin_loom::StaggerOptions::MIN_CLEARANCE_MM
+            .check_as("--min-clearance-mm", a.min_clearance_mm)?,
+    };
     let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
     let optimum = if a.optimize {
         let bar = crate::util::Progress::new(0, "servo search");
-        let o =
-            loomkin_loom::optimise_servo(&loom, &pattern, a.objective.into(), &Default::default(), &|done, all| {
-                bar.set_length(all as u64);
-                bar.set(done as u64);
-            })?;
+        let o = loomkin_loom::optimise_servo_with(&loom, &pattern, &options, &Default::default(), &|done, all| {
+            bar.set_length(all as u64);
+            bar.set(done as u64);
+        })?;
         bar.finish();
         Some(o)
     } else {
@@ -106,7 +121,14 @@ pub fn run(a: ServoArgs) -> Result<()> {
             loomkin_loom::Objective::Peak => "the peak bus power",
             loomkin_loom::Objective::Rms => "the worst frame's RMS torque",
         };
-        outln!("optimised for {what} ({} evaluations, {} clearance checks):", o.evaluations, o.clearance_checks)?;
+        outln!(
+            "optimised for {what} ({} evaluations, {} clearance checks; {} moving frames, {} picks standing for the repeat's {}):",
+            o.evaluations,
+            o.clearance_checks,
+            o.frames_searched,
+            o.picks_searched,
+            o.report.picks
+        )?;
         outln!(
             "  peak bus power {:.1} W -> {:.1} W; worst RMS torque {:.3} -> {:.3} N·m",
             o.peak_bus_power_w_before,
@@ -115,11 +137,12 @@ pub fn run(a: ServoArgs) -> Result<()> {
             o.worst_rms_torque_n_m_after
         )?;
         outln!(
-            "  clear-shed window {:.2}° -> {:.2}°; least clearance {:.2} -> {:.2} mm",
+            "  clear-shed window {:.2}° -> {:.2}°; least clearance {:.2} -> {:.2} mm (kept at least {} mm)",
             o.window_deg_before,
             o.window_deg_after,
             o.min_clearance_mm_before,
-            o.min_clearance_mm_after
+            o.min_clearance_mm_after,
+            loomkin_units::compact(o.min_clearance_kept_mm)
         )?;
         let list = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(", ");
         outln!("  stagger [deg], front frame first: {}", list(&o.stagger_deg))?;

@@ -124,6 +124,7 @@ const NEEDS: &[(&str, &[&str], &str)] = &[
     ("dyn compensate", &["--force-n", "--preload-n", "--return-spring-n-m"], "--mass-kg 1"),
     ("dyn optimize", &["--force-n", "--preload-n", "--return-spring-n-m"], "--mass-kg 1"),
     ("loom servo", &["--tolerance"], "--emit-tables {out}"),
+    ("loom servo", &["--min-clearance-mm"], "--optimize"),
     ("shed table", &["--motion-deg"], "--design grid --step 0.25"),
     ("drive ripple", &["--servo-gain-n-m-s", "--servo-integral-s", "--servo-torque-limit-n-m"], SERVO),
     ("drive correct", &["--servo-gain-n-m-s", "--servo-integral-s", "--servo-torque-limit-n-m"], SERVO),

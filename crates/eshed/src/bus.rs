@@ -175,7 +175,17 @@ fn take_max(best: &mut (f64, f64), v: f64, at: f64) {
 /// `scan_only` only the peak of the bus power is worked out, and only on the scan (16 points
 /// between every two joints, no root finding): a lower bound of the exact peak, what a search
 /// compares (the energies and the frames' peaks are then left at zero).
-pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64, scan_only: bool) -> BusTotals {
+///
+/// `only`: the picks to visit (increasing), every pick of the repeat when `None` (the totals are
+/// then those of the listed picks' turns alone: what a search over representative picks compares).
+pub(crate) fn bus(
+    frames: &[Timeline<'_>],
+    picks: usize,
+    only: Option<&[usize]>,
+    eta_r: f64,
+    omega: f64,
+    scan_only: bool,
+) -> BusTotals {
     let n = frames.len();
     let mut cursor = vec![0usize; n];
     let mut memo: WordMap<Vec<u64>, WindowValues> = WordMap::default();
@@ -197,7 +207,15 @@ pub(crate) fn bus(frames: &[Timeline<'_>], picks: usize, eta_r: f64, omega: f64,
     let mut items: Vec<Vec<(Piece, f64, f64)>> = vec![Vec::new(); n];
     let mut key = Vec::new();
     let mut ranges = vec![(0usize, 0usize); n];
-    for p in 0..picks {
+    let every: Vec<usize>;
+    let order = match only {
+        Some(o) => o,
+        None => {
+            every = (0..picks).collect();
+            &every
+        }
+    };
+    for &p in order {
         let (w0, w1) = (360.0 * p as f64, 360.0 * (p + 1) as f64);
         key.clear();
         for (i, f) in frames.iter().enumerate() {
@@ -279,7 +297,9 @@ fn window(
     };
     let rule = loomkin_laws::gauss_legendre(8);
     let mut active: Vec<Option<Piece>> = vec![None; n];
-    let mut pts: Vec<DrivePoint> = vec![DrivePoint::default(); n];
+    let mut vals: Vec<DrivePoint> = vec![DrivePoint::default(); (SCAN + 1) * n];
+    let mut scratch: Vec<DrivePoint> = vec![DrivePoint::default(); n];
+    let mut zeros: Vec<f64> = Vec::new();
     let mut still: Vec<DrivePoint> = vec![DrivePoint::default(); n];
     let mut movers: Vec<usize> = Vec::with_capacity(n);
     for c in cuts.windows(2) {
@@ -314,25 +334,24 @@ fn window(
         };
         // Scan.
         let h = (v - u) / SCAN as f64;
-        let grid: Vec<f64> = (0..=SCAN).map(|k| if k == SCAN { v } else { u + k as f64 * h }).collect();
-        let mut vals: Vec<Vec<DrivePoint>> = Vec::with_capacity(SCAN + 1);
-        for &th in &grid {
-            eval_all(th, &mut pts);
-            vals.push(pts.clone());
+        let grid: [f64; SCAN + 1] = std::array::from_fn(|k| if k == SCAN { v } else { u + k as f64 * h });
+        // `vals[k * n + i]`: frame `i` at grid point `k` (one buffer for the window).
+        for (k, &th) in grid.iter().enumerate() {
+            eval_all(th, &mut vals[k * n..(k + 1) * n]);
         }
-        let nets: Vec<(f64, f64)> = vals.iter().map(|p| net(p)).collect();
+        let nets: [(f64, f64); SCAN + 1] = std::array::from_fn(|k| net(&vals[k * n..(k + 1) * n]));
         for k in 0..=SCAN {
             take_max(&mut out.peak, nets[k].0, grid[k] - w0);
             take_max(&mut out.trough, -nets[k].0, grid[k] - w0);
             for i in 0..n {
-                take_max(&mut out.frame_peak[i], vals[k][i].power_w.abs(), grid[k] - w0);
+                take_max(&mut out.frame_peak[i], vals[k * n + i].power_w.abs(), grid[k] - w0);
             }
         }
         if scan_only {
             continue;
         }
-        let mut zeros = vec![u, v];
-        let mut scratch = vec![DrivePoint::default(); n];
+        zeros.clear();
+        zeros.extend([u, v]);
         for k in 0..SCAN {
             let (a, b) = (grid[k], grid[k + 1]);
             // Bus maxima and minima: sign changes of the derivative.
@@ -361,7 +380,7 @@ fn window(
                 if pc.lseg.is_none() {
                     continue;
                 }
-                let (p0, p1) = (vals[k][i], vals[k + 1][i]);
+                let (p0, p1) = (vals[k * n + i], vals[(k + 1) * n + i]);
                 // Largest |P_i|: sign changes of d(P²)/dt = 2·P·P'.
                 let (s0, s1) = (p0.power_w * p0.power_rate, p1.power_w * p1.power_rate);
                 if s0 > 0.0 && s1 < 0.0 {

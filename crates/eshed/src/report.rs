@@ -151,12 +151,17 @@ impl Study {
 
     /// The bus over the repeat (`scan_only`: see [`peak_bus_power_w`]).
     fn bus(&self, bus_spec: &Bus, scan_only: bool) -> crate::BusTotals {
+        self.bus_at(bus_spec, None, scan_only)
+    }
+
+    /// The bus over the turns of the picks `only` (increasing), or of every pick.
+    fn bus_at(&self, bus_spec: &Bus, only: Option<&[usize]>, scan_only: bool) -> crate::BusTotals {
         let mut types = crate::bus::WordMap::default();
         let lines: Vec<Timeline<'_>> = (0..self.cycles.len())
             .map(|i| Timeline::new(&self.cycles[i], &self.segments[i], &self.drives[i], &mut types))
             .collect();
         let picks = (self.cycles[0].period_rad.to_degrees() / 360.0).round() as usize;
-        bus(&lines, picks, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
+        bus(&lines, picks, only, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
     }
 }
 
@@ -257,6 +262,24 @@ pub fn peak_bus_power_w(
         return Err(EshedError::field("frames", "no frames"));
     }
     Ok(Study::new(frames, laws, speed_rpm)?.bus(bus_spec, scan_only).peak_w.0)
+}
+
+/// The largest bus power of the scan ([`peak_bus_power_w`] with `scan_only`) over the turns of the
+/// picks `picks` alone (increasing, each in `0..picks of the repeat`), W: what a search compares
+/// when one pick stands for every pick whose turn is the same.
+pub fn peak_bus_power_w_at(
+    frames: &[FrameSetup],
+    laws: &MoveLaws,
+    bus_spec: &Bus,
+    speed_rpm: f64,
+    picks: &[usize],
+) -> Result<f64> {
+    let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
+    let repeat = (first.plan.period_deg / 360.0).round() as usize;
+    if picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= repeat) {
+        return Err(EshedError::field("picks", format!("picks must increase within the repeat of {repeat}")));
+    }
+    Ok(Study::new(frames, laws, speed_rpm)?.bus_at(bus_spec, Some(picks), true).peak_w.0)
 }
 
 /// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the

@@ -6,7 +6,7 @@ use crate::stagger::{SEARCH_STEP_DEG, STEPS};
 /// The servo optimiser's compass steps, deg: 16° and 8° before `loom stagger`'s, as a motion angle
 /// may move across most of its range (a search from 280° to 360° in 4° steps takes twenty sweeps).
 const SERVO_STEPS: [f64; 7] = [16.0, 8.0, STEPS[0], STEPS[1], STEPS[2], STEPS[3], STEPS[4]];
-use crate::{Loom, LoomError, Motion, Objective, Pattern, Result, ShedMotion, Timing, TimingReport};
+use crate::{Loom, LoomError, Motion, Objective, Pattern, Result, ShedMotion, StaggerOptions, Timing, TimingReport};
 use loomkin_eshed::{ClearShed, FrameInput, FrameLoad, FramePath, FramePlan, FrameSetup, MoveLaws, ServoReport};
 use loomkin_units::StopFlag;
 use serde::Serialize;
@@ -215,6 +215,31 @@ pub fn servo_figure_of(loom: &Loom, setups: &[FrameSetup], report: &ServoReport)
     Ok(fig)
 }
 
+/// What the servo optimiser minimises and the least clearance it keeps (`loom servo --optimize
+/// --objective … --min-clearance-mm …`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ServoOptions {
+    /// What to minimise.
+    pub objective: Objective,
+    /// The least clearance to the carrier every pick must keep from entry to exit, mm: the bound
+    /// of `loom stagger`'s ([`StaggerOptions::MIN_CLEARANCE_MM`], 0 … 1000 mm, 0 when left out).
+    /// When the loom file's own design keeps less, the search keeps the design's (never worse).
+    pub min_clearance_mm: f64,
+}
+
+impl ServoOptions {
+    /// Minimise `objective` keeping the default least clearance.
+    pub fn new(objective: Objective) -> Self {
+        Self { objective, min_clearance_mm: StaggerOptions::MIN_CLEARANCE_MM.default_value() }
+    }
+
+    /// Checks the least clearance against its range.
+    pub fn validate(&self) -> Result<()> {
+        StaggerOptions::MIN_CLEARANCE_MM.check(self.min_clearance_mm)?;
+        Ok(())
+    }
+}
+
 /// The servo-shedding optimum (`loomkin loom servo --optimize`): every frame's stagger and motion
 /// angle, what it gains against the loom file's design and what it costs in window and clearance,
 /// and the study of the optimised plans.
@@ -238,13 +263,20 @@ pub struct ServoOptimum {
     pub min_clearance_mm_before: f64,
     /// The same, the optimum, mm.
     pub min_clearance_mm_after: f64,
-    /// The least clearance the search kept (on its grid), mm: 0, or the design's own when it is
-    /// below 0 (the search never makes it worse).
+    /// The least clearance the search kept (on its grid), mm: `min_clearance_mm` (0 unless asked),
+    /// or the design's own when it is below that (the search never makes it worse).
     pub min_clearance_kept_mm: f64,
     /// Every frame's stagger of the optimum (its move centre less the crossing), front first, deg.
     pub stagger_deg: Vec<f64>,
     /// Every frame's motion angle of the optimum, front first, deg.
     pub motion_deg: Vec<f64>,
+    /// Frames the search moved (the others never change place in the pattern: their stagger and
+    /// motion angle are left as the loom file gives them).
+    pub frames_searched: usize,
+    /// Picks whose turns the search evaluated, one for every class of picks that the frames see
+    /// alike under any stagger and motion angle (all picks when the classes, each with the picks
+    /// around it, would be as many).
+    pub picks_searched: usize,
     /// Objective evaluations made by the search.
     pub evaluations: usize,
     /// Clearance checks made by the search.
@@ -267,6 +299,8 @@ struct ServoSearch<'a> {
     delta: f64,
     /// The least clearance to keep, m.
     need_m: f64,
+    /// The short pattern the search evaluates, and its picks that stand for the repeat's.
+    reduced: Reduced,
     evaluations: usize,
     clearance_checks: usize,
     stop: &'a StopFlag,
@@ -275,23 +309,33 @@ struct ServoSearch<'a> {
 }
 
 impl ServoSearch<'_> {
-    /// The plans of `x` = every frame's stagger, then every frame's motion angle.
-    fn setups(&self, x: &[f64]) -> Result<Vec<FrameSetup>> {
+    /// The plans of `x` = every frame's stagger, then every frame's motion angle, weaving `pattern`.
+    fn setups_of(&self, pattern: &Pattern, x: &[f64]) -> Result<Vec<FrameSetup>> {
         let (stagger, motion) = x.split_at(self.frames);
         let centre: Vec<f64> = stagger.iter().map(|s| self.delta + s).collect();
-        servo_setups(self.loom, self.pattern, Some(motion), Some(&centre))
+        servo_setups(self.loom, pattern, Some(motion), Some(&centre))
+    }
+
+    /// The plans of `x` over the loom's pattern.
+    fn setups(&self, x: &[f64]) -> Result<Vec<FrameSetup>> {
+        self.setups_of(self.pattern, x)
     }
 
     fn objective(&mut self, x: &[f64]) -> Result<f64> {
         self.stop.check()?;
         self.evaluations += 1;
-        let setups = self.setups(x)?;
         let laws = servo_laws(self.loom);
         let servo = self.loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
         let speed = self.loom.speed.rpm();
         Ok(match self.objective {
-            Objective::Peak => loomkin_eshed::peak_bus_power_w(&setups, &laws, &servo.bus, speed, true)?,
-            Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&setups, &laws, speed)?,
+            Objective::Peak if self.reduced.whole => {
+                loomkin_eshed::peak_bus_power_w(&self.setups(x)?, &laws, &servo.bus, speed, true)?
+            }
+            Objective::Peak => {
+                let setups = self.setups_of(&self.reduced.pattern, x)?;
+                loomkin_eshed::peak_bus_power_w_at(&setups, &laws, &servo.bus, speed, &self.reduced.picks)?
+            }
+            Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, &laws, speed)?,
         })
     }
 
@@ -299,10 +343,108 @@ impl ServoSearch<'_> {
     fn clearance(&mut self, x: &[f64]) -> Result<f64> {
         self.stop.check()?;
         self.clearance_checks += 1;
-        let setups = self.setups(x)?;
+        let setups = self.setups_of(&self.reduced.pattern, x)?;
         let motion = ServoMotion::new(&setups, &servo_laws(self.loom));
-        Ok(Timing::new(self.loom, &motion, self.pattern)?.min_clearance_coarse(SEARCH_STEP_DEG))
+        let timing = Timing::new(self.loom, &motion, &self.reduced.pattern)?;
+        Ok(if self.reduced.whole {
+            timing.min_clearance_coarse(SEARCH_STEP_DEG)
+        } else {
+            timing.min_clearance_coarse_at(SEARCH_STEP_DEG, &self.reduced.picks)
+        })
     }
+}
+
+/// A short pattern whose picks `picks` stand for every pick of a loom's pattern in the servo
+/// optimiser: what the frames do over a pick's turn (the bus window, the insertion) depends only on
+/// the lifts of the picks around it, so picks whose neighbourhoods agree see the same turn (shifted
+/// by whole turns) whatever the staggers and motion angles.
+#[derive(Debug, Clone)]
+pub struct Reduced {
+    /// The short pattern: for each class, its neighbourhood of lift rows, the first and the last
+    /// row once more around it (so no move between two neighbourhoods runs into either).
+    pub pattern: Pattern,
+    /// Its picks standing for the classes (increasing).
+    pub picks: Vec<usize>,
+    /// No reduction: the loom's pattern and all its picks.
+    pub whole: bool,
+}
+
+impl Reduced {
+    /// No reduction: `pattern` itself, every pick.
+    pub fn whole(pattern: &Pattern) -> Self {
+        Self { pattern: pattern.clone(), picks: (0..pattern.picks()).collect(), whole: true }
+    }
+}
+
+/// The [`Reduced`] pattern of `loom` weaving `pattern` for staggers within
+/// `±shedding.max_stagger_deg` and any motion angle; the pattern itself and all its picks when
+/// the neighbourhoods would not be shorter.
+///
+/// **Why it holds.** A move into pick `q` centred on `360q + c` (c the crossing offset plus the
+/// stagger) lies within `[360q + c − 360°, 360q + c + 360°]`: without pass-through it is `φ ≤ 360°`
+/// long about the centre; laid end to end in a run of `k + 1` changes, the `j`-th starts
+/// `j(360° − φ)/(k + 1) < 360° − φ` before `360q + c − φ/2` and is at most 360° long. So the turn
+/// `[360p + s₀, 360p + s₁]` (the bus window `[0, 360°]`, the insertion, the crossing's turn) meets
+/// only moves into picks `p + q_lo … p + q_hi`, which the lifts of picks `p + q_lo − 1 … p + q_hi`
+/// decide. With pass-through a move's length depends on its whole run, so a neighbourhood grows
+/// until no frame's run crosses its ends; when that reaches the whole repeat (a frame changing on
+/// every pick) there is no reduction. The first and last rows repeated around a neighbourhood stop
+/// the moves between neighbourhoods from joining its runs. Tested: the search's objective and
+/// clearance equal the whole pattern's.
+pub fn reduced_pattern(loom: &Loom, pattern: &Pattern) -> Result<Reduced> {
+    let picks = pattern.picks();
+    let whole = || Reduced::whole(pattern);
+    let n = loom.frame_count();
+    let pass_through = loom.shedding.servo.as_ref().is_some_and(|s| s.pass_through);
+    let delta = crate::crossing_offset_deg(loom.shedding.crossing_deg);
+    let m = loom.shedding.max_stagger_deg;
+    let ins = &loom.insertion;
+    let s0 = 0f64.min(ins.entry_deg).min(ins.exit_deg).min(delta);
+    let s1 = 360f64.max(ins.entry_deg).max(ins.exit_deg).max(delta + 360.0);
+    let q_lo = ((s0 - (delta + m) - 360.0) / 360.0).floor() as i64;
+    let q_hi = ((s1 - (delta - m) + 360.0) / 360.0).ceil() as i64;
+    let at = |p: i64| p.rem_euclid(picks as i64) as usize;
+    let change = |i: usize, p: i64| pattern.is_up(at(p), i) != pattern.is_up(at(p - 1), i);
+    // Some frame's run of changes goes on from pick `p` to `p + 1`.
+    let straddles = |p: i64| pass_through && (0..n).any(|i| change(i, p) && change(i, p + 1));
+    let mut classes: loomkin_numeric::WordMap<Vec<u64>, ()> = Default::default();
+    let (mut rows, mut centres) = (Vec::new(), Vec::new());
+    let mut key = Vec::new();
+    for p in 0..picks as i64 {
+        let (mut lo, mut hi) = (p + q_lo - 1, p + q_hi);
+        while straddles(lo) && hi - lo < picks as i64 {
+            lo -= 1;
+        }
+        while straddles(hi) && hi - lo < picks as i64 {
+            hi += 1;
+        }
+        if hi - lo + 3 > picks as i64 {
+            return Ok(whole());
+        }
+        key.clear();
+        key.extend([(lo - p) as u64, (hi - p) as u64]);
+        for q in lo..=hi {
+            let mut word = 0u64;
+            for i in 0..n {
+                if i % 64 == 0 && i > 0 {
+                    key.push(word);
+                    word = 0;
+                }
+                word |= u64::from(pattern.is_up(at(q), i)) << (i % 64);
+            }
+            key.push(word);
+        }
+        if classes.insert(key.clone(), ()).is_none() {
+            rows.push(pattern.rows()[at(lo)].clone());
+            centres.push(rows.len() + (p - lo) as usize);
+            rows.extend((lo..=hi).map(|q| pattern.rows()[at(q)].clone()));
+            rows.push(pattern.rows()[at(hi)].clone());
+            if rows.len() >= picks {
+                return Ok(whole());
+            }
+        }
+    }
+    Ok(Reduced { pattern: Pattern::new(pattern.shafts(), rows)?, picks: centres, whole: false })
 }
 
 /// The per-frame stagger and motion angle of `loom` weaving `pattern` that minimise `objective`
@@ -321,6 +463,36 @@ pub fn optimise_servo(
     stop: &StopFlag,
     progress: &dyn Fn(usize, usize),
 ) -> Result<ServoOptimum> {
+    optimise_servo_with(loom, pattern, &ServoOptions::new(objective), stop, progress)
+}
+
+/// [`optimise_servo`] keeping at least `options.min_clearance_mm` of clearance (or the design's
+/// own when it keeps less). The search leaves out the frames that never change place, and
+/// evaluates one pick for every class of picks that see the same turn ([`reduced_pattern`]; the
+/// peak objective and the clearance, the RMS objective over the whole repeat); the optimum is then
+/// worked out exactly over the whole repeat.
+pub fn optimise_servo_with(
+    loom: &Loom,
+    pattern: &Pattern,
+    options: &ServoOptions,
+    stop: &StopFlag,
+    progress: &dyn Fn(usize, usize),
+) -> Result<ServoOptimum> {
+    optimise(loom, pattern, options, true, stop, progress)
+}
+
+/// [`optimise_servo_with`]; `reduce`: the search on the [`reduced_pattern`] (otherwise on the
+/// whole repeat: what the tests compare it with).
+fn optimise(
+    loom: &Loom,
+    pattern: &Pattern,
+    options: &ServoOptions,
+    reduce: bool,
+    stop: &StopFlag,
+    progress: &dyn Fn(usize, usize),
+) -> Result<ServoOptimum> {
+    options.validate()?;
+    let objective = options.objective;
     let before = servo_study(loom, pattern)?;
     let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
     let motion = Motion::new(loom, pattern)?;
@@ -334,8 +506,20 @@ pub fn optimise_servo(
         loomkin_units::Bound::Unbounded => default,
     };
     let (phi_lo, phi_hi) = (bound(loomkin_shed::MOTION_DEG.lo, 1.0), bound(loomkin_shed::MOTION_DEG.hi, 360.0));
-    let lo: Vec<f64> = (0..2 * n).map(|j| if j < n { -m } else { phi_lo }).collect();
-    let hi: Vec<f64> = (0..2 * n).map(|j| if j < n { m } else { phi_hi }).collect();
+    // The variables: the stagger and motion angle of every frame that changes place somewhere.
+    let moving: Vec<usize> = (0..n)
+        .filter(|&i| (0..pattern.picks()).any(|p| motion.is_up(i, p as i64) != motion.is_up(i, p as i64 - 1)))
+        .collect();
+    let vars: Vec<usize> = moving.iter().copied().chain(moving.iter().map(|i| n + i)).collect();
+    let lo: Vec<f64> = vars.iter().map(|&j| if j < n { -m } else { phi_lo }).collect();
+    let hi: Vec<f64> = vars.iter().map(|&j| if j < n { m } else { phi_hi }).collect();
+    let full = |x0: &[f64], y: &[f64]| {
+        let mut x = x0.to_vec();
+        for (k, &j) in vars.iter().enumerate() {
+            x[j] = y[k];
+        }
+        x
+    };
     let mut s = ServoSearch {
         loom,
         pattern,
@@ -343,28 +527,33 @@ pub fn optimise_servo(
         frames: n,
         delta,
         need_m: 0.0,
+        reduced: if reduce { reduced_pattern(loom, pattern)? } else { Reduced::whole(pattern) },
         evaluations: 0,
         clearance_checks: 0,
         stop,
         progress,
         stages: (0, SERVO_STEPS.len()),
     };
-    s.need_m = s.clearance(&x0)?.min(0.0);
+    let (design, floor) = (s.clearance(&x0)?, options.min_clearance_mm * 1e-3);
+    s.need_m = design.min(floor);
+    let kept_mm = if floor <= design { options.min_clearance_mm } else { design * 1e3 };
     let f0 = s.objective(&x0)?;
-    let (x, _) = loomkin_numeric::compass_min(
+    let y0: Vec<f64> = vars.iter().map(|&j| x0[j]).collect();
+    let (y, _) = loomkin_numeric::compass_min(
         &mut s,
-        x0,
+        y0,
         f0,
         &SERVO_STEPS,
         &lo,
         &hi,
-        |s, y| s.objective(y),
-        |s, y| Ok(s.clearance(y)? >= s.need_m),
+        |s, y| s.objective(&full(&x0, y)),
+        |s, y| Ok(s.clearance(&full(&x0, y))? >= s.need_m),
         |s| {
             (s.progress)(s.stages.0, s.stages.1);
             s.stages.0 += 1;
         },
     )?;
+    let x = full(&x0, &y);
     (s.progress)(s.stages.1, s.stages.1);
     let setups = s.setups(&x)?;
     let report = servo_study_of(loom, pattern, &setups)?;
@@ -381,12 +570,49 @@ pub fn optimise_servo(
         window_deg_after: wa,
         min_clearance_mm_before: cb,
         min_clearance_mm_after: ca,
-        min_clearance_kept_mm: s.need_m * 1e3,
+        min_clearance_kept_mm: kept_mm,
         stagger_deg: x[..n].to_vec(),
         motion_deg: x[n..].to_vec(),
+        frames_searched: moving.len(),
+        picks_searched: s.reduced.picks.len(),
         evaluations: s.evaluations,
         clearance_checks: s.clearance_checks,
         report,
         setups,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_search_on_the_reduced_pattern_finds_the_whole_repeats_optimum() {
+        // A 2/2 twill on 4 of the 24 frames, 60 picks: 4 classes of turns, 36 rows of short
+        // pattern. Both searches take the same steps: the same optimum, bit for bit after the
+        // exact study, with and without pass-through, for both objectives.
+        let text = include_str!("../../../examples/servo-shedding-loom.toml");
+        let rows: Vec<Vec<bool>> = (0..60).map(|p| (0..4).map(|i| (p + i) % 4 < 2).collect()).collect();
+        let pattern = Pattern::new(4, rows).unwrap();
+        for pass in [false, true] {
+            let loom =
+                Loom::from_toml(&text.replace("pass_through = false", &format!("pass_through = {pass}"))).unwrap();
+            let reduced = reduced_pattern(&loom, &pattern).unwrap();
+            assert!(!reduced.whole && reduced.picks.len() == 4 && reduced.pattern.picks() < 60, "{reduced:?}");
+            for objective in [Objective::Peak, Objective::Rms] {
+                let options = ServoOptions::new(objective);
+                let stop = StopFlag::default();
+                let a = optimise(&loom, &pattern, &options, true, &stop, &|_, _| {}).unwrap();
+                let b = optimise(&loom, &pattern, &options, false, &stop, &|_, _| {}).unwrap();
+                assert_eq!((a.frames_searched, b.frames_searched), (4, 4));
+                assert_eq!((&a.stagger_deg, &a.motion_deg), (&b.stagger_deg, &b.motion_deg), "{pass} {objective:?}");
+                assert_eq!(a.peak_bus_power_w_after, b.peak_bus_power_w_after);
+                assert_eq!(a.min_clearance_mm_after, b.min_clearance_mm_after);
+                assert_eq!(a.evaluations, b.evaluations);
+                assert!(a.peak_bus_power_w_after <= a.peak_bus_power_w_before);
+                // The frames that never move keep the loom file's timing.
+                assert!(a.stagger_deg[4..].iter().all(|&s| s == 0.0) && a.motion_deg[4..].iter().all(|&m| m == 280.0));
+            }
+        }
+    }
 }

@@ -230,11 +230,16 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
     /// The least clearance over the required insertion of every pick, m (a cheap form for the
     /// stagger search: on a grid of `step_deg` and the ends, not refined), once per distinct turn.
     pub fn min_clearance_coarse(&self, step_deg: f64) -> f64 {
+        self.min_clearance_coarse_at(step_deg, &self.turns().first)
+    }
+
+    /// [`Timing::min_clearance_coarse`] over the picks `picks` alone, m (what a search compares
+    /// when one pick stands for every pick whose turn is the same).
+    pub fn min_clearance_coarse_at(&self, step_deg: f64, picks: &[usize]) -> f64 {
         let ins = &self.loom.insertion;
         let n = ((ins.exit_deg - ins.entry_deg) / step_deg).ceil().max(1.0) as usize;
         let h = (ins.exit_deg - ins.entry_deg) / n as f64;
-        self.turns()
-            .first
+        picks
             .iter()
             .flat_map(|&p| (0..=n).map(move |k| (p, ins.entry_deg + k as f64 * h)))
             .map(|(p, t)| self.clearance_m(p, t))

@@ -2,8 +2,8 @@
 //! errors, and the study on the example.
 
 use loomkin_loom::{
-    Loom, Motion, Objective, Pattern, ServoMotion, ShedMotion, Timing, check, optimise_servo, servo_laws, servo_setups,
-    servo_study, servo_timing,
+    Loom, Motion, Objective, Pattern, ServoMotion, ServoOptions, ShedMotion, Timing, check, optimise_servo,
+    optimise_servo_with, reduced_pattern, servo_laws, servo_setups, servo_study, servo_timing,
 };
 
 const SERVO: &str = include_str!("../../../examples/servo-shedding-loom.toml");
@@ -250,4 +250,109 @@ fn the_tables_carry_the_loom_files_strokes_in_mm_without_noise() {
         assert!((f.stroke_mm - m * 1e3).abs() <= 1e-14 * f.stroke_mm, "frame {}", f.frame);
         assert_eq!(f.stroke_mm, loomkin_units::to_12_digits(f.stroke_mm));
     }
+}
+
+/// A draft of `len` picks on `shafts` shafts from a fixed LCG, tiled to `picks` picks (runs of
+/// consecutive changes of several lengths, no frame changing on every pick).
+fn tiled(shafts: usize, len: usize, picks: usize, seed: u64) -> Pattern {
+    let mut x = seed;
+    let mut draft: Vec<Vec<bool>> = (0..len)
+        .map(|_| {
+            (0..shafts)
+                .map(|_| {
+                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    x >> 63 == 1
+                })
+                .collect()
+        })
+        .collect();
+    // Two picks running alike: no shaft changes on every pick.
+    draft[1] = draft[0].clone();
+    Pattern::new(shafts, (0..picks).map(|p| draft[p % len].clone()).collect()).unwrap()
+}
+
+#[test]
+fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearance() {
+    // The search evaluates one pick for every class of picks whose neighbourhoods of lifts agree,
+    // on a short pattern of those neighbourhoods. Against the whole repeat, for staggers and
+    // motion angles anywhere in the search's box: the scan's peak bus power and the clearance on
+    // the 2° grid agree to rounding, with and without pass-through (runs of several lengths).
+    let servo = loom_servo();
+    let twill = Pattern::new(24, (0..300).map(|p| (0..24).map(|i| (p + i) % 24 < 12).collect()).collect()).unwrap();
+    let cases = [
+        (Loom::from_toml(SERVO).unwrap(), twill.clone()),
+        (pass_through(), twill),
+        (pass_through(), tiled(24, 10, 200, 7)),
+    ];
+    for (loom, pattern) in &cases {
+        let reduced = reduced_pattern(loom, pattern).unwrap();
+        assert!(!reduced.whole && reduced.pattern.picks() < pattern.picks(), "{} rows", reduced.pattern.picks());
+        let laws = servo_laws(loom);
+        let n = loom.frame_count();
+        let delta = loomkin_loom::crossing_offset_deg(loom.shedding.crossing_deg);
+        let m = loom.shedding.max_stagger_deg;
+        let mut x = 99u64;
+        let mut next = || {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..4 {
+            let centre: Vec<f64> = (0..n).map(|_| delta + m * (2.0 * next() - 1.0)).collect();
+            let phi: Vec<f64> = (0..n).map(|_| 120.0 + 240.0 * next()).collect();
+            let full = servo_setups(loom, pattern, Some(&phi), Some(&centre)).unwrap();
+            let short = servo_setups(loom, &reduced.pattern, Some(&phi), Some(&centre)).unwrap();
+            let bus = &servo.bus;
+            let a = loomkin_eshed::peak_bus_power_w(&full, &laws, bus, loom.speed.rpm(), true).unwrap();
+            let b = loomkin_eshed::peak_bus_power_w_at(&short, &laws, bus, loom.speed.rpm(), &reduced.picks).unwrap();
+            assert!((a - b).abs() <= 1e-9 * a, "{a} {b}");
+            let (mf, ms) = (ServoMotion::new(&full, &laws), ServoMotion::new(&short, &laws));
+            let ca = Timing::new(loom, &mf, pattern).unwrap().min_clearance_coarse(2.0);
+            let cb = Timing::new(loom, &ms, &reduced.pattern).unwrap().min_clearance_coarse_at(2.0, &reduced.picks);
+            assert!((ca - cb).abs() <= 1e-12, "{ca} {cb}");
+        }
+    }
+    // A frame changing on every pick with pass-through: one run around the repeat, no reduction.
+    let plain = Pattern::new(24, (0..300).map(|p| (0..24).map(|i| (p + i) % 2 == 0).collect()).collect()).unwrap();
+    assert!(reduced_pattern(&pass_through(), &plain).unwrap().whole);
+}
+
+/// The example's `[shedding.servo]`.
+fn loom_servo() -> loomkin_eshed::ServoShedding {
+    Loom::from_toml(SERVO).unwrap().shedding.servo.unwrap()
+}
+
+#[test]
+fn the_search_leaves_still_frames_out_and_keeps_a_least_clearance() {
+    // A 2/2 twill moves 4 of the 24 frames; the others keep the loom file's timing.
+    let loom = Loom::from_toml(SERVO).unwrap();
+    let pattern = Pattern::from_wif(include_str!("../../../examples/twill-2-2.wif")).unwrap();
+    let free = optimise_servo(&loom, &pattern, Objective::Peak, &Default::default(), &|_, _| {}).unwrap();
+    assert_eq!(free.frames_searched, 4);
+    assert!(free.stagger_deg[4..].iter().all(|&s| s == 0.0) && free.motion_deg[4..].iter().all(|&m| m == 280.0));
+    // Asking for more clearance than the free optimum keeps: the search keeps it on its grid.
+    let want = free.min_clearance_mm_after + 2.0;
+    let options = ServoOptions { objective: Objective::Peak, min_clearance_mm: want };
+    let o = optimise_servo_with(&loom, &pattern, &options, &Default::default(), &|_, _| {}).unwrap();
+    // What it keeps: the floor asked for, or the design's own clearance (on the grid) when less.
+    let laws = servo_laws(&loom);
+    let grid = |setups: &[loomkin_eshed::FrameSetup]| {
+        let motion = ServoMotion::new(setups, &laws);
+        1e3 * Timing::new(&loom, &motion, &pattern).unwrap().min_clearance_coarse(2.0)
+    };
+    let design = grid(&servo_setups(&loom, &pattern, None, None).unwrap());
+    let kept = if want <= design { want } else { design };
+    assert_eq!(o.min_clearance_kept_mm, kept);
+    let coarse = grid(&o.setups);
+    assert!(coarse >= kept - 1e-9, "{coarse} {kept}");
+    assert!(
+        o.min_clearance_mm_after > free.min_clearance_mm_after,
+        "{} {}",
+        o.min_clearance_mm_after,
+        free.min_clearance_mm_after
+    );
+    assert!(o.peak_bus_power_w_after <= o.peak_bus_power_w_before);
+    // Out of range: one line naming the field.
+    let bad = ServoOptions { objective: Objective::Peak, min_clearance_mm: -1.0 };
+    let e = optimise_servo_with(&loom, &pattern, &bad, &Default::default(), &|_, _| {}).unwrap_err().to_string();
+    assert!(e.starts_with("min_clearance_mm = -1 is out of range"), "{e}");
 }

@@ -443,8 +443,26 @@ fn servo_optimize_reports_before_and_after_and_emits_the_optimised_tables() {
         assert!(cycle.contains(&format!("length_deg = {m:?}\n")), "frame {}: {cycle}", i + 1);
     }
     assert_eq!(moving, 4);
-    // `--objective` needs `--optimize`.
+    // Only the 4 moving frames were searched; no clearance floor asked, none kept beyond 0.
+    assert_eq!(v["frames_searched"], 4);
+    assert_eq!(num("min_clearance_kept_mm"), 0.0);
+    // `--objective` and `--min-clearance-mm` need `--optimize`.
     let bad = ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("twill-2-2.wif"), "--objective", "rms"];
     loomkin().args(bad).assert().code(2);
+    let bad =
+        ["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("twill-2-2.wif"), "--min-clearance-mm", "1"];
+    loomkin().args(bad).assert().code(2);
+    // A floor out of range: one line naming the flag and the range.
+    let bad = [
+        "loom",
+        "servo",
+        &ex("servo-shedding-loom.toml"),
+        "--wif",
+        &ex("twill-2-2.wif"),
+        "--optimize",
+        "--min-clearance-mm",
+        "-1",
+    ];
+    usage_error(&bad, &["--min-clearance-mm = -1 is out of range", "1000 mm"]);
     std::fs::remove_dir_all(&dir).ok();
 }
