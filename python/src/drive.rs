@@ -208,7 +208,8 @@ fn motor_kw(kw: Option<&Bound<'_, PyDict>>) -> PyResult<MotorSpec> {
 /// ripple (time-true cams): the timing errors before and after (deg), the ripple with the design
 /// and the corrected cams (%), the rounds, per frame the errors and, with `natural_hz` (Hz) and
 /// `damping_ratio`, the residual vibrations (mm); `not_corrected`; and `cycles`, the cycle files
-/// `-o DIR` writes as a dict of file name (`frame-01.toml` …) to text, headed by `title` (the
+/// `-o DIR` writes as a dict of file name (`frame-01.toml` …, `sley.toml` for a cam sley, with its
+/// timing under `sley`) to text, headed by `title` (the
 /// loom's name, else the given title). Motor keywords as `drive_ripple`. Runs on a worker thread
 /// (Ctrl-C stops the wait).
 #[pyfunction]

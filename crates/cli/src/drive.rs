@@ -350,6 +350,18 @@ fn run_correct(a: CorrectArgs) -> Result<()> {
             outln!("{:<10} {:>6} {:>14} {:>14}", f.name, f.moves, b, af)?;
         }
     }
+    if let Some(s) = &r.sley {
+        // One cam for every pick: after, the worst pick against the pick-mean correction.
+        let (b, af) =
+            (format!("{:.4}°", s.max_timing_error_deg_before), format!("{:.2e}°", s.max_timing_error_deg_after));
+        outln!(
+            "{:<10} {:>6} {:>14} {:>14}  (corrected for the pick-mean speed; after: the worst pick)",
+            s.name,
+            s.moves,
+            b,
+            af
+        )?;
+    }
     outln!(
         "largest timing error {:.4}° before, {:.2e}° after; {} cycle files in {}",
         r.max_timing_error_deg_before,

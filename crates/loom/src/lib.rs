@@ -81,6 +81,7 @@ pub use stagger::{
     optimise_stagger_with,
 };
 pub use timetrue::{
-    CorrectedFrames, Correction, CorrectionReport, FrameCorrection, MAX_ROUNDS, TIMING_TOL_DEG, correct,
+    CorrectedFrames, Correction, CorrectionReport, FrameCorrection, MAX_ROUNDS, SleyCorrection, SleyTiming,
+    TIMING_TOL_DEG, correct,
 };
 pub use timing::{PickWindow, ShedMotion, Timing, TimingReport, max_speed_rpm};

@@ -12,6 +12,10 @@
 //! `phase` being the angle of the design law the cam's follower is at: `φ` for the design cams
 //! (`max_timing_error_deg_before`), the time-true angle they were built for for the corrected ones,
 //! measured against the speed those give (`…_after`).
+//!
+//! A cam sley's cam turns once a pick, so one profile serves every pick of the repeat: it is
+//! corrected for the **pick-mean** speed profile ([`SleyCorrection`], docs/drive.md), anchored at
+//! the beat-up, and its `…_after` is the worst pick against that mean correction.
 
 use crate::{FrameKin, Loom, LoomError, LoomShaft, Motion, Pattern, Result};
 use loomkin_drive::{CorrectedMove, Motor, Span, Table, TimeMap, correct_move, solve, time_excitation};
@@ -201,17 +205,143 @@ pub struct CorrectionReport {
     pub speed_ripple_pct: f64,
     /// Speed ripple with the time-true cams, %.
     pub speed_ripple_pct_after: f64,
-    /// Largest timing error over the frames, design cams, deg.
+    /// Largest timing error over the cams (the frames and a cam sley), design cams, deg.
     pub max_timing_error_deg_before: f64,
-    /// Largest over the time-true cams, deg.
+    /// Largest over the time-true cams, deg (a cam sley's: its worst pick against the pick-mean
+    /// correction).
     pub max_timing_error_deg_after: f64,
     /// Rounds of correction against the speed the corrected cams give.
     pub rounds: usize,
-    /// The cam-driven mechanisms corrected (the frames); mechanisms on the shaft but not cams
+    /// The frames corrected (a cam sley is under `sley`); mechanisms on the shaft but not cams
     /// (a four-bar sley) are named in `not_corrected`.
     pub frames: Vec<FrameCorrection>,
+    /// The cam sley's time-true cam, when the loom has one (one profile for every pick: corrected
+    /// for the pick-mean speed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sley: Option<SleyTiming>,
     /// Mechanisms that are not cam-driven, hence not corrected.
     pub not_corrected: Vec<String>,
+}
+
+/// `drive correct --json`'s `sley`: the cam sley's timing before and after.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SleyTiming {
+    /// `sley`.
+    pub name: String,
+    /// Moving segments of its cam law (a turn).
+    pub moves: usize,
+    /// The design cam's largest timing error at the real speed, over every pick, deg of the shaft.
+    pub max_timing_error_deg_before: f64,
+    /// The time-true cam's: the worst pick against the pick-mean correction, deg.
+    pub max_timing_error_deg_after: f64,
+}
+
+/// The cam sley's cam corrected for the pick-mean speed ([`SleyCorrection::new`]).
+#[derive(Debug, Clone)]
+pub struct SleyCorrection {
+    /// The corrected cam law: the rocking shaft's swing in the cycle's own angles (as the loom
+    /// file's `[sley.cycle]`).
+    pub cycle: CycleSpec,
+    /// The pick-mean time map over one turn (main-shaft angles) it was corrected for.
+    pub mean_map: TimeMap,
+    /// The beat-up, rad of the main shaft: the angle the correction keeps.
+    pub anchor_rad: f64,
+    /// Before and after.
+    pub timing: SleyTiming,
+}
+
+/// Nodes of the pick-mean time map over a turn.
+const MEAN_MAP_NODES: usize = 3600;
+
+impl SleyCorrection {
+    /// The pick-mean time map of `map` (a repeat of `picks` turns): at each node of a turn the
+    /// mean over the picks of the time from the pick's start, of `dt/dφ` and of `d²t/dφ²`.
+    pub fn mean_map(map: &TimeMap, picks: usize) -> TimeMap {
+        let tau = std::f64::consts::TAU;
+        let n = MEAN_MAP_NODES;
+        let count = picks.max(1) as f64;
+        let (mut phi, mut t, mut w, mut dw) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for k in 0..=n {
+            let x = if k == n { tau } else { tau * k as f64 / n as f64 };
+            let (mut st, mut sd, mut sa) = (0.0, 0.0, 0.0);
+            for p in 0..picks.max(1) {
+                let base = tau * p as f64;
+                let [tt, d, a] = map.time(base + x);
+                st += tt - map.time(base)[0];
+                sd += d;
+                sa += a;
+            }
+            let (d, a) = (sd / count, sa / count);
+            phi.push(x);
+            t.push(st / count);
+            w.push(1.0 / d);
+            dw.push(-a / (d * d));
+        }
+        TimeMap::new(phi, t, w, dw)
+    }
+
+    /// The cam of `sley` corrected for the pick-mean of `map` (the shaft over a repeat of `picks`
+    /// picks): each moving segment of its law re-timed by [`correct_move`] about the beat-up, so
+    /// that on the mean pick the reed moves in time as the law prescribes at the mean speed. The
+    /// timing errors: `before`, the design cam against `design` (the speed it runs at), every pick;
+    /// `after`, the corrected cam against `map`, every pick, each pick's time-true angle less the
+    /// mean pick's.
+    pub fn new(sley: &loomkin_drive::CamSley, design: &TimeMap, map: &TimeMap, picks: usize) -> Result<Self> {
+        let tau = std::f64::consts::TAU;
+        let mean = Self::mean_map(map, picks);
+        let spec = &sley.table().cycle;
+        let cycle = loomkin_laws::Cycle::new(spec).map_err(|e| LoomError::field("sley.cycle", e.to_string()))?;
+        let shift = sley.phase_deg().to_radians();
+        let anchor = sley.front_dead_centre_rad();
+        // Each moving segment in the main shaft's angles, design and corrected.
+        let mut segment = Vec::with_capacity(spec.segment.len());
+        let mut moving: Vec<((f64, f64), (f64, f64))> = Vec::new();
+        let mut first_start = None;
+        for (seg, given) in cycle.segments.iter().zip(&spec.segment) {
+            let (a, l) = (seg.start_rad + shift, seg.length_rad);
+            let (start, length, law) = match &seg.law {
+                Some((_, law)) => {
+                    let c = correct_move(&mean, law, a, l, anchor)?;
+                    moving.push(((a, a + l), (c.start_rad, c.start_rad + c.length_rad)));
+                    (c.start_rad, c.length_rad, Some(c.spec))
+                }
+                None => {
+                    let b = mean.time_true_inverse(a, anchor);
+                    (b, mean.time_true_inverse(a + l, anchor) - b, None)
+                }
+            };
+            first_start.get_or_insert(start - shift);
+            let mut out = match &law {
+                Some(law) => loomkin_laws::SegmentSpec::moving(given.kind, length.to_degrees(), law),
+                None => loomkin_laws::SegmentSpec::dwell(length.to_degrees()),
+            };
+            out.stroke = given.stroke;
+            segment.push(out);
+        }
+        if let (Some(first), Some(s0)) = (segment.first_mut(), first_start) {
+            first.from_deg = Some(s0.to_degrees());
+        }
+        let corrected = CycleSpec { segment, ..spec.clone() };
+        // Timing errors, every pick: the design cam follows φ, the corrected one the mean pick's ψ̄(φ).
+        let mut before: f64 = 0.0;
+        let mut after: f64 = 0.0;
+        for p in 0..picks.max(1) {
+            let base = tau * p as f64;
+            for &((a, b), (ca, cb)) in &moving {
+                before = before.max(max_abs(a, b, |x| design.time_true(base + x, base + anchor)[0] - base - x));
+                after = after.max(max_abs(ca, cb, |x| {
+                    map.time_true(base + x, base + anchor)[0] - base - mean.time_true(x, anchor)[0]
+                }));
+            }
+        }
+        let timing = SleyTiming {
+            name: "sley".into(),
+            moves: moving.len(),
+            max_timing_error_deg_before: before.to_degrees(),
+            max_timing_error_deg_after: after.to_degrees(),
+        };
+        Ok(Self { cycle: corrected, mean_map: mean, anchor_rad: anchor, timing })
+    }
 }
 
 /// The correction of a loom's frames and its report.
@@ -225,6 +355,8 @@ pub struct Correction {
     pub design_map: TimeMap,
     /// The shaft's time map with the time-true cams.
     pub corrected_map: TimeMap,
+    /// The cam sley's time-true cam, when the loom has a cam sley.
+    pub sley: Option<SleyCorrection>,
 }
 
 impl Correction {
@@ -246,6 +378,15 @@ impl Correction {
                 spec.to_toml()?
             );
             out.push((format!("frame-{:02}.toml", i + 1), text));
+        }
+        if let Some(sc) = &self.sley {
+            let spec = CycleSpec { speed_rpm: Some(speed_rpm), ..sc.cycle.clone() };
+            let text = format!(
+                "# {title}, sley: time-true cam (loomkin drive correct) for the pick-mean speed, {} motor; the rocking shaft's swing, deg, in the cycle's angles of [sley.cycle]\n{}",
+                self.report.motor,
+                spec.to_toml()?
+            );
+            out.push(("sley.toml".into(), text));
         }
         Ok(out)
     }
@@ -400,25 +541,32 @@ pub fn correct(
         })
         .collect();
     let mut not_corrected = Vec::new();
-    match loom.sley {
-        Some(loomkin_drive::Sley::FourBar(_)) => not_corrected.push("sley (a four-bar linkage, not a cam)".to_string()),
-        Some(loomkin_drive::Sley::Cam(_)) => not_corrected.push(
-            "sley (a cam on the main shaft: one profile for every pick; its time-true correction is not implemented)"
-                .to_string(),
-        ),
-        None => {}
-    }
+    let sley = match &loom.sley {
+        Some(loomkin_drive::Sley::FourBar(_)) => {
+            not_corrected.push("sley (a four-bar linkage, not a cam)".to_string());
+            None
+        }
+        // Against the speed the time-true frames give; the corrected sley cam is not fed back
+        // into ω (docs/drive.md).
+        Some(loomkin_drive::Sley::Cam(cam)) => {
+            Some(SleyCorrection::new(cam, &design_map, &corrected_map, motion.picks())?)
+        }
+        None => None,
+    };
+    let sley_before = sley.as_ref().map_or(0.0, |s| s.timing.max_timing_error_deg_before);
+    let sley_after = sley.as_ref().map_or(0.0, |s| s.timing.max_timing_error_deg_after);
     let report = CorrectionReport {
         picks: motion.picks(),
         motor: motor.name(),
         mean_speed_rpm: sol.report.mean_speed_rpm,
         speed_ripple_pct: sol.report.speed_ripple_pct,
         speed_ripple_pct_after: ripple_after,
-        max_timing_error_deg_before: before.iter().copied().fold(0.0, f64::max),
-        max_timing_error_deg_after: after.iter().copied().fold(0.0, f64::max),
+        max_timing_error_deg_before: before.iter().copied().fold(sley_before, f64::max),
+        max_timing_error_deg_after: after.iter().copied().fold(sley_after, f64::max),
         rounds,
         frames: frame_reports,
+        sley: sley.as_ref().map(|s| s.timing.clone()),
         not_corrected,
     };
-    Ok(Correction { frames, report, design_map, corrected_map })
+    Ok(Correction { frames, report, design_map, corrected_map, sley })
 }

@@ -199,10 +199,45 @@ fn a_cam_sley_reports_the_same_keys() {
     assert!(sley["j_max_kg_m2"].as_f64().unwrap() > 0.0 && sley["j_min_kg_m2"].as_f64().unwrap() == 0.0, "{sley}");
     let r = stdout_json(&["drive", "ripple", &p, "--wif", &wif, "--json"]);
     assert!(r["speed_ripple_pct"].as_f64().unwrap() > 0.0);
-    // drive correct corrects the frames and names the cam sley as not corrected (not yet).
+    // drive correct corrects the frames and the cam sley (for the pick-mean speed): its timing
+    // under `sley`, its cam in sley.toml, which `cam profile` and `dyn response` read.
     let dir = scratch("correct");
     let c = stdout_json(&["drive", "correct", &p, "--wif", &wif, "-o", dir.to_str().unwrap(), "--json"]);
-    assert!(c["not_corrected"][0].as_str().unwrap().starts_with("sley (a cam on the main shaft"), "{c}");
+    assert_eq!(c["not_corrected"].as_array().unwrap().len(), 0, "{c}");
+    let (before, after) = (
+        c["sley"]["max_timing_error_deg_before"].as_f64().unwrap(),
+        c["sley"]["max_timing_error_deg_after"].as_f64().unwrap(),
+    );
+    assert!(c["sley"]["moves"] == 2 && before > 0.5 && after > 0.0 && after < before / 2.0, "{c}");
+    assert!(c["max_timing_error_deg_before"].as_f64().unwrap() >= before, "{c}");
+    let file = dir.join("sley.toml");
+    assert!(c["files"].as_array().unwrap().iter().any(|f| f.as_str() == file.to_str()), "{c}");
+    let f = file.to_str().unwrap();
+    let cam = stdout_json(&[
+        "cam",
+        "profile",
+        f,
+        "--follower",
+        "oscillating",
+        "--arm-mm",
+        "200",
+        "--pivot-mm",
+        "250",
+        "--roller-radius-mm",
+        "20",
+        "--max-pressure-deg",
+        "36",
+        "--json",
+    ]);
+    assert!(cam.is_object(), "{cam}");
+    let text = String::from_utf8(loomkin().args(["dyn", "response", f, "--natural-hz", "60"]).output().unwrap().stdout)
+        .unwrap();
+    assert!(text.contains("residual vibration"), "{text}");
+    let text = String::from_utf8(
+        loomkin().args(["drive", "correct", &p, "--wif", &wif, "-o", dir.to_str().unwrap()]).output().unwrap().stdout,
+    )
+    .unwrap();
+    assert!(text.contains("\nsley            2 ") && text.contains("pick-mean speed"), "{text}");
     // Errors in the cam sley's table: one line naming the key.
     let text = std::fs::read_to_string(&p).unwrap();
     let dir = scratch("cam");
