@@ -488,38 +488,48 @@ proptest! {
 /// it as the sword grows, its pin's sag below the line going as 1/c, so the travel at c = 2.5, 5 and
 /// 10 m extrapolated to c → ∞ (Richardson, two steps) is compared with the book's four decimals and
 /// with the slider-crank's closed form.
+/// A four-bar sley whose sword (`c`, mm) is long against its crank `r` and rod `b` (mm): the sword's
+/// pin moves nearly on the line of centres, as a slider-crank's slider (Taylor's and the textbooks'
+/// model of the slay).
+fn long_sword_sley(r: f64, b: f64, c: f64) -> FourBarSley {
+    let t = SleyTable {
+        crank_mm: r,
+        rod_mm: b,
+        sword_mm: c,
+        pivot_x_mm: b,
+        pivot_y_mm: -c,
+        reed_height_mm: c,
+        mass_kg: 1.0,
+        gyration_mm: c,
+        centre_mm: None,
+        beat_up_deg: 0.0,
+        beat_up_force_n: 0.0,
+        beat_up_range_deg: 0.0,
+        assembly: Assembly::Up,
+    };
+    FourBarSley::new(t).unwrap()
+}
+
+/// `f` at c = 2.5, 5 and 10 m extrapolated to c → ∞: two Richardson steps in h = 1/c (errors
+/// A·h + B·h²; the four-bar's pin sags below the line of centres as 1/c).
+fn long_sword_limit(f: &dyn Fn(f64) -> f64) -> f64 {
+    let (f1, f2, f4) = (f(2500.0), f(5000.0), f(10000.0));
+    let (r1, r2) = (2.0 * f2 - f1, 2.0 * f4 - f2);
+    (4.0 * r2 - r1) / 3.0
+}
+
 #[test]
 fn taylors_slay_eccentricity_figures() {
     let inch = 25.4;
     let (r, b) = (3.0 * inch, 12.0 * inch);
     let travel = |c: f64| {
-        let t = SleyTable {
-            crank_mm: r,
-            rod_mm: b,
-            sword_mm: c,
-            pivot_x_mm: b,
-            pivot_y_mm: -c,
-            reed_height_mm: c,
-            mass_kg: 1.0,
-            gyration_mm: c,
-            centre_mm: None,
-            beat_up_deg: 0.0,
-            beat_up_force_n: 0.0,
-            beat_up_range_deg: 0.0,
-            assembly: Assembly::Up,
-        };
-        let s = FourBarSley::new(t).unwrap();
+        let s = long_sword_sley(r, b, c);
         let pin_x = |phi: f64| b + c * s.state(phi).rocker_rad.cos();
         let front = s.front_dead_centre_rad();
         let (x0, x90, x180) = (pin_x(front), pin_x(front + PI / 2.0), pin_x(front + PI));
         ((x0 - x90) / inch, (x90 - x180) / inch)
     };
-    // Two Richardson steps in h = 1/c (errors A·h + B·h²) from c = 2.5, 5 and 10 m.
-    let limit = |f: &dyn Fn(f64) -> f64| {
-        let (f1, f2, f4) = (f(2500.0), f(5000.0), f(10000.0));
-        let (r1, r2) = (2.0 * f2 - f1, 2.0 * f4 - f2);
-        (4.0 * r2 - r1) / 3.0
-    };
+    let limit = long_sword_limit;
     let (front_to_top, top_to_back) = (limit(&|c| travel(c).0), limit(&|c| travel(c).1));
     let (a2, b2) = travel(10000.0);
     // One unit of the book's last place: it takes √135 as 11·6189 (4 decimals) before subtracting,
@@ -530,4 +540,48 @@ fn taylors_slay_eccentricity_figures() {
     let exact = (r + b - (b * b - r * r).sqrt()) / inch;
     // Residual of the extrapolation (third order in 1/c): 2e-7 inch measured.
     assert!((front_to_top - exact).abs() < 1e-6, "{front_to_top} vs {exact}");
+}
+
+/// The textbooks' sley acceleration, `f = ω²·r·(cos θ + (r/l)·cos 2θ)` (θ the crank angle from the
+/// front centre, `r` the crank, `l` the crank arm): the form given for the slay's motion in weaving
+/// texts and lecture notes (e.g. "Beat up Motion", §8 "Expression of Sley Displacement, Velocity and
+/// Acceleration", https://ar.scribd.com/document/307325777/Slay-Mechanism), the first two terms of
+/// the slider-crank's series. On Taylor's 3-inch crank and 12-inch arm (r/l = ¼) the exact four-bar,
+/// its sword long (extrapolated as for Taylor's figures), meets it at the front and back centres,
+/// where the two terms are exact (`ω²r(1 ± r/l)`), and everywhere within the series' next terms,
+/// `(r/l)³/4·(cos 2θ − cos 4θ)`, which leave a fifth-order rest. No published beat-up
+/// *force* example with numbers was found (drive4's search: the shared papers, the reference pages);
+/// the force is this acceleration times the sley's mass, which the virtual-work tests above check.
+#[test]
+fn the_textbook_sley_acceleration_is_the_four_bars_series() {
+    let inch = 25.4;
+    let (r, l) = (3.0 * inch, 12.0 * inch);
+    let lambda = r / l;
+    // The pin's acceleration along the line of centres per (rad of crank)², mm, toward the fell
+    // positive: x = l + c·cos θ_rocker, x″ = −c·(cos θ·θ′² + sin θ·θ″).
+    let accel = |c: f64, theta: f64| {
+        let s = long_sword_sley(r, l, c);
+        let st = s.state(s.front_dead_centre_rad() + theta);
+        let th = st.rocker_rad;
+        -c * (th.cos() * st.rocker_d1 * st.rocker_d1 + th.sin() * st.rocker_d2)
+    };
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let theta = k as f64 * TAU / 72.0;
+        let exact = long_sword_limit(&|c| accel(c, theta));
+        // The textbook's two terms, decelerating toward the front (x″ = −f/ω²).
+        let textbook = -r * (theta.cos() + lambda * (2.0 * theta).cos());
+        let next = -r * lambda.powi(3) / 4.0 * ((2.0 * theta).cos() - (4.0 * theta).cos());
+        if k == 0 || k == 36 {
+            // Front and back centres: ω²r(1 + r/l) and ω²r(1 − r/l) exactly (the next terms vanish).
+            assert!((exact - textbook).abs() < 1e-6 * r, "θ = {theta}: {exact} vs {textbook}");
+        }
+        worst = worst.max((exact - textbook - next).abs() / r);
+        // Without the next terms the two-term formula is within (r/l)³/2 of r, plus the fifth-order
+        // terms (~0.3·(r/l)⁵ = 0.02·(r/l)³ here).
+        assert!((exact - textbook).abs() <= 0.55 * lambda.powi(3) * r, "θ = {theta}: {exact} vs {textbook}");
+    }
+    // What is left is fifth order in r/l (~0.3·(r/l)⁵ = 3e-4 of r) and the extrapolation's residual.
+    eprintln!("largest |exact − two terms − next terms| {worst:.2e} of r");
+    assert!(worst < 5e-4, "{worst:e}");
 }
