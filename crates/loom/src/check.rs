@@ -19,7 +19,7 @@ pub struct FrameCheck {
     pub shed_angle_deg: f64,
     /// Largest warp strain over the repeat (at the frame's extreme positions the pattern uses).
     pub max_strain: f64,
-    /// The stroke that would give the front frame's full-shed strain, mm.
+    /// The stroke that would give the front frame's full-shed strain, mm (to 12 significant digits).
     pub equal_strain_stroke_mm: f64,
     /// Warp ends through the frame.
     pub ends: f64,
@@ -100,7 +100,7 @@ pub fn check_with(loom: &Loom, pattern: &Pattern, progress: &dyn Fn(usize, usize
                 stroke_mm: shed.stroke_mm,
                 shed_angle_deg: shed.shed_angle_deg,
                 max_strain,
-                equal_strain_stroke_mm: equal[i] * 1e3,
+                equal_strain_stroke_mm: loomkin_units::to_12_digits(equal[i] * 1e3),
                 ends: drive.ends()[i],
                 moves: motion.move_count(i),
             }

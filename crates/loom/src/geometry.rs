@@ -99,7 +99,8 @@ pub fn equal_strain_strokes(frame_m: &[f64], back_rest: f64, warp_line: f64, fro
 pub struct FrameShed {
     /// Distance of the heald eyes from the fell (the front shed depth), mm.
     pub distance_mm: f64,
-    /// Full stroke, bottom to top, mm.
+    /// Full stroke, bottom to top, mm (all four lengths to 12 significant digits: the loom file's
+    /// millimetres without the noise of their way through metres).
     pub stroke_mm: f64,
     /// Front shed depth (fell to heald eye), mm.
     pub front_depth_mm: f64,
@@ -127,11 +128,14 @@ impl Geometry {
         let w = self.warp_line_at(d);
         let front = ((w + h / 2.0) / d).atan() - ((w - h / 2.0) / d).atan();
         let back = ((hb - w + h / 2.0) / (l - d)).atan() - ((hb - w - h / 2.0) / (l - d)).atan();
+        // Lengths the loom file gives in mm, back from metres to 12 digits (`90`, not
+        // `89.99999999999999`: the noise of the way through metres and the lift ratio).
+        let mm = |m: f64| loomkin_units::to_12_digits(m * 1e3);
         FrameShed {
-            distance_mm: d * 1e3,
-            stroke_mm: h * 1e3,
-            front_depth_mm: d * 1e3,
-            back_depth_mm: (l - d) * 1e3,
+            distance_mm: mm(d),
+            stroke_mm: mm(h),
+            front_depth_mm: mm(d),
+            back_depth_mm: mm(l - d),
             shed_angle_deg: front.to_degrees(),
             back_shed_angle_deg: back.to_degrees(),
             strain_top: strain(d, l, hb, h / 2.0),
@@ -161,6 +165,24 @@ impl Geometry {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shed's lengths are the loom file's millimetres without the noise of their way through
+    /// metres (`loom check` printed `stroke_mm: 89.99999999999999`), and within 1e-14 relative of
+    /// the metres the model computes with.
+    #[test]
+    fn the_sheds_lengths_are_the_files_mm_without_noise() {
+        let loom = crate::Loom::from_toml(include_str!("../../../examples/rapier-loom.toml")).unwrap();
+        let g = &loom.geometry;
+        let (f1, f2) = (g.frame_shed(0), g.frame_shed(1));
+        assert_eq!((f1.distance_mm, f1.stroke_mm, f1.back_depth_mm), (200.0, 90.0, 750.0));
+        assert_eq!((f2.distance_mm, f2.stroke_mm, f2.back_depth_mm), (212.0, 95.4, 738.0));
+        for i in 0..loom.frame_count() {
+            let f = g.frame_shed(i);
+            let close = |mm: f64, m: f64| (mm - m * 1e3).abs() <= 1e-14 * mm;
+            assert!(close(f.stroke_mm, g.stroke_m[i]) && close(f.distance_mm, g.frame_m[i]), "frame {}", i + 1);
+            assert!(close(f.back_depth_mm, g.back_rest_m - g.frame_m[i]), "frame {}", i + 1);
+        }
+    }
 
     /// Strain against a direct length computation (coordinates of the three points).
     #[test]
