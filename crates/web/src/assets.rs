@@ -17,6 +17,8 @@ pub const CAM_JS: &str = include_str!("../assets/cam.js");
 pub const LOOM_JS: &str = include_str!("../assets/loom.js");
 /// The drive view.
 pub const DRIVE_JS: &str = include_str!("../assets/drive.js");
+/// The servo shedding view.
+pub const ESHED_JS: &str = include_str!("../assets/eshed.js");
 /// The insertion view.
 pub const INSERTION_JS: &str = include_str!("../assets/insertion.js");
 
@@ -54,4 +56,8 @@ pub(crate) async fn drive() -> Response {
 
 pub(crate) async fn insertion() -> Response {
     asset(INSERTION_JS, "text/javascript; charset=utf-8")
+}
+
+pub(crate) async fn eshed() -> Response {
+    asset(ESHED_JS, "text/javascript; charset=utf-8")
 }

@@ -39,6 +39,7 @@ mod dobby_api;
 mod drive_api;
 mod dynamics_api;
 mod error;
+mod eshed_api;
 mod insertion_api;
 mod json;
 mod limits;
@@ -52,7 +53,7 @@ mod servo_api;
 mod servo_design;
 mod shed_api;
 
-pub use assets::{APP_JS, CAM_JS, CHARTS_JS, DRIVE_JS, INDEX_HTML, INSERTION_JS, LOOM_JS, STYLE_CSS};
+pub use assets::{APP_JS, CAM_JS, CHARTS_JS, DRIVE_JS, ESHED_JS, INDEX_HTML, INSERTION_JS, LOOM_JS, STYLE_CSS};
 pub use cam_api::{
     CAM_EXAMPLES, CamDesignRequest, CamDxfRequest, CamExamples, CamFile, CamLaw, CamProfileRequest, CamProfileResponse,
     CamReport, CamSource, CamTableRequest, CamTableResponse, ClosureKind, FollowerKind, MIN_WEB_TOLERANCE, ShedSource,
@@ -75,6 +76,10 @@ pub use dynamics_api::{
     MIN_SWEEP_POINTS, SweepCurves, SweepRequest, respond as dynamics_response,
 };
 pub use error::{ApiError, check_count};
+pub use eshed_api::{
+    LiftGrid, MAX_SERVO_SHED_POINTS, SERVO_SHED_EXAMPLE, ServoShedCurves, ServoShedRequest, ServoShedResult,
+    ServoShedView, loom_servo, loom_servo_view,
+};
 pub use insertion_api::{
     AirjetRequest, BudgetOverrides, BudgetRequest, CarrierCheck, CarrierRequest, ClearanceCurve, INSERTION_EXAMPLES,
     InsertRequest, InsertResponse, TimingCurves as InsertTiming, TrackCurve, insert_airjet, insert_budget,
@@ -113,4 +118,4 @@ pub use shed_api::{
 
 /// The views this build serves, in tab order.
 pub const VIEWS: &[&str] =
-    &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom", "drive", "insertion"];
+    &["servo", "catalogue", "shed", "picking", "dobby", "dynamics", "cam", "loom", "drive", "insertion", "eshed"];

@@ -104,6 +104,8 @@ pub fn api_schema() -> ApiSchema {
         ("/api/insert/projectile", post::<crate::CarrierRequest>(json!({}))),
         ("/api/insert/airjet", post::<crate::AirjetRequest>(json!({}))),
         ("/api/insert/evaluate", post::<crate::InsertRequest>(json!({}))),
+        ("/api/loom/servo", post::<crate::ServoShedRequest>(json!({}))),
+        ("/api/loom/servo/view", post::<crate::ServoShedRequest>(json!({}))),
     ]);
     ApiSchema { dialect: SCHEMA_DIALECT, routes }
 }

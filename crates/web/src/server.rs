@@ -32,6 +32,7 @@ pub fn router() -> Router {
         .merge(crate::loom_api::routes())
         .merge(crate::drive_api::routes())
         .merge(crate::insertion_api::routes())
+        .merge(crate::eshed_api::routes())
         .merge(crate::schema::routes())
         .fallback(api_not_found);
     Router::new()
@@ -43,6 +44,7 @@ pub fn router() -> Router {
         .route("/loom.js", get(assets::loom))
         .route("/drive.js", get(assets::drive))
         .route("/insertion.js", get(assets::insertion))
+        .route("/eshed.js", get(assets::eshed))
         .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .nest("/api", api)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))

@@ -272,7 +272,7 @@ const SETTLED: &str = "return window.loomkin && loomkin.ready && loomkin.evalCou
                        && document.querySelector('#peak-torque-0') !== null";
 
 /// The element each view shows once its first result is in.
-const VIEWS: [(&str, &str); 10] = [
+const VIEWS: [(&str, &str); 11] = [
     ("servo", "#peak-torque-0"),
     ("catalogue", "#catalogue-metrics tbody tr"),
     ("shed", "#shed-peak-jerk"),
@@ -283,6 +283,7 @@ const VIEWS: [(&str, &str); 10] = [
     ("loom", "#loom-peak-torque"),
     ("drive", "#shaft-ripple"),
     ("insertion", "#insert-max-picks"),
+    ("eshed", "#eshed-peak-bus"),
 ];
 
 /// Replaces the page's file download by a recorder: `window.saved` gets name, type, size and
@@ -1115,6 +1116,71 @@ fn the_workbench_in_a_real_browser() {
     d.ctrl("z");
     d.wait_for("undo of the reed width", "return document.querySelector('#insert-reed-width-mm').value === '' && !document.querySelector('#insert-reed-width-mm').classList.contains('bad')");
     lap("insertion view: rapier figures, least clearance, air jet speed, refused reed width");
+
+    // 13e. The servo shedding view (issue 31): the servo loom weaving the 2/2 twill after plain
+    // weave — the lift grid, a torque per frame, the bus power changed; the figures the route's
+    // (`loom servo --json`); Optimise (one request in flight) shows before → after as `loom servo
+    // --optimize --json`; a dobby loom is refused at the loom file's field.
+    d.click("#tabs button[data-view='eshed']");
+    let plain = d.wait_for(
+        "the servo shedding view",
+        "const r = loomkin.eshedView().result; return document.querySelector('#eshed-peak-bus') !== null && loomkin.histories.eshed && \
+         loomkin.histories.eshed.isReady && r && !loomkin.busy ? r.result.peak_bus_power_w : null",
+    );
+    d.script("const p = document.querySelector('#eshed-pattern'); p.value = 'twill-2-2.wif'; p.dispatchEvent(new Event('change')); return true");
+    let shown = d.wait_for(
+        "the servo loom weaving the twill",
+        "const r = loomkin.eshedView().result; return r && r.lifts.picks === 4 && !loomkin.busy ? document.querySelector('#eshed-peak-bus').textContent : null",
+    );
+    let req = d.script("return loomkin.eshedRequest(false)");
+    let api =
+        common::request(server, "POST", "/api/loom/servo", Some(req.to_string().as_bytes())).expect("servo").json();
+    let view = d.script("return loomkin.eshedView().result.result");
+    assert!(same_numbers(&view, &api), "the view's figures are loom servo's");
+    let peak = api["peak_bus_power_w"].as_f64().expect("peak");
+    assert!((first(shown.as_str().unwrap_or("").to_string()) - peak).abs() < 0.051, "{shown} vs {peak} W");
+    assert_ne!(plain.as_f64(), Some(peak), "the twill's bus power is the plain weave's");
+    let drawn = d.script(
+        "const c = loomkin.charts.eshed_torque, b = loomkin.charts.eshed_bus; return [c.series.length, Math.max(...b.series[0].y)]",
+    );
+    assert_eq!(drawn[0].as_u64(), api["frames"].as_array().map(|f| f.len() as u64), "a torque curve per frame");
+    assert!(
+        drawn[1].as_f64().is_some_and(|m| m <= peak * (1.0 + 1e-9) && m >= 0.95 * peak),
+        "bus curve {drawn} vs peak {peak}"
+    );
+    let busy = d.script("const b = document.querySelector('#eshed-optimise'); b.click(); return b.disabled && document.querySelector('#eshed-loom').disabled");
+    assert_eq!(busy, json!(true), "one search in flight: the button and the loom wait for it");
+    let gain = d.wait_for(
+        "the optimum",
+        "const o = loomkin.eshedView().optimum; return o && !loomkin.busy && !document.querySelector('#eshed-gain').hidden && \
+         !document.querySelector('#eshed-optimise').disabled ? document.querySelector('#eshed-gain-peak').textContent : null",
+    );
+    let mut req = d.script("return loomkin.eshedRequest(true)");
+    assert_eq!(req["optimize"], json!(true));
+    req["objective"] = json!("peak");
+    let api =
+        common::request(server, "POST", "/api/loom/servo", Some(req.to_string().as_bytes())).expect("optimum").json();
+    let view = d.script("return loomkin.eshedView().optimum.result");
+    assert!(same_numbers(&view, &api), "the view's optimum is loom servo --optimize's");
+    let (b, a) = (
+        api["peak_bus_power_w_before"].as_f64().expect("before"),
+        api["peak_bus_power_w_after"].as_f64().expect("after"),
+    );
+    assert!(a <= b, "{a} > {b}");
+    assert_eq!(gain.as_str(), Some(format!("{b:.1} → {a:.1} W").as_str()));
+    assert_eq!(d.script("return loomkin.charts.eshed_bus.series.length"), json!(3), "before, after and the peak drawn");
+    d.shot("eshed-optimised");
+    d.script("const l = document.querySelector('#eshed-loom'); l.value = 'rapier-loom.toml'; l.dispatchEvent(new Event('change')); return true");
+    let msg = d.wait_for(
+        "the dobby loom refused",
+        "const f = document.querySelector('#eshed-loom'); const m = f.nextElementSibling; \
+         return f.classList.contains('bad') && !loomkin.busy && m && m.classList.contains('field-msg') ? m.textContent : null",
+    );
+    assert!(msg.as_str().is_some_and(|m| m.starts_with("loom file: ") && m.contains("drive = \"servo\"")), "{msg}");
+    d.shot("eshed-invalid");
+    d.ctrl("z");
+    d.wait_for("undo of the loom", "return document.querySelector('#eshed-loom').value === 'servo-shedding-loom.toml' && !document.querySelector('#eshed-loom').classList.contains('bad') && !loomkin.busy");
+    lap("servo shedding view: lifts, torques, bus, optimise, refused dobby loom");
 
     // 14. Dynamics: undo of the typed speed, the address, a refused stroke marked.
     d.click("#tabs button[data-view='dynamics']");

@@ -33,6 +33,7 @@ fn routes() -> Vec<(&'static str, &'static str, Option<Value>)> {
         ("GET", "/loom.js", None),
         ("GET", "/drive.js", None),
         ("GET", "/insertion.js", None),
+        ("GET", "/eshed.js", None),
         (
             "POST",
             "/api/laws/compare",

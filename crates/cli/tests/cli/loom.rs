@@ -466,3 +466,31 @@ fn servo_optimize_reports_before_and_after_and_emits_the_optimised_tables() {
     usage_error(&bad, &["--min-clearance-mm = -1 is out of range", "1000 mm"]);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The workbench's `POST /api/loom/servo` answers what `loomkin loom servo --json` prints, key for
+/// key and bit for bit, for the study and for `--optimize --objective rms` (issue 31 item 6): both
+/// call the same library functions.
+#[test]
+fn the_workbench_servo_route_answers_the_cli_json() {
+    let loom = std::fs::read_to_string(ex("servo-shedding-loom.toml")).expect("example");
+    let wif = std::fs::read_to_string(ex("twill-2-2.wif")).expect("example");
+    let pattern = loomkin_web::PatternSource { wif: Some(wif), lift_plan: None };
+    for optimize in [false, true] {
+        let req = loomkin_web::ServoShedRequest {
+            loom_toml: Some(loom.clone()),
+            pattern: pattern.clone(),
+            optimize,
+            objective: loomkin_web::ObjectiveKind::Rms,
+        };
+        let route = serde_json::to_value(loomkin_web::loom_servo(&req).expect("servo")).expect("JSON");
+        let mut args =
+            vec!["loom", "servo", &ex("servo-shedding-loom.toml")].into_iter().map(String::from).collect::<Vec<_>>();
+        args.extend(["--wif".into(), ex("twill-2-2.wif"), "--json".into()]);
+        if optimize {
+            args.extend(["--optimize".into(), "--objective".into(), "rms".into()]);
+        }
+        let cli = stdout_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(route.get("objective").is_some(), optimize);
+        assert_eq!(route, cli, "optimize {optimize}");
+    }
+}
