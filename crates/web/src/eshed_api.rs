@@ -12,7 +12,8 @@ use axum::Router;
 use axum::routing::post;
 use loomkin_eshed::{Curves, FrameSetup, ServoReport};
 use loomkin_loom::{
-    Loom, Motion, Objective, Pattern, ServoOptimum, optimise_servo, servo_curves_of, servo_setups, servo_study,
+    Loom, Motion, Objective, Pattern, ServoOptimum, ServoOptions, StaggerOptions, optimise_servo_with, servo_curves_of,
+    servo_setups, servo_study,
 };
 use loomkin_units::StopFlag;
 use serde::{Deserialize, Serialize};
@@ -47,6 +48,12 @@ pub struct ServoShedRequest {
     /// What the search minimises (`--objective`): the peak bus power or the worst frame's RMS torque.
     #[serde(default)]
     pub objective: ObjectiveKind,
+    /// The least clearance to the carrier the search keeps in every pick from entry to exit, mm
+    /// (`--min-clearance-mm`; [`loomkin_loom::StaggerOptions::MIN_CLEARANCE_MM`]; the design's own
+    /// when it keeps less).
+    #[serde(default)]
+    #[schemars(transform = loomkin_units::schema::bounds(loomkin_loom::StaggerOptions::MIN_CLEARANCE_MM.range))]
+    pub min_clearance_mm: Option<f64>,
 }
 
 /// `loomkin loom servo --json`: the study, or with `optimize` the optimum (its gain, then the study
@@ -120,7 +127,11 @@ fn study(
             ObjectiveKind::Rms => Objective::Rms,
         };
         // Stopped (the client went away, or the budget is spent): the stop's refusal, as every heavy route's.
-        let o = optimise_servo(loom, pattern, objective, stop, &|_, _| {})
+        let mut options = ServoOptions::new(objective);
+        if let Some(v) = req.min_clearance_mm {
+            options.min_clearance_mm = StaggerOptions::MIN_CLEARANCE_MM.check(v)?;
+        }
+        let o = optimise_servo_with(loom, pattern, &options, stop, &|_, _| {})
             .map_err(|e| if stop.is_set() { ApiError::invalid("body", e) } else { lib(e) })?;
         let setups = o.setups.clone();
         return Ok((ServoShedResult::Optimum(Box::new(o)), setups));

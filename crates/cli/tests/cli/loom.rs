@@ -481,13 +481,20 @@ fn the_workbench_servo_route_answers_the_cli_json() {
             pattern: pattern.clone(),
             optimize,
             objective: loomkin_web::ObjectiveKind::Rms,
+            min_clearance_mm: optimize.then_some(0.5),
         };
         let route = serde_json::to_value(loomkin_web::loom_servo(&req).expect("servo")).expect("JSON");
         let mut args =
             vec!["loom", "servo", &ex("servo-shedding-loom.toml")].into_iter().map(String::from).collect::<Vec<_>>();
         args.extend(["--wif".into(), ex("twill-2-2.wif"), "--json".into()]);
         if optimize {
-            args.extend(["--optimize".into(), "--objective".into(), "rms".into()]);
+            args.extend([
+                "--optimize".into(),
+                "--objective".into(),
+                "rms".into(),
+                "--min-clearance-mm".into(),
+                "0.5".into(),
+            ]);
         }
         let cli = stdout_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert_eq!(route.get("objective").is_some(), optimize);
