@@ -10,7 +10,7 @@ pub mod table;
 
 pub use error::{CamError, Result};
 use profile::{CamDesign, CamProfile};
-use table::Spacing;
+use table::{Motion, Spacing};
 
 /// The descriptors of this crate's inputs.
 pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
@@ -25,4 +25,7 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     CamProfile::BORE_MM,
     Spacing::STEP_DEG,
     Spacing::TOLERANCE,
+    Motion::MOTION_DEG,
+    Motion::STROKE_MM,
+    Motion::STROKE_DEG,
 ];

@@ -208,7 +208,7 @@ pub struct SynthesizeArgs {
     #[arg(
         long,
         value_name = "T",
-        default_value_t = loomkin_mech::dobby_export::DEFAULT_CHORD_TOL_MM,
+        default_value_t = loomkin_mech::Synthesis::CHORD_TOL_MM.default_value(),
         allow_hyphen_values = true,
         requires = "dxf"
     )]
@@ -455,14 +455,16 @@ fn analyze_cmd(a: AnalyzeArgs) -> Result<()> {
     let c = &s.checks;
     outln!("rotary-dobby modulator, task 1 (analysis): cam {}", s.cam)?;
     print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
+    // At a crawl (0.001 rpm) the rates round to zero: no sign on a zero.
+    let f = loomkin_units::fixed;
     outln!(
-        "  output speed ω6      {:.5} … {:.5} rad/s ({:.4} … {:.4} × ω2)",
-        c.omega6_min_rad_s,
-        c.omega6_max_rad_s,
+        "  output speed ω6      {} … {} rad/s ({:.4} … {:.4} × ω2)",
+        f(c.omega6_min_rad_s, 5),
+        f(c.omega6_max_rad_s, 5),
         c.omega6_min_rad_s / s.input_speed_rad_s,
         c.omega6_max_rad_s / s.input_speed_rad_s
     )?;
-    outln!("  output accel. ε6     {:.5} … {:.5} rad/s²", c.eps6_min_rad_s2, c.eps6_max_rad_s2)?;
+    outln!("  output accel. ε6     {} … {} rad/s²", f(c.eps6_min_rad_s2, 5), f(c.eps6_max_rad_s2, 5))?;
     print_checks(c)?;
     outln!(
         "  |φ3 − φ2| max        {:.3}° (limit arcsin(l6/l2) = {:.3}°); admissible α for this cam: {:.3}° … {:.3}°",
@@ -551,10 +553,10 @@ fn synthesize_cmd(a: SynthesizeArgs) -> Result<()> {
         print_geometry(&g, s.input_speed_rad_s, s.step_deg)?;
         outln!("  roller radius        {} mm", loomkin_units::compact(loomkin_units::mm_from_m(s.roller_m)))?;
         outln!(
-            "  output speed ω6      max {:.5} rad/s; ε6 {:.5} … {:.5} rad/s²",
-            s.checks.omega6_max_rad_s,
-            s.checks.eps6_min_rad_s2,
-            s.checks.eps6_max_rad_s2
+            "  output speed ω6      max {} rad/s; ε6 {} … {} rad/s²",
+            loomkin_units::fixed(s.checks.omega6_max_rad_s, 5),
+            loomkin_units::fixed(s.checks.eps6_min_rad_s2, 5),
+            loomkin_units::fixed(s.checks.eps6_max_rad_s2, 5)
         )?;
         outln!("  |φ6 − φ2| max        {:.3}° (limit arccos(l6/l2) = {:.3}°)", s.lag_max_deg, s.lag_limit_deg)?;
         print_checks(&s.checks)?;

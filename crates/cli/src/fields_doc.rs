@@ -74,27 +74,13 @@ pub(crate) fn descriptors_by_key() -> BTreeMap<&'static str, Vec<&'static Field>
     by_name
 }
 
-/// The descriptor a CLI input takes: the one of its key; of a key several descriptors share, the
-/// one whose default is the input's.
-pub(crate) fn descriptor_of(
-    c: &CliInput,
-    by_name: &BTreeMap<&'static str, Vec<&'static Field>>,
-) -> Option<&'static Field> {
-    let cands = by_name.get(c.key.as_str()).cloned().unwrap_or_default();
-    match cands.len() {
-        0 => None,
-        1 => Some(cands[0]),
-        _ => cands.iter().copied().find(|f| f.default.is_some_and(|d| c.default == num(d))),
+/// The descriptor a CLI input takes, as crates/cli/src/flag_fields.rs names it (none for a flag
+/// named there as taking none, or not named).
+pub(crate) fn descriptor_of(c: &CliInput) -> Option<&'static Field> {
+    match crate::flag_fields::takes(&c.command, &c.flag)? {
+        crate::flag_fields::Takes::Field(f) => Some(f),
+        crate::flag_fields::Takes::Nothing(_) => None,
     }
-}
-
-/// Whether an input's key names one descriptor without doubt: the only one of its key, or the
-/// only one of its key with the input's default (`--step-deg` with default 1 could be the cam
-/// profile's or the cam table's spacing: the reference gives the first, the range-end sweep
-/// leaves it out).
-pub(crate) fn descriptor_is_certain(c: &CliInput, by_name: &BTreeMap<&'static str, Vec<&'static Field>>) -> bool {
-    let cands = by_name.get(c.key.as_str()).cloned().unwrap_or_default();
-    cands.len() == 1 || cands.iter().filter(|f| f.default.is_some_and(|d| c.default == num(d))).count() == 1
 }
 
 pub(crate) fn cli_inputs() -> Vec<CliInput> {
@@ -327,17 +313,12 @@ fn reference() -> String {
                 Some(v) => num(v),
                 None => "—".into(),
             };
-            // A key several descriptors share (`points`, `speed_rpm`) is matched by its default only;
-            // without a default the command tables below say which flag is which.
+            // The flags that name this descriptor (crates/cli/src/flag_fields.rs); Python's keywords
+            // by key, where the key is this descriptor's alone.
             let shared = by_name.get(f.name).map_or(1, Vec::len) > 1;
-            let matches = |default: &str| match (shared, f.default) {
-                (false, _) => true,
-                (true, Some(d)) => default == num(d),
-                (true, None) => false,
-            };
             let mut takers: Vec<String> = cli
                 .iter()
-                .filter(|c| c.key == f.name && matches(&c.default))
+                .filter(|c| descriptor_of(c) == Some(f))
                 .map(|c| format!("`{} {}`", c.command, c.flag))
                 .collect();
             takers.dedup();
@@ -381,9 +362,11 @@ fn reference() -> String {
             s.push_str("| input | unit | range | default | help |\n|---|---|---|---|---|\n");
             last.clone_from(&c.command);
         }
-        let f = descriptor_of(c, &by_name);
-        let (unit, range) = match f {
-            Some(f) => ((if f.unit().is_empty() { "—" } else { f.unit() }).to_string(), range_text(f)),
+        let (unit, range) = match crate::flag_fields::takes(&c.command, &c.flag) {
+            Some(crate::flag_fields::Takes::Field(f)) => {
+                ((if f.unit().is_empty() { "—" } else { f.unit() }).to_string(), range_text(f))
+            }
+            Some(crate::flag_fields::Takes::Nothing(why)) => ("".into(), format!("({why})")),
             None => ("".into(), "".into()),
         };
         let _ = writeln!(

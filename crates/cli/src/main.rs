@@ -13,6 +13,8 @@ mod dynamics;
 #[cfg(test)]
 mod fields_doc;
 #[cfg(test)]
+mod flag_fields;
+#[cfg(test)]
 mod front_end_literals;
 mod insert;
 mod insert_air;

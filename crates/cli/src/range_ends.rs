@@ -1,5 +1,5 @@
 //! The range-end sweep (issue 27): every flag of every command that takes a library descriptor
-//! (`loomkin_units::Field`, matched as docs/reference/fields.md matches them) run at the ends of
+//! (`loomkin_units::Field`, named in crates/cli/src/flag_fields.rs, as docs/reference/fields.md shows them) run at the ends of
 //! its range and the neighbouring numbers, the other inputs at their defaults, on the example
 //! files.
 //!
@@ -18,7 +18,7 @@
 //! (default 120 s: twice the interactive budget's minute, for a loaded CI machine; `loom servo
 //! --tolerance 1e-9` takes 21 s of CPU and ran past 60 s once on the shared machine).
 
-use crate::fields_doc::{CliInput, cli_inputs, descriptor_is_certain, descriptor_of, descriptors_by_key};
+use crate::fields_doc::{CliInput, cli_inputs, descriptor_of};
 use loomkin_units::{Bound, Field};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -40,10 +40,10 @@ const LONGEST_NUMBER: usize = 40;
 /// without extension. A flag swept is taken out of these first.
 const BASES: &[(&str, &str)] = &[
     ("law info", "cycloidal"),
-    ("law sample", "cycloidal"),
+    ("law sample", "cycloidal --points 11"),
     ("law plot", "cycloidal -o {out}.svg"),
     ("cycle", "{ex}/heald-frame-cycle.toml"),
-    ("pick sweep", "speed --from 160 --to 240 --steps 3"),
+    ("pick sweep", "speed --from 160 --to 240 --points 3"),
     ("pick montecarlo", "{ex}/pick-montecarlo.toml"),
     ("pick plot", "-o {out}.svg"),
     ("servo optimize", "--starts 1"),
@@ -93,27 +93,6 @@ const SKIPPED: &[&str] = &["serve", "merge"];
 /// Flags a command refuses whatever their value (`dobby sweep` sets α = θ itself).
 const REFUSED_FLAGS: &[(&str, &str)] = &[("dobby sweep", "--alpha-deg"), ("dobby sweep", "--theta-deg")];
 
-/// Flags whose key the field reference matches to another quantity's descriptor (found by this
-/// sweep): the command checks a range of its own, which docs/reference/fields.md does not show
-/// (`shed law --motion-deg` takes 1 … 360°, the reference says (0, 180], a dobby's dwell angle).
-/// Left out until these flags name their descriptor; the list may only shrink.
-const MISREFERENCED: &[(&str, &str)] = &[
-    ("pick sweep", "--from"),
-    ("pick sweep", "--to"),
-    ("shed law", "--motion-deg"),
-    ("shed table", "--motion-deg"),
-    ("shed pareto", "--motion-deg"),
-    ("shed pareto", "--from"),
-    ("shed best", "--motion-deg"),
-    ("shed best", "--window-deg"),
-    ("cam table", "--motion-deg"),
-    ("dobby synthesize", "--chord-tol-mm"),
-    ("dobby synthesize", "--bore-mm"),
-    ("dobby synthesize", "--dwell-deg"),
-    ("dobby plot", "--dwell-deg"),
-    ("dobby sweep", "--dwell-deg"),
-];
-
 /// What a flag needs beside it to be read at all (a servo motor's gain needs `--motor servo`, a
 /// preload a moving mass), added to the command's base invocation.
 const NEEDS: &[(&str, &[&str], &str)] = &[
@@ -123,7 +102,7 @@ const NEEDS: &[(&str, &[&str], &str)] = &[
     ("dyn sweep", &["--force-n", "--preload-n", "--return-spring-n-m"], "--mass-kg 1"),
     ("dyn compensate", &["--force-n", "--preload-n", "--return-spring-n-m"], "--mass-kg 1"),
     ("dyn optimize", &["--force-n", "--preload-n", "--return-spring-n-m"], "--mass-kg 1"),
-    ("loom servo", &["--tolerance"], "--emit-tables {out}"),
+    ("loom servo", &["--tolerance", "--step-deg"], "--emit-tables {out}"),
     ("loom servo", &["--min-clearance-mm"], "--optimize"),
     ("shed table", &["--motion-deg"], "--design grid --step 0.25"),
     ("drive ripple", &["--servo-gain-n-m-s", "--servo-integral-s", "--servo-torque-limit-n-m"], SERVO),
@@ -142,7 +121,7 @@ const SERVO: &str = "--motor servo --servo-gain-n-m-s 100 --servo-torque-limit-n
 const FORMS: &[(&str, &[&str], &str)] = &[
     (
         "cam profile",
-        &["--arm-mm", "--pivot-mm"],
+        &["--arm-mm", "--pivot-mm", "--stroke-deg"],
         "--law cycloidal --stroke-deg 20 --motion-deg 120 --follower oscillating --arm-mm 100 --pivot-mm 120",
     ),
     (
@@ -154,6 +133,13 @@ const FORMS: &[(&str, &[&str], &str)] = &[
         "cam table",
         &["--motion-deg", "--stroke-mm"],
         "--law cycloidal --stroke-mm 100 --motion-deg 120 --format csv -o {out}.csv",
+    ),
+    ("pick sweep", &["--speed-rpm"], "play --from 0 --to 10 --points 3"),
+    ("cam table", &["--stroke-deg"], "--law cycloidal --stroke-deg 20 --motion-deg 120 --format csv -o {out}.csv"),
+    (
+        "servo check",
+        &["--stroke-deg"],
+        "{ex}/servo-axis.toml --law cycloidal --stroke-deg 20 --motion-deg 150 --speed-rpm 600",
     ),
     (
         "servo check",
@@ -387,14 +373,11 @@ fn judge(case: &Case, ran: &Ran) -> Option<String> {
 
 /// Every numeric flag with a descriptor, as (command, flag, descriptor).
 fn swept_inputs() -> Vec<(CliInput, &'static Field)> {
-    let by_key = descriptors_by_key();
     cli_inputs()
         .into_iter()
         .filter(|c| c.flag.starts_with("--") && !SKIPPED.contains(&c.command.as_str()))
         .filter(|c| !REFUSED_FLAGS.contains(&(c.command.as_str(), c.flag.as_str())))
-        .filter(|c| !MISREFERENCED.contains(&(c.command.as_str(), c.flag.as_str())))
-        .filter(|c| descriptor_is_certain(c, &by_key))
-        .filter_map(|c| descriptor_of(&c, &by_key).map(|f| (c, f)))
+        .filter_map(|c| descriptor_of(&c).map(|f| (c, f)))
         .collect()
 }
 

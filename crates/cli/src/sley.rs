@@ -164,11 +164,11 @@ fn run_analyze(a: AnalyzeArgs) -> Result<()> {
         r.peak_reed_jerk_m_s3
     )?;
     outln!(
-        "inertia force along the reed's path (J = {:.4} kg·m²): max {:.3} N at {:.3}°, min {:.3} N at {:.3}°",
+        "inertia force along the reed's path (J = {:.4} kg·m²): max {} N at {:.3}°, min {} N at {:.3}°",
         r.inertia_kg_m2,
-        r.max_inertia_force_n,
+        loomkin_units::fixed(r.max_inertia_force_n, 3),
         r.max_inertia_force_deg,
-        r.min_inertia_force_n,
+        loomkin_units::fixed(r.min_inertia_force_n, 3),
         r.min_inertia_force_deg
     )?;
     match (r.peak_rod_force_n, r.peak_rocking_shaft_force_n, r.max_pressure_angle_deg, r.prime_radius_mm) {

@@ -13,9 +13,17 @@
 //! assert_eq!(t.finish(), "# servo cam\nmaster_deg,slave_m\n0e0,1.5e-3\n");
 //! ```
 
-/// Shortest text that reads back to the same number, `-0` written as `0`.
+/// Shortest text that reads back to the same number, `-0` written as `0`: plain decimals from
+/// 10⁻⁷ to 10²¹, the exponent form outside (as JavaScript's `Number.prototype.toString` switches),
+/// so a value of 10⁻²⁵ is not 0.000…0001692 with 24 zeros, nor 10³⁰⁰ 301 digits.
 pub fn shortest(v: f64) -> String {
-    if v == 0.0 { "0".to_string() } else { format!("{v}") }
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-7..1e21).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Exponent form with the shortest mantissa that reads back to the same number (`1.5e-3`, `0e0`).
@@ -94,6 +102,21 @@ mod tests {
         assert_eq!(shortest(-0.0), "0");
         assert_eq!(exponent(-0.0), "-0e0");
         assert_eq!(exponent(1500.0), "1.5e3");
+        // Decimals inside [1e-7, 1e21), the exponent form outside, never longer than 27 characters
+        // (a sign, `0.`, six zeros and 17 digits).
+        assert_eq!(shortest(1.6924487330661563e-25), "1.6924487330661563e-25");
+        assert_eq!(shortest(1e-7), "0.0000001");
+        assert_eq!(shortest(9e-8), "9e-8");
+        assert_eq!(shortest(-123456.789), "-123456.789");
+        assert_eq!(shortest(1e21), "1e21");
+        let mut v = 1e-320;
+        while v < 1e300 {
+            for x in [v, -v, v * std::f64::consts::PI] {
+                assert!(shortest(x).len() <= 27, "{x}: {}", shortest(x));
+                assert_eq!(shortest(x).parse::<f64>().unwrap(), x);
+            }
+            v *= 7.3;
+        }
     }
 
     #[test]

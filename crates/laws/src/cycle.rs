@@ -179,12 +179,37 @@ impl CycleSpec {
     /// The allowed motion angle of [`CycleSpec::rise_return`] (deg): the rise and the return each
     /// take at most half of the turn.
     pub const RISE_RETURN_MOTION_DEG: Range = Range::closed(1e-6, 180.0, "deg");
+    /// `motion_deg` of [`CycleSpec::rise_return`] as an input (`cam profile --motion-deg`):
+    /// [`CycleSpec::RISE_RETURN_MOTION_DEG`], no default.
+    pub const MOTION_DEG: Field = Field::new(
+        "motion_deg",
+        Self::RISE_RETURN_MOTION_DEG,
+        "Master angle of a single law's rise and of its return, deg: 1e-6 … 180 (each takes at most half the turn).",
+    );
+    /// `stroke_mm` of [`CycleSpec::rise_return`] with a translating follower:
+    /// [`StrokeUnit::stroke_range`] in mm, no default.
+    pub const STROKE_MM: Field = Field::new(
+        "stroke_mm",
+        StrokeUnit::Mm.stroke_range(),
+        "Stroke of a single law's rise, mm: 1e-12 (what the law's normalisation resolves) … 10⁶ (a kilometre).",
+    );
+    /// `stroke_deg` of [`CycleSpec::rise_return`] with a swinging follower:
+    /// [`StrokeUnit::stroke_range`] in deg, no default.
+    pub const STROKE_DEG: Field = Field::new(
+        "stroke_deg",
+        StrokeUnit::Deg.stroke_range(),
+        "Swing of a single law's rise, deg: 1e-12 (what the law's normalisation resolves) … 10⁶ (2 778 turns).",
+    );
 
     /// One turn (360°) of a rise by `law` over `motion_deg`, a dwell, the return by the same law
     /// over `motion_deg` and a dwell of the same length (dwells of zero length left out): the
     /// machine cycle of a single law. Fails when the two motions do not fit in the turn.
     pub fn rise_return(law: &LawSpec, unit: StrokeUnit, stroke: f64, motion_deg: f64) -> Result<Self> {
-        Self::RISE_RETURN_MOTION_DEG.check("motion_deg", motion_deg)?;
+        Self::MOTION_DEG.check(motion_deg)?;
+        match unit {
+            StrokeUnit::Mm => Self::STROKE_MM.check(stroke)?,
+            StrokeUnit::Deg => Self::STROKE_DEG.check(stroke)?,
+        };
         let dwell = 180.0 - motion_deg;
         let mut segment = vec![SegmentSpec::moving(SegmentKind::Rise, motion_deg, law)];
         if dwell > 0.0 {

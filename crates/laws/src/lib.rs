@@ -57,5 +57,8 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     Law::HELD_POINTS,
     Law::PLOT_POINTS,
     Cycle::POINTS,
-    Cycle::HELD_POINTS
+    Cycle::HELD_POINTS,
+    CycleSpec::MOTION_DEG,
+    CycleSpec::STROKE_MM,
+    CycleSpec::STROKE_DEG,
 ];

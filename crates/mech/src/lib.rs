@@ -79,6 +79,8 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     AlphaSweep::TO,
     AlphaSweep::BY,
     AlphaSweep::ALPHAS,
+    Synthesis::CHORD_TOL_MM,
+    Synthesis::BORE_MM,
 ];
 pub use dobby::synthesis::{
     GivenLength, Synthesis, SynthesisOptions, SynthesisReport, SynthesisRow, SynthesisSummary, synthesize,

@@ -173,6 +173,7 @@ pub fn export_until(
             ),
         ),
         ExportFormat::Csv | ExportFormat::Xyva => {
+            crate::ServoInputs::EXPORT_STEP_DEG.check(step_deg)?;
             let table = CamTable::new(spline_motion(spline, drive)?, Spacing::StepDeg(step_deg))?;
             let (filename, written) = if format == ExportFormat::Csv {
                 ("servo-cam.csv", Format::Csv)

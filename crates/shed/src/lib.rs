@@ -58,9 +58,9 @@ pub use report::{
     BestReport, BestSearch, CriteriaReport, Definition, LawReport, PresetReport, RowReport, WindowReport,
 };
 pub use requirement::LoomRequirement;
-pub use shedlaw::{MOTION_DEG, NegativePhase, ShedLaw, check_motion_deg, mirror};
+pub use shedlaw::{MOTION_DEG, MOTION_DEG_FIELD, NegativePhase, ShedLaw, check_motion_deg, mirror};
 pub use study::{
-    Candidate, JERK_LIMIT_RANGE, PARETO_MOTION_DEG, TABLE_MOTION_DEG, best, check_window_deg, dominates_in,
+    Candidate, JERK_LIMIT_RANGE, PARETO_MOTION_DEG, TABLE_MOTION_DEG, WINDOW_DEG, best, check_window_deg, dominates_in,
     evaluate_rows, evaluate_rows_in, evaluate_rows_until, fig1_design, grid_design, grid_design_rows, pareto,
     pareto_indices, pareto_within, parse_motion_angles, table, table1_design, within_jerk_limit,
 };
@@ -79,4 +79,6 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     LoomRequirement::CROSSING_RANGE_DEG,
     LoomRequirement::SHED_EXCESS,
     PLOT_POINTS,
+    MOTION_DEG_FIELD,
+    WINDOW_DEG,
 ];

@@ -4,7 +4,7 @@
 
 use crate::{Result, ShedError};
 use loomkin_laws::{AccelPiece, EndCondition, Law, Segment, Shape, ShapeSegment, format_segments, parse_segments};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
 
 /// Tolerance on the sum of the relative lengths.
@@ -103,9 +103,18 @@ fn check_lengths(field: &str, segs: &[ShapeSegment]) -> Result<()> {
 /// frame in less than a degree of the main shaft.
 pub const MOTION_DEG: Range = Range::closed(1.0, 360.0, "deg");
 
-/// Checks a motion angle against [`MOTION_DEG`].
+/// The motion angle as an input (`shed law/table/pareto/best --motion-deg`): [`MOTION_DEG`], no
+/// default (a law's own angle, or the study's list, when left out).
+pub const MOTION_DEG_FIELD: Field = Field::new(
+    "motion_deg",
+    MOTION_DEG,
+    "Motion angle φ_дв of a shedding law, deg: 1 … 360 (one turn; below 1° the criteria are no longer read to \
+     three significant digits and the frame's acceleration runs away).",
+);
+
+/// Checks a motion angle against [`MOTION_DEG_FIELD`].
 pub fn check_motion_deg(motion_deg: f64) -> Result<f64> {
-    Ok(MOTION_DEG.check("motion_deg", motion_deg)?)
+    Ok(MOTION_DEG_FIELD.check(motion_deg)?)
 }
 
 /// The mirror image of positive-phase segments: reversed order, each shape reversed in time and

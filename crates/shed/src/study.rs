@@ -4,7 +4,7 @@
 use crate::criteria::check_scales;
 use crate::{Conditions, Criteria, Dimensionless, Result, ShedError, Template, check_motion_deg};
 use loomkin_study::{Design, Progress, Sense, argmin_subject_to, evaluate_design, pareto_front};
-use loomkin_units::{Range, StopFlag};
+use loomkin_units::{Field, Range, StopFlag};
 use serde::Serialize;
 
 /// The paper's Table 1: eight three-part laws, `k1` (rise) and `k2` (plateau) as printed, and
@@ -229,9 +229,19 @@ pub fn pareto_indices(points: &[[f64; 2]]) -> Result<Vec<usize>> {
     Ok(f)
 }
 
-/// Checks a required window: `0 < W < 360°`.
+/// The required window of `shed best --window-deg`: `0 < W < 360°`, as 10⁻⁹ … 359.999° (the
+/// window is reported to 0.001°, so a window of 360° − 0.001° is the widest one that leaves a
+/// motion to read).
+pub const WINDOW_DEG: Field = Field::new(
+    "window_deg",
+    Range::closed(1e-9, 359.999, "deg"),
+    "Required clear-shed window φ_пп* of the law sought, deg: 1e-9 … 359.999 (a window of the whole turn \
+     leaves no motion; windows are reported to 0.001°); no default (give it or the loom data).",
+);
+
+/// Checks a required window against [`WINDOW_DEG`].
 pub fn check_window_deg(window_deg: f64) -> Result<f64> {
-    Ok(Range::closed(1e-9, 359.999, "deg").check("window_deg", window_deg)?)
+    Ok(WINDOW_DEG.check(window_deg)?)
 }
 
 /// The law of least peak acceleration whose window is at least `window_deg`.

@@ -2,7 +2,7 @@
 
 use crate::{CamError, Result};
 use loomkin_laws::{Cycle, Law, Segment, StrokeUnit};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 
 /// One smooth piece of a slave motion: a dwell, or one segment of a law inside a rise or return.
 ///
@@ -97,6 +97,20 @@ pub const STROKE_RANGE: Range = Range::open_closed(0.0, 1e6, "");
 pub const MOTION_DEG_RANGE: Range = Range::closed(1e-6, 36_000.0, "deg");
 
 impl Motion {
+    /// `motion_deg` of [`Motion::rise`] (`cam table --motion-deg`): [`MOTION_DEG_RANGE`], no default.
+    pub const MOTION_DEG: Field = Field::new(
+        "motion_deg",
+        MOTION_DEG_RANGE,
+        "Master angle of a cam table's single rise, deg: 1e-6 … 36000 (a hundred turns: a table may span \
+         several turns of the master).",
+    );
+    /// `stroke_mm` of [`Motion::rise`] (`cam table --stroke-mm`): [`STROKE_RANGE`], no default.
+    pub const STROKE_MM: Field =
+        Field::new("stroke_mm", STROKE_RANGE, "Stroke of a cam table's single rise, mm: 0 < h ≤ 10⁶ (a kilometre).");
+    /// `stroke_deg` of [`Motion::rise`] (`cam table --stroke-deg`): [`STROKE_RANGE`], no default.
+    pub const STROKE_DEG: Field =
+        Field::new("stroke_deg", STROKE_RANGE, "Swing of a cam table's single rise, deg: 0 < h ≤ 10⁶.");
+
     /// The motion of a checked cycle file, from its first segment's start over one period.
     pub fn from_cycle(cycle: &Cycle) -> Self {
         let mut pieces = Vec::new();
@@ -118,9 +132,8 @@ impl Motion {
 
     /// A single rise by `stroke` (slave unit, > 0) over the master angles `0…motion_deg`.
     pub fn rise(law: &Law, stroke: f64, motion_deg: f64, unit: StrokeUnit) -> Result<Self> {
-        let field = if unit == StrokeUnit::Mm { "stroke_mm" } else { "stroke_deg" };
-        let h = STROKE_RANGE.check(field, stroke)?;
-        let b = MOTION_DEG_RANGE.check("motion_deg", motion_deg)?;
+        let h = if unit == StrokeUnit::Mm { Self::STROKE_MM } else { Self::STROKE_DEG }.check(stroke)?;
+        let b = Self::MOTION_DEG.check(motion_deg)?;
         let mut pieces = Vec::new();
         push_law(&mut pieces, law, 0.0, b, 0.0, h);
         Ok(Self { unit, pieces, stroke: h })

@@ -507,9 +507,9 @@ impl DobbyInputs {
         match speed_rpm {
             None => Ok(1.0),
             Some(n) => {
-                let w = ShaftSpeed::from_rpm_field(field, n)?.rad_per_s();
+                // The modulator's range first: it lies inside the shaft's, so one message names it.
                 Self::SPEED_RPM.check_as(field, n)?;
-                Ok(w)
+                Ok(ShaftSpeed::from_rpm_field(field, n)?.rad_per_s())
             }
         }
     }

@@ -5,7 +5,7 @@
 use super::synthesis::Synthesis;
 use crate::{MechError, Result};
 use loomkin_io::drawing::{Layered, Shape};
-use loomkin_units::Range;
+use loomkin_units::{Field, Range};
 
 /// Allowed chord tolerance (mm).
 pub const DOBBY_CHORD_TOL_RANGE: Range = Range::closed(1e-3, 1.0, "mm");
@@ -66,15 +66,37 @@ pub(crate) fn chord_indices(q: &[[f64; 2]], tol: f64) -> Result<Vec<usize>> {
     Ok(keep)
 }
 
+/// The bore diameter's range in the drawing (mm): none (0) … 10 m.
+pub const DOBBY_BORE_RANGE: Range = Range::closed(0.0, 1e4, "mm");
+
 impl Synthesis {
+    /// `chord_tol_mm` of the cams' drawing (`dobby synthesize --chord-tol-mm`): a micrometre (the
+    /// drawing's vertices are picked from curve points every 0.05° of input, finer than that they
+    /// run out) … 1 mm; 0.01 mm.
+    pub const CHORD_TOL_MM: Field = Field::new(
+        "chord_tol_mm",
+        DOBBY_CHORD_TOL_RANGE,
+        "Chord tolerance of the dobby cams' DXF polylines, mm: 0.001 (the curves are known every 0.05° of input) \
+         … 1; 0.01 mm (below a machine shop's tolerance) when left out.",
+    )
+    .with_default(loomkin_io::drawing::DEFAULT_CHORD_TOL_MM);
+    /// `bore_mm` of the cams' drawing (`dobby synthesize --bore-mm`): 0 (none) … 10 m, clearing
+    /// the cams; left out, 0.4 × the cams' least radius.
+    pub const BORE_MM: Field = Field::new(
+        "bore_mm",
+        DOBBY_BORE_RANGE,
+        "Bore diameter about the crank centre in the dobby cams' DXF, mm: 0 (none) … 10000, below the cams' \
+         least diameter; left out, 0.4 × their least radius.",
+    );
+
     /// The drawing of both cams (coordinates in m, the tolerance and bore in mm as the CLI takes them): layers `CAM_CENTRE`, `CAM_WALL_LEFT`, `CAM_WALL_RIGHT` and the
     /// same for `COUNTER_CAM_*` (walls only with a roller), as closed polylines whose chords stay
     /// within `chord_tol_mm` of the curves whatever the table step; `CENTRE` (a cross at the crank
     /// centre O), `BORE` (`bore_mm` diameter about O; none when 0), `PHASE_0` (from O to roller B at
     /// input angle 0°) and `ROLLER` (both rollers at 0°).
     pub fn drawing(&self, chord_tol_mm: f64, bore_mm: f64) -> Result<Vec<Layered>> {
-        let tol = 1e-3 * DOBBY_CHORD_TOL_RANGE.check("chord_tol_mm", chord_tol_mm)?;
-        let bore = 1e-3 * Range::closed(0.0, 1e4, "mm").check("bore_mm", bore_mm)?;
+        let tol = 1e-3 * Self::CHORD_TOL_MM.check(chord_tol_mm)?;
+        let bore = 1e-3 * Self::BORE_MM.check(bore_mm)?;
         let mut out = Vec::new();
         let mut least = f64::INFINITY;
         let [draw_cam, draw_counter_cam] = self.dense_profiles();

@@ -10,7 +10,7 @@ use loomkin_io::{IoError, Table};
 use loomkin_units::mm_from_m;
 
 /// The default chord tolerance of the drawing, mm (`dobby synthesize --chord-tol-mm`).
-pub const DEFAULT_CHORD_TOL_MM: f64 = loomkin_io::drawing::DEFAULT_CHORD_TOL_MM;
+pub const DEFAULT_CHORD_TOL_MM: f64 = Synthesis::CHORD_TOL_MM.default_value();
 
 /// The drawing of both cams as DXF shapes ([`Synthesis::drawing`]: closed polylines within
 /// `chord_tol_mm` of the curves, centre, bore, 0° phase and rollers); the bore defaults to

@@ -90,8 +90,11 @@ impl OutputLawSpec {
     /// Checks the fields: cycles in 1…6, dwell in [0, 360/cycles − 1]°, centre in [−360, 360]°.
     pub fn validate(&self) -> Result<()> {
         Self::CYCLES.check(f64::from(self.cycles))?;
+        // The descriptor's range first (one message for every cycle count), then the bound the
+        // cycles put on it.
+        Self::DWELL_DEG.check(self.dwell_deg)?;
         let max_dwell = 360.0 / f64::from(self.cycles) - 1.0;
-        Range::closed(0.0, max_dwell, "°").check(Self::DWELL_DEG.name, self.dwell_deg)?;
+        Self::DWELL_DEG.at_most(max_dwell).check(self.dwell_deg)?;
         Self::DWELL_CENTRE_DEG.check(self.dwell_centre_deg)?;
         self.rise.validate()?;
         Ok(())
