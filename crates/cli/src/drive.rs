@@ -115,7 +115,9 @@ impl MotorArgs {
             servo_integral_s: self.servo_integral_s,
             servo_torque_limit_n_m: self.servo_torque_limit_n_m,
         };
-        Ok(loom.drive.motor.overridden(&over).build(loom.speed.rpm(), "drive.")?)
+        let spec = loom.drive.motor.overridden(&over);
+        spec.check_read(&over, |key| format!("--{}", key.replace('_', "-")))?;
+        Ok(spec.build(loom.speed.rpm(), "drive.")?)
     }
 }
 
@@ -165,9 +167,8 @@ pub struct CorrectArgs {
     /// through the elastic model (left out: not computed).
     #[arg(long, allow_hyphen_values = true)]
     natural_hz: Option<f64>,
-    /// The frames' damping ratio ζ (with --natural-hz).
-    #[arg(long, allow_hyphen_values = true, default_value_t = Follower::DAMPING_RATIO.default_value())]
-    damping_ratio: f64,
+    #[arg(long, allow_hyphen_values = true, help = util::field_help("The frames' damping ratio ζ (with --natural-hz)", &Follower::DAMPING_RATIO))]
+    damping_ratio: Option<f64>,
     /// Directory for the cycle files, one per moving frame (frame-01.toml …), read by `cam` and `dyn`.
     #[arg(short, long)]
     output: PathBuf,
@@ -291,7 +292,11 @@ fn run_correct(a: CorrectArgs) -> Result<()> {
         Some(v) => FLYWHEEL_KG_M2.check_as("--flywheel-kg-m2", v)?,
         None => loom.drive.flywheel_kg_m2,
     };
-    let follower = a.natural_hz.map(|f| Follower::new(f, a.damping_ratio)).transpose()?;
+    if a.damping_ratio.is_some() && a.natural_hz.is_none() {
+        anyhow::bail!("--damping-ratio: read only with --natural-hz (the elastic model it damps)");
+    }
+    let zeta = Follower::DAMPING_RATIO.or_default(a.damping_ratio)?;
+    let follower = a.natural_hz.map(|f| Follower::new(f, zeta)).transpose()?;
     let motion = Motion::new(&loom, &pattern)?;
     let c = loomkin_loom::correct(&loom, &motion, &pattern, &motor, jf, a.step_deg, follower.as_ref())?;
     std::fs::create_dir_all(&a.output)

@@ -341,6 +341,56 @@ impl MotorSpec {
         }
     }
 
+    /// Refuses a parameter of `over` (a command line over a file) that the motor of `self` (the
+    /// parameters in force, [`MotorSpec::overridden`]) does not read: a servo gain with an
+    /// induction motor, a breakdown ratio on a linear curve, which would otherwise be ignored
+    /// unchecked. `name` turns a key into the front end's name for it (`--servo-gain-n-m-s`).
+    pub fn check_read(&self, over: &MotorSpec, name: impl Fn(&str) -> String) -> Result<(), RippleError> {
+        let kind = self.motor.unwrap_or_default();
+        let kind_name = |k: MotorKind| match k {
+            MotorKind::Constant => "constant",
+            MotorKind::Induction => "induction",
+            MotorKind::Servo => "servo",
+        };
+        let induction = [
+            ("motor_curve", over.motor_curve.is_some()),
+            (Induction::SYNCHRONOUS_RPM.name, over.synchronous_rpm.is_some()),
+            (Induction::RATED_RPM.name, over.rated_rpm.is_some()),
+            (Induction::RATED_POWER_KW.name, over.rated_power_kw.is_some()),
+            (Induction::GEAR_RATIO.name, over.gear_ratio.is_some()),
+            (Induction::BREAKDOWN_RATIO.name, over.breakdown_ratio.is_some()),
+        ];
+        let servo = [
+            (Servo::GAIN_N_M_S.name, over.servo_gain_n_m_s.is_some()),
+            (Servo::INTEGRAL_S.name, over.servo_integral_s.is_some()),
+            (Servo::TORQUE_LIMIT_N_M.name, over.servo_torque_limit_n_m.is_some()),
+        ];
+        for (needs, keys) in [(MotorKind::Induction, &induction[..]), (MotorKind::Servo, &servo[..])] {
+            if let Some((key, _)) = keys.iter().find(|(_, given)| *given)
+                && kind != needs
+            {
+                return Err(RippleError::field(
+                    name(key),
+                    format!(
+                        "read only by {} {} motor: give {} {} (the motor here is {})",
+                        if needs == MotorKind::Induction { "an" } else { "a" },
+                        kind_name(needs),
+                        name("motor"),
+                        kind_name(needs),
+                        kind_name(kind)
+                    ),
+                ));
+            }
+        }
+        if over.breakdown_ratio.is_some() && self.motor_curve.unwrap_or(MotorCurve::Linear) != MotorCurve::Kloss {
+            return Err(RippleError::field(
+                name(Induction::BREAKDOWN_RATIO.name),
+                format!("read only by Kloss's curve: give {} kloss (the curve here is linear)", name("motor_curve")),
+            ));
+        }
+        Ok(())
+    }
+
     /// The motor for a loom running at `speed_rpm`; errors name the fields as `{prefix}{name}`
     /// (`drive.rated_power_kw`). Constant torque and the servo hold `speed_rpm` as their mean speed
     /// and set-point; an induction motor's gear ratio left out is its rated speed over `speed_rpm`.
@@ -391,6 +441,36 @@ impl MotorSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_parameter_the_motor_does_not_read_is_refused_by_name() {
+        let flag = |k: &str| format!("--{}", k.replace('_', "-"));
+        let file = MotorSpec { motor: Some(MotorKind::Induction), rated_power_kw: Some(5.5), ..MotorSpec::default() };
+        // A servo gain over an induction motor of the file.
+        let over = MotorSpec { servo_gain_n_m_s: Some(100.0), ..MotorSpec::default() };
+        let e = file.overridden(&over).check_read(&over, flag).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "--servo-gain-n-m-s: read only by a servo motor: give --motor servo (the motor here is induction)"
+        );
+        // The same with --motor servo is read.
+        let over = MotorSpec { motor: Some(MotorKind::Servo), ..over };
+        assert!(file.overridden(&over).check_read(&over, flag).is_ok());
+        // Induction parameters over the default constant motor.
+        let over = MotorSpec { gear_ratio: Some(3.0), ..MotorSpec::default() };
+        let e = MotorSpec::default().overridden(&over).check_read(&over, flag).unwrap_err().to_string();
+        assert!(e.starts_with("--gear-ratio: read only by an induction motor: give --motor induction"), "{e}");
+        // Over an induction motor they are read; the breakdown ratio only on Kloss's curve.
+        assert!(file.overridden(&over).check_read(&over, flag).is_ok());
+        let over = MotorSpec { breakdown_ratio: Some(2.5), ..MotorSpec::default() };
+        let e = file.overridden(&over).check_read(&over, flag).unwrap_err().to_string();
+        assert!(e.starts_with("--breakdown-ratio: read only by Kloss's curve: give --motor-curve kloss"), "{e}");
+        let over = MotorSpec { motor_curve: Some(MotorCurve::Kloss), ..over };
+        assert!(file.overridden(&over).check_read(&over, flag).is_ok());
+        // The file's own parameters of another motor are not the command line's: not refused.
+        let both = MotorSpec { servo_gain_n_m_s: Some(100.0), ..file };
+        assert!(both.check_read(&MotorSpec::default(), flag).is_ok());
+    }
 
     fn motor(curve: MotorCurve) -> Induction {
         Induction::new(1500.0, 1450.0, 5.5, 2.5, curve, 2.9).unwrap()

@@ -130,3 +130,65 @@ fn correct_writes_cycle_files_that_cam_and_dyn_read() {
         &["natural_hz"],
     );
 }
+
+/// A motor flag the motor in force does not read, and `--damping-ratio` without `--natural-hz`,
+/// are refused in one line naming the flag and what it needs (they were ignored unchecked); with
+/// what they need they run.
+#[test]
+fn motor_flags_without_their_motor_are_refused() {
+    // A constant-torque motor in the file.
+    let loom = rapier_with_drive();
+    let pattern = ex("point-24.wif");
+    let out = std::env::temp_dir().join(format!("loomkin-drive-motor-flags-{}", std::process::id()));
+    let out = out.to_str().unwrap().to_string();
+    for command in ["ripple", "correct"] {
+        let with_pattern = |extra: &[&str]| {
+            let mut args = vec!["drive", command, loom.as_str()];
+            if command == "correct" {
+                args.extend(["--wif", pattern.as_str(), "-o", out.as_str()]);
+            }
+            args.extend(extra);
+            args.into_iter().map(str::to_string).collect::<Vec<_>>()
+        };
+        let refused = |extra: &[&str], needles: &[&str]| {
+            let args = with_pattern(extra);
+            usage_error(&args.iter().map(String::as_str).collect::<Vec<_>>(), needles);
+        };
+        refused(&["--servo-gain-n-m-s", "100"], &["--servo-gain-n-m-s", "--motor servo", "the motor here is constant"]);
+        refused(&["--servo-integral-s", "1e9"], &["--servo-integral-s", "--motor servo"]);
+        refused(&["--gear-ratio", "3"], &["--gear-ratio", "--motor induction"]);
+        refused(&["--motor-curve", "kloss"], &["--motor-curve", "--motor induction"]);
+        refused(
+            &["--motor", "induction", "--rated-power-kw", "5.5", "--breakdown-ratio", "2.5"],
+            &["--breakdown-ratio", "--motor-curve kloss"],
+        );
+        refused(
+            &[
+                "--motor",
+                "servo",
+                "--servo-gain-n-m-s",
+                "100",
+                "--servo-torque-limit-n-m",
+                "1000",
+                "--rated-rpm",
+                "1400",
+            ],
+            &["--rated-rpm", "--motor induction", "the motor here is servo"],
+        );
+    }
+    usage_error(
+        &["drive", "correct", &loom, "--wif", &pattern, "-o", &out, "--damping-ratio", "0.05"],
+        &["--damping-ratio", "--natural-hz"],
+    );
+    // With what they need they are read (and checked: an out-of-range gain is refused by its range).
+    usage_error(
+        &["drive", "ripple", &loom, "--motor", "servo", "--servo-gain-n-m-s", "-1", "--servo-torque-limit-n-m", "1000"],
+        &["servo_gain_n_m_s", "out of range"],
+    );
+    let ok = loomkin()
+        .args(["drive", "ripple", &loom, "--motor", "induction", "--rated-power-kw", "5.5"])
+        .args(["--motor-curve", "kloss", "--breakdown-ratio", "2.5", "--json"])
+        .output()
+        .unwrap();
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+}
