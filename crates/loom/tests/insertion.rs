@@ -158,22 +158,3 @@ impl CarrierPath for Span {
         0.0
     }
 }
-
-/// `picks` picks on `frames` shafts, each up or down at random (an LCG from `seed`; at least one
-/// shaft up).
-fn random_plan(seed: u64, picks: usize, frames: usize) -> Pattern {
-    let mut state = seed;
-    let plan: Vec<String> = (0..picks)
-        .map(|_| {
-            let up: Vec<String> = (1..=frames)
-                .filter(|_| {
-                    state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-                    state >> 63 == 1
-                })
-                .map(|s| s.to_string())
-                .collect();
-            if up.is_empty() { "1".to_string() } else { up.join(" ") }
-        })
-        .collect();
-    Pattern::from_lift_plan(&plan.join("\n")).unwrap()
-}

@@ -25,3 +25,24 @@ pub fn edited(text: &str, old: &str, new: &str) -> String {
     assert!(text.contains(old), "{old} not in the file");
     text.replacen(old, new, 1)
 }
+
+/// `picks` picks on `shafts` shafts, each up or down at random (an LCG from `seed`; at least one
+/// shaft up in every pick). The benches draw theirs here too.
+pub fn random_plan(seed: u64, picks: usize, shafts: usize) -> Pattern {
+    let mut state = seed;
+    let mut text = String::new();
+    for _ in 0..picks {
+        let mut up = Vec::new();
+        for s in 1..=shafts {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            if state >> 63 == 1 {
+                up.push(s.to_string());
+            }
+        }
+        if up.is_empty() {
+            up.push("1".into());
+        }
+        text += &(up.join(" ") + "\n");
+    }
+    Pattern::from_lift_plan(&text).unwrap()
+}
