@@ -165,8 +165,8 @@ pub fn clearance(loom: &Loom, pattern: &Pattern, path: &impl CarrierPath) -> Res
     let mut bits: Vec<u64> =
         (0..n).map(|i| (0..span - 1).filter(|&q| up(i, lo + q as i64)).fold(0u64, |b, q| b | 1 << q)).collect();
     for p in 0..picks {
+        let newest = (p as i64 + hi).rem_euclid(picks as i64);
         for (i, slot) in state.iter_mut().enumerate() {
-            let newest = (p as i64 + hi).rem_euclid(picks as i64);
             if p > 0 {
                 bits[i] >>= 1;
             }
