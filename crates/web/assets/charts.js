@@ -306,8 +306,14 @@ class Chart {
       c.strokeStyle = hl.color || "#b91c1c"; c.lineWidth = 1.5; c.setLineDash([7, 4]);
       c.beginPath(); c.moveTo(L.left, py); c.lineTo(L.left + L.pw, py); c.stroke(); c.setLineDash([]);
       if (hl.label) {
-        c.fillStyle = hl.color || "#b91c1c"; c.font = "12px system-ui, sans-serif"; c.textAlign = "right"; c.textBaseline = hl.y >= 0 ? "bottom" : "top";
-        c.fillText(hl.label, L.left + L.pw - 4, py + (hl.y >= 0 ? -2 : 2));
+        // Above a line at or over zero, below a negative one — unless that side has no room for the
+        // text inside the plot (a line near the top or the bottom edge), then on the other side.
+        const LABEL_PX = 16;
+        let above = hl.y >= 0;
+        if (above && py - LABEL_PX < L.top) above = false;
+        else if (!above && py + LABEL_PX > L.top + L.ph) above = true;
+        c.fillStyle = hl.color || "#b91c1c"; c.font = "12px system-ui, sans-serif"; c.textAlign = "right"; c.textBaseline = above ? "bottom" : "top";
+        c.fillText(hl.label, L.left + L.pw - 4, py + (above ? -2 : 2));
       }
     }
     if (this.markerX !== undefined && this.markerX !== null) {
