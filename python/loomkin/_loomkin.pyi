@@ -282,6 +282,7 @@ def loom_servo(
     lift_plan: Optional[str] = None,
     optimize: bool = False,
     objective: str = "peak",
+    min_clearance_mm: float = ...,
 ) -> Dict[str, Any]: ...
 def loom_sley_synthesize(
     stroke_mm: float,

@@ -52,15 +52,18 @@ def stagger(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = 
 
 
 def servo(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = None,
-          optimize: bool = False, objective: str = "peak") -> Dict[str, Any]:
+          optimize: bool = False, objective: str = "peak",
+          min_clearance_mm: float = _default("StaggerOptions::MIN_CLEARANCE_MM")) -> Dict[str, Any]:
     """``loomkin loom servo --json`` (a loom file with ``[shedding] drive = "servo"``): the shared
     DC bus (peak and mean power in W, regenerated and braking energy in J per repeat), the shed the
     carrier passes (window in deg, least clearance in mm) and ``frames`` in shaft order (torques in
     N·m, speeds in rpm, powers in W, motor checks). With ``optimize`` (``--optimize``): every
     frame's stagger and motion angle (deg) for the least peak bus power (or "rms": the worst
-    frame's RMS torque), the ``_before``/``_after`` keys and the study of the optimum."""
+    frame's RMS torque), the ``_before``/``_after`` keys and the study of the optimum; the search
+    keeps at least ``min_clearance_mm`` (mm, ``--min-clearance-mm``; the design's own when it keeps
+    less) of clearance to the carrier in every pick, reported as ``min_clearance_kept_mm``."""
     loom_toml, wif_bytes, plan = _texts(loom, wif, lift_plan)
-    return _m.loom_servo(loom_toml, wif_bytes, plan, bool(optimize), objective)
+    return _m.loom_servo(loom_toml, wif_bytes, plan, bool(optimize), objective, float(min_clearance_mm))
 
 
 def sley(loom: Path, speed_rpm: Optional[float] = None,

@@ -4,7 +4,8 @@
 use crate::convert::{Count, columns, to_py};
 use crate::errors::{Fault, OrRaise, raise};
 use loomkin_loom::{
-    Drive, Loom, LoomError, Motion, Objective, Pattern, check, optimise_servo, optimise_stagger, servo_study,
+    Drive, Loom, LoomError, Motion, Objective, Pattern, ServoOptions, StaggerOptions, check, optimise_servo_with,
+    optimise_stagger, servo_study,
 };
 use loomkin_units::RangeError;
 use pyo3::prelude::*;
@@ -168,17 +169,19 @@ fn objective_of(objective: &str) -> PyResult<Objective> {
     }
 }
 
-/// loom_servo(loom_toml, wif=None, lift_plan=None, optimize=False, objective="peak") -> dict
+/// loom_servo(loom_toml, wif=None, lift_plan=None, optimize=False, objective="peak", min_clearance_mm=...) -> dict
 /// --
 ///
 /// `loomkin loom servo LOOM.toml --json` (`[shedding] drive = "servo"`): the bus (peak and mean
 /// power in W, regenerated and braking energy in J per repeat), the shed the carrier passes
 /// (window in deg, least clearance in mm), and `frames` in shaft order (torques in N·m, speeds in
-/// rpm, powers in W, the motor checks). With `optimize`, `--optimize [--objective]`: every frame's
-/// stagger and motion angle for the least peak bus power (or "rms": the worst frame's RMS torque)
-/// with the before/after keys, and the study of the optimum. Runs with the GIL released.
+/// rpm, powers in W, the motor checks). With `optimize`, `--optimize [--objective]
+/// [--min-clearance-mm]`: every frame's stagger and motion angle for the least peak bus power (or
+/// "rms": the worst frame's RMS torque) keeping at least `min_clearance_mm` of clearance to the
+/// carrier (the design's own when it keeps less), with the before/after keys, and the study of the
+/// optimum. `min_clearance_mm` is checked against its range either way. Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, optimize=false, objective="peak"))]
+#[pyo3(signature = (loom_toml, wif=None, lift_plan=None, optimize=false, objective="peak", min_clearance_mm=StaggerOptions::MIN_CLEARANCE_MM.default_value()))]
 fn loom_servo(
     py: Python<'_>,
     loom_toml: &str,
@@ -186,12 +189,14 @@ fn loom_servo(
     lift_plan: Option<&str>,
     optimize: bool,
     objective: &str,
+    min_clearance_mm: f64,
 ) -> PyResult<Py<PyAny>> {
-    let objective = objective_of(objective)?;
+    let options = ServoOptions { objective: objective_of(objective)?, min_clearance_mm };
+    options.validate().or_raise()?;
     let (loom, pattern) = read(py, loom_toml, wif, lift_plan)?;
     if optimize {
         let stop = loomkin_units::StopFlag::default();
-        let r = py.detach(|| optimise_servo(&loom, &pattern, objective, &stop, &|_, _| {})).or_raise()?;
+        let r = py.detach(|| optimise_servo_with(&loom, &pattern, &options, &stop, &|_, _| {})).or_raise()?;
         to_py(py, &r)
     } else {
         let r = py.detach(|| servo_study(&loom, &pattern)).or_raise()?;

@@ -45,6 +45,19 @@ def test_servo_matches_loom_servo(cli):
     o = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "twill-2-2.wif", optimize=True, objective="rms")
     same(o, ref)
     assert o["worst_rms_torque_n_m_after"] < o["worst_rms_torque_n_m_before"]
+    # --min-clearance-mm: the same floor kept, the same optimum; out of its range, the CLI's refusal
+    # (the same descriptor) naming the keyword.
+    ref = cli("loom", "servo", "examples/servo-shedding-loom.toml", "--wif", "examples/twill-2-2.wif", "--optimize",
+              "--min-clearance-mm", "0.5", "--json")
+    o = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "twill-2-2.wif", optimize=True,
+                           min_clearance_mm=0.5)
+    same(o, ref)
+    assert o["min_clearance_kept_mm"] == 0.5 and o["min_clearance_mm_after"] >= 0.5
+    for bad in (-1.0, 1000.5, float("nan")):
+        with pytest.raises(loomkin.OutOfRangeError) as e:
+            loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "twill-2-2.wif", optimize=True,
+                               min_clearance_mm=bad)
+        assert e.value.field == "min_clearance_mm" and e.value.low == 0 and e.value.high == 1000, str(e.value)
     with pytest.raises(loomkin.LoomkinError) as e:
         loomkin.loom.servo(EX / "rapier-loom.toml", wif=EX / "point-24.wif")
     assert "shedding.drive" in str(e.value)

@@ -10,7 +10,7 @@
 
 const { Chart, addTools } = window.LoomkinCharts;
 const { api, status, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField } = window.LoomkinShared;
 
 const es = { inflight: false, queued: false, result: null, optimum: null, token: 0, loomText: null, loomName: null, patternText: null, patternKind: null, patternName: null };
 const ROUTE = "/loom/servo/view";
@@ -41,6 +41,11 @@ async function initEshed() {
   const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
   const objective = el("select", { id: "eshed-objective" }, el("option", { value: "peak", textContent: "peak bus power" }), el("option", { value: "rms", textContent: "worst frame's RMS torque" }));
   const optimise = el("button", { type: "button", id: "eshed-optimise", textContent: "Optimise" });
+  // The least clearance the search keeps (--min-clearance-mm): the request schema's limits (the
+  // library's descriptor); blank, the library's default.
+  const minClear = el("input", { type: "number", step: "any", id: "eshed-min-clearance", className: "short" });
+  applyLimits(minClear, "/api/loom/servo/view", "min_clearance_mm");
+  minClear.setAttribute("aria-label", "least clearance kept (mm)");
   const shown = el("select", { id: "eshed-shown", disabled: true }, el("option", { value: "after", textContent: "the optimum" }), el("option", { value: "before", textContent: "the loom file's design" }));
   const gain = el("table", { className: "data", id: "eshed-gain" }, el("caption", { textContent: "Before → after" }), el("tbody"));
   gain.hidden = true;
@@ -51,6 +56,7 @@ async function initEshed() {
     el("label", { className: "wide" }, "weave pattern", patSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "eshed-pattern-upload-label" }, "load…", patFile), patName),
     el("h2", { textContent: "Optimise" }),
     el("p", { className: "hint", textContent: "Every frame's stagger (within ±shedding.max_stagger_deg) and motion angle, keeping the carrier's insertion clear in every pick (loom servo --optimize). It runs for seconds; cancel it from the progress line." }),
+    el("div", { className: "row" }, "least clearance kept", minClear, "mm"),
     el("div", { className: "row wrap" }, objective, optimise),
     el("label", { className: "wide" }, "draw", shown),
     gain);
@@ -74,7 +80,7 @@ async function initEshed() {
   root.append(frames);
   Object.assign(loomkin.charts, { eshed_torque: es.torque, eshed_bus: es.bus });
   if (window.ResizeObserver) new ResizeObserver(() => drawGrid()).observe(gridCanvas);
-  es.inputs = { loomSel, patSel, objective, optimise, shown };
+  es.inputs = { loomSel, patSel, objective, minClear, optimise, shown };
 
   const commit = () => es.history.commit();
   const changed = () => { resetOptimum(); evaluate(); commit(); };
@@ -100,6 +106,7 @@ async function initEshed() {
     document.querySelector("#eshed-pattern-upload-label").hidden = false; changed();
   });
   objective.addEventListener("change", commit);
+  minClear.addEventListener("change", commit);
   optimise.addEventListener("click", runOptimise);
   shown.addEventListener("change", () => { if (es.optimum) render(); });
 
@@ -110,6 +117,7 @@ async function initEshed() {
       loom: loomSel.value === "upload" && !es.loomText ? firstLoom : loomSel.value,
       pattern: patSel.value === "upload" && !es.patternText ? "plain-default" : patSel.value,
       objective: objective.value,
+      min_clearance_mm: minClear.value,
     };
     if (st.loom === "upload") st.loom_file = carried(es.loomText, es.loomName);
     if (st.pattern === "upload") st.pattern_file = carried(es.patternText, es.patternName, { kind: es.patternKind });
@@ -127,14 +135,15 @@ async function initEshed() {
     document.querySelector("#eshed-loom-upload-label").hidden = loomSel.value !== "upload";
     document.querySelector("#eshed-pattern-upload-label").hidden = patSel.value !== "upload";
     if (st.objective) objective.value = st.objective;
+    minClear.value = st.min_clearance_mm || "";
     if (loomSel.value + "\n" + patSel.value !== before || !es.result) { resetOptimum(); evaluate(); }
   });
   evaluate();
   es.history.ready();
 }
 
-// The request the view sends (for tests and the console): the loom and the pattern; `optimize`
-// and the objective for the search.
+// The request the view sends (for tests and the console): the loom and the pattern; `optimize`,
+// the objective and the least clearance (when one is typed) for the search.
 loomkin.eshedRequest = (optimize) => {
   const i = es.inputs, q = {};
   if (i.loomSel.value === "upload") { if (es.loomText) q.loom_toml = es.loomText; }
@@ -145,7 +154,10 @@ loomkin.eshedRequest = (optimize) => {
     const text = es.examples.patterns.find((p) => p.name === pv).text;
     q.pattern = /\.wif$/.test(pv) ? { wif: text } : { lift_plan: text };
   }
-  if (optimize) { q.optimize = true; q.objective = i.objective.value; }
+  if (optimize) {
+    q.optimize = true; q.objective = i.objective.value;
+    if (i.minClear.value !== "") q.min_clearance_mm = +i.minClear.value;
+  }
   return q;
 };
 loomkin.eshedView = () => ({ result: es.result, optimum: es.optimum });
@@ -153,6 +165,7 @@ loomkin.eshedView = () => ({ result: es.result, optimum: es.optimum });
 function eshedField(path) {
   const i = es.inputs;
   const map = [["pattern", i.patSel, "weave pattern"], ["loom_toml", i.loomSel, "loom file"], ["objective", i.objective, "objective"],
+    ["min_clearance_mm", i.minClear, "least clearance kept"],
     ["shedding", i.loomSel, "loom file"]];
   const hit = map.find(([k]) => path === k || path.startsWith(k + ".") || path.startsWith(k + "["));
   return hit ? { inputs: [hit[1]], label: hit[2] } : null;
@@ -189,9 +202,12 @@ function evaluate() {
 // it when the page cancels it (the progress line) or goes away.
 async function runOptimise() {
   const i = es.inputs;
+  // A field that holds no number is refused here; a number out of range by the API, naming the
+  // field (the library's range and message).
+  if (i.minClear.validity && i.minClear.validity.badInput) { refuseField("servo shedding", i.minClear, "least clearance kept: is not a number"); return; }
   const token = ++es.token;
   const q = loomkin.eshedRequest(true);
-  for (const x of [i.optimise, i.loomSel, i.patSel, i.objective]) x.disabled = true;
+  for (const x of [i.optimise, i.loomSel, i.patSel, i.objective, i.minClear]) x.disabled = true;
   status("servo shedding: optimising every frame's stagger and motion angle…");
   const t0 = performance.now();
   try {
@@ -205,7 +221,7 @@ async function runOptimise() {
       status(`servo shedding optimised in ${((performance.now() - t0) / 1000).toFixed(1)} s (${r.result.evaluations} evaluations)`);
     }
   } catch (e) { showFieldError("servo shedding", e, eshedField); }
-  for (const x of [i.optimise, i.loomSel, i.patSel, i.objective]) x.disabled = false;
+  for (const x of [i.optimise, i.loomSel, i.patSel, i.objective, i.minClear]) x.disabled = false;
 }
 
 // The answer drawn: the optimum's (or the design before it, as chosen) when there is one.
@@ -264,6 +280,7 @@ function render() {
       ["worst RMS torque", `${num(o.worst_rms_torque_n_m_before, 3)} → ${num(o.worst_rms_torque_n_m_after, 3)} N·m`],
       ["clear-shed window", `${num(o.window_deg_before, 2)} → ${num(o.window_deg_after, 2)}°`],
       ["least clearance", `${num(o.min_clearance_mm_before, 2)} → ${num(o.min_clearance_mm_after, 2)} mm`],
+      ["least clearance kept", `${num(o.min_clearance_kept_mm)} mm`, "eshed-gain-kept"],
       ["search", `${o.evaluations} evaluations, ${o.clearance_checks} clearance checks`],
       ["stagger (°)", o.stagger_deg.map((v) => num(v, 2)).join(", ")],
       ["motion angle (°)", o.motion_deg.map((v) => num(v, 2)).join(", ")],

@@ -1120,7 +1120,9 @@ fn the_workbench_in_a_real_browser() {
     // 13e. The servo shedding view (issue 31): the servo loom weaving the 2/2 twill after plain
     // weave — the lift grid, a torque per frame, the bus power changed; the figures the route's
     // (`loom servo --json`); Optimise (one request in flight) shows before → after as `loom servo
-    // --optimize --json`; a dobby loom is refused at the loom file's field.
+    // --optimize --json`, the least clearance typed sent and kept (`min_clearance_kept_mm`), one out of
+    // its range refused at its field with the library's message; a dobby loom is refused at the loom
+    // file's field.
     d.click("#tabs button[data-view='eshed']");
     let plain = d.wait_for(
         "the servo shedding view",
@@ -1148,6 +1150,13 @@ fn the_workbench_in_a_real_browser() {
         drawn[1].as_f64().is_some_and(|m| m <= peak * (1.0 + 1e-9) && m >= 0.95 * peak),
         "bus curve {drawn} vs peak {peak}"
     );
+    let limits = d.script("const f = document.querySelector('#eshed-min-clearance'); return [f.min, f.max]");
+    assert_eq!(
+        limits,
+        json!(["0", "1000"]),
+        "the least clearance's limits are the descriptor's (the request schema's)"
+    );
+    d.type_into("#eshed-min-clearance", "0.5");
     let busy = d.script("const b = document.querySelector('#eshed-optimise'); b.click(); return b.disabled && document.querySelector('#eshed-loom').disabled");
     assert_eq!(busy, json!(true), "one search in flight: the button and the loom wait for it");
     let gain = d.wait_for(
@@ -1157,6 +1166,7 @@ fn the_workbench_in_a_real_browser() {
     );
     let mut req = d.script("return loomkin.eshedRequest(true)");
     assert_eq!(req["optimize"], json!(true));
+    assert_eq!(req["min_clearance_mm"], json!(0.5), "the least clearance typed is sent");
     req["objective"] = json!("peak");
     let api =
         common::request(server, "POST", "/api/loom/servo", Some(req.to_string().as_bytes())).expect("optimum").json();
@@ -1169,7 +1179,23 @@ fn the_workbench_in_a_real_browser() {
     assert!(a <= b, "{a} > {b}");
     assert_eq!(gain.as_str(), Some(format!("{b:.1} → {a:.1} W").as_str()));
     assert_eq!(d.script("return loomkin.charts.eshed_bus.series.length"), json!(3), "before, after and the peak drawn");
+    assert_eq!(api["min_clearance_kept_mm"], json!(0.5), "{api}");
+    assert!(api["min_clearance_mm_after"].as_f64().is_some_and(|c| c >= 0.5), "{api}");
+    assert_eq!(d.script("return document.querySelector('#eshed-gain-kept').textContent"), json!("0.5 mm"));
     d.shot("eshed-optimised");
+    d.type_into("#eshed-min-clearance", "-1");
+    d.click("#eshed-optimise");
+    let msg = d.wait_for(
+        "the least clearance refused",
+        "const f = document.querySelector('#eshed-min-clearance'); const m = f.nextElementSibling; \
+         return f.classList.contains('bad') && !loomkin.busy && !document.querySelector('#eshed-optimise').disabled && m && \
+         m.classList.contains('field-msg') ? m.textContent : null",
+    );
+    assert!(
+        msg.as_str().is_some_and(|m| m.starts_with("least clearance kept") && m.contains("-1") && m.contains("1000")),
+        "{msg}"
+    );
+    d.type_into("#eshed-min-clearance", "0.5");
     d.script("const l = document.querySelector('#eshed-loom'); l.value = 'rapier-loom.toml'; l.dispatchEvent(new Event('change')); return true");
     let msg = d.wait_for(
         "the dobby loom refused",
