@@ -20,6 +20,11 @@
 //! * servo — two unknowns (`E₀` and the integrator), Newton's method with a finite-difference
 //!   Jacobian of the periodic map.
 //!
+//! Newton's method (on the exact derivative of the discrete map, each pass carrying the variational
+//! equations) is run first on a coarse grid ([`PRESOLVE_STEP_DEG`], the same joints), then on the
+//! grid itself from the coarse grid's periodic start, which then takes two passes instead of four
+//! or five; the bracketing searches above are the fallback when Newton fails.
+//!
 //! The speeds' and torques' extremes are located between the grid points, on the cubic Hermite
 //! interpolant of `E` (values and slopes `dE/dφ` at the grid points, fourth order like the rule)
 //! with `J` evaluated exactly, by golden-section search around the grid's extremes.
@@ -103,6 +108,37 @@ pub struct Table<'a, S: Shaft + ?Sized> {
     /// Values at grid point `k` (index `2k`) and at the midpoint after it (`2k + 1`).
     j: Vec<f64>,
     ml: Vec<f64>,
+    /// The presolve's coarse grid: indices into `nodes`, 0 to the last, every interval a run of
+    /// equal fine intervals (so its midpoint is a fine point or midpoint); empty when the grid is
+    /// already about as coarse ([`PRESOLVE_STEP_DEG`]).
+    coarse: Vec<usize>,
+}
+
+/// The step of the presolve's grid, deg: the periodic start is found first on a grid of about this
+/// step (a tenth of the default's points), then refined on the grid itself by Newton's method from
+/// there, which then needs two passes instead of four or five (the two grids' periodic starts agree
+/// to the rule's error on the coarse grid, ~10⁻⁹ relative on smooth loads). A grid is presolved
+/// when this step holds two or more of its steps (0.66° and finer).
+pub const PRESOLVE_STEP_DEG: f64 = 1.0;
+
+/// The coarse grid of [`Table`]'s presolve over `nodes` of regular step `h`: runs of at most
+/// `stride` equal intervals; an interval of another width (at a break) is a run of its own.
+fn coarse_grid(nodes: &[f64], h: f64, stride: usize) -> Vec<usize> {
+    let m = nodes.len() - 1;
+    if stride < 2 {
+        return Vec::new();
+    }
+    let regular = |k: usize| k < m && ((nodes[k + 1] - nodes[k]) - h).abs() <= 1e-9 * h;
+    let mut out = vec![0];
+    let mut run = 0;
+    for k in 0..m {
+        run += 1;
+        if k + 1 == m || run == stride || !regular(k) || !regular(k + 1) {
+            out.push(k + 1);
+            run = 0;
+        }
+    }
+    out
 }
 
 /// `step_deg` of the speed-ripple grid.
@@ -152,7 +188,16 @@ impl<'a, S: Shaft + ?Sized> Table<'a, S> {
                 ml.push(shaft.load_torque(phi));
             }
         }
-        Ok(Self { shaft, period, nodes, j, ml })
+        let stride = (PRESOLVE_STEP_DEG.to_radians() / h).round() as usize;
+        let coarse = coarse_grid(&nodes, h, stride);
+        Ok(Self { shaft, period, nodes, j, ml, coarse })
+    }
+
+    /// The same table without the presolve: Newton's method on the grid itself from the first
+    /// guess (the algorithm before the presolve; what tests compare it with).
+    pub fn without_presolve(mut self) -> Self {
+        self.coarse.clear();
+        self
     }
 
     /// The grid points, rad (the first 0, the last the period).
@@ -339,7 +384,17 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
     /// One fourth-order Runge–Kutta pass over the repeat from `(e0, z0)`, with the derivatives
     /// of the end in the start (the rule applied to the variational equations: the exact
     /// derivative of the discrete map); `None` when the shaft stops (`E ≤ 0` at a stage).
-    fn pass(&self, inv_j: &[f64], drive: &Drive, e0: f64, z0: f64, mut rec: Option<&mut Record>) -> Option<End> {
+    ///
+    /// `COARSE`: over the presolve's coarse grid (each interval a run of equal fine ones, its
+    /// midpoint a fine point or midpoint); never recorded.
+    fn pass<const COARSE: bool>(
+        &self,
+        inv_j: &[f64],
+        drive: &Drive,
+        e0: f64,
+        z0: f64,
+        mut rec: Option<&mut Record>,
+    ) -> Option<End> {
         let two = matches!(drive, Drive::Servo(_));
         let (mut e, mut z) = (e0, z0);
         let (mut t, mut q, mut w) = (0.0, 0.0, 0.0);
@@ -354,16 +409,17 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
         let axpy = |x: &[[f64; 2]; 2], c: f64, y: &[[f64; 2]; 2]| {
             [[x[0][0] + c * y[0][0], x[0][1] + c * y[0][1]], [x[1][0] + c * y[1][0], x[1][1] + c * y[1][1]]]
         };
-        let m = self.nodes.len() - 1;
+        let m = if COARSE { self.coarse.len() - 1 } else { self.nodes.len() - 1 };
         for k in 0..m {
-            let h = self.nodes[k + 1] - self.nodes[k];
-            let s1 = self.stage(inv_j, drive, 2 * k, e, z)?;
+            let (a, b) = if COARSE { (self.coarse[k], self.coarse[k + 1]) } else { (k, k + 1) };
+            let h = self.nodes[b] - self.nodes[a];
+            let s1 = self.stage(inv_j, drive, 2 * a, e, z)?;
             if let Some(r) = rec.as_deref_mut() {
                 r.push(e, z, s1.f[0], s1.f[1], t);
             }
-            let s2 = self.stage(inv_j, drive, 2 * k + 1, e + 0.5 * h * s1.f[0], z + 0.5 * h * s1.f[1])?;
-            let s3 = self.stage(inv_j, drive, 2 * k + 1, e + 0.5 * h * s2.f[0], z + 0.5 * h * s2.f[1])?;
-            let s4 = self.stage(inv_j, drive, 2 * k + 2, e + h * s3.f[0], z + h * s3.f[1])?;
+            let s2 = self.stage(inv_j, drive, a + b, e + 0.5 * h * s1.f[0], z + 0.5 * h * s1.f[1])?;
+            let s3 = self.stage(inv_j, drive, a + b, e + 0.5 * h * s2.f[0], z + 0.5 * h * s2.f[1])?;
+            let s4 = self.stage(inv_j, drive, 2 * b, e + h * s3.f[0], z + h * s3.f[1])?;
             // The variational equations through the same stages (E alone for a motor without state).
             if !two {
                 let k1 = s1.a[0][0] * p[0][0];
@@ -404,31 +460,65 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
             w += s(4);
         }
         if let Some(r) = rec {
-            let s1 = self.stage(inv_j, drive, 2 * m, e, z)?;
+            let s1 = self.stage(inv_j, drive, 2 * (self.nodes.len() - 1), e, z)?;
             r.push(e, z, s1.f[0], s1.f[1], t);
         }
         Some(End { e, z, t, q, w, jac: p, dt })
+    }
+
+    /// The periodic start by Newton's method ([`Table::newton`]) on the grid, from the periodic
+    /// start of the coarse grid when there is one (found from `guess`); from `guess` itself when
+    /// there is none or when Newton fails from it.
+    #[allow(clippy::too_many_arguments)]
+    fn periodic(
+        &self,
+        inv_j: &[f64],
+        drive: &Drive,
+        guess: [f64; 2],
+        scale: [f64; 2],
+        two: bool,
+        residual: &Residual<'_>,
+        rec: &mut Record,
+    ) -> Option<([f64; 2], End)> {
+        if !self.coarse.is_empty()
+            && let Some((x, _)) = self.newton::<true>(inv_j, drive, guess, scale, two, residual, None)
+            && let Some(found) = self.newton::<false>(inv_j, drive, x, scale, two, residual, Some(&mut *rec))
+        {
+            return Some(found);
+        }
+        self.newton::<false>(inv_j, drive, guess, scale, two, residual, Some(rec))
     }
 
     /// Newton's method on `residual(start, end)` (one or two unknowns; `two`: the servo's z too),
     /// its Jacobian from the pass's derivatives, each step halved while it stalls the shaft or
     /// raises the scaled residual. Returns the start and the end of the pass from it, which has
     /// been recorded in `rec`; `None` when it does not converge (the caller falls back on a bracketing search).
-    #[allow(clippy::type_complexity)]
-    fn newton(
+    ///
+    /// On the grid it stops when the next step would move the start by rounding only (10⁻¹³ of
+    /// `scale`). On the coarse grid (`COARSE`, no record) it stops sooner, when the step is below
+    /// [`PRESOLVE_TOL`] (Newton's next error is of its square), and returns the start after that
+    /// step with the end of the pass before it.
+    #[allow(clippy::too_many_arguments)]
+    fn newton<const COARSE: bool>(
         &self,
         inv_j: &[f64],
         drive: &Drive,
         start: [f64; 2],
         scale: [f64; 2],
         two: bool,
-        residual: &dyn Fn([f64; 2], &End) -> ([f64; 2], [[f64; 2]; 2]),
-        rec: &mut Record,
+        residual: &Residual<'_>,
+        mut rec: Option<&mut Record>,
     ) -> Option<([f64; 2], End)> {
         let norm = |r: [f64; 2]| (r[0] / scale[0]).abs().max(if two { (r[1] / scale[1]).abs() } else { 0.0 });
+        let mut run = |x: [f64; 2]| {
+            if let Some(r) = rec.as_deref_mut() {
+                r.clear();
+            }
+            self.pass::<COARSE>(inv_j, drive, x[0], x[1], rec.as_deref_mut())
+        };
+        let tol = if COARSE { PRESOLVE_TOL } else { 1e-13 };
         let mut x = start;
-        rec.clear();
-        let mut end = self.pass(inv_j, drive, x[0], x[1], Some(rec))?;
+        let mut end = run(x)?;
         let (mut r, mut d) = residual(x, &end);
         for _ in 0..50 {
             let step = if two {
@@ -443,16 +533,19 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
                 }
                 [r[0] / d[0][0], 0.0]
             };
-            // Converged: the next step would move the start by rounding only.
-            if norm(step) <= 1e-13 {
+            // Converged: the next step would move the start by rounding only (on the coarse grid:
+            // by less than its error on the grid itself).
+            if norm(step) <= tol {
+                if COARSE {
+                    x = [x[0] - step[0], x[1] - step[1]];
+                }
                 return Some((x, end));
             }
             let mut lambda = 1.0;
             let mut accepted = false;
             for _ in 0..30 {
                 let y = [x[0] - lambda * step[0], x[1] - lambda * step[1]];
-                rec.clear();
-                if let Some(ey) = self.pass(inv_j, drive, y[0], y[1], Some(rec)) {
+                if let Some(ey) = run(y) {
                     let (ry, dy) = residual(y, &ey);
                     if norm(ry) < norm(r) || norm(step) * lambda <= 1e-9 {
                         (x, end, r, d) = (y, ey, ry, dy);
@@ -469,6 +562,13 @@ impl<S: Shaft + ?Sized> Table<'_, S> {
         None
     }
 }
+
+/// A periodicity residual and its Jacobian from a start and the end of the pass from it.
+type Residual<'r> = dyn Fn([f64; 2], &End) -> ([f64; 2], [[f64; 2]; 2]) + 'r;
+
+/// Where the presolve on the coarse grid stops: a Newton step below this (relative to the start's
+/// scale) leaves an error of about its square, below the two grids' difference.
+const PRESOLVE_TOL: f64 = 1e-6;
 
 /// The root of a decreasing function from a positive guess; `None` from `f` means the shot
 /// stalled, which happens only below the root (a slower start stays slower everywhere).
@@ -714,11 +814,11 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
             let time = p / speed_rad_s;
             let guess = 0.5 * j0 * speed_rad_s * speed_rad_s;
             let residual = |_: [f64; 2], end: &End| ([end.t - time, 0.0], [[end.dt[0], 0.0], [0.0, 1.0]]);
-            let x = match table.newton(&inv_j, &drive, [guess, 0.0], [guess, 1.0], false, &residual, &mut rec) {
+            let x = match table.periodic(&inv_j, &drive, [guess, 0.0], [guess, 1.0], false, &residual, &mut rec) {
                 Some((x, end)) => (x, Some(end)),
                 None => {
                     let e0 = decreasing_root(
-                        |e0| table.pass(&inv_j, &drive, e0, 0.0, None).map(|end| end.t - time),
+                        |e0| table.pass::<false>(&inv_j, &drive, e0, 0.0, None).map(|end| end.t - time),
                         guess,
                         motor_field,
                     )?;
@@ -742,11 +842,11 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
             let w = if w > 0.0 { w } else { 0.5 * top };
             let guess = 0.5 * j0 * w * w;
             let residual = |x: [f64; 2], end: &End| ([end.e - x[0], 0.0], [[end.jac[0][0] - 1.0, 0.0], [0.0, 1.0]]);
-            let x = match table.newton(&inv_j, &drive, [guess, 0.0], [guess, 1.0], false, &residual, &mut rec) {
+            let x = match table.periodic(&inv_j, &drive, [guess, 0.0], [guess, 1.0], false, &residual, &mut rec) {
                 Some((x, end)) => (x, Some(end)),
                 None => {
                     let e0 = decreasing_root(
-                        |e0| table.pass(&inv_j, &drive, e0, 0.0, None).map(|end| end.e - e0),
+                        |e0| table.pass::<false>(&inv_j, &drive, e0, 0.0, None).map(|end| end.e - e0),
                         guess,
                         motor_field,
                     )?;
@@ -766,7 +866,7 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
                 ([end.e - x[0], end.z - x[1]], [[j[0][0] - 1.0, j[0][1]], [j[1][0], j[1][1] - 1.0]])
             };
             let scale = [guess[0], sv.torque_limit_n_m];
-            let (x, end) = table.newton(&inv_j, &drive, guess, scale, true, &residual, &mut rec).ok_or_else(|| {
+            let (x, end) = table.periodic(&inv_j, &drive, guess, scale, true, &residual, &mut rec).ok_or_else(|| {
                 RippleError::infeasible(
                     format!("{prefix}motor"),
                     format!(
@@ -781,7 +881,7 @@ pub fn solve<'t, 'a, S: Shaft + ?Sized>(
         Some(end) => end,
         None => {
             rec.clear();
-            table.pass(&inv_j, &drive, start[0], start[1], Some(&mut rec)).ok_or_else(stops)?
+            table.pass::<false>(&inv_j, &drive, start[0], start[1], Some(&mut rec)).ok_or_else(stops)?
         }
     };
     let mut sol = Solution { table, drive, extra, rec, report: empty_report(motor.name()) };
