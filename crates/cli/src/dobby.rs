@@ -13,7 +13,7 @@ use loomkin_mech::{
     ModulatorState, OutputLawSpec, Synthesis, SynthesisOptions, Warning, alpha_sweep, analyze, nearest_state,
     parse_point_table, synthesize,
 };
-use loomkin_plot::{Dash, Figure, Legend, Note, Panel, Rule, Series, sig4};
+use loomkin_plot::{Dash, Figure, Legend, Note, PALETTE, Panel, Rule, Series, sig4};
 use std::path::PathBuf;
 
 /// Subcommands of `loomkin dobby`.
@@ -695,33 +695,57 @@ fn xy(p: &[[f64; 2]], close: bool) -> Vec<(f64, f64)> {
     v
 }
 
-/// The cams with the mechanism at one state. With a roller the groove walls are drawn, else the
-/// roller-centre curves. Links are separate series: a polyline that doubles back on itself draws a
-/// miter spike in the bitmap backend. (The plot font has no prime, so Γ′ is written Γ'.)
-fn cams_panel(g: &ModulatorGeometry, gamma: &CamProfile, gamma_p: &CamProfile, st: &ModulatorState) -> Panel {
-    let mut series = if gamma.wall_left.is_empty() {
-        vec![
-            Series::line("cam Γ (roller centre B)", xy(&gamma.centre, true)),
-            Series::line("counter-cam Γ' (roller centre C)", xy(&gamma_p.centre, true)),
-        ]
-    } else {
-        vec![
-            Series::line("cam Γ, groove wall +r", xy(&gamma.wall_left, true)),
-            Series::line("cam Γ, groove wall -r", xy(&gamma.wall_right, true)),
-            Series::line("counter-cam Γ', groove wall +r", xy(&gamma_p.wall_left, true)),
-            Series::line("counter-cam Γ', groove wall -r", xy(&gamma_p.wall_right, true)),
-        ]
-    };
+/// Both walls of a groove as one line (parted by a break), so a cam reads as one colour.
+fn walls(left: &[[f64; 2]], right: &[[f64; 2]]) -> Vec<(f64, f64)> {
+    let mut v = xy(left, true);
+    v.push((f64::NAN, f64::NAN));
+    v.extend(xy(right, true));
+    v
+}
+
+/// The cams with the mechanism at one state, as the workbench draws them: each cam in its own
+/// colour (with a roller its two groove walls and, dashed, the roller-centre curve; else the
+/// roller-centre curve), the rollers as circles at B and C, the links, and the joints lettered
+/// O, A, B, C, D. Every point is the library's ([`loomkin_mech::MechanismPose::joints`]); links
+/// are separate series: a polyline that doubles back on itself draws a miter spike in the bitmap
+/// backend. (The plot font has no prime, so Γ′ is written Γ'.)
+fn cams_panel(
+    g: &ModulatorGeometry,
+    gamma: &CamProfile,
+    gamma_p: &CamProfile,
+    st: &ModulatorState,
+    roller_m: Option<f64>,
+) -> Panel {
+    let [cam, counter, lever, crank, out, slot] =
+        [PALETTE[0], PALETTE[2], PALETTE[1], PALETTE[6], PALETTE[3], PALETTE[7]];
+    let mut series = Vec::new();
+    for (name, c, colour, at) in [("cam Γ", gamma, cam, "B"), ("counter-cam Γ'", gamma_p, counter, "C")] {
+        if c.wall_left.is_empty() {
+            series.push(Series::line(format!("{name} (roller centre {at})"), xy(&c.centre, true)).with_color(colour));
+        } else {
+            series.push(
+                Series::line(format!("{name}: groove walls"), walls(&c.wall_left, &c.wall_right)).with_color(colour),
+            );
+            series.push(Series::line("", xy(&c.centre, true)).with_color(colour).with_dash(Dash::Dotted));
+        }
+    }
     let p = st.pose(g);
     let t = |q: [f64; 2]| (q[0], q[1]);
     // The slot runs from A through D and a little beyond.
     let beyond = [p.d[0] + 0.25 * (p.d[0] - p.a[0]), p.d[1] + 0.25 * (p.d[1] - p.a[1])];
-    series.push(Series::line(format!("crank 2 (OA) at φ2 = {:.1}°", p.phi2_deg), vec![t(p.o), t(p.a)]));
-    series.push(Series::line("crank 6 (OD)", vec![t(p.o), t(p.d)]));
-    series.push(Series::line("lever 3: arms AB, AC", vec![t(p.b), t(p.a), t(p.c)]));
-    series.push(Series::line("slot of lever 3 (A, D)", vec![t(p.a), t(beyond)]));
-    series.push(Series::markers("joints O, A, B, C, D", vec![t(p.o), t(p.a), t(p.b), t(p.c), t(p.d)]));
-    let mut panel = Panel::new("y [m]", series).with_legend(Legend::Auto);
+    series.push(Series::line("slot of lever 3", vec![t(p.a), t(beyond)]).with_color(slot));
+    series
+        .push(Series::line(format!("crank 2 (OA) at φ2 = {:.1}°", p.phi2_deg), vec![t(p.o), t(p.a)]).with_color(crank));
+    series.push(Series::line("crank 6 (OD)", vec![t(p.o), t(p.d)]).with_color(out));
+    series.push(Series::line("lever 3: arms AB, AC", vec![t(p.b), t(p.a), t(p.c)]).with_color(lever));
+    if let Some(r) = roller_m.filter(|r| *r > 0.0) {
+        let rollers = p.rollers().map(t);
+        series.push(
+            Series::circles(format!("rollers at B, C (r = {} mm)", sig4(r * 1e3)), &rollers, r).with_color(lever),
+        );
+    }
+    let notes = p.joints().map(|(letter, q)| Note::new(q[0], q[1], letter));
+    let mut panel = Panel::new("y [m]", series).with_legend(Legend::Auto).with_notes(notes);
     panel.x_label = Some("x [m]".into());
     panel.equal_aspect = true;
     panel
@@ -750,14 +774,14 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
             (r.states, r.cam, r.counter_cam, title, r.summary.checks)
         }
     };
+    let roller = match a.task {
+        TaskArg::Analyze => a.roller.metres()?,
+        TaskArg::Synthesize => Some(a.roller.metres_or_default()?),
+    };
     let fig = match a.what {
         WhatArg::Law => {
             let mut panels = law_panels(&states, w2);
             panels.push(pressure_panel(&g, &states, &checks, a.geometry.pressure_limit_deg));
-            let roller = match a.task {
-                TaskArg::Analyze => a.roller.metres()?,
-                TaskArg::Synthesize => Some(a.roller.metres_or_default()?),
-            };
             panels.push(curvature_panel(&states, &checks, roller));
             // The pressure angles fill their panel, so its legend goes beside it: a wider page
             // keeps the plots as wide as a figure without one.
@@ -768,7 +792,7 @@ fn plot_cmd(a: PlotArgs) -> Result<()> {
         }
         WhatArg::Cams => {
             let st = nearest_state(&states, a.at_deg).context("no state to draw")?;
-            let mut f = Figure::new(title, "x [m]", vec![cams_panel(&g, &gamma, &gamma_p, st)]);
+            let mut f = Figure::new(title, "x [m]", vec![cams_panel(&g, &gamma, &gamma_p, st, roller)]);
             f.size = Some((1000, 1000));
             f
         }

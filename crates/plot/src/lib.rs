@@ -91,6 +91,27 @@ impl Series {
         Self { label: label.into(), points, markers: true, ..Self::default() }
     }
 
+    /// Circles of radius `r` about each centre (a roller drawn to scale in an equal-aspect
+    /// drawing), as one line: each circle a closed polygon of [`CIRCLE_SIDES`] sides, the circles
+    /// parted by a break. A radius that is not positive and finite draws nothing.
+    pub fn circles(label: impl Into<String>, centres: &[(f64, f64)], r: f64) -> Self {
+        let mut points = Vec::new();
+        if r.is_finite() && r > 0.0 {
+            for (k, &(cx, cy)) in centres.iter().enumerate() {
+                if k > 0 {
+                    points.push((f64::NAN, f64::NAN));
+                }
+                let start = points.len();
+                points.extend((0..CIRCLE_SIDES).map(|i| {
+                    let t = std::f64::consts::TAU * i as f64 / CIRCLE_SIDES as f64;
+                    (cx + r * t.cos(), cy + r * t.sin())
+                }));
+                points.push(points[start]);
+            }
+        }
+        Self::line(label, points)
+    }
+
     /// The same series in a given colour.
     pub fn with_color(mut self, rgb: [u8; 3]) -> Self {
         self.color = Some(rgb);
@@ -108,6 +129,10 @@ impl Series {
         self
     }
 }
+
+/// Sides of the polygon that draws a circle ([`Series::circles`]): its chord error is
+/// 1 − cos(π/96) ≈ 0.05 % of the radius, under a pixel for a circle up to 2,000 px across.
+pub const CIRCLE_SIDES: usize = 96;
 
 /// A shaded interval of the horizontal axis, labelled above the plot (a dwell, a rise, a window).
 #[derive(Debug, Clone, PartialEq)]

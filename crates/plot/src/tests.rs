@@ -601,3 +601,34 @@ fn a_turns_axis_is_ticked_at_whole_turns_with_degrees_as_minor_ticks() {
         .with_turns_axis();
     assert!(fig.to_svg().unwrap().contains(r#"aria-label="picks, minor ticks every 30°""#));
 }
+
+/// Every vertex of a circle lies on it (radius checked by distance, not by the formula that made
+/// it), each circle closes on itself and the circles are parted by one break; the SVG draws one
+/// path per circle, and a radius of zero or not finite draws nothing.
+#[test]
+fn circles_are_closed_polygons_on_the_circle_parted_by_breaks() {
+    let centres = [(1.0, -2.0), (-0.5, 0.25)];
+    let s = Series::circles("rollers", &centres, 0.3);
+    let breaks: Vec<usize> = (0..s.points.len()).filter(|&i| !s.points[i].0.is_finite()).collect();
+    assert_eq!(breaks, vec![crate::CIRCLE_SIDES + 1]);
+    for (k, run) in s.points.split(|p| !p.0.is_finite()).enumerate() {
+        assert_eq!(run.len(), crate::CIRCLE_SIDES + 1);
+        assert_eq!(run.first(), run.last());
+        let (cx, cy) = centres[k];
+        for &(x, y) in run {
+            assert!(((x - cx).hypot(y - cy) - 0.3).abs() < 1e-12);
+        }
+        // The polygon's area is the circle's within the chord error (n/2 sin(2π/n) r²).
+        let area: f64 =
+            run.windows(2).map(|w| (w[0].0 - cx) * (w[1].1 - cy) - (w[1].0 - cx) * (w[0].1 - cy)).sum::<f64>() / 2.0;
+        assert!((area / (std::f64::consts::PI * 0.09) - 1.0).abs() < 1e-3, "{area}");
+    }
+    let mut p = Panel::new("y [m]", vec![s]);
+    p.equal_aspect = true;
+    let svg = Figure::new("", "x [m]", vec![p]).to_svg().unwrap();
+    let paths = svg.lines().filter(|l| l.starts_with("<path d=\"M") && l.contains("stroke-width=\"2\"")).count();
+    assert_eq!(paths, 2, "{svg}");
+    for r in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(Series::circles("", &centres, r).points.is_empty());
+    }
+}

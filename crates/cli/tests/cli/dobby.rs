@@ -142,7 +142,7 @@ fn plots_are_written() {
             .unwrap();
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let svg = std::fs::read_to_string(&path).unwrap();
-        assert!(svg.contains("<svg") && svg.contains(if what == "law" { "ω6" } else { "joints" }));
+        assert!(svg.contains("<svg") && svg.contains(if what == "law" { "ω6" } else { "aria-label=\"D\"" }));
     }
 }
 

@@ -136,3 +136,84 @@ fn presets_pick_end_and_log_sweep_are_drawn() {
     assert_eq!(out.status.code(), Some(2));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `dobby plot --what cams` draws what the workbench draws (issue 27): the rollers as circles at
+/// B and C of the roller radius (read back from the SVG: two closed paths in the lever's colour
+/// whose vertices lie on a circle, of equal radius in pixels), the joints lettered O, A, B, C, D,
+/// and each cam in its own colour (two groove walls and a dotted centre curve), with every text on
+/// the canvas and off the others. Without a roller (a given cam) no circle is drawn.
+#[test]
+fn dobby_cams_draw_rollers_joint_letters_and_a_colour_per_cam() {
+    let dir = std::env::temp_dir().join(format!("loomkin-plot-cams-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = |args: &[&str], name: &str| {
+        let file = dir.join(name);
+        let out = loomkin().args(["dobby", "plot", "--what", "cams"]).args(args).arg("-o").arg(&file).output().unwrap();
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        std::fs::read_to_string(&file).unwrap()
+    };
+    // The vertices of each path of a colour (`<path d="M… L…" stroke="#rrggbb" …>`).
+    let paths = |svg: &str, colour: &str| -> Vec<Vec<(f64, f64)>> {
+        svg.lines()
+            .filter(|l| l.starts_with("<path d=\"M") && l.contains(&format!("stroke=\"{colour}\" stroke-width=\"2\"")))
+            .map(|l| {
+                let d = l.split('"').nth(1).unwrap();
+                let n: Vec<f64> =
+                    d.split([' ', 'M', 'L']).filter(|t| !t.is_empty()).map(|t| t.parse().unwrap()).collect();
+                n.chunks(2).map(|c| (c[0], c[1])).collect()
+            })
+            .collect()
+    };
+    let hex = |c: [u8; 3]| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+    let (cam, counter, lever) =
+        (hex(loomkin_plot::PALETTE[0]), hex(loomkin_plot::PALETTE[2]), hex(loomkin_plot::PALETTE[1]));
+    for at in ["0", "60", "200"] {
+        let s = svg(&["--step-deg", "2", "--at-deg", at, "--roller-mm", "30"], &format!("cams-{at}.svg"));
+        assert!(loomkin_plot::drawn_text_problems(&s).unwrap().is_empty(), "at {at}°");
+        for letter in ["O", "A", "B", "C", "D"] {
+            assert!(s.contains(&format!("aria-label=\"{letter}\"")), "no joint letter {letter} at {at}°");
+        }
+        // Each cam: two walls and the centre curve, closed, in its own colour.
+        for colour in [&cam, &counter] {
+            let runs = paths(&s, colour);
+            assert_eq!(runs.len(), 3, "{colour} at {at}°");
+            assert!(runs.iter().all(|r| r.len() > 100 && r.first() == r.last()), "{colour} at {at}°");
+        }
+        assert!(
+            s.contains("aria-label=\"cam Γ: groove walls\"")
+                && s.contains("aria-label=\"counter-cam Γ&apos;: groove walls\"")
+        );
+        // The rollers: closed 96-gons on circles of one radius (in pixels).
+        let rollers: Vec<_> = paths(&s, &lever).into_iter().filter(|r| r.len() == 97).collect();
+        assert_eq!(rollers.len(), 2, "rollers at {at}°");
+        let radius = |r: &Vec<(f64, f64)>| {
+            let c = r[..96].iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / 96.0, a.1 + p.1 / 96.0));
+            let d: Vec<f64> = r.iter().map(|p| (p.0 - c.0).hypot(p.1 - c.1)).collect();
+            let (lo, hi) = d.iter().fold((f64::MAX, 0.0f64), |(l, h), v| (l.min(*v), h.max(*v)));
+            assert!(hi - lo < 0.05 * hi + 0.02, "not a circle: {lo}..{hi}");
+            hi
+        };
+        let (r0, r1) = (radius(&rollers[0]), radius(&rollers[1]));
+        // The drawing's scale from the joint dots (O, A, B, C, D in order): AB is the arm l3 =
+        // 0.36 m (the default geometry), so a 30 mm roller is 1/12 of AB on the page.
+        let dots: Vec<(f64, f64)> = s
+            .lines()
+            .filter(|l| l.starts_with("<circle") && l.contains("r=\"3.5\""))
+            .map(|l| {
+                let v = |k: &str| {
+                    l.split(&format!("{k}=\"")).nth(1).unwrap().split('"').next().unwrap().parse::<f64>().unwrap()
+                };
+                (v("cx"), v("cy"))
+            })
+            .collect();
+        assert_eq!(dots.len(), 5);
+        let ab = (dots[1].0 - dots[2].0).hypot(dots[1].1 - dots[2].1);
+        for r in [r0, r1] {
+            assert!((r / ab - 0.030 / 0.36).abs() < 0.01 * 0.030 / 0.36 + 0.02 / ab, "roller {r} px, AB {ab} px");
+        }
+    }
+    let s = svg(&["--task", "analyze", "--step-deg", "2"], "given.svg");
+    assert!(paths(&s, &lever).iter().all(|r| r.len() != 97), "a roller drawn without a roller radius");
+    assert!(s.contains("aria-label=\"cam Γ (roller centre B)\""));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -36,6 +36,18 @@ impl ModulatorState {
     }
 }
 
+impl MechanismPose {
+    /// The joints with their letters, as drawings label them: O, A, B, C, D.
+    pub fn joints(&self) -> [(&'static str, [f64; 2]); 5] {
+        [("O", self.o), ("A", self.a), ("B", self.b), ("C", self.c), ("D", self.d)]
+    }
+
+    /// The roller centres: B (in cam Γ) and C (in counter-cam Γ′).
+    pub fn rollers(&self) -> [[f64; 2]; 2] {
+        [self.b, self.c]
+    }
+}
+
 /// The state whose input angle is nearest to `phi2_deg` modulo 360°; `None` if there is none or
 /// `phi2_deg` is not finite.
 pub fn nearest_state(states: &[ModulatorState], phi2_deg: f64) -> Option<&ModulatorState> {
@@ -48,4 +60,40 @@ pub fn nearest_state(states: &[ModulatorState], phi2_deg: f64) -> Option<&Modula
         let db = crate::planar::wrap_pi(b.phi2 - target).abs();
         da.total_cmp(&db)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dobby::analysis::{AnalysisOptions, analyze};
+    use crate::dobby::cam::Cam;
+
+    /// The lettered joints keep the geometry's link lengths at every drawn angle (OA = l2,
+    /// OD = l6, AB = l3, AC = l3′) and its lever angles from the slot AD (α to AB, π − θ to AC),
+    /// checked from the letters' points alone.
+    #[test]
+    fn the_joints_keep_the_links_lengths_and_angles() {
+        let g = ModulatorGeometry::default();
+        let r = analyze(&g, &Cam::paper(), &AnalysisOptions { step_deg: 15.0, ..AnalysisOptions::default() }).unwrap();
+        let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+        let angle = |p: [f64; 2], q: [f64; 2]| (p[1] - q[1]).atan2(p[0] - q[0]);
+        for st in &r.states {
+            let p = st.pose(&g);
+            let j = p.joints();
+            assert_eq!(j.map(|(l, _)| l), ["O", "A", "B", "C", "D"]);
+            let at = |l: &str| j.iter().find(|(k, _)| *k == l).unwrap().1;
+            assert_eq!(at("O"), [0.0, 0.0]);
+            assert!((dist(at("O"), at("A")) - g.l2_m).abs() < 1e-12);
+            assert!((dist(at("O"), at("D")) - g.l6_m).abs() < 1e-12);
+            assert!((dist(at("A"), at("B")) - g.l3_m).abs() < 1e-9);
+            assert!((dist(at("A"), at("C")) - g.l3p_m).abs() < 1e-9);
+            // A − B makes α with A − D; C − A makes π − θ with A − D's direction (see the geometry).
+            let slot = angle(at("A"), at("D"));
+            let ab = crate::planar::wrap_pi(angle(at("A"), at("B")) - slot);
+            assert!((ab - g.alpha_deg.to_radians()).abs() < 1e-9, "{ab}");
+            let ac = crate::planar::wrap_pi(angle(at("C"), at("A")) - slot);
+            assert!((ac - (std::f64::consts::PI - g.theta_deg.to_radians())).abs() < 1e-9, "{ac}");
+            assert_eq!(p.rollers(), [at("B"), at("C")]);
+        }
+    }
 }
