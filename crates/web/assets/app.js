@@ -473,8 +473,118 @@ document.addEventListener("keydown", (e) => {
   if (k === "y" || e.shiftKey) redo(); else undo();
 });
 
+// ---------------------------------------------------------------- the loom-and-pattern picker
+
+// Longest loaded file (characters) carried in the page's address: a WIF draft of 1000 picks on 24
+// shafts is about 40 000; browsers take addresses of a few MB, but links this long break in mail.
+const LINK_MAX_CHARS = 200000;
+// Colours for up to 24 heald frames (front frame first), the same in every view.
+const FRAME_COLOURS = ["#1d4ed8", "#dc2626", "#16a34a", "#9333ea", "#ea580c", "#0891b2", "#be123c", "#4d7c0f",
+  "#7c3aed", "#b45309", "#0f766e", "#db2777", "#2563eb", "#b91c1c", "#15803d", "#a21caf", "#c2410c", "#0e7490",
+  "#9f1239", "#65a30d", "#6d28d9", "#92400e", "#115e59", "#be185d"];
+
+// The loom file and weave pattern of the views that run a loom (loom, insertion, servo shedding):
+// the examples, or a loaded loom file (TOML) and pattern (WIF draft or lift plan). `ids` names the
+// two selects and the two file inputs (each file input's label is its id + "-label"); `first` is the
+// example shown first; `changed()` runs after the user picks or loads something.
+//
+// A loaded file travels in the view's state (so in the address, and a shared link reopens it) up
+// to LINK_MAX_CHARS; a larger one stays in the page, the link shows the first example (or plain
+// weave), and the page says so beside the file's name.
+function loomPatternPicker(ex, ids, first, changed) {
+  const p = { loomText: null, loomName: null, patternText: null, patternKind: null, patternName: null };
+  const loomSel = el("select", { id: ids.loom });
+  for (const l of ex.looms) loomSel.append(el("option", { value: l.name, textContent: l.name }));
+  loomSel.append(el("option", { value: "upload", textContent: "a loom file (TOML) …" }));
+  if (ex.looms.some((l) => l.name === first)) loomSel.value = first;
+  const firstLoom = loomSel.value;
+  const patSel = el("select", { id: ids.pattern });
+  patSel.append(el("option", { value: "plain-default", textContent: "plain weave on the loom's frames" }));
+  for (const x of ex.patterns) patSel.append(el("option", { value: x.name, textContent: x.name }));
+  patSel.append(el("option", { value: "upload", textContent: "a WIF draft or lift plan …" }));
+  const loomFile = el("input", { type: "file", accept: ".toml,text/plain", id: ids.loomUpload });
+  const patFile = el("input", { type: "file", accept: ".wif,.txt,text/plain", id: ids.patternUpload });
+  const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
+  const loomLabel = el("label", { className: "file", hidden: true, id: ids.loomUpload + "-label" }, "load…", loomFile);
+  const patLabel = el("label", { className: "file", hidden: true, id: ids.patternUpload + "-label" }, "load…", patFile);
+  const showLabels = () => { loomLabel.hidden = loomSel.value !== "upload"; patLabel.hidden = patSel.value !== "upload"; };
+  const tooLarge = (text) => (text && text.length > LINK_MAX_CHARS ? ` (${text.length} characters: too large for the page's address, a link to this state opens ` : "");
+  const names = () => {
+    loomName.textContent = (p.loomName || "") + (tooLarge(p.loomText) && `${tooLarge(p.loomText)}${firstLoom})`);
+    patName.textContent = (p.patternName || "") + (tooLarge(p.patternText) && `${tooLarge(p.patternText)}plain weave)`);
+  };
+  loomSel.addEventListener("change", () => {
+    showLabels();
+    if (loomSel.value === "upload" && !p.loomText) { loomFile.click(); return; }
+    changed();
+  });
+  patSel.addEventListener("change", () => {
+    showLabels();
+    if (patSel.value === "upload" && !p.patternText) { patFile.click(); return; }
+    changed();
+  });
+  loomFile.addEventListener("change", async () => {
+    const f = loomFile.files[0]; if (!f) return;
+    p.loomText = await f.text(); p.loomName = f.name; loomSel.value = "upload";
+    names(); showLabels(); changed();
+  });
+  patFile.addEventListener("change", async () => {
+    const f = patFile.files[0]; if (!f) return;
+    p.patternText = await f.text(); p.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(p.patternText) ? "wif" : "lift_plan";
+    p.patternName = f.name; patSel.value = "upload";
+    names(); showLabels(); changed();
+  });
+  const carried = (text, name, extra) => (text && text.length <= LINK_MAX_CHARS ? { name, text, ...extra } : undefined);
+  Object.assign(p, {
+    loomSel, patSel,
+    // The panel's rows: each select with its load button and the loaded file's name.
+    nodes: [
+      el("label", { className: "wide" }, "loom file", loomSel), el("div", { className: "row wrap" }, loomLabel, loomName),
+      el("label", { className: "wide" }, "weave pattern", patSel), el("div", { className: "row wrap" }, patLabel, patName),
+    ],
+    // The picker's part of the view's state.
+    state() {
+      const st = {
+        loom: loomSel.value === "upload" && !p.loomText ? firstLoom : loomSel.value,
+        pattern: patSel.value === "upload" && !p.patternText ? "plain-default" : patSel.value,
+      };
+      if (st.loom === "upload") st.loom_file = carried(p.loomText, p.loomName);
+      if (st.pattern === "upload") st.pattern_file = carried(p.patternText, p.patternName, { kind: p.patternKind });
+      names();
+      return st;
+    },
+    // Sets the picker from a state; true when the loom or the pattern changed.
+    restore(st) {
+      if (st.loom === "upload" && st.loom_file) { p.loomText = st.loom_file.text; p.loomName = st.loom_file.name; }
+      if (st.pattern === "upload" && st.pattern_file) {
+        p.patternText = st.pattern_file.text; p.patternKind = st.pattern_file.kind === "wif" ? "wif" : "lift_plan";
+        p.patternName = st.pattern_file.name;
+      }
+      const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
+      const before = loomSel.value + "\n" + patSel.value;
+      pick(loomSel, st.loom, !!p.loomText, firstLoom);
+      pick(patSel, st.pattern, !!p.patternText, "plain-default");
+      names(); showLabels();
+      return loomSel.value + "\n" + patSel.value !== before;
+    },
+    // The request's loom file (`loom_toml`) and pattern (`{wif}` or `{lift_plan}`; none: plain weave).
+    source(q) {
+      if (loomSel.value === "upload") { if (p.loomText) q.loom_toml = p.loomText; }
+      else q.loom_toml = ex.looms.find((l) => l.name === loomSel.value).text;
+      const pv = patSel.value;
+      if (pv === "upload") { if (p.patternText) q.pattern = { [p.patternKind]: p.patternText }; }
+      else if (pv !== "plain-default") {
+        const text = ex.patterns.find((x) => x.name === pv).text;
+        q.pattern = /\.wif$/.test(pv) ? { wif: text } : { lift_plan: text };
+      }
+      return q;
+    },
+  });
+  return p;
+}
+
 Object.assign(loomkin, { histories: {}, undo, redo, encodeState, decodeState });
-window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, refuseField, numberIn, numberList, viewHistory, download, api, status, el, num, applyLimits };
+window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, refuseField, numberIn, numberList, viewHistory, download, api, status, el, num, applyLimits, loomPatternPicker, FRAME_COLOURS };
 
 // ---------------------------------------------------------------- tabs
 

@@ -9,14 +9,13 @@
 
 const { Chart, PALETTE, addTools } = window.LoomkinCharts;
 const { api, status, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, sliderWithNumber } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, sliderWithNumber, FRAME_COLOURS } = window.LoomkinShared;
 
 const drv = { inflight: false, queued: false, result: null, side: null, k: 0, playing: false, last: null };
 const ROUTE = "/api/drive/evaluate";
 // The animation's pace: degrees of main shaft per second of the page's clock (a turn in 4 s).
 const PLAY_DEG_PER_S = 90;
-// Colours of the frames (front first) and of the sley's links.
-const FRAME_COLOURS = ["#1d4ed8", "#dc2626", "#16a34a", "#9333ea", "#ea580c", "#0891b2", "#be123c", "#4d7c0f"];
+// Colours of the sley's links (the frames' are the loom view's).
 const SLEY = "#374151", REED = "#b45309";
 
 async function initDrive() {

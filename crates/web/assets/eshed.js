@@ -10,16 +10,11 @@
 
 const { Chart, addTools } = window.LoomkinCharts;
 const { api, status, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField, loomPatternPicker, FRAME_COLOURS } = window.LoomkinShared;
 
-const es = { inflight: false, queued: false, result: null, optimum: null, token: 0, loomText: null, loomName: null, patternText: null, patternKind: null, patternName: null };
+const es = { inflight: false, queued: false, result: null, optimum: null, token: 0, picker: null };
 const ROUTE = "/loom/servo/view";
-const LINK_MAX_CHARS = 200000;
 const EXAMPLE = "servo-shedding-loom.toml";
-// Colours for up to 24 frames (front frame first), as the loom view's.
-const FRAME_COLOURS = ["#1d4ed8", "#dc2626", "#16a34a", "#9333ea", "#ea580c", "#0891b2", "#be123c", "#4d7c0f",
-  "#7c3aed", "#b45309", "#0f766e", "#db2777", "#2563eb", "#b91c1c", "#15803d", "#a21caf", "#c2410c", "#0e7490",
-  "#9f1239", "#65a30d", "#6d28d9", "#92400e", "#115e59", "#be185d"];
 const CHECK_NAMES = { peak_torque: "peak torque", rms_torque: "RMS torque", peak_speed: "peak speed", torque_speed_envelope: "torque–speed envelope", inertia_ratio: "inertia ratio" };
 
 async function initEshed() {
@@ -28,17 +23,10 @@ async function initEshed() {
   let ex;
   try { ex = await api("/loom/examples"); } catch (e) { status("servo shedding: " + e.message, true); return; }
   es.examples = ex;
-  const loomSel = el("select", { id: "eshed-loom" });
-  for (const l of ex.looms) loomSel.append(el("option", { value: l.name, textContent: l.name }));
-  loomSel.append(el("option", { value: "upload", textContent: "a loom file (TOML) …" }));
-  if (ex.looms.some((l) => l.name === EXAMPLE)) loomSel.value = EXAMPLE;
-  const patSel = el("select", { id: "eshed-pattern" });
-  patSel.append(el("option", { value: "plain-default", textContent: "plain weave on the loom's frames" }));
-  for (const p of ex.patterns) patSel.append(el("option", { value: p.name, textContent: p.name }));
-  patSel.append(el("option", { value: "upload", textContent: "a WIF draft or lift plan …" }));
-  const loomFile = el("input", { type: "file", accept: ".toml,text/plain", id: "eshed-loom-upload" });
-  const patFile = el("input", { type: "file", accept: ".wif,.txt,text/plain", id: "eshed-pattern-upload" });
-  const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
+  const picker = loomPatternPicker(ex, { loom: "eshed-loom", pattern: "eshed-pattern", loomUpload: "eshed-loom-upload", patternUpload: "eshed-pattern-upload" },
+    EXAMPLE, () => changed());
+  es.picker = picker;
+  const { loomSel, patSel } = picker;
   const objective = el("select", { id: "eshed-objective" }, el("option", { value: "peak", textContent: "peak bus power" }), el("option", { value: "rms", textContent: "worst frame's RMS torque" }));
   const optimise = el("button", { type: "button", id: "eshed-optimise", textContent: "Optimise" });
   // The least clearance the search keeps (--min-clearance-mm): the request schema's limits (the
@@ -52,8 +40,7 @@ async function initEshed() {
   panel.append(
     el("h2", { textContent: "Loom and pattern" }),
     el("p", { className: "hint", textContent: "A loom file with [shedding] drive = \"servo\": each frame's motor follows its own law over the repeat, a move on every change of the pattern. 0° = beat-up of the first pick." }),
-    el("label", { className: "wide" }, "loom file", loomSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "eshed-loom-upload-label" }, "load…", loomFile), loomName),
-    el("label", { className: "wide" }, "weave pattern", patSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "eshed-pattern-upload-label" }, "load…", patFile), patName),
+    ...picker.nodes,
     el("h2", { textContent: "Optimise" }),
     el("p", { className: "hint", textContent: "Every frame's stagger (within ±shedding.max_stagger_deg) and motion angle, keeping the carrier's insertion clear in every pick (loom servo --optimize). It runs for seconds; cancel it from the progress line." }),
     el("div", { className: "row" }, "least clearance kept", minClear, "mm"),
@@ -84,59 +71,23 @@ async function initEshed() {
 
   const commit = () => es.history.commit();
   const changed = () => { resetOptimum(); evaluate(); commit(); };
-  loomSel.addEventListener("change", () => {
-    document.querySelector("#eshed-loom-upload-label").hidden = loomSel.value !== "upload";
-    if (loomSel.value === "upload" && !es.loomText) { loomFile.click(); return; }
-    changed();
-  });
-  patSel.addEventListener("change", () => {
-    document.querySelector("#eshed-pattern-upload-label").hidden = patSel.value !== "upload";
-    if (patSel.value === "upload" && !es.patternText) { patFile.click(); return; }
-    changed();
-  });
-  loomFile.addEventListener("change", async () => {
-    const f = loomFile.files[0]; if (!f) return;
-    es.loomText = await f.text(); es.loomName = f.name; loomName.textContent = f.name; loomSel.value = "upload";
-    document.querySelector("#eshed-loom-upload-label").hidden = false; changed();
-  });
-  patFile.addEventListener("change", async () => {
-    const f = patFile.files[0]; if (!f) return;
-    es.patternText = await f.text(); es.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(es.patternText) ? "wif" : "lift_plan";
-    es.patternName = f.name; patName.textContent = f.name; patSel.value = "upload";
-    document.querySelector("#eshed-pattern-upload-label").hidden = false; changed();
-  });
   objective.addEventListener("change", commit);
   minClear.addEventListener("change", commit);
   optimise.addEventListener("click", runOptimise);
   shown.addEventListener("change", () => { if (es.optimum) render(); });
 
-  const firstLoom = loomSel.value;
-  const carried = (text, name, extra) => (text && text.length <= LINK_MAX_CHARS ? { name, text, ...extra } : undefined);
   es.history = viewHistory("eshed", () => {
     const st = {
-      loom: loomSel.value === "upload" && !es.loomText ? firstLoom : loomSel.value,
-      pattern: patSel.value === "upload" && !es.patternText ? "plain-default" : patSel.value,
+      ...picker.state(),
       objective: objective.value,
       min_clearance_mm: minClear.value,
     };
-    if (st.loom === "upload") st.loom_file = carried(es.loomText, es.loomName);
-    if (st.pattern === "upload") st.pattern_file = carried(es.patternText, es.patternName, { kind: es.patternKind });
     return st;
   }, (st) => {
-    if (st.loom === "upload" && st.loom_file) { es.loomText = st.loom_file.text; es.loomName = st.loom_file.name; loomName.textContent = st.loom_file.name; }
-    if (st.pattern === "upload" && st.pattern_file) {
-      es.patternText = st.pattern_file.text; es.patternKind = st.pattern_file.kind === "wif" ? "wif" : "lift_plan";
-      es.patternName = st.pattern_file.name; patName.textContent = st.pattern_file.name;
-    }
-    const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
-    const before = loomSel.value + "\n" + patSel.value;
-    pick(loomSel, st.loom, !!es.loomText, firstLoom);
-    pick(patSel, st.pattern, !!es.patternText, "plain-default");
-    document.querySelector("#eshed-loom-upload-label").hidden = loomSel.value !== "upload";
-    document.querySelector("#eshed-pattern-upload-label").hidden = patSel.value !== "upload";
+    const moved = picker.restore(st);
     if (st.objective) objective.value = st.objective;
     minClear.value = st.min_clearance_mm || "";
-    if (loomSel.value + "\n" + patSel.value !== before || !es.result) { resetOptimum(); evaluate(); }
+    if (moved || !es.result) { resetOptimum(); evaluate(); }
   });
   evaluate();
   es.history.ready();
@@ -146,14 +97,7 @@ async function initEshed() {
 // the objective and the least clearance (when one is typed) for the search.
 loomkin.eshedRequest = (optimize) => {
   const i = es.inputs, q = {};
-  if (i.loomSel.value === "upload") { if (es.loomText) q.loom_toml = es.loomText; }
-  else q.loom_toml = es.examples.looms.find((l) => l.name === i.loomSel.value).text;
-  const pv = i.patSel.value;
-  if (pv === "upload") { if (es.patternText) q.pattern = { [es.patternKind]: es.patternText }; }
-  else if (pv !== "plain-default") {
-    const text = es.examples.patterns.find((p) => p.name === pv).text;
-    q.pattern = /\.wif$/.test(pv) ? { wif: text } : { lift_plan: text };
-  }
+  es.picker.source(q);
   if (optimize) {
     q.optimize = true; q.objective = i.objective.value;
     if (i.minClear.value !== "") q.min_clearance_mm = +i.minClear.value;

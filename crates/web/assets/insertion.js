@@ -10,12 +10,10 @@
 
 const { Chart, PALETTE } = window.LoomkinCharts;
 const { api, status, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField, loomPatternPicker } = window.LoomkinShared;
 
-const ins = { inflight: false, queued: false, result: null, loomText: null, loomName: null, patternText: null, patternKind: null, patternName: null };
+const ins = { inflight: false, queued: false, result: null, picker: null };
 const ROUTE = "/api/insert/evaluate";
-// Longest loaded file (characters) carried in the page's address (as the loom view).
-const LINK_MAX_CHARS = 200000;
 // The budget's inputs over the loom file's: request key, label, unit (the limits are the schema's).
 const BUDGET_FIELDS = [
   ["reed_width_mm", "reed width", "mm"],
@@ -32,16 +30,10 @@ async function initInsertion() {
   let ex;
   try { ex = await api("/loom/examples"); } catch (e) { status("insertion: " + e.message, true); return; }
   ins.examples = ex;
-  const loomSel = el("select", { id: "insert-loom" });
-  for (const l of ex.looms) loomSel.append(el("option", { value: l.name, textContent: l.name }));
-  loomSel.append(el("option", { value: "upload", textContent: "a loom file (TOML) …" }));
-  const patSel = el("select", { id: "insert-pattern" });
-  patSel.append(el("option", { value: "plain-default", textContent: "plain weave on the loom's frames" }));
-  for (const p of ex.patterns) patSel.append(el("option", { value: p.name, textContent: p.name }));
-  patSel.append(el("option", { value: "upload", textContent: "a WIF draft or lift plan …" }));
-  const loomFile = el("input", { type: "file", accept: ".toml,text/plain", id: "insert-loom-upload" });
-  const patFile = el("input", { type: "file", accept: ".wif,.txt,text/plain", id: "insert-pattern-upload" });
-  const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
+  const picker = loomPatternPicker(ex, { loom: "insert-loom", pattern: "insert-pattern", loomUpload: "insert-loom-upload", patternUpload: "insert-pattern-upload" },
+    null, () => changed());
+  ins.picker = picker;
+  const { loomSel, patSel } = picker;
   // A blank field takes the loom file's value (shown as its placeholder once an answer is in).
   const numField = (id, path) => {
     const f = el("input", { type: "number", step: "any", id, className: "short" });
@@ -55,8 +47,7 @@ async function initInsertion() {
   panel.append(
     el("h2", { textContent: "Loom and pattern" }),
     el("p", { className: "hint", textContent: "The loom file's [insertion] kind names the carrier (shuttle, rapier, projectile, air jet); the clearance covers every pick of the pattern. 0° = beat-up." }),
-    el("label", { className: "wide" }, "loom file", loomSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "insert-loom-upload-label" }, "load…", loomFile), loomName),
-    el("label", { className: "wide" }, "weave pattern", patSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "insert-pattern-upload-label" }, "load…", patFile), patName),
+    ...picker.nodes,
     el("div", { className: "row" }, "loom speed", speed, "rpm"),
     el("h2", { textContent: "Time budget" }),
     el("p", { className: "hint", textContent: "n = v̄·θ / (6·(W + L)): the highest loom speed for the reed width W, the carrier length L, the window θ and the carrier's mean speed v̄. A blank field takes the loom file's value." }),
@@ -77,53 +68,18 @@ async function initInsertion() {
 
   const commit = () => ins.history.commit();
   const changed = () => { evaluate(); commit(); };
-  loomSel.addEventListener("change", () => {
-    document.querySelector("#insert-loom-upload-label").hidden = loomSel.value !== "upload";
-    if (loomSel.value === "upload" && !ins.loomText) { loomFile.click(); return; }
-    changed();
-  });
-  patSel.addEventListener("change", () => {
-    document.querySelector("#insert-pattern-upload-label").hidden = patSel.value !== "upload";
-    if (patSel.value === "upload" && !ins.patternText) { patFile.click(); return; }
-    changed();
-  });
-  loomFile.addEventListener("change", async () => {
-    const f = loomFile.files[0]; if (!f) return;
-    ins.loomText = await f.text(); ins.loomName = f.name; loomName.textContent = f.name; loomSel.value = "upload";
-    document.querySelector("#insert-loom-upload-label").hidden = false; changed();
-  });
-  patFile.addEventListener("change", async () => {
-    const f = patFile.files[0]; if (!f) return;
-    ins.patternText = await f.text(); ins.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(ins.patternText) ? "wif" : "lift_plan";
-    ins.patternName = f.name; patName.textContent = f.name; patSel.value = "upload";
-    document.querySelector("#insert-pattern-upload-label").hidden = false; changed();
-  });
   for (const f of [speed, ...Object.values(budget)]) f.addEventListener("change", changed);
   clearShed.addEventListener("change", changed);
 
-  const firstLoom = ex.looms[0].name;
-  const carried = (text, name, extra) => (text && text.length <= LINK_MAX_CHARS ? { name, text, ...extra } : undefined);
   ins.history = viewHistory("insertion", () => {
     const st = {
-      loom: loomSel.value === "upload" && !ins.loomText ? firstLoom : loomSel.value,
-      pattern: patSel.value === "upload" && !ins.patternText ? "plain-default" : patSel.value,
+      ...picker.state(),
       speed_rpm: speed.value, clear_shed_window: clearShed.checked, budget: {},
     };
     for (const [key] of BUDGET_FIELDS) st.budget[key] = budget[key].value;
-    if (st.loom === "upload") st.loom_file = carried(ins.loomText, ins.loomName);
-    if (st.pattern === "upload") st.pattern_file = carried(ins.patternText, ins.patternName, { kind: ins.patternKind });
     return st;
   }, (st) => {
-    if (st.loom === "upload" && st.loom_file) { ins.loomText = st.loom_file.text; ins.loomName = st.loom_file.name; loomName.textContent = st.loom_file.name; }
-    if (st.pattern === "upload" && st.pattern_file) {
-      ins.patternText = st.pattern_file.text; ins.patternKind = st.pattern_file.kind === "wif" ? "wif" : "lift_plan";
-      ins.patternName = st.pattern_file.name; patName.textContent = st.pattern_file.name;
-    }
-    const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
-    pick(loomSel, st.loom, !!ins.loomText, firstLoom);
-    pick(patSel, st.pattern, !!ins.patternText, "plain-default");
-    document.querySelector("#insert-loom-upload-label").hidden = loomSel.value !== "upload";
-    document.querySelector("#insert-pattern-upload-label").hidden = patSel.value !== "upload";
+    picker.restore(st);
     speed.value = st.speed_rpm || "";
     clearShed.checked = !!st.clear_shed_window;
     for (const [key] of BUDGET_FIELDS) budget[key].value = (st.budget || {})[key] || "";
@@ -136,14 +92,7 @@ async function initInsertion() {
 // The request the view sends (for tests and the console): blank fields are left out (the file's).
 loomkin.insertRequest = () => {
   const i = ins.inputs, q = {};
-  if (i.loomSel.value === "upload") { if (ins.loomText) q.loom_toml = ins.loomText; }
-  else q.loom_toml = ins.examples.looms.find((l) => l.name === i.loomSel.value).text;
-  const pv = i.patSel.value;
-  if (pv === "upload") { if (ins.patternText) q.pattern = { [ins.patternKind]: ins.patternText }; }
-  else if (pv !== "plain-default") {
-    const text = ins.examples.patterns.find((p) => p.name === pv).text;
-    q.pattern = /\.wif$/.test(pv) ? { wif: text } : { lift_plan: text };
-  }
+  ins.picker.source(q);
   const given = (f) => f.value.trim() !== "";
   if (given(i.speed)) q.speed_rpm = +i.speed.value;
   q.budget = {};

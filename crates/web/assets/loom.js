@@ -6,16 +6,9 @@
 
 const { Chart, PALETTE, addTools } = window.LoomkinCharts;
 const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, loomPatternPicker, FRAME_COLOURS } = window.LoomkinShared;
 
-const loom = { inflight: false, queued: false, result: null, stagger: null, loomText: null, patternText: null, patternKind: null };
-// Longest loaded file (characters) carried in the page's address: a WIF draft of 1000 picks on 24
-// shafts is about 40 000; browsers take addresses of a few MB, but links this long break in mail.
-const LINK_MAX_CHARS = 200000;
-// Colours for up to 24 frames (front frame first).
-const FRAME_COLOURS = ["#1d4ed8", "#dc2626", "#16a34a", "#9333ea", "#ea580c", "#0891b2", "#be123c", "#4d7c0f",
-  "#7c3aed", "#b45309", "#0f766e", "#db2777", "#2563eb", "#b91c1c", "#15803d", "#a21caf", "#c2410c", "#0e7490",
-  "#9f1239", "#65a30d", "#6d28d9", "#92400e", "#115e59", "#be185d"];
+const loom = { inflight: false, queued: false, result: null, stagger: null, picker: null };
 
 async function initLoom() {
   const panel = document.querySelector("#loom-panel");
@@ -23,16 +16,10 @@ async function initLoom() {
   let ex;
   try { ex = await api("/loom/examples"); } catch (e) { status("loom: " + e.message, true); return; }
   loom.examples = ex;
-  const loomSel = el("select", { id: "loom-file" });
-  for (const l of ex.looms) loomSel.append(el("option", { value: l.name, textContent: l.name }));
-  loomSel.append(el("option", { value: "upload", textContent: "a loom file (TOML) …" }));
-  const patSel = el("select", { id: "loom-pattern" });
-  patSel.append(el("option", { value: "plain-default", textContent: "plain weave on the loom's frames" }));
-  for (const p of ex.patterns) patSel.append(el("option", { value: p.name, textContent: p.name }));
-  patSel.append(el("option", { value: "upload", textContent: "a WIF draft or lift plan …" }));
-  const loomFile = el("input", { type: "file", accept: ".toml,text/plain", id: "loom-upload" });
-  const patFile = el("input", { type: "file", accept: ".wif,.txt,text/plain", id: "loom-pattern-upload" });
-  const loomName = el("span", { className: "hint" }), patName = el("span", { className: "hint" });
+  const picker = loomPatternPicker(ex, { loom: "loom-file", pattern: "loom-pattern", loomUpload: "loom-upload", patternUpload: "loom-pattern-upload" },
+    null, () => { resetStagger(); evaluate(); loom.history.commit(); });
+  loom.picker = picker;
+  const { loomSel, patSel } = picker;
   const fromPick = el("input", { type: "number", min: "1", step: "1", value: "1", id: "loom-from-pick", className: "short" });
   const picks = el("input", { type: "number", step: "1", id: "loom-picks", className: "short" });
   window.LoomkinShared.applyLimits(picks, "/api/loom/evaluate", "picks");
@@ -46,8 +33,7 @@ async function initLoom() {
   panel.append(
     el("h2", { textContent: "Loom and pattern" }),
     el("p", { className: "hint", textContent: "0° = beat-up; pick p is inserted in [360p, 360p + 360). Frames are numbered from the front." }),
-    el("label", { className: "wide" }, "loom file", loomSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "loom-upload-label" }, "load…", loomFile), loomName),
-    el("label", { className: "wide" }, "weave pattern", patSel), el("div", { className: "row wrap" }, el("label", { className: "file", hidden: true, id: "loom-pattern-upload-label" }, "load…", patFile), patName),
+    ...picker.nodes,
     el("h2", { textContent: "Timing diagram" }),
     el("div", { className: "row" }, "picks", fromPick, "to", el("span", { id: "loom-to-pick" }), "(", picks, "picks )"),
     el("h2", { textContent: "Stagger" }),
@@ -83,27 +69,6 @@ async function initLoom() {
 
   // Every edit is recorded for undo and written into the address (#loom/<state>).
   const commit = () => loom.history.commit();
-  loomSel.addEventListener("change", () => {
-    document.querySelector("#loom-upload-label").hidden = loomSel.value !== "upload";
-    if (loomSel.value === "upload" && !loom.loomText) { loomFile.click(); return; }
-    resetStagger(); evaluate(); commit();
-  });
-  patSel.addEventListener("change", () => {
-    document.querySelector("#loom-pattern-upload-label").hidden = patSel.value !== "upload";
-    if (patSel.value === "upload" && !loom.patternText) { patFile.click(); return; }
-    resetStagger(); evaluate(); commit();
-  });
-  loomFile.addEventListener("change", async () => {
-    const f = loomFile.files[0]; if (!f) return;
-    loom.loomText = await f.text(); loom.loomName = f.name; loomName.textContent = f.name; loomSel.value = "upload";
-    document.querySelector("#loom-upload-label").hidden = false; resetStagger(); evaluate(); commit();
-  });
-  patFile.addEventListener("change", async () => {
-    const f = patFile.files[0]; if (!f) return;
-    loom.patternText = await f.text(); loom.patternKind = /\.wif$/i.test(f.name) || /^\s*\[WIF\]/im.test(loom.patternText) ? "wif" : "lift_plan";
-    loom.patternName = f.name; patName.textContent = f.name; patSel.value = "upload";
-    document.querySelector("#loom-pattern-upload-label").hidden = false; resetStagger(); evaluate(); commit();
-  });
   for (const e of [fromPick, picks]) e.addEventListener("change", () => { evaluate(); commit(); });
   apply.addEventListener("change", () => { evaluate(); commit(); });
   objective.addEventListener("change", commit);
@@ -111,40 +76,14 @@ async function initLoom() {
   optimise.addEventListener("click", runStagger);
   save.addEventListener("click", () => { if (loom.stagger) download("loom-staggered.toml", loom.stagger.loom_toml, "text/plain"); });
   loom.save = save;
-  // The state: loom, pattern, the timing picks, the objective and whether the optimised stagger
-  // is drawn. A loaded file travels in the state (so in the address, and a shared link reopens it)
-  // up to LINK_MAX_CHARS; a larger one stays in the page, the link shows the first example, and the
-  // page says so beside the file's name. The stagger is kept while the loom and pattern stay (it is
-  // computed, not stored).
-  const firstLoom = ex.looms[0].name;
-  const carried = (text, name, extra) => (text && text.length <= LINK_MAX_CHARS ? { name, text, ...extra } : undefined);
-  const tooLarge = (text) => (text && text.length > LINK_MAX_CHARS ? ` (${text.length} characters: too large for the page's address, a link to this state opens ` : "");
-  loom.history = viewHistory("loom", () => {
-    const st = {
-      loom: loomSel.value === "upload" && !loom.loomText ? firstLoom : loomSel.value,
-      pattern: patSel.value === "upload" && !loom.patternText ? "plain-default" : patSel.value,
-      from_pick: fromPick.value, picks: picks.value, objective: objective.value, min_clearance_mm: minClearance.value, stagger_drawn: apply.checked,
-    };
-    if (st.loom === "upload") st.loom_file = carried(loom.loomText, loom.loomName);
-    if (st.pattern === "upload") st.pattern_file = carried(loom.patternText, loom.patternName, { kind: loom.patternKind });
-    loomName.textContent = (loom.loomName || "") + (tooLarge(loom.loomText) && `${tooLarge(loom.loomText)}${firstLoom})`);
-    patName.textContent = (loom.patternName || "") + (tooLarge(loom.patternText) && `${tooLarge(loom.patternText)}plain weave)`);
-    return st;
-  }, (st) => {
-    if (st.loom === "upload" && st.loom_file) {
-      loom.loomText = st.loom_file.text; loom.loomName = st.loom_file.name; loomName.textContent = st.loom_file.name;
-    }
-    if (st.pattern === "upload" && st.pattern_file) {
-      loom.patternText = st.pattern_file.text; loom.patternKind = st.pattern_file.kind === "wif" ? "wif" : "lift_plan";
-      loom.patternName = st.pattern_file.name; patName.textContent = st.pattern_file.name;
-    }
-    const pick = (sel, v, ok, fallback) => { sel.value = v; if (sel.value !== v || (v === "upload" && !ok)) sel.value = fallback; };
-    const before = loomSel.value + "\n" + patSel.value;
-    pick(loomSel, st.loom, !!loom.loomText, firstLoom);
-    pick(patSel, st.pattern, !!loom.patternText, "plain-default");
-    document.querySelector("#loom-upload-label").hidden = loomSel.value !== "upload";
-    document.querySelector("#loom-pattern-upload-label").hidden = patSel.value !== "upload";
-    if (loomSel.value + "\n" + patSel.value !== before) resetStagger();
+  // The state: loom, pattern (a loaded file travels in it, see loomPatternPicker), the timing
+  // picks, the objective and whether the optimised stagger is drawn. The stagger is kept while the
+  // loom and pattern stay (it is computed, not stored).
+  loom.history = viewHistory("loom", () => ({
+    ...picker.state(),
+    from_pick: fromPick.value, picks: picks.value, objective: objective.value, min_clearance_mm: minClearance.value, stagger_drawn: apply.checked,
+  }), (st) => {
+    if (picker.restore(st)) resetStagger();
     fromPick.value = st.from_pick; picks.value = st.picks; objective.value = st.objective;
     if (st.min_clearance_mm !== undefined) minClearance.value = st.min_clearance_mm;
     apply.checked = !!st.stagger_drawn && !!loom.stagger;
@@ -173,16 +112,7 @@ function loomField(path) {
 }
 
 function source() {
-  const i = loom.inputs, q = {};
-  if (i.loomSel.value === "upload") { if (loom.loomText) q.loom_toml = loom.loomText; }
-  else q.loom_toml = loom.examples.looms.find((l) => l.name === i.loomSel.value).text;
-  const pv = i.patSel.value;
-  if (pv === "upload") { if (loom.patternText) q.pattern = { [loom.patternKind]: loom.patternText }; }
-  else if (pv !== "plain-default") {
-    const text = loom.examples.patterns.find((p) => p.name === pv).text;
-    q.pattern = /\.wif$/.test(pv) ? { wif: text } : { lift_plan: text };
-  }
-  return q;
+  return loom.picker.source({});
 }
 
 function resetStagger() {

@@ -1115,7 +1115,27 @@ fn the_workbench_in_a_real_browser() {
     d.shot("insertion-invalid");
     d.ctrl("z");
     d.wait_for("undo of the reed width", "return document.querySelector('#insert-reed-width-mm').value === '' && !document.querySelector('#insert-reed-width-mm').classList.contains('bad')");
-    lap("insertion view: rapier figures, least clearance, air jet speed, refused reed width");
+    // A loaded loom file too large for the page's address (the picker the loom, insertion and
+    // servo shedding views share): it stays in the page, the address keeps no copy of it, and the
+    // page says so beside the file's name instead of dropping it from links silently (issue 27).
+    d.script(
+        "const text = loomkin.insertRequest().loom_toml + '\\n# ' + 'x'.repeat(200000) + '\\n'; \
+         const dt = new DataTransfer(); dt.items.add(new File([text], 'big-loom.toml')); \
+         const f = document.querySelector('#insert-loom-upload'); f.files = dt.files; f.dispatchEvent(new Event('change')); return true",
+    );
+    let note = d.wait_for(
+        "the too-large loom file's note",
+        "const name = document.querySelector('#insert-loom-upload-label').nextElementSibling.textContent; \
+         const st = location.hash.startsWith('#insertion/') && loomkin.decodeState(location.hash.slice(11)); \
+         return document.querySelector('#insert-loom').value === 'upload' && st && st.loom === 'upload' && !st.loom_file && \
+         name.startsWith('big-loom.toml (') ? name : null",
+    );
+    assert!(note.as_str().is_some_and(|n| n.contains("too large for the page's address")), "{note}");
+    d.ctrl("z");
+    d.wait_for("undo of the loaded loom", "return document.querySelector('#insert-loom').value !== 'upload'");
+    lap(
+        "insertion view: rapier figures, least clearance, air jet speed, refused reed width, a loom file too large for a link",
+    );
 
     // 13e. The servo shedding view (issue 31): the servo loom weaving the 2/2 twill after plain
     // weave — the lift grid, a torque per frame, the bus power changed; the figures the route's
