@@ -14,7 +14,10 @@ pub struct CheckArgs {
     /// The axis file: `[motor]` (rated_torque_nm, peak_torque_nm, rated_speed_rpm, max_speed_rpm,
     /// rotor_inertia_kg_m2), `[load]` (moving_mass_kg and travel_mm_per_rev, or load_inertia_kg_m2 and
     /// gear_ratio; efficiency, friction_n, viscous_n_s_m, spring_n_m, constant_force_n,
-    /// extra_inertia_kg_m2), optional `[limits]` (max_inertia_ratio).
+    /// extra_inertia_kg_m2), optional `[load.crank_lever]` in place of travel_mm_per_rev (a crank and
+    /// lever: crank_radius_mm, rod_length_mm, lever_input_arm_mm, lever_output_arm_mm,
+    /// rocking_shaft_x_mm, rocking_shaft_y_mm, …; docs/servo-shedding.md), optional `[limits]`
+    /// (max_inertia_ratio).
     axis: PathBuf,
     /// The cycle the axis moves (TOML cycle file).
     #[arg(long, required_unless_present = "law", conflicts_with = "law")]

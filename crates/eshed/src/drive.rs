@@ -70,6 +70,7 @@ pub fn axis(motor: &Motor, transmission: &Transmission, load: &FrameLoad) -> Axi
             spring_n_m: load.spring_n_m,
             constant_force_n: load.force_at_start_n(),
             extra_inertia_kg_m2: transmission.extra_inertia_kg_m2,
+            crank_lever: None,
         },
         limits: Limits::default(),
     }

@@ -30,7 +30,9 @@
 //! speed, then a straight line to `torque_at_max_speed_nm` (default: the rated torque) at the
 //! maximum speed — a simplified voltage-limit line; beyond the maximum speed, nothing.
 
+use crate::crank_lever::{CrankLever, Linkage, MotorMotion};
 use crate::{Drive, Result, ServoError};
+use loomkin_cams::profile::Jet;
 use loomkin_laws::StrokeUnit;
 use loomkin_units::{Field, Range};
 use serde::{Deserialize, Serialize};
@@ -90,6 +92,10 @@ pub struct Load {
     /// Extra inertia on the motor shaft `J_x` (kg·m²), ≥ 0.
     #[serde(default)]
     pub extra_inertia_kg_m2: f64,
+    /// A crank-and-lever transmission (`[load.crank_lever]`) in place of `travel_mm_per_rev`, for
+    /// a translating slave: the ratio then changes with the position ([`crate::crank_lever`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crank_lever: Option<CrankLever>,
 }
 
 fn one() -> f64 {
@@ -282,6 +288,7 @@ impl Axis {
                 spring_n_m: drive.spring_n_m,
                 constant_force_n: drive.spring_preload_n + drive.constant_force_n,
                 extra_inertia_kg_m2: 0.0,
+                crank_lever: None,
             },
             limits: Limits::default(),
         }
@@ -299,6 +306,39 @@ impl Axis {
         if let Some(t) = m.torque_at_max_speed_nm {
             Motor::TORQUE_AT_MAX_SPEED_NM.at_most(m.peak_torque_nm).check(t)?;
         }
+        let l = &self.load;
+        if let Some(cl) = &l.crank_lever {
+            if unit != StrokeUnit::Mm || l.travel_mm_per_rev.is_some() || l.gear_ratio.is_some() {
+                return Err(ServoError::Parse {
+                    field: "load.crank_lever".into(),
+                    text: "a crank and lever".into(),
+                    expected: "a translating (mm) motion, without travel_mm_per_rev or gear_ratio (the crank and \
+                               lever is the transmission)"
+                        .into(),
+                });
+            }
+            let mass = l.moving_mass_kg.ok_or_else(|| ServoError::Parse {
+                field: Load::MOVING_MASS_KG.name.into(),
+                text: "missing".into(),
+                expected: "a number (the load needs moving_mass_kg)".into(),
+            })?;
+            Load::MOVING_MASS_KG.check(mass)?;
+            cl.check("load.crank_lever")?;
+        } else {
+            self.validate_linear(unit)?;
+        }
+        Load::EFFICIENCY.check(l.efficiency)?;
+        Load::FRICTION_N.check(l.friction_n)?;
+        Load::VISCOUS_N_S_M.check(l.viscous_n_s_m)?;
+        Load::SPRING_N_M.check(l.spring_n_m)?;
+        Load::CONSTANT_FORCE_N.check(l.constant_force_n)?;
+        Load::EXTRA_INERTIA_KG_M2.check(l.extra_inertia_kg_m2)?;
+        Limits::MAX_INERTIA_RATIO.check(self.limits.max_inertia_ratio)?;
+        Ok(())
+    }
+
+    /// The load's keys of a linear transmission for `unit`.
+    fn validate_linear(&self, unit: StrokeUnit) -> Result<()> {
         let l = &self.load;
         let (mass_field, ratio_field, other_mass, other_ratio) = match unit {
             StrokeUnit::Mm => (Load::MOVING_MASS_KG, Load::TRAVEL_MM_PER_REV, l.load_inertia_kg_m2, l.gear_ratio),
@@ -330,18 +370,87 @@ impl Axis {
         };
         mass_field.check(need(&mass_field, mass)?)?;
         ratio_field.check(need(&ratio_field, ratio)?)?;
-        Load::EFFICIENCY.check(l.efficiency)?;
-        Load::FRICTION_N.check(l.friction_n)?;
-        Load::VISCOUS_N_S_M.check(l.viscous_n_s_m)?;
-        Load::SPRING_N_M.check(l.spring_n_m)?;
-        Load::CONSTANT_FORCE_N.check(l.constant_force_n)?;
-        Load::EXTRA_INERTIA_KG_M2.check(l.extra_inertia_kg_m2)?;
-        Limits::MAX_INERTIA_RATIO.check(self.limits.max_inertia_ratio)?;
         Ok(())
     }
 
-    /// `k`, motor radians per slave SI unit (rad/m, or rad/rad).
+    /// The crank-and-lever's linkage (`None` for a linear transmission or a geometry that does not
+    /// close at mid-stroke, which [`Axis::validate`] refuses).
+    pub fn linkage(&self) -> Option<Linkage> {
+        self.load.crank_lever.as_ref().and_then(|c| c.linkage().ok())
+    }
+
+    /// The motor's motion and torque while the slave moves by `s` (a series in time of the slave
+    /// position, SI; orders 0 … 5): `(T, α)` as series in time (`T` exact to the order of `s` less
+    /// two). For a linear transmission `α = k·s` and `T` is [`Axis::torque_at`]'s formula; for a
+    /// crank and lever `T = (J_m + J_x)·i·α̈ + (F·y' + J_L·φ̈·φ')/(i·η)` and the motor at `i·α`
+    /// ([`crate::crank_lever`]). `None`
+    /// where a crank and lever cannot reach the slave's position.
+    pub fn motor_series(&self, s: Jet) -> Option<(Jet, Jet)> {
+        let v = s.d(1);
+        self.motor_series_signed(s, if v == 0.0 { 0.0 } else { v.signum() })
+    }
+
+    /// [`Axis::motor_series`] with the Coulomb friction's sign given (`±1`, or 0: none).
+    pub fn motor_series_signed(&self, s: Jet, vsign: f64) -> Option<(Jet, Jet)> {
+        let l = &self.load;
+        let fric = l.friction_n * vsign;
+        let sd = s.deriv();
+        let sdd = sd.deriv();
+        let force = sdd.scale(self.load_mass())
+            + sd.scale(l.viscous_n_s_m)
+            + s.scale(l.spring_n_m)
+            + Jet::cst(fric + l.constant_force_n);
+        let j_motor = self.motor.rotor_inertia_kg_m2 + l.extra_inertia_kg_m2;
+        match self.linkage() {
+            None if l.crank_lever.is_some() => None,
+            None => {
+                let k = self.motor_rad_per_unit();
+                let alpha = s.scale(k);
+                let t = sdd.scale(j_motor * k) + force.scale(1.0 / (k * l.efficiency));
+                Some((t, alpha))
+            }
+            Some(link) => {
+                let MotorMotion { alpha, dy_dalpha, lever, dlever_dalpha } = link.motor(s)?;
+                let i = link.gear;
+                let acc = alpha.deriv().deriv();
+                let lever_acc = lever.deriv().deriv();
+                let t = acc.scale(j_motor * i)
+                    + (force * dy_dalpha + lever_acc * dlever_dalpha.scale(link.lever_inertia))
+                        .scale(1.0 / (i * l.efficiency));
+                Some((t, alpha.scale(i)))
+            }
+        }
+    }
+
+    /// The slave's series in time from its position, velocity, acceleration and jerk.
+    fn series(s: f64, v: f64, a: f64, j: f64) -> Jet {
+        Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0])
+    }
+
+    /// The motor speed (rad/s) with the slave at `s` moving at `v`: `k·v`, or `v/y'` for a crank
+    /// and lever.
+    pub fn motor_speed_at(&self, s: f64, v: f64) -> f64 {
+        if self.load.crank_lever.is_none() {
+            return self.motor_rad_per_unit() * v;
+        }
+        self.motor_series(Self::series(s, v, 0.0, 0.0)).map_or(f64::NAN, |(_, a)| a.d(1))
+    }
+
+    /// The time derivative of the motor torque at slave position `s` (N·m/s): [`Axis::torque_rate`]
+    /// for a linear transmission, the crank and lever's from its series.
+    pub fn torque_rate_at(&self, s: f64, v: f64, a: f64, j: f64) -> f64 {
+        if self.load.crank_lever.is_none() {
+            return self.torque_rate(v, a, j);
+        }
+        self.motor_series(Self::series(s, v, a, j)).map_or(f64::NAN, |(t, _)| t.d(1))
+    }
+
+    /// `k`, motor radians per slave SI unit (rad/m, or rad/rad); for a crank and lever, `i/y'` at
+    /// mid-stroke (`i` the gear ratio).
     pub fn motor_rad_per_unit(&self) -> f64 {
+        if let Some(l) = self.linkage() {
+            return l.gear / l.height(Jet::var(l.alpha_mid)).0.d(1);
+        }
         match (self.load.travel_mm_per_rev, self.load.gear_ratio) {
             (Some(l), _) => 2.0 * PI / (l * 1e-3),
             (None, Some(i)) => i,
@@ -354,8 +463,16 @@ impl Axis {
         self.load.moving_mass_kg.or(self.load.load_inertia_kg_m2).unwrap_or(0.0)
     }
 
-    /// The inertia ratio `(m/k² + J_x) / J_m`.
+    /// The inertia ratio `(m/k² + J_x) / J_m`; for a crank and lever `((m·y'² + J_L·φ'²)/i² + J_x) / J_m`
+    /// at mid-stroke (the output arm horizontal; `i` the gear ratio).
     pub fn inertia_ratio(&self) -> f64 {
+        if let Some(l) = self.linkage() {
+            let (y, phi) = l.height(Jet::var(l.alpha_mid));
+            let (g, p) = (y.d(1), phi.d(1));
+            return ((self.load_mass() * g * g + l.lever_inertia * p * p) / (l.gear * l.gear)
+                + self.load.extra_inertia_kg_m2)
+                / self.motor.rotor_inertia_kg_m2;
+        }
         let k = self.motor_rad_per_unit();
         (self.load_mass() / (k * k) + self.load.extra_inertia_kg_m2) / self.motor.rotor_inertia_kg_m2
     }
@@ -365,6 +482,9 @@ impl Axis {
     /// force `F` of the model above (the Coulomb friction zero where `v = 0`). What
     /// [`crate::operating_points`] and [`crate::check_axis`] evaluate.
     pub fn torque_at(&self, s: f64, v: f64, a: f64) -> f64 {
+        if self.load.crank_lever.is_some() {
+            return self.motor_series(Self::series(s, v, a, 0.0)).map_or(f64::NAN, |(t, _)| t.v());
+        }
         let k = self.motor_rad_per_unit();
         let ke = k * self.load.efficiency;
         let l = &self.load;

@@ -29,6 +29,7 @@
 
 mod axis;
 mod axis_check;
+pub mod crank_lever;
 mod cycle_file;
 mod design;
 mod drive;
@@ -46,6 +47,7 @@ pub use axis::{Axis, Limits, Load, Motor};
 pub use axis_check::{
     AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
 };
+pub use crank_lever::{CrankBranch, CrankLever, Linkage, MotorMotion};
 pub use cycle_file::spline_cycle;
 pub use design::{DesignFormat, MAX_DEF_POINTS, MAX_SPEEDS, ServoDesign};
 pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, Drive};
@@ -138,6 +140,17 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     Load::CONSTANT_FORCE_N,
     Load::EXTRA_INERTIA_KG_M2,
     Limits::MAX_INERTIA_RATIO,
+    CrankLever::CRANK_RADIUS_MM,
+    CrankLever::ROD_LENGTH_MM,
+    CrankLever::LEVER_INPUT_ARM_MM,
+    CrankLever::LEVER_OUTPUT_ARM_MM,
+    CrankLever::LEVER_ANGLE_DEG,
+    CrankLever::ROCKING_SHAFT_X_MM,
+    CrankLever::ROCKING_SHAFT_Y_MM,
+    CrankLever::FRAME_LINK_MM,
+    CrankLever::LEVER_INERTIA_KG_M2,
+    CrankLever::GEAR_RATIO,
+    CrankLever::MID_STROKE_MM,
 ];
 pub use report::{
     DriveReport, LAW_UNITS, LawReport, LayoutDeg, OptimizeSummary, ReinterpolationRow, TorqueReport, WorstTorque,

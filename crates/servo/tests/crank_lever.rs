@@ -1,0 +1,326 @@
+//! The crank-and-lever transmission against independent routes: its derivatives against finite
+//! differences, its closed-form loop against a Newton solve of the loop equations and against the
+//! four-bar of loomkin-drive (hand-derived rates), its closed-form inverse against the root finder,
+//! the chain rule, the energy over a move, and the linear drive it approaches on a small stroke.
+
+use loomkin_cams::profile::Jet;
+use loomkin_laws::{Cycle, StrokeUnit};
+use loomkin_servo::{Axis, CrankBranch, CrankLever, Limits, Load, Motor, check_axis, operating_points};
+
+const STROKE_MM: f64 = 100.0;
+
+fn geometry() -> CrankLever {
+    CrankLever {
+        crank_radius_mm: 40.0,
+        rod_length_mm: 200.0,
+        lever_input_arm_mm: 100.0,
+        lever_output_arm_mm: 200.0,
+        lever_angle_deg: 0.0,
+        rocking_shaft_x_mm: -100.0,
+        rocking_shaft_y_mm: 200.0,
+        frame_link_mm: Some(400.0),
+        lever_inertia_kg_m2: 0.02,
+        crank_branch: CrankBranch::Ccw,
+        gear_ratio: 1.0,
+        mid_stroke_mm: STROKE_MM / 2.0,
+    }
+}
+
+fn motor() -> Motor {
+    Motor {
+        rated_torque_nm: 12.0,
+        peak_torque_nm: 36.0,
+        rated_speed_rpm: 3000.0,
+        max_speed_rpm: 4500.0,
+        rotor_inertia_kg_m2: 1.1e-3,
+        torque_at_max_speed_nm: None,
+    }
+}
+
+fn axis(cl: CrankLever, efficiency: f64, friction_n: f64, viscous: f64) -> Axis {
+    Axis {
+        motor: motor(),
+        load: Load {
+            moving_mass_kg: Some(6.0),
+            load_inertia_kg_m2: None,
+            travel_mm_per_rev: None,
+            gear_ratio: None,
+            efficiency,
+            friction_n,
+            viscous_n_s_m: viscous,
+            spring_n_m: 800.0,
+            constant_force_n: 90.0,
+            extra_inertia_kg_m2: 2e-4,
+            crank_lever: Some(cl),
+        },
+        limits: Limits::default(),
+    }
+}
+
+fn cycle(stroke_mm: f64, law: &str) -> Cycle {
+    Cycle::from_toml(&format!(
+        "unit = \"mm\"\nstroke = {stroke_mm}\n\
+         [[segment]]\nkind = \"rise\"\nlength_deg = 140\nlaw = \"{law}\"\n\
+         [[segment]]\nkind = \"dwell\"\nlength_deg = 40\n\
+         [[segment]]\nkind = \"return\"\nlength_deg = 140\nlaw = \"{law}\"\n\
+         [[segment]]\nkind = \"dwell\"\nlength_deg = 40\n"
+    ))
+    .unwrap()
+}
+
+/// Motor angles over the stroke (every 1/40 of it, ends included).
+fn angles(cl: &CrankLever) -> Vec<f64> {
+    let l = cl.linkage().unwrap();
+    (0..=40).map(|k| l.motor_angle((k as f64 / 40.0 - 0.5) * STROKE_MM * 1e-3).unwrap()).collect()
+}
+
+#[test]
+fn derivatives_match_finite_differences() {
+    for link in [None, Some(400.0), Some(150.0)] {
+        let cl = CrankLever { frame_link_mm: link, ..geometry() };
+        let l = cl.linkage().unwrap();
+        let y = |a: f64| l.height(Jet::cst(a)).0.v();
+        for a in angles(&cl) {
+            let (j, _) = l.height(Jet::var(a));
+            let h = 1e-4;
+            let d1 = (y(a + h) - y(a - h)) / (2.0 * h);
+            let d2 = (y(a + h) - 2.0 * y(a) + y(a - h)) / (h * h);
+            let h3 = 2e-3;
+            let d3 = (y(a + 2.0 * h3) - 2.0 * y(a + h3) + 2.0 * y(a - h3) - y(a - 2.0 * h3)) / (2.0 * h3 * h3 * h3);
+            let scale = j.d(1).abs().max(1e-3);
+            assert!((j.d(1) - d1).abs() < 1e-8 * scale, "{link:?} {a}: {} vs {d1}", j.d(1));
+            assert!((j.d(2) - d2).abs() < 1e-5 * scale, "{link:?} {a}: {} vs {d2}", j.d(2));
+            assert!((j.d(3) - d3).abs() < 1e-3 * scale, "{link:?} {a}: {} vs {d3}", j.d(3));
+            // The higher orders against differences of the analytic lower ones.
+            let g = |a: f64| l.height(Jet::var(a)).0;
+            let d4 = (g(a + h).d(3) - g(a - h).d(3)) / (2.0 * h);
+            let d5 = (g(a + h).d(4) - g(a - h).d(4)) / (2.0 * h);
+            assert!((j.d(4) - d4).abs() < 1e-6 * j.d(4).abs().max(scale), "{a}: {} vs {d4}", j.d(4));
+            assert!((j.d(5) - d5).abs() < 1e-6 * j.d(5).abs().max(scale), "{a}: {} vs {d5}", j.d(5));
+        }
+    }
+}
+
+/// The closed-form loop against Newton's method on the loop equations `A + b·e(β) = Q + c·e(θ)` and
+/// `|G − P| = L`, and the lever's rates against loomkin-drive's crank-rocker (hand-derived).
+#[test]
+fn the_closed_form_loop_solves_the_loop_equations() {
+    let cl = geometry();
+    let l = cl.linkage().unwrap();
+    let (r, b, c, e, q) = (l.r, l.b, l.c, l.e, l.q);
+    let link = l.link.unwrap();
+    let mut guess = {
+        let (_, phi) = l.height(Jet::cst(angles(&cl)[0]));
+        let theta = phi.v() + l.delta + 0.01;
+        (theta, 1.5_f64)
+    };
+    for a in angles(&cl) {
+        // Newton on F(θ, β) = A + b e(β) − Q − c e(θ) = 0 from the previous solution.
+        let (mut th, mut be) = guess;
+        for _ in 0..50 {
+            let f0 = r * a.cos() + b * be.cos() - q[0] - c * th.cos();
+            let f1 = r * a.sin() + b * be.sin() - q[1] - c * th.sin();
+            // Jacobian [[c sinθ, −b sinβ], [−c cosθ, b cosβ]].
+            let (j00, j01, j10, j11) = (c * th.sin(), -b * be.sin(), -c * th.cos(), b * be.cos());
+            let det = j00 * j11 - j01 * j10;
+            th -= (f0 * j11 - j01 * f1) / det;
+            be -= (j00 * f1 - j10 * f0) / det;
+        }
+        guess = (th, be);
+        let (y, phi) = l.height(Jet::var(a));
+        let d = (phi.v() + l.delta - th + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI)
+            - std::f64::consts::PI;
+        assert!(d.abs() < 1e-12, "α = {a}: θ {} vs Newton {th}", phi.v() + l.delta);
+        // The frame link: the frame's pin G on the vertical through the tip at mid-stroke, L from P.
+        let p = [q[0] + e * phi.v().cos(), q[1] + e * phi.v().sin()];
+        let g = [q[0] + e, q[1] + link + y.v()];
+        assert!(((g[0] - p[0]).hypot(g[1] - p[1]) - link).abs() < 1e-12, "α = {a}");
+        // The lever's rates: the crank-rocker of loomkin-drive, its own formulas.
+        let fb = loomkin_drive::fourbar::CrankRocker { r, b, c, qx: q[0], qy: q[1], kappa: l.kappa };
+        let s = fb.at_crank(a);
+        assert!((s.rocker_d1 - phi.d(1)).abs() < 1e-10 * s.rocker_d1.abs().max(1.0), "{} {}", s.rocker_d1, phi.d(1));
+        assert!((s.rocker_d2 - phi.d(2)).abs() < 1e-9 * s.rocker_d2.abs().max(1.0));
+        assert!((s.rocker_d3 - phi.d(3)).abs() < 1e-9 * s.rocker_d3.abs().max(1.0));
+    }
+}
+
+/// The closed-form inverse against the root finder on `y(α) − y` over the working branch, and
+/// forward(inverse(y)) = y.
+#[test]
+fn the_inverse_is_the_root_of_the_forward_map() {
+    for branch in [CrankBranch::Ccw, CrankBranch::Cw] {
+        for link in [None, Some(400.0)] {
+            let cl = CrankLever { crank_branch: branch, frame_link_mm: link, ..geometry() };
+            let l = cl.linkage().unwrap();
+            let h = 0.5 * STROKE_MM * 1e-3;
+            let (a_lo, a_hi) = (l.motor_angle(-h * 1.05).unwrap(), l.motor_angle(h * 1.05).unwrap());
+            let (lo, hi) = (a_lo.min(a_hi), a_lo.max(a_hi));
+            for k in 0..=50 {
+                let y = (k as f64 / 50.0 * 2.0 - 1.0) * h;
+                let a = l.motor_angle(y).unwrap();
+                let f = |x: f64| l.height(Jet::var(x)).0;
+                let lo_negative = f(lo).v() < y;
+                let root = loomkin_numeric::refine_root(lo, hi, lo_negative, |x| {
+                    let j = f(x);
+                    (j.v() - y, j.d(1))
+                });
+                assert!((a - root).abs() < 1e-12, "{branch:?} {link:?} y = {y}: {a} vs {root}");
+                assert!((f(a).v() - y).abs() < 1e-12 * h, "{branch:?} y = {y}: {}", f(a).v());
+            }
+        }
+    }
+}
+
+/// The motor's rates from the reverted series against the chain rule written out:
+/// `α̇ = ẏ/y'`, `α̈ = (ÿ − y''α̇²)/y'`, `α⃛ = (y⃛ − 3y''α̇α̈ − y'''α̇³)/y'`.
+#[test]
+fn motor_rates_follow_the_chain_rule() {
+    let cl = geometry();
+    let l = cl.linkage().unwrap();
+    for (k, &(s, v, a, j)) in
+        [(0.01, 1.3, -40.0, 900.0), (0.05, -2.0, 15.0, -3e3), (0.093, 0.4, 120.0, 2e4)].iter().enumerate()
+    {
+        let m = l.motor(Jet::from_derivs([s, v, a, j, 0.0, 0.0])).unwrap();
+        let (y, _) = l.height(Jet::var(m.alpha.v()));
+        assert!((y.v() + l.mid_m - s).abs() < 1e-14, "{k}");
+        let (g1, g2, g3) = (y.d(1), y.d(2), y.d(3));
+        let w = v / g1;
+        let acc = (a - g2 * w * w) / g1;
+        let jerk = (j - 3.0 * g2 * w * acc - g3 * w * w * w) / g1;
+        assert!((m.alpha.d(1) - w).abs() < 1e-13 * w.abs(), "{k}");
+        assert!((m.alpha.d(2) - acc).abs() < 1e-12 * acc.abs(), "{k}");
+        assert!((m.alpha.d(3) - jerk).abs() < 1e-11 * jerk.abs(), "{k}");
+        assert!((m.dy_dalpha.v() - g1).abs() < 1e-15);
+    }
+}
+
+/// Gauss–Legendre on `panels` equal parts of `[a, b]`.
+fn integrate(a: f64, b: f64, panels: usize, f: impl Fn(f64) -> f64) -> f64 {
+    let rule = loomkin_laws::gauss_legendre(8);
+    let h = (b - a) / panels as f64;
+    (0..panels)
+        .map(|i| {
+            let m = a + (i as f64 + 0.5) * h;
+            rule.iter().map(|&(x, w)| 0.5 * h * w * f(m + 0.5 * h * x)).sum::<f64>()
+        })
+        .sum()
+}
+
+/// Over the rise (rest to rest) the motor's work is the frame's potential energy gained plus the
+/// losses, all through the efficiency: `∫T·α̇ dt = (ΔV + c∫ẏ²dt + F_μ·H)/η` (the kinetic energies
+/// of frame, lever and motor are zero at both ends); to 1e-9.
+#[test]
+fn the_energy_over_a_move_closes() {
+    for gear_ratio in [1.0, 7.5] {
+        energy_over_a_move(gear_ratio);
+    }
+}
+
+fn energy_over_a_move(gear_ratio: f64) {
+    let (eta, fmu, c) = (0.9, 7.0, 30.0);
+    let ax = axis(CrankLever { gear_ratio, ..geometry() }, eta, fmu, c);
+    let cyc = cycle(STROKE_MM, "poly345");
+    let omega = loomkin_units::rad_per_s_from_rpm(400.0);
+    let seg = &cyc.segments[0];
+    let (_, law) = seg.law.as_ref().unwrap();
+    let tau = seg.length_rad / omega;
+    let h = seg.stroke_si;
+    let slave = |t: f64| {
+        let k = law.eval(t / tau);
+        Jet::from_derivs([h * k.s, h * k.v / tau, h * k.a / (tau * tau), h * k.j / tau.powi(3), 0.0, 0.0])
+    };
+    let work = integrate(0.0, tau, 64, |t| {
+        let (tq, a) = ax.motor_series(slave(t)).unwrap();
+        tq.v() * a.d(1)
+    });
+    let v2 = integrate(0.0, tau, 64, |t| slave(t).d(1).powi(2));
+    let (ks, f0) = (800.0, 90.0);
+    let dv = f0 * h + 0.5 * ks * h * h;
+    let expected = (dv + c * v2 + fmu * h) / eta;
+    assert!((work - expected).abs() < 1e-9 * expected, "{work} vs {expected}");
+}
+
+/// On a small stroke about mid-stroke the crank and lever is the linear drive of its ratio at
+/// mid-stroke: the torques approach each other as the stroke shrinks.
+#[test]
+fn a_small_stroke_approaches_the_linear_drive() {
+    for gear in [1.0, 4.0] {
+        approaches_the_linear_drive(gear);
+    }
+}
+
+fn approaches_the_linear_drive(gear_ratio: f64) {
+    let mut last = f64::INFINITY;
+    for stroke in [8.0, 2.0, 0.5] {
+        let cl = CrankLever { lever_inertia_kg_m2: 0.0, mid_stroke_mm: stroke / 2.0, gear_ratio, ..geometry() };
+        let crank = axis(cl, 0.95, 0.0, 10.0);
+        let k = crank.motor_rad_per_unit();
+        let mut linear = crank.clone();
+        linear.load.crank_lever = None;
+        // The crank turns backwards as the frame rises on this branch: the same drive, |k|.
+        linear.load.travel_mm_per_rev = Some(2.0 * std::f64::consts::PI / k.abs() * 1e3);
+        let cyc = cycle(stroke, "cycloidal");
+        let a = check_axis(&crank, &cyc, 500.0).unwrap();
+        let b = check_axis(&linear, &cyc, 500.0).unwrap();
+        let rel = ((a.peak_torque_nm - b.peak_torque_nm) / b.peak_torque_nm)
+            .abs()
+            .max(((a.rms_torque_nm - b.rms_torque_nm) / b.rms_torque_nm).abs())
+            .max(((a.peak_motor_speed_rpm - b.peak_motor_speed_rpm) / b.peak_motor_speed_rpm).abs());
+        assert!(rel < last / 3.0, "stroke {stroke}: {rel} after {last}");
+        last = rel;
+        assert!((a.inertia_ratio - b.inertia_ratio).abs() < 1e-12 * b.inertia_ratio);
+    }
+    assert!(last < 5e-3, "{last}");
+}
+
+/// The check's peaks bound dense samples of the operating points and are attained; its RMS is a
+/// fine trapezoid rule's.
+#[test]
+fn the_check_locates_the_crank_levers_peaks() {
+    let ax = axis(geometry(), 0.92, 5.0, 20.0);
+    let cyc = cycle(STROKE_MM, "modified-sine");
+    let r = check_axis(&ax, &cyc, 450.0).unwrap();
+    let pts = operating_points(&ax, &cyc, 450.0, 100_001).unwrap();
+    let pk_t = pts.iter().map(|p| p.torque_nm.abs()).fold(0.0, f64::max);
+    let pk_n = pts.iter().map(|p| p.motor_speed_rpm.abs()).fold(0.0, f64::max);
+    assert!(pk_t <= r.peak_torque_nm * (1.0 + 1e-12) && pk_t >= r.peak_torque_nm * (1.0 - 1e-6), "{pk_t} {r:?}");
+    assert!(pk_n <= r.peak_motor_speed_rpm * (1.0 + 1e-12) && pk_n >= r.peak_motor_speed_rpm * (1.0 - 1e-6));
+    let dt = r.cycle_time_s / (pts.len() - 1) as f64;
+    let int: f64 = pts.windows(2).map(|w| 0.5 * (w[0].torque_nm.powi(2) + w[1].torque_nm.powi(2)) * dt).sum();
+    let rms = (int / r.cycle_time_s).sqrt();
+    assert!((rms - r.rms_torque_nm).abs() < 1e-6 * r.rms_torque_nm, "{rms} vs {}", r.rms_torque_nm);
+}
+
+#[test]
+fn a_geometry_that_cannot_make_the_stroke_is_refused_naming_the_field() {
+    // A short crank: the frame's dead centre inside the stroke.
+    let short = axis(CrankLever { crank_radius_mm: 15.0, ..geometry() }, 1.0, 0.0, 0.0);
+    let e = check_axis(&short, &cycle(STROKE_MM, "cycloidal"), 300.0).unwrap_err().to_string();
+    assert!(e.starts_with("load.crank_lever.crank_radius_mm: the crank and lever move the frame only to "), "{e}");
+    assert!(e.contains("the stroke needs -50 … 50 mm"), "{e}");
+    // A rod that cannot reach the lever at mid-stroke.
+    let far = axis(CrankLever { rod_length_mm: 100.0, ..geometry() }, 1.0, 0.0, 0.0);
+    let e = far.validate(StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.starts_with("load.crank_lever.rod_length_mm: the crank cannot reach the lever"), "{e}");
+    // A crank and lever with a travel per revolution as well.
+    let mut both = axis(geometry(), 1.0, 0.0, 0.0);
+    both.load.travel_mm_per_rev = Some(100.0);
+    assert!(both.validate(StrokeUnit::Mm).unwrap_err().to_string().starts_with("load.crank_lever:"));
+    // Out of range.
+    let neg = axis(CrankLever { lever_output_arm_mm: -1.0, ..geometry() }, 1.0, 0.0, 0.0);
+    let e = neg.validate(StrokeUnit::Mm).unwrap_err().to_string();
+    assert!(e.starts_with("load.crank_lever.lever_output_arm_mm"), "{e}");
+}
+
+/// An axis file takes the crank and lever as `[load.crank_lever]`.
+#[test]
+fn an_axis_file_reads_the_crank_lever() {
+    let text = "[motor]\nrated_torque_nm = 12\npeak_torque_nm = 36\nrated_speed_rpm = 3000\nmax_speed_rpm = 4500\n\
+                rotor_inertia_kg_m2 = 1.1e-3\n[load]\nmoving_mass_kg = 6\n[load.crank_lever]\ncrank_radius_mm = 40\n\
+                rod_length_mm = 200\nlever_input_arm_mm = 100\nlever_output_arm_mm = 200\nrocking_shaft_x_mm = -100\n\
+                rocking_shaft_y_mm = 200\nframe_link_mm = 400\nmid_stroke_mm = 50\n";
+    let ax = Axis::from_toml(text, StrokeUnit::Mm).unwrap();
+    assert_eq!(ax.load.crank_lever, Some(CrankLever { lever_inertia_kg_m2: 0.0, ..geometry() }));
+    let r = check_axis(&ax, &cycle(STROKE_MM, "cycloidal"), 400.0).unwrap();
+    assert!(r.peak_torque_nm > 0.0 && r.peak_motor_speed_rpm > 0.0);
+}
