@@ -187,6 +187,18 @@ fn run_analyze(a: AnalyzeArgs) -> Result<()> {
             prime
         ),
         _ => Ok(()),
+    }?;
+    match (r.max_contact_force_n, r.max_contact_force_deg, r.min_contact_force_n, r.min_contact_force_deg) {
+        (Some(most), Some(most_at), Some(least), Some(least_at)) => outln!(
+            "cam contact force: max {:.3} N at {:.3}°, min {:.3} N at {:.3}° ({}); peak rocking-shaft force {:.3} N",
+            most,
+            most_at,
+            least,
+            least_at,
+            r.contact_force_sign.unwrap_or_default(),
+            r.peak_rocking_shaft_force_n.unwrap_or_default()
+        ),
+        _ => Ok(()),
     }
 }
 

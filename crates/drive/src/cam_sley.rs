@@ -26,7 +26,7 @@ use std::f64::consts::TAU;
 
 use crate::sley::{Frame, ReedMotion, SleyAnalysis, SleyError, SleyForces, SleyRow, SleyTable, analysis_of, curve_of};
 use crate::{FourBarSley, SleyJoints};
-use loomkin_cams::profile::{CamDesign, CamProfile, Closure, DesignInputs, FollowerKind, Lift};
+use loomkin_cams::profile::{CamDesign, CamProfile, Closure, DesignInputs, FollowerKind, Jet, Lift, Track};
 use loomkin_cams::table::Motion;
 use loomkin_laws::{Cycle, CycleSpec, StrokeUnit};
 use loomkin_units::{Field, Range, ShaftSpeed};
@@ -150,6 +150,24 @@ pub struct CamSley {
     beat_range: f64,
 }
 
+/// The cam's push on a cam sley's follower at one angle ([`CamSley::contact`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CamContact {
+    /// The contact force, N, signed by the closure: a conjugate pair's positive on the cam pushing
+    /// the sley forward (track 0), negative on the return cam (track 1); a groove's positive on its
+    /// inner wall, negative on its outer; a single cam's negative where the roller would lift off
+    /// (no spring holds it).
+    pub force_n: f64,
+    /// The track that carries it (0, or 1 the conjugate's return cam).
+    pub track: usize,
+    /// The force on the follower's roller in the side view (x toward the fell, y up), N.
+    pub on_roller_n: [f64; 2],
+    /// The roller's centre in the side view, m from the main shaft.
+    pub roller_m: [f64; 2],
+    /// The cam shaft's torque from the contact, N·m: `q × F`.
+    pub cam_torque_n_m: f64,
+}
+
 impl PartialEq for CamSley {
     fn eq(&self, other: &Self) -> bool {
         self.table == other.table
@@ -171,6 +189,24 @@ fn cam_error(e: loomkin_cams::CamError) -> SleyError {
     };
     let field = if field == "segment" || field == "law" { "sley.cycle".into() } else { format!("sley.{field}") };
     SleyError::Infeasible { fields: field, reason }
+}
+
+/// The follower and cam size of a cam sley's table, for loomkin-cams.
+fn design_inputs(t: &CamSleyTable) -> DesignInputs {
+    DesignInputs {
+        follower: FollowerKind::Oscillating,
+        closure: match t.closure {
+            SleyClosure::Conjugate => Closure::Conjugate,
+            SleyClosure::Groove => Closure::Groove,
+            SleyClosure::Single => Closure::Single,
+        },
+        prime_radius_mm: t.prime_radius_mm,
+        max_pressure_deg: t.max_pressure_deg,
+        roller_radius_mm: t.roller_radius_mm,
+        offset_mm: 0.0,
+        arm_mm: Some(t.arm_mm),
+        pivot_mm: Some(t.pivot_mm),
+    }
 }
 
 /// The middle of the stretch of one turn `[lo, lo + 2π)` where `f ≥ top − tol` around `at` (a
@@ -248,22 +284,7 @@ impl CamSley {
         })?;
         let motion = Motion::from_cycle(&cycle);
         let lift = Lift::new(&motion).map_err(cam_error)?;
-        let design = DesignInputs {
-            follower: FollowerKind::Oscillating,
-            closure: match t.closure {
-                SleyClosure::Conjugate => Closure::Conjugate,
-                SleyClosure::Groove => Closure::Groove,
-                SleyClosure::Single => Closure::Single,
-            },
-            prime_radius_mm: t.prime_radius_mm,
-            max_pressure_deg: t.max_pressure_deg,
-            roller_radius_mm: t.roller_radius_mm,
-            offset_mm: 0.0,
-            arm_mm: Some(t.arm_mm),
-            pivot_mm: Some(t.pivot_mm),
-        }
-        .design()
-        .map_err(cam_error)?;
+        let design = design_inputs(&t).design().map_err(cam_error)?;
         let cam = CamProfile::new(&motion, &design).map_err(cam_error)?;
         if let Some(at) = cam.undercut_at_deg() {
             return Err(SleyError::Infeasible {
@@ -355,10 +376,15 @@ impl CamSley {
     /// The swing above its least value and its first three rates at cycle angle `u` (rad), any
     /// real `u` (wrapped into the cycle).
     fn swing_at_cycle(&self, u: f64) -> [f64; 4] {
+        let j = self.lift_jet(u);
+        [j.v(), j.d(1), j.d(2), j.d(3)]
+    }
+
+    /// The law's jet (the swing and its rates per radian of cam) at cycle angle `u` (rad), wrapped.
+    fn lift_jet(&self, u: f64) -> Jet {
         let lo = self.start_deg.to_radians();
         let w = lo + (u - lo).rem_euclid(TAU);
-        let j = self.lift.jet_at(self.lift.psi(w.to_degrees()));
-        [j.v(), j.d(1), j.d(2), j.d(3)]
+        self.lift.jet_at(self.lift.psi(w.to_degrees()))
     }
 
     /// The swing `s` above the back position (rad) and `s'`, `s''`, `s'''` per radian of main
@@ -439,21 +465,100 @@ impl CamSley {
         self.beat_up_force_n(phi_rad) * self.h * s[1] + weight * (-self.kappa * s[1])
     }
 
+    /// The moment about the rocking shaft, in the direction of a growing swing, that the cam must
+    /// give the sley at φ and constant speed ω, N·m: `J_Q·s''·ω² + F·h − κ·m·g₀·g·cos θ` (its
+    /// inertia, the beat-up resistance, the weight). The cam shaft's torque is `s'` times it.
+    pub fn cam_moment_n_m(&self, phi_rad: f64, omega: f64) -> f64 {
+        let s = self.swing(phi_rad);
+        let theta = self.theta_back - self.kappa * s[0];
+        let weight = self.table.mass_kg * loomkin_units::STANDARD_GRAVITY_M_S2 * self.g * theta.cos();
+        self.j_q * s[2] * omega * omega + self.beat_up_force_n(phi_rad) * self.h - self.kappa * weight
+    }
+
+    /// The cam's push on the follower at φ and constant speed ω ([`CamContact`]).
+    ///
+    /// Each track of the cam (loomkin-cams' [`Track::Oscillating`]: the roller's centre `q` about the
+    /// pivot, `e` its direction of motion as the swing grows) at the law's jet gives the pitch
+    /// curve's tangent in the fixed frame `t = dq/dψ − J·q` (`J` the rotation by +90°) and its
+    /// outward normal `n = J·t/|t|`, the line through the roller's centre along which a roller
+    /// outside the cam is pushed. A force `N·n` gives the rocking shaft the moment `N·L·(n·e)`, so
+    /// `N = M/(L·(n·e))` with `M` [`CamSley::cam_moment_n_m`]. A conjugate pair: the track with `N ≥ 0`
+    /// carries it (track 0 pushes the sley forward, track 1 back); a groove: one track, the inner
+    /// wall when `N > 0`, the outer when `N < 0`; a single cam: `N < 0` is the roller lifting off.
+    /// The cam shaft's torque is `q × N·n` (the contact point lies on the same normal).
+    pub fn contact(&self, phi_rad: f64, omega: f64) -> CamContact {
+        let moment = self.cam_moment_n_m(phi_rad, omega);
+        let jet = self.lift_jet(phi_rad - self.shift);
+        let mm = 1e-3;
+        // Each track's normal, lever (m) and roller centre (mm) in the cam's frame.
+        let at = |k: usize| {
+            let track = self.cam.track(k);
+            let (q, e) = track.q_e(jet);
+            let l = match track {
+                Track::Oscillating { l, .. } => l,
+                _ => self.table.arm_mm,
+            };
+            let t = [q[0].d(1) + q[1].v(), q[1].d(1) - q[0].v()];
+            let len = t[0].hypot(t[1]);
+            let n = [-t[1] / len, t[0] / len];
+            let lever = l * mm * (n[0] * e[0].v() + n[1] * e[1].v());
+            (n, lever, [q[0].v(), q[1].v()])
+        };
+        let (n0, lever0, q0) = at(0);
+        let conjugate = self.cam.track_count() > 1;
+        let (track, n, lever, q) = if conjugate && (moment >= 0.0) != (lever0 > 0.0) {
+            let (n1, lever1, q1) = at(1);
+            (1, n1, lever1, q1)
+        } else {
+            (0, n0, lever0, q0)
+        };
+        let force = moment / lever;
+        let on = [force * n[0], force * n[1]];
+        let torque = (q[0] * on[1] - q[1] * on[0]) * mm;
+        let side = |v: [f64; 2]| [v[0], self.kappa * v[1]];
+        CamContact {
+            force_n: if track == 1 { -force } else { force },
+            track,
+            on_roller_n: side(on),
+            roller_m: side([q[0] * mm, q[1] * mm]),
+            cam_torque_n_m: torque,
+        }
+    }
+
     /// The forces at φ and constant speed ω: the inertia force along the reed's path, the beat-up
-    /// resistance and the cam shaft's torque (inertia and load parts). The rod and bearing forces of
-    /// the four-bar are 0 here (there is no rod; the cam's contact force is not modelled).
+    /// resistance, the cam shaft's torque (inertia and load parts), the cam's contact force
+    /// ([`CamSley::contact`]) and the rocking shaft's bearing force `m·a_G − F_cam − κ·F·e⊥(θ) +
+    /// (0, m·g₀)` on the sley (`a_G = g·(θ̈·e⊥(θ) − θ̇²·e(θ))`); the main shaft's bearing carries the
+    /// contact force (the cams massless). There is no rod: `rod_force_n` and `crank_pin_n` are 0.
+    ///
+    /// The side view is the cams' frame (loomkin-cams': the main shaft at the origin, the rocking
+    /// shaft `pivot_mm` along +x, the cams turning counter-clockwise, the follower clockwise as the
+    /// swing grows) when the sword turns clockwise as the sley swings forward (`κ = 1`, a sword
+    /// standing up); mirrored top to bottom otherwise.
     pub fn forces(&self, phi_rad: f64, omega: f64) -> SleyForces {
         let s = self.swing(phi_rad);
         let w2 = omega * omega;
         let inertia_torque = self.j_q * s[1] * s[2] * w2;
         let load = self.load_torque_n_m(phi_rad);
+        let c = self.contact(phi_rad, omega);
+        let theta = self.theta_back - self.kappa * s[0];
+        let (theta_d, theta_dd) = (-self.kappa * s[1] * omega, -self.kappa * s[2] * w2);
+        let (st, ct) = theta.sin_cos();
+        let m = self.table.mass_kg;
+        let ag =
+            [self.g * (-theta_dd * st - theta_d * theta_d * ct), self.g * (theta_dd * ct - theta_d * theta_d * st)];
+        let f = self.beat_up_force_n(phi_rad);
+        let bearing = [
+            m * ag[0] - c.on_roller_n[0] - self.kappa * f * (-st),
+            m * ag[1] - c.on_roller_n[1] - self.kappa * f * ct + m * loomkin_units::STANDARD_GRAVITY_M_S2,
+        ];
         SleyForces {
             inertia_force_n: self.j_q * s[2] * w2 / self.h,
-            beat_up_force_n: self.beat_up_force_n(phi_rad),
+            beat_up_force_n: f,
             rod_force_n: 0.0,
             crank_pin_n: 0.0,
-            crank_bearing_n: 0.0,
-            rocking_shaft_n: [0.0, 0.0],
+            crank_bearing_n: c.force_n.abs(),
+            rocking_shaft_n: bearing,
             crank_torque_n_m: inertia_torque + load,
             inertia_torque_n_m: inertia_torque,
             load_torque_n_m: load,
@@ -521,6 +626,26 @@ impl CamSley {
             intervals: 4 * SleyAnalysis::SCAN_INTERVALS,
         };
         let mut r = analysis_of(&frame, speed, tol, dwell, &|p| self.reed(p), &|p, w| self.forces(p, w));
+        let w = speed.rad_per_s();
+        let scan = |f: &dyn Fn(f64) -> f64| {
+            let m = loomkin_numeric::scan_max(frame.front, frame.front + TAU, frame.intervals, f);
+            (m.value, m.at.rem_euclid(TAU).to_degrees())
+        };
+        let (c_max, c_max_at) = scan(&|p| self.contact(p, w).force_n);
+        let (c_min, c_min_at) = scan(&|p| -self.contact(p, w).force_n);
+        let (peak, peak_at) = if c_max >= c_min { (c_max, c_max_at) } else { (c_min, c_min_at) };
+        r.peak_contact_force_n = Some(peak);
+        r.peak_contact_force_deg = Some(peak_at);
+        r.max_contact_force_n = Some(c_max);
+        r.max_contact_force_deg = Some(c_max_at);
+        r.min_contact_force_n = Some(-c_min);
+        r.min_contact_force_deg = Some(c_min_at);
+        r.contact_force_sign = Some(match self.table.closure {
+            SleyClosure::Conjugate => "positive: the cam pushing the sley forward; negative: the return cam",
+            SleyClosure::Groove => "positive: the groove's inner wall; negative: its outer wall",
+            SleyClosure::Single => "negative: the roller lifts off the cam (no spring is modelled)",
+        });
+        r.peak_rocking_shaft_force_n = Some(scan(&|p| self.forces(p, w).rocking_shaft_magnitude_n()).0);
         let (pressure, _, _) = self.cam.max_pressure_angle();
         r.min_transmission_angle_deg = 90.0 - pressure;
         r.drive = Some("cam");

@@ -17,7 +17,7 @@ pub mod ripple;
 pub mod sley;
 pub mod timetrue;
 
-pub use cam_sley::{CamSley, CamSleyTable, Sley, SleyClosure, SleyDrive};
+pub use cam_sley::{CamContact, CamSley, CamSleyTable, Sley, SleyClosure, SleyDrive};
 pub use fourbar::{CrankRocker, LoopState};
 pub use motor::{Induction, Motor, MotorCurve, MotorKind, MotorSpec, Servo};
 pub use ripple::{RippleError, RippleReport, Shaft, Solution, Table, flywheel_for, solve};

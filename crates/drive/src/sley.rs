@@ -823,6 +823,13 @@ pub(crate) fn analysis_of(
         drive: None,
         max_pressure_angle_deg: None,
         prime_radius_mm: None,
+        peak_contact_force_n: None,
+        peak_contact_force_deg: None,
+        max_contact_force_n: None,
+        max_contact_force_deg: None,
+        min_contact_force_n: None,
+        min_contact_force_deg: None,
+        contact_force_sign: None,
     }
 }
 
@@ -911,8 +918,7 @@ pub struct SleyAnalysis {
     /// Largest magnitude of the rod force, N (a four-bar's; left out for a cam sley).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_rod_force_n: Option<f64>,
-    /// Largest rocking-shaft bearing force, N (a four-bar's; left out for a cam sley, whose cam
-    /// contact force is not modelled).
+    /// Largest rocking-shaft bearing force, N.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_rocking_shaft_force_n: Option<f64>,
     /// Least transmission angle over the cycle, deg (a cam sley: 90° less the cam's largest
@@ -929,6 +935,29 @@ pub struct SleyAnalysis {
     /// A cam sley's prime circle radius, mm (given, or the least for its largest pressure angle).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prime_radius_mm: Option<f64>,
+    /// A cam sley's largest contact force between cam and roller, N (the magnitude; signed by
+    /// `contact_force_sign`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_contact_force_n: Option<f64>,
+    /// Where, deg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_contact_force_deg: Option<f64>,
+    /// A cam sley's largest signed contact force, N (a conjugate pair's: the forward cam's peak).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_contact_force_n: Option<f64>,
+    /// Where, deg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_contact_force_deg: Option<f64>,
+    /// A cam sley's least signed contact force, N: below 0 a single cam loses contact; a conjugate
+    /// pair's or a groove's negative is carried by the return cam or the outer wall.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_contact_force_n: Option<f64>,
+    /// Where, deg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_contact_force_deg: Option<f64>,
+    /// What the contact force's sign means for this cam's closure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_force_sign: Option<&'static str>,
 }
 
 impl SleyAnalysis {

@@ -171,7 +171,7 @@ fn peak_acceleration_is_the_modified_sines() {
     assert_eq!(a.front_dead_centre_deg, 0.0);
     assert!((a.back_dead_centre_deg - 180.0).abs() < 1e-6, "the dwell's middle: {}", a.back_dead_centre_deg);
     assert!((a.min_transmission_angle_deg - (90.0 - a.max_pressure_angle_deg.unwrap())).abs() < 1e-12);
-    assert!(a.peak_rod_force_n.is_none() && a.peak_rocking_shaft_force_n.is_none());
+    assert!(a.peak_rod_force_n.is_none() && a.peak_rocking_shaft_force_n.is_some());
 }
 
 /// The same law written with its peak at 290° (sley-cycle.toml's layout) is put at the beat-up: the
@@ -263,5 +263,123 @@ fn the_sley_enum_is_either() {
     b.sort_by(f64::total_cmp);
     for want in [0.0, 80.0, 280.0, 345.0] {
         assert!(b.iter().any(|x| (x - want).abs() < 1e-9 || (x - want - 360.0).abs() < 1e-9), "{want} in {b:?}");
+    }
+}
+
+/// The cam's contact force against the sley's balance, every check from sampled positions and the
+/// cam's own pitch curve (loomkin-cams), not from the contact's formulas:
+/// * the force lies along the pitch curve's normal (the tangent by differences of the cam's points
+///   in its own frame, turned into the fixed frame);
+/// * the roller stays on the arm, rigid with the sword;
+/// * about the rocking shaft, the contact, the beat-up resistance (against the reed's sampled
+///   velocity) and the weight give `J_Q·θ̈` (θ̈ by differences of the sword's angle);
+/// * the bearing, the contact, the resistance and the weight give `m·a_G` (a_G by differences of
+///   the centre of mass's position);
+/// * the cam shaft's torque from the contact (`q × F`) is the sley's power over ω (to 1e-9);
+/// * the force's sign follows the closure: a conjugate pair's return cam and a groove's outer wall
+///   carry the negative part, which a single cam cannot (it loses contact there).
+#[test]
+fn the_cams_contact_force_balances_the_sley() {
+    use loomkin_cams::profile::Curve;
+    let w = ShaftSpeed::from_rpm(300.0).unwrap().rad_per_s();
+    let (m, j_q, g, h, arm, d) = (30.0, 30.0 * 0.23 * 0.23, 0.2, 0.28, 0.2, 0.25);
+    let gravity = [0.0, -m * STANDARD_GRAVITY_M_S2];
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    for closure in ["conjugate", "groove", "single"] {
+        let t: CamSleyTable =
+            toml::from_str(&TABLE.replace("max_pressure_deg", &format!("closure = \"{closure}\"\nmax_pressure_deg")))
+                .unwrap();
+        let s = CamSley::new(t).unwrap();
+        let q = [d, 0.0];
+        let step = 1e-3;
+        let peak = smooth_angles().iter().map(|p| s.forces(*p, w).crank_torque_n_m.abs()).fold(0.0, f64::max);
+        let (mut most, mut least) = (f64::NEG_INFINITY, f64::INFINITY);
+        // Each roller's arm against the sword, at its first angle.
+        let mut arm_angle: [Option<f64>; 2] = [None, None];
+        for p in smooth_angles() {
+            let c = s.contact(p, w);
+            let f = s.forces(p, w);
+            most = most.max(c.force_n);
+            least = least.min(c.force_n);
+            assert!(
+                (c.on_roller_n[0].hypot(c.on_roller_n[1]) - c.force_n.abs()).abs() <= 1e-9 * c.force_n.abs().max(1.0)
+            );
+            // The normal: perpendicular to the pitch curve's tangent (differences in the cam frame).
+            let cycle_deg = (p.to_degrees() - s.phase_deg()).rem_euclid(360.0);
+            let at = |dd: f64| s.cam().point(Curve::Pitch(c.track), cycle_deg + dd);
+            let psi = cycle_deg.to_radians();
+            let tc = [diff(&|x| at(x)[0], 0.0, 0.01).0, diff(&|x| at(x)[1], 0.0, 0.01).0];
+            let tf = [psi.cos() * tc[0] - psi.sin() * tc[1], psi.sin() * tc[0] + psi.cos() * tc[1]];
+            if c.force_n.abs() > 1.0 {
+                let along =
+                    (tf[0] * c.on_roller_n[0] + tf[1] * c.on_roller_n[1]) / (tf[0].hypot(tf[1]) * c.force_n.abs());
+                assert!(along.abs() < 1e-8, "{closure} {p}: the force leans {along:e} along the pitch curve");
+            }
+            // The roller on its arm, the arm rigid with the sword.
+            let r = [c.roller_m[0] - q[0], c.roller_m[1] - q[1]];
+            assert!((r[0].hypot(r[1]) - arm).abs() < 1e-12);
+            let rel = r[1].atan2(r[0]) - s.rocker_rad(p);
+            let turn = (rel - *arm_angle[c.track].get_or_insert(rel) + PI).rem_euclid(TAU) - PI;
+            assert!(turn.abs() < 1e-9, "{closure} {p}: the arm turned {turn} rad against the sword");
+            // Moments about the rocking shaft.
+            let (_, th_dd) = diff(&|x| s.rocker_rad(x), p, step);
+            let reed = |x: f64| s.joints_m(x).reed;
+            let (vx, _) = diff(&|x| reed(x)[0], p, step);
+            let (vy, _) = diff(&|x| reed(x)[1], p, step);
+            let speed = vx.hypot(vy);
+            let resist = if speed > 0.0 {
+                [-f.beat_up_force_n * vx / speed, -f.beat_up_force_n * vy / speed]
+            } else {
+                [0.0, 0.0]
+            };
+            let rq = [reed(p)[0] - q[0], reed(p)[1] - q[1]];
+            let th = s.rocker_rad(p);
+            let gq = [g * th.cos(), g * th.sin()];
+            let moments = cross(r, c.on_roller_n) + cross(rq, resist) + cross(gq, gravity);
+            let need = j_q * th_dd * w * w;
+            assert!((moments - need).abs() < 1e-6 * peak, "{closure} {p}: moments {moments} vs J·θ̈ {need}");
+            // Forces: the bearing closes m·a_G.
+            let centre = |x: f64| {
+                let th = s.rocker_rad(x);
+                [q[0] + g * th.cos(), q[1] + g * th.sin()]
+            };
+            let (_, ax) = diff(&|x| centre(x)[0], p, step);
+            let (_, ay) = diff(&|x| centre(x)[1], p, step);
+            for i in 0..2 {
+                let sum = f.rocking_shaft_n[i] + c.on_roller_n[i] + resist[i] + gravity[i];
+                let ma = m * [ax, ay][i] * w * w;
+                assert!((sum - ma).abs() < 1e-6 * (peak / h), "{closure} {p}: force {i} {sum} vs m·a {ma}");
+            }
+            // Power: the contact's torque is the sley's.
+            assert!(
+                (c.cam_torque_n_m - f.crank_torque_n_m).abs() <= 1e-9 * peak,
+                "{closure} {p}: {} vs {}",
+                c.cam_torque_n_m,
+                f.crank_torque_n_m
+            );
+            assert!((f.crank_bearing_n - c.force_n.abs()).abs() == 0.0);
+            if closure == "conjugate" {
+                assert_eq!(c.track, usize::from(c.force_n < 0.0), "{p}: {c:?}");
+            } else {
+                assert_eq!(c.track, 0);
+            }
+        }
+        // The sley is thrown forward and pulled back: both signs occur.
+        assert!(most > 0.0 && least < 0.0, "{closure}: {least} … {most}");
+        let a = s.analyze(ShaftSpeed::from_rpm(300.0).unwrap(), 1.0).unwrap();
+        let (peak_c, min_c) = (a.peak_contact_force_n.unwrap(), a.min_contact_force_n.unwrap());
+        // The located extremes reach at least the samples' and are the force where they are said to be.
+        assert!(peak_c >= most.max(-least), "{closure}: {peak_c} vs {most} {least}");
+        assert!(min_c <= least, "{closure}: {min_c} vs {least}");
+        assert!(a.max_contact_force_n.unwrap() >= most && peak_c == a.max_contact_force_n.unwrap().max(-min_c));
+        let force_at = |deg: f64| s.contact(deg.to_radians(), w).force_n;
+        assert!((force_at(a.peak_contact_force_deg.unwrap()).abs() - peak_c).abs() <= 1e-9 * peak_c);
+        assert!((force_at(a.min_contact_force_deg.unwrap()) - min_c).abs() <= 1e-9 * peak_c);
+        assert!(a.peak_rocking_shaft_force_n.unwrap() > 0.0);
+        assert!(a.contact_force_sign.unwrap().contains(match closure {
+            "conjugate" => "return cam",
+            "groove" => "outer wall",
+            _ => "lifts off",
+        }));
     }
 }

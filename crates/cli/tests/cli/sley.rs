@@ -174,10 +174,18 @@ fn a_cam_sley_reports_the_same_keys() {
         "min_transmission_angle_deg",
         "max_pressure_angle_deg",
         "prime_radius_mm",
+        "peak_contact_force_n",
+        "max_contact_force_n",
+        "min_contact_force_n",
+        "peak_rocking_shaft_force_n",
     ] {
         assert!(v[key].as_f64().unwrap().is_finite(), "{key}: {v}");
     }
     assert_eq!(v["drive"], "cam");
+    // Conjugate cams: the return cam carries the negative part, and the sley is both thrown forward
+    // and pulled back.
+    assert!(v["contact_force_sign"].as_str().unwrap().contains("return cam"), "{v}");
+    assert!(v["min_contact_force_n"].as_f64().unwrap() < 0.0, "{v}");
     assert!(v.get("peak_rod_force_n").is_none());
     // The 200° dwell of the cam law and its near-dwell within 1 mm: the projectile's flight fits.
     assert!(v["back_dwell_deg"].as_f64().unwrap() > 200.0, "{v}");
@@ -193,6 +201,7 @@ fn a_cam_sley_reports_the_same_keys() {
     assert_eq!(csv.lines().count(), 6);
     let text = String::from_utf8(loomkin().args(["sley", "analyze", &p]).output().unwrap().stdout).unwrap();
     assert!(text.contains("peak cam-shaft torque") && text.contains("largest pressure angle 35.000°"), "{text}");
+    assert!(text.contains("cam contact force: max "), "{text}");
     let wif = ex("point-24.wif");
     let j = stdout_json(&["drive", "inertia", &p, "--wif", &wif, "--json"]);
     let sley = j["mechanisms"].as_array().unwrap().iter().find(|m| m["name"] == "sley").unwrap().clone();
