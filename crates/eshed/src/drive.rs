@@ -16,8 +16,9 @@
 //! modelled). The warp's pull on the frame is not part of this load (`loom torque` has it).
 
 use crate::Transmission;
+use loomkin_cams::profile::Jet;
 use loomkin_laws::{CycleSegment, Segment};
-use loomkin_servo::{Axis, Limits, Load, Motor};
+use loomkin_servo::{Axis, CrankLever, Limits, Load, Motor};
 
 /// A heald frame as a servo's load.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,10 +48,18 @@ impl FrameLoad {
 
     /// The frame's energy at cycle position `s` (m from the start) moving at `v` (m/s) with the
     /// motor's rotor and extra inertia: `½(m + (J_m + J_x)k²)v² + F_c·s + ½k_s s²`, J (zero at the
-    /// start at rest).
+    /// start at rest); with a crank and lever `½(m v² + (J_m + J_x)ω_m² + J_L φ̇²) + F_c·s + ½k_s s²`.
     pub fn energy_j(&self, axis: &Axis, s: f64, v: f64) -> f64 {
-        let k = axis.motor_rad_per_unit();
         let j = axis.motor.rotor_inertia_kg_m2 + axis.load.extra_inertia_kg_m2;
+        if let Some(link) = axis.linkage() {
+            // With a crank and lever: the motor at i·α̇, the lever at φ̇ (its inertia J_L).
+            let Some(m) = link.motor(Jet([s, v, 0.0, 0.0, 0.0, 0.0])) else { return f64::NAN };
+            let (w, p) = (link.gear * m.alpha.d(1), m.lever.d(1));
+            return 0.5 * (self.mass_kg * v * v + j * w * w + link.lever_inertia * p * p)
+                + self.force_at_start_n() * s
+                + 0.5 * self.spring_n_m * s * s;
+        }
+        let k = axis.motor_rad_per_unit();
         0.5 * (self.mass_kg + j * k * k) * v * v + self.force_at_start_n() * s + 0.5 * self.spring_n_m * s * s
     }
 }
@@ -62,7 +71,7 @@ pub fn axis(motor: &Motor, transmission: &Transmission, load: &FrameLoad) -> Axi
         load: Load {
             moving_mass_kg: Some(load.mass_kg),
             load_inertia_kg_m2: None,
-            travel_mm_per_rev: Some(transmission.travel_mm_per_rev),
+            travel_mm_per_rev: transmission.crank_lever.is_none().then_some(transmission.travel_mm_per_rev),
             gear_ratio: None,
             efficiency: transmission.efficiency,
             friction_n: transmission.friction_n,
@@ -70,7 +79,9 @@ pub fn axis(motor: &Motor, transmission: &Transmission, load: &FrameLoad) -> Axi
             spring_n_m: load.spring_n_m,
             constant_force_n: load.force_at_start_n(),
             extra_inertia_kg_m2: transmission.extra_inertia_kg_m2,
-            crank_lever: None,
+            // The cycle's position 0 is the frame's place at its start, `start_level_m` over
+            // mid-stroke: mid-stroke is at `−start_level_m`.
+            crank_lever: transmission.crank_lever.map(|c| CrankLever { mid_stroke_mm: -load.start_level_m * 1e3, ..c }),
         },
         limits: Limits::default(),
     }
@@ -124,11 +135,15 @@ impl FrameDrive {
     /// The drive with the frame at cycle position `s`, velocity `v`, acceleration `a` and jerk `j`
     /// (SI, from the frame's cycle).
     pub fn point(&self, s: f64, v: f64, a: f64, j: f64) -> DrivePoint {
-        let k = self.axis.motor_rad_per_unit();
-        let t = self.axis.torque_at(s, v, a);
-        let dt = self.axis.torque_rate(v, a, j);
-        let w = k * v;
-        let dw = k * a;
+        let (t, dt, w, dw) = if self.axis.load.crank_lever.is_some() {
+            // The crank and lever: torque and motor angle as series in time.
+            let nan = Jet::cst(f64::NAN);
+            let (t, alpha) = self.axis.motor_series(Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0])).unwrap_or((nan, nan));
+            (t.v(), t.d(1), alpha.d(1), alpha.d(2))
+        } else {
+            let k = self.axis.motor_rad_per_unit();
+            (self.axis.torque_at(s, v, a), self.axis.torque_rate(v, a, j), k * v, k * a)
+        };
         DrivePoint {
             torque_n_m: t,
             torque_rate: dt,

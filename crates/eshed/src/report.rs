@@ -136,6 +136,25 @@ impl Study {
         let mut cycles = Vec::with_capacity(frames.len());
         let mut drives = Vec::with_capacity(frames.len());
         let mut segments = Vec::with_capacity(frames.len());
+        // A crank and lever must make each frame's stroke without a dead centre (checked once per
+        // distinct transmission and stroke).
+        let mut checked: Vec<(loomkin_servo::CrankLever, u64, u64)> = Vec::new();
+        for (i, f) in frames.iter().enumerate() {
+            if let Some(cl) = f.servo.transmission.crank_lever {
+                let key = (cl, f.load.stroke_m.to_bits(), f.load.start_level_m.to_bits());
+                if !checked.contains(&key) {
+                    let lo = -f.load.stroke_m / 2.0 - f.load.start_level_m;
+                    let cl = loomkin_servo::CrankLever { mid_stroke_mm: -f.load.start_level_m * 1e3, ..cl };
+                    cl.check_stroke(lo, lo + f.load.stroke_m, "shedding.servo.transmission").map_err(|e| {
+                        let field = loomkin_units::FieldError::field(&e).unwrap_or("shedding.servo.transmission");
+                        let text = e.to_string();
+                        let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
+                        EshedError::field(field, format!("frame {}: {reason}", i + 1))
+                    })?;
+                    checked.push(key);
+                }
+            }
+        }
         for f in frames {
             cycles.push(f.plan.cycle(laws));
             segments.push(f.plan.segments());

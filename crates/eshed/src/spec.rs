@@ -17,6 +17,17 @@
 //! [shedding.servo.transmission]    # a linear drive: travel per motor revolution
 //! travel_mm_per_rev = 200
 //! efficiency = 0.95
+//! # or a crank and lever (loomkin_servo::CrankLever; the frame at mid-stroke with the output arm
+//! # horizontal):
+//! # kind = "crank_lever"
+//! # crank_radius_mm = 45
+//! # rod_length_mm = 200
+//! # lever_input_arm_mm = 100
+//! # lever_output_arm_mm = 300
+//! # rocking_shaft_x_mm = -100
+//! # rocking_shaft_y_mm = 200
+//! # frame_link_mm = 500            # optional
+//! # gear_ratio = 8                 # motor turns per crank turn, 1 when left out
 //! [shedding.servo.winding]         # copper loss R·(T/k_t)²
 //! resistance_ohm = 1.4
 //! torque_constant_n_m_a = 1.6
@@ -30,15 +41,18 @@
 //! ```
 
 use crate::{EshedError, Result};
-use loomkin_servo::{Motor, ServoError};
+use loomkin_servo::{CrankBranch, CrankLever, Motor, ServoError};
 use loomkin_units::{Field, Range, RangeError};
 use serde::{Deserialize, Serialize};
 
-/// The transmission from the motor to the frame: a linear drive (rack and pinion, belt, screw).
+/// The transmission from the motor to the frame: a linear drive (rack and pinion, belt, screw;
+/// the default, `kind = "linear"`) or a crank and lever (`kind = "crank_lever"`, the geometry of
+/// [`loomkin_servo::CrankLever`] as keys of the same table; `mid_stroke_mm` is the frame's own).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "TransmissionFile")]
 pub struct Transmission {
-    /// Frame travel per motor revolution, mm/rev ([`Transmission::TRAVEL_MM_PER_REV`]).
+    /// Frame travel per motor revolution, mm/rev ([`Transmission::TRAVEL_MM_PER_REV`]); not read
+    /// with a crank and lever (0 there).
     pub travel_mm_per_rev: f64,
     /// Efficiency η ([`Transmission::EFFICIENCY`]).
     #[serde(default = "Transmission::default_efficiency")]
@@ -53,6 +67,121 @@ pub struct Transmission {
     /// ([`Transmission::EXTRA_INERTIA_KG_M2`]).
     #[serde(default)]
     pub extra_inertia_kg_m2: f64,
+    /// The crank and lever in place of the linear drive (`kind = "crank_lever"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crank_lever: Option<CrankLever>,
+}
+
+/// `kind` of a transmission.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum TransmissionKind {
+    #[default]
+    Linear,
+    CrankLever,
+}
+
+/// `[shedding.servo.transmission]` as written: the linear drive's keys or the crank and lever's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TransmissionFile {
+    #[serde(default)]
+    kind: TransmissionKind,
+    travel_mm_per_rev: Option<f64>,
+    #[serde(default = "Transmission::default_efficiency")]
+    efficiency: f64,
+    #[serde(default)]
+    friction_n: f64,
+    #[serde(default)]
+    viscous_n_s_m: f64,
+    #[serde(default)]
+    extra_inertia_kg_m2: f64,
+    crank_radius_mm: Option<f64>,
+    rod_length_mm: Option<f64>,
+    lever_input_arm_mm: Option<f64>,
+    lever_output_arm_mm: Option<f64>,
+    lever_angle_deg: Option<f64>,
+    rocking_shaft_x_mm: Option<f64>,
+    rocking_shaft_y_mm: Option<f64>,
+    frame_link_mm: Option<f64>,
+    lever_inertia_kg_m2: Option<f64>,
+    crank_branch: Option<CrankBranch>,
+    gear_ratio: Option<f64>,
+}
+
+impl TryFrom<TransmissionFile> for Transmission {
+    type Error = String;
+
+    fn try_from(f: TransmissionFile) -> std::result::Result<Self, String> {
+        let geometry = [
+            ("crank_radius_mm", f.crank_radius_mm),
+            ("rod_length_mm", f.rod_length_mm),
+            ("lever_input_arm_mm", f.lever_input_arm_mm),
+            ("lever_output_arm_mm", f.lever_output_arm_mm),
+            ("rocking_shaft_x_mm", f.rocking_shaft_x_mm),
+            ("rocking_shaft_y_mm", f.rocking_shaft_y_mm),
+        ];
+        let optional = [
+            ("lever_angle_deg", f.lever_angle_deg.is_some()),
+            ("frame_link_mm", f.frame_link_mm.is_some()),
+            ("lever_inertia_kg_m2", f.lever_inertia_kg_m2.is_some()),
+            ("crank_branch", f.crank_branch.is_some()),
+            ("gear_ratio", f.gear_ratio.is_some()),
+        ];
+        let crank_lever = match f.kind {
+            TransmissionKind::Linear => {
+                let given = geometry.iter().map(|(k, v)| (*k, v.is_some())).chain(optional).find(|(_, g)| *g);
+                if let Some((key, _)) = given {
+                    return Err(format!("transmission.{key}: a key of a crank and lever: give kind = \"crank_lever\""));
+                }
+                None
+            }
+            TransmissionKind::CrankLever => {
+                if f.travel_mm_per_rev.is_some() {
+                    return Err(
+                        "transmission.travel_mm_per_rev: a key of a linear drive, not of kind = \"crank_lever\"".into(),
+                    );
+                }
+                let need = |i: usize| {
+                    geometry[i].1.ok_or_else(|| {
+                        format!("transmission: missing field `{}` (kind = \"crank_lever\" needs {})", geometry[i].0, {
+                            let keys: Vec<&str> = geometry.iter().map(|g| g.0).collect();
+                            keys.join(", ")
+                        })
+                    })
+                };
+                Some(CrankLever {
+                    crank_radius_mm: need(0)?,
+                    rod_length_mm: need(1)?,
+                    lever_input_arm_mm: need(2)?,
+                    lever_output_arm_mm: need(3)?,
+                    rocking_shaft_x_mm: need(4)?,
+                    rocking_shaft_y_mm: need(5)?,
+                    lever_angle_deg: f.lever_angle_deg.unwrap_or(CrankLever::LEVER_ANGLE_DEG.default_value()),
+                    frame_link_mm: f.frame_link_mm,
+                    lever_inertia_kg_m2: f
+                        .lever_inertia_kg_m2
+                        .unwrap_or(CrankLever::LEVER_INERTIA_KG_M2.default_value()),
+                    crank_branch: f.crank_branch.unwrap_or_default(),
+                    gear_ratio: f.gear_ratio.unwrap_or(CrankLever::GEAR_RATIO.default_value()),
+                    mid_stroke_mm: CrankLever::MID_STROKE_MM.default_value(),
+                })
+            }
+        };
+        let travel_mm_per_rev = match (crank_lever, f.travel_mm_per_rev) {
+            (Some(_), _) => 0.0,
+            (None, Some(t)) => t,
+            (None, None) => return Err("missing field `travel_mm_per_rev`".into()),
+        };
+        Ok(Self {
+            travel_mm_per_rev,
+            efficiency: f.efficiency,
+            friction_n: f.friction_n,
+            viscous_n_s_m: f.viscous_n_s_m,
+            extra_inertia_kg_m2: f.extra_inertia_kg_m2,
+            crank_lever,
+        })
+    }
 }
 
 impl Transmission {
@@ -100,7 +229,10 @@ impl Transmission {
 
     fn check(&self, at: &str) -> Result<()> {
         let f = |field: Field, v: f64| field.check_as(&format!("{at}.{}", field.name), v).map(|_| ());
-        f(Self::TRAVEL_MM_PER_REV, self.travel_mm_per_rev)?;
+        match &self.crank_lever {
+            Some(cl) => cl.check(at)?,
+            None => f(Self::TRAVEL_MM_PER_REV, self.travel_mm_per_rev)?,
+        }
         f(Self::EFFICIENCY, self.efficiency)?;
         f(Self::FRICTION_N, self.friction_n)?;
         f(Self::VISCOUS_N_S_M, self.viscous_n_s_m)?;

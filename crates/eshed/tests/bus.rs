@@ -18,14 +18,28 @@ fn laws(spec: LawSpec) -> MoveLaws {
 }
 
 fn servo(efficiency: f64, friction_n: f64, viscous_n_s_m: f64, resistance_ohm: f64) -> FrameServo {
+    servo_by(efficiency, friction_n, viscous_n_s_m, resistance_ohm, None)
+}
+
+/// The transmissions every bus test runs with: the linear drive and the crank and lever.
+const CRANK: [bool; 2] = [false, true];
+
+fn servo_by(
+    efficiency: f64,
+    friction_n: f64,
+    viscous_n_s_m: f64,
+    resistance_ohm: f64,
+    crank_lever: Option<loomkin_servo::CrankLever>,
+) -> FrameServo {
     FrameServo {
         motor: common::motor(),
         transmission: Transmission {
-            travel_mm_per_rev: 100.0,
+            travel_mm_per_rev: if crank_lever.is_some() { 0.0 } else { 100.0 },
             efficiency,
             friction_n,
             viscous_n_s_m,
             extra_inertia_kg_m2: 2e-4,
+            crank_lever,
         },
         winding: Winding { resistance_ohm, torque_constant_n_m_a: 1.7 },
         motion_deg: None,
@@ -84,8 +98,9 @@ fn rel(a: f64, b: f64) -> f64 {
 #[test]
 fn each_frames_torque_is_the_servo_axis_model_run_on_its_own_cycle() {
     let plan = lift_plan(4, 12, 7);
-    for pass in [false, true] {
-        let fs = setups(&plan, pass, &servo(0.93, 6.0, 15.0, 1.5), 4.0);
+    for (pass, crank) in [false, true].into_iter().flat_map(|p| CRANK.map(|c| (p, c))) {
+        let cl = crank.then(common::crank_lever);
+        let fs = setups(&plan, pass, &servo_by(0.93, 6.0, 15.0, 1.5, cl), 4.0);
         let l = laws(LawSpec::Poly345);
         let c = curves(&fs, &l, &Bus::default(), SPEED_RPM, 2001).unwrap();
         let study = Study::new(&fs, &l, SPEED_RPM).unwrap();
@@ -115,8 +130,8 @@ fn energy_drawn_over_the_repeat_is_the_losses_in_closed_form() {
     // transmission loss of the conservative rule, (1/η − 1)∫F·v dt, which is zero over the repeat.
     let plan = lift_plan(5, 16, 11);
     let (eta, fmu, c, r) = (0.9, 8.0, 25.0, 2.0);
-    for pass in [false, true] {
-        let fs = setups(&plan, pass, &servo(eta, fmu, c, r), 6.0);
+    for (pass, crank) in [false, true].into_iter().flat_map(|p| CRANK.map(|c| (p, c))) {
+        let fs = setups(&plan, pass, &servo_by(eta, fmu, c, r, crank.then(common::crank_lever)), 6.0);
         let l = laws(LawSpec::Cycloidal);
         let rep = analyse(&fs, &l, &Bus { regeneration_efficiency: 1.0, ..Bus::default() }, SPEED_RPM, pass).unwrap();
         let omega = loomkin_units::rad_per_s_from_rpm(SPEED_RPM);
@@ -150,8 +165,8 @@ fn energy_drawn_over_the_repeat_is_the_losses_in_closed_form() {
 #[test]
 fn peaks_are_at_least_every_point_of_a_dense_scan_and_close_to_its_best() {
     let plan = lift_plan(6, 10, 3);
-    for pass in [false, true] {
-        let fs = setups(&plan, pass, &servo(0.95, 3.0, 10.0, 1.2), 5.0);
+    for (pass, crank) in [false, true].into_iter().flat_map(|p| CRANK.map(|c| (p, c))) {
+        let fs = setups(&plan, pass, &servo_by(0.95, 3.0, 10.0, 1.2, crank.then(common::crank_lever)), 5.0);
         let l = laws(LawSpec::ModifiedSine);
         let bus = Bus { regeneration_efficiency: 0.8, ..Bus::default() };
         let rep = analyse(&fs, &l, &bus, SPEED_RPM, pass).unwrap();

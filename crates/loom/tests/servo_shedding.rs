@@ -7,6 +7,7 @@ use loomkin_loom::{
 };
 
 const SERVO: &str = include_str!("../../../examples/servo-shedding-loom.toml");
+const CRANK: &str = include_str!("../../../examples/servo-shedding-crank-loom.toml");
 const RAPIER: &str = include_str!("../../../examples/rapier-loom.toml");
 const POINT: &str = include_str!("../../../examples/point-24.wif");
 
@@ -355,4 +356,52 @@ fn the_search_leaves_still_frames_out_and_keeps_a_least_clearance() {
     let bad = ServoOptions { objective: Objective::Peak, min_clearance_mm: -1.0 };
     let e = optimise_servo_with(&loom, &pattern, &bad, &Default::default(), &|_, _| {}).unwrap_err().to_string();
     assert!(e.starts_with("min_clearance_mm = -1 is out of range"), "{e}");
+}
+
+/// The crank-and-lever example: read, studied, each frame's motor speed from the linkage (not the
+/// linear drive's), and its table's errors named field by field.
+#[test]
+fn the_crank_lever_transmission_is_read_and_checked() {
+    let loom = Loom::from_toml(CRANK).unwrap();
+    let s = loom.shedding.servo.as_ref().unwrap();
+    let cl = s.frames[0].transmission.crank_lever.unwrap();
+    assert_eq!((cl.crank_radius_mm, cl.gear_ratio, cl.frame_link_mm), (45.0, 8.0, Some(500.0)));
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let study = servo_study(&loom, &pattern).unwrap();
+    assert_eq!(study.frames.len(), 24);
+    // The same frames through the linear drive of the same ratio at mid-stroke run at other speeds.
+    let linear = servo_study(&Loom::from_toml(SERVO).unwrap(), &pattern).unwrap();
+    assert!(study.frames.iter().zip(&linear.frames).all(|(a, b)| a.peak_speed_rpm != b.peak_speed_rpm));
+    let block = |from: &str, to: &str| CRANK.replace(from, to);
+    let cases = [
+        (
+            block("rod_length_mm = 200\n", ""),
+            "shedding.servo: transmission: missing field `rod_length_mm` (kind = \"crank_lever\" needs",
+        ),
+        (
+            block("kind = \"crank_lever\"", ""),
+            "shedding.servo: transmission.crank_radius_mm: a key of a crank and lever: give kind = \"crank_lever\"",
+        ),
+        (
+            block("efficiency = 0.95\n", "efficiency = 0.95\ntravel_mm_per_rev = 100\n"),
+            "shedding.servo: transmission.travel_mm_per_rev: a key of a linear drive",
+        ),
+        (
+            block("lever_output_arm_mm = 300", "lever_output_arm_mm = 0"),
+            "shedding.servo.transmission.lever_output_arm_mm = 0 is out of range",
+        ),
+        (
+            block("rod_length_mm = 200", "rod_length_mm = 50"),
+            "shedding.servo.transmission.rod_length_mm: the crank cannot reach the lever with the frame at mid-stroke",
+        ),
+    ];
+    for (text, want) in cases {
+        let e = Loom::from_toml(&text).unwrap_err().to_string();
+        assert!(e.starts_with(want), "{e}\nwanted: {want}");
+    }
+    // A crank too short for the back frames' strokes: refused by the study, naming the frame.
+    let short = Loom::from_toml(&block("crank_radius_mm = 45", "crank_radius_mm = 30")).unwrap();
+    let e = servo_study(&short, &pattern).unwrap_err().to_string();
+    assert!(e.starts_with("shedding.servo.transmission.crank_radius_mm: frame "), "{e}");
+    assert!(e.contains("the crank and lever move the frame only to "), "{e}");
 }
