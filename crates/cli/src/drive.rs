@@ -309,6 +309,9 @@ fn run_correct(a: CorrectArgs) -> Result<()> {
         files.push(path.display().to_string());
     }
     let r = &c.report;
+    if let Some(w) = r.sley.as_ref().and_then(|s| s.warning()) {
+        output::warning(w);
+    }
     if a.json {
         return output::json(&CorrectJson { report: r, files });
     }
@@ -365,6 +368,15 @@ fn run_correct(a: CorrectArgs) -> Result<()> {
             s.moves,
             b,
             af
+        )?;
+        outln!(
+            "sley cam on its follower: largest pressure angle {:.3}° before, {:.3}° after (limit {}°); least radius of curvature {:.3} mm before, {:.3} mm after (roller {} mm)",
+            s.max_pressure_angle_deg_before,
+            s.max_pressure_angle_deg_after,
+            loomkin_units::compact(s.pressure_angle_limit_deg),
+            s.min_curvature_radius_mm_before,
+            s.min_curvature_radius_mm_after,
+            loomkin_units::compact(s.roller_radius_mm)
         )?;
     }
     outln!(

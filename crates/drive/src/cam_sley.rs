@@ -404,6 +404,38 @@ impl CamSley {
         &self.cam
     }
 
+    /// The cam another law (a cycle as `[sley.cycle]`, e.g. a time-true correction of this one)
+    /// needs on this sley's follower with this sley's cam size: the same arm, pivot, roller and
+    /// closure and the prime circle of [`CamSley::cam`]. Its pressure angle and curvature tell
+    /// whether the follower the cam was designed for can take the other law; it is made whether
+    /// or not it is undercut ([`CamProfile::undercut_at_deg`] says).
+    pub fn cam_for(&self, cycle: &CycleSpec) -> Result<CamProfile, SleyError> {
+        let cycle = Cycle::new(cycle).map_err(|e| SleyError::Infeasible {
+            fields: format!("sley.cycle.{}", loomkin_units::FieldError::field(&e).unwrap_or("segment")),
+            reason: e.to_string(),
+        })?;
+        let motion = Motion::from_cycle(&cycle);
+        let design = DesignInputs {
+            prime_radius_mm: Some(self.cam.prime_radius_mm()),
+            max_pressure_deg: None,
+            ..self.design_inputs()
+        }
+        .design()
+        .map_err(cam_error)?;
+        CamProfile::new(&motion, &design).map_err(cam_error)
+    }
+
+    /// The largest pressure angle the sley's cam is allowed, deg: `max_pressure_deg` when the cam
+    /// was sized for one, else loomkin-cams' default ([`CamDesign::MAX_PRESSURE_DEG`]).
+    pub fn pressure_limit_deg(&self) -> f64 {
+        self.table.max_pressure_deg.unwrap_or_else(|| CamDesign::MAX_PRESSURE_DEG.default_value())
+    }
+
+    /// The follower and cam size of the table, for loomkin-cams.
+    fn design_inputs(&self) -> DesignInputs {
+        design_inputs(&self.table)
+    }
+
     /// Main-shaft angle less the cycle's angle, deg in [0, 360): where the cycle's 0° falls.
     pub fn phase_deg(&self) -> f64 {
         self.shift.to_degrees().rem_euclid(360.0)

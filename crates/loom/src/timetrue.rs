@@ -234,6 +234,49 @@ pub struct SleyTiming {
     pub max_timing_error_deg_before: f64,
     /// The time-true cam's: the worst pick against the pick-mean correction, deg.
     pub max_timing_error_deg_after: f64,
+    /// The design cam's largest pressure angle over its cams, deg.
+    pub max_pressure_angle_deg_before: f64,
+    /// The time-true cam's on the same follower and cam size (the prime circle the design was
+    /// made with), deg ([`loomkin_drive::CamSley::cam_for`]).
+    pub max_pressure_angle_deg_after: f64,
+    /// The limit the cam was designed for, deg ([`loomkin_drive::CamSley::pressure_limit_deg`]).
+    pub pressure_angle_limit_deg: f64,
+    /// The design cam's least radius of curvature where a pitch curve is convex, mm (below the
+    /// roller's radius the cam is undercut).
+    pub min_curvature_radius_mm_before: f64,
+    /// The time-true cam's, mm.
+    pub min_curvature_radius_mm_after: f64,
+    /// The follower's roller radius, mm.
+    pub roller_radius_mm: f64,
+    /// Where the time-true cam is undercut, deg of its cycle (left out when it is not).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub undercut_at_deg_after: Option<f64>,
+}
+
+impl SleyTiming {
+    /// One line for the user when the time-true cam asks more of the follower it was designed for
+    /// than that follower takes: a pressure angle past the limit, or an undercut.
+    pub fn warning(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        if self.max_pressure_angle_deg_after > self.pressure_angle_limit_deg * (1.0 + 1e-9) {
+            parts.push(format!(
+                "needs a pressure angle of {:.3}° on the follower it was designed for, past its limit of {}° \
+                 (the design cam: {:.3}°): a larger cam (sley.prime_radius_mm or a smaller sley.max_pressure_deg)",
+                self.max_pressure_angle_deg_after,
+                loomkin_units::compact(self.pressure_angle_limit_deg),
+                self.max_pressure_angle_deg_before
+            ));
+        }
+        if let Some(at) = self.undercut_at_deg_after {
+            parts.push(format!(
+                "is undercut at {:.3}° of its cycle (least radius of curvature {:.3} mm, roller {} mm)",
+                at,
+                self.min_curvature_radius_mm_after,
+                loomkin_units::compact(self.roller_radius_mm)
+            ));
+        }
+        (!parts.is_empty()).then(|| format!("{}: the time-true cam {}", self.name, parts.join("; and it ")))
+    }
 }
 
 /// The cam sley's cam corrected for the pick-mean speed ([`SleyCorrection::new`]).
@@ -334,11 +377,21 @@ impl SleyCorrection {
                 }));
             }
         }
+        // The time-true law on the follower and cam the design was made for.
+        let cam_after = sley.cam_for(&corrected).map_err(|e| LoomError::field("sley.cycle", e.to_string()))?;
+        let cam_before = sley.cam();
         let timing = SleyTiming {
             name: "sley".into(),
             moves: moving.len(),
             max_timing_error_deg_before: before.to_degrees(),
             max_timing_error_deg_after: after.to_degrees(),
+            max_pressure_angle_deg_before: cam_before.max_pressure_angle().0,
+            max_pressure_angle_deg_after: cam_after.max_pressure_angle().0,
+            pressure_angle_limit_deg: sley.pressure_limit_deg(),
+            min_curvature_radius_mm_before: cam_before.min_convex_radius_pitch().0,
+            min_curvature_radius_mm_after: cam_after.min_convex_radius_pitch().0,
+            roller_radius_mm: sley.table().roller_radius_mm,
+            undercut_at_deg_after: cam_after.undercut_at_deg(),
         };
         Ok(Self { cycle: corrected, mean_map: mean, anchor_rad: anchor, timing })
     }

@@ -219,6 +219,24 @@ fn a_cam_sley_reports_the_same_keys() {
     );
     assert!(c["sley"]["moves"] == 2 && before > 0.5 && after > 0.0 && after < before / 2.0, "{c}");
     assert!(c["max_timing_error_deg_before"].as_f64().unwrap() >= before, "{c}");
+    // The corrected cam re-checked on the follower the cam was sized for (35°): past it, one
+    // warning line on standard error.
+    let (p_before, p_after) = (
+        c["sley"]["max_pressure_angle_deg_before"].as_f64().unwrap(),
+        c["sley"]["max_pressure_angle_deg_after"].as_f64().unwrap(),
+    );
+    assert!((p_before - 35.0).abs() < 1e-6 && p_after > 35.0 && c["sley"]["pressure_angle_limit_deg"] == 35.0, "{c}");
+    for key in ["min_curvature_radius_mm_before", "min_curvature_radius_mm_after", "roller_radius_mm"] {
+        assert!(c["sley"][key].as_f64().unwrap() > 0.0, "{key}: {c}");
+    }
+    let out = loomkin().args(["drive", "correct", &p, "--wif", &wif, "-o", dir.to_str().unwrap()]).output().unwrap();
+    let (text, err) = (String::from_utf8(out.stdout).unwrap(), String::from_utf8(out.stderr).unwrap());
+    assert!(
+        out.status.success() && text.contains("sley cam on its follower: largest pressure angle 35.000° before"),
+        "{text}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("loomkin: warning: sley: the time-true cam needs a pressure angle of "), "{err}");
     let file = dir.join("sley.toml");
     assert!(c["files"].as_array().unwrap().iter().any(|f| f.as_str() == file.to_str()), "{c}");
     let f = file.to_str().unwrap();
