@@ -691,10 +691,15 @@ impl CamSley {
         curve_of(points, omega, &|p| (self.reed(p), self.forces(p, omega), false))
     }
 
+    /// The main-shaft angles where the sley's law has a joint (between its segments and inside a
+    /// law made of pieces, as the modified sine's eighths): where `J` is not smooth, rad in [0, 2π).
+    pub fn law_joints_rad(&self) -> Vec<f64> {
+        self.lift.joints_deg().into_iter().map(|d| (d.to_radians() + self.shift).rem_euclid(TAU)).collect()
+    }
+
     /// The main-shaft angles where the sley's law or its beat-up model has a joint, rad in [0, 2π).
     pub fn breaks_rad(&self) -> Vec<f64> {
-        let mut out: Vec<f64> =
-            self.lift.joints_deg().into_iter().map(|d| (d.to_radians() + self.shift).rem_euclid(TAU)).collect();
+        let mut out = self.law_joints_rad();
         if self.beat_force > 0.0 && self.beat_range > 0.0 {
             out.push(self.phi_front);
             out.push((self.phi_front - self.beat_range).rem_euclid(TAU));
@@ -817,6 +822,15 @@ impl Sley {
     /// The curves over one revolution.
     pub fn curve(&self, points: usize, omega: f64) -> Vec<SleyRow> {
         either!(self, s => s.curve(points, omega))
+    }
+
+    /// Main-shaft angles within a turn where the sley's J has a joint (a cam law's joints; none
+    /// for the four-bar, whose J is smooth), rad in [0, 2π).
+    pub fn inertia_joints_rad(&self) -> Vec<f64> {
+        match self {
+            Self::FourBar(_) => Vec::new(),
+            Self::Cam(s) => s.law_joints_rad(),
+        }
     }
 
     /// Main-shaft angles within a turn where the sley's J or load has a joint (the beat-up model's

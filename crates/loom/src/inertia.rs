@@ -384,9 +384,22 @@ impl<'a> LoomShaft<'a> {
             let f = |x: f64| self.sley_inertia(x).0;
             let sley_grid: Vec<f64> = (0..3600).map(|k| f(k as f64 * 0.1)).collect();
             let mut st = stats(&sley_grid, 0.1, 360.0, &f, 0.0);
-            // Mean over a turn: 16-point Gauss–Legendre on 36 panels of 10°.
-            st.j_mean_kg_m2 = (0..36)
-                .map(|p| rule.iter().map(|&(x, wt)| 5.0 * wt * f(10.0 * p as f64 + 5.0 + 5.0 * x)).sum::<f64>())
+            // Mean over a turn: 16-point Gauss–Legendre on panels of 10°, split at the joints of
+            // a cam law (where J is not smooth).
+            let mut cuts: Vec<f64> = (0..=36).map(|p| 10.0 * p as f64).collect();
+            if let Some(s) = self.sley {
+                // A joint within 1e-9° of a panel's end is that end.
+                let off_panel = |d: &f64| (d - 10.0 * (d / 10.0).round()).abs() > 1e-9;
+                cuts.extend(s.inertia_joints_rad().into_iter().map(f64::to_degrees).filter(off_panel));
+            }
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup_by(|later, earlier| *later - *earlier <= 1e-9);
+            st.j_mean_kg_m2 = cuts
+                .windows(2)
+                .map(|w| {
+                    let half = 0.5 * (w[1] - w[0]);
+                    rule.iter().map(|&(x, wt)| half * wt * f(w[0] + half + half * x)).sum::<f64>()
+                })
                 .sum::<f64>()
                 / 360.0;
             mean_total += st.j_mean_kg_m2;

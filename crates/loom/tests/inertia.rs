@@ -172,3 +172,27 @@ fn the_side_view_keeps_the_links_and_meets_the_fell_at_beat_up() {
     let chord = 2.0 * h * (stroke_mm / (2.0 * h)).sin();
     assert!((furthest - chord).abs() < 1e-3 * chord, "{furthest} vs {chord}");
 }
+
+/// A cam sley whose law's joints fall inside the mean's 10° panels (the modified sine's eighths of
+/// a 70° move at 8.75° and 61.25°): the sley's mean J against composite Simpson on 0.005° over a
+/// turn (the grid holds every joint: 8.75 and 61.25 are multiples of 0.005).
+#[test]
+fn a_cam_sleys_mean_splits_at_its_laws_joints() {
+    let text = example("projectile-loom.toml");
+    let text = edited(&edited(&text, "to_deg = 80\nlaw", "to_deg = 70\nlaw"), "to_deg = 280", "to_deg = 290");
+    let text = edited(&text, "max_pressure_deg = 35", "max_pressure_deg = 40");
+    let loom = Loom::from_toml(&text).unwrap();
+    let pattern = wif("point-24.wif");
+    let motion = Motion::new(&loom, &pattern).unwrap();
+    let shaft = LoomShaft::new(&loom, &motion, &pattern);
+    let r = shaft.report(0.5).unwrap();
+    let sley = r.mechanisms.iter().find(|m| m.name == "sley").unwrap();
+    let n = 72_000;
+    let h = 360.0 / n as f64;
+    let f = |x: f64| shaft.sley_inertia(x).0;
+    let mean: f64 = (0..n)
+        .map(|k| h / 6.0 * (f(k as f64 * h) + 4.0 * f((k as f64 + 0.5) * h) + f((k + 1) as f64 * h)))
+        .sum::<f64>()
+        / 360.0;
+    assert!((sley.j_mean_kg_m2 - mean).abs() <= 1e-12 * mean, "{} vs {mean}", sley.j_mean_kg_m2);
+}
