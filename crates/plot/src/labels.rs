@@ -4,7 +4,8 @@
 use super::Figure;
 use super::font::{fonts, text_width};
 use super::layout::{
-    FONT_BAND, FONT_LABEL, FONT_LEGEND, FONT_NOTE, FONT_TICK, Layout, Rect, SWATCH, title_baseline, title_line,
+    FONT_BAND, FONT_LABEL, FONT_LEGEND, FONT_NOTE, FONT_TICK, Layout, Rect, SWATCH, Y_LABEL_LINE, title_baseline,
+    title_line,
 };
 
 /// Where a label's anchor point is along its text.
@@ -178,10 +179,12 @@ pub(crate) fn labels(fig: &Figure, lay: &Layout) -> Vec<Label> {
             out.push(Label::new(&pl.x_label, (x, r.y1 + 40.0), font, Anchor::Middle, TITLE, Role::XLabel(i)));
         }
         let (ly, font) = pl.y_label_at;
-        let mut yl =
-            Label::new(&p.y_label, (12.0 + FONT_LABEL - 2.0, ly), font, Anchor::Middle, TITLE, Role::YLabel(i));
-        yl.vertical = true;
-        out.push(yl);
+        for (k, line) in pl.y_label_lines.iter().enumerate() {
+            let x = 12.0 + FONT_LABEL - 2.0 + Y_LABEL_LINE * k as f64;
+            let mut yl = Label::new(line, (x, ly), font, Anchor::Middle, TITLE, Role::YLabel(i));
+            yl.vertical = true;
+            out.push(yl);
+        }
         if pl.legend.is_some() {
             for (e, &(sx, cy)) in pl.entries.iter().zip(&pl.legend_cells) {
                 let at = (sx + SWATCH + 7.0, cy + 4.5);

@@ -152,6 +152,9 @@ pub(crate) struct PanelLayout {
     pub band_strip: bool,
     /// The vertical axis label: its centre line and font size (it stays inside the panel's slot).
     pub y_label_at: (f64, f64),
+    /// The vertical axis label's lines, left to right: the label, or the label broken in two
+    /// where in one line it does not fit its panel even in the smallest font.
+    pub y_label_lines: Vec<String>,
     /// Whether the horizontal tick labels and axis label are drawn (a short panel over another
     /// of the same horizontal axis leaves them to the panel below).
     pub x_ticks_labelled: bool,
@@ -366,6 +369,35 @@ const MIN_PLOT_UNDER_LEGEND: f64 = 60.0;
 /// Space between two entries of a row.
 const ENTRY_GAP: f64 = 18.0;
 
+/// Least spacing of two labelled vertical ticks on a short plot (a 13 px tick label's ink is
+/// under 15 px tall).
+const MIN_TICK_PX: f64 = 16.0;
+/// Least gap between two horizontal tick labels.
+const TICK_LABEL_GAP: f64 = 8.0;
+
+/// Round ticks as close as their labels allow: vertical ones [`MIN_TICK_PX`] apart, horizontal
+/// ones the widest label and [`TICK_LABEL_GAP`] apart (the smallest round step that keeps them so).
+fn closest_ticks(lo: f64, hi: f64, len_px: f64, horizontal: bool) -> Axis {
+    let span = (hi - lo).max(f64::MIN_POSITIVE);
+    let mut step = nice_step(span * MIN_TICK_PX / len_px);
+    for _ in 0..8 {
+        let axis = ticks_axis(lo, hi, step);
+        let widest = axis.labels.iter().map(|l| text_width(l, FONT_TICK)).fold(0.0, f64::max);
+        if !horizontal || len_px * step / span >= widest + TICK_LABEL_GAP {
+            return axis;
+        }
+        step = nice_step(step * 1.01);
+    }
+    ticks_axis(lo, hi, step)
+}
+
+/// The axis as laid out at the usual tick spacing, or, where that labels fewer than two ticks (a
+/// short or narrow plot), at the least spacing its labels allow. Figures that lay out keep their
+/// axes; only those that did not get the closer ticks.
+fn two_ticks(axis: Axis, closer: impl FnOnce() -> Axis) -> Axis {
+    if axis.ticks.len() < 2 { closer() } else { axis }
+}
+
 /// Smallest font of a vertical axis label shortened to fit its panel.
 const MIN_FONT_LABEL: f64 = 10.0;
 
@@ -373,6 +405,37 @@ const MIN_FONT_LABEL: f64 = 10.0;
 /// plot; when longer than the room about that centre (a short panel of a stacked figure), centred
 /// on the panel's slot, and, if still too long, in a smaller font (not below [`MIN_FONT_LABEL`]),
 /// so it does not run into the next panel's label.
+/// The vertical axis label in lines, with its centre line and font ([`y_label_place`] of the
+/// longest line): one line where it fits its slot (in a font down to [`MIN_FONT_LABEL`]), else two,
+/// broken at the space that makes the longer line shortest (the unit then goes under the
+/// quantity: `acceleration a = d²s/dx²` / `[-]`).
+fn y_label_lines(label: &str, slot: &Rect, plot: &Rect) -> ((f64, f64), Vec<String>) {
+    let one = y_label_place(label, slot, plot);
+    // (The font was chosen to fill the room: a rounding's worth over it still fits.)
+    if text_width(label, one.1) <= slot.h() - 4.0 + 1e-6 {
+        return (one, vec![label.to_string()]);
+    }
+    let split = label
+        .char_indices()
+        .filter(|&(_, c)| c == ' ')
+        .map(|(i, _)| (label[..i].trim_end(), label[i..].trim_start()))
+        .filter(|(a, b)| !a.is_empty() && !b.is_empty())
+        .min_by(|x, y| {
+            let longer = |(a, b): &(&str, &str)| text_width(a, FONT_LABEL).max(text_width(b, FONT_LABEL));
+            longer(x).total_cmp(&longer(y))
+        });
+    match split {
+        Some((a, b)) => {
+            let longest = if text_width(a, FONT_LABEL) >= text_width(b, FONT_LABEL) { a } else { b };
+            (y_label_place(longest, slot, plot), vec![a.to_string(), b.to_string()])
+        }
+        None => (one, vec![label.to_string()]),
+    }
+}
+
+/// Distance between the two lines of a vertical axis label broken in two (at the usual font).
+pub(crate) const Y_LABEL_LINE: f64 = 1.15 * FONT_LABEL;
+
 fn y_label_place(label: &str, slot: &Rect, plot: &Rect) -> (f64, f64) {
     let len = text_width(label, FONT_LABEL);
     let centre = (plot.y0 + plot.y1) / 2.0;
@@ -616,16 +679,38 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64], shared: 
             log_axis(lo, hi, plot_h, 26.0)
         } else {
             let (lo, hi) = linear_bounds(ys(), 0.06);
-            if is_angle(&p.y_label) { angle_axis(lo, hi, plot_h, 30.0) } else { linear_axis(lo, hi, plot_h, 28.0) }
+            let axis =
+                if is_angle(&p.y_label) { angle_axis(lo, hi, plot_h, 30.0) } else { linear_axis(lo, hi, plot_h, 28.0) };
+            // A plot too short for two labelled ticks at the usual spacing: round steps as close
+            // as the tick labels' height allows.
+            two_ticks(axis, || {
+                if is_angle(&p.y_label) {
+                    angle_axis(lo, hi, plot_h, MIN_TICK_PX)
+                } else {
+                    closest_ticks(lo, hi, plot_h, false)
+                }
+            })
         };
         pre.push((y0, y0 + plot_h, y_axis, band_strip));
     }
+    let y_labels: Vec<((f64, f64), Vec<String>)> = fig
+        .panels
+        .iter()
+        .zip(slots)
+        .zip(&pre)
+        .map(|((p, slot), (y0, y1, _, _))| {
+            y_label_lines(&p.y_label, slot, &Rect { x0: 0.0, y0: *y0, x1: 0.0, y1: *y1 })
+        })
+        .collect();
+    let two_lines = y_labels.iter().any(|(_, l)| l.len() > 1);
     let tick_w = pre.iter().flat_map(|p| p.2.labels.iter()).map(|l| text_width(l, FONT_TICK)).fold(0.0, f64::max);
-    let left = 12.0 + FONT_LABEL + 12.0 + tick_w + 8.0;
+    let left = 12.0 + FONT_LABEL + 12.0 + tick_w + 8.0 + if two_lines { Y_LABEL_LINE } else { 0.0 };
     let width = slots.first().map_or(0.0, |s| s.w());
     let x1 = (width - right).max(left + 40.0);
     let mut out = Vec::new();
-    for (((p, slot), (y0, y1, mut y_axis, band_strip)), &shared) in fig.panels.iter().zip(slots).zip(pre).zip(shared) {
+    for ((((p, _), (y0, y1, mut y_axis, band_strip)), &shared), (y_label_at, y_label_lines)) in
+        fig.panels.iter().zip(slots).zip(pre).zip(shared).zip(y_labels)
+    {
         let plot = Rect { x0: left, y0, x1, y1 };
         let mut x_label = p.x_label.clone().unwrap_or_else(|| fig.x_label.clone());
         let xs = || {
@@ -643,8 +728,8 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64], shared: 
             let (cx, cy) = ((lo + hi) / 2.0, (ylo + yhi) / 2.0);
             (lo, hi) = (cx - scale * plot.w() / 2.0, cx + scale * plot.w() / 2.0);
             let (a, b) = (cy - scale * plot.h() / 2.0, cy + scale * plot.h() / 2.0);
-            y_axis = linear_axis(a, b, plot.h(), 28.0);
-            linear_axis(lo, hi, plot.w(), 80.0)
+            y_axis = two_ticks(linear_axis(a, b, plot.h(), 28.0), || closest_ticks(a, b, plot.h(), false));
+            two_ticks(linear_axis(lo, hi, plot.w(), 80.0), || closest_ticks(lo, hi, plot.w(), true))
         } else if fig.turns_axis && p.x_label.is_none() {
             let (axis, minor) = turns_axis(lo, hi, plot.w(), 44.0);
             if let Some(m) = minor {
@@ -654,7 +739,7 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64], shared: 
         } else if is_angle(&x_label) {
             angle_axis(lo, hi, plot.w(), 44.0)
         } else {
-            linear_axis(lo, hi, plot.w(), 80.0)
+            two_ticks(linear_axis(lo, hi, plot.w(), 80.0), || closest_ticks(lo, hi, plot.w(), true))
         };
         let mut pl = PanelLayout {
             plot,
@@ -668,7 +753,8 @@ fn place_panels(fig: &Figure, slots: &[Rect], right: f64, tops: &[f64], shared: 
             legend: None,
             legend_cells: Vec::new(),
             band_strip,
-            y_label_at: y_label_place(&p.y_label, slot, &plot),
+            y_label_at,
+            y_label_lines,
             x_ticks_labelled: !shared,
         };
         pl.curves = p.series.iter().map(|s| polylines(&pl, &s.points)).collect();

@@ -632,3 +632,28 @@ fn circles_are_closed_polygons_on_the_circle_parted_by_breaks() {
         assert!(Series::circles("", &centres, r).points.is_empty());
     }
 }
+
+/// A vertical label too long for its short panel even in the smallest font is broken in two at a
+/// space (the drawn ink read back from the SVG: each line inside the panel's height, none over
+/// another text), and a plot too short for two ticks at the usual spacing gets closer round ticks;
+/// a figure that lays out as it is keeps one line and its ticks.
+#[test]
+fn a_label_too_long_for_a_short_panel_takes_two_lines() {
+    let label = |q: &str| format!("{q}: acceleration a = d²s/dx² [m/s²]");
+    let names = ["first", "second", "third", "fourth"];
+    let panels: Vec<Panel> = names.iter().map(|q| Panel::new(label(q), sine_series())).collect();
+    let mut fig = Figure::new("t", "x", panels);
+    fig.size = Some((1000, 560));
+    let lay = layout(&fig);
+    for (i, pl) in lay.panels.iter().enumerate() {
+        assert_eq!(pl.y_label_lines.len(), 2, "panel {i}: {:?}", pl.y_label_lines);
+        assert_eq!(pl.y_label_lines.join(" "), label(names[i]));
+        assert!(pl.y.ticks.len() >= 2, "panel {i}");
+    }
+    let svg = fig.to_svg().unwrap();
+    assert_eq!(crate::drawn_text_problems(&svg).unwrap(), Vec::<String>::new());
+    assert!(fig.layout_problems().is_empty(), "{:?}", fig.layout_problems());
+    // At the default size the same figure keeps one line per label.
+    fig.size = None;
+    assert!(layout(&fig).panels.iter().all(|pl| pl.y_label_lines.len() == 1));
+}
