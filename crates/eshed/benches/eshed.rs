@@ -23,8 +23,11 @@ fn setups(plan: &[Vec<bool>]) -> Vec<FrameSetup> {
         .enumerate()
         .map(|(i, up)| {
             let stroke = 0.09 * (1.0 + 0.06 * i as f64);
-            let p = FramePlan::new(&FrameInput { up, stroke_m: stroke, centre_deg: -10.0, motion_deg: 280.0 }, false)
-                .unwrap();
+            let p = FramePlan::new(
+                &FrameInput { up, stroke_m: stroke, centre_deg: -10.0, motion_deg: 280.0, fall_motion_deg: 280.0 },
+                false,
+            )
+            .unwrap();
             let load = FrameLoad {
                 mass_kg: 5.5,
                 spring_n_m: 0.0,
@@ -32,7 +35,7 @@ fn setups(plan: &[Vec<bool>]) -> Vec<FrameSetup> {
                 stroke_m: stroke,
                 start_level_m: p.start_level_m(),
             };
-            FrameSetup { plan: p, load, servo: servo.clone() }
+            FrameSetup { plan: p, laws: laws(), load, servo: servo.clone() }
         })
         .collect()
 }
@@ -40,7 +43,7 @@ fn setups(plan: &[Vec<bool>]) -> Vec<FrameSetup> {
 fn laws() -> MoveLaws {
     let spec = LawSpec::ModifiedSine;
     let law = spec.build().unwrap();
-    MoveLaws { rise: (spec.clone(), law.clone()), fall: (spec, law) }
+    MoveLaws::new((spec.clone(), law.clone()), (spec, law))
 }
 
 fn twill() -> Vec<Vec<bool>> {
@@ -63,12 +66,12 @@ fn random() -> Vec<Vec<bool>> {
 
 #[divan::bench(sample_count = 5)]
 fn twill_24_frames_10k_picks(b: divan::Bencher) {
-    let (s, l) = (setups(&twill()), laws());
-    b.bench(|| analyse(&s, &l, &Bus::default(), 500.0, false).unwrap());
+    let s = setups(&twill());
+    b.bench(|| analyse(&s, &Bus::default(), 500.0, false).unwrap());
 }
 
 #[divan::bench(sample_count = 3)]
 fn random_24_frames_10k_picks(b: divan::Bencher) {
-    let (s, l) = (setups(&random()), laws());
-    b.bench(|| analyse(&s, &l, &Bus::default(), 500.0, false).unwrap());
+    let s = setups(&random());
+    b.bench(|| analyse(&s, &Bus::default(), 500.0, false).unwrap());
 }

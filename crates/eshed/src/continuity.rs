@@ -17,6 +17,8 @@ pub struct JointClass {
     pub rest: i32,
     /// Where the least smooth rest transition is, deg of the main shaft (`None` without joints).
     pub rest_at_deg: Option<f64>,
+    /// The segment of the cycle that starts there (the joint is between it and the one before).
+    pub rest_at_segment: Option<usize>,
     /// The same over the joints inside the laws of the moves.
     pub law: i32,
 }
@@ -49,12 +51,14 @@ pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
     };
     let mut rest = 3;
     let mut rest_at_deg = None;
+    let mut rest_at_segment = None;
     // A joint between the same two segments (kind, law, length, stroke, base) as an earlier one
     // is the same joint: its class once.
     let law_id = |s: &CycleSegment| match &s.law {
         None => 0u64,
         Some((_, l)) if *l == laws.rise.1 => 1,
         Some((_, l)) if *l == laws.fall.1 => 2,
+        Some((_, l)) if laws.through.as_ref().is_some_and(|t| *l == t.1) => 4,
         Some(_) => 3,
     };
     let ids: Vec<u64> = segs.iter().map(law_id).collect();
@@ -92,11 +96,20 @@ pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
             if class < rest {
                 rest = class;
                 rest_at_deg = Some((b.start_rad).to_degrees());
+                rest_at_segment = Some(j);
             }
         }
     }
     let inner = |l: &loomkin_laws::Law| l.continuity().joints.iter().map(|j| j.continuous_up_to).min().unwrap_or(3);
-    let moves = segs.iter().any(|s| s.law.is_some());
-    let law = if moves { inner(&laws.rise.1).min(inner(&laws.fall.1)) } else { 3 };
-    JointClass { rest, rest_at_deg, law }
+    // Every law the cycle moves by, once.
+    let mut seen = [false; 5];
+    let mut law = 3;
+    for (s, &id) in segs.iter().zip(&ids) {
+        if let Some((_, l)) = &s.law
+            && (id == 3 || !std::mem::replace(&mut seen[id as usize], true))
+        {
+            law = law.min(inner(l));
+        }
+    }
+    JointClass { rest, rest_at_deg, rest_at_segment, law }
 }

@@ -8,6 +8,8 @@
 //! * [`FramePlan`] — one frame's moves over the pattern repeat from its row of the lift plan
 //!   (crossing angle, stagger, motion angle, pass-through), as a machine cycle of the law core
 //!   ([`loomkin_laws::Cycle`]: every joint exact).
+//! * [`MoveKinds`] — the law and motion angle of each kind of move (rise, fall, pass-through) a
+//!   loom file gives, for all frames or some ([`moves`]).
 //! * [`FramePath`] — a frame's height along its plan at any angle (what the shed geometry reads:
 //!   the clear shed and the clearance to the carrier).
 //! * [`ServoShedding`] — the `[shedding.servo]` table of a loom file: motor (as `loomkin servo
@@ -28,6 +30,7 @@ mod bus;
 pub mod continuity;
 mod drive;
 mod error;
+pub mod moves;
 mod path;
 mod plan;
 mod report;
@@ -38,6 +41,7 @@ pub use bus::BusTotals;
 pub use continuity::{JointClass, joint_class};
 pub use drive::{DrivePoint, FrameDrive, FrameLoad, axis};
 pub use error::{EshedError, Result};
+pub use moves::{GivenLaw, MoveKinds, read_law};
 pub use path::FramePath;
 pub use plan::{FrameInput, FramePlan, MoveLaws, PlanSegment, PlannedMove};
 pub use report::{
@@ -61,5 +65,7 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     Winding::TORQUE_CONSTANT_N_M_A,
     Bus::VOLTAGE_V,
     Bus::REGENERATION_EFFICIENCY,
-    Bus::BRAKING_RESISTOR_OHM
+    Bus::BRAKING_RESISTOR_OHM,
+    MoveKinds::RISE_MOTION_DEG,
+    MoveKinds::FALL_MOTION_DEG
 ];

@@ -14,8 +14,8 @@ pub struct FramePath {
     segments: Vec<PlanSegment>,
     /// Per segment: an identity of its shape (kind, length, base, stroke): equal shapes, equal ids.
     shapes: Vec<u64>,
-    rise: Law,
-    fall: Law,
+    /// The laws of a move up, down, up laid end to end, down laid end to end.
+    laws: [Law; 4],
     start_deg: f64,
     period_deg: f64,
     level0_m: f64,
@@ -28,8 +28,7 @@ impl Clone for FramePath {
         Self {
             segments: self.segments.clone(),
             shapes: self.shapes.clone(),
-            rise: self.rise.clone(),
-            fall: self.fall.clone(),
+            laws: self.laws.clone(),
             start_deg: self.start_deg,
             period_deg: self.period_deg,
             level0_m: self.level0_m,
@@ -55,7 +54,12 @@ impl FramePath {
         let shapes = segments
             .iter()
             .map(|s| {
-                let k = [s.kind as u64, key_word(s.length_deg), s.base_m.to_bits(), s.stroke_m.to_bits()];
+                let k = [
+                    s.kind as u64 | u64::from(s.through) << 8,
+                    key_word(s.length_deg),
+                    s.base_m.to_bits(),
+                    s.stroke_m.to_bits(),
+                ];
                 let n = ids.len() as u64;
                 *ids.entry(k).or_insert(n)
             })
@@ -63,8 +67,12 @@ impl FramePath {
         Self {
             segments,
             shapes,
-            rise: laws.rise.1.clone(),
-            fall: laws.fall.1.clone(),
+            laws: [
+                laws.of(true, false).1.clone(),
+                laws.of(false, false).1.clone(),
+                laws.of(true, true).1.clone(),
+                laws.of(false, true).1.clone(),
+            ],
             start_deg: plan.start_deg,
             period_deg: plan.period_deg,
             level0_m: plan.start_level_m(),
@@ -110,8 +118,8 @@ impl FramePath {
         let s = &self.segments[j];
         let law = match s.kind {
             SegmentKind::Dwell => return self.level0_m + s.base_m,
-            SegmentKind::Rise => &self.rise,
-            SegmentKind::Return => &self.fall,
+            SegmentKind::Rise => &self.laws[2 * usize::from(s.through)],
+            SegmentKind::Return => &self.laws[1 + 2 * usize::from(s.through)],
         };
         let x = ((th - s.start_deg) / s.length_deg).clamp(0.0, 1.0);
         self.level0_m + (s.base_m + s.stroke_m * law.eval(x).s)

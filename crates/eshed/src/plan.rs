@@ -2,15 +2,17 @@
 //!
 //! Pick `p` is inserted in the turn `[360p, 360(p + 1))` of the main shaft. A frame that keeps its
 //! place from pick `p − 1` to pick `p` dwells; one that changes moves by the rise law (going up) or
-//! the fall law (going down) over its motion angle `φ`, centred on `360p + c`, `c` the frame's
-//! centre (the crossing angle taken into `[−180°, 180°)` plus the frame's stagger) — the plan of the
-//! mechanical dobby, [`loomkin_laws`] segments in closed form.
+//! the fall law (going down) over its motion angle `φ` (the rise's `φ_r` going up, the fall's `φ_f`
+//! going down), centred on `360p + c`, `c` the frame's centre (the crossing angle taken into
+//! `[−180°, 180°)` plus the frame's stagger) — the plan of the mechanical dobby, [`loomkin_laws`]
+//! segments in closed form.
 //!
 //! **Pass-through.** Where the designer allows it, a frame that changes on consecutive picks (up on
 //! pick `p`, down on `p + 1`, …) does not stop between: a run of `k + 1` consecutive changes, from
-//! the start of its first move (`360p + c − φ/2`) to the end of its last (`360(p + k) + c + φ/2`),
-//! is split into `k + 1` moves of equal length `(360k + φ)/(k + 1)` laid end to end, each by the
-//! rise or fall law. With rest laws (velocity and acceleration zero at both ends) the frame turns
+//! the start of its first move (`360p + c − φ_first/2`) to the end of its last (`360(p + k) + c +
+//! φ_last/2`), is split into `k + 1` moves of equal length `(360k + φ_first/2 + φ_last/2)/(k + 1)`
+//! (`(360k + φ)/(k + 1)` with one angle) laid end to end, each by the through law where one is given
+//! ([`MoveLaws::through`]), else by the rise or fall law. With rest laws (velocity and acceleration zero at both ends) the frame turns
 //! at the top or the bottom without a dwell, and the joint is as smooth as the law's ends (C² for
 //! every law whose acceleration starts and ends at zero, [`crate::continuity`]). When every pick is
 //! a change (a plain weave on this frame) the frame oscillates without a stop: every move 360°
@@ -21,19 +23,52 @@ use loomkin_laws::{Cycle, CycleSegment, CycleSpec, Law, LawSpec, SegmentKind, Se
 
 /// The laws of a frame's moves: a normalised rise (0 → 1 over `x ∈ [0, 1]`) for a frame going up
 /// and one for a frame going down (`y = top − H·s(x)`), each with the catalogue form a cycle file
-/// holds.
+/// holds; and, where the designer gives one, the law of the moves that pass-through lays end to
+/// end (both ways).
 #[derive(Debug, Clone)]
 pub struct MoveLaws {
     /// Going up: the spec and the built law.
     pub rise: (LawSpec, Law),
     /// Going down.
     pub fall: (LawSpec, Law),
+    /// The moves of a run of consecutive changes laid end to end ([`PlannedMove::through`]), up
+    /// and down; `None`: the rise or fall law by direction.
+    pub through: Option<(LawSpec, Law)>,
+    /// Where the rise, fall and through laws are given (the loom file's fields), named when a law
+    /// is refused at a joint of the frame's motion.
+    pub fields: [String; 3],
 }
 
 impl MoveLaws {
+    /// `rise` going up and `fall` going down, pass-through moves by the same (named `rise` and
+    /// `fall` when refused).
+    pub fn new(rise: (LawSpec, Law), fall: (LawSpec, Law)) -> Self {
+        Self { rise, fall, through: None, fields: ["rise".into(), "fall".into(), "through".into()] }
+    }
+
     /// The law going up (`rising`) or down.
     pub fn law(&self, rising: bool) -> &(LawSpec, Law) {
         if rising { &self.rise } else { &self.fall }
+    }
+
+    /// The law of a move going up (`rising`) or down, laid end to end with others (`through`) or not.
+    pub fn of(&self, rising: bool, through: bool) -> &(LawSpec, Law) {
+        match &self.through {
+            Some(t) if through => t,
+            _ => self.law(rising),
+        }
+    }
+
+    /// The field the law of such a move is given in.
+    pub fn field_of(&self, rising: bool, through: bool) -> &str {
+        let k = if through && self.through.is_some() {
+            2
+        } else if rising {
+            0
+        } else {
+            1
+        };
+        &self.fields[k]
     }
 }
 
@@ -48,6 +83,10 @@ pub struct PlannedMove {
     pub length_deg: f64,
     /// Going up.
     pub rising: bool,
+    /// Laid end to end with the moves before or after it, without a dwell (a run of consecutive
+    /// changes with pass-through, or a frame that changes on every pick): moved by the through
+    /// law when there is one.
+    pub through: bool,
 }
 
 /// One segment of a plan: what [`FramePlan::cycle`] makes a segment of the cycle from.
@@ -63,6 +102,8 @@ pub struct PlanSegment {
     pub base_m: f64,
     /// How far it goes, m (`±H`, 0 for a dwell).
     pub stroke_m: f64,
+    /// A move laid end to end with others ([`PlannedMove::through`]).
+    pub through: bool,
 }
 
 /// One frame's row of the lift plan and its timing.
@@ -74,8 +115,10 @@ pub struct FrameInput<'a> {
     pub stroke_m: f64,
     /// Centre of the move into pick 0, deg (crossing offset plus stagger).
     pub centre_deg: f64,
-    /// Motion angle of a move, deg (0 < φ ≤ 360).
+    /// Motion angle of a move up, deg (0 < φ ≤ 360).
     pub motion_deg: f64,
+    /// Motion angle of a move down, deg (0 < φ ≤ 360; `motion_deg` for one angle both ways).
+    pub fall_motion_deg: f64,
 }
 
 /// A frame's moves over one repeat, in order.
@@ -91,6 +134,8 @@ pub struct FramePlan {
     pub start_up: bool,
     /// Full stroke, m.
     pub stroke_m: f64,
+    /// The motion angle of a move up and of a move down, deg (before pass-through lengthens moves).
+    pub motion_deg: [f64; 2],
 }
 
 impl FramePlan {
@@ -100,15 +145,18 @@ impl FramePlan {
         if picks == 0 {
             return Err(EshedError::field("pattern", "a lift plan needs at least one pick"));
         }
-        let phi = input.motion_deg;
-        if !(phi > 0.0 && phi <= 360.0) {
-            return Err(EshedError::field(
-                "motion_deg",
-                format!("{phi}°: a move must fit in one pick's turn (0 < motion_deg ≤ 360°)"),
-            ));
+        for (name, phi) in [("motion_deg", input.motion_deg), ("fall_motion_deg", input.fall_motion_deg)] {
+            if !(phi > 0.0 && phi <= 360.0) {
+                return Err(EshedError::field(
+                    name,
+                    format!("{phi}°: a move must fit in one pick's turn (0 < {name} ≤ 360°)"),
+                ));
+            }
         }
         let up = |p: i64| input.up[p.rem_euclid(picks as i64) as usize];
         let change = |p: i64| up(p) != up(p - 1);
+        // The motion angle of the move into pick `p` (up or down).
+        let phi = |p: i64| if up(p) { input.motion_deg } else { input.fall_motion_deg };
         let c = input.centre_deg;
         let period_deg = 360.0 * picks as f64;
         let moves: Vec<PlannedMove> = if !pass_through {
@@ -116,9 +164,10 @@ impl FramePlan {
                 .filter(|&p| change(p))
                 .map(|p| PlannedMove {
                     pick: p as usize,
-                    start_deg: 360.0 * p as f64 + c - phi / 2.0,
-                    length_deg: phi,
+                    start_deg: 360.0 * p as f64 + c - phi(p) / 2.0,
+                    length_deg: phi(p),
                     rising: up(p),
+                    through: false,
                 })
                 .collect()
         } else if (0..picks as i64).all(change) {
@@ -128,6 +177,7 @@ impl FramePlan {
                     start_deg: 360.0 * p as f64 + c - 180.0,
                     length_deg: 360.0,
                     rising: up(p),
+                    through: true,
                 })
                 .collect()
         } else {
@@ -145,14 +195,16 @@ impl FramePlan {
                     while p + k + 1 < p0 + picks as i64 && change(p + k + 1) {
                         k += 1;
                     }
-                    let s = 360.0 * p as f64 + c - phi / 2.0;
-                    let len = (360.0 * k as f64 + phi) / (k + 1) as f64;
+                    // From the first move's start to the last one's end (each by its own angle).
+                    let s = 360.0 * p as f64 + c - phi(p) / 2.0;
+                    let len = (360.0 * k as f64 + (phi(p) / 2.0 + phi(p + k) / 2.0)) / (k + 1) as f64;
                     for j in 0..=k {
                         out.push(PlannedMove {
                             pick: (p + j).rem_euclid(picks as i64) as usize,
                             start_deg: s + j as f64 * len,
                             length_deg: len,
                             rising: up(p + j),
+                            through: k > 0,
                         });
                     }
                     p += k + 1;
@@ -162,24 +214,36 @@ impl FramePlan {
         };
         let start_deg = moves.first().map_or(0.0, |m| m.start_deg);
         let start_up = moves.first().map_or(input.up[0], |m| !m.rising);
-        Ok(Self { moves, start_deg, period_deg, start_up, stroke_m: input.stroke_m })
+        Ok(Self {
+            moves,
+            start_deg,
+            period_deg,
+            start_up,
+            stroke_m: input.stroke_m,
+            motion_deg: [input.motion_deg, input.fall_motion_deg],
+        })
     }
 
     /// The segments of the plan as `(kind, start_deg, length_deg)`: dwells between the moves,
     /// gaps of 10⁻⁹° or less left out (as [`FramePlan::cycle_spec`] writes them).
     pub fn segments(&self) -> Vec<(SegmentKind, f64, f64)> {
+        self.parts().into_iter().map(|(kind, start, len, _)| (kind, start, len)).collect()
+    }
+
+    /// [`FramePlan::segments`], each with whether it is a move laid end to end with others.
+    fn parts(&self) -> Vec<(SegmentKind, f64, f64, bool)> {
         let mut out = Vec::with_capacity(2 * self.moves.len() + 1);
         let mut at = self.start_deg;
         for m in &self.moves {
             if m.start_deg > at + 1e-9 {
-                out.push((SegmentKind::Dwell, at, m.start_deg - at));
+                out.push((SegmentKind::Dwell, at, m.start_deg - at, false));
             }
             let kind = if m.rising { SegmentKind::Rise } else { SegmentKind::Return };
-            out.push((kind, m.start_deg, m.length_deg));
+            out.push((kind, m.start_deg, m.length_deg, m.through));
             at = m.start_deg + m.length_deg;
         }
         if self.start_deg + self.period_deg > at + 1e-9 {
-            out.push((SegmentKind::Dwell, at, self.start_deg + self.period_deg - at));
+            out.push((SegmentKind::Dwell, at, self.start_deg + self.period_deg - at, false));
         }
         out
     }
@@ -201,8 +265,7 @@ impl FramePlan {
                 length_rad: l.length_deg * deg,
                 law: match l.kind {
                     SegmentKind::Dwell => None,
-                    SegmentKind::Rise => Some(laws.rise.clone()),
-                    SegmentKind::Return => Some(laws.fall.clone()),
+                    k => Some(laws.of(k == SegmentKind::Rise, l.through).clone()),
                 },
                 base_si: l.base_m,
                 stroke_si: l.stroke_m,
@@ -218,15 +281,15 @@ impl FramePlan {
         let h = self.stroke_mm() * StrokeUnit::Mm.to_si();
         let mut pos = 0.0;
         let mut at = self.start_deg;
-        self.segments()
+        self.parts()
             .into_iter()
-            .map(|(kind, _, len)| {
+            .map(|(kind, _, len, through)| {
                 let stroke = match kind {
                     SegmentKind::Dwell => 0.0,
                     SegmentKind::Rise => h,
                     SegmentKind::Return => -h,
                 };
-                let seg = PlanSegment { kind, start_deg: at, length_deg: len, base_m: pos, stroke_m: stroke };
+                let seg = PlanSegment { kind, start_deg: at, length_deg: len, base_m: pos, stroke_m: stroke, through };
                 pos += stroke;
                 at += len;
                 seg
@@ -238,11 +301,11 @@ impl FramePlan {
     /// `loomkin cycle` read, within the cycle file's 36 000°).
     pub fn cycle_spec(&self, laws: &MoveLaws) -> CycleSpec {
         let mut segment: Vec<SegmentSpec> = self
-            .segments()
+            .parts()
             .into_iter()
-            .map(|(kind, _, len)| match kind {
+            .map(|(kind, _, len, through)| match kind {
                 SegmentKind::Dwell => SegmentSpec::dwell(len),
-                k => SegmentSpec::moving(k, len, &laws.law(k == SegmentKind::Rise).0),
+                k => SegmentSpec::moving(k, len, &laws.of(k == SegmentKind::Rise, through).0),
             })
             .collect();
         if let Some(first) = segment.first_mut() {

@@ -1,17 +1,19 @@
 //! The servo-shedding study of a loom weaving a pattern: per frame and on the bus.
 
 use crate::bus::{Timeline, bus};
-use crate::continuity::joint_class;
+use crate::continuity::{JointClass, joint_class};
 use crate::drive::{FrameDrive, FrameLoad, axis};
 use crate::{Bus, EshedError, FramePlan, FrameServo, MoveLaws, Result};
 use loomkin_servo::{Check, check_axis};
 use serde::Serialize;
 
-/// One frame: its plan, the frame as a load, its servo.
+/// One frame: its plan and the laws of its moves, the frame as a load, its servo.
 #[derive(Debug, Clone)]
 pub struct FrameSetup {
     /// The moves over the repeat.
     pub plan: FramePlan,
+    /// The laws the moves follow.
+    pub laws: MoveLaws,
     /// The frame as a load.
     pub load: FrameLoad,
     /// The servo drive.
@@ -25,8 +27,11 @@ pub struct FrameReport {
     pub frame: usize,
     /// Moves over the repeat.
     pub moves: usize,
-    /// Its motion angle, deg (before pass-through lengthens moves).
+    /// Its motion angle, deg (before pass-through lengthens moves; the rise's when the fall's differs).
     pub motion_deg: f64,
+    /// The motion angle of its moves down, deg, where it differs from the rise's (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fall_motion_deg: Option<f64>,
     /// Largest |motor torque|, N·m (located exactly by the servo check).
     pub peak_torque_n_m: f64,
     /// Where, deg of the repeat.
@@ -130,8 +135,8 @@ pub struct Study {
 }
 
 impl Study {
-    /// The drives of `frames` moving by `laws` at `speed_rpm`.
-    pub fn new(frames: &[FrameSetup], laws: &MoveLaws, speed_rpm: f64) -> Result<Self> {
+    /// The drives of `frames` moving by their laws at `speed_rpm`.
+    pub fn new(frames: &[FrameSetup], speed_rpm: f64) -> Result<Self> {
         let omega = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rad_per_s();
         let mut cycles = Vec::with_capacity(frames.len());
         let mut drives = Vec::with_capacity(frames.len());
@@ -156,7 +161,7 @@ impl Study {
             }
         }
         for f in frames {
-            cycles.push(f.plan.cycle(laws));
+            cycles.push(f.plan.cycle(&f.laws));
             segments.push(f.plan.segments());
             drives.push(FrameDrive {
                 axis: axis(&f.servo.motor, &f.servo.transmission, &f.load),
@@ -184,19 +189,15 @@ impl Study {
     }
 }
 
-/// The study of `frames` (front first) moving by `laws` at `speed_rpm` on `bus` (`pass_through`:
+/// The study of `frames` (front first) moving by their laws at `speed_rpm` on `bus` (`pass_through`:
 /// how the plans were made, for the report). Fails when a rest transition of some frame is less
-/// smooth than C² (the laws' acceleration must start and end at zero), naming the law.
-pub fn analyse(
-    frames: &[FrameSetup],
-    laws: &MoveLaws,
-    bus_spec: &Bus,
-    speed_rpm: f64,
-    pass_through: bool,
-) -> Result<ServoReport> {
+/// smooth than C² (a law's acceleration must start and end at zero where the frame rests, and two
+/// moves laid end to end must meet with equal accelerations), naming the law's field
+/// ([`MoveLaws::fields`]).
+pub fn analyse(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, pass_through: bool) -> Result<ServoReport> {
     let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
     let picks = (first.plan.period_deg / 360.0).round() as usize;
-    let study = Study::new(frames, laws, speed_rpm)?;
+    let study = Study::new(frames, speed_rpm)?;
     let omega = study.drives[0].omega;
     let tot = study.bus(bus_spec, false);
     let repeat_deg = first.plan.period_deg;
@@ -204,29 +205,18 @@ pub fn analyse(
     let mut reports = Vec::with_capacity(frames.len());
     for (i, f) in frames.iter().enumerate() {
         let check = check_axis(&study.drives[i].axis, &study.cycles[i], speed_rpm)?;
-        let class = joint_class(&study.cycles[i], laws, omega);
+        let class = joint_class(&study.cycles[i], &f.laws, omega);
         if class.rest < 2 {
-            let label = if laws.rise.0 == laws.fall.0 {
-                laws.rise.0.label()
-            } else {
-                format!("rise {}, fall {}", laws.rise.0.label(), laws.fall.0.label())
-            };
-            return Err(EshedError::field(
-                "shedding",
-                format!(
-                    "frame {}: the law {label} is only C{} where the frame starts or stops (at {:.3}°); electronic \
-                     shedding needs every rest transition C² (acceleration continuous): choose a law whose \
-                     acceleration is zero at both ends",
-                    i + 1,
-                    class.rest.max(0),
-                    class.rest_at_deg.unwrap_or(0.0).rem_euclid(first.plan.period_deg)
-                ),
-            ));
+            return Err(rest_refusal(i, f, &study.cycles[i], &class, omega));
         }
         reports.push(FrameReport {
             frame: i + 1,
             moves: f.plan.moves.len(),
-            motion_deg: f.plan.moves.first().map_or(0.0, |m| m.length_deg),
+            motion_deg: match f.plan.motion_deg {
+                [r, fall] if r != fall => r,
+                _ => f.plan.moves.first().map_or(0.0, |m| m.length_deg),
+            },
+            fall_motion_deg: Some(f.plan.motion_deg[1]).filter(|&fall| fall != f.plan.motion_deg[0]),
             peak_torque_n_m: check.peak_torque_nm,
             peak_torque_at_deg: check.peak_torque_at_deg.rem_euclid(repeat_deg),
             rms_torque_n_m: check.rms_torque_nm,
@@ -266,45 +256,33 @@ pub fn analyse(
     })
 }
 
-/// The peak bus power of `frames` moving by `laws` at `speed_rpm` on `bus_spec`, W: [`analyse`]'s
+/// The peak bus power of `frames` moving by their laws at `speed_rpm` on `bus_spec`, W: [`analyse`]'s
 /// `peak_bus_power_w` (the same bus, bit for bit) without the frames' checks; with `scan_only`,
 /// the largest of the bus's scan (16 points between every two joints of every frame, no root
 /// finding, no energies: a lower bound, a few times cheaper, what the optimiser's search compares).
-pub fn peak_bus_power_w(
-    frames: &[FrameSetup],
-    laws: &MoveLaws,
-    bus_spec: &Bus,
-    speed_rpm: f64,
-    scan_only: bool,
-) -> Result<f64> {
+pub fn peak_bus_power_w(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, scan_only: bool) -> Result<f64> {
     if frames.is_empty() {
         return Err(EshedError::field("frames", "no frames"));
     }
-    Ok(Study::new(frames, laws, speed_rpm)?.bus(bus_spec, scan_only).peak_w.0)
+    Ok(Study::new(frames, speed_rpm)?.bus(bus_spec, scan_only).peak_w.0)
 }
 
 /// The largest bus power of the scan ([`peak_bus_power_w`] with `scan_only`) over the turns of the
 /// picks `picks` alone (increasing, each in `0..picks of the repeat`), W: what a search compares
 /// when one pick stands for every pick whose turn is the same.
-pub fn peak_bus_power_w_at(
-    frames: &[FrameSetup],
-    laws: &MoveLaws,
-    bus_spec: &Bus,
-    speed_rpm: f64,
-    picks: &[usize],
-) -> Result<f64> {
+pub fn peak_bus_power_w_at(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, picks: &[usize]) -> Result<f64> {
     let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
     let repeat = (first.plan.period_deg / 360.0).round() as usize;
     if picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= repeat) {
         return Err(EshedError::field("picks", format!("picks must increase within the repeat of {repeat}")));
     }
-    Ok(Study::new(frames, laws, speed_rpm)?.bus_at(bus_spec, Some(picks), true).peak_w.0)
+    Ok(Study::new(frames, speed_rpm)?.bus_at(bus_spec, Some(picks), true).peak_w.0)
 }
 
 /// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the
 /// servo check of each frame, bit for bit) without the bus (what the optimiser minimises).
-pub fn worst_rms_torque_n_m(frames: &[FrameSetup], laws: &MoveLaws, speed_rpm: f64) -> Result<f64> {
-    let study = Study::new(frames, laws, speed_rpm)?;
+pub fn worst_rms_torque_n_m(frames: &[FrameSetup], speed_rpm: f64) -> Result<f64> {
+    let study = Study::new(frames, speed_rpm)?;
     let mut worst = 0.0f64;
     for (d, c) in study.drives.iter().zip(&study.cycles) {
         worst = worst.max(check_axis(&d.axis, c, speed_rpm)?.rms_torque_nm);
@@ -330,9 +308,9 @@ pub struct Curves {
 }
 
 /// `points` (≥ 2) samples of every frame and the bus over the repeat, from 0° to its end.
-pub fn curves(frames: &[FrameSetup], laws: &MoveLaws, bus_spec: &Bus, speed_rpm: f64, points: usize) -> Result<Curves> {
+pub fn curves(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, points: usize) -> Result<Curves> {
     let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
-    let study = Study::new(frames, laws, speed_rpm)?;
+    let study = Study::new(frames, speed_rpm)?;
     let period = first.plan.period_deg;
     let n = points.max(2);
     let angle_deg: Vec<f64> = (0..n).map(|k| period * k as f64 / (n - 1) as f64).collect();
@@ -376,4 +354,82 @@ pub fn curves(frames: &[FrameSetup], laws: &MoveLaws, bus_spec: &Bus, speed_rpm:
         out.power_w.push(pw);
     }
     Ok(out)
+}
+
+/// The refusal of a frame whose motion is less smooth than C² at a joint ([`JointClass`] of its
+/// cycle): the law at fault, by its field — a move's law whose acceleration (or velocity) is not
+/// zero where the frame rests, or two moves laid end to end whose accelerations differ.
+fn rest_refusal(i: usize, f: &FrameSetup, cycle: &loomkin_laws::Cycle, class: &JointClass, omega: f64) -> EshedError {
+    use loomkin_laws::SegmentKind;
+    // Four digits; a value at rounding level is 0.
+    let sig4 = |x: f64| loomkin_units::sig4(if x.abs() < 1e-12 { 0.0 } else { x });
+    let segs = &cycle.segments;
+    let levels = f.plan.levels();
+    let n = segs.len();
+    let j = class.rest_at_segment.unwrap_or(0) % n.max(1);
+    let h = (j + n - 1) % n;
+    let at = class.rest_at_deg.unwrap_or(0.0).rem_euclid(f.plan.period_deg);
+    // A move's field, law and its normalised velocity and acceleration at `x`.
+    let side = |k: usize, x: f64| {
+        let l = &levels[k];
+        let rising = l.kind == SegmentKind::Rise;
+        let (spec, law) = f.laws.of(rising, l.through);
+        let e = law.eval(x);
+        (f.laws.field_of(rising, l.through).to_string(), spec.label(), e.v, e.a)
+    };
+    let ends = |v: f64, a: f64, end: &str| {
+        if v.abs() > 1e-9 {
+            format!("velocity {} and acceleration {} at its {end}", sig4(v), sig4(a))
+        } else {
+            format!("acceleration {} at its {end}", sig4(a))
+        }
+    };
+    let frame = i + 1;
+    match (levels[h].kind, levels[j].kind) {
+        (_, SegmentKind::Dwell) => {
+            let (field, label, v, a) = side(h, 1.0);
+            EshedError::field(
+                field,
+                format!(
+                    "{label} has {} where frame {frame} comes to rest ({}° of the repeat): a rest transition must be \
+                     C² (acceleration zero where the frame starts or stops; velocity and acceleration per unit \
+                     stroke and unit motion angle)",
+                    ends(v, a, "end"),
+                    sig4(at)
+                ),
+            )
+        }
+        (SegmentKind::Dwell, _) => {
+            let (field, label, v, a) = side(j, 0.0);
+            EshedError::field(
+                field,
+                format!(
+                    "{label} has {} where frame {frame} starts from rest ({}° of the repeat): a rest transition \
+                     must be C² (acceleration zero where the frame starts or stops; velocity and acceleration per \
+                     unit stroke and unit motion angle)",
+                    ends(v, a, "start"),
+                    sig4(at)
+                ),
+            )
+        }
+        _ => {
+            let (field_a, label_a, ..) = side(h, 1.0);
+            let (field_b, label_b, ..) = side(j, 0.0);
+            let ka = crate::continuity::kin(&segs[h], 1.0, omega);
+            let kb = crate::continuity::kin(&segs[j], 0.0, omega);
+            EshedError::field(
+                field_b,
+                format!(
+                    "{label_b} starts with velocity {} m/s and acceleration {} m/s² where the move before it \
+                     ({field_a}: {label_a}) ends with {} m/s and {} m/s² (frame {frame} at {}° of the repeat, \
+                     moves laid end to end): a pass-through joint must match velocity and acceleration (C²)",
+                    sig4(kb[1]),
+                    sig4(kb[2]),
+                    sig4(ka[1]),
+                    sig4(ka[2]),
+                    sig4(at)
+                ),
+            )
+        }
+    }
 }

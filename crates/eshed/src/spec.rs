@@ -40,7 +40,8 @@
 //! motor = { rated_torque_nm = 8, peak_torque_nm = 24, rated_speed_rpm = 3000, max_speed_rpm = 4500, rotor_inertia_kg_m2 = 8e-4 }
 //! ```
 
-use crate::{EshedError, Result};
+use crate::moves::MoveKindsFile;
+use crate::{EshedError, MoveKinds, Result};
 use loomkin_servo::{CrankBranch, CrankLever, Motor, ServoError};
 use loomkin_units::{Field, Range, RangeError};
 use serde::{Deserialize, Serialize};
@@ -366,6 +367,10 @@ pub struct FrameServo {
     pub winding: Winding,
     /// The frame's own motion angle, deg (`None`: the shedding law's).
     pub motion_deg: Option<f64>,
+    /// The laws and motion angles by kind of move the loom file gives for this frame (its own,
+    /// else all frames'; `motion_deg` counts for both ways) ([`crate::moves`]).
+    #[serde(skip)]
+    pub moves: MoveKinds,
 }
 
 /// The servo drives of every frame and their bus (`[shedding.servo]`).
@@ -391,6 +396,11 @@ struct ServoFile {
     bus: Bus,
     #[serde(default)]
     frame: Vec<FrameFile>,
+    rise_law: Option<toml::Value>,
+    fall_law: Option<toml::Value>,
+    through_law: Option<toml::Value>,
+    rise_motion_deg: Option<f64>,
+    fall_motion_deg: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -401,6 +411,11 @@ struct FrameFile {
     transmission: Option<Transmission>,
     winding: Option<Winding>,
     motion_deg: Option<f64>,
+    rise_law: Option<toml::Value>,
+    fall_law: Option<toml::Value>,
+    through_law: Option<toml::Value>,
+    rise_motion_deg: Option<f64>,
+    fall_motion_deg: Option<f64>,
 }
 
 /// A servo error's field under the table it was read from (`motor.peak_torque_nm` →
@@ -428,6 +443,14 @@ impl ServoShedding {
             (m.or(file.motor.clone()), t.or(file.transmission), w.or(file.winding))
         };
         let mut assigned = vec![false; frames];
+        let all = MoveKindsFile {
+            rise_law: file.rise_law.clone(),
+            fall_law: file.fall_law.clone(),
+            through_law: file.through_law.clone(),
+            rise_motion_deg: file.rise_motion_deg,
+            fall_motion_deg: file.fall_motion_deg,
+        }
+        .read(at)?;
         for (gi, g) in file.frame.iter().enumerate() {
             let here = format!("{at}.frame[{gi}]");
             if g.frames.is_empty() {
@@ -443,14 +466,24 @@ impl ServoShedding {
                 if std::mem::replace(&mut assigned[i - 1], true) {
                     return Err(EshedError::field(format!("{here}.frames"), format!("frame {f} is named twice")));
                 }
-                out[i - 1] = Some(Self::frame(base(g.motor.clone(), g.transmission, g.winding), g.motion_deg, &here)?);
+                let own = MoveKindsFile {
+                    rise_law: g.rise_law.clone(),
+                    fall_law: g.fall_law.clone(),
+                    through_law: g.through_law.clone(),
+                    rise_motion_deg: g.rise_motion_deg,
+                    fall_motion_deg: g.fall_motion_deg,
+                }
+                .read(&here)?;
+                let mut f = Self::frame(base(g.motor.clone(), g.transmission, g.winding), g.motion_deg, &here)?;
+                f.moves = MoveKinds::over(own, g.motion_deg, &all);
+                out[i - 1] = Some(f);
             }
         }
         let frames = out
             .into_iter()
             .map(|f| match f {
                 Some(f) => Ok(f),
-                None => Self::frame(base(None, None, None), None, at),
+                None => Self::frame(base(None, None, None), None, at).map(|f| FrameServo { moves: all.clone(), ..f }),
             })
             .collect::<Result<Vec<_>>>()?;
         file.bus.check(&format!("{at}.bus"))?;
@@ -477,6 +510,6 @@ impl ServoShedding {
         // The motor by the servo axis model's rules (with a unit load standing for the frame).
         let axis = crate::drive::axis(&motor, &transmission, &crate::FrameLoad::UNIT);
         axis.validate(loomkin_laws::StrokeUnit::Mm).map_err(|e| prefixed(at, e))?;
-        Ok(FrameServo { motor, transmission, winding, motion_deg })
+        Ok(FrameServo { motor, transmission, winding, motion_deg, moves: MoveKinds::default() })
     }
 }

@@ -15,7 +15,7 @@
 //! 100 picks) the cycle file is written too, and `loomkin cam table` run on it writes the same
 //! table byte for byte (the plan's cycle is built with the cycle file's own arithmetic).
 
-use crate::{FrameSetup, MoveLaws, Result};
+use crate::{FrameSetup, Result};
 use loomkin_cams::table::{CamTable, Format, Motion, Spacing, TableReport};
 use serde::Serialize;
 
@@ -96,22 +96,16 @@ pub fn table_file_name(frame: usize, ext: &str) -> String {
 }
 
 /// Every frame's cam table in each of `formats` (every one of [`TABLE_FORMATS`] when empty),
-/// points placed by `spacing`, over the repeat of `frames` (front first) moving by `laws`; the
+/// points placed by `spacing`, over the repeat of `frames` (front first) moving by their laws; the
 /// frames' cycle files where they can be written; and the manifest (the shaft at `speed_rpm`).
-pub fn frame_tables(
-    frames: &[FrameSetup],
-    laws: &MoveLaws,
-    spacing: Spacing,
-    formats: &[Format],
-    speed_rpm: f64,
-) -> Result<Tables> {
+pub fn frame_tables(frames: &[FrameSetup], spacing: Spacing, formats: &[Format], speed_rpm: f64) -> Result<Tables> {
     let first = frames.first().ok_or_else(|| crate::EshedError::field("frames", "no frames"))?;
     let formats = if formats.is_empty() { &TABLE_FORMATS[..] } else { formats };
     let mut files = Vec::new();
     let mut entries = Vec::with_capacity(frames.len());
     for (i, f) in frames.iter().enumerate() {
         let frame = i + 1;
-        let spec = f.plan.cycle_spec(laws);
+        let spec = f.plan.cycle_spec(&f.laws);
         let cycle_file = match loomkin_laws::Cycle::new(&spec) {
             Ok(_) => {
                 let name = table_file_name(frame, "cycle.toml");
@@ -120,7 +114,8 @@ pub fn frame_tables(
             }
             Err(_) => None,
         };
-        let table = CamTable::new(Motion::from_cycle(&f.plan.cycle(laws)), spacing).map_err(|e| in_frame(frame, e))?;
+        let table =
+            CamTable::new(Motion::from_cycle(&f.plan.cycle(&f.laws)), spacing).map_err(|e| in_frame(frame, e))?;
         let source = cycle_file.clone().unwrap_or_else(|| format!("frame {frame}"));
         let mut tables = Vec::with_capacity(formats.len());
         for &format in formats {

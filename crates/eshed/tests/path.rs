@@ -8,11 +8,15 @@ use proptest::prelude::*;
 fn laws() -> MoveLaws {
     let spec = LawSpec::ModifiedSine;
     let law = spec.build().unwrap();
-    MoveLaws { rise: (spec.clone(), law.clone()), fall: (spec, law) }
+    MoveLaws::new((spec.clone(), law.clone()), (spec, law))
 }
 
 fn plan(up: &[bool], pass_through: bool) -> FramePlan {
-    FramePlan::new(&FrameInput { up, stroke_m: 0.09, centre_deg: -12.5, motion_deg: 260.0 }, pass_through).unwrap()
+    FramePlan::new(
+        &FrameInput { up, stroke_m: 0.09, centre_deg: -12.5, motion_deg: 260.0, fall_motion_deg: 260.0 },
+        pass_through,
+    )
+    .unwrap()
 }
 
 proptest! {

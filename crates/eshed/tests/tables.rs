@@ -11,7 +11,12 @@ use loomkin_laws::{Cycle, LawSpec};
 const SPEED_RPM: f64 = 500.0;
 
 fn laws(rise: LawSpec, fall: LawSpec) -> MoveLaws {
-    MoveLaws { rise: (rise.clone(), rise.build().unwrap()), fall: (fall.clone(), fall.build().unwrap()) }
+    MoveLaws::new((rise.clone(), rise.build().unwrap()), (fall.clone(), fall.build().unwrap()))
+}
+
+/// Three laws: up, down, and the moves laid end to end by pass-through.
+fn laws3(rise: LawSpec, fall: LawSpec, through: LawSpec) -> MoveLaws {
+    MoveLaws { through: Some((through.clone(), through.build().unwrap())), ..laws(rise, fall) }
 }
 
 /// A pseudo-random lift plan, `frames × picks`; the last frame never moves.
@@ -34,12 +39,20 @@ fn centre(i: usize) -> f64 {
     -10.0 + 7.5 * i as f64
 }
 
-fn setups(plan: &[Vec<bool>], pass_through: bool) -> Vec<FrameSetup> {
+/// Every frame's plan moving by `l`, its moves down 17° longer than its moves up (at most 360°).
+fn setups(plan: &[Vec<bool>], pass_through: bool, l: &MoveLaws) -> Vec<FrameSetup> {
     plan.iter()
         .enumerate()
         .map(|(i, up)| {
             let stroke = 0.09 + 0.0041 * i as f64;
-            let input = FrameInput { up, stroke_m: stroke, centre_deg: centre(i), motion_deg: 250.0 + 9.0 * i as f64 };
+            let phi = 250.0 + 9.0 * i as f64;
+            let input = FrameInput {
+                up,
+                stroke_m: stroke,
+                centre_deg: centre(i),
+                motion_deg: phi,
+                fall_motion_deg: (phi + 17.0).min(360.0),
+            };
             let p = FramePlan::new(&input, pass_through).unwrap();
             let load = FrameLoad {
                 mass_kg: 5.0,
@@ -48,7 +61,7 @@ fn setups(plan: &[Vec<bool>], pass_through: bool) -> Vec<FrameSetup> {
                 stroke_m: stroke,
                 start_level_m: p.start_level_m(),
             };
-            FrameSetup { plan: p, load, servo: common::servo() }
+            FrameSetup { plan: p, laws: l.clone(), load, servo: common::servo() }
         })
         .collect()
 }
@@ -56,9 +69,9 @@ fn setups(plan: &[Vec<bool>], pass_through: bool) -> Vec<FrameSetup> {
 #[test]
 fn the_plans_cycle_is_the_cycle_files_cycle_bit_for_bit() {
     let plan = lift_plan(5, 17, 3);
-    let l = laws(LawSpec::ModifiedSine, LawSpec::Cycloidal);
+    let l = laws3(LawSpec::ModifiedSine, LawSpec::Cycloidal, LawSpec::Poly4567);
     for pass in [false, true] {
-        for f in setups(&plan, pass) {
+        for f in setups(&plan, pass, &l) {
             let built = f.plan.cycle(&l);
             let spec = f.plan.cycle_spec(&l);
             let read = Cycle::from_toml(&spec.to_toml().unwrap()).unwrap();
@@ -98,11 +111,11 @@ fn grid_error(format: Format, text: &str, cycle: &Cycle, n: usize) -> f64 {
 #[test]
 fn every_table_re_read_follows_the_frames_exact_law_within_its_reported_error() {
     let plan = lift_plan(4, 9, 21);
-    let l = laws(LawSpec::Poly345, LawSpec::ModifiedSine);
+    let l = laws3(LawSpec::Poly345, LawSpec::ModifiedSine, LawSpec::Cycloidal);
     for pass in [false, true] {
-        let fs = setups(&plan, pass);
+        let fs = setups(&plan, pass, &l);
         for spacing in [Spacing::StepDeg(1.0), Spacing::StepDeg(7.0), Spacing::Tolerance(1e-3)] {
-            let t = frame_tables(&fs, &l, spacing, &[], SPEED_RPM).unwrap();
+            let t = frame_tables(&fs, spacing, &[], SPEED_RPM).unwrap();
             for (i, f) in fs.iter().enumerate() {
                 let cycle = f.plan.cycle(&l);
                 let entry = &t.manifest.frames[i];
@@ -133,8 +146,8 @@ fn the_manifest_gives_the_master_axis_and_every_frames_place_at_every_pick() {
     let (frames, picks) = (5, 13);
     let plan = lift_plan(frames, picks, 5);
     let l = laws(LawSpec::Cycloidal, LawSpec::Cycloidal);
-    let fs = setups(&plan, false);
-    let t = frame_tables(&fs, &l, Spacing::StepDeg(1.0), &[Format::Csv], SPEED_RPM).unwrap();
+    let fs = setups(&plan, false, &l);
+    let t = frame_tables(&fs, Spacing::StepDeg(1.0), &[Format::Csv], SPEED_RPM).unwrap();
     let m = &t.manifest;
     assert_eq!(m.picks, picks);
     assert_eq!(m.master_axis_deg, 360.0 * picks as f64);
@@ -171,8 +184,8 @@ fn the_manifest_gives_the_master_axis_and_every_frames_place_at_every_pick() {
 fn a_repeat_longer_than_a_cycle_file_has_tables_but_no_cycle_file() {
     let plan = lift_plan(2, 120, 8);
     let l = laws(LawSpec::Cycloidal, LawSpec::Cycloidal);
-    let fs = setups(&plan, true);
-    let t = frame_tables(&fs, &l, Spacing::StepDeg(10.0), &[Format::Xyvaj], SPEED_RPM).unwrap();
+    let fs = setups(&plan, true, &l);
+    let t = frame_tables(&fs, Spacing::StepDeg(10.0), &[Format::Xyvaj], SPEED_RPM).unwrap();
     assert!(t.manifest.frames.iter().all(|f| f.cycle_file.is_none()));
     assert!(t.files.iter().all(|f| !f.name.ends_with(".cycle.toml")));
     assert_eq!(t.manifest.master_axis_deg, 360.0 * 120.0);
@@ -189,7 +202,7 @@ fn a_repeat_longer_than_a_cycle_file_has_tables_but_no_cycle_file() {
 fn a_table_past_the_engines_point_limit_names_the_frame() {
     let plan = lift_plan(1, 3000, 4);
     let l = laws(LawSpec::Cycloidal, LawSpec::Cycloidal);
-    let fs = setups(&plan, false);
-    let e = frame_tables(&fs, &l, Spacing::StepDeg(1.0), &[Format::Csv], SPEED_RPM).unwrap_err().to_string();
+    let fs = setups(&plan, false, &l);
+    let e = frame_tables(&fs, Spacing::StepDeg(1.0), &[Format::Csv], SPEED_RPM).unwrap_err().to_string();
     assert!(e.contains("frame 1"), "{e}");
 }

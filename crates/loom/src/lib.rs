@@ -72,9 +72,9 @@ pub use law::FrameLaw;
 pub use motion::{FrameKin, Motion, Move, crossing_offset_deg};
 pub use pattern::{MAX_PICKS, MAX_SHAFTS, Pattern, WIF_CODE_PAGE_NOTE, check_weavable, wif_text};
 pub use servo_shedding::{
-    Reduced, SERVO_PLOT_POINTS, ServoMotion, ServoOptimum, ServoOptions, optimise_servo, optimise_servo_with,
-    reduced_pattern, servo_curves, servo_curves_of, servo_figure, servo_figure_of, servo_laws, servo_setups,
-    servo_study, servo_study_of, servo_tables, servo_tables_of, servo_timing,
+    Reduced, SERVO_PLOT_POINTS, ServoMotion, ServoOptimum, ServoOptions, frame_laws, optimise_servo,
+    optimise_servo_with, reduced_pattern, servo_curves, servo_curves_of, servo_figure, servo_figure_of, servo_laws,
+    servo_setups, servo_study, servo_study_of, servo_tables, servo_tables_of, servo_timing,
 };
 pub use stagger::{
     Objective, StaggerCase, StaggerOptions, StaggerResult, optimise_stagger, optimise_stagger_until,

@@ -20,10 +20,10 @@ pub struct ServoMotion {
 }
 
 impl ServoMotion {
-    /// The frames of `setups` (front first) moving by `laws`.
-    pub fn new(setups: &[FrameSetup], laws: &MoveLaws) -> Self {
+    /// The frames of `setups` (front first) moving by their laws.
+    pub fn new(setups: &[FrameSetup]) -> Self {
         let picks = setups.first().map_or(0, |s| (s.plan.period_deg / 360.0).round() as usize);
-        Self { paths: setups.iter().map(|s| FramePath::new(&s.plan, laws)).collect(), picks }
+        Self { paths: setups.iter().map(|s| FramePath::new(&s.plan, &s.laws)).collect(), picks }
     }
 }
 
@@ -52,7 +52,7 @@ impl ShedMotion for ServoMotion {
 /// The timing of the shed (`loom check`'s window and clearance) while the frames of `setups` move
 /// by their plans: [`Timing`] over a [`ServoMotion`].
 pub fn servo_timing(loom: &Loom, pattern: &Pattern, setups: &[FrameSetup]) -> Result<TimingReport> {
-    let motion = ServoMotion::new(setups, &servo_laws(loom));
+    let motion = ServoMotion::new(setups);
     Timing::new(loom, &motion, pattern)?.report_of(false)
 }
 
@@ -67,19 +67,33 @@ fn clear_shed(t: &TimingReport) -> ClearShed {
     }
 }
 
-/// The laws of the frames' moves: the shedding law's rise and fall.
+/// The laws of the frames' moves where `[shedding.servo]` gives none: the shedding law's rise and
+/// fall (named `shedding` when refused).
 pub fn servo_laws(loom: &Loom) -> MoveLaws {
     let law = &loom.shedding.law;
-    MoveLaws {
-        rise: (law.spec(true).clone(), law.law(true).clone()),
-        fall: (law.spec(false).clone(), law.law(false).clone()),
-    }
+    let mut laws = MoveLaws::new(
+        (law.spec(true).clone(), law.law(true).clone()),
+        (law.spec(false).clone(), law.law(false).clone()),
+    );
+    laws.fields = ["shedding".into(), "shedding".into(), "shedding".into()];
+    laws
 }
 
-/// Every frame's plan, load and servo (front first) for `loom` weaving `pattern`, the loom's
-/// `[shedding.servo]` giving the drives; `motion_deg` overrides every frame's motion angle and
-/// `centre_deg` every frame's move centre (crossing offset plus stagger) when given (the optimiser's
-/// variables). Fails when the loom's shedding drive is the dobby.
+/// Frame `i`'s laws: those `[shedding.servo]` gives for it, else the shedding law's
+/// ([`servo_laws`]).
+pub fn frame_laws(loom: &Loom, i: usize) -> Result<MoveLaws> {
+    let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
+    let d = servo_laws(loom);
+    let f = servo.frames.get(i).ok_or_else(|| LoomError::field("shedding.servo", format!("no frame {}", i + 1)))?;
+    Ok(f.moves.laws(d.rise, d.fall, "shedding"))
+}
+
+/// Every frame's plan, laws, load and servo (front first) for `loom` weaving `pattern`, the loom's
+/// `[shedding.servo]` giving the drives and the laws and motion angles by kind of move;
+/// `motion_deg` overrides every frame's motion angle of a move up (a move down's scaled with it,
+/// keeping the loom file's ratio of the two) and `centre_deg` every frame's move centre (crossing
+/// offset plus stagger) when given (the optimiser's variables). Fails when the loom's shedding
+/// drive is the dobby.
 pub fn servo_setups(
     loom: &Loom,
     pattern: &Pattern,
@@ -98,18 +112,21 @@ pub fn servo_setups(
         .map(|i| {
             let up: Vec<bool> = (0..picks).map(|p| motion.is_up(i, p as i64)).collect();
             let s = &servo.frames[i];
-            let phi = match (motion_deg, s.motion_deg) {
-                (Some(m), _) => m[i],
-                (None, Some(m)) => m,
-                (None, None) => motion.motion_deg(),
+            let (rise, fall) = file_motion_deg(loom, i);
+            let (phi, phi_fall) = match motion_deg {
+                Some(m) if fall == rise => (m[i], m[i]),
+                Some(m) => (m[i], m[i] * (fall / rise)),
+                None => (rise, fall),
             };
-            let phi =
-                loomkin_shed::MOTION_DEG.check(&format!("shedding.servo.frame: frame {} motion_deg", i + 1), phi)?;
+            let check = |key: &str, v: f64| {
+                loomkin_shed::MOTION_DEG.check(&format!("shedding.servo.frame: frame {} {key}", i + 1), v)
+            };
             let input = FrameInput {
                 up: &up,
                 stroke_m: motion.stroke_m(i),
                 centre_deg: centre_deg.map_or(motion.centre0_deg(i), |c| c[i]),
-                motion_deg: phi,
+                motion_deg: check("motion_deg", phi)?,
+                fall_motion_deg: check("fall_motion_deg", phi_fall)?,
             };
             let plan = FramePlan::new(&input, servo.pass_through)?;
             let f = &loom.frames[i];
@@ -120,9 +137,22 @@ pub fn servo_setups(
                 stroke_m: motion.stroke_m(i),
                 start_level_m: plan.start_level_m(),
             };
-            Ok(FrameSetup { plan, load, servo: s.clone() })
+            Ok(FrameSetup { plan, laws: frame_laws(loom, i)?, load, servo: s.clone() })
         })
         .collect()
+}
+
+/// Frame `i`'s motion angles up and down as the loom file gives them, deg: `[shedding.servo]`'s
+/// by kind of move, else the frame's `motion_deg`, else the shedding law's.
+fn file_motion_deg(loom: &Loom, i: usize) -> (f64, f64) {
+    let law = loom.shedding.law.motion_deg();
+    match loom.shedding.servo.as_ref().and_then(|s| s.frames.get(i)) {
+        Some(f) => {
+            let one = f.motion_deg.unwrap_or(law);
+            (f.moves.rise_motion_deg.unwrap_or(one), f.moves.fall_motion_deg.unwrap_or(one))
+        }
+        None => (law, law),
+    }
 }
 
 /// The servo-shedding study of `loom` weaving `pattern` (`loomkin loom servo`), with the shed the
@@ -136,7 +166,7 @@ pub fn servo_study(loom: &Loom, pattern: &Pattern) -> Result<ServoReport> {
 /// [`servo_study`] of given plans ([`servo_setups`], or the optimiser's).
 pub fn servo_study_of(loom: &Loom, pattern: &Pattern, setups: &[FrameSetup]) -> Result<ServoReport> {
     let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
-    let mut r = loomkin_eshed::analyse(setups, &servo_laws(loom), &servo.bus, loom.speed.rpm(), servo.pass_through)?;
+    let mut r = loomkin_eshed::analyse(setups, &servo.bus, loom.speed.rpm(), servo.pass_through)?;
     r.clear_shed = Some(clear_shed(&servo_timing(loom, pattern, setups)?));
     Ok(r)
 }
@@ -159,7 +189,7 @@ pub fn servo_tables_of(
     spacing: loomkin_cams::table::Spacing,
     formats: &[loomkin_cams::table::Format],
 ) -> Result<loomkin_eshed::Tables> {
-    Ok(loomkin_eshed::frame_tables(setups, &servo_laws(loom), spacing, formats, loom.speed.rpm())?)
+    Ok(loomkin_eshed::frame_tables(setups, spacing, formats, loom.speed.rpm())?)
 }
 
 /// Curves of the servo-shedding study: `points` samples over the repeat.
@@ -170,7 +200,7 @@ pub fn servo_curves(loom: &Loom, pattern: &Pattern, points: usize) -> Result<loo
 /// [`servo_curves`] of given plans.
 pub fn servo_curves_of(loom: &Loom, setups: &[FrameSetup], points: usize) -> Result<loomkin_eshed::Curves> {
     let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
-    Ok(loomkin_eshed::curves(setups, &servo_laws(loom), &servo.bus, loom.speed.rpm(), points)?)
+    Ok(loomkin_eshed::curves(setups, &servo.bus, loom.speed.rpm(), points)?)
 }
 
 /// Points of [`servo_figure`]'s curves: one a degree of the repeat, at most this many.
@@ -268,8 +298,14 @@ pub struct ServoOptimum {
     pub min_clearance_kept_mm: f64,
     /// Every frame's stagger of the optimum (its move centre less the crossing), front first, deg.
     pub stagger_deg: Vec<f64>,
-    /// Every frame's motion angle of the optimum, front first, deg.
+    /// Every frame's motion angle of the optimum (of a move up where the loom file gives the moves
+    /// down another), front first, deg.
     pub motion_deg: Vec<f64>,
+    /// Every frame's motion angle of a move down, front first, deg, where the loom file gives some
+    /// frame's moves down an angle of their own (the search keeps its ratio to the move up's);
+    /// absent otherwise (`motion_deg` both ways).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fall_motion_deg: Option<Vec<f64>>,
     /// Frames the search moved (the others never change place in the pattern: their stagger and
     /// motion angle are left as the loom file gives them).
     pub frames_searched: usize,
@@ -324,18 +360,17 @@ impl ServoSearch<'_> {
     fn objective(&mut self, x: &[f64]) -> Result<f64> {
         self.stop.check()?;
         self.evaluations += 1;
-        let laws = servo_laws(self.loom);
         let servo = self.loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
         let speed = self.loom.speed.rpm();
         Ok(match self.objective {
             Objective::Peak if self.reduced.whole => {
-                loomkin_eshed::peak_bus_power_w(&self.setups(x)?, &laws, &servo.bus, speed, true)?
+                loomkin_eshed::peak_bus_power_w(&self.setups(x)?, &servo.bus, speed, true)?
             }
             Objective::Peak => {
                 let setups = self.setups_of(&self.reduced.pattern, x)?;
-                loomkin_eshed::peak_bus_power_w_at(&setups, &laws, &servo.bus, speed, &self.reduced.picks)?
+                loomkin_eshed::peak_bus_power_w_at(&setups, &servo.bus, speed, &self.reduced.picks)?
             }
-            Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, &laws, speed)?,
+            Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, speed)?,
         })
     }
 
@@ -344,7 +379,7 @@ impl ServoSearch<'_> {
         self.stop.check()?;
         self.clearance_checks += 1;
         let setups = self.setups_of(&self.reduced.pattern, x)?;
-        let motion = ServoMotion::new(&setups, &servo_laws(self.loom));
+        let motion = ServoMotion::new(&setups);
         let timing = Timing::new(self.loom, &motion, &self.reduced.pattern)?;
         Ok(if self.reduced.whole {
             timing.min_clearance_coarse(SEARCH_STEP_DEG)
@@ -494,12 +529,14 @@ fn optimise(
     options.validate()?;
     let objective = options.objective;
     let before = servo_study(loom, pattern)?;
-    let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
+    loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
     let motion = Motion::new(loom, pattern)?;
     let n = loom.frame_count();
     let delta = crate::crossing_offset_deg(loom.shedding.crossing_deg);
     let mut x0: Vec<f64> = (0..n).map(|i| motion.centre0_deg(i) - delta).collect();
-    x0.extend(servo.frames.iter().map(|f| f.motion_deg.unwrap_or(motion.motion_deg())));
+    // A frame's motion angle up; down, the loom file's ratio of the two kept ([`servo_setups`]).
+    let angles: Vec<(f64, f64)> = (0..n).map(|i| file_motion_deg(loom, i)).collect();
+    x0.extend(angles.iter().map(|a| a.0));
     let m = loom.shedding.max_stagger_deg;
     let bound = |b: loomkin_units::Bound, default: f64| match b {
         loomkin_units::Bound::Closed(v) | loomkin_units::Bound::Open(v) => v,
@@ -511,8 +548,10 @@ fn optimise(
         .filter(|&i| (0..pattern.picks()).any(|p| motion.is_up(i, p as i64) != motion.is_up(i, p as i64 - 1)))
         .collect();
     let vars: Vec<usize> = moving.iter().copied().chain(moving.iter().map(|i| n + i)).collect();
-    let lo: Vec<f64> = vars.iter().map(|&j| if j < n { -m } else { phi_lo }).collect();
-    let hi: Vec<f64> = vars.iter().map(|&j| if j < n { m } else { phi_hi }).collect();
+    // Both angles of a frame within the motion angle's range.
+    let ratio = |j: usize| angles[j - n].1 / angles[j - n].0;
+    let lo: Vec<f64> = vars.iter().map(|&j| if j < n { -m } else { phi_lo.max(phi_lo / ratio(j)) }).collect();
+    let hi: Vec<f64> = vars.iter().map(|&j| if j < n { m } else { phi_hi.min(phi_hi / ratio(j)) }).collect();
     let full = |x0: &[f64], y: &[f64]| {
         let mut x = x0.to_vec();
         for (k, &j) in vars.iter().enumerate() {
@@ -573,6 +612,10 @@ fn optimise(
         min_clearance_kept_mm: kept_mm,
         stagger_deg: x[..n].to_vec(),
         motion_deg: x[n..].to_vec(),
+        fall_motion_deg: angles
+            .iter()
+            .any(|a| a.1 != a.0)
+            .then(|| setups.iter().map(|s| s.plan.motion_deg[1]).collect()),
         frames_searched: moving.len(),
         picks_searched: s.reduced.picks.len(),
         evaluations: s.evaluations,

@@ -21,7 +21,9 @@ fn without_pass_through_every_frames_plan_is_the_dobby_motion() {
     for (i, s) in setups.iter().enumerate() {
         // Segment for segment; the stroke the same to its 12 digits (the plan's drops the noise of
         // the loom's way through metres, 89.99999999999999 → 90 mm).
-        let (plan, dobby) = (s.plan.cycle_spec(&laws), motion.cycle_spec(i));
+        // Without laws by kind of move in the file, every frame moves by the shedding law.
+        assert!(s.laws.rise.0 == laws.rise.0 && s.laws.fall.0 == laws.fall.0 && s.laws.through.is_none());
+        let (plan, dobby) = (s.plan.cycle_spec(&s.laws), motion.cycle_spec(i));
         assert_eq!(plan.segment, dobby.segment, "frame {}", i + 1);
         assert_eq!((plan.period_deg, plan.unit), (dobby.period_deg, dobby.unit));
         let (a, b) = (plan.stroke.unwrap(), dobby.stroke.unwrap());
@@ -137,7 +139,7 @@ fn every_pick_of_a_pass_through_plan_has_the_window_its_class_reports() {
     let loom = pass_through();
     let pattern = Pattern::from_wif(POINT).unwrap();
     let setups = servo_setups(&loom, &pattern, None, None).unwrap();
-    let motion = ServoMotion::new(&setups, &servo_laws(&loom));
+    let motion = ServoMotion::new(&setups);
     let timing = Timing::new(&loom, &motion, &pattern).unwrap();
     let report = timing.report().unwrap();
     assert_eq!(report.picks.len(), pattern.picks());
@@ -158,7 +160,7 @@ fn the_least_clearance_over_pass_through_plans_bounds_a_dense_scan() {
     let loom = pass_through();
     let pattern = Pattern::from_wif(POINT).unwrap();
     let setups = servo_setups(&loom, &pattern, None, None).unwrap();
-    let motion = ServoMotion::new(&setups, &servo_laws(&loom));
+    let motion = ServoMotion::new(&setups);
     let t = servo_timing(&loom, &pattern, &setups).unwrap();
     let ins = &loom.insertion;
     let x_c = loom.geometry.reed_m - ins.carrier_width_m;
@@ -190,7 +192,6 @@ fn the_least_clearance_over_pass_through_plans_bounds_a_dense_scan() {
 fn the_optimum_lowers_its_objective_and_keeps_the_carriers_insertion_clear() {
     let loom = Loom::from_toml(SERVO).unwrap();
     let pattern = Pattern::from_wif(include_str!("../../../examples/twill-2-2.wif")).unwrap();
-    let laws = servo_laws(&loom);
     let before = servo_study(&loom, &pattern).unwrap();
     for objective in [Objective::Peak, Objective::Rms] {
         let o = optimise_servo(&loom, &pattern, objective, &Default::default(), &|_, _| {}).unwrap();
@@ -211,7 +212,7 @@ fn the_optimum_lowers_its_objective_and_keeps_the_carriers_insertion_clear() {
             }
         }
         let servo = loom.shedding.servo.as_ref().unwrap();
-        let again = loomkin_eshed::analyse(&o.setups, &laws, &servo.bus, loom.speed.rpm(), false).unwrap();
+        let again = loomkin_eshed::analyse(&o.setups, &servo.bus, loom.speed.rpm(), false).unwrap();
         assert_eq!(again.peak_bus_power_w, o.peak_bus_power_w_after);
         assert_eq!(o.report.peak_bus_power_w, o.peak_bus_power_w_after);
         // It gains what it minimises.
@@ -225,7 +226,7 @@ fn the_optimum_lowers_its_objective_and_keeps_the_carriers_insertion_clear() {
         }
         // The carrier's insertion stays clear: on the search's grid (what it kept), and on the
         // refined clearance (the grid's 2° can only miss a dip between its points).
-        let motion = ServoMotion::new(&o.setups, &laws);
+        let motion = ServoMotion::new(&o.setups);
         let coarse = Timing::new(&loom, &motion, &pattern).unwrap().min_clearance_coarse(2.0);
         assert!(coarse >= 0.0, "{coarse}");
         assert!(o.min_clearance_mm_after >= 0.0 && o.min_clearance_mm_after <= 1e3 * coarse + 1e-9, "{o:?}");
@@ -288,7 +289,6 @@ fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearanc
     for (loom, pattern) in &cases {
         let reduced = reduced_pattern(loom, pattern).unwrap();
         assert!(!reduced.whole && reduced.pattern.picks() < pattern.picks(), "{} rows", reduced.pattern.picks());
-        let laws = servo_laws(loom);
         let n = loom.frame_count();
         let delta = loomkin_loom::crossing_offset_deg(loom.shedding.crossing_deg);
         let m = loom.shedding.max_stagger_deg;
@@ -303,10 +303,10 @@ fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearanc
             let full = servo_setups(loom, pattern, Some(&phi), Some(&centre)).unwrap();
             let short = servo_setups(loom, &reduced.pattern, Some(&phi), Some(&centre)).unwrap();
             let bus = &servo.bus;
-            let a = loomkin_eshed::peak_bus_power_w(&full, &laws, bus, loom.speed.rpm(), true).unwrap();
-            let b = loomkin_eshed::peak_bus_power_w_at(&short, &laws, bus, loom.speed.rpm(), &reduced.picks).unwrap();
+            let a = loomkin_eshed::peak_bus_power_w(&full, bus, loom.speed.rpm(), true).unwrap();
+            let b = loomkin_eshed::peak_bus_power_w_at(&short, bus, loom.speed.rpm(), &reduced.picks).unwrap();
             assert!((a - b).abs() <= 1e-9 * a, "{a} {b}");
-            let (mf, ms) = (ServoMotion::new(&full, &laws), ServoMotion::new(&short, &laws));
+            let (mf, ms) = (ServoMotion::new(&full), ServoMotion::new(&short));
             let ca = Timing::new(loom, &mf, pattern).unwrap().min_clearance_coarse(2.0);
             let cb = Timing::new(loom, &ms, &reduced.pattern).unwrap().min_clearance_coarse_at(2.0, &reduced.picks);
             assert!((ca - cb).abs() <= 1e-12, "{ca} {cb}");
@@ -335,9 +335,8 @@ fn the_search_leaves_still_frames_out_and_keeps_a_least_clearance() {
     let options = ServoOptions { objective: Objective::Peak, min_clearance_mm: want };
     let o = optimise_servo_with(&loom, &pattern, &options, &Default::default(), &|_, _| {}).unwrap();
     // What it keeps: the floor asked for, or the design's own clearance (on the grid) when less.
-    let laws = servo_laws(&loom);
     let grid = |setups: &[loomkin_eshed::FrameSetup]| {
-        let motion = ServoMotion::new(setups, &laws);
+        let motion = ServoMotion::new(setups);
         1e3 * Timing::new(&loom, &motion, &pattern).unwrap().min_clearance_coarse(2.0)
     };
     let design = grid(&servo_setups(&loom, &pattern, None, None).unwrap());
@@ -404,4 +403,132 @@ fn the_crank_lever_transmission_is_read_and_checked() {
     let e = servo_study(&short, &pattern).unwrap_err().to_string();
     assert!(e.starts_with("shedding.servo.transmission.crank_radius_mm: frame "), "{e}");
     assert!(e.contains("the crank and lever move the frame only to "), "{e}");
+}
+
+const LAWS: &str = include_str!("../../../examples/servo-shedding-laws-loom.toml");
+
+#[test]
+fn the_loom_file_gives_a_law_and_a_motion_angle_per_kind_of_move() {
+    let loom = Loom::from_toml(LAWS).unwrap();
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+    let spline = [[0.0, 0.0], [0.1, 0.55], [0.25, 1.0], [0.4, 0.55], [0.5, 0.0]];
+    let servo_law = loomkin_servo::SplineLaw::new(&spline, loomkin_servo::SplineEnd::Clamped).unwrap();
+    for (i, s) in setups.iter().enumerate() {
+        let front = i < 2;
+        let l = &s.laws;
+        // The two front frames go up by the dobby preset over 280°; the others by the modified
+        // trapezoid over 260°; every frame down by the 4-5-6-7 polynomial over 300°.
+        assert_eq!(s.plan.motion_deg, [if front { 280.0 } else { 260.0 }, 300.0], "frame {}", i + 1);
+        let rise = if front { "shedding.servo.frame[0].rise_law" } else { "shedding.servo.rise_law" };
+        assert_eq!(l.fields, [rise, "shedding.servo.fall_law", "shedding.servo.through_law"]);
+        if front {
+            let dobby = loomkin_shed::preset("dobby").unwrap();
+            assert_eq!(l.rise.0, loomkin_laws::LawSpec::Piecewise { segments: dobby.motion_segments().unwrap() });
+        } else {
+            assert_eq!(l.rise.0, loomkin_laws::LawSpec::ModifiedTrapezoid { ramp: 0.125 });
+        }
+        assert_eq!(l.fall.0, loomkin_laws::LawSpec::Poly4567);
+        // The spline law through the definition points, as the servo law of `loomkin servo`
+        // builds it (an independent route: its own cubic spline), to rounding.
+        let (_, through) = l.through.as_ref().unwrap();
+        for k in 0..=200 {
+            let x = k as f64 / 200.0;
+            let (a, b) = (through.eval(x), servo_law.law().eval(x));
+            assert!((a.s - b.s).abs() < 1e-12 && (a.a - b.a).abs() < 1e-9 * b.a.abs().max(1.0), "x = {x}");
+        }
+        // Each move by its law and angle: a single move up or down, or laid end to end.
+        for m in &s.plan.moves {
+            if !m.through {
+                assert_eq!(m.length_deg, s.plan.motion_deg[usize::from(!m.rising)]);
+            }
+        }
+    }
+    // The 3/1 twill changes on two picks running: those moves are laid end to end, by the spline.
+    let twill = Pattern::from_lift_plan(include_str!("../../../examples/twill-3-1.txt")).unwrap();
+    let laid = servo_setups(&loom, &twill, None, None).unwrap();
+    assert!(laid.iter().any(|s| s.plan.moves.iter().any(|m| m.through)));
+    let r = servo_study(&loom, &twill).unwrap();
+    assert!(r.frames.iter().all(|f| f.rest_continuity >= 2));
+    let r = servo_study(&loom, &pattern).unwrap();
+    assert!(r.frames.iter().all(|f| f.rest_continuity >= 2));
+    assert_eq!((r.frames[0].motion_deg, r.frames[0].fall_motion_deg), (280.0, Some(300.0)));
+    assert_eq!((r.frames[5].motion_deg, r.frames[5].fall_motion_deg), (260.0, Some(300.0)));
+    // A law by name is the same law as the table naming it.
+    let by_table = LAWS.replace("fall_law = \"poly4567\"", "fall_law = { law = \"poly4567\" }");
+    let again = servo_study(&Loom::from_toml(&by_table).unwrap(), &pattern).unwrap();
+    assert_eq!(again, r);
+}
+
+#[test]
+fn a_law_not_c2_at_a_rest_transition_is_refused_naming_its_field() {
+    let pattern = Pattern::from_wif(POINT).unwrap();
+    let refused = |from: &str, to: &str| {
+        let loom = Loom::from_toml(&LAWS.replace(from, to)).unwrap();
+        servo_study(&loom, &pattern).unwrap_err().to_string()
+    };
+    let e = refused("fall_law = \"poly4567\"", "fall_law = \"harmonic\"");
+    assert!(e.starts_with("shedding.servo.fall_law: harmonic has acceleration −4.935 at its end where frame 1"), "{e}");
+    assert!(e.contains("a rest transition must be C²"), "{e}");
+    let e = refused("rise_law = { preset = \"dobby\" }", "rise_law = \"constant-acceleration\"");
+    assert!(
+        e.starts_with("shedding.servo.frame[0].rise_law: constant-acceleration has acceleration 4 at its start"),
+        "{e}"
+    );
+    // The shedding law where the file gives none for a kind: named as the [shedding] law.
+    let harmonic = LAWS.replace("preset = \"dobby\"                 #", "law = \"harmonic\"                 #");
+    let loom = Loom::from_toml(&harmonic.replace("fall_law = \"poly4567\"\n", "")).unwrap();
+    let e = servo_study(&loom, &pattern).unwrap_err().to_string();
+    assert!(e.starts_with("shedding: harmonic has acceleration"), "{e}");
+    // Bad laws and angles are refused where the file is read, by field.
+    for (from, to, field) in [
+        ("fall_law = \"poly4567\"", "fall_law = \"nope\"", "shedding.servo.fall_law: unknown law 'nope'"),
+        (
+            "fall_law = \"poly4567\"",
+            "fall_law = { law = \"poly4567\", preset = \"dobby\" }",
+            "shedding.servo.fall_law: give one of",
+        ),
+        (
+            "fall_law = \"poly4567\"",
+            "fall_law = { spline = [[0, 0], [0.5, 1]] }",
+            "shedding.servo.fall_law: def_points",
+        ),
+        (
+            "fall_law = \"poly4567\"",
+            "fall_law = { preset = \"dobby\", params = { ramp = 0.1 } }",
+            "shedding.servo.fall_law: params only",
+        ),
+        ("fall_motion_deg = 300", "fall_motion_deg = 361", "shedding.servo.fall_motion_deg = 361 is out of range"),
+        (
+            "rise_motion_deg = 280",
+            "rise_motion_deg = 0.5",
+            "shedding.servo.frame[0].rise_motion_deg = 0.5 is out of range",
+        ),
+    ] {
+        let text = LAWS.replace(from, to);
+        assert_ne!(text, LAWS, "{from}");
+        let e = Loom::from_toml(&text).unwrap_err().to_string();
+        assert!(e.starts_with(field), "{e}");
+    }
+}
+
+#[test]
+fn the_search_varies_a_frames_angle_up_and_scales_its_angle_down_with_it() {
+    let loom = Loom::from_toml(LAWS).unwrap();
+    let pattern = Pattern::from_wif(include_str!("../../../examples/twill-2-2.wif")).unwrap();
+    let o = optimise_servo(&loom, &pattern, Objective::Peak, &Default::default(), &|_, _| {}).unwrap();
+    let fall = o.fall_motion_deg.as_ref().expect("the file gives the moves down their own angle");
+    for (i, s) in o.setups.iter().enumerate() {
+        let ratio = if i < 2 { 300.0 / 280.0 } else { 300.0 / 260.0 };
+        assert_eq!(s.plan.motion_deg, [o.motion_deg[i], o.motion_deg[i] * ratio]);
+        assert_eq!(fall[i], s.plan.motion_deg[1]);
+        assert!(o.motion_deg[i] >= 1.0 && fall[i] <= 360.0, "frame {}: {} {}", i + 1, o.motion_deg[i], fall[i]);
+    }
+    assert!(o.peak_bus_power_w_after <= o.peak_bus_power_w_before);
+    assert_eq!(fall.len(), 24);
+    // One angle both ways (the example): none of its own.
+    let one =
+        optimise_servo(&Loom::from_toml(SERVO).unwrap(), &pattern, Objective::Peak, &Default::default(), &|_, _| {})
+            .unwrap();
+    assert!(one.fall_motion_deg.is_none());
 }

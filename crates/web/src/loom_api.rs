@@ -21,6 +21,7 @@ pub const LOOM_EXAMPLES: &[(&str, &str)] = &[
     ("projectile-loom.toml", include_str!("../../../examples/projectile-loom.toml")),
     ("airjet-loom.toml", include_str!("../../../examples/airjet-loom.toml")),
     ("servo-shedding-loom.toml", include_str!("../../../examples/servo-shedding-loom.toml")),
+    ("servo-shedding-laws-loom.toml", include_str!("../../../examples/servo-shedding-laws-loom.toml")),
 ];
 
 /// The weave patterns the view offers (`examples/`): WIF drafts and a lift plan.

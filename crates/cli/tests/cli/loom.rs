@@ -325,6 +325,62 @@ fn servo_on_a_dobby_loom_or_with_a_bad_table_is_one_usage_line() {
 }
 
 #[test]
+fn servo_laws_by_kind_of_move_run_and_a_law_not_c2_at_rest_is_one_usage_line() {
+    // The example with a law and an angle per kind of move: the frames' angles in the JSON (and in
+    // the optimum's), its tables written; every frame's rest transitions C².
+    let v = stdout_json(&[
+        "loom",
+        "servo",
+        &ex("servo-shedding-laws-loom.toml"),
+        "--lift-plan",
+        &ex("twill-3-1.txt"),
+        "--json",
+    ]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!((frames[0]["motion_deg"].as_f64(), frames[0]["fall_motion_deg"].as_f64()), (Some(280.0), Some(300.0)));
+    assert_eq!((frames[2]["motion_deg"].as_f64(), frames[2]["fall_motion_deg"].as_f64()), (Some(260.0), Some(300.0)));
+    assert!(frames.iter().all(|f| f["rest_continuity"].as_i64().unwrap() >= 2));
+    let o = stdout_json(&[
+        "loom",
+        "servo",
+        &ex("servo-shedding-laws-loom.toml"),
+        "--wif",
+        &ex("twill-2-2.wif"),
+        "--optimize",
+        "--json",
+    ]);
+    assert_eq!(o["fall_motion_deg"].as_array().map(Vec::len), Some(24));
+    let one = stdout_json(&[
+        "loom",
+        "servo",
+        &ex("servo-shedding-loom.toml"),
+        "--wif",
+        &ex("twill-2-2.wif"),
+        "--optimize",
+        "--json",
+    ]);
+    assert!(one.get("fall_motion_deg").is_none() && one["frames"][0].get("fall_motion_deg").is_none());
+    let dir = scratch("servo-laws");
+    let tables = dir.join("tables");
+    let out = loomkin()
+        .args(["loom", "servo", &ex("servo-shedding-laws-loom.toml"), "--lift-plan", &ex("twill-3-1.txt")])
+        .args(["--emit-tables", tables.to_str().unwrap(), "--format", "csv"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(tables.join("frame-01.csv").exists() && tables.join("frame-01.cycle.toml").exists());
+    let bad = dir.join("harmonic.toml");
+    let text = std::fs::read_to_string(ex("servo-shedding-laws-loom.toml"))
+        .unwrap()
+        .replace("fall_law = \"poly4567\"", "fall_law = \"harmonic\"");
+    std::fs::write(&bad, text).unwrap();
+    usage_error(
+        &["loom", "servo", bad.to_str().unwrap(), "--wif", &ex("point-24.wif")],
+        &["shedding.servo.fall_law: harmonic has acceleration −4.935 at its end", "a rest transition must be C²"],
+    );
+}
+
+#[test]
 fn servo_emit_tables_writes_what_cam_table_writes_on_each_frames_cycle() {
     let dir = scratch("servo-tables");
     let out = dir.join("tables");

@@ -30,6 +30,7 @@ pub fn servo() -> FrameServo {
         },
         winding: Winding { resistance_ohm: 1.5, torque_constant_n_m_a: 1.7 },
         motion_deg: None,
+        moves: Default::default(),
     }
 }
 
