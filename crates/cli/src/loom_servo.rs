@@ -245,16 +245,33 @@ fn emit_tables(
         std::fs::write(&path, &f.text).map_err(|e| output::WriteError::file(&path.display().to_string(), e))?;
     }
     let m = &tables.manifest;
-    let worst = m.frames.iter().flat_map(|f| &f.tables).map(|t| t.report.error.max_position_error).fold(0.0, f64::max);
+    // The worst error per slave unit (a crank-and-lever frame's tables are in motor degrees).
+    let worst_in = |unit: Option<&str>| {
+        m.frames
+            .iter()
+            .filter(|f| f.slave_unit == unit)
+            .flat_map(|f| &f.tables)
+            .map(|t| t.report.error.max_position_error)
+            .fold(0.0, f64::max)
+    };
+    let worst = match m.slave_unit {
+        "mm" => format!("{} mm", loomkin_units::compact(worst_in(None))),
+        "deg" => format!("{} deg", loomkin_units::compact(worst_in(Some("deg")))),
+        _ => format!(
+            "{} mm (linear drives), {} deg (cranks and levers)",
+            loomkin_units::compact(worst_in(None)),
+            loomkin_units::compact(worst_in(Some("deg")))
+        ),
+    };
     output::note(format_args!(
-        "wrote {} files to {}: {} frames' cam tables over a master axis of {}° ({} picks) and {}; worst re-interpolation error {} mm",
+        "wrote {} files to {}: {} frames' cam tables over a master axis of {}° ({} picks) and {}; worst re-interpolation error {}",
         tables.files.len(),
         dir.display(),
         m.frames.len(),
         loomkin_units::compact(m.master_axis_deg),
         m.picks,
         loomkin_eshed::MANIFEST_FILE,
-        loomkin_units::compact(worst)
+        worst
     ));
     Ok(())
 }

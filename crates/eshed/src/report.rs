@@ -141,25 +141,7 @@ impl Study {
         let mut cycles = Vec::with_capacity(frames.len());
         let mut drives = Vec::with_capacity(frames.len());
         let mut segments = Vec::with_capacity(frames.len());
-        // A crank and lever must make each frame's stroke without a dead centre (checked once per
-        // distinct transmission and stroke).
-        let mut checked: Vec<(loomkin_servo::CrankLever, u64, u64)> = Vec::new();
-        for (i, f) in frames.iter().enumerate() {
-            if let Some(cl) = f.servo.transmission.crank_lever {
-                let key = (cl, f.load.stroke_m.to_bits(), f.load.start_level_m.to_bits());
-                if !checked.contains(&key) {
-                    let lo = -f.load.stroke_m / 2.0 - f.load.start_level_m;
-                    let cl = loomkin_servo::CrankLever { mid_stroke_mm: -f.load.start_level_m * 1e3, ..cl };
-                    cl.check_stroke(lo, lo + f.load.stroke_m, "shedding.servo.transmission").map_err(|e| {
-                        let field = loomkin_units::FieldError::field(&e).unwrap_or("shedding.servo.transmission");
-                        let text = e.to_string();
-                        let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
-                        EshedError::field(field, format!("frame {}: {reason}", i + 1))
-                    })?;
-                    checked.push(key);
-                }
-            }
-        }
+        check_strokes(frames)?;
         for f in frames {
             cycles.push(f.plan.cycle(&f.laws));
             segments.push(f.plan.segments());
@@ -187,6 +169,29 @@ impl Study {
         let picks = (self.cycles[0].period_rad.to_degrees() / 360.0).round() as usize;
         bus(&lines, picks, only, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
     }
+}
+
+/// A crank and lever must make each frame's stroke without a dead centre (checked once per distinct
+/// transmission and stroke), the error naming the frame.
+pub(crate) fn check_strokes(frames: &[FrameSetup]) -> Result<()> {
+    let mut checked: Vec<(loomkin_servo::CrankLever, u64, u64)> = Vec::new();
+    for (i, f) in frames.iter().enumerate() {
+        let Some(cl) = f.servo.transmission.crank_lever else { continue };
+        let key = (cl, f.load.stroke_m.to_bits(), f.load.start_level_m.to_bits());
+        if checked.contains(&key) {
+            continue;
+        }
+        let lo = -f.load.stroke_m / 2.0 - f.load.start_level_m;
+        let cl = loomkin_servo::CrankLever { mid_stroke_mm: -f.load.start_level_m * 1e3, ..cl };
+        cl.check_stroke(lo, lo + f.load.stroke_m, "shedding.servo.transmission").map_err(|e| {
+            let field = loomkin_units::FieldError::field(&e).unwrap_or("shedding.servo.transmission");
+            let text = e.to_string();
+            let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
+            EshedError::field(field, format!("frame {}: {reason}", i + 1))
+        })?;
+        checked.push(key);
+    }
+    Ok(())
 }
 
 /// The study of `frames` (front first) moving by their laws at `speed_rpm` on `bus` (`pass_through`:

@@ -10,14 +10,26 @@
 //! stands at that start; `slave_offset_mm` (`−H/2` down, `+H/2` up) is that place over
 //! mid-stroke.
 //!
+//! **A crank and lever.** A frame driven through a crank and lever (`kind = "crank_lever"`) has
+//! its tables in the motor's position: the slave is the motor's angle in degrees from where it
+//! stands with the frame at mid-stroke (`gear_ratio · (α − α_mid)`, α the crank's angle), the
+//! frame's law taken through the linkage's inverse with every derivative exact (a
+//! [`loomkin_cams::table::SlaveMap`] on the same engine); the manifest marks the frame
+//! `slave_unit = "deg"` with `crank_mid_stroke_deg` (α_mid), and its cycle file still holds the
+//! frame's law in mm.
+//!
 //! **One engine.** Each table is [`CamTable`] on [`Motion::from_cycle`] of the frame's cycle
 //! ([`FramePlan::cycle`](crate::FramePlan::cycle)); where the repeat fits a cycle file (36 000°,
 //! 100 picks) the cycle file is written too, and `loomkin cam table` run on it writes the same
 //! table byte for byte (the plan's cycle is built with the cycle file's own arithmetic).
 
 use crate::{FrameSetup, Result};
-use loomkin_cams::table::{CamTable, Format, Motion, Spacing, TableReport};
+use loomkin_cams::profile::Jet;
+use loomkin_cams::table::{CamTable, Format, Motion, SlaveMap, Spacing, TableReport};
+use loomkin_laws::StrokeUnit;
+use loomkin_servo::Linkage;
 use serde::Serialize;
+use std::sync::Arc;
 
 /// The formats `--emit-tables` writes when none is named: every point or segment format a
 /// controller loads (CSV, XYVAJ, poly5, TwinCAT points, Structured Text).
@@ -64,6 +76,35 @@ pub struct FrameTables {
     pub cycle_file: Option<String>,
     /// The tables, one per format.
     pub tables: Vec<TableEntry>,
+    /// `deg` for a frame driven through a crank and lever: its tables hold the motor's angle in
+    /// degrees from where it stands with the frame at mid-stroke (`gear_ratio · (α − α_mid)`), not
+    /// the frame's height (absent: mm).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slave_unit: Option<&'static str>,
+    /// The crank's angle from +x with the frame at mid-stroke, deg (`α_mid`; a crank and lever only):
+    /// where the motor's table is 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crank_mid_stroke_deg: Option<f64>,
+}
+
+/// A frame's height (mm, the cycle's position) to its motor's angle (deg, from mid-stroke's)
+/// through its crank and lever: the closed-form inverse and the reverted series
+/// ([`loomkin_servo::Linkage::motor`]).
+#[derive(Debug)]
+struct MotorDegrees(Linkage);
+
+impl SlaveMap for MotorDegrees {
+    fn map(&self, position: Jet) -> Jet {
+        let l = &self.0;
+        match l.crank_series(position.scale(1e-3)) {
+            Some(alpha) => {
+                let mut a = alpha;
+                a.0[0] -= l.alpha_mid;
+                a.scale(l.gear.to_degrees())
+            }
+            None => Jet::cst(f64::NAN),
+        }
+    }
 }
 
 /// What a controller needs besides the tables (the manifest of `--emit-tables`).
@@ -75,7 +116,8 @@ pub struct TablesManifest {
     pub picks: usize,
     /// Main-shaft speed, rpm.
     pub speed_rpm: f64,
-    /// The slave unit.
+    /// The slave unit: `mm` (the frames' heights), `deg` (every frame through a crank and lever:
+    /// the motors' angles) or `mixed` (each frame's `slave_unit`).
     pub slave_unit: &'static str,
     /// Per frame, front first.
     pub frames: Vec<FrameTables>,
@@ -100,6 +142,7 @@ pub fn table_file_name(frame: usize, ext: &str) -> String {
 /// frames' cycle files where they can be written; and the manifest (the shaft at `speed_rpm`).
 pub fn frame_tables(frames: &[FrameSetup], spacing: Spacing, formats: &[Format], speed_rpm: f64) -> Result<Tables> {
     let first = frames.first().ok_or_else(|| crate::EshedError::field("frames", "no frames"))?;
+    crate::report::check_strokes(frames)?;
     let formats = if formats.is_empty() { &TABLE_FORMATS[..] } else { formats };
     let mut files = Vec::new();
     let mut entries = Vec::with_capacity(frames.len());
@@ -114,8 +157,15 @@ pub fn frame_tables(frames: &[FrameSetup], spacing: Spacing, formats: &[Format],
             }
             Err(_) => None,
         };
-        let table =
-            CamTable::new(Motion::from_cycle(&f.plan.cycle(&f.laws)), spacing).map_err(|e| in_frame(frame, e))?;
+        let motion = Motion::from_cycle(&f.plan.cycle(&f.laws));
+        let axis = crate::drive::axis(&f.servo.motor, &f.servo.transmission, &f.load);
+        let linkage = axis.linkage();
+        let motion = match linkage {
+            // A crank and lever: the slave is the motor's angle, deg.
+            Some(l) => motion.mapped(Arc::new(MotorDegrees(l)), StrokeUnit::Deg),
+            None => motion,
+        };
+        let table = CamTable::new(motion, spacing).map_err(|e| in_frame(frame, e))?;
         let source = cycle_file.clone().unwrap_or_else(|| format!("frame {frame}"));
         let mut tables = Vec::with_capacity(formats.len());
         for &format in formats {
@@ -132,13 +182,21 @@ pub fn frame_tables(frames: &[FrameSetup], spacing: Spacing, formats: &[Format],
             moves: f.plan.moves.len(),
             cycle_file,
             tables,
+            slave_unit: linkage.map(|_| "deg"),
+            crank_mid_stroke_deg: linkage.map(|l| l.alpha_mid.to_degrees()),
         });
     }
+    let cranks = entries.iter().filter(|e| e.slave_unit.is_some()).count();
+    let slave_unit = match cranks {
+        0 => "mm",
+        n if n == entries.len() => "deg",
+        _ => "mixed",
+    };
     let manifest = TablesManifest {
         master_axis_deg: first.plan.period_deg,
         picks: (first.plan.period_deg / 360.0).round() as usize,
         speed_rpm,
-        slave_unit: "mm",
+        slave_unit,
         frames: entries,
     };
     let text =

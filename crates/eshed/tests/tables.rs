@@ -206,3 +206,74 @@ fn a_table_past_the_engines_point_limit_names_the_frame() {
     let e = frame_tables(&fs, Spacing::StepDeg(1.0), &[Format::Csv], SPEED_RPM).unwrap_err().to_string();
     assert!(e.contains("frame 1"), "{e}");
 }
+
+/// With a crank and lever a frame's tables hold its motor's angle (deg from where it stands at
+/// mid-stroke): every file read back, re-interpolated as the controller does and pushed through the
+/// linkage's forward map `y(θ)` gives the frame's exact law, within the table's reported error (deg)
+/// times the largest frame mm per motor degree over the stroke.
+#[test]
+fn a_crank_levers_tables_in_motor_degrees_give_the_frames_law_through_the_linkage() {
+    use loomkin_cams::profile::Jet;
+    let plan = lift_plan(4, 9, 21);
+    let l = laws(LawSpec::Poly345, LawSpec::ModifiedSine);
+    for pass in [false, true] {
+        let fs: Vec<FrameSetup> = setups(&plan, pass, &l)
+            .into_iter()
+            .map(|mut f| {
+                f.servo.transmission.crank_lever = Some(common::crank_lever());
+                f
+            })
+            .collect();
+        for spacing in [Spacing::StepDeg(1.0), Spacing::Tolerance(1e-3)] {
+            // A point format and a segment format (the others read back as one of these).
+            let formats = [Format::Csv, Format::Poly5];
+            let t = frame_tables(&fs, spacing, &formats, SPEED_RPM).unwrap();
+            assert_eq!(t.manifest.slave_unit, "deg");
+            for (i, f) in fs.iter().enumerate() {
+                let entry = &t.manifest.frames[i];
+                assert_eq!(entry.slave_unit, Some("deg"));
+                let link = loomkin_eshed::axis(&f.servo.motor, &f.servo.transmission, &f.load).linkage().unwrap();
+                assert_eq!(entry.crank_mid_stroke_deg, Some(link.alpha_mid.to_degrees()));
+                // The frame's height over mid-stroke (mm) at a motor angle (deg from mid-stroke's).
+                let crank = |m: f64| link.alpha_mid + m.to_radians() / link.gear;
+                let height_mm = |m: f64| link.height(Jet::cst(crank(m))).0.v() * 1e3;
+                // The largest |dy/dθ_motor| over the stroke, mm per motor degree.
+                let h = f.plan.stroke_m / 2.0;
+                let slope = (0..=400)
+                    .map(|k| {
+                        let a = link.motor_angle(-h + 2.0 * h * k as f64 / 400.0).unwrap();
+                        (link.height(Jet::var(a)).0.d(1) * 1e3 / link.gear).to_radians().abs()
+                    })
+                    .fold(0.0, f64::max);
+                let cycle = f.plan.cycle(&l);
+                let level_mm = f.plan.start_level_m() * 1e3;
+                for (e, &format) in entry.tables.iter().zip(&formats) {
+                    assert_eq!(e.report.unit, "deg");
+                    let file = t.files.iter().find(|x| x.name == e.file).unwrap();
+                    let reported = e.report.error.max_position_error;
+                    let intervals = format.read(&file.text).unwrap();
+                    let (x0, x1) = (intervals[0].start_deg, intervals.last().unwrap().end_deg);
+                    let n = 9 * 360 * 4;
+                    let (mut worst, mut j) = (0.0f64, 0);
+                    for k in 0..=n {
+                        let x = x0 + (x1 - x0) * k as f64 / n as f64;
+                        while j + 1 < intervals.len() && x > intervals[j].end_deg {
+                            j += 1;
+                        }
+                        let y = height_mm(intervals[j].eval(x)[0]);
+                        let exact = level_mm + cycle.eval(x.to_radians(), SPEED_RPM).s * 1e3;
+                        worst = worst.max((y - exact).abs());
+                    }
+                    assert!(
+                        worst <= slope * reported * (1.0 + 1e-6) + 1e-9,
+                        "frame {} {format:?}: {worst:e} mm > {slope} mm/deg × {reported:e} deg",
+                        i + 1
+                    );
+                    if let Spacing::Tolerance(tol) = spacing {
+                        assert!(reported <= tol, "{format:?}: {reported:e} over the tolerance");
+                    }
+                }
+            }
+        }
+    }
+}

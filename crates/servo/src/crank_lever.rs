@@ -464,6 +464,30 @@ impl Linkage {
         Some(self.alpha_mid + (raw - self.alpha_mid + PI).rem_euclid(2.0 * PI) - PI)
     }
 
+    /// The crank angle's series while the slave moves by `s` ([`Linkage::motor`]'s `alpha` alone).
+    pub fn crank_series(&self, s: Jet) -> Option<Jet> {
+        self.revert(s).map(|r| r.0)
+    }
+
+    /// `(α, α − α₀, y(α₀ + ·), φ(α₀ + ·))`: the crank angle's series for the slave's, by the
+    /// closed-form inverse and the reverted series of `y`.
+    fn revert(&self, s: Jet) -> Option<(Jet, Jet, Jet, Jet)> {
+        let a0 = self.motor_angle(s.v() - self.mid_m)?;
+        let (y, phi) = self.height(Jet::var(a0));
+        let mut eta = s;
+        eta.0[0] = 0.0;
+        let mut f = y;
+        f.0[0] = 0.0;
+        let c1 = f.0[1];
+        let mut delta = Jet::cst(0.0);
+        for _ in 1..eta.0.len() {
+            delta = delta + (eta - compose(&f, &delta)).scale(1.0 / c1);
+        }
+        let mut alpha = delta;
+        alpha.0[0] = a0;
+        Some((alpha, delta, y, phi))
+    }
+
     /// The frame's height over mid-stroke `y` and the output arm's angle φ at the motor angle
     /// `alpha` (a series: every derivative with respect to the motor angle, or to time).
     pub fn height(&self, alpha: Jet) -> (Jet, Jet) {
@@ -489,19 +513,7 @@ impl Linkage {
     /// m): the motor angle by the closed-form inverse, its rates by reverting the series of
     /// `y(α)` (each pass fixes one more order). `None` where the frame is out of reach.
     pub fn motor(&self, s: Jet) -> Option<MotorMotion> {
-        let a0 = self.motor_angle(s.v() - self.mid_m)?;
-        let (y, phi) = self.height(Jet::var(a0));
-        let mut eta = s;
-        eta.0[0] = 0.0;
-        let mut f = y;
-        f.0[0] = 0.0;
-        let c1 = f.0[1];
-        let mut delta = Jet::cst(0.0);
-        for _ in 1..eta.0.len() {
-            delta = delta + (eta - compose(&f, &delta)).scale(1.0 / c1);
-        }
-        let mut alpha = delta;
-        alpha.0[0] = a0;
+        let (alpha, delta, y, phi) = self.revert(s)?;
         Some(MotorMotion {
             alpha,
             dy_dalpha: compose(&y.deriv(), &delta),

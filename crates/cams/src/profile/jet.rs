@@ -19,6 +19,7 @@ const FACT: [f64; N] = [1.0, 1.0, 2.0, 6.0, 24.0, 120.0];
 
 impl Jet {
     /// A constant.
+    #[inline]
     pub fn cst(c: f64) -> Self {
         let mut a = [0.0; N];
         a[0] = c;
@@ -26,6 +27,7 @@ impl Jet {
     }
 
     /// The independent variable at `x`.
+    #[inline]
     pub fn var(x: f64) -> Self {
         let mut a = [0.0; N];
         a[0] = x;
@@ -34,6 +36,7 @@ impl Jet {
     }
 
     /// From the derivatives `f, f′, f″, …`.
+    #[inline]
     pub fn from_derivs(d: [f64; N]) -> Self {
         let mut a = [0.0; N];
         for k in 0..N {
@@ -43,16 +46,19 @@ impl Jet {
     }
 
     /// The value.
+    #[inline]
     pub fn v(&self) -> f64 {
         self.0[0]
     }
 
     /// The derivative of order `k`.
+    #[inline]
     pub fn d(&self, k: usize) -> f64 {
         self.0[k] * FACT[k]
     }
 
     /// The derivative as a jet (one order fewer is exact: the top coefficient becomes 0).
+    #[inline]
     pub fn deriv(&self) -> Self {
         let mut a = [0.0; N];
         for k in 0..N - 1 {
@@ -62,11 +68,13 @@ impl Jet {
     }
 
     /// `self · k`.
+    #[inline]
     pub fn scale(&self, k: f64) -> Self {
         Self(self.0.map(|c| c * k))
     }
 
     /// `self / g`.
+    #[inline]
     pub fn div(&self, g: &Self) -> Self {
         let mut h = [0.0; N];
         for k in 0..N {
@@ -80,6 +88,7 @@ impl Jet {
     }
 
     /// `√self` (value > 0).
+    #[inline]
     pub fn sqrt(&self) -> Self {
         let mut r = [0.0; N];
         r[0] = self.0[0].sqrt();
@@ -94,6 +103,7 @@ impl Jet {
     }
 
     /// `(sin self, cos self)`.
+    #[inline]
     pub fn sin_cos(&self) -> (Self, Self) {
         let (mut s, mut c) = ([0.0; N], [0.0; N]);
         (s[0], c[0]) = self.0[0].sin_cos();
@@ -111,6 +121,7 @@ impl Jet {
     }
 
     /// `atan self`.
+    #[inline]
     pub fn atan(&self) -> Self {
         // a′ = u′ / (1 + u²), integrated term by term.
         let one_u2 = Jet::cst(1.0) + *self * *self;
@@ -124,11 +135,13 @@ impl Jet {
     }
 
     /// The dot product of two jet vectors.
+    #[inline]
     pub fn dot(a: [Jet; 2], b: [Jet; 2]) -> Jet {
         a[0] * b[0] + a[1] * b[1]
     }
 
     /// The cross product `a × b` of two jet vectors.
+    #[inline]
     pub fn cross(a: [Jet; 2], b: [Jet; 2]) -> Jet {
         a[0] * b[1] - a[1] * b[0]
     }
@@ -136,6 +149,7 @@ impl Jet {
 
 impl Add for Jet {
     type Output = Jet;
+    #[inline]
     fn add(self, o: Jet) -> Jet {
         let mut a = self.0;
         for (x, y) in a.iter_mut().zip(o.0) {
@@ -147,6 +161,7 @@ impl Add for Jet {
 
 impl Sub for Jet {
     type Output = Jet;
+    #[inline]
     fn sub(self, o: Jet) -> Jet {
         let mut a = self.0;
         for (x, y) in a.iter_mut().zip(o.0) {
@@ -158,6 +173,7 @@ impl Sub for Jet {
 
 impl Neg for Jet {
     type Output = Jet;
+    #[inline]
     fn neg(self) -> Jet {
         Jet(self.0.map(|c| -c))
     }
@@ -165,6 +181,7 @@ impl Neg for Jet {
 
 impl Mul for Jet {
     type Output = Jet;
+    #[inline]
     fn mul(self, o: Jet) -> Jet {
         let mut h = [0.0; N];
         for (k, hk) in h.iter_mut().enumerate() {

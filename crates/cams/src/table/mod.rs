@@ -20,7 +20,7 @@ pub use camtable::{CamTable, Export, INTERPOLATION, TableReport};
 pub use decimals::{Decimals, RELATIVE_RESOLUTION, decimals_exact, decimals_for, fixed, round};
 pub use format::Format;
 pub use interp::Interval;
-pub use motion::{MOTION_DEG_RANGE, Motion, Piece, STROKE_RANGE};
+pub use motion::{MOTION_DEG_RANGE, Motion, Piece, STROKE_RANGE, SlaveMap};
 pub use points::{
     CamPoint, DEFAULT_STEP_DEG, Interpolation, MAX_POINTS, STEP_RANGE, Spacing, TOLERANCE_RANGE, hermite_intervals,
 };

@@ -1,8 +1,10 @@
 //! The slave motion against the master angle, in the slave units of a cycle, as smooth pieces.
 
+use crate::profile::Jet;
 use crate::{CamError, Result};
 use loomkin_laws::{Cycle, Law, Segment, StrokeUnit};
 use loomkin_units::{Field, Range};
+use std::sync::Arc;
 
 /// One smooth piece of a slave motion: a dwell, or one segment of a law inside a rise or return.
 ///
@@ -19,6 +21,26 @@ pub struct Piece {
     /// Master angle where the piece ends (deg).
     pub end_deg: f64,
     shape: PieceShape,
+    /// The slave as another coordinate of the law's position ([`Motion::mapped`]).
+    map: Option<SharedMap>,
+}
+
+/// A smooth, monotone map from a motion's slave position to the coordinate a controller drives
+/// (a frame's height to its motor's angle through a crank and lever): the series of the position
+/// in the master angle (its derivatives of orders 0 … 5, [`Jet`]) to the series of the coordinate.
+pub trait SlaveMap: Send + Sync + std::fmt::Debug {
+    /// The coordinate's series for the position's series (orders 0 … 5, exact to rounding).
+    fn map(&self, position: Jet) -> Jet;
+}
+
+/// A shared [`SlaveMap`]; two are equal when they are the same map.
+#[derive(Debug, Clone)]
+struct SharedMap(Arc<dyn SlaveMap>);
+
+impl PartialEq for SharedMap {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -37,6 +59,18 @@ impl Piece {
 
     /// The derivatives of orders 0 to 5 of `Y` with respect to the master angle (deg) at `deg`.
     pub fn derivs(&self, deg: f64) -> [f64; 6] {
+        let d = self.position_derivs(deg);
+        match &self.map {
+            None => d,
+            Some(m) => {
+                let j = m.0.map(Jet::from_derivs(d));
+                std::array::from_fn(|k| j.d(k))
+            }
+        }
+    }
+
+    /// The derivatives of the law's position (before a [`SlaveMap`]).
+    fn position_derivs(&self, deg: f64) -> [f64; 6] {
         match &self.shape {
             PieceShape::Dwell(y) => [*y, 0.0, 0.0, 0.0, 0.0, 0.0],
             PieceShape::Moving { seg, law_start_deg, law_len_deg, base, stroke } => {
@@ -123,7 +157,9 @@ impl Motion {
             let h = s.stroke_si * to_unit;
             stroke = stroke.max(s.base_si.abs() * to_unit).max((s.base_si + s.stroke_si).abs() * to_unit);
             match &s.law {
-                None => pieces.push(Piece { start_deg: start, end_deg: end, shape: PieceShape::Dwell(base) }),
+                None => {
+                    pieces.push(Piece { start_deg: start, end_deg: end, shape: PieceShape::Dwell(base), map: None })
+                }
                 Some((_, law)) => push_law(&mut pieces, law, start, end - start, base, h),
             }
         }
@@ -161,7 +197,7 @@ impl Motion {
             }
             stroke = stroke.max(base.abs()).max((base + h).abs());
             match law {
-                None => pieces.push(Piece { start_deg: a, end_deg: b, shape: PieceShape::Dwell(base) }),
+                None => pieces.push(Piece { start_deg: a, end_deg: b, shape: PieceShape::Dwell(base), map: None }),
                 Some(l) => push_law(&mut pieces, l, a, b - a, base, h),
             }
         }
@@ -169,6 +205,22 @@ impl Motion {
             return Err(CamError::Law { field: "parts".into(), reason: "no pieces".into() });
         }
         Ok(Self { unit, pieces, stroke })
+    }
+
+    /// This motion with its slave taken through `map` (every piece: a dwell stays a dwell at the
+    /// mapped position), in `unit`: a table of it holds the mapped coordinate (a motor's angle in
+    /// deg for a frame's height in mm). The stroke scale is the largest |mapped value| at the
+    /// pieces' ends (the map is monotone).
+    pub fn mapped(mut self, map: Arc<dyn SlaveMap>, unit: StrokeUnit) -> Self {
+        let shared = SharedMap(map);
+        let mut stroke: f64 = 0.0;
+        for p in &mut self.pieces {
+            p.map = Some(shared.clone());
+            stroke = stroke.max(p.derivs(p.start_deg)[0].abs()).max(p.derivs(p.end_deg)[0].abs());
+        }
+        self.unit = unit;
+        self.stroke = stroke;
+        self
     }
 
     /// The slave unit.
@@ -223,6 +275,7 @@ fn push_law(pieces: &mut Vec<Piece>, law: &Law, start: f64, len: f64, base: f64,
             start_deg: a,
             end_deg: b,
             shape: PieceShape::Moving { seg: *seg, law_start_deg: start, law_len_deg: len, base, stroke: h },
+            map: None,
         });
     }
 }
