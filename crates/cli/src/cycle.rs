@@ -47,7 +47,7 @@ pub fn run(a: CycleArgs) -> Result<()> {
     } else {
         Cost::default()
     };
-    crate::util::budget().check("points", a.points, cost)?;
+    crate::util::check_budget("--points", a.points, cost)?;
     if a.format.csv || a.format.json {
         // Checked finite first (evaluating is cheap beside printing), so the streamed output
         // never stops half-way.

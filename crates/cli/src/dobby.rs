@@ -741,7 +741,8 @@ fn cams_panel(
     if let Some(r) = roller_m.filter(|r| *r > 0.0) {
         let rollers = p.rollers().map(t);
         series.push(
-            Series::circles(format!("rollers at B, C (r = {} mm)", sig4(r * 1e3)), &rollers, r).with_color(lever),
+            Series::circles(format!("rollers at B, C (r = {} mm)", sig4(loomkin_units::mm_from_m(r))), &rollers, r)
+                .with_color(lever),
         );
     }
     let notes = p.joints().map(|(letter, q)| Note::new(q[0], q[1], letter));

@@ -48,7 +48,7 @@ pub fn run(a: ToleranceArgs) -> Result<()> {
     let t = Tolerance::from_toml(&util::read_input(&a.file)?)?;
     if a.summary {
         let items = draws::items(t.draws, &a.shard);
-        crate::util::budget().check("draws", t.draws, t.cost(items.clone()))?;
+        crate::util::check_budget("draws", t.draws, t.cost(items.clone()))?;
         let drawn = t.run(items.clone(), loomkin_study::Progress::Auto);
         return draws::print_summary(&t.summary(items, &drawn));
     }
@@ -59,7 +59,7 @@ pub fn run(a: ToleranceArgs) -> Result<()> {
         }
         (None, Some(files)) => t.report_from_summaries(&draws::summaries(files)?).map_err(util::part_error)?,
         (None, None) => {
-            let check = |items| Ok(crate::util::budget().check("draws", t.draws, t.cost(items))?);
+            let check = |items| Ok(crate::util::check_budget("draws", t.draws, t.cost(items))?);
             let run = |items, progress| t.run(items, progress);
             let refused = "do not run over the turn";
             let Some(draws) = draws::collect::<Draw>(t.draws, a.format, &a.shard, &t.facts(), refused, check, run)?

@@ -427,7 +427,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let n = items.len() as f64;
     let row_bytes = if a.format.json { SweepPoint::JSON_ROW_BYTES } else { 0.0 };
     let cost = SweepPoint::cost(n, cycle.segments.len(), util::cores(), row_bytes);
-    crate::util::budget().check("speed_rpm", &a.speed_rpm, cost)?;
+    crate::util::check_budget("--speed-rpm", &a.speed_rpm, cost)?;
     let speeds: Vec<f64> = items.map(|i| span.value(i)).collect();
     let start = if a.steady { Start::Steady } else { Start::Rest };
     let progress = util::Progress::new(speeds.len() as u64, "speeds");
@@ -657,10 +657,12 @@ fn spectrum_cmd(a: SpectrumArgs) -> Result<()> {
         ];
         return output::figure(&Figure::new(title, "motion time / natural period  T·f_n [-]", panels), &out, &a.plot);
     }
-    outln!("{:<44} {:>8} {:>14} {:>8}", "law", "ζ", "max [%]", "at r")?;
+    // The label column is 44 characters wide, or as wide as the longest label (a cycle file's).
+    let w = series.iter().map(|s| s.0.chars().count()).fold(44, usize::max);
+    outln!("{:<w$} {:>8} {:>14} {:>8}", "law", "ζ", "max [%]", "at r")?;
     for (label, _, z, pct) in &series {
         let (i, m) = pct.iter().enumerate().fold((0, 0.0), |acc, (i, &v)| if v > acc.1 { (i, v) } else { acc });
-        outln!("{:<44} {:>8} {:>14.6} {:>8.3}", label, loomkin_units::compact(*z), m, ratios[i])?;
+        outln!("{:<w$} {:>8} {:>14.6} {:>8.3}", label, loomkin_units::compact(*z), m, ratios[i])?;
     }
     outln!("(--csv or -o PLOT for the whole spectrum)")?;
     Ok(())

@@ -233,7 +233,7 @@ pub enum SampleForm {
 /// formatting the numbers is what limits N.
 pub fn check_sample_budget(points: usize, rows: usize, json: bool) -> Result<()> {
     let per_row = if json { SAMPLE_JSON_S_PER_ROW } else { SAMPLE_CSV_S_PER_ROW };
-    crate::util::budget().check("points", points, Cost::cpu_items(rows as f64, 0.0, per_row))?;
+    crate::util::check_budget("--points", points, Cost::cpu_items(rows as f64, 0.0, per_row))?;
     Ok(())
 }
 

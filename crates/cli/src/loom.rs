@@ -261,7 +261,7 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
     let tabled = a.format.csv || a.format.json;
     if tabled || a.output.is_some() {
         let points = format!("{} ({} points)", loomkin_units::compact(a.step_deg), drive.curve_len(a.step_deg));
-        util::budget().check("step_deg", points, drive.curve_cost(a.step_deg, !tabled))?;
+        util::check_budget("--step-deg", points, drive.curve_cost(a.step_deg, !tabled))?;
     }
     if let Some(out) = &a.output {
         return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out, &a.plot);

@@ -489,7 +489,7 @@ fn sweep_cmd(a: SweepArgs) -> Result<()> {
     let n = items.len() as f64;
     let output_bytes = if a.format.json { 1500.0 } else { 300.0 };
     let cost = Sweep::cost(n, method, util::cores(), output_bytes);
-    crate::util::budget().check("points", a.points, cost)?;
+    crate::util::check_budget("--points", a.points, cost)?;
     // The swept setting's own flag would be overwritten by the sweep: refused, not ignored.
     let own = [
         (Setting::Speed, "--speed-rpm", a.settings.speed_rpm),

@@ -50,7 +50,7 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
     let mech: Mechanism = super::pick::mechanism(&a.model)?;
     if a.summary {
         let items = draws::items(mc.draws, &a.shard);
-        crate::util::budget().check("draws", mc.draws, mc.cost(items.clone()))?;
+        crate::util::check_budget("draws", mc.draws, mc.cost(items.clone()))?;
         let drawn = mc.run(&mech, items.clone(), loomkin_study::Progress::Auto);
         return draws::print_summary(&mc.summary(&mech, items, &drawn));
     }
@@ -61,7 +61,7 @@ pub fn run(a: MonteCarloArgs) -> Result<()> {
         }
         (None, Some(files)) => mc.report_from_summaries(&mech, &draws::summaries(files)?).map_err(util::part_error)?,
         (None, None) => {
-            let check = |items| Ok(crate::util::budget().check("draws", mc.draws, mc.cost(items))?);
+            let check = |items| Ok(crate::util::check_budget("draws", mc.draws, mc.cost(items))?);
             let run = |items, progress| mc.run(&mech, items, progress);
             let facts = mc.facts(&mech);
             let collected = draws::collect::<Draw>(mc.draws, a.format, &a.shard, &facts, "not simulated", check, run)?;

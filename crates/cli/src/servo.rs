@@ -349,7 +349,7 @@ fn optimize(a: OptimizeArgs) -> Result<()> {
     };
     // Refused up front if the most evaluations it may make would pass the budget.
     let cores = crate::util::cores() as usize;
-    crate::util::budget().check("starts", a.starts, opts.cost(sl.points().len(), cores))?;
+    crate::util::check_budget("--starts", a.starts, opts.cost(sl.points().len(), cores))?;
     let t0 = Instant::now();
     let total = (a.starts * opts.max_evals_per_start) as u64;
     let progress = util::Progress::new(total, "evaluations");

@@ -411,13 +411,13 @@ fn check_budget(
     let e = Study::estimate(kind, parts, grid, motions, share, row, cores);
     let what = format!("{} laws × {motions} motion angles", loomkin_units::compact(e.laws));
     if motions > 1 && motions as f64 > e.laws {
-        crate::util::budget().check(
-            "motion_deg",
+        crate::util::check_budget(
+            "--motion-deg",
             format!("{} ({what})", d.motion_deg.as_deref().unwrap_or("")),
             e.cost,
         )?;
     } else {
-        crate::util::budget().check("step", format!("{} ({what})", loomkin_units::compact(grid.step)), e.cost)?;
+        crate::util::check_budget("--step", format!("{} ({what})", loomkin_units::compact(grid.step)), e.cost)?;
     }
     Ok(())
 }

@@ -277,6 +277,17 @@ pub fn budget() -> loomkin_units::Budget {
     BUDGET.get().copied().unwrap_or(loomkin_units::Budget::DEFAULT)
 }
 
+/// [`budget`]'s check of `flag = value` (a run's size, estimated as `cost`), its refusal naming the
+/// flag the user typed (or the study file's key, `draws`) and `--budget`, the flag that lifts the
+/// limit.
+pub fn check_budget(
+    flag: &str,
+    value: impl std::fmt::Display,
+    cost: loomkin_units::Cost,
+) -> Result<(), loomkin_units::BudgetError> {
+    budget().check(flag, value, cost).map_err(|e| e.in_front_end(flag, "--budget MEMORY,TIME"))
+}
+
 /// Size, resolution and title of a plot file, shared by every command that plots.
 #[derive(Debug, Clone, Args, Default)]
 pub struct PlotOpts {

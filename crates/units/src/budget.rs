@@ -139,7 +139,7 @@ impl Budget {
         if self.allows(cost) {
             Ok(())
         } else {
-            Err(BudgetError { field: field.into(), value: value.to_string(), cost, budget: *self })
+            Err(BudgetError { field: field.into(), value: value.to_string(), cost, budget: *self, lifted_by: None })
         }
     }
 }
@@ -191,6 +191,20 @@ pub struct BudgetError {
     pub cost: Cost,
     /// The limit.
     pub budget: Budget,
+    /// How the user lifts the limit, in the front end's words (`--budget MEMORY,TIME` on the
+    /// command line); `None` where nothing lifts it (a workbench request).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lifted_by: Option<String>,
+}
+
+impl BudgetError {
+    /// The same error under a front end's name for the input (`--points` for `points`) and with
+    /// the setting that lifts the limit (`--budget MEMORY,TIME`), as a front end maps its flags.
+    pub fn in_front_end(mut self, field: impl Into<String>, lifted_by: impl Into<String>) -> Self {
+        self.field = field.into();
+        self.lifted_by = Some(lifted_by.into());
+        self
+    }
 }
 
 impl fmt::Display for BudgetError {
@@ -211,7 +225,11 @@ impl fmt::Display for BudgetError {
             self.value,
             bytes_text(self.budget.bytes),
             seconds_text(self.budget.seconds)
-        )
+        )?;
+        match &self.lifted_by {
+            Some(how) => write!(f, " ({how} lifts it)"),
+            None => Ok(()),
+        }
     }
 }
 
@@ -304,5 +322,15 @@ mod tests {
         assert_eq!(e.to_string(), "points = 7 needs about 2 GB of memory (estimate); the limit is 1 GB and 1 min");
         let e = b.check("points", 7, Cost { bytes: f64::NAN, seconds: 1.0 }).unwrap_err();
         assert!(e.to_string().contains("needs about more than can be counted of memory (estimate)"), "{e}");
+        // A front end names its flag and what lifts the limit; the key stays the library's
+        // until then.
+        let e = b.check("points", 7, Cost { bytes: 2e9, seconds: 1.0 }).unwrap_err();
+        assert_eq!(e.lifted_by, None);
+        let e = e.in_front_end("--points", "--budget MEMORY,TIME");
+        assert_eq!(
+            e.to_string(),
+            "--points = 7 needs about 2 GB of memory (estimate); the limit is 1 GB and 1 min (--budget MEMORY,TIME lifts it)"
+        );
+        assert_eq!(e.field(), Some("--points"));
     }
 }

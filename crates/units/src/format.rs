@@ -22,9 +22,35 @@ pub fn compact(v: f64) -> String {
     if v <= f64::MIN {
         return "-∞".into();
     }
-    let rounded = to_12_digits(v);
+    plain_or_exponent(v, to_12_digits(v))
+}
+
+/// A value a user typed, for a message that refuses it: as [`compact`] (plain for ordinary
+/// magnitudes, the exponent form for huge or tiny ones) but with every digit the number needs to
+/// read back as itself, so a value just past a bound is not shown rounded onto it.
+///
+/// ```
+/// use loomkin_units::exact;
+/// assert_eq!(exact(9.999999999999998e-4), "0.0009999999999999998");
+/// assert_eq!(exact(1000.0000000000001), "1000.0000000000001");
+/// assert_eq!(exact(5e-324), "5e-324");
+/// assert_eq!(exact(-0.0), "0");
+/// ```
+pub fn exact(v: f64) -> String {
+    if v.is_nan() {
+        return "not-a-number".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "∞".into() } else { "-∞".into() };
+    }
+    plain_or_exponent(v, v)
+}
+
+/// `shown` (`v` or `v` rounded) written plainly where `v` is 0 or between 10⁻⁴ and 10⁹ in size,
+/// else in exponent form; never `-0`.
+fn plain_or_exponent(v: f64, shown: f64) -> String {
     // `+ 0.0` turns -0 into 0.
-    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) { format!("{}", shown + 0.0) } else { format!("{shown:e}") }
 }
 
 /// `v` with `decimals` places, as `format!("{v:.decimals$}")` writes it, except that a value

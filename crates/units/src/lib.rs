@@ -37,7 +37,7 @@ pub use convert::{
     rpm_from_rad_per_s,
 };
 pub use field::{Field, FieldList};
-pub use format::{compact, fixed, sig4, to_12_digits};
+pub use format::{compact, exact, fixed, sig4, to_12_digits};
 pub use range::{Bound, FieldError, Range, RangeError, check_count};
 pub use speed::ShaftSpeed;
 pub use stop::{StopFlag, Stopped, to_the_end};

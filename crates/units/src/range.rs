@@ -4,7 +4,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::format::compact;
+use crate::format::{compact, exact, to_12_digits};
 
 /// One side of an allowed range.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -156,7 +156,8 @@ impl RangeError {
         };
         Self {
             field: field.into(),
-            value: self.value * factor,
+            // The value was typed in the new unit: the conversion's own rounding is taken off.
+            value: to_12_digits(self.value * factor),
             range: Range { lo: scale(self.range.lo), hi: scale(self.range.hi), unit },
         }
     }
@@ -166,7 +167,7 @@ impl fmt::Display for RangeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let allowed = self.range.describe(&self.field);
         if self.value.is_finite() {
-            write!(f, "{} = {} is out of range: allowed {allowed}", self.field, compact(self.value))
+            write!(f, "{} = {} is out of range: allowed {allowed}", self.field, exact(self.value))
         } else {
             write!(f, "{} is not a finite number: allowed {allowed}", self.field)
         }

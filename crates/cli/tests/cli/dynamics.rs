@@ -263,3 +263,23 @@ fn spectrum_columns_are_unique_and_say_which_law() {
         text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert!(rows.iter().any(|r| (r[1] - r[3]).abs() > 1e-6), "{rows:?}");
 }
+
+/// `dyn spectrum`'s text table keeps its columns aligned for a label longer than the usual 44
+/// characters (a cycle file's segment, issue 27): in every line the ζ column ends where the
+/// header's does, counted in characters.
+#[test]
+fn spectrum_text_columns_stay_aligned_for_long_labels() {
+    let out = loomkin().args(["dyn", "spectrum", HEALD, "cycloidal"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with('(')).collect();
+    assert!(lines.iter().any(|l| l.contains("heald-frame-cycle.toml #3: modified-trapezoid (ramp=0.125)")), "{text}");
+    let widths: Vec<usize> = lines.iter().map(|l| l.chars().count()).collect();
+    assert!(widths.iter().all(|w| *w == widths[0]), "{widths:?}\n{text}");
+    // The ζ column: the header's "ζ" and each row's value end at the same character.
+    let end_of = |l: &str, at: usize| l.chars().take(at).collect::<String>().trim_end().chars().count();
+    let zeta_end = lines[0].chars().position(|c| c == 'ζ').unwrap() + 1;
+    for l in &lines[1..] {
+        assert_eq!(end_of(l, zeta_end), zeta_end, "{l}");
+    }
+}

@@ -58,7 +58,7 @@ fn runs_beyond_the_budget_are_refused_with_the_estimate() {
         ),
         (
             &["dyn", "sweep", HEALD, "--natural-hz", "80", "--speed-rpm", "1:100000:0.01"][..],
-            "speed_rpm = 1:100000:0.01",
+            "--speed-rpm = 1:100000:0.01",
         ),
         (&["law", "sample", "cycloidal", "--points", "100000000000", "--json"][..], "points = 100000000000"),
         (&["servo", "law", "--points", "100000000000", "--json"][..], "points = 100000000000"),
@@ -80,12 +80,16 @@ fn runs_beyond_the_budget_are_refused_with_the_estimate() {
                 "--motion-deg",
                 "1:360:0.00001",
             ][..],
-            "motion_deg = 1:360:0.00001",
+            "--motion-deg = 1:360:0.00001",
         ),
         (&["shed", "pareto", "--design", "fig1", "--step", "1e-9"][..], "step = 1e-9"),
         (&["shed", "best", "--window-deg", "175", "--design", "grid", "--step", "1e-6"][..], "step = 1e-6"),
     ] {
-        usage_error(args, &[field, "(estimate)", limit]);
+        // The flag as typed, and the flag that lifts the limit.
+        usage_error(
+            args,
+            &[&format!("--{}", field.trim_start_matches('-')), "(estimate)", limit, "(--budget MEMORY,TIME lifts it)"],
+        );
     }
 }
 

@@ -271,9 +271,9 @@ fn torque_tables_of_long_repeats_are_streamed_and_big_ones_refused() {
     assert_eq!(v["step_deg"], 2.0);
     usage_error(
         &["loom", "torque", &loom, "--lift-plan", &huge, "--step-deg", "0.1", "--csv"],
-        &["step_deg = 0.1 (360000000 points)", "the limit is"],
+        &["--step-deg = 0.1 (360000000 points)", "the limit is"],
     );
-    usage_error(&["loom", "torque", &loom, "--lift-plan", &huge, "-o", "x.png"], &["step_deg = 0.5", "of memory"]);
+    usage_error(&["loom", "torque", &loom, "--lift-plan", &huge, "-o", "x.png"], &["--step-deg = 0.5", "of memory"]);
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -26,7 +26,13 @@ fn an_estimate_names_only_what_passes_the_limit() {
     for args in
         [&["law", "sample", "cycloidal", "--points", "4294967297"][..], &["servo", "law", "--points", "4294967297"][..]]
     {
-        usage_error(args, &["points = 4294967297 needs about", "h (estimate); the limit is 1 GB and 1 min"]);
+        usage_error(
+            args,
+            &[
+                "--points = 4294967297 needs about",
+                "h (estimate); the limit is 1 GB and 1 min (--budget MEMORY,TIME lifts it)",
+            ],
+        );
         let err = String::from_utf8(loomkin().args(args).output().unwrap().stderr).unwrap();
         assert!(!err.contains("0 bytes") && !err.contains("of memory"), "{err}");
     }
@@ -168,4 +174,28 @@ fn outputs_are_checked_before_anything_is_written() {
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(err.contains("cannot write") && err.contains("r.svg"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A refusal names the flag the user typed and the flag that lifts the limit (`--budget`); a
+/// refused value is printed as typed, in its shortest round-trip form, not rounded onto the bound
+/// it passes (issue 27).
+#[test]
+fn a_refusal_names_budget_and_prints_the_value_as_typed() {
+    usage_error(
+        &["pick", "sweep", "play", "--from", "0", "--to", "60", "--points", "100000000"],
+        &["--points = 100000000 needs about", "(--budget MEMORY,TIME lifts it)"],
+    );
+    usage_error(
+        &["dyn", "sweep", &examples("heald-frame-cycle.toml"), "--natural-hz", "54", "--speed-rpm", "1:100000:0.001"],
+        &["--speed-rpm = 1:100000:0.001 needs about", "(--budget MEMORY,TIME lifts it)"],
+    );
+    // The value as typed: 9.999999999999998e-4 is below 0.001, and 1000.0000000000001 above 1000.
+    usage_error(
+        &["dobby", "analyze", "--speed-rpm", "9.999999999999998e-4"],
+        &["--speed-rpm = 0.0009999999999999998 is out of range: allowed 0.001 ≤ --speed-rpm"],
+    );
+    usage_error(
+        &["pick", "simulate", "--checking-kgf", "1000.0000000000001"],
+        &["checking_kgf = 1000.0000000000001 is out of range: allowed 0 ≤ checking_kgf ≤ 1000 kgf"],
+    );
 }
