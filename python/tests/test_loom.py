@@ -113,3 +113,12 @@ def test_sley_synthesize_matches_sley_synthesize(cli):
     with pytest.raises(loomkin.OutOfRangeError) as e:
         loomkin.loom.sley_synthesize(-1, 60)
     assert e.value.field is not None
+
+
+def test_servo_through_a_crank_and_lever_matches_loom_servo(cli):
+    # The loom file's crank-and-lever transmission (issue 31): the same study through Python.
+    ref = cli("loom", "servo", "examples/servo-shedding-crank-loom.toml", "--wif", "examples/point-24.wif", "--json")
+    r = loomkin.loom.servo(EX / "servo-shedding-crank-loom.toml", wif=EX / "point-24.wif")
+    same(r, ref)
+    lin = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "point-24.wif")
+    assert all(a["peak_speed_rpm"] != b["peak_speed_rpm"] for a, b in zip(r["frames"], lin["frames"]))

@@ -528,10 +528,19 @@ fn servo_optimize_reports_before_and_after_and_emits_the_optimised_tables() {
 /// call the same library functions.
 #[test]
 fn the_workbench_servo_route_answers_the_cli_json() {
-    let loom = std::fs::read_to_string(ex("servo-shedding-loom.toml")).expect("example");
+    // The crank-and-lever example (issue 31: the transmission through the loom file) for the study.
+    for (file, optimizes) in
+        [("servo-shedding-loom.toml", &[false, true][..]), ("servo-shedding-crank-loom.toml", &[false])]
+    {
+        workbench_servo_route_answers_the_cli_json(file, optimizes);
+    }
+}
+
+fn workbench_servo_route_answers_the_cli_json(file: &str, optimizes: &[bool]) {
+    let loom = std::fs::read_to_string(ex(file)).expect("example");
     let wif = std::fs::read_to_string(ex("twill-2-2.wif")).expect("example");
     let pattern = loomkin_web::PatternSource { wif: Some(wif), lift_plan: None };
-    for optimize in [false, true] {
+    for &optimize in optimizes {
         let req = loomkin_web::ServoShedRequest {
             loom_toml: Some(loom.clone()),
             pattern: pattern.clone(),
@@ -540,8 +549,7 @@ fn the_workbench_servo_route_answers_the_cli_json() {
             min_clearance_mm: optimize.then_some(0.5),
         };
         let route = serde_json::to_value(loomkin_web::loom_servo(&req).expect("servo")).expect("JSON");
-        let mut args =
-            vec!["loom", "servo", &ex("servo-shedding-loom.toml")].into_iter().map(String::from).collect::<Vec<_>>();
+        let mut args = vec!["loom", "servo", &ex(file)].into_iter().map(String::from).collect::<Vec<_>>();
         args.extend(["--wif".into(), ex("twill-2-2.wif"), "--json".into()]);
         if optimize {
             args.extend([
@@ -554,6 +562,6 @@ fn the_workbench_servo_route_answers_the_cli_json() {
         }
         let cli = stdout_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert_eq!(route.get("objective").is_some(), optimize);
-        assert_eq!(route, cli, "optimize {optimize}");
+        assert_eq!(route, cli, "{file}: optimize {optimize}");
     }
 }
