@@ -8,7 +8,7 @@ fn main() {
     divan::main();
 }
 
-/// The rapier example's sley (examples/rapier-loom.toml).
+/// A crank-rocker sley (the rapier example's before it took a cam sley: a short sword, a 113 mm stroke).
 fn sley() -> FourBarSley {
     FourBarSley::new(SleyTable {
         crank_mm: 40.0,

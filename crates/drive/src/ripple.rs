@@ -958,8 +958,9 @@ pub const FLYWHEEL_KG_M2: Field = Field::new(
 pub const SWEEP_SPEED_RATIO: [f64; 2] = [0.5, 1.5];
 
 /// The grid step of a ripple-against-speed sweep, deg: ten times [`STEP_DEG`]'s default, for a tenth
-/// of the time; on the examples' looms its ripple lies within 2·10⁻⁹ (relative) of the default
-/// grid's (the rule is fourth order and the loads are smooth between the grid's breaks).
+/// of the time; on the examples' looms its ripple lies within 2·10⁻⁸ (relative) of the default
+/// grid's (the rule is fourth order and the loads are smooth between the grid's breaks; the rapier's
+/// cam sley, 70° moves at 500 rpm, is the farthest: 1.4·10⁻⁸).
 pub const SWEEP_STEP_DEG: f64 = 1.0;
 
 /// `target_ripple_pct`: the speed ripple a flywheel is sized for.

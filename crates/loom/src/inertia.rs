@@ -183,6 +183,26 @@ impl<'a> LoomShaft<'a> {
         (m * k.dy * k.dy, 2.0 * m * k.dy * k.d2y)
     }
 
+    /// The sley's mean J over a turn, kg·m²: 16-point Gauss–Legendre (`rule`) on panels of 10°,
+    /// split at the joints of a cam law (where J is not smooth; a joint within 1e-9° of a panel's
+    /// end is that end).
+    fn sley_mean(&self, rule: &[(f64, f64)]) -> f64 {
+        let mut cuts: Vec<f64> = (0..=36).map(|p| 10.0 * p as f64).collect();
+        if let Some(s) = self.sley {
+            let off_panel = |d: &f64| (d - 10.0 * (d / 10.0).round()).abs() > 1e-9;
+            cuts.extend(s.inertia_joints_rad().into_iter().map(f64::to_degrees).filter(off_panel));
+        }
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|later, earlier| *later - *earlier <= 1e-9);
+        cuts.windows(2)
+            .map(|w| {
+                let half = 0.5 * (w[1] - w[0]);
+                rule.iter().map(|&(x, wt)| half * wt * self.sley_inertia(w[0] + half + half * x).0).sum::<f64>()
+            })
+            .sum::<f64>()
+            / 360.0
+    }
+
     /// The sley's reduced inertia and rate at `theta_deg` (0 without a sley).
     pub fn sley_inertia(&self, theta_deg: f64) -> (f64, f64) {
         self.sley.map_or((0.0, 0.0), |s| s.reduced_inertia_kg_m2(theta_deg.to_radians().rem_euclid(TAU)))
@@ -384,24 +404,7 @@ impl<'a> LoomShaft<'a> {
             let f = |x: f64| self.sley_inertia(x).0;
             let sley_grid: Vec<f64> = (0..3600).map(|k| f(k as f64 * 0.1)).collect();
             let mut st = stats(&sley_grid, 0.1, 360.0, &f, 0.0);
-            // Mean over a turn: 16-point Gauss–Legendre on panels of 10°, split at the joints of
-            // a cam law (where J is not smooth).
-            let mut cuts: Vec<f64> = (0..=36).map(|p| 10.0 * p as f64).collect();
-            if let Some(s) = self.sley {
-                // A joint within 1e-9° of a panel's end is that end.
-                let off_panel = |d: &f64| (d - 10.0 * (d / 10.0).round()).abs() > 1e-9;
-                cuts.extend(s.inertia_joints_rad().into_iter().map(f64::to_degrees).filter(off_panel));
-            }
-            cuts.sort_by(f64::total_cmp);
-            cuts.dedup_by(|later, earlier| *later - *earlier <= 1e-9);
-            st.j_mean_kg_m2 = cuts
-                .windows(2)
-                .map(|w| {
-                    let half = 0.5 * (w[1] - w[0]);
-                    rule.iter().map(|&(x, wt)| half * wt * f(w[0] + half + half * x)).sum::<f64>()
-                })
-                .sum::<f64>()
-                / 360.0;
+            st.j_mean_kg_m2 = self.sley_mean(&rule);
             mean_total += st.j_mean_kg_m2;
             mechanisms.push(MechanismInertia {
                 name: "sley".into(),
@@ -885,11 +888,7 @@ impl LoomShaft<'_> {
             let f = |x: f64| self.sley_inertia(x).0;
             let grid: Vec<f64> = (0..3600).map(|k| f(k as f64 * 0.1)).collect();
             let mut st = stats(&grid, 0.1, 360.0, &f, 0.0);
-            // Mean over a turn: 16-point Gauss–Legendre on 36 panels of 10°.
-            st.j_mean_kg_m2 = (0..36)
-                .map(|p| rule.iter().map(|&(x, wt)| 5.0 * wt * f(10.0 * p as f64 + 5.0 + 5.0 * x)).sum::<f64>())
-                .sum::<f64>()
-                / 360.0;
+            st.j_mean_kg_m2 = self.sley_mean(&rule);
             mean_total += st.j_mean_kg_m2;
             mechanisms.push(MechanismInertia {
                 name: "sley".into(),

@@ -89,9 +89,12 @@ fn the_report_meets_a_dense_scan() {
         lo = lo.min(v);
         hi = hi.max(v);
     }
-    // The located extremes are at least as extreme as any sample, and close to them.
-    assert!(r.j_max_kg_m2 >= hi - 1e-13 * hi && r.j_max_kg_m2 <= hi * (1.0 + 1e-9), "{} vs {hi}", r.j_max_kg_m2);
-    assert!(r.j_min_kg_m2 <= lo + 1e-13 * lo && r.j_min_kg_m2 >= lo * (1.0 - 1e-9), "{} vs {lo}", r.j_min_kg_m2);
+    // The located extremes are at least as extreme as any sample, and are J where they are said to
+    // be (the cam sley's J peaks sharply: a 0.01° sample falls ~7e-9 short of its top).
+    assert!(r.j_max_kg_m2 >= hi - 1e-13 * hi && r.j_max_kg_m2 <= hi * (1.0 + 1e-8), "{} vs {hi}", r.j_max_kg_m2);
+    assert!(r.j_min_kg_m2 <= lo + 1e-13 * lo && r.j_min_kg_m2 >= lo * (1.0 - 1e-8), "{} vs {lo}", r.j_min_kg_m2);
+    assert!((f(r.total.j_max_angle_deg) - r.j_max_kg_m2).abs() <= 1e-13 * hi, "{}", r.total.j_max_angle_deg);
+    assert!((f(r.total.j_min_angle_deg) - r.j_min_kg_m2).abs() <= 1e-13 * hi, "{}", r.total.j_min_angle_deg);
     // Mechanisms add up to the total's mean; each frame's extremes are those of its own scan.
     let sum: f64 = r.mechanisms.iter().map(|m| m.j_mean_kg_m2).sum();
     assert!((sum - r.j_mean_kg_m2).abs() <= 1e-12 * sum);
@@ -134,8 +137,9 @@ fn the_rapier_loom_runs_with_each_motor() {
 /// on the level warp line at mid-stroke, its lift the frame's.
 #[test]
 fn the_side_view_keeps_the_links_and_meets_the_fell_at_beat_up() {
-    let loom = Loom::from_toml(&example("rapier-loom.toml")).unwrap();
-    let pattern = wif("point-24.wif");
+    // The shuttle loom's crank-rocker sley (the rapier's is a cam sley).
+    let loom = Loom::from_toml(&example("shuttle-loom.toml")).unwrap();
+    let pattern = wif("twill-2-2.wif");
     let motion = Motion::new(&loom, &pattern).unwrap();
     let shaft = LoomShaft::new(&loom, &motion, &pattern);
     let t = loom.sley.as_ref().and_then(|s| s.four_bar()).unwrap().table();

@@ -32,17 +32,18 @@ fn the_sley_takes_the_looms_beat_up_angle_and_refuses_another() {
 
 #[test]
 fn sley_errors_name_the_sley_fields() {
-    let text = example("rapier-loom.toml");
-    let e = Loom::from_toml(&edited(&text, "crank_mm = 40", "crank_mm = -4")).unwrap_err();
+    // The shuttle loom's crank-rocker sley (the rapier's is a cam sley).
+    let text = example("shuttle-loom.toml");
+    let e = Loom::from_toml(&edited(&text, "crank_mm = 48", "crank_mm = -4")).unwrap_err();
     assert_eq!(e.to_string(), "sley.crank_mm = -4 is out of range: allowed 0 < sley.crank_mm ≤ 10000 mm");
-    let e = Loom::from_toml(&edited(&text, "rod_mm = 120", "rod_mm = 20")).unwrap_err();
+    let e = Loom::from_toml(&edited(&text, "rod_mm = 250", "rod_mm = 20")).unwrap_err();
     assert!(
         e.to_string().starts_with(
             "sley.crank_mm, sley.rod_mm, sley.sword_mm, sley.pivot_x_mm, sley.pivot_y_mm: the loop does not close"
         ),
         "{e}"
     );
-    let e = Loom::from_toml(&edited(&text, "crank_mm = 40", "crank_mm = 40\ncolour = 1")).unwrap_err();
+    let e = Loom::from_toml(&edited(&text, "crank_mm = 48", "crank_mm = 48\ncolour = 1")).unwrap_err();
     assert!(e.to_string().contains("unknown field `colour`") && e.to_string().contains("line "), "{e}");
     // Without the table the loom has no sley.
     let start = text.find("\n# The sley").unwrap();

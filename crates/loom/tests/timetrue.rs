@@ -44,7 +44,9 @@ fn the_written_cams_move_the_frames_in_time_as_designed() {
         r.max_timing_error_deg_before, r.max_timing_error_deg_after, r.rounds
     );
     assert!(r.max_timing_error_deg_before > 0.1);
-    assert!(r.max_timing_error_deg_after <= 1e-5, "{}", r.max_timing_error_deg_after);
+    // The frames (the rapier loom's cam sley, corrected for the pick-mean speed, has its own after).
+    let frames_after = r.frames.iter().map(|f| f.max_timing_error_deg_after).fold(0.0, f64::max);
+    assert!(frames_after <= 1e-5, "{frames_after}");
     // The shaft with the time-true cams, and its periodic speed.
     let shaft = LoomShaft::new(&loom, &motion, &pattern).with_corrected(&c.frames);
     let table = Table::new(&shaft, 0.1).unwrap();

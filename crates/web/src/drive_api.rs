@@ -321,10 +321,11 @@ mod tests {
             let sum: f64 = c.j_kg_m2.iter().map(|j| j[k]).sum();
             assert!((sum - c.j_total_kg_m2[k]).abs() <= 1e-12 * sum);
         }
-        // The sweep's point at the loom's speed is the report's (on its coarser grid: within 1e-9).
+        // The sweep's point at the loom's speed is the report's (on its coarser grid: within 2e-8;
+        // the rapier's cam sley, 70° moves at 500 rpm, puts the 1° grid 1.4e-8 from the 0.1° one).
         let mid = r.sweep.speed_rpm.iter().position(|s| (s - loom.speed.rpm()).abs() < 1e-9).unwrap();
         let at = r.sweep.speed_ripple_pct[mid].unwrap();
-        assert!((at - r.ripple.speed_ripple_pct).abs() <= 1e-9 * at, "{at} vs {}", r.ripple.speed_ripple_pct);
+        assert!((at - r.ripple.speed_ripple_pct).abs() <= 2e-8 * at, "{at} vs {}", r.ripple.speed_ripple_pct);
         // The side view: the reed at the fell at beat-up, the heald eyes at their frames' lifts.
         let side = r.side.unwrap();
         let sley = side.sley.unwrap();

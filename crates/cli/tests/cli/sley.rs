@@ -64,37 +64,44 @@ fn analyze_text_csv_and_plot() {
     for ext in ["svg", "png"] {
         let path = dir.join(format!("sley.{ext}"));
         let out = loomkin()
-            .args(["sley", "analyze", &ex("rapier-loom.toml"), "-o", path.to_str().unwrap()])
+            .args(["sley", "analyze", &ex("shuttle-loom.toml"), "-o", path.to_str().unwrap()])
             .output()
             .unwrap();
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         assert!(std::fs::metadata(&path).unwrap().len() > 1000);
     }
     let svg = std::fs::read_to_string(dir.join("sley.svg")).unwrap();
-    assert!(svg.contains("crank torque [N·m]") && svg.contains("dwell 26.09°"), "the panels and the dwell band");
+    let dwell =
+        stdout_json(&["sley", "analyze", &ex("shuttle-loom.toml"), "--json"])["back_dwell_deg"].as_f64().unwrap();
+    let band = format!("dwell {dwell:.2}°");
+    assert!(svg.contains("crank torque [N·m]") && svg.contains(&band), "the panels and the dwell band {band}");
 }
 
 #[test]
 fn analyze_errors_are_one_line() {
     let dir = scratch("errors");
-    let text = std::fs::read_to_string(ex("rapier-loom.toml")).unwrap();
+    // The shuttle loom's crank-rocker sley (the rapier's is a cam sley).
+    let text = std::fs::read_to_string(ex("shuttle-loom.toml")).unwrap();
     let bare = dir.join("no-sley.toml");
     std::fs::write(&bare, &text[..text.find("\n# The sley").unwrap()]).unwrap();
     usage_error(&["sley", "analyze", bare.to_str().unwrap()], &["no [sley] table"]);
     let bad = dir.join("bad.toml");
-    std::fs::write(&bad, text.replace("rod_mm = 120", "rod_mm = 20")).unwrap();
+    std::fs::write(&bad, text.replace("rod_mm = 250", "rod_mm = 20")).unwrap();
     usage_error(&["sley", "analyze", bad.to_str().unwrap()], &["sley.crank_mm, sley.rod_mm", "does not close"]);
-    std::fs::write(&bad, text.replace("crank_mm = 40", "crank_mm = 0")).unwrap();
+    std::fs::write(&bad, text.replace("crank_mm = 48", "crank_mm = 0")).unwrap();
     usage_error(
         &["sley", "analyze", bad.to_str().unwrap()],
         &["sley.crank_mm = 0 is out of range: allowed 0 < sley.crank_mm ≤ 10000 mm"],
     );
-    let r = ex("rapier-loom.toml");
+    let r = ex("shuttle-loom.toml");
     usage_error(
         &["sley", "analyze", &r, "--dwell-tolerance-mm", "0"],
         &["--dwell-tolerance-mm = 0", "0 < --dwell-tolerance-mm"],
     );
-    usage_error(&["sley", "analyze", &r, "--dwell-tolerance-mm", "113"], &["--dwell-tolerance-mm = 113", "< 112.8"]);
+    // Past the reed's stroke (130.785 mm, read from the analysis).
+    let stroke = stdout_json(&["sley", "analyze", &r, "--json"])["reed_stroke_mm"].as_f64().unwrap();
+    let below = format!("< {:.2}", (stroke * 100.0).floor() / 100.0);
+    usage_error(&["sley", "analyze", &r, "--dwell-tolerance-mm", "131"], &["--dwell-tolerance-mm = 131", &below]);
     usage_error(&["sley", "analyze", &r, "--speed-rpm", "-5"], &["--speed-rpm = -5"]);
     usage_error(&["sley", "analyze", &r, "--points", "1"], &["--points = 1"]);
     usage_error(&["sley", "analyze", &bare.to_string_lossy(), "-o", "plot.jpg"], &["plot.jpg"]);
