@@ -91,8 +91,12 @@ pub(crate) fn interval_error(motion: &Motion, iv: &Interval, all: bool) -> Reint
             std::array::from_fn::<f64, 6, _>(|k| t[k] - e[k])
         };
         let orders: &[usize] = if all { &[0, 1, 2] } else { &[0] };
+        // The scan's grid is the same for every order: its differences once (the values, and so
+        // the result, are those of evaluating them per order).
+        let h = (b - a) / n as f64;
+        let grid: Vec<[f64; 6]> = (0..=n).map(|i| diff(if i == n { b } else { a + i as f64 * h })).collect();
         for &k in orders {
-            let (m, at) = abs_max(a, b, n, |x| {
+            let (m, at) = abs_max(a, b, n, &grid, k, |x| {
                 let d = diff(x);
                 (d[k], d[k + 1], d[k + 2])
             });
@@ -110,16 +114,17 @@ pub(crate) fn interval_error(motion: &Motion, iv: &Interval, all: bool) -> Reint
     out
 }
 
-/// Largest `|g|` on `[a, b]` and where, for `f(x) = (g, g', g'')`: the ends, and every root of
-/// `g'` bracketed on `n` equal sub-intervals and refined by Newton inside the bracket.
-fn abs_max(a: f64, b: f64, n: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64, f64) {
-    let (g0, mut d0, _) = f(a);
+/// Largest `|g|` on `[a, b]` and where, for `f(x) = (g, g', g'')` = orders `k, k+1, k+2` of the
+/// differences: the ends, and every root of `g'` bracketed on `n` equal sub-intervals (the
+/// differences at their ends given in `grid`, `n + 1` of them) and refined by Newton inside the bracket.
+fn abs_max(a: f64, b: f64, n: usize, grid: &[[f64; 6]], k: usize, f: impl Fn(f64) -> (f64, f64, f64)) -> (f64, f64) {
+    let (g0, mut d0) = (grid[0][k], grid[0][k + 1]);
     let mut best = (g0.abs(), a);
     let h = (b - a) / n as f64;
     let mut x0 = a;
-    for i in 1..=n {
+    for (i, gi) in grid.iter().enumerate().skip(1) {
         let x1 = if i == n { b } else { a + i as f64 * h };
-        let (g1, d1, _) = f(x1);
+        let (g1, d1) = (gi[k], gi[k + 1]);
         if g1.abs() > best.0 {
             best = (g1.abs(), x1);
         }
