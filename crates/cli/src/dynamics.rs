@@ -268,6 +268,20 @@ fn response(a: ResponseArgs) -> Result<()> {
     Response::CYCLES.check_count(a.cycles)?;
     Response::POINTS.check_count(a.points)?;
     let start = if a.steady { Start::Steady } else { Start::Rest };
+    // A table or a plot holds every sample of every cycle computed: refused before it starts
+    // when estimated beyond the budget (the summary and JSON hold none).
+    let samples = Response::sample_count(a.points, if a.steady { 1 } else { a.cycles });
+    let cost = if a.format.csv {
+        Some(Response::csv_cost(samples))
+    } else if let (false, Some(out)) = (a.format.json, a.output.as_ref()) {
+        Some(Response::plot_cost(samples, out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))))
+    } else {
+        None
+    };
+    if let Some(cost) = cost {
+        let value = format!("{} × {}", a.points, if a.steady { 1 } else { a.cycles });
+        crate::util::check_budget("--points × --cycles", value, cost)?;
+    }
     let r = Response::new(&cycle, speed, &follower, start, a.cycles)?;
     let u = units(&cycle);
     let summary = r.summary();

@@ -8,7 +8,7 @@ use crate::peaks::{Extremes, grid_size};
 use crate::trajectory::{Channel, Solved, Start, trajectory};
 use loomkin_laws::Cycle;
 use loomkin_numeric::{extremes, extremes_of};
-use loomkin_units::{Field, Range, ShaftSpeed};
+use loomkin_units::{Cost, Field, Range, ShaftSpeed};
 use serde::Serialize;
 
 /// VDI 2149 Blatt 1: a rigid-body model is acceptable only when `f_n ≥ 10·f_shaft`.
@@ -93,6 +93,38 @@ impl Response {
         "Samples per cycle: 2 … 10⁶; 721 (every half degree of a turn) when left out.",
     )
     .with_default(721.0);
+
+    /// Bytes a plot of a response holds per sample at its peak: the samples, the drawn columns,
+    /// their pixel runs and the figure's text (SVG) or raster (PNG). Measured with `dyn response
+    /// examples/heald-frame-cycle.toml --natural-hz 80 -o r.{svg,png}` at 500 and 1500 cycles of
+    /// 721 points (the peak RSS's growth over the 720,000 samples between: 450 B for SVG, 428 B for
+    /// PNG).
+    pub const PLOT_BYTES_PER_SAMPLE: f64 = 450.0;
+    /// CPU seconds a plot takes per sample (user time, measured as
+    /// [`Response::PLOT_BYTES_PER_SAMPLE`]): 2.5 µs written as SVG, 10 µs as PNG (rasterised).
+    pub const PLOT_CPU_S_PER_SAMPLE: [f64; 2] = [2.5e-6, 10e-6];
+    /// Bytes a CSV table holds per sample (the samples are computed, then written: 119 B measured
+    /// as [`Response::PLOT_BYTES_PER_SAMPLE`]).
+    pub const CSV_BYTES_PER_SAMPLE: f64 = 120.0;
+    /// CPU seconds per CSV row (0.69 µs measured as [`Response::CSV_BYTES_PER_SAMPLE`]).
+    pub const CSV_CPU_S_PER_SAMPLE: f64 = 0.7e-6;
+
+    /// The number of samples [`Response::samples`] gives for `points` per cycle over `cycles`
+    /// cycles: `(points − 1)·cycles + 1` (as a float: it can pass `usize` at the ranges' ends).
+    pub fn sample_count(points: usize, cycles: usize) -> f64 {
+        (points.max(2) - 1) as f64 * cycles as f64 + 1.0
+    }
+
+    /// What a CSV table of `samples` samples needs ([`Response::CSV_BYTES_PER_SAMPLE`]).
+    pub fn csv_cost(samples: f64) -> Cost {
+        Cost::cpu_items(samples, Self::CSV_BYTES_PER_SAMPLE, Self::CSV_CPU_S_PER_SAMPLE)
+    }
+
+    /// What a plot of `samples` samples needs, rasterised (`png`) or not
+    /// ([`Response::PLOT_BYTES_PER_SAMPLE`]).
+    pub fn plot_cost(samples: f64, png: bool) -> Cost {
+        Cost::cpu_items(samples, Self::PLOT_BYTES_PER_SAMPLE, Self::PLOT_CPU_S_PER_SAMPLE[usize::from(png)])
+    }
 
     /// The response of `follower` to `cycle` at `speed` over `cycles` cycles (from rest or steady).
     pub fn new(cycle: &Cycle, speed: ShaftSpeed, follower: &Follower, start: Start, cycles: usize) -> Result<Self> {

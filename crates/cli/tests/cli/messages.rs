@@ -199,3 +199,35 @@ fn a_refusal_names_budget_and_prints_the_value_as_typed() {
         &["checking_kgf = 1000.0000000000001 is out of range: allowed 0 ≤ checking_kgf ≤ 1000 kgf"],
     );
 }
+
+/// `dyn response` holds every sample of every cycle for a table or a plot: a plot of 10⁴ cycles
+/// (7.2 million samples, 3.1 GB and a minute measured) and a table of 10⁶ points over 10⁴ cycles are
+/// refused by the budget before anything is computed or written, naming both flags (issue 27: the
+/// plot ran to 2.8 GB; the table would abort allocating). The summary and JSON hold no samples.
+#[test]
+fn dyn_response_tables_and_plots_are_held_to_the_budget() {
+    let dir = std::env::temp_dir().join(format!("loomkin-dyn-budget-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("r.png");
+    let cycle = examples("heald-frame-cycle.toml");
+    let base = ["dyn", "response", cycle.as_str(), "--natural-hz", "80"];
+    fn with<'a>(base: &[&'a str], more: &[&'a str]) -> Vec<&'a str> {
+        base.iter().chain(more).copied().collect()
+    }
+    usage_error(
+        &with(&base, &["--cycles", "10000", "-o", png.to_str().unwrap()]),
+        &["--points × --cycles = 721 × 10000 needs about", "(--budget MEMORY,TIME lifts it)"],
+    );
+    assert!(!png.exists(), "nothing is written when the run is refused");
+    usage_error(
+        &with(&base, &["--cycles", "10000", "--points", "1000000", "--csv"]),
+        &["--points × --cycles = 1000000 × 10000 needs about", "(--budget MEMORY,TIME lifts it)"],
+    );
+    // Within the budget the same flags run; the summary of 10⁴ cycles holds no samples.
+    let out = loomkin().args(with(&base, &["--cycles", "10", "-o", png.to_str().unwrap()])).output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(png.exists());
+    let out = loomkin().args(with(&base, &["--cycles", "10000", "--json"])).output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+}
