@@ -295,56 +295,83 @@ impl CrankLever {
     }
 
     /// Checks that the linkage moves the frame from `lo_m` to `hi_m` (slave positions, m) without
-    /// a dead centre: the inverse exists and `dy/dα` keeps its sign, on 512 intervals of the stroke
-    /// and at its ends (a limit located by bisection to rounding). The error names `{at}.{field}`.
+    /// a dead centre: the stroke (with mid-stroke) must lie strictly between the first dead centre
+    /// below mid-stroke and the first above it, both in closed form ([`Linkage::reach`]). The error
+    /// names `{at}.{field}`, the field that moves the dead centre that limits the stroke.
     pub fn check_stroke(&self, lo_m: f64, hi_m: f64, at: &str) -> Result<()> {
         let l = self.linkage().map_err(|reason| ServoError::Cycle { field: format!("{at}.rod_length_mm"), reason })?;
         let (lo, hi) = (lo_m - l.mid_m, hi_m - l.mid_m);
-        let slope = |y: f64| l.motor_angle(y).map(|a| l.height(Jet::var(a)).0.d(1));
-        let sign = slope(0.0).map_or(0.0, f64::signum);
-        let good = |y: f64| slope(y).is_some_and(|g| g.signum() == sign && g.is_finite());
-        const N: usize = 512;
-        let ys: Vec<f64> = (0..=N).map(|k| lo + (hi - lo) * k as f64 / N as f64).collect();
-        // From mid-stroke outward on each side: the first height that fails, and its limit.
-        for side in [1.0, -1.0] {
-            let mut last = 0.0;
-            let mut pts: Vec<f64> = ys.iter().copied().filter(|&y| y * side > 0.0).collect();
-            pts.sort_by(|a, b| (a * side).total_cmp(&(b * side)));
-            for y in pts {
-                if good(y) {
-                    last = y;
-                    continue;
-                }
-                let limit = loomkin_numeric::bisect(last, y, good);
-                let locks = l.motor_angle(y).is_some();
-                let (field, what) = if locks {
-                    (
-                        "rod_length_mm",
-                        "the rod and the lever's input arm come in line (the linkage locks) or the frame link passes \
-                         the vertical: change rod_length_mm, lever_input_arm_mm or the rocking shaft's position",
-                    )
-                } else {
-                    (
-                        "crank_radius_mm",
-                        "the crank reaches its dead centre (crank and rod in line) or the output arm its reach: a longer \
-                         crank_radius_mm, or a longer lever_output_arm_mm against lever_input_arm_mm",
-                    )
-                };
-                return Err(ServoError::Cycle {
-                    field: format!("{at}.{field}"),
-                    reason: format!(
-                        "the crank and lever move the frame only to {} mm {} mid-stroke, the stroke needs {} … {} mm: \
-                         {what}",
-                        loomkin_units::compact((limit.abs() * 1e6).round() / 1e3),
-                        if side > 0.0 { "above" } else { "below" },
-                        loomkin_units::compact(lo * 1e3),
-                        loomkin_units::compact(hi * 1e3)
-                    ),
-                });
+        for (up, need) in [(true, hi), (false, lo)] {
+            let reach = l.reach(up);
+            let inside = if up { need < reach.height_m } else { need > reach.height_m };
+            if inside {
+                continue;
             }
+            let (field, what) = match reach.kind {
+                DeadCentre::Crank => (
+                    "crank_radius_mm",
+                    "the crank reaches its dead centre (crank and rod in line): a longer crank_radius_mm, or a longer \
+                     lever_output_arm_mm against lever_input_arm_mm",
+                ),
+                DeadCentre::Lever => (
+                    "rod_length_mm",
+                    "the rod and the lever's input arm come in line (the linkage locks): change rod_length_mm, \
+                     lever_input_arm_mm or the rocking shaft's position",
+                ),
+                DeadCentre::OutputArm if l.link.is_some() => (
+                    "lever_output_arm_mm",
+                    "the output arm and the frame link come in line: a longer lever_output_arm_mm or frame_link_mm",
+                ),
+                DeadCentre::OutputArm => {
+                    ("lever_output_arm_mm", "the output arm reaches the vertical: a longer lever_output_arm_mm")
+                }
+                DeadCentre::FrameLink => (
+                    "frame_link_mm",
+                    "the frame link comes level with the output arm's tip (the linkage locks): a longer frame_link_mm",
+                ),
+            };
+            return Err(ServoError::Cycle {
+                field: format!("{at}.{field}"),
+                reason: format!(
+                    "the crank and lever move the frame only to {} mm {} mid-stroke, the stroke needs {} … {} mm: \
+                     {what}",
+                    loomkin_units::compact((reach.height_m.abs() * 1e6).round() / 1e3),
+                    if up { "above" } else { "below" },
+                    loomkin_units::compact(lo * 1e3),
+                    loomkin_units::compact(hi * 1e3)
+                ),
+            });
         }
         Ok(())
     }
+}
+
+/// The kinds of dead centre that end the frame's travel on the crank's branch ([`Linkage::reach`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DeadCentre {
+    /// The crank and the rod in line (`|B| = b ± r`): `dy/dα = 0`, the frame's extreme on the
+    /// branch; beyond it the crank cannot reach the rod's pin.
+    Crank,
+    /// The rod and the lever's input arm in line (`|A − Q| = b ± c`): `dy/dα = ∞`, the linkage
+    /// locks (the crank turns back).
+    Lever,
+    /// The output arm and the frame link in line (`|G − Q| = e + L`, or `L − e` with `L ≥ 2e`), or
+    /// without a frame link the output arm vertical: `dy/dα = 0`, the frame's extreme.
+    OutputArm,
+    /// The frame link level with the output arm's tip (`e(1 − cos φ) = L`, with `L ≤ 2e`):
+    /// `dy/dα = ∞`, the lever turns back while the frame moves on.
+    FrameLink,
+}
+
+/// The first dead centre on one side of mid-stroke ([`Linkage::reach`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach {
+    /// Which dead centre.
+    pub kind: DeadCentre,
+    /// The output arm's angle φ there, rad.
+    pub lever_angle_rad: f64,
+    /// The frame's height over mid-stroke there, m.
+    pub height_m: f64,
 }
 
 /// A checked crank-and-lever in metres and radians ([`CrankLever::linkage`]): the forward
@@ -415,6 +442,79 @@ impl Linkage {
     fn rod_pin(&self, phi: f64) -> [f64; 2] {
         let t = phi + self.delta;
         [self.q[0] + self.c * t.cos(), self.q[1] + self.c * t.sin()]
+    }
+
+    /// The first dead centre above mid-stroke (`up`) or below it, in closed form: the frame moves
+    /// from mid-stroke to its height, `dy/dα` keeping its sign and finite, and no farther.
+    ///
+    /// The output arm's angle φ moves one way with the frame (`dy/dφ = e > 0` at mid-stroke) until
+    /// the output arm and the frame link come in line (`dy/dφ = 0`: with `P − Q ∥ G − P`,
+    /// `e(1 − cos φ) = L|cos φ|`, so `cos φ = e/(e + L)` above and `e/(e − L)` below when `L ≥ 2e`;
+    /// the output arm vertical without a link) or the link comes level with the tip (`dy/dφ = ∞`:
+    /// `cos φ = 1 − L/e` below when `L ≤ 2e`). On the way the four-bar gives the crank angle until
+    /// the crank and rod come in line (`dφ/dα = 0`: `|B(φ)| = b ± r`, `cos(φ + δ − ψ) = ((b ±
+    /// r)² − |Q|² − c²)/(2c|Q|)`, `ψ` the direction of `Q`) or the rod and input arm do (`dφ/dα =
+    /// ∞`: `|A(α) − Q| = b ± c`, `cos(α − ψ) = (r² + |Q|² − (b ± c)²)/(2r|Q|)`, counted where the
+    /// crank pin lies on the crank's branch). The nearest of these in the direction of travel is
+    /// the reach; the height is the frame's at that φ.
+    pub fn reach(&self, up: bool) -> Reach {
+        let side = if up { 1.0 } else { -1.0 };
+        let e = self.e;
+        // The output arm and the frame link: the first φ (signed) on this side.
+        let (phi_link, link_kind) = match self.link {
+            None => (side * PI / 2.0, DeadCentre::OutputArm),
+            Some(l) if up => ((e / (e + l)).acos(), DeadCentre::OutputArm),
+            Some(l) if l < 2.0 * e => (-(1.0 - l / e).acos(), DeadCentre::FrameLink),
+            Some(l) => (-(e / (e - l)).acos(), DeadCentre::OutputArm),
+        };
+        // The four-bar's dead centres as output arm angles; their distance in the direction of travel.
+        let rho = self.q[0].hypot(self.q[1]);
+        let psi = self.q[1].atan2(self.q[0]);
+        let mut best: Option<(f64, DeadCentre)> = None;
+        let mut consider = |phi: f64, kind: DeadCentre| {
+            let d = (side * phi).rem_euclid(2.0 * PI);
+            if d > 0.0 && best.is_none_or(|(b, _)| d < b) {
+                best = Some((d, kind));
+            }
+        };
+        if rho > 0.0 {
+            for reach in [self.b + self.r, (self.b - self.r).abs()] {
+                let k = (reach * reach - rho * rho - self.c * self.c) / (2.0 * self.c * rho);
+                if k.abs() <= 1.0 {
+                    let w = k.acos();
+                    consider(psi - self.delta + w, DeadCentre::Crank);
+                    consider(psi - self.delta - w, DeadCentre::Crank);
+                }
+            }
+            for (reach, toward) in [(self.b + self.c, 1.0), (self.b - self.c, (self.c - self.b).signum())] {
+                if reach == 0.0 {
+                    continue;
+                }
+                let k = (self.r * self.r + rho * rho - reach * reach) / (2.0 * self.r * rho);
+                if k.abs() > 1.0 {
+                    continue;
+                }
+                let w = k.acos();
+                for alpha in [psi + w, psi - w] {
+                    let a = [self.r * alpha.cos(), self.r * alpha.sin()];
+                    let (ux, uy) = ((a[0] - self.q[0]) / reach.abs(), (a[1] - self.q[1]) / reach.abs());
+                    let b = [self.q[0] + toward * self.c * ux, self.q[1] + toward * self.c * uy];
+                    if (b[0] * a[1] - b[1] * a[0]) * self.sigma > 0.0 {
+                        consider((toward * uy).atan2(toward * ux) - self.delta, DeadCentre::Lever);
+                    }
+                }
+            }
+        }
+        let (phi, kind) = match best {
+            Some((d, kind)) if d < side * phi_link => (side * d, kind),
+            _ => (phi_link, link_kind),
+        };
+        let mut height = e * phi.sin();
+        if let Some(l) = self.link {
+            let u = e * (1.0 - phi.cos());
+            height += (l * l - u * u).max(0.0).sqrt() - l;
+        }
+        Reach { kind, lever_angle_rad: phi, height_m: height }
     }
 
     /// The crank pin `A` for the rod's pin `B` on the crank's branch (`None`: out of reach).

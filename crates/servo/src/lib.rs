@@ -47,7 +47,7 @@ pub use axis::{Axis, Limits, Load, Motor};
 pub use axis_check::{
     AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
 };
-pub use crank_lever::{CrankBranch, CrankLever, Linkage, MotorMotion};
+pub use crank_lever::{CrankBranch, CrankLever, DeadCentre, Linkage, MotorMotion, Reach};
 pub use cycle_file::spline_cycle;
 pub use design::{DesignFormat, MAX_DEF_POINTS, MAX_SPEEDS, ServoDesign};
 pub use drive::{CYCLE_DEG, CycleLayout, DESIGN_KEYS, Drive};

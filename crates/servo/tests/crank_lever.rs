@@ -324,3 +324,148 @@ fn an_axis_file_reads_the_crank_lever() {
     let r = check_axis(&ax, &cycle(STROKE_MM, "cycloidal"), 400.0).unwrap();
     assert!(r.peak_torque_nm > 0.0 && r.peak_motor_speed_rpm > 0.0);
 }
+
+/// A small deterministic generator (xorshift64*), uniform on `[lo, hi)`.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let u = (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * u
+    }
+}
+
+/// The frame's reach on one side of mid-stroke by another route: march the height outward from
+/// mid-stroke on a dense grid while the closed-form inverse exists, `dy/dα` of the forward map
+/// keeps its sign and the crank angle keeps moving the same way (the central difference of `α(y)`
+/// over `±10⁻⁵` of the output arm: the inverse runs smoothly through a lock, where the crank turns
+/// back); then bisect between the last good height and the first bad one.
+fn scanned_reach(l: &loomkin_servo::Linkage, up: bool, span: f64, steps: usize) -> f64 {
+    let h = 1e-5 * l.e;
+    let turn = |y: f64| match (l.motor_angle(y - h), l.motor_angle(y + h)) {
+        (Some(a), Some(b)) => Some(b - a),
+        _ => None,
+    };
+    let (slope0, turn0) = (l.height(Jet::var(l.motor_angle(0.0).unwrap())).0.d(1).signum(), turn(0.0).unwrap());
+    let good = |y: f64| {
+        l.motor_angle(y).is_some_and(|a| {
+            let g = l.height(Jet::var(a)).0.d(1);
+            g.is_finite() && g.signum() == slope0 && turn(y).is_none_or(|t| t * turn0 > 0.0)
+        })
+    };
+    let side = if up { 1.0 } else { -1.0 };
+    let mut last = 0.0;
+    for k in 1..=steps {
+        let y = side * span * k as f64 / steps as f64;
+        if !good(y) {
+            return loomkin_numeric::bisect(last, y, good);
+        }
+        last = y;
+    }
+    panic!("no dead centre within {span} m");
+}
+
+/// The closed-form dead centres ([`loomkin_servo::Linkage::reach`]) against a dense scan of the
+/// kinematics refined by bisection, on random geometries (every branch, with and without a frame
+/// link, every kind of dead centre).
+#[test]
+fn the_closed_form_dead_centres_match_a_dense_scan() {
+    use loomkin_servo::DeadCentre;
+    let mut rng = Rng(0x5eed_0031_c0ff_ee01);
+    let (mut tried, mut kinds) = (0, std::collections::BTreeMap::<String, usize>::new());
+    while tried < 120 {
+        let link = if rng.uniform(0.0, 1.0) < 0.25 { None } else { Some(rng.uniform(20.0, 600.0)) };
+        let cl = CrankLever {
+            crank_radius_mm: rng.uniform(10.0, 100.0),
+            rod_length_mm: rng.uniform(50.0, 400.0),
+            lever_input_arm_mm: rng.uniform(30.0, 200.0),
+            lever_output_arm_mm: rng.uniform(50.0, 300.0),
+            lever_angle_deg: rng.uniform(-180.0, 180.0),
+            rocking_shaft_x_mm: rng.uniform(-300.0, 300.0),
+            rocking_shaft_y_mm: rng.uniform(-300.0, 300.0),
+            frame_link_mm: link,
+            crank_branch: if rng.uniform(0.0, 1.0) < 0.5 { CrankBranch::Ccw } else { CrankBranch::Cw },
+            mid_stroke_mm: 0.0,
+            ..geometry()
+        };
+        let Ok(l) = cl.linkage() else { continue };
+        tried += 1;
+        let span = 1.001 * (l.e + l.link.unwrap_or(0.0));
+        for up in [true, false] {
+            let reach = l.reach(up);
+            let scanned = scanned_reach(&l, up, span, 20_000);
+            // Where dy/dα = 0 the inverse ceases: the bisection finds that to rounding (worst
+            // 1.9e-15 of the output arm). Where dy/dα = ∞ (a lock) the scan finds where the crank
+            // turns back from differences of α(y): rounding over the step and the step's square
+            // (truncation) leave ~1e-8 of the arm on these geometries (worst 5.4e-8).
+            let locks = matches!(reach.kind, DeadCentre::Lever | DeadCentre::FrameLink);
+            let tol = if locks { 1e-7 } else { 1e-12 } * l.e;
+            assert!(
+                (reach.height_m - scanned).abs() <= tol,
+                "{cl:?} up = {up}: closed form {reach:?}, scanned {scanned}"
+            );
+            *kinds.entry(format!("{:?}", reach.kind)).or_default() += 1;
+            // The refusal is the same limit: a stroke just inside passes, one just beyond is refused.
+            let (inside, beyond) = (reach.height_m * (1.0 - 1e-6), reach.height_m * (1.0 + 1e-6));
+            let check = |y: f64| if up { cl.check_stroke(0.0, y, "x") } else { cl.check_stroke(y, 0.0, "x") };
+            assert!(check(inside).is_ok(), "{cl:?} {reach:?}");
+            let field = match reach.kind {
+                DeadCentre::Crank => "crank_radius_mm",
+                DeadCentre::Lever => "rod_length_mm",
+                DeadCentre::OutputArm => "lever_output_arm_mm",
+                DeadCentre::FrameLink => "frame_link_mm",
+            };
+            let e = check(beyond).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("x.{field}: the crank and lever move the frame only to ")), "{e}");
+        }
+    }
+    // Every kind of dead centre was met.
+    assert_eq!(kinds.len(), 4, "{kinds:?}");
+}
+
+/// A crank that reaches its dead centre only over a narrow band of the stroke (the crank and rod
+/// just in line at 15.7 mm above mid-stroke, less than 1/512 of the stroke wide, between two of a
+/// 512-interval grid's heights): the grid sees nothing wrong, the closed form refuses it.
+#[test]
+fn a_narrow_dead_centre_between_grid_heights_is_refused() {
+    let (e_mm, half_mm) = (200.0f64, 40.0f64);
+    let grid_mm = 2.0 * half_mm / 512.0;
+    let y_star = grid_mm * 100.5;
+    let phi_star = (y_star / e_mm).asin();
+    let (qx, qy, c, r) = (-100.0f64, 200.0f64, 100.0, 40.0);
+    let psi = qy.atan2(qx);
+    // |B(φ)| is largest, |Q| + c, where φ + δ = ψ; the crank and rod reach 1e-6 mm less.
+    let cl = CrankLever {
+        crank_radius_mm: r,
+        rod_length_mm: qx.hypot(qy) + c - r - 1e-6,
+        lever_input_arm_mm: c,
+        lever_output_arm_mm: e_mm,
+        lever_angle_deg: (psi - phi_star).to_degrees(),
+        rocking_shaft_x_mm: qx,
+        rocking_shaft_y_mm: qy,
+        frame_link_mm: None,
+        mid_stroke_mm: 0.0,
+        ..geometry()
+    };
+    let l = cl.linkage().unwrap();
+    // Every height of the 512-interval grid passes the grid check this replaces: the inverse
+    // exists and dy/dα there keeps its sign.
+    let slope0 = l.height(Jet::var(l.alpha_mid)).0.d(1);
+    for k in 0..=512 {
+        let y = (-half_mm + grid_mm * k as f64) * 1e-3;
+        let a = l.motor_angle(y).unwrap_or_else(|| panic!("grid height {y}"));
+        let h = l.height(Jet::var(a)).0;
+        assert!(h.d(1) * slope0 > 0.0, "{y}: {h:?}");
+    }
+    // Between the grid's heights the crank cannot follow.
+    assert!(l.motor_angle(y_star * 1e-3).is_none());
+    let reach = l.reach(true);
+    assert_eq!(reach.kind, loomkin_servo::DeadCentre::Crank);
+    assert!(reach.height_m < y_star * 1e-3 && reach.height_m > (y_star - grid_mm / 2.0) * 1e-3, "{reach:?}");
+    let e = cl.check_stroke(-half_mm * 1e-3, half_mm * 1e-3, "load.crank_lever").unwrap_err().to_string();
+    assert!(e.starts_with("load.crank_lever.crank_radius_mm: the crank and lever move the frame only to 15.6"), "{e}");
+    assert!(e.contains("above mid-stroke, the stroke needs -40 … 40 mm: the crank reaches its dead centre"), "{e}");
+}
