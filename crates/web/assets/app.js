@@ -70,7 +70,7 @@ function showProgress() {
     if (!running.size && progressTimer) { clearInterval(progressTimer); progressTimer = null; }
     return;
   }
-  const s = (performance.now() - j.t0) / 1000, budget = loomkin.limits && loomkin.limits.heavy_budget_s;
+  const s = convert(performance.now() - j.t0, "ms", "s"), budget = loomkin.limits && loomkin.limits.heavy_budget_s;
   box.hidden = false;
   $("#progress-text").textContent = `computing ${j.path.replace(/^\//, "")}: ${s.toFixed(0)} s` + (budget ? ` (stopped after ${budget} s)` : "");
   $("#progress-bar").value = budget ? Math.min(1, s / budget) : 0;
@@ -117,10 +117,24 @@ function num(v, digits) {
 // it: the page writes no bound of its own. A slider beside a field moves over a view span of the
 // page's choosing; the field takes whatever the library allows (docs/design/schema.md).
 let schemas = {};
+// The display units and their factors (`units` of GET /api/schema, from loomkin_units): the page
+// converts with these and writes no factor of its own.
+let units = {};
 
 async function loadSchemas() {
-  try { schemas = (await api("/schema")).routes; } catch (e) { status("schema: " + e.message, true); }
+  try { const s = await api("/schema"); schemas = s.routes; units = s.units; } catch (e) { status("schema: " + e.message, true); }
   loomkin.schemas = schemas;
+}
+
+// `v` in unit `from` converted to unit `to` ("m" to "mm"), by the schema's unit factors: a display
+// unit is multiplied by its factor, the API's unit divided (as loomkin_units' m_from_mm).
+function convert(v, from, to) {
+  if (from === to) return v;
+  const u = units[to], w = units[from];
+  if (u && u.of === from) return v * u.factor;
+  if (w && w.of === to) return v / w.factor;
+  loomkin.errors.push(`no unit factor from ${from} to ${to}`);
+  return NaN;
 }
 
 // The schema of the request key at `path` ("design.roller_radius_mm"; "motions_deg[]" for the
@@ -160,12 +174,14 @@ function limitsOf(route, path) {
 }
 
 // Sets a numeric input's min and max from the schema (an open side also as data-min-open /
-// data-max-open), and its value from the schema's default when it has none; `scale` turns the
-// request's unit into the field's (1000 for a field in mm of a key in m). Returns the limits.
-function applyLimits(input, route, path, scale) {
+// data-max-open), and its value from the schema's default when it has none; `unit` is the field's
+// unit when it is not the request key's (a field in mm of a key in m: data-unit, the limits
+// converted by the schema's unit factors). Returns the limits.
+function applyLimits(input, route, path, unit) {
   const l = limitsOf(route, path);
   if (!l) { loomkin.errors.push(`no schema for ${route} ${path}`); return null; }
-  const k = scale || 1;
+  const k = unit ? convert(1, l.unit, unit) : 1;
+  if (unit) input.dataset.unit = unit;
   const text = (v) => String(+(v * k).toPrecision(12));
   input.removeAttribute("min"); input.removeAttribute("max");
   if (l.min !== undefined) input.min = text(l.min);
@@ -794,7 +810,7 @@ function evaluate() {
   servo.inflight = true;
   loomkin.busy = true;
   const started = performance.now();
-  api("/servo/evaluate", { design: servo.design, samples: 1000 })
+  api("/servo/evaluate", { design: servo.design })
     .then((r) => {
       servo.result = r;
       clearFieldErrors();
@@ -831,7 +847,7 @@ function renderServo(r) {
   ]);
   ch.torque.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} rpm`, x: s.angle_deg, y: s.torque_nm, color: PALETTE[k + 1] })));
   ch.power.setSeries(r.speeds.map((s, k) => ({ label: `${num(s.speed_rpm)} rpm`, x: s.angle_deg, y: s.power_w, color: PALETTE[k + 1] })));
-  if (r.speeds.length) ch.rack.setSeries([{ label: "", x: r.speeds[0].angle_deg, y: r.speeds[0].u_m.map((u) => u * 1000) }]);
+  if (r.speeds.length) ch.rack.setSeries([{ label: "", x: r.speeds[0].angle_deg, y: r.speeds[0].u_m.map((u) => convert(u, "m", "mm")) }]);
   const L = r.law.samples;
   for (const k of ["s", "v", "a", "j"]) ch.kin[k].setSeries([{ label: "", x: L.x, y: L[k], color: PALETTE[0] }]);
 
@@ -1081,7 +1097,7 @@ function niceRound(v) {
 function simulatePick() {
   if (picking.inflight) { picking.queued = true; return; }
   picking.inflight = true;
-  api("/picking/simulate", { settings: picking.values, method: $("#picking-method").value, samples: 400 })
+  api("/picking/simulate", { settings: picking.values, method: $("#picking-method").value })
     .then((r) => {
       const c = r.curves, ch = picking.charts;
       ch.x.setSeries([{ label: "cam (nominal) s", x: c.t_ms, y: c.nominal_mm, dash: [6, 4] }, { label: "shuttle x", x: c.t_ms, y: c.actual_mm }]);
@@ -1092,8 +1108,8 @@ function simulatePick() {
         ["shuttle velocity at the end", `${num(o.velocity_m_s, 3)} m/s`, "pick-velocity"],
         ["required velocity", `${num(o.required_velocity_m_s, 3)} m/s`],
         ["velocity above the required", `${num(o.velocity_vs_required_pct, 1)} %`],
-        ["picking distance", `${num(o.distance_m * 1e3, 1)} mm`],
-        ["pick duration", `${num(o.t_end_s * 1e3, 2)} ms`],
+        ["picking distance", `${num(convert(o.distance_m, "m", "mm"), 1)} mm`],
+        ["pick duration", `${num(convert(o.t_end_s, "s", "ms"), 2)} ms`],
         ["peak acceleration", `${num(o.accel_peak_m_s2, 0)} m/s²`],
         ["end of the pick", o.end === "separation" ? "shuttle left the picker early" : "end of the cam rise"],
         ["route", o.method + (o.note ? ` — ${o.note}` : "")],
@@ -1127,7 +1143,7 @@ function initShed() {
     step: el("input", { type: "number", step: "any", value: "0.025", id: "shed-step" }),
     motions: el("input", { type: "text", value: "180, 200, 220, 240, 260, 280, 300", id: "shed-motions", spellcheck: false }),
     threshold: el("input", { type: "number", step: "any", id: "shed-threshold" }),
-    // mm, as `loomkin shed … --stroke-mm` (the API takes stroke_m).
+    // mm, as `loomkin shed … --stroke-mm` (the request's conditions.stroke_mm).
     stroke: el("input", { type: "number", step: "any", value: "100", id: "shed-stroke" }),
     speed: el("input", { type: "number", step: "any", id: "shed-speed" }),
     jerk: el("input", { type: "number", step: "any", placeholder: "none", id: "shed-jerk" }),
@@ -1135,7 +1151,7 @@ function initShed() {
   const pareto = "/api/shed/pareto";
   applyLimits(inputs.step, pareto, "step");
   applyLimits(inputs.threshold, pareto, "conditions.threshold");
-  applyLimits(inputs.stroke, pareto, "conditions.stroke_m", 1000);
+  applyLimits(inputs.stroke, pareto, "conditions.stroke_mm");
   applyLimits(inputs.speed, pareto, "conditions.speed_rpm");
   applyLimits(inputs.jerk, pareto, "max_jerk_m_s3");
   const log = el("input", { type: "checkbox", id: "shed-log" });
@@ -1179,7 +1195,7 @@ function initShed() {
 
 function shedConditions() {
   const i = shed.inputs;
-  return { threshold: +i.threshold.value, stroke_m: +i.stroke.value / 1000, speed_rpm: +i.speed.value };
+  return { threshold: +i.threshold.value, stroke_mm: +i.stroke.value, speed_rpm: +i.speed.value };
 }
 
 function shedJerkLimit() {
@@ -1190,7 +1206,7 @@ function shedJerkLimit() {
 // The inputs a refused shedding request names.
 function shedField(path) {
   const i = shed.inputs;
-  const map = { "conditions.threshold": [i.threshold, "dwell threshold T"], "conditions.stroke_m": [i.stroke, "stroke h"], "conditions.speed_rpm": [i.speed, "main-shaft speed n"],
+  const map = { "conditions.threshold": [i.threshold, "dwell threshold T"], "conditions.stroke_mm": [i.stroke, "stroke h"], "conditions.stroke_m": [i.stroke, "stroke h"], "conditions.speed_rpm": [i.speed, "main-shaft speed n"],
     step: [i.step, "grid step"], max_jerk_m_s3: [i.jerk, "jerk limit"], family: [i.family, "law family"] };
   if (/^motions_deg/.test(path)) {
     const m = /\[(\d+)\]/.exec(path);
@@ -1329,7 +1345,7 @@ async function initDobby() {
   for (const name of ["cycloidal", "modified-sine", "modified-trapezoid", "poly345", "poly4567", "harmonic"]) inputs.rise.append(el("option", { value: name, textContent: name }));
   applyLimits(inputs.cycles, "/api/dobby/synthesize", "law.cycles");
   applyLimits(inputs.alpha, "/api/dobby/synthesize", "geometry.alpha_deg");
-  applyLimits(inputs.roller, "/api/dobby/synthesize", "roller_m", 1000);
+  applyLimits(inputs.roller, "/api/dobby/synthesize", "roller_m", "mm");
   const angleW = sliderWithNumber("dobby-angle", "input angle φ2", "°", 0, 360, 1, 40, () => drawDobby(), () => dobby.history.commit());
   const angle = angleW.range;
   const play = el("button", { type: "button", id: "dobby-play", textContent: "▶ turn the crank" });
@@ -1352,7 +1368,7 @@ async function initDobby() {
   const table = el("table", { className: "data", id: "dobby-summary" }, el("caption", { textContent: "Checks" }), el("tbody"));
   const charts = el("div", { className: "grid-charts" });
   root.append(el("div", { className: "results" }, panel, table), charts);
-  dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", title: "Cams and mechanism", height: 480, unit: "mm", scale: 1000 });
+  dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", title: "Cams and mechanism", height: 480, unit: "mm", scale: convert(1, "m", "mm") });
   loomkin.dobbyScene = () => dobby.scene;
   const side = el("div", { className: "charts" });
   charts.append(side);
@@ -1368,7 +1384,7 @@ async function initDobby() {
     dobby.req = await api("/dobby/default");
     const r = dobby.req;
     inputs.cycles.value = r.law.cycles; inputs.dwell.value = r.law.dwell_deg; inputs.centre.value = r.law.dwell_centre_deg;
-    inputs.rise.value = r.law.rise.name; inputs.alpha.value = r.geometry.alpha_deg; inputs.roller.value = r.roller_m * 1000;
+    inputs.rise.value = r.law.rise.name; inputs.alpha.value = r.geometry.alpha_deg; inputs.roller.value = convert(r.roller_m, "m", "mm");
   } catch (e) { status("dobby: " + e.message, true); return; }
   for (const e of Object.values(inputs)) e.addEventListener("change", () => { synthesizeDobby(); dobby.history.commit(); });
   dobby.history = viewHistory("dobby", () => ({ ...readDobbyInputs(), angle_deg: +angle.value }), (st) => {
@@ -1392,7 +1408,7 @@ function readDobbyInputs() {
 
 function dobbyRequest() {
   const q = readDobbyInputs();
-  return { law: q.law, geometry: q.geometry, roller_m: q.roller_mm / 1000, step_deg: q.step_deg };
+  return { law: q.law, geometry: q.geometry, roller_m: convert(q.roller_mm, "mm", "m"), step_deg: q.step_deg };
 }
 
 function dobbyField(path) {
@@ -1573,7 +1589,7 @@ function dynField(path) {
 }
 
 function dynRequest() {
-  const q = { speed_rpm: dyn.values.speed_rpm, natural_hz: dyn.values.natural_hz, damping_ratio: dyn.values.damping_ratio, steady: dyn.steady.checked, samples: 721 };
+  const q = { speed_rpm: dyn.values.speed_rpm, natural_hz: dyn.values.natural_hz, damping_ratio: dyn.values.damping_ratio, steady: dyn.steady.checked };
   if (dyn.source.value === "law") q.law = { law: { name: dyn.law.value, params: {} }, stroke_mm: +dyn.stroke.value, motion_deg: +dyn.motion.value };
   else if (dyn.source.value === "file" && dyn.fileText) q.cycle_toml = dyn.fileText;
   if (dyn.sweepDirty) q.sweep = { from_rpm: +dyn.from.value, to_rpm: +dyn.to.value, points: 400 };
@@ -1621,7 +1637,7 @@ window.LoomkinViews = VIEWS;
 // Views in files of their own (cam.js, loom.js) register here: they load after this file and
 // before the tabs are built (start waits for /api/info).
 window.LoomkinApp = {
-  api, status, download, el, num, sliderWithNumber, loomkin,
+  api, status, download, el, num, convert, sliderWithNumber, loomkin,
   register(name, title, init) { VIEWS[name] = init; VIEW_TITLES[name] = title; },
 };
 

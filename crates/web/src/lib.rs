@@ -99,7 +99,7 @@ pub use picking_api::{
     PickingCurves, PickingRequest, PickingResponse, SettingInfo, SettingsInfo, settings_info, simulate as simulate_pick,
 };
 pub use pool::{HEAVY_BUDGET, RETRY_AFTER_S, heavy_slots};
-pub use schema::{ApiSchema, RouteSchema, SCHEMA_DIALECT, api_schema, request_schema};
+pub use schema::{ApiSchema, RouteSchema, SCHEMA_DIALECT, UnitScale, api_schema, request_schema, unit_scales};
 pub use series::{LawSamples, finite};
 pub use server::{
     BODY_READ_TIMEOUT, Bound, DEFAULT_PORT, HEADER_READ_TIMEOUT, Info, Limits, MAX_CONNECTIONS, bind, info_value,

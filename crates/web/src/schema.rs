@@ -42,6 +42,28 @@ pub struct ApiSchema {
     pub dialect: &'static str,
     /// Every route that takes a request body, by path (`/api/cam/profile`).
     pub routes: BTreeMap<&'static str, RouteSchema>,
+    /// The units a front end shows a quantity in other than the unit the API speaks, by name
+    /// (`mm`): how many of them make one of the API's unit ([`unit_scales`]).
+    pub units: BTreeMap<&'static str, UnitScale>,
+}
+
+/// A display unit as a multiple of the unit a request or an answer speaks: `factor` of it make
+/// one `of` (1000 mm make one m). The page converts with these, never with a number of its own.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct UnitScale {
+    /// The unit of the API (`m`, `s`).
+    pub of: &'static str,
+    /// How many of the display unit make one of `of`.
+    pub factor: f64,
+}
+
+/// The display units the page converts to and from, with their factors from `loomkin_units`
+/// (`mm_from_m`, `ms_from_s`): the one place a factor lives.
+pub fn unit_scales() -> BTreeMap<&'static str, UnitScale> {
+    BTreeMap::from([
+        ("mm", UnitScale { of: "m", factor: loomkin_units::mm_from_m(1.0) }),
+        ("ms", UnitScale { of: "s", factor: loomkin_units::ms_from_s(1.0) }),
+    ])
 }
 
 /// The JSON Schema dialect the request schemas are written in.
@@ -107,7 +129,7 @@ pub fn api_schema() -> ApiSchema {
         ("/api/loom/servo", post::<crate::ServoShedRequest>(json!({}))),
         ("/api/loom/servo/view", post::<crate::ServoShedRequest>(json!({}))),
     ]);
-    ApiSchema { dialect: SCHEMA_DIALECT, routes }
+    ApiSchema { dialect: SCHEMA_DIALECT, routes, units: unit_scales() }
 }
 
 /// A count's bounds as a schemars transform (`#[schemars(transform = count(1, MAX))]`): the

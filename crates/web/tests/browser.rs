@@ -1305,7 +1305,7 @@ fn the_workbench_in_a_real_browser() {
     // Every field's limits are the request schema's (the library's ranges), not the page's.
     let limits = d.script(
         "const out = []; for (const e of document.querySelectorAll('input[data-schema]')) \
-         out.push([e.id, e.dataset.schema, e.min, e.max, e.dataset.minOpen, e.dataset.maxOpen]); return out",
+         out.push([e.id, e.dataset.schema, e.min, e.max, e.dataset.minOpen, e.dataset.maxOpen, e.dataset.unit || '']); return out",
     );
     let schema = common::request(server, "GET", "/api/schema", None).expect("schema").json();
     let fields = limits.as_array().expect("fields");
@@ -1314,8 +1314,16 @@ fn the_workbench_in_a_real_browser() {
         let (id, key) = (f[0].as_str().unwrap_or(""), f[1].as_str().unwrap_or(""));
         let (route, path) = key.split_once(' ').expect("route and path");
         let s = common::schema_at(&schema["routes"][route]["request"], path);
-        // A field in mm of a key in m is scaled by 1000 (the page's own unit).
-        let k = if path.ends_with("_m") && !path.ends_with("_rpm") { 1e3 } else { 1.0 };
+        // A field in another unit than its key's (data-unit: mm of a key in m) is scaled by the
+        // schema's factor of that unit, which must be a multiple of the key's unit.
+        let k = match f[6].as_str().unwrap_or("") {
+            "" => 1.0,
+            unit => {
+                let u = &schema["units"][unit];
+                assert_eq!(u["of"], s["x-unit"], "{id}: {unit} is not a multiple of the key's unit");
+                u["factor"].as_f64().expect("factor")
+            }
+        };
         for (i, closed, open) in [(2, "minimum", "exclusiveMinimum"), (3, "maximum", "exclusiveMaximum")] {
             let want = s.get(closed).or(s.get(open)).and_then(Value::as_f64).map(|v| v * k);
             let got = f[i].as_str().filter(|t| !t.is_empty()).map(|t| t.parse::<f64>().expect("number"));

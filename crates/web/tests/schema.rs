@@ -148,6 +148,130 @@ impl Validator<'_> {
     }
 }
 
+/// A unit factor written as a number after `*` or `/` (`u * 1000`, `t / 1e3`): the page converts
+/// with the schema's `units` (`convert(v, "m", "mm")`).
+fn js_factor(line: &str) -> bool {
+    const FACTORS: [&str; 9] = ["1000", "1e3", "1e-3", "0.001", "1e6", "1e-6", "60", "3600", "1e-9"];
+    let b = line.as_bytes();
+    (0..b.len())
+        .filter(|&i| {
+            matches!(b[i], b'*' | b'/')
+                && b.get(i + 1).is_some_and(|c| *c != b'/' && *c != b'*')
+                && (i == 0 || b[i - 1] != b'/')
+        })
+        .any(|i| {
+            let rest = line[i + 1..].trim_start();
+            FACTORS.iter().any(|f| {
+                rest.strip_prefix(f).is_some_and(|after| {
+                    !after.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '.' || c == '_')
+                })
+            })
+        })
+}
+
+/// A number where the page names a unit's scale: the last argument of `applyLimits(…)` or a
+/// `scale:` option.
+fn js_scale(line: &str) -> bool {
+    let number = |t: &str| t.trim().trim_start_matches(['-', '+']).starts_with(|c: char| c.is_ascii_digit());
+    let in_apply = line.match_indices("applyLimits(").any(|(k, _)| {
+        let args = line[k + "applyLimits(".len()..].split(')').next().unwrap_or("");
+        args.split(',').count() == 4 && args.rsplit(',').next().is_some_and(number)
+    });
+    let scale = line.match_indices("scale:").any(|(k, _)| number(&line[k + "scale:".len()..]));
+    in_apply || scale
+}
+
+/// The keys of a request written in an `api("/route", { … })` call with a number literal that the
+/// route's schema gives as its default: the request's default written a second time.
+fn js_request_defaults(line: &str, schemas: &Value) -> Vec<String> {
+    let mut out = Vec::new();
+    for (k, _) in line.match_indices("api(\"/") {
+        let rest = &line[k + 5..];
+        let Some(end) = rest.find('"') else { continue };
+        let route = format!("/api{}", &rest[..end]);
+        let props = &schemas["routes"][route.as_str()]["request"]["properties"];
+        let Some(props) = props.as_object() else { continue };
+        for (key, p) in props {
+            let Some(default) = p.get("default").and_then(Value::as_f64) else { continue };
+            for (j, _) in rest.match_indices(&format!("{key}:")) {
+                let before = rest[..j].chars().next_back();
+                if before.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_') {
+                    continue;
+                }
+                let value = rest[j + key.len() + 1..].trim_start();
+                let lit: String =
+                    value.chars().take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+')).collect();
+                if lit.parse::<f64>().is_ok_and(|v| v == default) {
+                    out.push(format!("{route} {key}: {lit} (the schema's default)"));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What the page writes of its own: unit factors, scales and request defaults, `line: text`.
+fn page_offences(js: &str, schemas: &Value) -> Vec<String> {
+    let mut found = Vec::new();
+    for (n, line) in js.lines().enumerate() {
+        let code = line.trim_start();
+        if code.starts_with("//") {
+            continue;
+        }
+        // A trailing comment says what it likes (` // ` is never inside the page's strings).
+        let line = line.split(" // ").next().unwrap_or("");
+        let mut why = js_request_defaults(line, schemas);
+        if js_factor(line) {
+            why.push("a unit factor".into());
+        }
+        if js_scale(line) {
+            why.push("a scale".into());
+        }
+        for w in why {
+            found.push(format!("app.js:{}: {w}: {}", n + 1, code));
+        }
+    }
+    found
+}
+
+/// The page (crates/web/assets/app.js) writes no unit factor, unit scale or request default of its
+/// own (issue 27): it converts with the schema's `units` (from loomkin_units) and leaves a
+/// request's default to the request type.
+#[test]
+fn no_unit_factor_or_request_default_in_the_page() {
+    let s = schemas();
+    let found = page_offences(loomkin_web::APP_JS, &s);
+    assert!(
+        found.is_empty(),
+        "numbers the page should read from GET /api/schema (units, defaults):\n{}",
+        found.join("\n")
+    );
+    // The scanner finds what the page wrote before (issue 27's lines) and passes what it writes now.
+    for bad in [
+        r#"  applyLimits(inputs.stroke, pareto, "conditions.stroke_m", 1000);"#,
+        r#"  return { threshold: +i.threshold.value, stroke_m: +i.stroke.value / 1000, speed_rpm: +i.speed.value };"#,
+        r#"  if (r.speeds.length) ch.rack.setSeries([{ label: "", x: r.speeds[0].angle_deg, y: r.speeds[0].u_m.map((u) => u * 1000) }]);"#,
+        r#"        ["picking distance", `${num(o.distance_m * 1e3, 1)} mm`],"#,
+        r#"  api("/servo/evaluate", { design: servo.design, samples: 1000 })"#,
+        r#"  dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", unit: "mm", scale: 1000 });"#,
+        r#"  const s = (performance.now() - j.t0) / 1000, budget = 3;"#,
+    ] {
+        assert_eq!(page_offences(bad, &s).len(), 1, "not found: {bad}");
+    }
+    for good in [
+        r#"  applyLimits(inputs.roller, "/api/dobby/synthesize", "roller_m", "mm");"#,
+        r#"  y: r.speeds[0].u_m.map((u) => convert(u, "m", "mm")) }"#,
+        r#"  const r = await api("/laws/compare", { laws, samples: 801 });"#,
+        r#"  const w = a / 2, h = b * 1000.5; // u * 1000 in a comment"#,
+        r#"  // u * 1000"#,
+    ] {
+        assert_eq!(page_offences(good, &s), Vec::<String>::new(), "{good}");
+    }
+    // The units the page converts with are loomkin_units' factors.
+    assert_eq!(s["units"]["mm"], json!({"of": "m", "factor": loomkin_units::mm_from_m(1.0)}));
+    assert_eq!(s["units"]["ms"], json!({"of": "s", "factor": loomkin_units::ms_from_s(1.0)}));
+}
+
 fn validate(schema: &Value, v: &Value) -> Result<(), String> {
     Validator { root: schema }.check(schema, v, "")
 }
