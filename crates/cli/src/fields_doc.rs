@@ -13,7 +13,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 /// Every library crate's descriptors, with the crate's name.
-const LISTS: [(&str, FieldList); 13] = [
+pub(crate) const LISTS: [(&str, FieldList); 13] = [
     ("loomkin-units", loomkin_units::FIELDS),
     ("loomkin-laws", loomkin_laws::FIELDS),
     ("loomkin-picking", loomkin_picking::FIELDS),
@@ -29,7 +29,7 @@ const LISTS: [(&str, FieldList); 13] = [
     ("loomkin-insertion", loomkin_insertion::FIELDS),
 ];
 
-fn repo() -> PathBuf {
+pub(crate) fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
@@ -116,7 +116,7 @@ pub(crate) fn cli_inputs() -> Vec<CliInput> {
 
 /// The top-level functions of the Python module's stubs (`python/loomkin/_loomkin.pyi`) and their
 /// keyword names.
-fn python_functions() -> Vec<(String, Vec<String>)> {
+pub(crate) fn python_functions() -> Vec<(String, Vec<String>)> {
     let text = std::fs::read_to_string(repo().join("python/loomkin/_loomkin.pyi")).unwrap_or_default();
     let mut out = Vec::new();
     let mut rest = text.as_str();
@@ -287,6 +287,7 @@ fn fields_doc_range_or(items: String, own: String) -> String {
 fn reference() -> String {
     let cli = cli_inputs();
     let py = python_functions();
+    let py_takes = crate::python_fields::python_takes();
     let by_name = descriptors_by_key();
     let mut s = String::new();
     s.push_str(
@@ -299,9 +300,11 @@ fn reference() -> String {
          for its bounds — and every input of every command, workbench route and Python function. A range or default is declared once, on the library \
          type that owns it (`loomkin_units::Field`, see docs/design/fields.md); the CLI, the workbench and Python \
          read it from there. Ranges: `[a, b]` closed, `(a, b)` open. The key is the JSON and Python keyword; the \
-         CLI flag is the same words joined with `-`. \"Taken by\" matches inputs by key (a key several quantities share, by its \
-         default): the CLI's flags and the keywords of the Python module's functions (`loomkin._loomkin`, which \
-         the `loomkin.*` modules wrap).\n\n",
+         CLI flag is the same words joined with `-`. \"Taken by\" names the CLI's flags that take the descriptor \
+         (crates/cli/src/flag_fields.rs) and the functions of the Python module (`loomkin._loomkin`, which the \
+         `loomkin.*` modules wrap) whose keyword takes it, with the keyword where it is not the key: read from the \
+         package's own signature defaults and checks, else named in crates/cli/src/python_fields.rs, else the flag \
+         of the same words of the command the function runs.\n\n",
     );
     s.push_str("## Quantities\n\n");
     for (krate, list) in LISTS {
@@ -313,8 +316,8 @@ fn reference() -> String {
                 Some(v) => num(v),
                 None => "—".into(),
             };
-            // The flags that name this descriptor (crates/cli/src/flag_fields.rs); Python's keywords
-            // by key, where the key is this descriptor's alone.
+            // The flags that name this descriptor (crates/cli/src/flag_fields.rs) and the Python
+            // keywords that take it (crates/cli/src/python_fields.rs).
             let shared = by_name.get(f.name).map_or(1, Vec::len) > 1;
             let mut takers: Vec<String> = cli
                 .iter()
@@ -322,11 +325,12 @@ fn reference() -> String {
                 .map(|c| format!("`{} {}`", c.command, c.flag))
                 .collect();
             takers.dedup();
-            let pyf: Vec<String> = if shared {
-                Vec::new()
-            } else {
-                py.iter().filter(|(_, ps)| ps.iter().any(|p| p == f.name)).map(|(n, _)| format!("`{n}`")).collect()
-            };
+            let mut pyf: Vec<String> = py_takes
+                .iter()
+                .filter(|t| matches!(t.2, crate::flag_fields::Takes::Field(g) if g == f))
+                .map(|t| if t.1 == f.name { format!("`{}`", t.0) } else { format!("`{}({})`", t.0, t.1) })
+                .collect();
+            pyf.dedup();
             let mut taken = Vec::new();
             if !takers.is_empty() {
                 taken.push(format!("CLI {}", takers.join(", ")));

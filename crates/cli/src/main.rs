@@ -26,6 +26,8 @@ mod output;
 mod pick;
 mod pick_montecarlo;
 #[cfg(test)]
+mod python_fields;
+#[cfg(test)]
 mod range_ends;
 mod serve;
 mod servo;
