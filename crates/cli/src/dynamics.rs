@@ -268,9 +268,11 @@ fn response(a: ResponseArgs) -> Result<()> {
     Response::CYCLES.check_count(a.cycles)?;
     Response::POINTS.check_count(a.points)?;
     let start = if a.steady { Start::Steady } else { Start::Rest };
+    // The cycles computed: the steady state's one, else those asked for from rest.
+    let cycles = if a.steady { 1 } else { a.cycles };
     // A table or a plot holds every sample of every cycle computed: refused before it starts
     // when estimated beyond the budget (the summary and JSON hold none).
-    let samples = Response::sample_count(a.points, if a.steady { 1 } else { a.cycles });
+    let samples = Response::sample_count(a.points, cycles);
     let cost = if a.format.csv {
         Some(Response::csv_cost(samples))
     } else if let (false, Some(out)) = (a.format.json, a.output.as_ref()) {
@@ -279,10 +281,10 @@ fn response(a: ResponseArgs) -> Result<()> {
         None
     };
     if let Some(cost) = cost {
-        let value = format!("{} × {}", a.points, if a.steady { 1 } else { a.cycles });
+        let value = format!("{} × {cycles}", a.points);
         crate::util::check_budget("--points × --cycles", value, cost)?;
     }
-    let r = Response::new(&cycle, speed, &follower, start, a.cycles)?;
+    let r = Response::new(&cycle, speed, &follower, start, cycles)?;
     let u = units(&cycle);
     let summary = r.summary();
     rigidity_note(&summary);
@@ -308,7 +310,7 @@ fn response(a: ResponseArgs) -> Result<()> {
             natural_hz: follower.natural_hz(),
             damping_ratio: follower.damping_ratio(),
             start,
-            cycles: if a.steady { 1 } else { a.cycles },
+            cycles,
         });
     }
     if let Some(out) = a.output {
@@ -327,7 +329,6 @@ fn response(a: ResponseArgs) -> Result<()> {
         let acc_unit = u.acc_text();
         // Dwell / rise / return of every computed cycle, and the located peaks (their sign read
         // from the samples: the peak is of |x − s| and |x''|).
-        let cycles = if a.steady { 1 } else { a.cycles };
         let period = cycle.period_rad.to_degrees();
         let bands: Vec<XBand> =
             (0..cycles).flat_map(|k| crate::cycle::cycle_bands(&cycle, k as f64 * period)).collect();
