@@ -62,7 +62,20 @@ impl<'a> Timeline<'a> {
         types: &mut WordMap<[u64; 4], u64>,
     ) -> Self {
         let period = cycle.period_rad.to_degrees();
-        let mut raw = Vec::with_capacity(8 * segments.len());
+        // Into [0, period): shift by whole periods, splitting a piece that straddles a boundary.
+        let laid: usize = cycle.segments.iter().map(|s| s.law.as_ref().map_or(1, |(_, l)| l.segments().len())).sum();
+        let mut pieces = Vec::with_capacity(laid + 2);
+        let place = |p: Piece, pieces: &mut Vec<Piece>| {
+            let k = (p.a / period).floor();
+            let shift = -k * period;
+            let (a, b) = (p.a + shift, p.b + shift);
+            if b <= period {
+                pieces.push(Piece { a: a.max(0.0), b, anchor: p.anchor + shift, ..p });
+            } else {
+                pieces.push(Piece { a: a.max(0.0), b: period, anchor: p.anchor + shift, ..p });
+                pieces.push(Piece { a: 0.0, b: b - period, anchor: p.anchor + shift - period, ..p });
+            }
+        };
         let mut cuts: Vec<f64> = Vec::with_capacity(8);
         let friction = drive.axis.load.friction_n > 0.0;
         for (si, (seg, &(_, s0, len))) in cycle.segments.iter().zip(segments).enumerate() {
@@ -72,9 +85,10 @@ impl<'a> Timeline<'a> {
                 *types.entry([shape[0], shape[1], shape[2], l]).or_insert(n)
             };
             match &seg.law {
-                None => {
-                    raw.push(Piece { a: s0, b: s0 + len, seg: si, lseg: None, anchor: s0, len, ty: intern(u64::MAX) })
-                }
+                None => place(
+                    Piece { a: s0, b: s0 + len, seg: si, lseg: None, anchor: s0, len, ty: intern(u64::MAX) },
+                    &mut pieces,
+                ),
                 Some((_, law)) => {
                     for (li, l) in law.segments().iter().enumerate() {
                         let anchor = s0 + l.x0() * len;
@@ -93,24 +107,14 @@ impl<'a> Timeline<'a> {
                         let ty = intern(li as u64);
                         for w in cuts.windows(2) {
                             if w[1] > w[0] {
-                                raw.push(Piece { a: w[0], b: w[1], seg: si, lseg: Some(li), anchor, len, ty });
+                                place(
+                                    Piece { a: w[0], b: w[1], seg: si, lseg: Some(li), anchor, len, ty },
+                                    &mut pieces,
+                                );
                             }
                         }
                     }
                 }
-            }
-        }
-        // Into [0, period): shift by whole periods, splitting a piece that straddles a boundary.
-        let mut pieces = Vec::with_capacity(raw.len() + 2);
-        for p in raw {
-            let k = (p.a / period).floor();
-            let shift = -k * period;
-            let (a, b) = (p.a + shift, p.b + shift);
-            if b <= period {
-                pieces.push(Piece { a: a.max(0.0), b, anchor: p.anchor + shift, ..p });
-            } else {
-                pieces.push(Piece { a: a.max(0.0), b: period, anchor: p.anchor + shift, ..p });
-                pieces.push(Piece { a: 0.0, b: b - period, anchor: p.anchor + shift - period, ..p });
             }
         }
         pieces.retain(|p| p.b > p.a);
@@ -234,7 +238,10 @@ pub(crate) fn bus(
             ranges[i] = (cursor[i], j);
             key.push(u64::MAX);
         }
-        if !memo.contains_key(&key) {
+        // The key hashed once: a window seen before adds its values, a new one is worked out.
+        if let Some(v) = memo.get(&key) {
+            add_window(&mut tot, v, w0);
+        } else {
             // A new window: its pieces, clipped to it.
             for (i, f) in frames.iter().enumerate() {
                 items[i].clear();
@@ -246,22 +253,26 @@ pub(crate) fn bus(
                 }
             }
             let v = window(frames, &items, w0, w1, eta_r, omega, scan_only);
+            add_window(&mut tot, &v, w0);
             memo.insert(key.clone(), v);
-        }
-        let v = &memo[&key];
-        take_max(&mut tot.peak_w, v.peak.0, w0 + v.peak.1);
-        take_max(&mut tot.trough_w, v.trough.0, w0 + v.trough.1);
-        tot.supplied_j += v.supplied_j;
-        tot.braking_j += v.braking_j;
-        tot.regenerated_j += v.regenerated_j;
-        for i in 0..n {
-            tot.frame_energy_j[i] += v.frame_energy_j[i];
-            take_max(&mut tot.frame_peak_w[i], v.frame_peak[i].0, w0 + v.frame_peak[i].1);
         }
     }
     tot.trough_w.0 = -tot.trough_w.0;
     tot.distinct_windows = memo.len();
     tot
+}
+
+/// Adds the values of the window starting at `w0` to the totals.
+fn add_window(tot: &mut BusTotals, v: &WindowValues, w0: f64) {
+    take_max(&mut tot.peak_w, v.peak.0, w0 + v.peak.1);
+    take_max(&mut tot.trough_w, v.trough.0, w0 + v.trough.1);
+    tot.supplied_j += v.supplied_j;
+    tot.braking_j += v.braking_j;
+    tot.regenerated_j += v.regenerated_j;
+    for (i, e) in v.frame_energy_j.iter().enumerate() {
+        tot.frame_energy_j[i] += e;
+        take_max(&mut tot.frame_peak_w[i], v.frame_peak[i].0, w0 + v.frame_peak[i].1);
+    }
 }
 
 /// One window `[w0, w1)`: `items[i]` the pieces of frame `i` within it, clipped.

@@ -82,6 +82,7 @@ impl FramePath {
 
     /// The segment holding absolute angle `theta_deg` (wrapped into the repeat), and the angle
     /// moved into the plan's span `[start, start + period)`.
+    #[inline]
     fn locate(&self, theta_deg: f64) -> (usize, f64) {
         // `start + (θ − start) mod period`; without the remainder's call when θ − start already
         // lies in [0, period) (the remainder is then that number itself, bit for bit).
@@ -110,6 +111,7 @@ impl FramePath {
 
     /// The height over mid-stroke at main-shaft angle `theta_deg` (any angle: the plan repeats),
     /// m. At a joint the later segment's start is taken (the position is continuous there).
+    #[inline]
     pub fn y_m(&self, theta_deg: f64) -> f64 {
         if self.segments.is_empty() {
             return self.level0_m;
@@ -129,6 +131,7 @@ impl FramePath {
     /// to_deg]` relative to `origin_deg`: every segment that meets the span, its shape (kind,
     /// length, level) and its place (to 2⁻³⁰°). Two origins with equal words see the same heights
     /// over the span (shifted by the difference of the origins, to that rounding).
+    #[inline]
     pub fn key_words(&self, origin_deg: f64, from_deg: f64, to_deg: f64, key: &mut Vec<u64>) {
         let n = self.segments.len();
         if n == 0 {
@@ -136,8 +139,11 @@ impl FramePath {
         }
         let (a, b) = (origin_deg + from_deg, origin_deg + to_deg);
         let (mut j, th) = self.locate(a);
-        // Whole repeats between the plan's span and the span's start.
-        let mut shift = ((a - th) / self.period_deg).round() * self.period_deg;
+        // Whole repeats between the plan's span and the span's start (none when the span starts
+        // within the plan's span: `a − th` is then rounding only, and the rounding call is skipped).
+        let d = a - self.start_deg;
+        let mut shift =
+            if d >= 0.0 && d < self.period_deg { 0.0 } else { ((a - th) / self.period_deg).round() * self.period_deg };
         loop {
             let s = &self.segments[j];
             let start = s.start_deg + shift;

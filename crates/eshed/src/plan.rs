@@ -160,14 +160,23 @@ impl FramePlan {
         let c = input.centre_deg;
         let period_deg = 360.0 * picks as f64;
         let moves: Vec<PlannedMove> = if !pass_through {
-            (0..picks as i64)
-                .filter(|&p| change(p))
-                .map(|p| PlannedMove {
-                    pick: p as usize,
-                    start_deg: 360.0 * p as f64 + c - phi(p) / 2.0,
-                    length_deg: phi(p),
-                    rising: up(p),
-                    through: false,
+            // The picks in order, each against the one before (the last before the first).
+            let before = std::iter::once(input.up[picks - 1]).chain(input.up.iter().copied());
+            input
+                .up
+                .iter()
+                .zip(before)
+                .enumerate()
+                .filter(|&(_, (&now, was))| now != was)
+                .map(|(p, (&rising, _))| {
+                    let phi = if rising { input.motion_deg } else { input.fall_motion_deg };
+                    PlannedMove {
+                        pick: p,
+                        start_deg: 360.0 * p as f64 + c - phi / 2.0,
+                        length_deg: phi,
+                        rising,
+                        through: false,
+                    }
                 })
                 .collect()
         } else if (0..picks as i64).all(change) {

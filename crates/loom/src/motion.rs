@@ -104,6 +104,11 @@ impl Motion {
         self.up[i][p.rem_euclid(self.picks as i64) as usize]
     }
 
+    /// Frame `i`'s lifts over the repeat: up at pick `p` ([`Motion::is_up`] of every pick, in order).
+    pub fn lifts(&self, i: usize) -> &[bool] {
+        &self.up[i]
+    }
+
     /// Centre of frame `i`'s move into pick 0, deg.
     pub fn centre0_deg(&self, i: usize) -> f64 {
         self.centre0_deg[i]

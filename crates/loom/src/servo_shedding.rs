@@ -107,10 +107,8 @@ pub fn servo_setups(
         )
     })?;
     let motion = Motion::new(loom, pattern)?;
-    let picks = motion.picks();
     (0..loom.frame_count())
         .map(|i| {
-            let up: Vec<bool> = (0..picks).map(|p| motion.is_up(i, p as i64)).collect();
             let s = &servo.frames[i];
             let (rise, fall) = file_motion_deg(loom, i);
             let (phi, phi_fall) = match motion_deg {
@@ -122,7 +120,7 @@ pub fn servo_setups(
                 loomkin_shed::MOTION_DEG.check(&format!("shedding.servo.frame: frame {} {key}", i + 1), v)
             };
             let input = FrameInput {
-                up: &up,
+                up: motion.lifts(i),
                 stroke_m: motion.stroke_m(i),
                 centre_deg: centre_deg.map_or(motion.centre0_deg(i), |c| c[i]),
                 motion_deg: check("motion_deg", phi)?,

@@ -5,7 +5,6 @@ use crate::{Axis, Result};
 use loomkin_cams::profile::Jet;
 use loomkin_laws::{Cycle, Segment};
 use serde::Serialize;
-use std::collections::HashMap;
 use std::f64::consts::PI;
 
 /// One check: a value against its limit; the margin is `(limit − value)/limit` (negative: fails).
@@ -268,7 +267,7 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
         t.abs() / e.max(1e-12 * axis.motor.peak_torque_nm)
     };
     let mut laws: Vec<&loomkin_laws::Law> = Vec::new();
-    let mut memo: HashMap<(usize, u64, u64, u64), Vec<Event>> = HashMap::new();
+    let mut memo: loomkin_numeric::WordMap<(usize, u64, u64, u64), Vec<Event>> = Default::default();
     for seg in &cycle.segments {
         let start_deg = seg.start_rad.to_degrees();
         let len_deg = seg.length_rad.to_degrees();
