@@ -814,3 +814,135 @@ fn a_conjugate_pair_reports_each_cam() {
     .unwrap();
     assert!(single.cam_reports().is_none() && single.report("t", 1.0).cams.is_none());
 }
+
+/// Each cam's extremes from the written points alone: the pressure angle from the pitch curve's
+/// tangent (central differences of the points) and the follower's direction of motion at the
+/// trace point, the least convex radius from the circle through three consecutive points.
+/// `(max |φ| deg, at deg, least convex radius mm, at deg)` of one track's points, `dir(q)` the
+/// direction of motion of a trace point at `q` in the fixed frame.
+fn extremes_from_points(pts: &[loomkin_cams::profile::PointReport], dir: impl Fn([f64; 2]) -> [f64; 2]) -> [f64; 4] {
+    // One turn, the last point (360°) repeating the first.
+    let n =
+        if (pts[pts.len() - 1].angle_deg - pts[0].angle_deg - 360.0).abs() < 1e-9 { pts.len() - 1 } else { pts.len() };
+    let p = |i: usize| [pts[i % n].x_mm, pts[i % n].y_mm];
+    let (mut phi, mut phi_at, mut rmin, mut rmin_at) = (0.0f64, 0.0, f64::INFINITY, 0.0);
+    for i in 0..n {
+        let (a, b, c) = (p(i + n - 1), p(i), p(i + 1));
+        let psi = pts[i].angle_deg.to_radians();
+        // The tangent and the trace point in the fixed frame (the cam frame turned back by ψ).
+        let t = rot(psi, [c[0] - a[0], c[1] - a[1]]);
+        let q = rot(psi, b);
+        let e = dir(q);
+        let en = e[0].hypot(e[1]);
+        let sin = ((t[0] * e[0] + t[1] * e[1]) / (t[0].hypot(t[1]) * en)).abs();
+        let deg = sin.min(1.0).asin().to_degrees();
+        if deg > phi {
+            (phi, phi_at) = (deg, pts[i].angle_deg);
+        }
+        // Circumradius of a, b, c; convex where the clockwise-traced curve turns clockwise.
+        let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - b[0], c[1] - b[1]]);
+        let cross = u[0] * v[1] - u[1] * v[0];
+        if cross < 0.0 {
+            let w = [c[0] - a[0], c[1] - a[1]];
+            let r = u[0].hypot(u[1]) * v[0].hypot(v[1]) * w[0].hypot(w[1]) / (2.0 * cross.abs());
+            if r < rmin {
+                (rmin, rmin_at) = (r, pts[i].angle_deg);
+            }
+        }
+    }
+    [phi, phi_at, rmin, rmin_at]
+}
+
+/// A conjugate pair whose two cams differ (issue 27: the pair reported one angle, the counter-cam's):
+/// an asymmetric rise (acceleration over the first 30 %, deceleration over 70 %) makes the cam's
+/// and the counter-cam's pressure angles and least radii differ, for a translating offset follower
+/// and for a swinging arm. Each cam's reported maximum pressure angle, least convex pitch radius
+/// and their places are checked against [`extremes_from_points`], from the written points alone.
+/// Tolerances: the points are h = 0.01° apart, so a place is found to the grid: within half a step
+/// of the library's refined place, checked to one step (measured: at most 0.0039°). The central
+/// difference's error in the tangent is O(h²) ≈ 1e-8 rad and the grid's maximum lies within
+/// (h/2)²·|φ''| of the true one, so the angle is checked to 1e-5° (measured: at most 2.2e-6°, the
+/// grid's maximum below the refined one); the three-point radius has an O(h²) relative error,
+/// checked to 1e-6 (measured: at most 4.2e-8). Measured values: translating, cam 30.3206° at
+/// 230.25°, counter-cam 34.5039° at 212.87°, radii 51.720 and 48.707 mm; swinging arm, 33.8311° at
+/// 244.50° and 40.5475° at 209.52°, radii 33.520 and 34.686 mm.
+#[test]
+fn each_cam_of_an_asymmetric_conjugate_pair_has_its_own_extremes() {
+    let level = format!("{}", -0.3 / 0.7);
+    let segments = format!("0.3:sine-arc:1,0.7:sine-arc:{level}");
+    let law = LawSpec::parse("piecewise", &[("segments", segments.as_str())]).unwrap();
+    let motion = |unit, stroke| {
+        Motion::from_cycle(&Cycle::new(&CycleSpec::rise_return(&law, unit, stroke, 120.0).unwrap()).unwrap())
+    };
+    let (eps, arm, pivot) = (10.0, 90.0, 110.0);
+    let cases = [
+        (motion(StrokeUnit::Mm, 40.0), Follower::Translating { offset_mm: eps }, 60.0),
+        (motion(StrokeUnit::Deg, 20.0), Follower::Oscillating { arm_mm: arm, pivot_mm: pivot }, 40.0),
+    ];
+    for (m, f, rp) in cases {
+        let cam = CamProfile::new(&m, &design(f, Closure::Conjugate, 6.0, Size::PrimeRadiusMm(rp))).unwrap();
+        let report = cam.report("asymmetric", 0.01);
+        let cams = report.cams.clone().unwrap();
+        let tracks = [&report.points, report.counter_points.as_ref().unwrap()];
+        let mut found = Vec::new();
+        for (c, pts) in cams.iter().zip(tracks) {
+            let x = match f {
+                Follower::Translating { .. } => {
+                    // The trace point runs on the line x = ε.
+                    assert!(
+                        pts.iter().all(|p| (rot(p.angle_deg.to_radians(), [p.x_mm, p.y_mm])[0] - eps).abs() < 1e-9)
+                    );
+                    extremes_from_points(pts, |_| [0.0, 1.0])
+                }
+                _ => {
+                    // The trace point runs on the circle of the arm about the pivot (d, 0); it moves
+                    // at right angles to the arm.
+                    for p in pts.iter() {
+                        let q = rot(p.angle_deg.to_radians(), [p.x_mm, p.y_mm]);
+                        assert!(((q[0] - pivot).hypot(q[1]) - arm).abs() < 1e-9);
+                    }
+                    extremes_from_points(pts, |q| [-q[1], q[0] - pivot])
+                }
+            };
+            assert!(
+                (c.max_pressure_angle_deg - x[0]).abs() < 1e-5,
+                "{f:?} {}: {} vs {}",
+                c.cam,
+                c.max_pressure_angle_deg,
+                x[0]
+            );
+            assert!(
+                (c.max_pressure_angle_at_deg - x[1]).abs() < 0.01,
+                "{f:?} {}: at {} vs {}",
+                c.cam,
+                c.max_pressure_angle_at_deg,
+                x[1]
+            );
+            assert!(
+                ((c.min_convex_radius_pitch_mm - x[2]) / x[2]).abs() < 1e-6,
+                "{f:?} {}: {} vs {}",
+                c.cam,
+                c.min_convex_radius_pitch_mm,
+                x[2]
+            );
+            assert!(
+                (c.min_convex_radius_pitch_at_deg - x[3]).abs() < 0.01,
+                "{f:?} {}: at {} vs {}",
+                c.cam,
+                c.min_convex_radius_pitch_at_deg,
+                x[3]
+            );
+            found.push(x);
+        }
+        // The two cams differ: the point of reporting each.
+        assert!((found[0][0] - found[1][0]).abs() > 1.0, "{f:?}: pressure angles {found:?}");
+        assert!((found[0][2] - found[1][2]).abs() > 1.0, "{f:?}: radii {found:?}");
+        // The pair's figures are the worse cam's, and the counter-cam's own are reported as such.
+        assert_eq!(
+            report.extremes.max_pressure_angle_deg,
+            cams[0].max_pressure_angle_deg.max(cams[1].max_pressure_angle_deg)
+        );
+        assert_eq!(report.counter_max_pressure_angle_deg, Some(cams[1].max_pressure_angle_deg));
+        assert_eq!(report.counter_max_pressure_angle_at_deg, Some(cams[1].max_pressure_angle_at_deg));
+    }
+}
