@@ -92,3 +92,45 @@ fn dobby_rollers_at_the_ends_draw_finite_plots() {
         std::fs::remove_file(&svg).unwrap();
     }
 }
+
+/// A mechanism file's `[required] path_m` of 1e-300 printed `inf` and 310-digit numbers in
+/// `pick montecarlo` (issue 27's second fuzz pass); it is refused naming the key and its range in
+/// every command that reads the file, and at the range's ends the study prints only finite numbers
+/// of at most 17 significant digits (text and JSON).
+#[test]
+fn a_mechanism_path_at_the_ends_gives_finite_monte_carlo_studies() {
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
+    let base = std::fs::read_to_string(format!("{examples}/picking-mechanism.toml")).unwrap();
+    let study = format!("{examples}/pick-montecarlo.toml");
+    assert!(base.contains("\npath_m = 1.53"), "the example's path changed");
+    let file = std::env::temp_dir().join(format!("loomkin-ends-mech-{}.toml", std::process::id()));
+    let m = file.to_str().unwrap();
+    for bad in ["1e-300", "5e-324", "0.0099999", "100.0001"] {
+        std::fs::write(&file, base.replace("\npath_m = 1.53", &format!("\npath_m = {bad}"))).unwrap();
+        let needles = [format!("path_m = {bad}"), "0.01 ≤ path_m ≤ 100 m".to_string()];
+        let needles: Vec<&str> = needles.iter().map(String::as_str).collect();
+        usage_error(&["pick", "montecarlo", &study, "--mechanism", m], &needles);
+        usage_error(&["pick", "simulate", "--mechanism", m], &needles);
+    }
+    for end in ["0.01", "100"] {
+        std::fs::write(&file, base.replace("\npath_m = 1.53", &format!("\npath_m = {end}"))).unwrap();
+        for json in [false, true] {
+            let mut args = vec!["pick", "montecarlo", study.as_str(), "--mechanism", m];
+            if json {
+                args.push("--json");
+            }
+            let out = loomkin().args(&args).output().unwrap();
+            assert!(out.status.success(), "path_m = {end}: {}", String::from_utf8_lossy(&out.stderr));
+            let text = String::from_utf8_lossy(&out.stdout);
+            assert!(!text.contains("inf") && !text.contains("NaN"), "path_m = {end}: a non-finite number");
+            // Significant digits of every number written: at most the 17 of a shortest f64.
+            let digits = text
+                .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+                .map(|t| t.chars().filter(char::is_ascii_digit).skip_while(|c| *c == '0').count())
+                .max()
+                .unwrap_or(0);
+            assert!(digits <= 17, "path_m = {end}: a number of {digits} digits");
+        }
+    }
+    std::fs::remove_file(&file).unwrap();
+}
