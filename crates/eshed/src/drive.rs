@@ -120,11 +120,17 @@ pub struct FrameDrive {
 impl FrameDrive {
     /// The drive at local coordinate `t` of law segment `lseg` of cycle segment `seg`.
     pub fn at_law(&self, seg: &CycleSegment, lseg: &Segment, t: f64) -> DrivePoint {
+        let [s, v, a, j] = self.state_at_law(seg, lseg, t);
+        self.point(s, v, a, j)
+    }
+
+    /// The frame's position, velocity, acceleration and jerk (SI) at local coordinate `t` of law
+    /// segment `lseg` of cycle segment `seg`: what [`FrameDrive::at_law`] evaluates the drive at.
+    pub fn state_at_law(&self, seg: &CycleSegment, lseg: &Segment, t: f64) -> [f64; 4] {
         let d = lseg.derivs_local(t);
         let r = self.omega / seg.length_rad;
         let h = seg.stroke_si;
-        let (s, v, a, j) = (seg.base_si + h * d[0], h * d[1] * r, h * d[2] * r * r, h * d[3] * r * r * r);
-        self.point(s, v, a, j)
+        [seg.base_si + h * d[0], h * d[1] * r, h * d[2] * r * r, h * d[3] * r * r * r]
     }
 
     /// The drive at rest at cycle position `s`.

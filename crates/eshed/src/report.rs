@@ -1,6 +1,6 @@
 //! The servo-shedding study of a loom weaving a pattern: per frame and on the bus.
 
-use crate::bus::{Timeline, bus};
+use crate::bus::{DriveMemo, Timeline, bus};
 use crate::continuity::{JointClass, joint_class};
 use crate::drive::{FrameDrive, FrameLoad, axis};
 use crate::{Bus, EshedError, FramePlan, FrameServo, MoveLaws, Result};
@@ -157,14 +157,25 @@ impl Study {
 
     /// The bus over the repeat (`scan_only`: see [`peak_bus_power_w`]).
     fn bus(&self, bus_spec: &Bus, scan_only: bool) -> crate::BusTotals {
-        self.bus_at(bus_spec, None, scan_only)
+        self.bus_at(bus_spec, None, scan_only, None)
     }
 
-    /// The bus over the turns of the picks `only` (increasing), or of every pick.
-    fn bus_at(&self, bus_spec: &Bus, only: Option<&[usize]>, scan_only: bool) -> crate::BusTotals {
+    /// The bus over the turns of the picks `only` (increasing), or of every pick; the drives'
+    /// points remembered in `memo` when given.
+    fn bus_at(
+        &self,
+        bus_spec: &Bus,
+        only: Option<&[usize]>,
+        scan_only: bool,
+        memo: Option<&mut DriveMemo>,
+    ) -> crate::BusTotals {
         let mut types = crate::bus::WordMap::default();
+        let memos = match memo {
+            Some(m) => m.frames_for(&self.drives),
+            None => vec![None; self.drives.len()],
+        };
         let lines: Vec<Timeline<'_>> = (0..self.cycles.len())
-            .map(|i| Timeline::new(&self.cycles[i], &self.segments[i], &self.drives[i], &mut types))
+            .map(|i| Timeline::new(&self.cycles[i], &self.segments[i], &self.drives[i], &mut types, memos[i]))
             .collect();
         let picks = (self.cycles[0].period_rad.to_degrees() / 360.0).round() as usize;
         bus(&lines, picks, only, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
@@ -276,12 +287,38 @@ pub fn peak_bus_power_w(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, s
 /// picks `picks` alone (increasing, each in `0..picks of the repeat`), W: what a search compares
 /// when one pick stands for every pick whose turn is the same.
 pub fn peak_bus_power_w_at(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, picks: &[usize]) -> Result<f64> {
+    scanned_peak(frames, bus_spec, speed_rpm, Some(picks), None)
+}
+
+/// The largest bus power of the scan over every pick (`picks` = `None`: [`peak_bus_power_w`] with
+/// `scan_only`) or over the turns of `picks` ([`peak_bus_power_w_at`]), the same value bit for
+/// bit, the drives' points remembered in `memo` from one call to the next: a search evaluating
+/// the same frames again and again ([`DriveMemo`]).
+pub fn peak_bus_power_w_memo(
+    frames: &[FrameSetup],
+    bus_spec: &Bus,
+    speed_rpm: f64,
+    picks: Option<&[usize]>,
+    memo: &mut DriveMemo,
+) -> Result<f64> {
+    scanned_peak(frames, bus_spec, speed_rpm, picks, Some(memo))
+}
+
+fn scanned_peak(
+    frames: &[FrameSetup],
+    bus_spec: &Bus,
+    speed_rpm: f64,
+    picks: Option<&[usize]>,
+    memo: Option<&mut DriveMemo>,
+) -> Result<f64> {
     let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
     let repeat = (first.plan.period_deg / 360.0).round() as usize;
-    if picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= repeat) {
+    if let Some(picks) = picks
+        && (picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= repeat))
+    {
         return Err(EshedError::field("picks", format!("picks must increase within the repeat of {repeat}")));
     }
-    Ok(Study::new(frames, speed_rpm)?.bus_at(bus_spec, Some(picks), true).peak_w.0)
+    Ok(Study::new(frames, speed_rpm)?.bus_at(bus_spec, picks, true, memo).peak_w.0)
 }
 
 /// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the

@@ -4,8 +4,8 @@
 mod common;
 
 use loomkin_eshed::{
-    Bus, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Study, Transmission, Winding, analyse,
-    curves, joint_class,
+    Bus, DriveMemo, FrameInput, FrameLoad, FramePlan, FrameServo, FrameSetup, MoveLaws, Study, Transmission, Winding,
+    analyse, curves, joint_class, peak_bus_power_w, peak_bus_power_w_at, peak_bus_power_w_memo,
 };
 use loomkin_laws::{Cycle, LawSpec};
 use loomkin_servo::operating_point_at;
@@ -436,4 +436,41 @@ fn moves_up_and_down_take_their_own_motion_angles() {
     // An angle out of (0, 360] is refused by name.
     let bad = FrameInput { fall_motion_deg: 361.0, ..input };
     assert!(FramePlan::new(&bad, false).unwrap_err().to_string().starts_with("fall_motion_deg: 361°"));
+}
+
+/// The drive points remembered across calls (what the optimiser's search does) give the scan's
+/// peak bit for bit as without: over a sequence of staggers and motion angles (the memo's blocks
+/// met again, in part), over a few picks, after a change of the drive (the memo starts afresh),
+/// and with a memo so small that a frame's blocks outgrow a generation within one call.
+#[test]
+fn remembered_drive_points_give_the_same_scan_bit_for_bit() {
+    let plan = lift_plan(4, 24, 11);
+    let l = laws(LawSpec::ModifiedSine);
+    for crank in CRANK {
+        let mut memo = DriveMemo::default();
+        for (k, &(stagger, friction)) in
+            [(0.0, 0.0), (3.0, 0.0), (0.0, 0.0), (-2.0, 0.0), (-2.0, 6.0), (3.0, 6.0), (0.0, 0.0)].iter().enumerate()
+        {
+            let s = servo_by(0.93, friction, 15.0, 1.5, crank.then(common::crank_lever));
+            let fs = setups(&plan, k % 2 == 1, &s, stagger, &l);
+            let bus = Bus::default();
+            let want = peak_bus_power_w(&fs, &bus, SPEED_RPM, true).unwrap();
+            let got = peak_bus_power_w_memo(&fs, &bus, SPEED_RPM, None, &mut memo).unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "crank {crank}, step {k}: {got} vs {want}");
+            let picks = [1, 5, 6, 17];
+            let want = peak_bus_power_w_at(&fs, &bus, SPEED_RPM, &picks).unwrap();
+            let got = peak_bus_power_w_memo(&fs, &bus, SPEED_RPM, Some(&picks), &mut memo).unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "crank {crank}, step {k}, picks: {got} vs {want}");
+        }
+    }
+    // A memo of 3 blocks a frame: the blocks outgrow a generation within each call.
+    let fs = setups(&plan, false, &servo_by(0.93, 0.0, 15.0, 1.5, Some(common::crank_lever())), 1.0, &l);
+    let mut memo = DriveMemo::with_blocks(12);
+    let want = peak_bus_power_w(&fs, &Bus::default(), SPEED_RPM, true).unwrap();
+    for _ in 0..2 {
+        let got = peak_bus_power_w_memo(&fs, &Bus::default(), SPEED_RPM, None, &mut memo).unwrap();
+        assert_eq!(got.to_bits(), want.to_bits());
+    }
+    // Bad picks are refused as without the memo.
+    assert!(peak_bus_power_w_memo(&fs, &Bus::default(), SPEED_RPM, Some(&[3, 2]), &mut memo).is_err());
 }

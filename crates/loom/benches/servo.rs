@@ -3,7 +3,9 @@
 //! the plans — and the optimiser (goal < 2 s on one core).
 //!
 //! `cargo bench -p loomkin-loom --bench servo`. The loom is examples/servo-shedding-loom.toml; the
-//! lift plan a 12/12 twill on 24 shafts tiled to 10⁴ picks.
+//! lift plan a 12/12 twill on 24 shafts tiled to 10⁴ picks. The `crank_*` rows: the same 24 frames
+//! on the crank and lever of examples/servo-shedding-crank-loom.toml, `loom servo --optimize` of its
+//! plain weave and of examples/point-24.wif.
 
 use loomkin_loom::{Loom, Objective, Pattern, optimise_servo, servo_setups, servo_study_of};
 
@@ -35,6 +37,34 @@ fn study_24_frames_10k_picks(b: divan::Bencher) {
 #[divan::bench(sample_count = 2)]
 fn optimise_24_frames_10k_picks(b: divan::Bencher) {
     let (loom, pattern) = (loom(), twill(10_000));
+    b.bench(|| {
+        optimise_servo(&loom, &pattern, Objective::Peak, &Default::default(), &|_, _| {})
+            .unwrap()
+            .peak_bus_power_w_after
+    });
+}
+
+fn crank_loom() -> Loom {
+    Loom::from_toml(include_str!("../../../examples/servo-shedding-crank-loom.toml")).unwrap()
+}
+
+/// `loom servo examples/servo-shedding-crank-loom.toml --optimize` (its plain weave, 2 picks).
+#[divan::bench(sample_count = 3)]
+fn crank_optimise_plain(b: divan::Bencher) {
+    let loom = crank_loom();
+    let pattern = Pattern::plain(loom.frame_count()).unwrap();
+    b.bench(|| {
+        optimise_servo(&loom, &pattern, Objective::Peak, &Default::default(), &|_, _| {})
+            .unwrap()
+            .peak_bus_power_w_after
+    });
+}
+
+/// `loom servo examples/servo-shedding-crank-loom.toml --wif examples/point-24.wif --optimize`.
+#[divan::bench(sample_count = 2)]
+fn crank_optimise_point_24(b: divan::Bencher) {
+    let loom = crank_loom();
+    let pattern = Pattern::from_wif(include_str!("../../../examples/point-24.wif")).unwrap();
     b.bench(|| {
         optimise_servo(&loom, &pattern, Objective::Peak, &Default::default(), &|_, _| {})
             .unwrap()

@@ -337,6 +337,8 @@ struct ServoSearch<'a> {
     reduced: Reduced,
     evaluations: usize,
     clearance_checks: usize,
+    /// The frames' drive points, remembered from one evaluation to the next (a crank and lever's).
+    memo: loomkin_eshed::DriveMemo,
     stop: &'a StopFlag,
     progress: &'a dyn Fn(usize, usize),
     stages: (usize, usize),
@@ -362,11 +364,12 @@ impl ServoSearch<'_> {
         let speed = self.loom.speed.rpm();
         Ok(match self.objective {
             Objective::Peak if self.reduced.whole => {
-                loomkin_eshed::peak_bus_power_w(&self.setups(x)?, &servo.bus, speed, true)?
+                loomkin_eshed::peak_bus_power_w_memo(&self.setups(x)?, &servo.bus, speed, None, &mut self.memo)?
             }
             Objective::Peak => {
                 let setups = self.setups_of(&self.reduced.pattern, x)?;
-                loomkin_eshed::peak_bus_power_w_at(&setups, &servo.bus, speed, &self.reduced.picks)?
+                let picks = Some(self.reduced.picks.as_slice());
+                loomkin_eshed::peak_bus_power_w_memo(&setups, &servo.bus, speed, picks, &mut self.memo)?
             }
             Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, speed)?,
         })
@@ -567,6 +570,7 @@ fn optimise(
         reduced: if reduce { reduced_pattern(loom, pattern)? } else { Reduced::whole(pattern) },
         evaluations: 0,
         clearance_checks: 0,
+        memo: Default::default(),
         stop,
         progress,
         stages: (0, SERVO_STEPS.len()),
