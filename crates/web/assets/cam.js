@@ -111,7 +111,7 @@ async function initCam() {
   const table = el("table", { className: "data", id: "cam-summary" }, el("caption", { textContent: "Cam" }), el("tbody"));
   const top = el("div", { className: "results" });
   root.append(top);
-  cam.scene = new Scene(top, { id: "cam-scene", title: "Cam (cam frame)", height: 420, unit: "mm", scale: 1 });
+  cam.scene = new Scene(top, { id: "cam-scene", title: "Cam (cam frame)", height: 420, unit: "mm" });
   top.append(table);
   // The angle: a slider and a numeric field (any angle of the cycle, e.g. 123.25°).
   const angleW = sliderWithNumber("cam-angle", "main-shaft angle: the follower's contact on the drawing and the charts", "°", 0, 360, 0.5, 0,

@@ -3,6 +3,10 @@
 (() => {
 "use strict";
 
+// Rounding slack of tick arithmetic, as fractions of a tick step: a bound within TICK_SNAP of a
+// whole step is on it (and a tick that near zero is 0); the last tick may overshoot by TICK_SLACK.
+const TICK_SNAP = 1e-9, TICK_SLACK = 1e-6;
+
 const PALETTE = ["#1f5fa8", "#c2410c", "#15803d", "#7c3aed", "#b91c1c", "#0e7490", "#a16207", "#be185d"];
 
 // A "nice" tick step near range / count: 1, 2 or 5 times a power of ten.
@@ -24,18 +28,23 @@ function niceTicks(lo, hi, count, fixedStep) {
   }
   let step = niceStep(hi - lo, count);
   if (fixedStep) step = fixedStep * Math.max(1, Math.round(step / fixedStep));
-  const a = Math.floor(lo / step + 1e-9) * step;
-  const b = Math.ceil(hi / step - 1e-9) * step;
+  const a = Math.floor(lo / step + TICK_SNAP) * step;
+  const b = Math.ceil(hi / step - TICK_SNAP) * step;
+  return { lo: a, hi: b, step, ticks: stepTicks(a, b, step) };
+}
+
+// The ticks first, first + step, … up to last (within TICK_SLACK), a tick near zero written as 0.
+function stepTicks(first, last, step) {
   const ticks = [];
-  for (let t = a; t <= b + step * 1e-6; t += step) ticks.push(Math.abs(t) < step * 1e-9 ? 0 : t);
-  return { lo: a, hi: b, step, ticks };
+  for (let t = first; t <= last + step * TICK_SLACK; t += step) ticks.push(Math.abs(t) < step * TICK_SNAP ? 0 : t);
+  return ticks;
 }
 
 // A number for a label: enough digits for the step, no trailing noise; never "NaN".
 function fmtTick(v, step) {
   if (!isFinite(v)) return "–";
-  if (Math.abs(v) < Math.abs(step) * 1e-6) v = 0; // no "-0"
-  const d = Math.max(0, Math.min(8, -Math.floor(Math.log10(step) + 1e-9)));
+  if (Math.abs(v) < Math.abs(step) * TICK_SLACK) v = 0; // no "-0"
+  const d = Math.max(0, Math.min(8, -Math.floor(Math.log10(step) + TICK_SNAP)));
   return v.toFixed(d);
 }
 
@@ -704,9 +713,7 @@ function renderSVG(chart) {
 function niceTicksIn(lo, hi, count, fixedStep) {
   let step = niceStep(hi - lo, count);
   if (fixedStep) step = fixedStep * Math.max(1, Math.round(step / fixedStep));
-  const ticks = [];
-  for (let t = Math.ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-6; t += step) ticks.push(Math.abs(t) < step * 1e-9 ? 0 : t);
-  return { step, ticks };
+  return { step, ticks: stepTicks(Math.ceil(lo / step - TICK_SNAP) * step, hi, step) };
 }
 
 

@@ -8,7 +8,7 @@
 "use strict";
 
 const { Chart, PALETTE, addTools } = window.LoomkinCharts;
-const { api, status, el, num, loomkin, register } = window.LoomkinApp;
+const { api, status, el, num, convert, loomkin, register } = window.LoomkinApp;
 const { viewHistory, showFieldError, clearFieldErrors, sliderWithNumber, FRAME_COLOURS } = window.LoomkinShared;
 
 const drv = { inflight: false, queued: false, result: null, side: null, k: 0, playing: false, last: null };
@@ -208,7 +208,7 @@ function start() {
     if (drv.last !== null) {
       const s = drv.side, n = s.angle_deg.length;
       const h = n > 1 ? s.angle_deg[1] - s.angle_deg[0] : 1;
-      drv.acc = (drv.acc || 0) + (t - drv.last) / 1000 * PLAY_DEG_PER_S / h;
+      drv.acc = (drv.acc || 0) + convert(t - drv.last, "ms", "s") * PLAY_DEG_PER_S / h;
       const adv = Math.floor(drv.acc);
       if (adv > 0) { drv.acc -= adv; show((drv.k + adv) % n); }
     }

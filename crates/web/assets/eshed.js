@@ -9,7 +9,7 @@
 "use strict";
 
 const { Chart, addTools } = window.LoomkinCharts;
-const { api, status, el, num, loomkin, register } = window.LoomkinApp;
+const { api, status, el, num, convert, loomkin, register } = window.LoomkinApp;
 const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField, loomPatternPicker, FRAME_COLOURS } = window.LoomkinShared;
 
 const es = { inflight: false, queued: false, result: null, optimum: null, token: 0, picker: null };
@@ -162,7 +162,7 @@ async function runOptimise() {
       i.shown.disabled = false; i.shown.value = "after";
       render();
       es.history.commit();
-      status(`servo shedding optimised in ${((performance.now() - t0) / 1000).toFixed(1)} s (${r.result.evaluations} evaluations)`);
+      status(`servo shedding optimised in ${convert(performance.now() - t0, "ms", "s").toFixed(1)} s (${r.result.evaluations} evaluations)`);
     }
   } catch (e) { showFieldError("servo shedding", e, eshedField); }
   for (const x of [i.optimise, i.loomSel, i.patSel, i.objective, i.minClear]) x.disabled = false;

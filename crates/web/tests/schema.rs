@@ -210,8 +210,9 @@ fn js_request_defaults(line: &str, schemas: &Value) -> Vec<String> {
     out
 }
 
-/// What the page writes of its own: unit factors, scales and request defaults, `line: text`.
-fn page_offences(js: &str, schemas: &Value) -> Vec<String> {
+/// What a page script writes of its own: unit factors, scales and request defaults,
+/// `file:line: why: text`.
+fn page_offences(file: &str, js: &str, schemas: &Value) -> Vec<String> {
     let mut found = Vec::new();
     for (n, line) in js.lines().enumerate() {
         let code = line.trim_start();
@@ -228,19 +229,53 @@ fn page_offences(js: &str, schemas: &Value) -> Vec<String> {
             why.push("a scale".into());
         }
         for w in why {
-            found.push(format!("app.js:{}: {w}: {}", n + 1, code));
+            found.push(format!("{file}:{}: {w}: {}", n + 1, code));
         }
     }
     found
 }
 
-/// The page (crates/web/assets/app.js) writes no unit factor, unit scale or request default of its
-/// own (issue 27): it converts with the schema's `units` (from loomkin_units) and leaves a
-/// request's default to the request type.
+/// Every script of the page as (file name, text): each `.js` under crates/web/assets, read from
+/// the directory so that a new view is scanned without being listed here, and checked against what
+/// the server serves.
+fn page_scripts() -> Vec<(String, String)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let mut out: Vec<(String, String)> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.expect("a directory entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "js"))
+        .map(|p| {
+            let name = p.file_name().expect("a file name").to_string_lossy().into_owned();
+            let text = std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            (name, text)
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// The page's scripts (every .js under crates/web/assets: app.js and each view's) write no unit
+/// factor, unit scale or request default of their own (issue 27): they convert with the schema's
+/// `units` (from loomkin_units, `LoomkinApp.convert`) and leave a request's default to the request
+/// type.
 #[test]
 fn no_unit_factor_or_request_default_in_the_page() {
     let s = schemas();
-    let found = page_offences(loomkin_web::APP_JS, &s);
+    let scripts = page_scripts();
+    // The directory holds the scripts the server serves (so the scan reads what users get).
+    let served = [
+        ("app.js", loomkin_web::APP_JS),
+        ("cam.js", loomkin_web::CAM_JS),
+        ("charts.js", loomkin_web::CHARTS_JS),
+        ("drive.js", loomkin_web::DRIVE_JS),
+        ("eshed.js", loomkin_web::ESHED_JS),
+        ("insertion.js", loomkin_web::INSERTION_JS),
+        ("loom.js", loomkin_web::LOOM_JS),
+    ];
+    for (name, text) in served {
+        assert!(scripts.iter().any(|(n, t)| n == name && t == text), "{name} is served but not scanned");
+    }
+    let found: Vec<String> = scripts.iter().flat_map(|(name, js)| page_offences(name, js, &s)).collect();
     assert!(
         found.is_empty(),
         "numbers the page should read from GET /api/schema (units, defaults):\n{}",
@@ -255,8 +290,11 @@ fn no_unit_factor_or_request_default_in_the_page() {
         r#"  api("/servo/evaluate", { design: servo.design, samples: 1000 })"#,
         r#"  dobby.scene = new LoomkinCharts.Scene(charts, { id: "dobby-scene", unit: "mm", scale: 1000 });"#,
         r#"  const s = (performance.now() - j.t0) / 1000, budget = 3;"#,
+        r#"      drv.acc = (drv.acc || 0) + (t - drv.last) / 1000 * PLAY_DEG_PER_S / h;"#,
+        r#"      status(`servo shedding optimised in ${((performance.now() - t0) / 1000).toFixed(1)} s`);"#,
+        r#"  cam.scene = new Scene(top, { id: "cam-scene", height: 420, unit: "mm", scale: 1 });"#,
     ] {
-        assert_eq!(page_offences(bad, &s).len(), 1, "not found: {bad}");
+        assert_eq!(page_offences("test", bad, &s).len(), 1, "not found: {bad}");
     }
     for good in [
         r#"  applyLimits(inputs.roller, "/api/dobby/synthesize", "roller_m", "mm");"#,
@@ -265,7 +303,7 @@ fn no_unit_factor_or_request_default_in_the_page() {
         r#"  const w = a / 2, h = b * 1000.5; // u * 1000 in a comment"#,
         r#"  // u * 1000"#,
     ] {
-        assert_eq!(page_offences(good, &s), Vec::<String>::new(), "{good}");
+        assert_eq!(page_offences("test", good, &s), Vec::<String>::new(), "{good}");
     }
     // The units the page converts with are loomkin_units' factors.
     assert_eq!(s["units"]["mm"], json!({"of": "m", "factor": loomkin_units::mm_from_m(1.0)}));
