@@ -1,7 +1,9 @@
 //! Benchmarks of the loom model: the torque over a 24-frame, 48-pick repeat at 0.5° (target
 //! < 5 ms), the stagger optimisation for 24 frames (target < 1 s), and `loom check` of a long
-//! repeat (the 48-pick draft 200 times, 9,600 picks; target: 10⁵ picks in seconds).
+//! repeat (the 48-pick draft 200 times, 9,600 picks; target: 10⁵ picks in seconds), and both on
+//! random lift plans whose turns do not repeat (10⁵ picks checked, 1,000 staggered; issue 27).
 
+mod common;
 use loomkin_loom::{Drive, Loom, Motion, Objective, Pattern, check, optimise_stagger};
 
 fn main() {
@@ -67,4 +69,21 @@ fn torque_points_24_frames_480_picks(bencher: divan::Bencher) {
     let motion = Motion::new(&loom, &pattern).unwrap();
     let drive = Drive::new(&loom, &motion, &pattern);
     bencher.bench_local(|| drive.torque_points(divan::black_box(0.1)).map(|(_, t)| t).sum::<f64>());
+}
+
+/// `loom check` of 10⁵ random picks on 24 frames (no turn repeats: the frames' rows made once,
+/// every pick summed from them; was 96 s, one turn worked out whole per pick).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn check_24_frames_100000_random_picks(bencher: divan::Bencher) {
+    let (loom, _) = setup();
+    let pattern = common::random_plan(100_000);
+    bencher.bench_local(|| check(&loom, &pattern).unwrap().rms_torque_n_m);
+}
+
+/// The stagger search (peak objective, per frame) on 1,000 random picks of 24 frames.
+#[divan::bench(sample_count = 2, sample_size = 1)]
+fn stagger_24_frames_1000_random_picks(bencher: divan::Bencher) {
+    let (loom, _) = setup();
+    let pattern = common::random_plan(1_000);
+    bencher.bench_local(|| optimise_stagger(&loom, &pattern, Objective::Peak).unwrap().best.peak_torque_n_m);
 }

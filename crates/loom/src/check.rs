@@ -77,7 +77,7 @@ pub fn check_with(loom: &Loom, pattern: &Pattern, progress: &dyn Fn(usize, usize
     let all = pattern.picks() + 2;
     let motion = Motion::new(loom, pattern)?;
     let drive = Drive::new(loom, &motion, pattern);
-    let timing: TimingReport = Timing::new(loom, &motion, pattern)?.report_of(false)?;
+    let timing: TimingReport = Timing::new(loom, &motion, pattern)?.summary()?;
     progress(1, all);
     let g = &loom.geometry;
     let equal = equal_strain_strokes(&g.frame_m, g.back_rest_m, g.warp_line_m, g.stroke_m[0]);

@@ -14,6 +14,7 @@
 //! ([`Drive::energy_j`]) — the independent route the tests take.
 
 use crate::geometry::{straight_length, thread_length};
+use crate::turn_rows::{MAX_WHOLE_TURNS, rms_from_rows};
 use crate::turns::Turns;
 use crate::{FrameKin, G_M_S2, Loom, Motion, Pattern};
 use loomkin_laws::gauss_legendre;
@@ -171,6 +172,12 @@ impl<'a> Drive<'a> {
             }
         }
         sum / self.loom.efficiency
+    }
+
+    /// Frame `i`'s share of the torque in state `k`, N·m: its force times `y'` over the
+    /// efficiency (0 while it dwells).
+    pub(crate) fn power(&self, i: usize, k: &FrameKin) -> f64 {
+        if k.dy != 0.0 { self.force(i, k).total_n * k.dy / self.loom.efficiency } else { 0.0 }
     }
 
     /// The energy stored at `theta_deg`, J: kinetic `½mω²y'²`, potential `m·g·y`, the springs
@@ -488,7 +495,15 @@ impl<'a> Drive<'a> {
     /// turn by turn, once per distinct turn (turns whose frames move alike, see
     /// [`crate::turns`]) times the picks that repeat it.
     fn rms_scaled(&self, k: f64) -> f64 {
-        let turns = Turns::new(self.motion, 0.0, 360.0);
+        match Turns::new_within(self.motion, 0.0, 360.0, MAX_WHOLE_TURNS) {
+            Some(turns) => self.rms_of_turns(&turns, k),
+            None => rms_from_rows(self, k, MAX_RMS_SPLITS)
+                .unwrap_or_else(|| self.rms_of_turns(&Turns::new(self.motion, 0.0, 360.0), k)),
+        }
+    }
+
+    /// [`Drive::rms_scaled`] turn by turn, once per distinct turn of `turns`.
+    pub(crate) fn rms_of_turns(&self, turns: &Turns, k: f64) -> f64 {
         let rule = gauss_legendre(16);
         let mut splits = 0usize;
         let mut sum = 0.0;

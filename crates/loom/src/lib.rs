@@ -45,6 +45,7 @@ mod servo_shedding;
 mod stagger;
 mod timetrue;
 mod timing;
+mod turn_rows;
 mod turns;
 
 pub use check::{CheckReport, FrameCheck, check, check_with};

@@ -167,11 +167,32 @@ impl Motion {
     /// Frame `i` at main-shaft angle `theta_deg` (any angle; the motion repeats every
     /// [`Motion::repeat_deg`]). At a joint between a dwell and a move the move's end value is taken.
     pub fn frame(&self, i: usize, theta_deg: f64) -> FrameKin {
+        let q = ((theta_deg - self.centre0_deg[i]) / 360.0).round();
+        self.frame_near(i, theta_deg, q, q as i64)
+    }
+
+    /// Frame `i` at angle `t_deg` of pick `p`'s turn (`θ = 360p + t`, worked out without the
+    /// rounding of the absolute angle): the same motion as [`Motion::frame`] at `360p + t`, and a
+    /// function of `t` and of the frame's lifts at the picks around `p` alone — two picks whose
+    /// lifts agree there give the same bits (what the rows of a long repeat are made of: a
+    /// frame's row over a span of the turn serves every pick whose lifts agree around it).
+    pub fn frame_in_turn(&self, i: usize, p: usize, t_deg: f64) -> FrameKin {
+        let q = self.move_in_turn(i, t_deg);
+        self.frame_near(i, t_deg, q as f64, p as i64 + q)
+    }
+
+    /// The move nearest angle `t_deg` of a pick's turn for frame `i`, in picks from that pick
+    /// (`0`: the move into the pick itself): [`Motion::frame_in_turn`] reads the lifts of that
+    /// pick and of the one before. Non-decreasing in `t_deg`.
+    pub fn move_in_turn(&self, i: usize, t_deg: f64) -> i64 {
+        ((t_deg - self.centre0_deg[i]) / 360.0).round() as i64
+    }
+
+    /// Frame `i` at `theta_deg`, `q` whole turns from the move into pick 0 (the move nearest
+    /// `theta_deg`), reading the lifts at picks `qi − 1` and `qi`.
+    fn frame_near(&self, i: usize, theta_deg: f64, q: f64, qi: i64) -> FrameKin {
         let phi = self.motion_deg();
-        let t = (theta_deg - self.centre0_deg[i]) / 360.0;
-        let q = t.round();
         let centre = self.centre0_deg[i] + 360.0 * q;
-        let qi = q as i64;
         let (before, after) = (self.is_up(i, qi - 1), self.is_up(i, qi));
         if before != after && (theta_deg - centre).abs() <= phi / 2.0 {
             let x = (theta_deg - centre + phi / 2.0) / phi;

@@ -14,6 +14,7 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
+use crate::turn_rows::{FrameStates, MAX_WHOLE_TURNS};
 use crate::turns::{Turns, lift_key};
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
@@ -132,6 +133,11 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
     /// The clear shed height at distance `x` from the fell at absolute angle `theta_deg`, for pick
     /// `pick`'s sheets, m.
     pub fn clear_m(&self, pick: usize, x: f64, theta_deg: f64) -> f64 {
+        self.clear_with(pick, x, |i| self.motion.frame_y_m(i, theta_deg))
+    }
+
+    /// [`Timing::clear_m`] of the frames' heights `y(i)`, m.
+    fn clear_with(&self, pick: usize, x: f64, y_of: impl Fn(usize) -> f64) -> f64 {
         let n = self.loom.frame_count();
         // The frames' positions on the stack up to 64 frames (this runs at every angle of every
         // scan: an allocation per call was a tenth of the clearance's time).
@@ -144,7 +150,7 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
             &mut heap
         };
         for (i, yi) in y.iter_mut().enumerate() {
-            *yi = self.motion.frame_y_m(i, theta_deg);
+            *yi = y_of(i);
         }
         let row = pick % (self.upper.len() / n) * n;
         self.loom.geometry.clear_height(x, y, &self.upper[row..row + n]).unwrap_or(0.0)
@@ -227,6 +233,18 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
         Turns::of(self.motion, a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
     }
 
+    /// [`Timing::turns`], or `None` once more than `cap` distinct turns are found.
+    fn turns_within(&self, cap: usize) -> Option<Turns> {
+        let ins = &self.loom.insertion;
+        let (a, b) = self.turn();
+        Turns::of_within(
+            self.motion,
+            a.min(ins.entry_deg).min(ins.exit_deg),
+            b.max(ins.exit_deg).max(ins.entry_deg),
+            cap,
+        )
+    }
+
     /// The least clearance over the required insertion of every pick, m (a cheap form for the
     /// stagger search: on a grid of `step_deg` and the ends, not refined), once per distinct turn.
     pub fn min_clearance_coarse(&self, step_deg: f64) -> f64 {
@@ -267,16 +285,7 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
         let windows: Vec<PickWindow> = turns.first.iter().map(|&p| self.pick_window(p)).collect();
         let ins = &self.loom.insertion;
         if windows.iter().any(|w| w.open_deg.is_nan()) {
-            let max_clear = self.max_clear_of(&turns);
-            return Err(LoomError::Infeasible {
-                field: "insertion.carrier_height_mm".into(),
-                reason: format!(
-                    "the carrier ({:.1} mm) is taller than the shed: it opens at most {:.1} mm at the carrier's front edge, {:.1} mm from the fell",
-                    ins.carrier_height_m * 1e3,
-                    max_clear * 1e3,
-                    self.x_c * 1e3
-                ),
-            });
+            return Err(self.too_tall(self.max_clear_of(&turns)));
         }
         let open_deg = windows.iter().map(|w| w.open_deg).fold(f64::NEG_INFINITY, f64::max);
         let close_deg = windows.iter().map(|w| w.close_deg).fold(f64::INFINITY, f64::min);
@@ -298,6 +307,20 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
             max_speed_rpm: max_speed_rpm(v, window_deg, ins.reed_width_m, ins.carrier_length_m),
             max_clear_mm: self.max_clear_of(&turns) * 1e3,
         })
+    }
+
+    /// The error of a carrier taller than the shed ever opens (`max_clear` m).
+    fn too_tall(&self, max_clear: f64) -> LoomError {
+        let ins = &self.loom.insertion;
+        LoomError::Infeasible {
+            field: "insertion.carrier_height_mm".into(),
+            reason: format!(
+                "the carrier ({:.1} mm) is taller than the shed: it opens at most {:.1} mm at the carrier's front edge, {:.1} mm from the fell",
+                ins.carrier_height_m * 1e3,
+                max_clear * 1e3,
+                self.x_c * 1e3
+            ),
+        }
     }
 
     /// The largest clear height at the carrier's front edge over the repeat, m: per pick the
@@ -323,6 +346,288 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 }
+
+impl Timing<'_, Motion> {
+    /// [`Timing::report_of`] without the per-pick list (what `loom check` prints): each distinct
+    /// turn worked out whole when there are at most 256, else from rows made once per frame
+    /// and run of its lifts (every pick scanned from them, what the report keeps refined on the
+    /// exact laws of the picks that can set it) — a repeat of 10⁵ random picks in seconds, the
+    /// same numbers to rounding (the tests hold them to 1e-12).
+    pub fn summary(&self) -> Result<TimingReport> {
+        if self.turns_within(MAX_WHOLE_TURNS).is_some() {
+            return self.report_of(false);
+        }
+        self.summary_from_rows().unwrap_or_else(|| self.report_of(false))
+    }
+
+    /// [`Timing::summary`] from rows (`None` when the turn's span reads more than 64 picks).
+    ///
+    /// Every pick is scanned on the grids [`Timing::pick_window`], [`Timing::min_over`] and
+    /// [`Timing::max_clear_m`] lay over its turn, a frame's slope `y/d` there made once per run
+    /// of its lifts (`crate::turn_rows`), the pick's clearance the min/max of its frames'
+    /// rows. What the report keeps is then refined on the exact laws of the picks that can set
+    /// it: the latest opening among the picks whose grid opens in the latest interval and the
+    /// earliest closing likewise, by bisection of all of them at once (at each halving the picks
+    /// on the far side are the answer's; the others are dropped: the same root as each bisected
+    /// alone, the extreme kept); the least clearance and the largest clear height at the grid's
+    /// local extremes whose reach ([`loomkin_numeric::GridPeak`]) comes within 1e-12 m of the
+    /// best found, by golden section, once per bracket of equal grid values.
+    pub(crate) fn summary_from_rows(&self) -> Option<Result<TimingReport>> {
+        let motion = self.motion;
+        let n = self.loom.frame_count();
+        let ins = &self.loom.insertion;
+        let (a, b) = self.turn();
+        let (from, to) = (a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg));
+        let mut states = FrameStates::new(motion, from, to)?;
+        // The three grids, laid as pick_window, min_over and max_clear_of lay them.
+        let wn = (b - a).ceil() as usize;
+        let (e0, e1) = (ins.entry_deg, ins.exit_deg);
+        let en = (e1 - e0).ceil().max(1.0) as usize;
+        let eh = (e1 - e0) / en as f64;
+        let mh = (b - a) / 72.0;
+        let mut nodes: Vec<f64> = (0..=wn).map(|k| a + k as f64 * (b - a) / wn as f64).collect();
+        nodes.extend((0..=en).map(|k| e0 + k as f64 * eh));
+        nodes.extend((0..=72).map(|k| a + mh * k as f64));
+        let (w_at, e_at, m_at) = (0, wn + 1, wn + en + 2);
+        let m = nodes.len();
+        let mut rows: Vec<f64> = Vec::new();
+        let mut ids = vec![0u32; n];
+        let (mut lo_up, mut hi_down, mut clear) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        let h = ins.carrier_height_m;
+        let picks = motion.picks();
+        // The latest opening's interval (0: at the turn's start) and its picks; the earliest
+        // closing's (wn: at its end) and its picks.
+        let (mut open_k, mut open_picks, mut close_k, mut close_picks) = (0usize, Vec::new(), wn, Vec::new());
+        let mut shut = false;
+        let mut least = f64::INFINITY;
+        let mut most = f64::NEG_INFINITY;
+        // Local minima of the clearance (pick, node) and local maxima of the clear height to refine.
+        // Per bracket (the node and the bits of the grid's three values around it): the first
+        // pick met with it and its reach. Brackets of equal values are searched once.
+        let (mut minima, mut maxima) = (Brackets::default(), Brackets::default());
+        for p in 0..picks {
+            for (i, id) in ids.iter_mut().enumerate() {
+                let (r, new) = states.row(motion, i, p);
+                if new {
+                    let d = self.loom.geometry.frame_m[i];
+                    rows.extend(nodes.iter().map(|&t| motion.frame_in_turn(i, p, t).y_m / d));
+                }
+                *id = r;
+            }
+            lo_up.fill(f64::INFINITY);
+            hi_down.fill(f64::NEG_INFINITY);
+            let upper = &self.upper[p * n..][..n];
+            for (&id, &up) in ids.iter().zip(upper) {
+                let row = &rows[id as usize * m..][..m];
+                if up {
+                    lo_up.iter_mut().zip(row).for_each(|(v, &y)| *v = v.min(y));
+                } else {
+                    hi_down.iter_mut().zip(row).for_each(|(v, &y)| *v = v.max(y));
+                }
+            }
+            for j in 0..m {
+                // As `clear_height`: the opening, or none when one sheet is empty.
+                clear[j] = if lo_up[j].is_finite() && hi_down[j].is_finite() {
+                    self.x_c * (lo_up[j] - hi_down[j])
+                } else {
+                    0.0
+                };
+            }
+            // The window: the longest run of clearance ≥ 0 on the 1° grid (as pick_window).
+            let c = |j: usize| clear[w_at + j] - h;
+            let (mut best, mut run_start) = (None::<(usize, usize)>, None::<usize>);
+            for k in 0..=wn {
+                if c(k) >= 0.0 {
+                    run_start.get_or_insert(k);
+                }
+                if (c(k) < 0.0 || k == wn)
+                    && let Some(s) = run_start.take()
+                {
+                    let e = if c(k) < 0.0 { k - 1 } else { k };
+                    if best.is_none_or(|(bs, be)| e - s > be - bs) {
+                        best = Some((s, e));
+                    }
+                }
+            }
+            match best {
+                None => shut = true,
+                Some((s, e)) => {
+                    if s > open_k {
+                        (open_k, open_picks) = (s, Vec::new());
+                    }
+                    if s == open_k && s > 0 {
+                        open_picks.push(p as u32);
+                    }
+                    if e < close_k {
+                        (close_k, close_picks) = (e, Vec::new());
+                    }
+                    if e == close_k && e < wn {
+                        close_picks.push(p as u32);
+                    }
+                }
+            }
+            // The least clearance over the insertion (as min_over): the grid, and its strict
+            // local minima that could go below the least found.
+            let v = &clear[e_at..e_at + en + 1];
+            least = v.iter().map(|x| x - h).fold(least, f64::min);
+            for k in 1..en {
+                let (l, x, r) = (v[k - 1] - h, v[k] - h, v[k + 1] - h);
+                if (x < l || x < r) && x <= l && x <= r && x - 0.5 * (l.max(r) - x) <= least + TIE_M {
+                    let key = [k as u64, l.to_bits(), x.to_bits(), r.to_bits()];
+                    minima.entry(key).or_insert((p, x - 0.5 * (l.max(r) - x)));
+                }
+            }
+            // The largest clear height (as max_clear_of): the grid's first largest node, refined
+            // between its neighbours when its reach could pass the largest found.
+            let v = &clear[m_at..m_at + 73];
+            let (k, top) =
+                (0..=72).map(|k| (k, v[k])).fold((0, f64::NEG_INFINITY), |bt, kv| if kv.1 > bt.1 { kv } else { bt });
+            let low = match k {
+                0 => v[1],
+                72 => v[71],
+                _ => v[k - 1].min(v[k + 1]),
+            };
+            let reach = top + 0.5 * (top - low);
+            if reach >= most - TIE_M {
+                let (l, r) = (v[k.saturating_sub(1)], v[(k + 1).min(72)]);
+                maxima.entry([k as u64, l.to_bits(), top.to_bits(), r.to_bits()]).or_insert((p, reach));
+            }
+            most = most.max(top);
+        }
+        // The bisection holds its picks' rows in two bytes each.
+        if states.rows.len() > usize::from(u16::MAX) {
+            return None;
+        }
+        let max_clear = {
+            for (key, &(p, reach)) in maxima.iter() {
+                if reach < most - TIE_M {
+                    continue;
+                }
+                let f = |t: f64| self.clear_in_turn(p, t);
+                let t = a + mh * key[0] as f64;
+                let v =
+                    loomkin_numeric::golden_max(f, (t - mh).max(a), (t + mh).min(b)).value.max(f64::from_bits(key[2]));
+                most = most.max(v);
+            }
+            most
+        };
+        if shut {
+            return Some(Err(self.too_tall(max_clear)));
+        }
+        for (key, &(p, reach)) in minima.iter() {
+            if reach > least + TIE_M {
+                continue;
+            }
+            let c = |t: f64| self.clear_in_turn(p, t) - h;
+            let k = key[0] as usize;
+            let (l, r) = (e0 + (k - 1) as f64 * eh, e0 + (k + 1) as f64 * eh);
+            least = least.min(-loomkin_numeric::golden_max(|t| -c(t), l, r).value);
+        }
+        let node = |k: usize| nodes[w_at + k];
+        let open_deg = if open_k == 0 {
+            node(0)
+        } else {
+            self.extreme_root(&states, &mut open_picks, node(open_k - 1), node(open_k), true)
+        };
+        let close_deg = if close_k == wn {
+            node(wn)
+        } else {
+            self.extreme_root(&states, &mut close_picks, node(close_k), node(close_k + 1), false)
+        };
+        let window_deg = (close_deg - open_deg).max(0.0);
+        let v = ins.mean_speed_m_s(self.loom.speed.rpm());
+        Some(Ok(TimingReport {
+            picks: Vec::new(),
+            open_deg,
+            close_deg,
+            window_deg,
+            min_clearance_mm: 1e3 * least,
+            mean_speed_m_s: v,
+            max_speed_rpm: max_speed_rpm(v, window_deg, ins.reed_width_m, ins.carrier_length_m),
+            max_clear_mm: max_clear * 1e3,
+        }))
+    }
+
+    /// The clear height of pick `p` at angle `t_deg` of its turn, at the carrier's front edge,
+    /// from the exact laws ([`Motion::frame_in_turn`]), m.
+    fn clear_in_turn(&self, p: usize, t_deg: f64) -> f64 {
+        self.clear_with(p, self.x_c, |i| self.motion.frame_in_turn(i, p, t_deg).y_m)
+    }
+
+    /// The latest opening (`open`) or the earliest closing of the picks `picks`, whose clearance
+    /// changes sign between `lo` and `hi` (closed at `lo` when opening, open at `lo` when
+    /// closing): one bisection of them all to adjacent doubles, the picks on the answer's side
+    /// kept at each halving (each pick's own bisection would end there or short of it).
+    fn extreme_root(&self, states: &FrameStates, picks: &mut Vec<u32>, lo: f64, hi: f64, open: bool) -> f64 {
+        let h = self.loom.insertion.carrier_height_m;
+        let motion = self.motion;
+        let n = self.loom.frame_count();
+        let g = &self.loom.geometry;
+        // Each row's slope at the probe, made once per probe: a pick's clearance is the min/max
+        // of its frames' (the same bits as `clear_in_turn`: min and max do not round). The
+        // candidates' rows are held (two bytes a frame) while they are bisected.
+        let rows = states.rows.len();
+        let mut slope = vec![f64::NAN; rows];
+        let mut done = vec![false; rows];
+        let mut ids: Vec<u16> = Vec::with_capacity(picks.len() * n);
+        for &p in picks.iter() {
+            ids.extend((0..n).map(|i| states.known(motion, i, p as usize) as u16));
+        }
+        loomkin_numeric::bisect(lo, hi, |t| {
+            done.fill(false);
+            let mut clearance = |p: usize, row_ids: &[u16]| -> f64 {
+                let (mut lo_up, mut hi_down) = (f64::INFINITY, f64::NEG_INFINITY);
+                for (i, &r) in row_ids.iter().enumerate() {
+                    let r = r as usize;
+                    if !done[r] {
+                        let (fi, fp) = states.rows[r];
+                        slope[r] = motion.frame_in_turn(fi, fp, t).y_m / g.frame_m[fi];
+                        done[r] = true;
+                    }
+                    if self.upper[p * n + i] { lo_up = lo_up.min(slope[r]) } else { hi_down = hi_down.max(slope[r]) }
+                }
+                let clear = if lo_up.is_finite() && hi_down.is_finite() { self.x_c * (lo_up - hi_down) } else { 0.0 };
+                clear - h
+            };
+            // The picks closed at t (the opening lies beyond t) moved to the front.
+            let mut closed = 0;
+            for c in 0..picks.len() {
+                let p = picks[c] as usize;
+                if clearance(p, &ids[c * n..][..n]) < 0.0 {
+                    picks.swap(closed, c);
+                    for i in 0..n {
+                        ids.swap(closed * n + i, c * n + i);
+                    }
+                    closed += 1;
+                }
+            }
+            let keep_closed = |picks: &mut Vec<u32>, ids: &mut Vec<u16>| {
+                picks.truncate(closed);
+                ids.truncate(closed * n);
+            };
+            match (open, closed == 0) {
+                (true, false) => {
+                    keep_closed(picks, &mut ids);
+                    true
+                }
+                (true, true) => false,
+                (false, false) => {
+                    keep_closed(picks, &mut ids);
+                    false
+                }
+                (false, true) => true,
+            }
+        })
+    }
+}
+
+/// Grid extremes to refine, by bracket (the node and the bits of the grid's values there and at
+/// its neighbours: equal bits, one search): the first pick met with it and its reach.
+type Brackets = loomkin_numeric::WordMap<[u64; 4], (usize, f64)>;
+
+/// Clearances (m) closer than this are the same: the rounding of a pick's angles moves them by
+/// ~10⁻¹⁶ m.
+const TIE_M: f64 = 1e-12;
 
 /// The root of `f` between `a` (one sign) and `b` (the other), by bisection to adjacent doubles.
 fn crossing(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {

@@ -43,8 +43,30 @@ impl Turns {
         Self::by_key(motion.picks(), |p, key| motion.turn_key(p, from_deg, to_deg, key))
     }
 
+    /// [`Turns::new`], or `None` once more than `cap` distinct turns are found (a repeat whose
+    /// picks hardly repeat, worked out from rows instead: `crate::turn_rows`).
+    pub fn new_within(motion: &Motion, from_deg: f64, to_deg: f64, cap: usize) -> Option<Self> {
+        let (cmin, cmax) = (0..motion.frames())
+            .map(|i| motion.centre0_deg(i))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c), b.max(c)));
+        Self::by_key_within(motion.picks(), cap, |p, key| lift_key(motion, p, from_deg, to_deg, cmin, cmax, key))
+    }
+
+    /// [`Turns::of`], or `None` once more than `cap` distinct turns are found.
+    pub fn of_within<M: ShedMotion + ?Sized>(motion: &M, from_deg: f64, to_deg: f64, cap: usize) -> Option<Self> {
+        Self::by_key_within(motion.picks(), cap, |p, key| motion.turn_key(p, from_deg, to_deg, key))
+    }
+
     /// `picks` grouped by equal keys (`key(p, words)` appends pick `p`'s words).
-    fn by_key(picks: usize, mut key_of: impl FnMut(usize, &mut Vec<u64>)) -> Self {
+    fn by_key(picks: usize, key_of: impl FnMut(usize, &mut Vec<u64>)) -> Self {
+        match Self::by_key_within(picks, usize::MAX, key_of) {
+            Some(t) => t,
+            None => unreachable!("no cap"),
+        }
+    }
+
+    /// [`Turns::by_key`], or `None` once more than `cap` classes are found.
+    fn by_key_within(picks: usize, cap: usize, mut key_of: impl FnMut(usize, &mut Vec<u64>)) -> Option<Self> {
         let mut classes: loomkin_numeric::WordMap<Vec<u64>, usize> = Default::default();
         let (mut first, mut count) = (Vec::new(), Vec::new());
         let mut of = Vec::with_capacity(picks);
@@ -55,6 +77,9 @@ impl Turns {
             let c = match classes.get(&key) {
                 Some(&c) => c,
                 None => {
+                    if first.len() >= cap {
+                        return None;
+                    }
                     classes.insert(key.clone(), first.len());
                     first.push(p);
                     count.push(0);
@@ -64,7 +89,7 @@ impl Turns {
             count[c] += 1;
             of.push(c as u32);
         }
-        Self { first, count, of }
+        Some(Self { first, count, of })
     }
 }
 

@@ -241,6 +241,38 @@ fn check_memory_hardly_grows_with_the_repeat() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `loom check` of a random lift plan (no turn repeats: the frames' rows made once, every pick
+/// summed from them) holds little beyond the plan: 19,200 random picks under 40 MB, as the
+/// repeating draft above (it took 19 s and held a turn's numbers per pick before).
+#[test]
+fn check_of_random_picks_hardly_grows_either() {
+    let dir = scratch("random-check");
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut text = String::new();
+    for _ in 0..19_200 {
+        let mut up = Vec::new();
+        for s in 1..=24 {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            if state >> 63 == 1 {
+                up.push(s.to_string());
+            }
+        }
+        if up.is_empty() {
+            up.push("1".into());
+        }
+        text += &(up.join(" ") + "\n");
+    }
+    let plan = dir.join("random.txt");
+    std::fs::write(&plan, text).unwrap();
+    let args = ["loom", "check", &ex("rapier-loom.toml"), "--lift-plan", plan.to_str().unwrap(), "--json"];
+    let Some((peak, _)) = crate::output::peak_memory_while_reading(&args) else { return };
+    assert!(peak < 40_000_000, "{peak} bytes at 19,200 random picks");
+    let v = stdout_json(&args);
+    assert_eq!(v["picks"], 19_200);
+    assert!(v["rms_torque_n_m"].as_f64().unwrap() > 0.0 && v["window_deg"].as_f64().unwrap() > 0.0, "{v}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `loom torque --csv/--json` of a long repeat streams its curve a turn at a time (issue 27: 10⁵
 /// picks at 0.1° aborted at 2.6 GB): 1,200 picks at 0.1° (4.3·10⁶ rows) hold a few MB, the
 /// rows are the whole curve's; a curve beyond the time limit, or a plot beyond the memory limit,
