@@ -115,9 +115,17 @@ pub struct FrameDrive {
     pub loss: f64,
     /// Main-shaft speed, rad/s.
     pub omega: f64,
+    /// The crank and lever's linkage ([`Axis::linkage`]), built once.
+    linkage: Option<loomkin_servo::Linkage>,
 }
 
 impl FrameDrive {
+    /// `axis` moving `load` at `omega` (main shaft, rad/s), its winding losing `loss` W/(N·m)².
+    pub fn new(axis: Axis, load: FrameLoad, loss: f64, omega: f64) -> Self {
+        let linkage = axis.linkage();
+        Self { axis, load, loss, omega, linkage }
+    }
+
     /// The drive at local coordinate `t` of law segment `lseg` of cycle segment `seg`.
     pub fn at_law(&self, seg: &CycleSegment, lseg: &Segment, t: f64) -> DrivePoint {
         let [s, v, a, j] = self.state_at_law(seg, lseg, t);
@@ -144,7 +152,8 @@ impl FrameDrive {
         let (t, dt, w, dw) = if self.axis.load.crank_lever.is_some() {
             // The crank and lever: torque and motor angle as series in time.
             let nan = Jet::cst(f64::NAN);
-            let (t, alpha) = self.axis.motor_series(Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0])).unwrap_or((nan, nan));
+            let series = Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0]);
+            let (t, alpha) = self.axis.motor_series_via(self.linkage.as_ref(), series).unwrap_or((nan, nan));
             (t.v(), t.d(1), alpha.d(1), alpha.d(2))
         } else {
             let k = self.axis.motor_rad_per_unit();

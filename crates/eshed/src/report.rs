@@ -145,12 +145,12 @@ impl Study {
         for f in frames {
             cycles.push(f.plan.cycle(&f.laws));
             segments.push(f.plan.segments());
-            drives.push(FrameDrive {
-                axis: axis(&f.servo.motor, &f.servo.transmission, &f.load),
-                load: f.load,
-                loss: f.servo.winding.loss_w_per_n_m2(),
+            drives.push(FrameDrive::new(
+                axis(&f.servo.motor, &f.servo.transmission, &f.load),
+                f.load,
+                f.servo.winding.loss_w_per_n_m2(),
                 omega,
-            });
+            ));
         }
         Ok(Self { cycles, drives, segments })
     }

@@ -386,12 +386,23 @@ impl Axis {
     /// ([`crate::crank_lever`]). `None`
     /// where a crank and lever cannot reach the slave's position.
     pub fn motor_series(&self, s: Jet) -> Option<(Jet, Jet)> {
+        self.motor_series_via(self.linkage().as_ref(), s)
+    }
+
+    /// [`Axis::motor_series`] on the crank and lever's linkage `link` built once by the caller (it
+    /// must be [`Axis::linkage`]: a caller evaluating many points saves building it at each).
+    pub fn motor_series_via(&self, link: Option<&Linkage>, s: Jet) -> Option<(Jet, Jet)> {
         let v = s.d(1);
-        self.motor_series_signed(s, if v == 0.0 { 0.0 } else { v.signum() })
+        self.motor_series_signed_via(link, s, if v == 0.0 { 0.0 } else { v.signum() })
     }
 
     /// [`Axis::motor_series`] with the Coulomb friction's sign given (`±1`, or 0: none).
     pub fn motor_series_signed(&self, s: Jet, vsign: f64) -> Option<(Jet, Jet)> {
+        self.motor_series_signed_via(self.linkage().as_ref(), s, vsign)
+    }
+
+    /// [`Axis::motor_series_signed`] on `link` = [`Axis::linkage`].
+    fn motor_series_signed_via(&self, link: Option<&Linkage>, s: Jet, vsign: f64) -> Option<(Jet, Jet)> {
         let l = &self.load;
         let fric = l.friction_n * vsign;
         let sd = s.deriv();
@@ -401,7 +412,7 @@ impl Axis {
             + s.scale(l.spring_n_m)
             + Jet::cst(fric + l.constant_force_n);
         let j_motor = self.motor.rotor_inertia_kg_m2 + l.extra_inertia_kg_m2;
-        match self.linkage() {
+        match link {
             None if l.crank_lever.is_some() => None,
             None => {
                 let k = self.motor_rad_per_unit();

@@ -414,13 +414,31 @@ fn atan2(y: Jet, x: Jet) -> Jet {
     q
 }
 
-/// `Σ f_k δᵏ` (`δ` without a constant term): the series `f` about a point composed with `δ`.
+/// `Σ f_k δᵏ` (`δ` without a constant term): the series `f` about a point composed with `δ`, by
+/// Horner's rule. Each product `acc·δ` is `Jet`'s (its order-`k` sum from 0.0 over `i = 0 … k`)
+/// without the terms `acc_k·δ₀` it would add: `±0`, and a sum begun at `+0.0` is never `−0`, so
+/// leaving them out changes no bit (for finite `δ`); the first `acc` is a constant.
 fn compose(f: &Jet, delta: &Jet) -> Jet {
-    let mut acc = Jet::cst(f.0[f.0.len() - 1]);
-    for k in (0..f.0.len() - 1).rev() {
-        acc = acc * *delta + Jet::cst(f.0[k]);
+    debug_assert_eq!(delta.0[0], 0.0);
+    let n = f.0.len();
+    let d = &delta.0;
+    // acc = cst(f_top)·δ + … : the first product has the one term f_top·δ_k.
+    let mut acc = Jet::cst(0.0).0;
+    for (k, a) in acc.iter_mut().enumerate().skip(1) {
+        *a = 0.0 + f.0[n - 1] * d[k];
     }
-    acc
+    acc[0] = 0.0 + f.0[n - 2];
+    for fk in f.0[..n - 2].iter().rev() {
+        let mut h = Jet::cst(0.0).0;
+        for (k, hk) in h.iter_mut().enumerate().skip(1) {
+            for i in 0..k {
+                *hk += acc[i] * d[k - i];
+            }
+        }
+        h[0] = 0.0 + fk;
+        acc = h;
+    }
+    Jet(acc)
 }
 
 /// The motor's motion for a slave motion ([`Linkage::motor`]), as series in time.
@@ -620,5 +638,38 @@ impl Linkage {
             lever: compose(&phi, &delta),
             dlever_dalpha: compose(&phi.deriv(), &delta),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `compose` against Horner's rule on `Jet`'s own product and sum, bit for bit (the terms it
+    /// leaves out are `±0`), on series with mixed signs, zeros and `−0`.
+    #[test]
+    fn compose_is_horner_on_jets_bit_for_bit() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            match x % 7 {
+                0 => 0.0,
+                1 => -0.0,
+                _ => ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 10f64.powi((x % 9) as i32 - 4),
+            }
+        };
+        for _ in 0..2000 {
+            let f = Jet(std::array::from_fn(|_| next()));
+            let mut d = Jet(std::array::from_fn(|_| next()));
+            d.0[0] = 0.0;
+            let mut want = Jet::cst(f.0[f.0.len() - 1]);
+            for k in (0..f.0.len() - 1).rev() {
+                want = want * d + Jet::cst(f.0[k]);
+            }
+            let got = compose(&f, &d);
+            assert_eq!(got.0.map(f64::to_bits), want.0.map(f64::to_bits), "{f:?} ∘ {d:?}");
+        }
     }
 }
