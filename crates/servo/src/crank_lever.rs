@@ -272,6 +272,7 @@ impl CrankLever {
             sigma: self.crank_branch.sign(),
             kappa: 1.0,
             alpha_mid: 0.0,
+            ascent: 1.0,
             mid_m: self.mid_stroke_mm * mm,
             lever_inertia: self.lever_inertia_kg_m2,
             gear: self.gear_ratio,
@@ -291,6 +292,7 @@ impl CrankLever {
         l.alpha_mid = a[1].atan2(a[0]);
         let cross = (a[0] - l.q[0]) * (b_mid[1] - l.q[1]) - (a[1] - l.q[1]) * (b_mid[0] - l.q[0]);
         l.kappa = if cross < 0.0 { -1.0 } else { 1.0 };
+        l.ascent = l.height(Jet::var(l.alpha_mid)).0.d(1).signum();
         Ok(l)
     }
 
@@ -398,6 +400,8 @@ pub struct Linkage {
     pub kappa: f64,
     /// Motor angle at mid-stroke, rad.
     pub alpha_mid: f64,
+    /// The way the crank turns as the frame rises: the sign of `dy/dα` at mid-stroke, ±1.
+    pub ascent: f64,
     /// Slave position at mid-stroke, m.
     pub mid_m: f64,
     /// Lever inertia, kg·m².
@@ -574,12 +578,21 @@ impl Linkage {
     }
 
     /// The motor angle α with the frame at height `y` over mid-stroke (m), closed form, continuous
-    /// from mid-stroke (`None`: out of reach on the branch).
+    /// from mid-stroke (`None`: out of reach on the branch). Between its dead centres the crank
+    /// turns one way as the frame rises ([`Linkage::ascent`]), by less than a turn in all: the
+    /// angle from mid-stroke's is taken within ±180°, and a turn further where that puts it on the
+    /// wrong side (the crank more than half a turn from mid-stroke; not for the rounding of a
+    /// height next to mid-stroke's).
     pub fn motor_angle(&self, y: f64) -> Option<f64> {
         let phi = self.lever_angle(y)?;
         let a = self.crank_pin(self.rod_pin(phi))?;
         let raw = a[1].atan2(a[0]);
-        Some(self.alpha_mid + (raw - self.alpha_mid + PI).rem_euclid(2.0 * PI) - PI)
+        let r = (raw - self.alpha_mid + PI).rem_euclid(2.0 * PI);
+        let (w, ahead) = (r - PI, y * self.ascent);
+        if w * ahead < 0.0 && w.abs() > 1e-6 {
+            return Some(self.alpha_mid + w + 2.0 * PI * ahead.signum());
+        }
+        Some(self.alpha_mid + r - PI)
     }
 
     /// The crank angle's series while the slave moves by `s` ([`Linkage::motor`]'s `alpha` alone).

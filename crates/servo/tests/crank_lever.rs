@@ -6,6 +6,7 @@
 use loomkin_cams::profile::Jet;
 use loomkin_laws::{Cycle, StrokeUnit};
 use loomkin_servo::{Axis, CrankBranch, CrankLever, Limits, Load, Motor, check_axis, operating_points};
+use std::f64::consts::PI;
 
 const STROKE_MM: f64 = 100.0;
 
@@ -468,4 +469,47 @@ fn a_narrow_dead_centre_between_grid_heights_is_refused() {
     let e = cl.check_stroke(-half_mm * 1e-3, half_mm * 1e-3, "load.crank_lever").unwrap_err().to_string();
     assert!(e.starts_with("load.crank_lever.crank_radius_mm: the crank and lever move the frame only to 15.6"), "{e}");
     assert!(e.contains("above mid-stroke, the stroke needs -40 … 40 mm: the crank reaches its dead centre"), "{e}");
+}
+
+/// The inverse is continuous and monotone over the whole reach on random geometries, also where
+/// the crank turns more than half a turn from its angle at mid-stroke (1.5 % of them: the angle
+/// was taken into ±180° of it and jumped by a turn), and the forward map returns the height.
+#[test]
+fn the_inverse_is_continuous_over_the_reach() {
+    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let (mut n, mut beyond_half_turn) = (0, 0);
+    while n < 1000 {
+        let link = if rng.uniform(0.0, 1.0) < 0.25 { None } else { Some(rng.uniform(20.0, 600.0)) };
+        let cl = CrankLever {
+            crank_radius_mm: rng.uniform(10.0, 100.0),
+            rod_length_mm: rng.uniform(50.0, 400.0),
+            lever_input_arm_mm: rng.uniform(30.0, 200.0),
+            lever_output_arm_mm: rng.uniform(50.0, 300.0),
+            lever_angle_deg: rng.uniform(-180.0, 180.0),
+            rocking_shaft_x_mm: rng.uniform(-300.0, 300.0),
+            rocking_shaft_y_mm: rng.uniform(-300.0, 300.0),
+            frame_link_mm: link,
+            crank_branch: if rng.uniform(0.0, 1.0) < 0.5 { CrankBranch::Ccw } else { CrankBranch::Cw },
+            mid_stroke_mm: 0.0,
+            ..geometry()
+        };
+        let Ok(l) = cl.linkage() else { continue };
+        n += 1;
+        let (lo, hi) = (l.reach(false).height_m, l.reach(true).height_m);
+        const STEPS: usize = 2000;
+        let angles: Vec<f64> =
+            (1..STEPS).map(|k| l.motor_angle(lo + (hi - lo) * k as f64 / STEPS as f64).unwrap()).collect();
+        let rising = angles[1] > angles[0];
+        for (k, w) in angles.windows(2).enumerate() {
+            assert!((w[1] > w[0]) == rising && (w[1] - w[0]).abs() < 0.5, "{cl:?} at {k}: {w:?}");
+        }
+        for (k, &a) in angles.iter().enumerate().step_by(97) {
+            let y = lo + (hi - lo) * (k + 1) as f64 / STEPS as f64;
+            assert!((l.height(Jet::var(a)).0.v() - y).abs() < 1e-9 * l.e, "{cl:?} y = {y}");
+        }
+        if angles.iter().any(|a| (a - l.alpha_mid).abs() > PI) {
+            beyond_half_turn += 1;
+        }
+    }
+    assert!(beyond_half_turn > 0, "no geometry turns the crank more than half a turn from mid-stroke");
 }
