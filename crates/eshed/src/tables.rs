@@ -27,9 +27,10 @@ use crate::{FrameSetup, Result};
 use loomkin_cams::profile::Jet;
 use loomkin_cams::table::{CamTable, Format, Motion, SlaveMap, Spacing, TableReport};
 use loomkin_laws::StrokeUnit;
+use loomkin_numeric::WordMap;
 use loomkin_servo::Linkage;
 use serde::Serialize;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// The formats `--emit-tables` writes when none is named: every point or segment format a
 /// controller loads (CSV, XYVAJ, poly5, TwinCAT points, Structured Text).
@@ -89,12 +90,21 @@ pub struct FrameTables {
 
 /// A frame's height (mm, the cycle's position) to its motor's angle (deg, from mid-stroke's)
 /// through its crank and lever: the closed-form inverse and the reverted series
-/// ([`loomkin_servo::Linkage::motor`]).
+/// ([`loomkin_servo::Linkage::motor`]), ~1 µs a series. The formats' re-interpolation checks scan
+/// the same angles of the same table intervals, so the series are remembered by the position's
+/// series, bit for bit (forgotten at once beyond [`MotorDegrees::REMEMBERED`]).
 #[derive(Debug)]
-struct MotorDegrees(Linkage);
+struct MotorDegrees(Linkage, Mutex<WordMap<[u64; 6], Jet>>);
 
-impl SlaveMap for MotorDegrees {
-    fn map(&self, position: Jet) -> Jet {
+impl MotorDegrees {
+    /// Series remembered (about 100 bytes each).
+    const REMEMBERED: usize = 1 << 18;
+
+    fn new(l: Linkage) -> Self {
+        Self(l, Mutex::default())
+    }
+
+    fn degrees(&self, position: Jet) -> Jet {
         let l = &self.0;
         match l.crank_series(position.scale(1e-3)) {
             Some(alpha) => {
@@ -104,6 +114,23 @@ impl SlaveMap for MotorDegrees {
             }
             None => Jet::cst(f64::NAN),
         }
+    }
+}
+
+impl SlaveMap for MotorDegrees {
+    fn map(&self, position: Jet) -> Jet {
+        let key = position.0.map(f64::to_bits);
+        if let Some(j) = self.1.lock().ok().and_then(|m| m.get(&key).copied()) {
+            return j;
+        }
+        let j = self.degrees(position);
+        if let Ok(mut m) = self.1.lock() {
+            if m.len() >= Self::REMEMBERED {
+                m.clear();
+            }
+            m.insert(key, j);
+        }
+        j
     }
 }
 
@@ -162,7 +189,7 @@ pub fn frame_tables(frames: &[FrameSetup], spacing: Spacing, formats: &[Format],
         let linkage = axis.linkage();
         let motion = match linkage {
             // A crank and lever: the slave is the motor's angle, deg.
-            Some(l) => motion.mapped(Arc::new(MotorDegrees(l)), StrokeUnit::Deg),
+            Some(l) => motion.mapped(Arc::new(MotorDegrees::new(l)), StrokeUnit::Deg),
             None => motion,
         };
         let table = CamTable::new(motion, spacing).map_err(|e| in_frame(frame, e))?;
