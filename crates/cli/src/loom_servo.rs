@@ -86,12 +86,20 @@ pub fn run(a: ServoArgs) -> Result<()> {
             .check_as("--min-clearance-mm", a.min_clearance_mm)?,
     };
     let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
+    // A refusal of the loom file's servo shedding found while the plans are studied (a rest
+    // transition less smooth than C², a crank and lever's dead centre) names the file, as the
+    // refusals found while it is read do.
+    let in_file = |e: loomkin_loom::LoomError| match e {
+        loomkin_loom::LoomError::Eshed(_) => anyhow::anyhow!("{}: {e}", a.loom.display()),
+        e => e.into(),
+    };
     let optimum = if a.optimize {
         let bar = crate::util::Progress::new(0, "servo search");
         let o = loomkin_loom::optimise_servo_with(&loom, &pattern, &options, &Default::default(), &|done, all| {
             bar.set_length(all as u64);
             bar.set(done as u64);
-        })?;
+        })
+        .map_err(in_file)?;
         bar.finish();
         Some(o)
     } else {
@@ -100,8 +108,8 @@ pub fn run(a: ServoArgs) -> Result<()> {
     let (r, setups) = match &optimum {
         Some(o) => (o.report.clone(), o.setups.clone()),
         None => {
-            let setups = loomkin_loom::servo_setups(&loom, &pattern, None, None)?;
-            (loomkin_loom::servo_study_of(&loom, &pattern, &setups)?, setups)
+            let setups = loomkin_loom::servo_setups(&loom, &pattern, None, None).map_err(in_file)?;
+            (loomkin_loom::servo_study_of(&loom, &pattern, &setups).map_err(in_file)?, setups)
         }
     };
     if let Some(out) = &a.output {
@@ -144,9 +152,15 @@ pub fn run(a: ServoArgs) -> Result<()> {
             o.min_clearance_mm_after,
             loomkin_units::compact(o.min_clearance_kept_mm)
         )?;
-        let list = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(", ");
+        let list = |v: &[f64]| v.iter().map(|&x| loomkin_units::compact(x)).collect::<Vec<_>>().join(", ");
         outln!("  stagger [deg], front frame first: {}", list(&o.stagger_deg))?;
-        outln!("  motion angle [deg], front frame first: {}", list(&o.motion_deg))?;
+        match &o.fall_motion_deg {
+            Some(fall) => {
+                outln!("  motion angle up [deg], front frame first: {}", list(&o.motion_deg))?;
+                outln!("  motion angle down [deg], front frame first: {}", list(fall))?;
+            }
+            None => outln!("  motion angle [deg], front frame first: {}", list(&o.motion_deg))?,
+        }
     }
     outln!(
         "{} frames on one bus at {} rpm, {} picks ({} s a repeat){}",
@@ -181,6 +195,17 @@ pub fn run(a: ServoArgs) -> Result<()> {
             c.max_speed_rpm
         )?;
         crate::loom::warn_interference(c.min_clearance_mm);
+    }
+    // Each run of frames that move alike: the laws and motion angles by kind of move.
+    let moves: Vec<String> = setups.iter().map(|s| s.laws.describe(s.plan.motion_deg)).collect();
+    let mut first = 0;
+    for i in 1..=moves.len() {
+        if i == moves.len() || moves[i] != moves[first] {
+            let frames =
+                if i - first == 1 { format!("frame {}", first + 1) } else { format!("frames {}–{i}", first + 1) };
+            outln!("{} {frames}: {}", if first == 0 { "moves:" } else { "      " }, moves[first])?;
+            first = i;
+        }
     }
     outln!(
         "{:>5} {:>6} {:>12} {:>12} {:>12} {:>12} {:>12} {:>6} {:>9}",

@@ -34,6 +34,9 @@ pub struct GivenLaw {
     pub law: Law,
     /// The loom file's field (`shedding.servo.frame[0].fall_law`).
     pub field: String,
+    /// Its name in text, in the loom file's form: the catalogue law with its parameters
+    /// (`modified-trapezoid (ramp=0.125)`), `dobby preset`, `spline (5 points, clamped)`.
+    pub label: String,
 }
 
 /// A frame's laws and motion angles by kind of move, as the loom file gives them; `None` where it
@@ -69,17 +72,21 @@ impl MoveKinds {
          main shaft; the frame's motion_deg, else [shedding] motion_deg, when left out.",
     );
 
-    /// The frame's laws: those given, else `rise` and `fall` (the shedding law's, given in `field`).
-    pub fn laws(&self, rise: (LawSpec, Law), fall: (LawSpec, Law), field: &str) -> MoveLaws {
-        let pick = |g: &Option<GivenLaw>, d: (LawSpec, Law)| match g {
-            Some(g) => ((g.spec.clone(), g.law.clone()), g.field.clone()),
-            None => (d, field.to_string()),
+    /// The frame's laws: those given, else `default`'s rise and fall (the shedding law's, with
+    /// their fields and labels).
+    pub fn laws(&self, default: &MoveLaws) -> MoveLaws {
+        let pick = |g: &Option<GivenLaw>, k: usize| match g {
+            Some(g) => ((g.spec.clone(), g.law.clone()), g.field.clone(), g.label.clone()),
+            None => (default.law(k == 0).clone(), default.fields[k].clone(), default.labels[k].clone()),
         };
-        let (rise, rf) = pick(&self.rise_law, rise);
-        let (fall, ff) = pick(&self.fall_law, fall);
+        let (rise, rf, rl) = pick(&self.rise_law, 0);
+        let (fall, ff, fl) = pick(&self.fall_law, 1);
         let through = self.through_law.as_ref().map(|g| (g.spec.clone(), g.law.clone()));
-        let tf = self.through_law.as_ref().map_or_else(|| format!("{field} (through)"), |g| g.field.clone());
-        MoveLaws { rise, fall, through, fields: [rf, ff, tf] }
+        let (tf, tl) = match &self.through_law {
+            Some(g) => (g.field.clone(), g.label.clone()),
+            None => (format!("{} (through)", default.fields[2]), String::new()),
+        };
+        MoveLaws { rise, fall, through, fields: [rf, ff, tf], labels: [rl, fl, tl] }
     }
 
     /// `frame` over `all`: each key the frame gives, else all frames' (`motion_deg`: the frame's
@@ -132,9 +139,11 @@ const LAW_FORMS: &str = "a catalogue law \"NAME\" or { law = \"NAME\", params = 
 pub fn read_law(value: &toml::Value, field: &str) -> Result<GivenLaw> {
     let bad = |why: String| EshedError::field(field, why);
     let built = |spec: LawSpec| spec.build().map(|law| (spec, law)).map_err(|e| bad(e.to_string()));
-    let (spec, law) = match value {
+    let (spec, law, label) = match value {
         toml::Value::String(name) => {
-            built(LawSpec::parse_table(name, &BTreeMap::new()).map_err(|e| bad(e.to_string()))?)?
+            let (spec, law) = built(LawSpec::parse_table(name, &BTreeMap::new()).map_err(|e| bad(e.to_string()))?)?;
+            let label = spec.label();
+            (spec, law, label)
         }
         toml::Value::Table(t) => {
             if let Some(k) = t.keys().find(|k| !["law", "params", "preset", "spline", "end"].contains(&k.as_str())) {
@@ -161,11 +170,14 @@ pub fn read_law(value: &toml::Value, field: &str) -> Result<GivenLaw> {
                     Some(toml::Value::Table(p)) => p.clone().into_iter().collect(),
                     Some(_) => return Err(bad("params must be a table, e.g. { ramp = 0.1 }".into())),
                 };
-                built(LawSpec::parse_table(name, &params).map_err(|e| bad(e.to_string()))?)?
+                let (spec, law) = built(LawSpec::parse_table(name, &params).map_err(|e| bad(e.to_string()))?)?;
+                let label = spec.label();
+                (spec, law, label)
             } else if let Some(name) = text("preset")? {
                 let shed = loomkin_shed::preset(name).map_err(|e| bad(e.to_string()))?;
                 let segments = shed.motion_segments().map_err(|e| bad(e.to_string()))?;
-                (LawSpec::Piecewise { segments }, shed.build().map_err(|e| bad(e.to_string()))?)
+                let law = shed.build().map_err(|e| bad(e.to_string()))?;
+                (LawSpec::Piecewise { segments }, law, format!("{} preset", name.trim()))
             } else {
                 let points: Vec<[f64; 2]> = t
                     .get("spline")
@@ -178,10 +190,11 @@ pub fn read_law(value: &toml::Value, field: &str) -> Result<GivenLaw> {
                 let spline = loomkin_servo::SplineLaw::new(&points, end).map_err(|e| bad(e.to_string()))?;
                 let segments = poly_segments_of(spline.law())
                     .ok_or_else(|| bad("the spline law has a segment that is not polynomial".into()))?;
-                built(LawSpec::Polynomial { segments })?
+                let (spec, law) = built(LawSpec::Polynomial { segments })?;
+                (spec, law, format!("spline ({} points, {})", points.len(), end.name()))
             }
         }
         _ => return Err(bad(LAW_FORMS.into())),
     };
-    Ok(GivenLaw { spec, law, field: field.to_string() })
+    Ok(GivenLaw { spec, law, field: field.to_string(), label })
 }

@@ -37,13 +37,41 @@ pub struct MoveLaws {
     /// Where the rise, fall and through laws are given (the loom file's fields), named when a law
     /// is refused at a joint of the frame's motion.
     pub fields: [String; 3],
+    /// The rise, fall and through laws' names in text ([`crate::GivenLaw::label`]; empty for a
+    /// through law not given).
+    pub labels: [String; 3],
 }
 
 impl MoveLaws {
     /// `rise` going up and `fall` going down, pass-through moves by the same (named `rise` and
     /// `fall` when refused).
     pub fn new(rise: (LawSpec, Law), fall: (LawSpec, Law)) -> Self {
-        Self { rise, fall, through: None, fields: ["rise".into(), "fall".into(), "through".into()] }
+        let labels = [rise.0.label(), fall.0.label(), String::new()];
+        Self { rise, fall, through: None, fields: ["rise".into(), "fall".into(), "through".into()], labels }
+    }
+
+    /// How a frame moves by these laws, in words: each kind's law and motion angle (`motion_deg`:
+    /// up, down; deg, in the number format of [`loomkin_units::compact`]) and the law of the moves
+    /// laid end to end where one is given, e.g. `up by poly4567 over 260°, down by cycloidal over
+    /// 300°, laid end to end by spline (5 points, clamped)`; `up and down by dobby preset over 280°`
+    /// where both agree.
+    pub fn describe(&self, motion_deg: [f64; 2]) -> String {
+        let deg = |d: f64| format!("{}°", loomkin_units::compact(d));
+        let mut text = if self.labels[0] == self.labels[1] && motion_deg[0] == motion_deg[1] {
+            format!("up and down by {} over {}", self.labels[0], deg(motion_deg[0]))
+        } else {
+            format!(
+                "up by {} over {}, down by {} over {}",
+                self.labels[0],
+                deg(motion_deg[0]),
+                self.labels[1],
+                deg(motion_deg[1])
+            )
+        };
+        if self.through.is_some() {
+            text.push_str(&format!(", laid end to end by {}", self.labels[2]));
+        }
+        text
     }
 
     /// The law going up (`rising`) or down.

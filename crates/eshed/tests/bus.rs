@@ -28,6 +28,7 @@ fn mixed(rise: LawSpec, fall: LawSpec, through: LawSpec) -> MoveLaws {
         fall: b(fall),
         through: Some(b(through)),
         fields: ["servo.rise_law".into(), "servo.fall_law".into(), "servo.through_law".into()],
+        labels: ["rise".into(), "fall".into(), "through".into()],
     }
 }
 

@@ -76,6 +76,10 @@ pub fn servo_laws(loom: &Loom) -> MoveLaws {
         (law.spec(false).clone(), law.law(false).clone()),
     );
     laws.fields = ["shedding".into(), "shedding".into(), "shedding".into()];
+    // The shedding law's own name where it is one law both ways (a preset: `dobby preset`).
+    if law.spec(true) == law.spec(false) {
+        laws.labels = [law.label().into(), law.label().into(), String::new()];
+    }
     laws
 }
 
@@ -85,13 +89,13 @@ pub fn frame_laws(loom: &Loom, i: usize) -> Result<MoveLaws> {
     let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
     let d = servo_laws(loom);
     let f = servo.frames.get(i).ok_or_else(|| LoomError::field("shedding.servo", format!("no frame {}", i + 1)))?;
-    Ok(f.moves.laws(d.rise, d.fall, "shedding"))
+    Ok(f.moves.laws(&d))
 }
 
 /// Every frame's plan, laws, load and servo (front first) for `loom` weaving `pattern`, the loom's
 /// `[shedding.servo]` giving the drives and the laws and motion angles by kind of move;
 /// `motion_deg` overrides every frame's motion angle of a move up (a move down's scaled with it,
-/// keeping the loom file's ratio of the two) and `centre_deg` every frame's move centre (crossing
+/// keeping the loom file's ratio of the two, to 12 significant digits) and `centre_deg` every frame's move centre (crossing
 /// offset plus stagger) when given (the optimiser's variables). Fails when the loom's shedding
 /// drive is the dobby.
 pub fn servo_setups(
@@ -111,9 +115,14 @@ pub fn servo_setups(
         .map(|i| {
             let s = &servo.frames[i];
             let (rise, fall) = file_motion_deg(loom, i);
+            // The move down's angle scaled with the move up's is kept to 12 significant digits
+            // (a change of at most 5·10⁻¹² of it, half a unit of the twelfth digit): the plan
+            // moves by the number the report prints (`360`, not `359.99999999999994` = 312 ×
+            // 300/260), and that number typed back into the loom file gives the same plan bit
+            // for bit.
             let (phi, phi_fall) = match motion_deg {
                 Some(m) if fall == rise => (m[i], m[i]),
-                Some(m) => (m[i], m[i] * (fall / rise)),
+                Some(m) => (m[i], loomkin_units::to_12_digits(m[i] * (fall / rise))),
                 None => (rise, fall),
             };
             let check = |key: &str, v: f64| {

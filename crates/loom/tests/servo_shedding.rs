@@ -454,6 +454,18 @@ fn the_loom_file_gives_a_law_and_a_motion_angle_per_kind_of_move() {
     assert!(r.frames.iter().all(|f| f.rest_continuity >= 2));
     assert_eq!((r.frames[0].motion_deg, r.frames[0].fall_motion_deg), (280.0, Some(300.0)));
     assert_eq!((r.frames[5].motion_deg, r.frames[5].fall_motion_deg), (260.0, Some(300.0)));
+    // Each kind's law and angle in words, in the loom file's form.
+    assert_eq!(
+        setups[0].laws.describe(setups[0].plan.motion_deg),
+        "up by dobby preset over 280°, down by poly4567 over 300°, laid end to end by spline (5 points, clamped)"
+    );
+    assert_eq!(
+        setups[5].laws.describe(setups[5].plan.motion_deg),
+        "up by modified-trapezoid (ramp=0.125) over 260°, down by poly4567 over 300°, laid end to end by spline \
+         (5 points, clamped)"
+    );
+    let one = servo_setups(&Loom::from_toml(SERVO).unwrap(), &pattern, None, None).unwrap();
+    assert_eq!(one[0].laws.describe(one[0].plan.motion_deg), "up and down by dobby preset over 280°");
     // A law by name is the same law as the table naming it.
     let by_table = LAWS.replace("fall_law = \"poly4567\"", "fall_law = { law = \"poly4567\" }");
     let again = servo_study(&Loom::from_toml(&by_table).unwrap(), &pattern).unwrap();
@@ -520,10 +532,26 @@ fn the_search_varies_a_frames_angle_up_and_scales_its_angle_down_with_it() {
     let fall = o.fall_motion_deg.as_ref().expect("the file gives the moves down their own angle");
     for (i, s) in o.setups.iter().enumerate() {
         let ratio = if i < 2 { 300.0 / 280.0 } else { 300.0 / 260.0 };
-        assert_eq!(s.plan.motion_deg, [o.motion_deg[i], o.motion_deg[i] * ratio]);
+        // The angle down scaled with the angle up, kept to 12 significant digits (half a unit of
+        // the twelfth digit at most: 5e-12 relative).
+        let scaled = o.motion_deg[i] * ratio;
+        assert_eq!(s.plan.motion_deg, [o.motion_deg[i], loomkin_units::to_12_digits(scaled)]);
+        assert!((s.plan.motion_deg[1] - scaled).abs() <= 5e-12 * scaled, "frame {}", i + 1);
         assert_eq!(fall[i], s.plan.motion_deg[1]);
         assert!(o.motion_deg[i] >= 1.0 && fall[i] <= 360.0, "frame {}: {} {}", i + 1, o.motion_deg[i], fall[i]);
     }
+    // 312° up scales to 360° down (312 × 300/260 is 359.99999999999994 in floating point): the
+    // plan moves by 360, the number the report prints.
+    let at_312 = servo_setups(&loom, &pattern, Some(&[312.0; 24]), None).unwrap();
+    assert_eq!(at_312[3].plan.motion_deg, [312.0, 360.0]);
+    // The optimum's angles typed back into the loom file (as the report prints them) give its
+    // plans bit for bit: frame 4's (the [shedding.servo] angles of frames 3–24).
+    let typed = LAWS
+        .replace("rise_motion_deg = 260", &format!("rise_motion_deg = {}", o.motion_deg[3]))
+        .replace("fall_motion_deg = 300", &format!("fall_motion_deg = {}", fall[3]));
+    let again = servo_setups(&Loom::from_toml(&typed).unwrap(), &pattern, None, None).unwrap();
+    let searched = servo_setups(&loom, &pattern, Some(&o.motion_deg), None).unwrap();
+    assert_eq!(again[3].plan, searched[3].plan);
     assert!(o.peak_bus_power_w_after <= o.peak_bus_power_w_before);
     assert_eq!(fall.len(), 24);
     // One angle both ways (the example): none of its own.

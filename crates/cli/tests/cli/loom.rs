@@ -399,10 +399,48 @@ fn servo_laws_by_kind_of_move_run_and_a_law_not_c2_at_rest_is_one_usage_line() {
         .unwrap()
         .replace("fall_law = \"poly4567\"", "fall_law = \"harmonic\"");
     std::fs::write(&bad, text).unwrap();
+    // Named by the loom file, as the refusals found while it is read are.
+    let named =
+        format!("error: {}: shedding.servo.fall_law: harmonic has acceleration −4.935 at its end", bad.display());
     usage_error(
         &["loom", "servo", bad.to_str().unwrap(), "--wif", &ex("point-24.wif")],
-        &["shedding.servo.fall_law: harmonic has acceleration −4.935 at its end", "a rest transition must be C²"],
+        &[&named, "a rest transition must be C²"],
     );
+}
+
+#[test]
+fn servo_text_shows_each_kind_of_moves_law_and_angle_and_the_searched_angles_down() {
+    let out = loomkin()
+        .args(["loom", "servo", &ex("servo-shedding-laws-loom.toml"), "--lift-plan", &ex("twill-3-1.txt")])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let spline = "laid end to end by spline (5 points, clamped)";
+    for line in [
+        format!("moves: frames 1–2: up by dobby preset over 280°, down by poly4567 over 300°, {spline}"),
+        format!(
+            "       frames 3–24: up by modified-trapezoid (ramp=0.125) over 260°, down by poly4567 over 300°, {spline}"
+        ),
+    ] {
+        assert!(text.lines().any(|l| l == line), "no line '{line}' in:\n{text}");
+    }
+    let one = loomkin().args(["loom", "servo", &ex("servo-shedding-loom.toml"), "--wif", &ex("point-24.wif")]).output();
+    let one = String::from_utf8_lossy(&one.unwrap().stdout).to_string();
+    assert!(one.lines().any(|l| l == "moves: frames 1–24: up and down by dobby preset over 280°"), "{one}");
+    // The search's angles down: in the number format, the values the plans move by (312 × 300/260
+    // is 360, not 359.99999999999994).
+    let args = ["loom", "servo", &ex("servo-shedding-laws-loom.toml"), "--wif", &ex("twill-2-2.wif"), "--optimize"];
+    let out = loomkin().args(args).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let down = text.lines().find_map(|l| l.strip_prefix("  motion angle down [deg], front frame first: ")).unwrap();
+    let mut json = args.to_vec();
+    json.push("--json");
+    let o = stdout_json(&json);
+    let fall: Vec<f64> = o["fall_motion_deg"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let shown: Vec<f64> = down.split(", ").map(|v| v.parse().unwrap()).collect();
+    assert_eq!(shown, fall);
+    assert!(fall.contains(&360.0) && !down.contains("99999"), "{down}");
 }
 
 #[test]
