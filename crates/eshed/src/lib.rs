@@ -46,7 +46,7 @@ pub use path::FramePath;
 pub use plan::{FrameInput, FramePlan, MoveLaws, PlanSegment, PlannedMove};
 pub use report::{
     ClearShed, Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves, peak_bus_power_w,
-    peak_bus_power_w_at, peak_bus_power_w_memo, worst_rms_torque_n_m,
+    peak_bus_power_w_at, peak_bus_power_w_memo, worst_rms_torque_n_m, worst_rms_torque_n_m_at,
 };
 pub use spec::{Bus, FrameServo, ServoShedding, Transmission, Winding};
 pub use tables::{

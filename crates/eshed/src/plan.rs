@@ -164,6 +164,9 @@ pub struct FramePlan {
     pub stroke_m: f64,
     /// The motion angle of a move up and of a move down, deg (before pass-through lengthens moves).
     pub motion_deg: [f64; 2],
+    /// The centre of the move into pick 0, deg (crossing offset plus stagger): a move into pick
+    /// `p` is centred on `360p + centre_deg`.
+    pub centre_deg: f64,
 }
 
 impl FramePlan {
@@ -258,7 +261,46 @@ impl FramePlan {
             start_up,
             stroke_m: input.stroke_m,
             motion_deg: [input.motion_deg, input.fall_motion_deg],
+            centre_deg: c,
         })
+    }
+
+    /// Per-segment values of the plan (`per_segment`, one for each of [`FramePlan::segments`], in
+    /// order: integrals over the segments, e.g. `∫T² dt`) cut into the cells of the picks `picks`
+    /// (increasing), one sum per pick. Pick `q`'s cell is the turn `[360q + c − 180°, 360q + c +
+    /// 180°)` about its move centre `c` ([`FramePlan::centre_deg`]): the cells tile the repeat. A move
+    /// counts whole in the cell of the pick it moves into (a move not laid end to end lies within
+    /// that cell, `φ ≤ 360°`; a run laid end to end lies within its picks' cells, from its first
+    /// move's start to its last one's end); a dwell counts by the part of it within the cell, in
+    /// proportion to its length (the integrand is constant over a dwell). Over all picks of the
+    /// repeat the cells' sums add up to the whole; each depends only on what the frame does in the
+    /// cell: its lifts at picks `q − 1` and `q` and the run of changes through `q`.
+    pub fn cell_sums(&self, per_segment: &[f64], picks: &[usize]) -> Vec<f64> {
+        let parts = self.parts();
+        let mut out = vec![0.0; picks.len()];
+        let mut moves = self.moves.iter();
+        for (&(kind, start, len, _), &v) in parts.iter().zip(per_segment) {
+            if kind != SegmentKind::Dwell {
+                if let Some(m) = moves.next()
+                    && let Ok(k) = picks.binary_search(&m.pick)
+                {
+                    out[k] += v;
+                }
+                continue;
+            }
+            for (k, &q) in picks.iter().enumerate() {
+                let (u, w) = (360.0 * q as f64 + self.centre_deg - 180.0, 360.0 * q as f64 + self.centre_deg + 180.0);
+                // The dwell, and its repeats before and after, within the cell.
+                let inside: f64 = [-self.period_deg, 0.0, self.period_deg]
+                    .iter()
+                    .map(|shift| ((start + len + shift).min(w) - (start + shift).max(u)).max(0.0))
+                    .sum();
+                if inside > 0.0 {
+                    out[k] += v * (inside / len);
+                }
+            }
+        }
+        out
     }
 
     /// The segments of the plan as `(kind, start_deg, length_deg)`: dwells between the moves,

@@ -332,6 +332,43 @@ pub fn worst_rms_torque_n_m(frames: &[FrameSetup], speed_rpm: f64) -> Result<f64
     Ok(worst)
 }
 
+/// The largest of the frames' RMS motor torques over a repeat of `repeat_picks` picks, N·m, from
+/// the turns of the picks `picks` (increasing) of `frames`' plans alone, pick `picks[k]` standing
+/// for `counts[k]` picks of the repeat: each frame's `∫T² dt` per segment (the servo check's own
+/// terms, [`loomkin_servo::torque_squared_by_segment`]) cut into per-pick cells
+/// ([`FramePlan::cell_sums`]), weighted by the counts, over the repeat's duration. When every pick
+/// of the repeat is one of a class whose picks do the same in their cells (the servo optimiser's
+/// short pattern), this is [`worst_rms_torque_n_m`] of the whole repeat to rounding.
+pub fn worst_rms_torque_n_m_at(
+    frames: &[FrameSetup],
+    speed_rpm: f64,
+    picks: &[usize],
+    counts: &[usize],
+    repeat_picks: usize,
+) -> Result<f64> {
+    let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
+    let short = (first.plan.period_deg / 360.0).round() as usize;
+    if picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= short) {
+        return Err(EshedError::field("picks", format!("picks must increase within the repeat of {short}")));
+    }
+    if counts.len() != picks.len() || counts.iter().sum::<usize>() != repeat_picks {
+        return Err(EshedError::field(
+            "counts",
+            format!("one count for each pick, adding up to the repeat's {repeat_picks} picks"),
+        ));
+    }
+    let study = Study::new(frames, speed_rpm)?;
+    let repeat_s = (360.0 * repeat_picks as f64).to_radians() / study.drives[0].omega;
+    let mut worst = 0.0f64;
+    for ((f, d), c) in frames.iter().zip(&study.drives).zip(&study.cycles) {
+        let t2 = loomkin_servo::torque_squared_by_segment(&d.axis, c, speed_rpm)?;
+        let cells = f.plan.cell_sums(&t2, picks);
+        let total: f64 = cells.iter().zip(counts).map(|(v, &n)| v * n as f64).sum();
+        worst = worst.max((total / repeat_s).sqrt());
+    }
+    Ok(worst)
+}
+
 /// Curves of the study at evenly spaced angles over the repeat (for plots and arrays).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Curves {

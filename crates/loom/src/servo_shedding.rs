@@ -380,7 +380,12 @@ impl ServoSearch<'_> {
                 let picks = Some(self.reduced.picks.as_slice());
                 loomkin_eshed::peak_bus_power_w_memo(&setups, &servo.bus, speed, picks, &mut self.memo)?
             }
-            Objective::Rms => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, speed)?,
+            Objective::Rms if self.reduced.whole => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, speed)?,
+            Objective::Rms => {
+                let setups = self.setups_of(&self.reduced.pattern, x)?;
+                let r = &self.reduced;
+                loomkin_eshed::worst_rms_torque_n_m_at(&setups, speed, &r.picks, &r.counts, self.pattern.picks())?
+            }
         })
     }
 
@@ -410,6 +415,8 @@ pub struct Reduced {
     pub pattern: Pattern,
     /// Its picks standing for the classes (increasing).
     pub picks: Vec<usize>,
+    /// How many picks of the loom's pattern each stands for (adding up to its picks).
+    pub counts: Vec<usize>,
     /// No reduction: the loom's pattern and all its picks.
     pub whole: bool,
 }
@@ -417,7 +424,8 @@ pub struct Reduced {
 impl Reduced {
     /// No reduction: `pattern` itself, every pick.
     pub fn whole(pattern: &Pattern) -> Self {
-        Self { pattern: pattern.clone(), picks: (0..pattern.picks()).collect(), whole: true }
+        let n = pattern.picks();
+        Self { pattern: pattern.clone(), picks: (0..n).collect(), counts: vec![1; n], whole: true }
     }
 }
 
@@ -434,8 +442,12 @@ impl Reduced {
 /// decide. With pass-through a move's length depends on its whole run, so a neighbourhood grows
 /// until no frame's run crosses its ends; when that reaches the whole repeat (a frame changing on
 /// every pick) there is no reduction. The first and last rows repeated around a neighbourhood stop
-/// the moves between neighbourhoods from joining its runs. Tested: the search's objective and
-/// clearance equal the whole pattern's.
+/// the moves between neighbourhoods from joining its runs. The RMS objective sums each frame's
+/// `∫T² dt` by per-pick cells, the turn about the pick's move centre (`[360p + c − 180°, 360p + c +
+/// 180°]`, [`loomkin_eshed::FramePlan::cell_sums`]): what falls in pick `p`'s cell depends on the
+/// lifts of picks `p − 1` and `p` and the run of changes through `p`, all within the
+/// neighbourhood, so each class's cell counts once per pick of the class. Tested: the search's
+/// objectives and clearance equal the whole pattern's.
 pub fn reduced_pattern(loom: &Loom, pattern: &Pattern) -> Result<Reduced> {
     let picks = pattern.picks();
     let whole = || Reduced::whole(pattern);
@@ -452,8 +464,8 @@ pub fn reduced_pattern(loom: &Loom, pattern: &Pattern) -> Result<Reduced> {
     let change = |i: usize, p: i64| pattern.is_up(at(p), i) != pattern.is_up(at(p - 1), i);
     // Some frame's run of changes goes on from pick `p` to `p + 1`.
     let straddles = |p: i64| pass_through && (0..n).any(|i| change(i, p) && change(i, p + 1));
-    let mut classes: loomkin_numeric::WordMap<Vec<u64>, ()> = Default::default();
-    let (mut rows, mut centres) = (Vec::new(), Vec::new());
+    let mut classes: loomkin_numeric::WordMap<Vec<u64>, usize> = Default::default();
+    let (mut rows, mut centres, mut counts) = (Vec::new(), Vec::new(), Vec::<usize>::new());
     let mut key = Vec::new();
     for p in 0..picks as i64 {
         let (mut lo, mut hi) = (p + q_lo - 1, p + q_hi);
@@ -479,7 +491,11 @@ pub fn reduced_pattern(loom: &Loom, pattern: &Pattern) -> Result<Reduced> {
             }
             key.push(word);
         }
-        if classes.insert(key.clone(), ()).is_none() {
+        if let Some(&c) = classes.get(&key) {
+            counts[c] += 1;
+        } else {
+            classes.insert(key.clone(), counts.len());
+            counts.push(1);
             rows.push(pattern.rows()[at(lo)].clone());
             centres.push(rows.len() + (p - lo) as usize);
             rows.extend((lo..=hi).map(|q| pattern.rows()[at(q)].clone()));
@@ -489,7 +505,7 @@ pub fn reduced_pattern(loom: &Loom, pattern: &Pattern) -> Result<Reduced> {
             }
         }
     }
-    Ok(Reduced { pattern: Pattern::new(pattern.shafts(), rows)?, picks: centres, whole: false })
+    Ok(Reduced { pattern: Pattern::new(pattern.shafts(), rows)?, picks: centres, counts, whole: false })
 }
 
 /// The per-frame stagger and motion angle of `loom` weaving `pattern` that minimise `objective`
@@ -513,9 +529,10 @@ pub fn optimise_servo(
 
 /// [`optimise_servo`] keeping at least `options.min_clearance_mm` of clearance (or the design's
 /// own when it keeps less). The search leaves out the frames that never change place, and
-/// evaluates one pick for every class of picks that see the same turn ([`reduced_pattern`]; the
-/// peak objective and the clearance, the RMS objective over the whole repeat); the optimum is then
-/// worked out exactly over the whole repeat.
+/// evaluates one pick for every class of picks that see the same turn ([`reduced_pattern`]: the
+/// peak objective, the clearance, and the RMS objective with each class weighted by its picks,
+/// [`loomkin_eshed::worst_rms_torque_n_m_at`]); the optimum is then worked out exactly over the
+/// whole repeat.
 pub fn optimise_servo_with(
     loom: &Loom,
     pattern: &Pattern,

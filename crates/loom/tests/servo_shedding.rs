@@ -278,17 +278,26 @@ fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearanc
     // The search evaluates one pick for every class of picks whose neighbourhoods of lifts agree,
     // on a short pattern of those neighbourhoods. Against the whole repeat, for staggers and
     // motion angles anywhere in the search's box: the scan's peak bus power and the clearance on
-    // the 2° grid agree to rounding, with and without pass-through (runs of several lengths).
+    // the 2° grid agree to rounding, with and without pass-through (runs of several lengths); so
+    // does every frame's RMS torque, its classes' cells weighted by their picks (1e-12), with a
+    // law and an angle per kind of move and with the crank and lever.
     let servo = loom_servo();
     let twill = Pattern::new(24, (0..300).map(|p| (0..24).map(|i| (p + i) % 24 < 12).collect()).collect()).unwrap();
+    let laws = Loom::from_toml(LAWS).unwrap();
     let cases = [
         (Loom::from_toml(SERVO).unwrap(), twill.clone()),
-        (pass_through(), twill),
+        (pass_through(), twill.clone()),
         (pass_through(), tiled(24, 10, 200, 7)),
+        (laws.clone(), twill.clone()),
+        (laws, tiled(24, 10, 200, 7)),
+        (Loom::from_toml(CRANK).unwrap(), twill),
     ];
     for (loom, pattern) in &cases {
         let reduced = reduced_pattern(loom, pattern).unwrap();
         assert!(!reduced.whole && reduced.pattern.picks() < pattern.picks(), "{} rows", reduced.pattern.picks());
+        assert_eq!(reduced.counts.len(), reduced.picks.len());
+        assert_eq!(reduced.counts.iter().sum::<usize>(), pattern.picks());
+        let speed = loom.speed.rpm();
         let n = loom.frame_count();
         let delta = loomkin_loom::crossing_offset_deg(loom.shedding.crossing_deg);
         let m = loom.shedding.max_stagger_deg;
@@ -299,7 +308,8 @@ fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearanc
         };
         for _ in 0..4 {
             let centre: Vec<f64> = (0..n).map(|_| delta + m * (2.0 * next() - 1.0)).collect();
-            let phi: Vec<f64> = (0..n).map(|_| 120.0 + 240.0 * next()).collect();
+            // Within 1 … 360° both ways (the laws example's moves down are up to 300/260 longer).
+            let phi: Vec<f64> = (0..n).map(|_| 120.0 + 180.0 * next()).collect();
             let full = servo_setups(loom, pattern, Some(&phi), Some(&centre)).unwrap();
             let short = servo_setups(loom, &reduced.pattern, Some(&phi), Some(&centre)).unwrap();
             let bus = &servo.bus;
@@ -310,7 +320,42 @@ fn the_reduced_pattern_gives_the_search_the_whole_repeats_objective_and_clearanc
             let ca = Timing::new(loom, &mf, pattern).unwrap().min_clearance_coarse(2.0);
             let cb = Timing::new(loom, &ms, &reduced.pattern).unwrap().min_clearance_coarse_at(2.0, &reduced.picks);
             assert!((ca - cb).abs() <= 1e-12, "{ca} {cb}");
+            for i in 0..n {
+                let whole = loomkin_eshed::worst_rms_torque_n_m(&full[i..=i], speed).unwrap();
+                let cells = loomkin_eshed::worst_rms_torque_n_m_at(
+                    &short[i..=i],
+                    speed,
+                    &reduced.picks,
+                    &reduced.counts,
+                    pattern.picks(),
+                )
+                .unwrap();
+                assert!((whole - cells).abs() <= 1e-12 * whole, "frame {}: {whole} {cells}", i + 1);
+            }
+            let (a, b) = (
+                loomkin_eshed::worst_rms_torque_n_m(&full, speed).unwrap(),
+                loomkin_eshed::worst_rms_torque_n_m_at(&short, speed, &reduced.picks, &reduced.counts, pattern.picks())
+                    .unwrap(),
+            );
+            assert!((a - b).abs() <= 1e-12 * a, "{a} {b}");
         }
+    }
+    // The cells' sums over every pick of a plan add up to its whole ∫T² dt, which is the servo
+    // check's RMS torque over the repeat.
+    let loom = pass_through();
+    let pattern = tiled(24, 10, 60, 5);
+    let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+    let study = loomkin_eshed::Study::new(&setups, loom.speed.rpm()).unwrap();
+    let every: Vec<usize> = (0..60).collect();
+    for (i, f) in setups.iter().enumerate() {
+        let (d, c) = (&study.drives[i], &study.cycles[i]);
+        let t2 = loomkin_servo::torque_squared_by_segment(&d.axis, c, loom.speed.rpm()).unwrap();
+        let cells: f64 = f.plan.cell_sums(&t2, &every).iter().sum();
+        let whole: f64 = t2.iter().sum();
+        assert!((cells - whole).abs() <= 1e-13 * whole, "frame {}: {cells} {whole}", i + 1);
+        let rms = loomkin_servo::check_axis(&d.axis, c, loom.speed.rpm()).unwrap().rms_torque_nm;
+        let repeat_s = c.period_rad / d.omega;
+        assert!(((whole / repeat_s).sqrt() - rms).abs() <= 1e-13 * rms, "frame {}", i + 1);
     }
     // A frame changing on every pick with pass-through: one run around the repeat, no reduction.
     let plain = Pattern::new(24, (0..300).map(|p| (0..24).map(|i| (p + i) % 2 == 0).collect()).collect()).unwrap();

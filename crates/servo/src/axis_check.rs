@@ -141,8 +141,15 @@ enum Event {
     TorqueSquared(f64),
 }
 
-/// The events of moving segment `seg` (law `law`) of a cycle run at `omega` rad/s.
-fn moving_events(axis: &Axis, seg: &loomkin_laws::CycleSegment, law: &loomkin_laws::Law, omega: f64) -> Vec<Event> {
+/// The events of moving segment `seg` (law `law`) of a cycle run at `omega` rad/s; with `all` false
+/// only the terms of `∫T² dt` (the same values: the peaks are not searched).
+fn moving_events(
+    axis: &Axis,
+    seg: &loomkin_laws::CycleSegment,
+    law: &loomkin_laws::Law,
+    omega: f64,
+    all: bool,
+) -> Vec<Event> {
     let envelope = |n: f64| axis.peak_envelope(n).unwrap_or_else(|| line_beyond(axis, n));
     let mut out = Vec::new();
     let m = Model::moving(axis, seg.base_si, seg.stroke_si, seg.length_rad, omega);
@@ -166,29 +173,31 @@ fn moving_events(axis: &Axis, seg: &loomkin_laws::CycleSegment, law: &loomkin_la
             };
             let u = |t: f64| lseg.x0() + t;
             let n_br = if crank { 2 * brackets(lseg, a, b) } else { brackets(lseg, a, b) };
-            let (v, at) = abs_max(a, b, n_br, |t| {
-                let (tq, _) = f(t);
-                (tq[0], tq[1], tq[2])
-            });
-            out.push(Event::Torque(v, u(at)));
-            let (v, at) = abs_max(a, b, n_br, |t| {
-                let (_, n) = f(t);
-                (n[0], n[1], n[2])
-            });
-            out.push(Event::Speed(v, u(at)));
-            // The ratio has a kink where the motor speed passes the rated or the maximum speed
-            // (the peak line bends there): cut there, so that an interior maximum next to a
-            // kink is bracketed by its own derivative's sign change.
-            for piece in envelope_cuts(lseg, a, b, |t| f(t).1[0].abs(), &axis.motor).windows(2) {
-                let (v, at) = max_by(piece[0], piece[1], n_br, |t| {
-                    let (tq, n) = f(t);
-                    let (e, de) = envelope(n[0]);
-                    let e = e.max(1e-12 * axis.motor.peak_torque_nm);
-                    let q = tq[0].abs() / e;
-                    let dq = (tq[0].signum() * tq[1] * e - tq[0].abs() * de * n[0].signum() * n[1]) / (e * e);
-                    (q, dq)
+            if all {
+                let (v, at) = abs_max(a, b, n_br, |t| {
+                    let (tq, _) = f(t);
+                    (tq[0], tq[1], tq[2])
                 });
-                out.push(Event::Envelope(v, u(at)));
+                out.push(Event::Torque(v, u(at)));
+                let (v, at) = abs_max(a, b, n_br, |t| {
+                    let (_, n) = f(t);
+                    (n[0], n[1], n[2])
+                });
+                out.push(Event::Speed(v, u(at)));
+                // The ratio has a kink where the motor speed passes the rated or the maximum speed
+                // (the peak line bends there): cut there, so that an interior maximum next to a
+                // kink is bracketed by its own derivative's sign change.
+                for piece in envelope_cuts(lseg, a, b, |t| f(t).1[0].abs(), &axis.motor).windows(2) {
+                    let (v, at) = max_by(piece[0], piece[1], n_br, |t| {
+                        let (tq, n) = f(t);
+                        let (e, de) = envelope(n[0]);
+                        let e = e.max(1e-12 * axis.motor.peak_torque_nm);
+                        let q = tq[0].abs() / e;
+                        let dq = (tq[0].signum() * tq[1] * e - tq[0].abs() * de * n[0].signum() * n[1]) / (e * e);
+                        (q, dq)
+                    });
+                    out.push(Event::Envelope(v, u(at)));
+                }
             }
             let t2 = if crank {
                 // Not a polynomial: the rule on CRANK_PANELS equal parts.
@@ -247,15 +256,66 @@ fn position_range(cycle: &Cycle) -> (f64, f64) {
     })
 }
 
-/// Checks `axis` moving `cycle` at `speed_rpm` (main shaft). A crank and lever must move the slave
-/// over the cycle's positions without a dead centre ([`crate::CrankLever::check_stroke`]).
-pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
+/// What one segment of a cycle gives the check: a dwell's constant torque, or a moving segment's
+/// events in order.
+enum SegmentEvents<'a> {
+    Dwell(f64),
+    Moving(&'a [Event]),
+}
+
+/// The checked speed (rpm) of `axis` moving `cycle` at `speed_rpm`, after the checks every walk
+/// of the cycle needs (the axis against the cycle's unit, a crank and lever's stroke without a
+/// dead centre, the speed's range).
+fn checked_speed(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<f64> {
     axis.validate(cycle.unit)?;
     if let Some(cl) = &axis.load.crank_lever {
         let (lo, hi) = position_range(cycle);
         cl.check_stroke(lo, hi, "load.crank_lever")?;
     }
-    let speed_rpm = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm();
+    Ok(loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm())
+}
+
+/// Calls `f` with every segment of `cycle` (run at `omega` rad/s) in order and what it gives the
+/// check. A segment of the same law, stroke, base and length as an earlier one gives the same
+/// values at the same fractions: worked out once, replayed in order (bit for bit the same sums and
+/// maxima as working each out, so a long cycle of repeated moves costs its distinct moves). `all`:
+/// every event of a move, else only its terms of `∫T² dt`.
+fn walk(
+    axis: &Axis,
+    cycle: &Cycle,
+    omega: f64,
+    all: bool,
+    mut f: impl FnMut(&loomkin_laws::CycleSegment, SegmentEvents<'_>),
+) {
+    let mut laws: Vec<&loomkin_laws::Law> = Vec::new();
+    let mut memo: loomkin_numeric::WordMap<(usize, u64, u64, u64), Vec<Event>> = Default::default();
+    for seg in &cycle.segments {
+        let Some((_, law)) = &seg.law else {
+            let t = if axis.load.crank_lever.is_some() {
+                axis.torque_at(seg.base_si, 0.0, 0.0)
+            } else {
+                Model::dwell(axis, seg.base_si).eps
+            };
+            f(seg, SegmentEvents::Dwell(t));
+            continue;
+        };
+        let law_id = match laws.iter().position(|l| std::ptr::eq(*l, law) || *l == law) {
+            Some(i) => i,
+            None => {
+                laws.push(law);
+                laws.len() - 1
+            }
+        };
+        let key = (law_id, seg.base_si.to_bits(), seg.stroke_si.to_bits(), seg.length_rad.to_bits());
+        let events = memo.entry(key).or_insert_with(|| moving_events(axis, seg, law, omega, all));
+        f(seg, SegmentEvents::Moving(events));
+    }
+}
+
+/// Checks `axis` moving `cycle` at `speed_rpm` (main shaft). A crank and lever must move the slave
+/// over the cycle's positions without a dead centre ([`crate::CrankLever::check_stroke`]).
+pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
+    let speed_rpm = checked_speed(axis, cycle, speed_rpm)?;
     let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
     let cycle_time_s = cycle.period_rad / omega;
     let mut pk_t = (0.0f64, 0.0f64);
@@ -266,45 +326,28 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
         let e = axis.peak_envelope(n).map_or_else(|| line_beyond(axis, n).0, |(e, _)| e);
         t.abs() / e.max(1e-12 * axis.motor.peak_torque_nm)
     };
-    let mut laws: Vec<&loomkin_laws::Law> = Vec::new();
-    let mut memo: loomkin_numeric::WordMap<(usize, u64, u64, u64), Vec<Event>> = Default::default();
-    for seg in &cycle.segments {
+    walk(axis, cycle, omega, true, |seg, events| {
         let start_deg = seg.start_rad.to_degrees();
-        let len_deg = seg.length_rad.to_degrees();
-        let Some((_, law)) = &seg.law else {
-            let t = if axis.load.crank_lever.is_some() {
-                axis.torque_at(seg.base_si, 0.0, 0.0)
-            } else {
-                Model::dwell(axis, seg.base_si).eps
-            };
-            take(&mut pk_t, t.abs(), start_deg);
-            take(&mut env, ratio(t, 0.0), start_deg);
-            int_t2 += t * t * seg.length_rad / omega;
-            continue;
-        };
-        // A segment of the same law, stroke, base and length as an earlier one gives the same
-        // values at the same fractions: worked out once, replayed in order (bit for bit the same
-        // sums and maxima as working each out, so a long cycle of repeated moves costs its
-        // distinct moves).
-        let law_id = match laws.iter().position(|l| std::ptr::eq(*l, law) || *l == law) {
-            Some(i) => i,
-            None => {
-                laws.push(law);
-                laws.len() - 1
+        match events {
+            SegmentEvents::Dwell(t) => {
+                take(&mut pk_t, t.abs(), start_deg);
+                take(&mut env, ratio(t, 0.0), start_deg);
+                int_t2 += t * t * seg.length_rad / omega;
             }
-        };
-        let key = (law_id, seg.base_si.to_bits(), seg.stroke_si.to_bits(), seg.length_rad.to_bits());
-        let events = memo.entry(key).or_insert_with(|| moving_events(axis, seg, law, omega));
-        let deg = |u: f64| start_deg + len_deg * u;
-        for e in events.iter() {
-            match *e {
-                Event::Torque(v, u) => take(&mut pk_t, v, deg(u)),
-                Event::Speed(v, u) => take(&mut pk_n, v, deg(u)),
-                Event::Envelope(v, u) => take(&mut env, v, deg(u)),
-                Event::TorqueSquared(x) => int_t2 += x,
+            SegmentEvents::Moving(events) => {
+                let len_deg = seg.length_rad.to_degrees();
+                let deg = |u: f64| start_deg + len_deg * u;
+                for e in events {
+                    match *e {
+                        Event::Torque(v, u) => take(&mut pk_t, v, deg(u)),
+                        Event::Speed(v, u) => take(&mut pk_n, v, deg(u)),
+                        Event::Envelope(v, u) => take(&mut env, v, deg(u)),
+                        Event::TorqueSquared(x) => int_t2 += x,
+                    }
+                }
             }
         }
-    }
+    });
     let rms = (int_t2 / cycle_time_s).sqrt();
     let mo = &axis.motor;
     let inertia_ratio = axis.inertia_ratio();
@@ -330,6 +373,26 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
         checks,
         pass,
     })
+}
+
+/// `∫T² dt` over each segment of `cycle` (N²·m²·s, in the cycle's order) when `axis` moves it at
+/// `speed_rpm`: the terms [`check_axis`] sums for the RMS torque (`√(Σ/cycle time)`), on the same
+/// closed form and quadrature — a dwell's constant torque times its duration, a move's exact
+/// integral. What a study needs to weigh parts of a long cycle (the servo-shedding optimiser's
+/// picks standing for classes of picks).
+pub fn torque_squared_by_segment(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<Vec<f64>> {
+    let omega = loomkin_units::rad_per_s_from_rpm(checked_speed(axis, cycle, speed_rpm)?);
+    let mut out = Vec::with_capacity(cycle.segments.len());
+    walk(axis, cycle, omega, false, |seg, events| {
+        out.push(match events {
+            SegmentEvents::Dwell(t) => t * t * seg.length_rad / omega,
+            SegmentEvents::Moving(events) => events
+                .iter()
+                .map(|e| if let Event::TorqueSquared(x) = *e { x } else { 0.0 })
+                .fold(0.0, |acc, x| acc + x),
+        });
+    });
+    Ok(out)
 }
 
 /// `n ≥ 2` operating points over the cycle, both ends included (the end as the left limit).

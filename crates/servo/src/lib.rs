@@ -46,6 +46,7 @@ mod torque;
 pub use axis::{Axis, Limits, Load, Motor};
 pub use axis_check::{
     AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
+    torque_squared_by_segment,
 };
 pub use crank_lever::{CrankBranch, CrankLever, DeadCentre, Linkage, MotorMotion, Reach};
 pub use cycle_file::spline_cycle;
