@@ -337,8 +337,9 @@ impl<'a> Drive<'a> {
             return;
         }
         let mut buf = vec![0.0; g.per_turn];
+        let tables = Self::tables(g, cache);
         for p in 0..self.motion.picks() {
-            self.fill_turn(g, cache, p, &mut buf);
+            self.fill_turn_from(g, &tables, p, &mut buf);
             buf.iter().for_each(|&v| f(v));
             turn_done(p + 1);
         }
@@ -359,8 +360,9 @@ impl<'a> Drive<'a> {
         }
         let mut buf = vec![0.0; g.per_turn];
         let (mut max, mut squares) = (0.0, 0.0);
+        let tables = Self::tables(&g, cache);
         for (&p, &count) in turns.first.iter().zip(&turns.count) {
-            self.fill_turn(&g, cache, p, &mut buf);
+            self.fill_turn_from(&g, &tables, p, &mut buf);
             if rms {
                 squares += count as f64 * buf.iter().map(|t| t * t).sum::<f64>();
             } else {
@@ -372,11 +374,24 @@ impl<'a> Drive<'a> {
 
     /// The torques of turn `p`'s points of grid `g` (one whose step divides 360°) into `buf`.
     fn fill_turn(&self, g: &Grid, cache: &TableCache, p: usize, buf: &mut [f64]) {
+        self.fill_turn_from(g, &Self::tables(g, cache), p, buf);
+    }
+
+    /// Every frame's grid index and power tables of grid `g` (`None`: the frame never moves),
+    /// looked up in `cache` once for all the turns read.
+    fn tables<'c>(g: &Grid, cache: &'c TableCache) -> Vec<Option<FrameTables<'c>>> {
+        g.frames
+            .iter()
+            .map(|f| f.as_ref().and_then(|(k0, key)| cache.0.get(key).map(|(u, d)| (*k0, &u[..], &d[..]))))
+            .collect()
+    }
+
+    /// [`Drive::fill_turn`] with the tables looked up ([`Drive::tables`]).
+    fn fill_turn_from(&self, g: &Grid, tables: &[Option<FrameTables<'_>>], p: usize, buf: &mut [f64]) {
         buf.fill(0.0);
         let pt = g.per_turn as i64;
-        for (i, frame) in g.frames.iter().enumerate() {
-            let Some((k0, key)) = frame else { continue };
-            let Some((up, down)) = cache.0.get(key) else { continue };
+        for (i, frame) in tables.iter().enumerate() {
+            let Some((k0, up, down)) = *frame else { continue };
             let count = up.len() as i64;
             // Moves into picks p + dq with a point in the turn: 0 ≤ k0 + dq·pt + j < pt, j < count.
             let lo = -(k0 + count - 1).div_euclid(pt);
@@ -615,6 +630,9 @@ struct Grid {
     per_turn: usize,
     frames: Vec<Option<(i64, TableKey)>>,
 }
+
+/// A frame's grid index of its moves into pick 0 and its power tables up and down.
+type FrameTables<'c> = (i64, &'c [f64], &'c [f64]);
 
 /// A frame's power tables in the [`TableCache`]: the frame, the grid's phase in its move (bits), the points.
 type TableKey = (usize, u64, usize);

@@ -14,7 +14,7 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
-use crate::turn_rows::{FrameStates, MAX_WHOLE_TURNS};
+use crate::turn_rows::{FrameStates, MAX_WHOLE_TURNS, SlopeRows};
 use crate::turns::{Turns, lift_key};
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
 use serde::Serialize;
@@ -546,6 +546,49 @@ impl Timing<'_, Motion> {
             max_speed_rpm: max_speed_rpm(v, window_deg, ins.reed_width_m, ins.carrier_length_m),
             max_clear_mm: max_clear * 1e3,
         }))
+    }
+
+    /// [`Timing::min_clearance_coarse`] from rows (what the stagger search checks on a repeat
+    /// with many distinct turns): every pick's grid the min/max of its frames' slope rows, the
+    /// rows kept in `rows` across the motions of the search (a frame's row depends on its own
+    /// centre and lifts alone); the same values at the same nodes, each pick's from its own turn.
+    pub(crate) fn min_clearance_coarse_rows(&self, step_deg: f64, rows: &mut SlopeRows) -> f64 {
+        let motion = self.motion;
+        let ins = &self.loom.insertion;
+        let n = self.loom.frame_count();
+        let k = ((ins.exit_deg - ins.entry_deg) / step_deg).ceil().max(1.0) as usize;
+        let h = (ins.exit_deg - ins.entry_deg) / k as f64;
+        let nodes: Vec<f64> = (0..=k).map(|j| ins.entry_deg + j as f64 * h).collect();
+        let Some(states) = FrameStates::new(motion, ins.entry_deg.min(ins.exit_deg), ins.exit_deg.max(ins.entry_deg))
+        else {
+            return self.min_clearance_coarse(step_deg);
+        };
+        let (mut lo_up, mut hi_down) = (vec![0.0; nodes.len()], vec![0.0; nodes.len()]);
+        let mut ids = vec![0usize; n];
+        let mut least = f64::INFINITY;
+        let height = ins.carrier_height_m;
+        for p in 0..motion.picks() {
+            for (i, id) in ids.iter_mut().enumerate() {
+                let key = [i as u64, motion.centre0_deg(i).to_bits(), states.lo as u64, states.run(motion, i, p)];
+                let d = self.loom.geometry.frame_m[i];
+                *id = rows.get(key, || nodes.iter().map(|&t| motion.frame_in_turn(i, p, t).y_m / d).collect());
+            }
+            lo_up.fill(f64::INFINITY);
+            hi_down.fill(f64::NEG_INFINITY);
+            for (&id, &up) in ids.iter().zip(&self.upper[p * n..][..n]) {
+                let row = rows.row(id);
+                if up {
+                    lo_up.iter_mut().zip(row).for_each(|(v, &y)| *v = v.min(y));
+                } else {
+                    hi_down.iter_mut().zip(row).for_each(|(v, &y)| *v = v.max(y));
+                }
+            }
+            for (lu, hd) in lo_up.iter().zip(&hi_down) {
+                let clear = if lu.is_finite() && hd.is_finite() { self.x_c * (lu - hd) } else { 0.0 };
+                least = least.min(clear - height);
+            }
+        }
+        least
     }
 
     /// The clear height of pick `p` at angle `t_deg` of its turn, at the carrier's front edge,

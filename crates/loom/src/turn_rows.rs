@@ -27,7 +27,7 @@ pub(crate) const MAX_WHOLE_TURNS: usize = 256;
 #[derive(Debug, Clone)]
 pub(crate) struct FrameStates {
     /// The first pick read, relative to the pick.
-    lo: i64,
+    pub lo: i64,
     /// Picks read.
     span: usize,
     /// Per frame, the runs met so far and their row numbers.
@@ -48,7 +48,7 @@ impl FrameStates {
     }
 
     /// The run of frame `i`'s lifts read by pick `p`'s span (bit `k`: up at pick `p + lo + k`).
-    fn run(&self, motion: &Motion, i: usize, p: usize) -> u64 {
+    pub fn run(&self, motion: &Motion, i: usize, p: usize) -> u64 {
         (0..self.span).filter(|&k| motion.is_up(i, p as i64 + self.lo + k as i64)).fold(0, |b, k| b | 1 << k)
     }
 
@@ -68,6 +68,34 @@ impl FrameStates {
     pub fn known(&self, motion: &Motion, i: usize, p: usize) -> u32 {
         let run = self.run(motion, i, p);
         self.runs[i].iter().find(|r| r.0 == run).map_or(u32::MAX, |r| r.1)
+    }
+}
+
+/// Frames' slope rows `y/d` on a grid of the insertion, kept across the motions of a search
+/// that moves the frames' centres (the stagger search): a row is named by its frame, the frame's
+/// move centre (bits), the span's first pick and the run of lifts, and is the same for every
+/// motion that shares them.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SlopeRows {
+    index: loomkin_numeric::WordMap<[u64; 4], usize>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl SlopeRows {
+    /// The number of the row named `key` (frame, centre bits, the span's first pick, run),
+    /// made by `make` when it is not held yet.
+    pub(crate) fn get(&mut self, key: [u64; 4], make: impl FnOnce() -> Vec<f64>) -> usize {
+        if let Some(&r) = self.index.get(&key) {
+            return r;
+        }
+        self.rows.push(make());
+        self.index.insert(key, self.rows.len() - 1);
+        self.rows.len() - 1
+    }
+
+    /// Row `r`.
+    pub(crate) fn row(&self, r: usize) -> &[f64] {
+        &self.rows[r]
     }
 }
 
@@ -224,6 +252,26 @@ fn rms_nodes(motion: &Motion, states: &FrameStates, max_splits: usize, power: &d
     out
 }
 
+/// `picks` random picks on `shafts` shafts for the tests (an LCG from `seed`; each lift up with p = ½, a
+/// pick with every frame up or every frame down drawn again).
+#[cfg(test)]
+pub(crate) fn random(seed: u64, picks: usize, shafts: usize) -> crate::Pattern {
+    let mut state = seed;
+    let mut lifts = Vec::new();
+    while lifts.len() < picks {
+        let pick: Vec<bool> = (0..shafts)
+            .map(|_| {
+                state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+                state >> 63 == 1
+            })
+            .collect();
+        if pick.contains(&true) && pick.contains(&false) {
+            lifts.push(pick);
+        }
+    }
+    crate::Pattern::new(shafts, lifts).unwrap()
+}
+
 #[cfg(test)]
 mod tests {
     //! The rows against the old evaluation, each distinct turn worked out whole (every pick of a
@@ -232,26 +280,7 @@ mod tests {
     //! of its own.
     use super::*;
     use crate::turns::Turns;
-    use crate::{Loom, MAX_RMS_SPLITS, Pattern, Timing};
-
-    /// `picks` random picks on `shafts` shafts (an LCG from `seed`; each lift up with p = ½, a
-    /// pick with every frame up or every frame down drawn again).
-    fn random(seed: u64, picks: usize, shafts: usize) -> Pattern {
-        let mut state = seed;
-        let mut lifts = Vec::new();
-        while lifts.len() < picks {
-            let pick: Vec<bool> = (0..shafts)
-                .map(|_| {
-                    state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-                    state >> 63 == 1
-                })
-                .collect();
-            if pick.contains(&true) && pick.contains(&false) {
-                lifts.push(pick);
-            }
-        }
-        Pattern::new(shafts, lifts).unwrap()
-    }
+    use crate::{Loom, MAX_RMS_SPLITS, Timing};
 
     fn looms() -> Vec<(String, Loom)> {
         let text = include_str!("../../../examples/rapier-loom.toml");
