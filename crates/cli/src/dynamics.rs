@@ -771,11 +771,11 @@ fn optimize_cmd(a: OptimizeArgs) -> Result<()> {
     let cycle = read_cycle(&a.file)?;
     let speed = speed_of(a.speed_rpm, &cycle)?;
     let follower = a.model.follower()?;
-    let bar = util::Progress::new(0, "dyn optimize: responses");
-    let opt = loomkin_dynamics::optimize_cycle_with(&text, speed, a.band_pct, &follower, &|done, all| {
-        bar.set_length(all as u64);
-        bar.set(done as u64);
-    })?;
+    // One step per move shaped and per band response, a count the library estimates until its
+    // last call: an open-ended line.
+    let bar = util::Progress::open_ended("dyn optimize: steps");
+    let opt =
+        loomkin_dynamics::optimize_cycle_with(&text, speed, a.band_pct, &follower, &|done, _| bar.set(done as u64))?;
     bar.finish();
     let u = units(&cycle);
     let p = u.pos;

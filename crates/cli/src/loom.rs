@@ -297,11 +297,9 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
     let objective = a.objective.into();
     StaggerOptions::MIN_CLEARANCE_MM.check_as("--min-clearance-mm", a.min_clearance_mm)?;
     let options = StaggerOptions { objective, min_clearance_mm: a.min_clearance_mm };
-    let bar = util::Progress::new(0, "stagger search");
-    let r = optimise_stagger_with(&loom, &pattern, &options, &Default::default(), &|done, all| {
-        bar.set_length(all as u64);
-        bar.set(done as u64);
-    })?;
+    // The search's stages grow as it goes (a count not known ahead): an open-ended line.
+    let bar = util::Progress::open_ended("stagger search: stages");
+    let r = optimise_stagger_with(&loom, &pattern, &options, &Default::default(), &|done, _| bar.set(done as u64))?;
     bar.finish();
     if let Some(out) = &a.output {
         let toml = Loom::stagger_toml(&text, &r.best.stagger_deg, r.groups.as_deref())?;

@@ -553,7 +553,7 @@ const CHUNK: usize = 1 << 16;
 
 /// A whole table (a front, the presets) printed as text, CSV or JSON.
 fn emit(rows: StudyTable, format: util::Format, cond: &Conditions, title: &str) -> Result<()> {
-    let progress = util::Progress::new(0, "rows");
+    let progress = util::Progress::new(rows.rows.len() as u64, "rows");
     print_rows(&rows.k_names, rows.rows.into_iter(), Form { format, shard: None, title }, cond, &progress)
 }
 
@@ -568,7 +568,8 @@ fn table(a: TableArgs) -> Result<()> {
             bail!("--design presets takes no --family, --shapes, --step or --motion-deg");
         }
         let t = preset_table_in(&cond, shard.items(PRESETS.len()))?;
-        return print_rows(&t.k_names, t.rows.into_iter(), form, &cond, &util::Progress::new(0, "rows"));
+        let progress = util::Progress::new(t.rows.len() as u64, "rows");
+        return print_rows(&t.k_names, t.rows.into_iter(), form, &cond, &progress);
     }
     // The rows are streamed: what is held is the design and one set of criteria per law.
     let motions =

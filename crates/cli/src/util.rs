@@ -159,6 +159,14 @@ pub fn read_input_bytes(path: &std::path::Path) -> anyhow::Result<Vec<u8>> {
 /// Counts are gathered locally and passed to the bar every few thousand items, so counting every
 /// row of a 10⁷-row table costs nothing measurable. The bar is cleared when dropped (an error line
 /// is not printed across it).
+///
+/// Two kinds: [`Progress::new`] for a count known before the run (or, through
+/// [`Progress::set_length`], as soon as it starts), drawn as a bar with an ETA; and
+/// [`Progress::open_ended`] for a search whose count the library can only estimate (`dyn
+/// optimize`'s band responses, the stagger search's stages), drawn as a spinner with the count so
+/// far and the time spent — a bar of an estimated length stops short of its end or runs past it,
+/// and its ETA is wrong from the first frame (`dyn optimize` read 4/176, ETA 47 s, for a 4 s run
+/// that ended at 141).
 pub struct Progress {
     bar: Option<indicatif::ProgressBar>,
     start: std::time::Instant,
@@ -170,18 +178,41 @@ impl Progress {
     /// Items passed to the bar at once.
     const BATCH: u64 = 4096;
 
+    /// The bar's line for a known count.
+    const COUNTED: &str = "{msg} {wide_bar} {pos}/{len} (eta {eta})";
+    /// The line for a count not known ahead: no length, no ETA.
+    const OPEN_ENDED: &str = "{msg} {spinner} {pos} so far ({elapsed})";
+    /// How often an open-ended line redraws by itself (its spinner and time move during a long
+    /// step).
+    const TICK: std::time::Duration = std::time::Duration::from_millis(200);
+
     /// A bar for `len` items named `label` (hidden unless standard error is a terminal).
     pub fn new(len: u64, label: &str) -> Self {
+        Self::on_a_terminal(Some(len), label)
+    }
+
+    /// A line for work whose count is not known ahead (see [`Progress`]): `label`, a spinner,
+    /// the items done so far and the time spent; [`Progress::set`] moves it.
+    pub fn open_ended(label: &str) -> Self {
+        Self::on_a_terminal(None, label)
+    }
+
+    fn on_a_terminal(len: Option<u64>, label: &str) -> Self {
         use std::io::IsTerminal;
-        let bar = std::io::stderr().is_terminal().then(|| {
-            let bar = indicatif::ProgressBar::with_draw_target(Some(len), indicatif::ProgressDrawTarget::hidden());
-            if let Ok(style) = indicatif::ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} (eta {eta})") {
-                bar.set_style(style);
-            }
-            bar.set_message(label.to_string());
-            bar
-        });
+        let bar =
+            std::io::stderr().is_terminal().then(|| Self::styled(len, label, indicatif::ProgressDrawTarget::hidden()));
         Self { bar, start: std::time::Instant::now(), pending: 0.into(), shown: false.into() }
+    }
+
+    /// The bar of [`Progress::new`] (`len` given) or [`Progress::open_ended`] drawing to `target`.
+    fn styled(len: Option<u64>, label: &str, target: indicatif::ProgressDrawTarget) -> indicatif::ProgressBar {
+        let bar = indicatif::ProgressBar::with_draw_target(len, target);
+        let template = if len.is_some() { Self::COUNTED } else { Self::OPEN_ENDED };
+        if let Ok(style) = indicatif::ProgressStyle::with_template(template) {
+            bar.set_style(style);
+        }
+        bar.set_message(label.to_string());
+        bar
     }
 
     /// `n` more items done.
@@ -218,6 +249,9 @@ impl Progress {
         {
             self.shown.store(true, Relaxed);
             bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            if bar.length().is_none() {
+                bar.enable_steady_tick(Self::TICK);
+            }
         }
     }
 
@@ -362,4 +396,70 @@ pub fn page_error(e: loomkin_io::IoError) -> anyhow::Error {
 /// A file's name without its folders, for a plot title (`examples/x.toml` → `x.toml`).
 pub fn file_name(path: &std::path::Path) -> String {
     path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Progress;
+    use std::sync::{Arc, Mutex};
+
+    /// A terminal that keeps the lines drawn on it.
+    #[derive(Debug, Clone, Default)]
+    struct Screen(Arc<Mutex<Vec<String>>>);
+
+    impl indicatif::TermLike for Screen {
+        fn width(&self) -> u16 {
+            100
+        }
+        fn move_cursor_up(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_down(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_right(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_left(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn write_line(&self, s: &str) -> std::io::Result<()> {
+            self.write_str(s)
+        }
+        fn write_str(&self, s: &str) -> std::io::Result<()> {
+            if !s.is_empty() {
+                self.0.lock().expect("the screen").push(s.to_string());
+            }
+            Ok(())
+        }
+        fn clear_line(&self) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn flush(&self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// The last line `len` (or an open-ended count) shows at `pos` done.
+    fn drawn(len: Option<u64>, pos: u64) -> String {
+        let screen = Screen::default();
+        let target = indicatif::ProgressDrawTarget::term_like(Box::new(screen.clone()));
+        let bar = Progress::styled(len, "dyn optimize: responses", target);
+        bar.set_position(pos);
+        bar.tick();
+        let lines = screen.0.lock().expect("the screen");
+        lines.iter().rev().find(|l| l.contains("dyn optimize")).cloned().unwrap_or_default()
+    }
+
+    /// A known count draws a bar with its length and an ETA; a count not known ahead (issue 27:
+    /// `dyn optimize` stopped at 141/176 with an ETA of 47 s for a 4 s run) draws the count so far
+    /// and the time spent, with no length that could stop short and no ETA.
+    #[test]
+    fn a_count_not_known_ahead_shows_no_length_and_no_eta() {
+        let counted = drawn(Some(176), 141);
+        assert!(counted.contains("141/176") && counted.contains("eta"), "{counted}");
+        let open = drawn(None, 141);
+        assert!(open.starts_with("dyn optimize: responses "), "{open}");
+        assert!(open.contains(" 141 so far (") && !open.contains("eta") && !open.contains('/'), "{open}");
+    }
 }

@@ -26,13 +26,21 @@ impl Progress {
         let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::hidden());
         let live = self == Progress::Auto && std::io::stderr().is_terminal();
         if live {
-            if let Ok(style) = ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} ({per_sec}, eta {eta})") {
-                bar.set_style(style);
+            if let Ok(style) = ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} ({rate}/s, eta {eta})") {
+                bar.set_style(style.with_key("rate", |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = w.write_str(&rate(s.per_sec()));
+                }));
             }
             bar.set_message(label.to_string());
         }
         Bar { bar, live, start: std::time::Instant::now(), shown: std::sync::Once::new() }
     }
+}
+
+/// Rows per second as the bar shows them: whole numbers (`491`, where indicatif's `{per_sec}`
+/// wrote `491.0946`), and four significant digits below one a second (`0.25`).
+fn rate(per_sec: f64) -> String {
+    if per_sec.is_finite() && per_sec >= 1.0 { format!("{per_sec:.0}") } else { loomkin_units::sig4(per_sec) }
 }
 
 /// A progress bar that appears after a second (see [`Progress::bar`]).
@@ -122,6 +130,16 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The rate reads as a whole number of rows a second (issue 27: `491.0946/s`), a slow one
+    /// with its significant digits.
+    #[test]
+    fn the_rate_is_a_whole_number_of_rows_a_second() {
+        assert_eq!(rate(491.0946), "491");
+        assert_eq!(rate(1.5), "2");
+        assert_eq!(rate(0.25), "0.25");
+        assert_eq!(rate(0.0), "0");
+    }
 
     #[test]
     fn keeps_order_across_chunks() {
