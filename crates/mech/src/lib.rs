@@ -41,7 +41,7 @@ mod vloop;
 pub use curve::{CurvePoint, Ellipse, PlaneCurve};
 pub use dobby::analysis::{
     Analysis, AnalysisOptions, AnalysisReport, AnalysisRow, AnalysisSummary, DobbyInputs, MAX_INPUT_SPEED_RAD_S,
-    ROLLER_M_RANGE, STEP_DEG_RANGE, analyze, analyze_into, assemble, cam_loop, modulator_loops,
+    MAX_INPUT_SPEED_RPM, ROLLER_M_RANGE, STEP_DEG_RANGE, analyze, analyze_into, assemble, cam_loop, modulator_loops,
 };
 pub use dobby::cam::{Cam, parse_point_table};
 pub use dobby::checks::{

@@ -442,6 +442,11 @@ pub(crate) fn grid_units_iter(start_deg: f64, h_deg: f64, len: usize) -> impl It
 /// The largest input speed ω2 (rad/s) the analysis and the synthesis accept (95 493 rev/min).
 pub const MAX_INPUT_SPEED_RAD_S: f64 = 1e4;
 
+/// The largest main-shaft speed (rpm) a front end's `speed_rpm` takes: a round number in the unit
+/// typed, inside [`MAX_INPUT_SPEED_RAD_S`] (95 000 rpm is ω2 = 9 948 rad/s), so the rpm check is the
+/// one a user meets (it printed the rad/s bound converted, `95492.9658551 rpm`).
+pub const MAX_INPUT_SPEED_RPM: f64 = 95_000.0;
+
 /// The allowed step of the input angle of an analysis or a synthesis (deg): a hundredth of a
 /// degree (36 000 positions a turn) to 30°.
 pub const STEP_DEG_RANGE: Range = Range::closed(0.01, 30.0, "°");
@@ -463,12 +468,13 @@ impl DobbyInputs {
     /// [`DobbyInputs::STEP_DEG`] of a plot: 0.5°.
     pub const PLOT_STEP_DEG: Field = Self::STEP_DEG.with_default(0.5);
     /// `speed_rpm`: the input (main-shaft) speed, the shaft range up to the modulator's bound on ω2
-    /// ([`MAX_INPUT_SPEED_RAD_S`], 95 493 rpm); left out, ω2 = 1 rad/s (rates read as ratios).
+    /// ([`MAX_INPUT_SPEED_RPM`], within ω2 ≤ [`MAX_INPUT_SPEED_RAD_S`]); left out, ω2 = 1 rad/s
+    /// (rates read as ratios).
     pub const SPEED_RPM: Field = Field::new(
         "speed_rpm",
-        Range::closed(1e-3, MAX_INPUT_SPEED_RAD_S * 60.0 / std::f64::consts::TAU, "rpm"),
-        "Input (main-shaft) speed: 0.001 rpm … the modulator's bound ω2 ≤ 10⁴ rad/s (95 493 rpm); left out, \
-         ω2 = 1 rad/s as in the paper, so rates read as ratios.",
+        Range::closed(1e-3, MAX_INPUT_SPEED_RPM, "rpm"),
+        "Input (main-shaft) speed: 0.001 … 95 000 rpm (within the modulator's bound ω2 ≤ 10⁴ rad/s); left \
+         out, ω2 = 1 rad/s as in the paper, so rates read as ratios.",
     );
     /// `pressure_limit_deg`: pressure angles above it raise a warning, 0 … 90°; 60°.
     pub const PRESSURE_LIMIT_DEG: Field = Field::new(
@@ -828,6 +834,19 @@ fn diagnose_cam(g: &ModulatorGeometry, cam: &Cam, from: f64, to: f64) -> MechErr
 mod tests {
     use super::*;
     use crate::{OutputLawSpec, SynthesisOptions, synthesize};
+
+    /// The rpm bound a user meets is round (issue 27: `95492.9658551 rpm`) and inside the rad/s
+    /// bound the analysis checks: the top speed typed passes both, one past it is refused by the
+    /// rpm check naming 95000 rpm.
+    #[test]
+    fn the_speed_bound_is_round_in_rpm_and_inside_the_rad_s_bound() {
+        let w = DobbyInputs::speed_rad_s("--speed-rpm", Some(MAX_INPUT_SPEED_RPM)).unwrap();
+        assert_eq!(w, MAX_INPUT_SPEED_RPM * std::f64::consts::TAU / 60.0);
+        assert!(w <= MAX_INPUT_SPEED_RAD_S, "{w}");
+        check_common(1.0, w, None, 60.0).unwrap();
+        let e = DobbyInputs::speed_rad_s("--speed-rpm", Some(95_000.1)).unwrap_err().to_string();
+        assert!(e.contains("0.001 ≤ --speed-rpm ≤ 95000 rpm"), "{e}");
+    }
 
     /// An analysis into an earlier result equals a fresh one, whatever the earlier result held
     /// (another step, another cam); an error leaves empty tables.
