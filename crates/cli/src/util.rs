@@ -380,6 +380,11 @@ pub fn page_error(e: loomkin_io::IoError) -> anyhow::Error {
             let flag = format!("--{}", r.field);
             anyhow::Error::new(r.renamed(flag))
         }
+        // One flag too small: the flag named, and what does not fit at its size.
+        loomkin_io::IoError::TooSmall { range, reason } => {
+            let flag = format!("--{}", range.field);
+            anyhow::Error::new(loomkin_io::IoError::TooSmall { range: range.renamed(flag), reason })
+        }
         // A size no single flag fixes: `width = 200 and height = 200 px are too small …`, each
         // page setting named as its flag.
         other => {

@@ -49,12 +49,22 @@ pub enum IoError {
     /// A page setting (width, height, DPI) out of its range.
     #[error(transparent)]
     Range(#[from] loomkin_units::RangeError),
+    /// A page size (width or height) too small for the figure: the range from the least size that
+    /// lays out, and what does not fit at the size given (`the legend of panel 1 runs off the
+    /// canvas`).
+    #[error("{range} (at {} px, {reason})", loomkin_units::compact(range.value))]
+    TooSmall {
+        /// The size given and the sizes that lay out.
+        range: loomkin_units::RangeError,
+        /// What does not fit at the size given.
+        reason: String,
+    },
 }
 
 impl loomkin_units::FieldError for IoError {
     fn field(&self) -> Option<&str> {
         match self {
-            IoError::Range(e) => Some(&e.field),
+            IoError::Range(e) | IoError::TooSmall { range: e, .. } => Some(&e.field),
             IoError::NotFinite { column, .. } => Some(column),
             _ => None,
         }

@@ -568,12 +568,14 @@ impl Figure {
         if page.height.is_some() && h < most && self.fits(w, most) {
             let min = least(&|v| self.fits(w, v), h, most);
             let range = Range::closed(f64::from(min), SIZE_MAX, "px");
-            return Err(RangeError::new("height", f64::from(h), range).into());
+            let range = RangeError::new("height", f64::from(h), range);
+            return Err(IoError::TooSmall { range, reason: first.clone() });
         }
         if page.width.is_some() && w < most && self.fits(most, h) {
             let min = least(&|v| self.fits(v, h), w, most);
             let range = Range::closed(f64::from(min), SIZE_MAX, "px");
-            return Err(RangeError::new("width", f64::from(w), range).into());
+            let range = RangeError::new("width", f64::from(w), range);
+            return Err(IoError::TooSmall { range, reason: first.clone() });
         }
         // Neither alone: both grown in proportion up to the largest size.
         let grow = |t: u32| {

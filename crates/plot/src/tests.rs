@@ -537,7 +537,11 @@ fn every_accepted_size_lays_out_and_a_refusal_names_a_size_that_does() {
                         let clashes = drawn_text_problems(&f.to_svg().unwrap()).unwrap();
                         assert!(clashes.is_empty(), "{panels} panels at {w} × {h}: {clashes:?}");
                     }
-                    Err(IoError::Range(e)) => {
+                    Err(IoError::TooSmall { range: e, reason }) => {
+                        // What does not fit is said, at the size given.
+                        let mut at = fig.clone();
+                        at.size = Some((w as u32, h as u32));
+                        assert_eq!(Some(&reason), at.layout_problems().first(), "{e}");
                         // The least size named lays out.
                         let least = match &e.range.lo {
                             loomkin_units::Bound::Closed(v) | loomkin_units::Bound::Open(v) => *v,

@@ -135,6 +135,23 @@ fn a_size_too_small_both_ways_names_both_flags() {
     assert!(!out.exists());
 }
 
+/// A plot size one flag fixes names the least size that lays out and, as the two-flag message
+/// does, what does not fit at the size given (issue 27: it named only the size).
+#[test]
+fn a_size_too_small_one_way_says_what_does_not_fit() {
+    let out = std::env::temp_dir().join(format!("loomkin-messages-{}-one.svg", std::process::id()));
+    let o = out.to_str().unwrap();
+    usage_error(
+        &["law", "plot", "cycloidal", "modified-sine", "poly345", "-o", o, "--height", "200"],
+        &["--height = 200 is out of range: allowed 435 ≤ --height ≤ 8000 px (at 200 px, ", "runs off the canvas)"],
+    );
+    usage_error(
+        &["dyn", "response", &examples("heald-frame-cycle.toml"), "--natural-hz", "80", "-o", o, "--height", "300"],
+        &["--height = 300 is out of range: allowed 436 ≤ --height ≤ 8000 px (at 300 px, the vertical axis of panel"],
+    );
+    assert!(!out.exists());
+}
+
 /// Every output name of a command is checked before anything runs or is written: a bad plot
 /// name beside a DXF writes no DXF (`cam profile`), and `drive ripple` refuses a folder that is
 /// not there before its run (one line, exit 1).
