@@ -1249,6 +1249,9 @@ async function computeParetoNow(req, chosen) {
     const r = await api("/shed/pareto", req);
     clearFieldErrors();
     shed.result = r;
+    // The front shown and the laws drawn from it belong to this request, not to the fields as they
+    // are when a law is chosen (a field may have been changed, or refused, since it was sent).
+    shed.asked = req;
     const byMotion = {}, over = { x: [], y: [] };
     r.cloud.motion_deg.forEach((m, k) => {
       const ok = !r.cloud.within_jerk_limit || r.cloud.within_jerk_limit[k];
@@ -1300,7 +1303,7 @@ async function chooseLaw(k) {
   // Only the answer for the law chosen last is drawn (an earlier choice's may arrive after it).
   const asked = shed.lawAsked = (shed.lawAsked || 0) + 1;
   try {
-    const r = await api("/shed/law", { family: shed.inputs.family.value, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shedConditions(), samples: 2881 });
+    const r = await api("/shed/law", { family: shed.asked.family, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shed.asked.conditions, samples: 2881 });
     if (asked !== shed.lawAsked) return;
     shed.s.setSeries([{ label: "", x: r.angle_deg, y: r.s_mm }]);
     shed.v.setSeries([{ label: "", x: r.angle_deg, y: r.v_m_s }]);
