@@ -369,6 +369,24 @@ fn scanned_reach(l: &loomkin_servo::Linkage, up: bool, span: f64, steps: usize) 
     panic!("no dead centre within {span} m");
 }
 
+/// A random crank and lever about mid-stroke 0 (a frame link in three of four), for the property tests.
+fn random_geometry(rng: &mut Rng) -> CrankLever {
+    let link = if rng.uniform(0.0, 1.0) < 0.25 { None } else { Some(rng.uniform(20.0, 600.0)) };
+    CrankLever {
+        crank_radius_mm: rng.uniform(10.0, 100.0),
+        rod_length_mm: rng.uniform(50.0, 400.0),
+        lever_input_arm_mm: rng.uniform(30.0, 200.0),
+        lever_output_arm_mm: rng.uniform(50.0, 300.0),
+        lever_angle_deg: rng.uniform(-180.0, 180.0),
+        rocking_shaft_x_mm: rng.uniform(-300.0, 300.0),
+        rocking_shaft_y_mm: rng.uniform(-300.0, 300.0),
+        frame_link_mm: link,
+        crank_branch: if rng.uniform(0.0, 1.0) < 0.5 { CrankBranch::Ccw } else { CrankBranch::Cw },
+        mid_stroke_mm: 0.0,
+        ..geometry()
+    }
+}
+
 /// The closed-form dead centres ([`loomkin_servo::Linkage::reach`]) against a dense scan of the
 /// kinematics refined by bisection, on random geometries (every branch, with and without a frame
 /// link, every kind of dead centre).
@@ -378,20 +396,7 @@ fn the_closed_form_dead_centres_match_a_dense_scan() {
     let mut rng = Rng(0x5eed_0031_c0ff_ee01);
     let (mut tried, mut kinds) = (0, std::collections::BTreeMap::<String, usize>::new());
     while tried < 120 {
-        let link = if rng.uniform(0.0, 1.0) < 0.25 { None } else { Some(rng.uniform(20.0, 600.0)) };
-        let cl = CrankLever {
-            crank_radius_mm: rng.uniform(10.0, 100.0),
-            rod_length_mm: rng.uniform(50.0, 400.0),
-            lever_input_arm_mm: rng.uniform(30.0, 200.0),
-            lever_output_arm_mm: rng.uniform(50.0, 300.0),
-            lever_angle_deg: rng.uniform(-180.0, 180.0),
-            rocking_shaft_x_mm: rng.uniform(-300.0, 300.0),
-            rocking_shaft_y_mm: rng.uniform(-300.0, 300.0),
-            frame_link_mm: link,
-            crank_branch: if rng.uniform(0.0, 1.0) < 0.5 { CrankBranch::Ccw } else { CrankBranch::Cw },
-            mid_stroke_mm: 0.0,
-            ..geometry()
-        };
+        let cl = random_geometry(&mut rng);
         let Ok(l) = cl.linkage() else { continue };
         tried += 1;
         let span = 1.001 * (l.e + l.link.unwrap_or(0.0));
@@ -479,20 +484,7 @@ fn the_inverse_is_continuous_over_the_reach() {
     let mut rng = Rng(0x1234_5678_9abc_def1);
     let (mut n, mut beyond_half_turn) = (0, 0);
     while n < 1000 {
-        let link = if rng.uniform(0.0, 1.0) < 0.25 { None } else { Some(rng.uniform(20.0, 600.0)) };
-        let cl = CrankLever {
-            crank_radius_mm: rng.uniform(10.0, 100.0),
-            rod_length_mm: rng.uniform(50.0, 400.0),
-            lever_input_arm_mm: rng.uniform(30.0, 200.0),
-            lever_output_arm_mm: rng.uniform(50.0, 300.0),
-            lever_angle_deg: rng.uniform(-180.0, 180.0),
-            rocking_shaft_x_mm: rng.uniform(-300.0, 300.0),
-            rocking_shaft_y_mm: rng.uniform(-300.0, 300.0),
-            frame_link_mm: link,
-            crank_branch: if rng.uniform(0.0, 1.0) < 0.5 { CrankBranch::Ccw } else { CrankBranch::Cw },
-            mid_stroke_mm: 0.0,
-            ..geometry()
-        };
+        let cl = random_geometry(&mut rng);
         let Ok(l) = cl.linkage() else { continue };
         n += 1;
         let (lo, hi) = (l.reach(false).height_m, l.reach(true).height_m);
