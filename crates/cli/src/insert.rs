@@ -82,8 +82,7 @@ fn run_budget(a: BudgetArgs) -> Result<()> {
             let loom = read_loom(path)?;
             let given = a.pattern.given();
             let pattern = if given { Some(crate::loom::read(path, &a.pattern)?.1) } else { None };
-            let b = loomkin_loom::insertion::budget_of(&loom, pattern.as_ref())
-                .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+            let b = loomkin_loom::insertion::budget_of(&loom, pattern.as_ref()).map_err(crate::loom::in_file(path))?;
             Some(b)
         }
         None => {
@@ -196,9 +195,9 @@ impl CarrierRun<'_> {
         })
     }
 
-    /// A loom error named with the file.
+    /// A loom error, named with the file where it is about the file ([`crate::loom::in_file`]).
     pub(crate) fn named(&self, e: loomkin_loom::LoomError) -> anyhow::Error {
-        anyhow!("{}: {e}", self.loom_path.display())
+        crate::loom::in_file(self.loom_path)(e)
     }
 
     /// The plot (with `-o`) or the JSON (with `--json`) of `check`; `false` when neither was asked.

@@ -144,9 +144,17 @@ pub fn run(cmd: LoomCommand) -> Result<()> {
         LoomCommand::Timing(a) => {
             output::check_outputs([Some(Out::plot("--output", &a.output))])?;
             let (loom, pattern) = read(&a.loom, &a.pattern)?;
-            output::figure(&timing_diagram(&loom, &pattern)?, &a.output, &a.plot)
+            output::figure(&timing_diagram(&loom, &pattern).map_err(in_file(&a.loom))?, &a.output, &a.plot)
         }
     }
+}
+
+/// A loom error, named with the loom file's path where it is about the file
+/// ([`loomkin_loom::LoomError::in_loom_file`]: a field of it, found while it is read or while a
+/// study runs, such as a carrier taller than the shed), as the file's read-time refusals are; a
+/// pattern's or an option's error as it is.
+pub(crate) fn in_file(path: &Path) -> impl Fn(loomkin_loom::LoomError) -> anyhow::Error + Copy + '_ {
+    move |e| if e.in_loom_file() { anyhow!("{}: {e}", path.display()) } else { e.into() }
 }
 
 fn read_loom(path: &Path) -> Result<(Loom, String)> {
@@ -181,7 +189,8 @@ fn run_check(a: CheckArgs) -> Result<()> {
     let r = check_with(&loom, &pattern, &|done, all| {
         bar.set_length(all as u64);
         bar.set(done as u64);
-    })?;
+    })
+    .map_err(in_file(&a.loom))?;
     bar.finish();
     if a.json {
         return output::json(&r);
@@ -255,7 +264,7 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
     output::check_outputs([a.output.as_ref().map(|p| Out::plot("--output", p))])?;
     let (loom, pattern) = read(&a.loom, &a.pattern)?;
     Drive::STEP_DEG.check_as("--step-deg", a.step_deg)?;
-    let motion = Motion::new(&loom, &pattern)?;
+    let motion = Motion::new(&loom, &pattern).map_err(in_file(&a.loom))?;
     let drive = Drive::new(&loom, &motion, &pattern);
     // A table streams a turn at a time (its time is the limit); a plot holds every point.
     let tabled = a.format.csv || a.format.json;
@@ -264,7 +273,7 @@ fn run_torque(a: TorqueArgs) -> Result<()> {
         util::check_budget("--step-deg", points, drive.curve_cost(a.step_deg, !tabled))?;
     }
     if let Some(out) = &a.output {
-        return output::figure(&torque_figure(&loom, &pattern, a.step_deg)?, out, &a.plot);
+        return output::figure(&torque_figure(&loom, &pattern, a.step_deg).map_err(in_file(&a.loom))?, out, &a.plot);
     }
     if a.format.csv {
         let w = loom.speed.rad_per_s();
@@ -299,7 +308,8 @@ fn run_stagger(a: StaggerArgs) -> Result<()> {
     let options = StaggerOptions { objective, min_clearance_mm: a.min_clearance_mm };
     // The search's stages grow as it goes (a count not known ahead): an open-ended line.
     let bar = util::Progress::open_ended("stagger search: stages");
-    let r = optimise_stagger_with(&loom, &pattern, &options, &Default::default(), &|done, _| bar.set(done as u64))?;
+    let r = optimise_stagger_with(&loom, &pattern, &options, &Default::default(), &|done, _| bar.set(done as u64))
+        .map_err(in_file(&a.loom))?;
     bar.finish();
     if let Some(out) = &a.output {
         let toml = Loom::stagger_toml(&text, &r.best.stagger_deg, r.groups.as_deref())?;

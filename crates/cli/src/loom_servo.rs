@@ -86,13 +86,10 @@ pub fn run(a: ServoArgs) -> Result<()> {
             .check_as("--min-clearance-mm", a.min_clearance_mm)?,
     };
     let (loom, pattern) = crate::loom::read(&a.loom, &a.pattern)?;
-    // A refusal of the loom file's servo shedding found while the plans are studied (a rest
-    // transition less smooth than C², a crank and lever's dead centre) names the file, as the
-    // refusals found while it is read do.
-    let in_file = |e: loomkin_loom::LoomError| match e {
-        loomkin_loom::LoomError::Eshed(_) => anyhow::anyhow!("{}: {e}", a.loom.display()),
-        e => e.into(),
-    };
+    // A refusal of the loom file found while the plans are studied (a rest transition less smooth
+    // than C², a crank and lever's dead centre, a carrier taller than the shed) names the file, as
+    // the refusals found while it is read do.
+    let in_file = crate::loom::in_file(&a.loom);
     let optimum = if a.optimize {
         let bar = crate::util::Progress::new(0, "servo search");
         let o = loomkin_loom::optimise_servo_with(&loom, &pattern, &options, &Default::default(), &|done, all| {
@@ -113,7 +110,7 @@ pub fn run(a: ServoArgs) -> Result<()> {
         }
     };
     if let Some(out) = &a.output {
-        output::figure(&loomkin_loom::servo_figure_of(&loom, &setups, &r)?, out, &a.plot)?;
+        output::figure(&loomkin_loom::servo_figure_of(&loom, &setups, &r).map_err(in_file)?, out, &a.plot)?;
     }
     if let Some(dir) = &a.emit_tables {
         emit_tables(&loom, &setups, dir, spacing, &a.format)?;

@@ -65,7 +65,41 @@ impl LoomError {
     pub(crate) fn pattern(section: impl Into<String>, reason: impl Into<String>) -> Self {
         Self::Pattern { section: section.into(), reason: reason.into() }
     }
+
+    /// Whether the error is about the loom file: it names one of the file's keys
+    /// (`insertion.carrier_height_mm`, [`LOOM_FILE_KEYS`]) or comes from a law, shuttle or servo
+    /// drive the file gives, whether it was found while the file was read or while a study ran
+    /// (a carrier taller than the shed). `false` for a weave pattern's error, an option of a study
+    /// (`min_clearance_mm`) and a stop: a front end that read the file from a path names the path
+    /// before the first kind only.
+    pub fn in_loom_file(&self) -> bool {
+        match self {
+            Self::Law(_) | Self::Shed(_) | Self::Pick(_) | Self::Eshed(_) => true,
+            Self::Pattern { .. } | Self::Stopped(_) => false,
+            Self::Range(RangeError { field, .. }) | Self::Field { field, .. } | Self::Infeasible { field, .. } => {
+                let key = field.split(['.', '[', ' ', ':', ',']).next().unwrap_or("");
+                LOOM_FILE_KEYS.contains(&key)
+            }
+        }
+    }
 }
+
+/// The keys at the top of a loom file: its numbers and its tables (a test checks them against
+/// the file reader and the examples).
+pub const LOOM_FILE_KEYS: [&str; 12] = [
+    "name",
+    "speed_rpm",
+    "efficiency",
+    "motor_torque_n_m",
+    "geometry",
+    "frames",
+    "warp",
+    "shedding",
+    "insertion",
+    "beat_up",
+    "sley",
+    "drive",
+];
 
 impl FieldError for LoomError {
     fn field(&self) -> Option<&str> {

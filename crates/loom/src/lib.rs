@@ -62,7 +62,7 @@ pub const FIELDS: loomkin_units::FieldList = loomkin_units::field_list![
     DriveSpec::FRICTION_TORQUE_N_M,
     StaggerOptions::MIN_CLEARANCE_MM
 ];
-pub use error::{LoomError, Result};
+pub use error::{LOOM_FILE_KEYS, LoomError, Result};
 pub use file::{
     CarrierSpeed, FrameProps, G_M_S2, Geometry, Insertion, InsertionKind, Lifts, Loom, MAX_FRAMES, Shedding, Warp,
 };

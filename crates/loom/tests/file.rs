@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use loomkin_loom::{CarrierSpeed, Lifts, Loom};
+use loomkin_loom::{CarrierSpeed, Lifts, Loom, LoomError};
 
 #[test]
 fn the_examples_read() {
@@ -101,4 +101,36 @@ fn the_stagger_file_reads_back() {
     assert_eq!(l.shedding.stagger_deg, vec![1.0, -2.5, 1.0, -2.5]);
     let out = Loom::stagger_toml(&s, &[1.0, -2.5, 3.0, 0.5], None).unwrap();
     assert_eq!(Loom::from_toml(&out).unwrap().shedding.stagger_deg, vec![1.0, -2.5, 3.0, 0.5]);
+}
+
+/// The loom file's top-level keys ([`loomkin_loom::LOOM_FILE_KEYS`]) are the reader's: it names
+/// them when it refuses an unknown one, and every example's keys are among them. A refusal of a
+/// field read from the file is the file's ([`LoomError::in_loom_file`]); a study's option is not.
+#[test]
+fn the_loom_file_keys_are_the_readers() {
+    let e = err(&format!("unheard_of = 1\n{}", example("rapier-loom.toml")));
+    let listed: Vec<&str> = e.split('`').skip(3).step_by(2).collect();
+    let mut keys = loomkin_loom::LOOM_FILE_KEYS.to_vec();
+    keys.sort_unstable();
+    let mut named = listed.clone();
+    named.sort_unstable();
+    assert_eq!(named, keys, "{e}");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for f in std::fs::read_dir(dir).unwrap().map(|f| f.unwrap().path()) {
+        let name = f.file_name().unwrap().to_string_lossy().to_string();
+        if !name.ends_with("-loom.toml") {
+            continue;
+        }
+        let t: toml::Table = std::fs::read_to_string(&f).unwrap().parse().unwrap();
+        for k in t.keys() {
+            assert!(keys.contains(&k.as_str()), "{name}: {k}");
+        }
+    }
+    let bad = Loom::from_toml(&edited(&example("rapier-loom.toml"), "mass_kg = 5.5", "mass_kg = 0")).unwrap_err();
+    assert!(bad.in_loom_file(), "{bad}");
+    let option = LoomError::Infeasible { field: "min_clearance_mm".into(), reason: "no stagger keeps it".into() };
+    assert!(!option.in_loom_file());
+    let top =
+        LoomError::Range(loomkin_units::RangeError::new("speed_rpm", -1.0, loomkin_units::Range::above(0.0, "rpm")));
+    assert!(top.in_loom_file());
 }

@@ -58,6 +58,8 @@ fn a_carrier_taller_than_the_shed_is_refused() {
         e.to_string().starts_with("insertion.carrier_height_mm: the carrier (60.0 mm) is taller than the shed"),
         "{e}"
     );
+    // A refusal of the loom file's field: a front end names the file before it.
+    assert!(e.in_loom_file());
 }
 
 #[test]
@@ -68,6 +70,7 @@ fn a_pick_without_a_shed_is_refused() {
     // the timing of another motion refuses it alike.
     let e = Motion::new(&loom, &pat).unwrap_err().to_string();
     assert_eq!(e, "pattern pick 2: raises all of the loom's 4 frames: a shed needs warp above and below the carrier");
+    assert!(!Motion::new(&loom, &pat).unwrap_err().in_loom_file(), "the pattern's, not the loom file's");
     let plain = Motion::new(&loom, &wif("twill-2-2.wif")).unwrap();
     assert_eq!(Timing::new(&loom, &plain, &pat).unwrap_err().to_string(), e);
 }

@@ -151,7 +151,18 @@ fn bad_input_is_one_line_naming_the_field() {
     let behind = write("behind.toml", shuttle.replace("270, 290]", "270, 950]"));
     usage_error(&["loom", "check", &behind], &["geometry.frame_distances_mm[3]", "behind the back rest"]);
     let tall = write("tall.toml", rapier.replace("carrier_height_mm = 22", "carrier_height_mm = 60"));
-    usage_error(&["loom", "check", &tall], &["insertion.carrier_height_mm", "taller than the shed"]);
+    // Found while the study runs, named with the file as a refusal found while it is read is.
+    let tall_field =
+        format!("loomkin: error: {tall}: insertion.carrier_height_mm: the carrier (60.0 mm) is taller than the shed");
+    usage_error(&["loom", "check", &tall], &[&tall_field]);
+    usage_error(&["loom", "stagger", &tall], &[&format!("loomkin: error: {tall}: insertion.entry_deg: no stagger")]);
+    usage_error(&["loom", "timing", &tall, "-o", dir.join("t.svg").to_str().unwrap()], &[&tall_field]);
+    let servo = std::fs::read_to_string(ex("servo-shedding-loom.toml")).unwrap();
+    let tall_servo = write("tall-servo.toml", servo.replace("carrier_height_mm = 22", "carrier_height_mm = 60"));
+    usage_error(
+        &["loom", "servo", &tall_servo],
+        &[&format!("loomkin: error: {tall_servo}: insertion.carrier_height_mm: the carrier (60.0 mm) is taller")],
+    );
     let window = write("window.toml", rapier.replace("entry_deg = 70", "entry_deg = 10"));
     usage_error(&["loom", "stagger", &window, "--wif", &ex("satin-8.wif")], &["insertion.entry_deg", "no stagger"]);
     let twill = std::fs::read_to_string(ex("twill-2-2.wif")).unwrap();
