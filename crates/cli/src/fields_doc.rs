@@ -411,6 +411,92 @@ mod tests {
         );
     }
 
+    /// `v` as a message prints it (`loomkin_units::compact`), or `None` for an open end (∞).
+    fn printed(v: f64) -> Option<String> {
+        Some(num(v)).filter(|t| !t.contains('∞'))
+    }
+
+    /// Significant digits of a number as printed (`0.0102` has 3, `1e-6` 1, `95000` 2).
+    fn significant_digits(text: &str) -> usize {
+        let mantissa = text.split(['e', 'E']).next().unwrap_or(text);
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        let digits = digits.trim_start_matches('0');
+        // Trailing zeros of a whole number are its magnitude, not digits the user must type.
+        let digits = if mantissa.contains('.') { digits } else { digits.trim_end_matches('0') };
+        digits.len()
+    }
+
+    /// Every bound a user is shown — each descriptor's range and each bound of the workbench's
+    /// request schemas — prints as a user would type it: the printed number reads back as the bound
+    /// itself (so typing the bound shown is accepted), in at most 12 significant digits (no
+    /// `0.010101010101` of a bound worked out as 1/0.99 − 1).
+    #[test]
+    fn every_bound_prints_as_typed() {
+        let mut bad = Vec::new();
+        let mut check = |at: String, v: f64| {
+            if let Some(t) = printed(v)
+                && (t.parse::<f64>() != Ok(v) || significant_digits(&t) > 12)
+            {
+                bad.push(format!("{at}: {v:?} prints as {t}"));
+            }
+        };
+        let mut bounds = 0;
+        for (_, list) in LISTS {
+            for (path, f) in list {
+                for b in [f.range.lo, f.range.hi] {
+                    if let Bound::Closed(v) | Bound::Open(v) = b {
+                        check(path.to_string(), v);
+                        bounds += 1;
+                    }
+                }
+            }
+        }
+        fn walk(at: &str, v: &serde_json::Value, out: &mut Vec<(String, f64)>) {
+            match v {
+                serde_json::Value::Object(m) => {
+                    for (k, x) in m {
+                        let here = format!("{at}.{k}");
+                        match (k.as_str(), x.as_f64()) {
+                            ("minimum" | "maximum" | "exclusiveMinimum" | "exclusiveMaximum", Some(b)) => {
+                                out.push((here, b))
+                            }
+                            _ => walk(&here, x, out),
+                        }
+                    }
+                }
+                serde_json::Value::Array(xs) => {
+                    for (i, x) in xs.iter().enumerate() {
+                        walk(&format!("{at}[{i}]"), x, out);
+                    }
+                }
+                _ => {}
+            }
+        }
+        let mut schema_bounds = Vec::new();
+        for (route, r) in &loomkin_web::api_schema().routes {
+            walk(route, &serde_json::to_value(&r.request).unwrap(), &mut schema_bounds);
+        }
+        assert!(
+            bounds > 300 && schema_bounds.len() > 100,
+            "{bounds} descriptor bounds, {} in the schemas",
+            schema_bounds.len()
+        );
+        for (at, v) in schema_bounds {
+            check(at, v);
+        }
+        assert!(bad.is_empty(), "bounds that do not print as typed:\n{}", bad.join("\n"));
+    }
+
+    #[test]
+    fn the_digit_count_counts_what_is_typed() {
+        assert_eq!(significant_digits("0.0102"), 3);
+        assert_eq!(significant_digits("95000"), 2);
+        assert_eq!(significant_digits("1e-6"), 1);
+        assert_eq!(significant_digits("-2.5e-7"), 2);
+        assert_eq!(significant_digits("0.010101010101"), 11);
+        assert_eq!(significant_digits("359.999"), 6);
+    }
+
     /// Every descriptor's path is unique across the crates (Python looks them up by it) and every
     /// default lies inside its range (also checked at compile time).
     #[test]

@@ -1,7 +1,7 @@
 //! The loom's requirement: the window the weft carrier needs, and the threshold that the shed's
 //! height reserve allows.
 
-use crate::{Result, THRESHOLD_RANGE};
+use crate::Result;
 use loomkin_units::{Field, Range, ShaftSpeed};
 use serde::Serialize;
 
@@ -78,13 +78,20 @@ impl LoomRequirement {
          when left out.",
     )
     .with_default(0.0);
+    /// The ends of `shed_excess`: T = 1/(1 + ΔA_S) must lie in the threshold range
+    /// ([`crate::THRESHOLD_RANGE`], 0.75 … 0.99), so ΔA_S in 1/0.99 − 1 = 0.010101… … 1/0.75 − 1 = 0.3333…;
+    /// taken inward to three significant digits, numbers a user types back as they are printed
+    /// (T = 0.98990 … 0.75019; the next three-digit numbers out, 0.0101 and 0.334, give T outside
+    /// the range: tested).
+    pub const SHED_EXCESS_RANGE: (f64, f64) = (0.0102, 0.333);
     /// `shed_excess`: ΔA_S, a fraction; T = 1/(1 + ΔA_S) must lie in the threshold range
-    /// (0.0101 … 0.333); 0.05, the paper's 5 %.
+    /// ([`Self::SHED_EXCESS_RANGE`], 0.0102 … 0.333); 0.05, the paper's 5 %.
     pub const SHED_EXCESS: Field = Field::new(
         "shed_excess",
-        Range::closed(1.0 / THRESHOLD_RANGE.1 - 1.0, 1.0 / THRESHOLD_RANGE.0 - 1.0, "(fraction)"),
+        Range::closed(Self::SHED_EXCESS_RANGE.0, Self::SHED_EXCESS_RANGE.1, "(fraction)"),
         "Shed-height excess over the necessary opening, a fraction; sets T = 1/(1 + excess), which must \
-         lie in 0.75 … 0.99; 0.05 (the paper's 5 %) when left out.",
+         lie in 0.75 … 0.99 (0.0102 … 0.333: that range's ends to three digits, inward); 0.05 (the \
+         paper's 5 %) when left out.",
     )
     .with_default(0.05);
 
@@ -184,5 +191,26 @@ mod tests {
         let mut r = stb();
         r.shed_excess = 0.5;
         assert!(r.validate().is_err());
+    }
+
+    /// The excess's ends give thresholds inside the threshold range, and the next numbers of three
+    /// significant digits beyond them thresholds outside it: the tightest such bounds.
+    #[test]
+    fn the_excess_range_is_the_threshold_range_to_three_digits() {
+        let (lo, hi) = LoomRequirement::SHED_EXCESS_RANGE;
+        let t = |e: f64| LoomRequirement { shed_excess: e, ..stb() }.threshold();
+        let inside = |e: f64| crate::Conditions::THRESHOLD.contains(t(e));
+        assert!(inside(lo) && inside(hi), "{} {}", t(lo), t(hi));
+        assert!(!inside(0.0101) && !inside(0.334), "{} {}", t(0.0101), t(0.334));
+        for e in [lo, hi] {
+            let mut r = stb();
+            r.shed_excess = e;
+            r.validate().unwrap();
+            assert_eq!(loomkin_units::compact(e).parse::<f64>(), Ok(e));
+        }
+        let mut r = stb();
+        r.shed_excess = 0.0101;
+        let e = r.validate().unwrap_err().to_string();
+        assert_eq!(e, "shed_excess = 0.0101 is out of range: allowed 0.0102 ≤ shed_excess ≤ 0.333 (fraction)");
     }
 }
