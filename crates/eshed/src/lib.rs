@@ -41,12 +41,14 @@ pub use bus::{BusTotals, DriveMemo};
 pub use continuity::{JointClass, joint_class};
 pub use drive::{DrivePoint, FrameDrive, FrameLoad, axis};
 pub use error::{EshedError, Result};
+pub use loomkin_servo::CheckMemo;
 pub use moves::{GivenLaw, MoveKinds, read_law};
 pub use path::FramePath;
 pub use plan::{FrameInput, FramePlan, MoveLaws, PlanSegment, PlannedMove};
 pub use report::{
     ClearShed, Curves, FrameReport, FrameSetup, ServoReport, Study, analyse, curves, peak_bus_power_w,
-    peak_bus_power_w_at, peak_bus_power_w_memo, worst_rms_torque_n_m, worst_rms_torque_n_m_at,
+    peak_bus_power_w_at, peak_bus_power_w_memo, rms_torque_n_m, rms_torque_n_m_at, worst_rms_torque_n_m,
+    worst_rms_torque_n_m_at,
 };
 pub use spec::{Bus, FrameServo, ServoShedding, Transmission, Winding};
 pub use tables::{

@@ -4,7 +4,7 @@ use crate::bus::{DriveMemo, Timeline, bus};
 use crate::continuity::{JointClass, joint_class};
 use crate::drive::{FrameDrive, FrameLoad, axis};
 use crate::{Bus, EshedError, FramePlan, FrameServo, MoveLaws, Result};
-use loomkin_servo::{Check, check_axis};
+use loomkin_servo::{Check, CheckMemo, check_axis, check_axis_memo};
 use serde::Serialize;
 
 /// One frame: its plan and the laws of its moves, the frame as a load, its servo.
@@ -192,17 +192,24 @@ pub(crate) fn check_strokes(frames: &[FrameSetup]) -> Result<()> {
         if checked.contains(&key) {
             continue;
         }
-        let lo = -f.load.stroke_m / 2.0 - f.load.start_level_m;
-        let cl = loomkin_servo::CrankLever { mid_stroke_mm: -f.load.start_level_m * 1e3, ..cl };
-        cl.check_stroke(lo, lo + f.load.stroke_m, "shedding.servo.transmission").map_err(|e| {
-            let field = loomkin_units::FieldError::field(&e).unwrap_or("shedding.servo.transmission");
-            let text = e.to_string();
-            let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
-            EshedError::field(field, format!("frame {}: {reason}", i + 1))
-        })?;
+        check_stroke(i, f)?;
         checked.push(key);
     }
     Ok(())
+}
+
+/// Frame `i`'s crank and lever, if it has one, makes its stroke without a dead centre; the error
+/// names the frame.
+fn check_stroke(i: usize, f: &FrameSetup) -> Result<()> {
+    let Some(cl) = f.servo.transmission.crank_lever else { return Ok(()) };
+    let lo = -f.load.stroke_m / 2.0 - f.load.start_level_m;
+    let cl = loomkin_servo::CrankLever { mid_stroke_mm: -f.load.start_level_m * 1e3, ..cl };
+    cl.check_stroke(lo, lo + f.load.stroke_m, "shedding.servo.transmission").map_err(|e| {
+        let field = loomkin_units::FieldError::field(&e).unwrap_or("shedding.servo.transmission");
+        let text = e.to_string();
+        let reason = text.strip_prefix(&format!("{field}: ")).unwrap_or(&text).to_string();
+        EshedError::field(field, format!("frame {}: {reason}", i + 1))
+    })
 }
 
 /// The study of `frames` (front first) moving by their laws at `speed_rpm` on `bus` (`pass_through`:
@@ -324,12 +331,25 @@ fn scanned_peak(
 /// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the
 /// servo check of each frame, bit for bit) without the bus (what the optimiser minimises).
 pub fn worst_rms_torque_n_m(frames: &[FrameSetup], speed_rpm: f64) -> Result<f64> {
-    let study = Study::new(frames, speed_rpm)?;
-    let mut worst = 0.0f64;
-    for (d, c) in study.drives.iter().zip(&study.cycles) {
-        worst = worst.max(check_axis(&d.axis, c, speed_rpm)?.rms_torque_nm);
-    }
-    Ok(worst)
+    loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?;
+    check_strokes(frames)?;
+    let memo = &mut CheckMemo::default();
+    frames.iter().enumerate().try_fold(0.0f64, |worst, (i, f)| Ok(worst.max(rms_torque_n_m(i, f, speed_rpm, memo)?)))
+}
+
+/// Frame `frame`'s RMS motor torque, N·m: [`worst_rms_torque_n_m`]'s term for the frame, `i` (front
+/// first, from 0) naming it in errors, the check's values of its moves remembered in `memo` (the
+/// frame's own: a search that changes one frame at a time keeps one per frame).
+pub fn rms_torque_n_m(i: usize, frame: &FrameSetup, speed_rpm: f64, memo: &mut CheckMemo) -> Result<f64> {
+    let (drive, cycle) = frame_drive(i, frame, speed_rpm)?;
+    Ok(check_axis_memo(&drive, &cycle, speed_rpm, memo)?.rms_torque_nm)
+}
+
+/// Frame `i`'s axis and cycle at `speed_rpm` (as [`Study::new`] makes them), its stroke checked.
+fn frame_drive(i: usize, f: &FrameSetup, speed_rpm: f64) -> Result<(loomkin_servo::Axis, loomkin_laws::Cycle)> {
+    loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?;
+    check_stroke(i, f)?;
+    Ok((axis(&f.servo.motor, &f.servo.transmission, &f.load), f.plan.cycle(&f.laws)))
 }
 
 /// The largest of the frames' RMS motor torques over a repeat of `repeat_picks` picks, N·m, from
@@ -346,8 +366,29 @@ pub fn worst_rms_torque_n_m_at(
     counts: &[usize],
     repeat_picks: usize,
 ) -> Result<f64> {
-    let first = frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
-    let short = (first.plan.period_deg / 360.0).round() as usize;
+    frames.first().ok_or_else(|| EshedError::field("frames", "no frames"))?;
+    loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?;
+    check_strokes(frames)?;
+    let memo = &mut CheckMemo::default();
+    frames.iter().enumerate().try_fold(0.0f64, |worst, (i, f)| {
+        Ok(worst.max(rms_torque_n_m_at(i, f, speed_rpm, picks, counts, repeat_picks, memo)?))
+    })
+}
+
+/// Frame `frame`'s RMS motor torque over a repeat of `repeat_picks` picks, N·m, from the turns of
+/// the picks `picks` alone: [`worst_rms_torque_n_m_at`]'s term for the frame, `i` (front first,
+/// from 0) naming it in errors, the terms of its moves remembered in `memo` (as
+/// [`rms_torque_n_m`]'s).
+pub fn rms_torque_n_m_at(
+    i: usize,
+    frame: &FrameSetup,
+    speed_rpm: f64,
+    picks: &[usize],
+    counts: &[usize],
+    repeat_picks: usize,
+    memo: &mut CheckMemo,
+) -> Result<f64> {
+    let short = (frame.plan.period_deg / 360.0).round() as usize;
     if picks.windows(2).any(|w| w[1] <= w[0]) || picks.last().is_some_and(|&p| p >= short) {
         return Err(EshedError::field("picks", format!("picks must increase within the repeat of {short}")));
     }
@@ -357,16 +398,13 @@ pub fn worst_rms_torque_n_m_at(
             format!("one count for each pick, adding up to the repeat's {repeat_picks} picks"),
         ));
     }
-    let study = Study::new(frames, speed_rpm)?;
-    let repeat_s = (360.0 * repeat_picks as f64).to_radians() / study.drives[0].omega;
-    let mut worst = 0.0f64;
-    for ((f, d), c) in frames.iter().zip(&study.drives).zip(&study.cycles) {
-        let t2 = loomkin_servo::torque_squared_by_segment(&d.axis, c, speed_rpm)?;
-        let cells = f.plan.cell_sums(&t2, picks);
-        let total: f64 = cells.iter().zip(counts).map(|(v, &n)| v * n as f64).sum();
-        worst = worst.max((total / repeat_s).sqrt());
-    }
-    Ok(worst)
+    let (drive, cycle) = frame_drive(i, frame, speed_rpm)?;
+    let omega = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rad_per_s();
+    let repeat_s = (360.0 * repeat_picks as f64).to_radians() / omega;
+    let t2 = loomkin_servo::torque_squared_by_segment_memo(&drive, &cycle, speed_rpm, memo)?;
+    let cells = frame.plan.cell_sums(&t2, picks);
+    let total: f64 = cells.iter().zip(counts).map(|(v, &n)| v * n as f64).sum();
+    Ok((total / repeat_s).sqrt())
 }
 
 /// Curves of the study at evenly spaced angles over the repeat (for plots and arrays).

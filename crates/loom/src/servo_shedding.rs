@@ -104,49 +104,78 @@ pub fn servo_setups(
     motion_deg: Option<&[f64]>,
     centre_deg: Option<&[f64]>,
 ) -> Result<Vec<FrameSetup>> {
-    let servo = loom.shedding.servo.as_ref().ok_or_else(|| {
-        LoomError::field(
-            "shedding.drive",
-            "the loom's shedding drive is the dobby: give drive = \"servo\" and [shedding.servo]",
-        )
-    })?;
-    let motion = Motion::new(loom, pattern)?;
-    (0..loom.frame_count())
-        .map(|i| {
-            let s = &servo.frames[i];
-            let (rise, fall) = file_motion_deg(loom, i);
-            // The move down's angle scaled with the move up's is kept to 12 significant digits
-            // (a change of at most 5·10⁻¹² of it, half a unit of the twelfth digit): the plan
-            // moves by the number the report prints (`360`, not `359.99999999999994` = 312 ×
-            // 300/260), and that number typed back into the loom file gives the same plan bit
-            // for bit.
-            let (phi, phi_fall) = match motion_deg {
-                Some(m) if fall == rise => (m[i], m[i]),
-                Some(m) => (m[i], loomkin_units::to_12_digits(m[i] * (fall / rise))),
-                None => (rise, fall),
-            };
-            let check = |key: &str, v: f64| {
-                loomkin_shed::MOTION_DEG.check(&format!("shedding.servo.frame: frame {} {key}", i + 1), v)
-            };
-            let input = FrameInput {
-                up: motion.lifts(i),
-                stroke_m: motion.stroke_m(i),
-                centre_deg: centre_deg.map_or(motion.centre0_deg(i), |c| c[i]),
-                motion_deg: check("motion_deg", phi)?,
-                fall_motion_deg: check("fall_motion_deg", phi_fall)?,
-            };
-            let plan = FramePlan::new(&input, servo.pass_through)?;
-            let f = &loom.frames[i];
-            let load = FrameLoad {
-                mass_kg: f.mass_kg,
-                spring_n_m: f.spring_n_m,
-                preload_n: f.preload_n,
-                stroke_m: motion.stroke_m(i),
-                start_level_m: plan.start_level_m(),
-            };
-            Ok(FrameSetup { plan, laws: frame_laws(loom, i)?, load, servo: s.clone() })
+    let maker = SetupMaker::new(loom, pattern)?;
+    (0..loom.frame_count()).map(|i| maker.frame(i, motion_deg.map(|m| m[i]), centre_deg.map(|c| c[i]))).collect()
+}
+
+/// What the frames' plans are made from, worked out once for a loom and a pattern: the lifts, the
+/// laws and the loom file's motion angles of every frame ([`servo_setups`] frame by frame, for a
+/// search that changes one frame at a time).
+struct SetupMaker<'a> {
+    loom: &'a Loom,
+    pass_through: bool,
+    motion: Motion,
+    laws: Vec<MoveLaws>,
+    angles: Vec<(f64, f64)>,
+}
+
+impl<'a> SetupMaker<'a> {
+    /// Fails when the loom's shedding drive is the dobby.
+    fn new(loom: &'a Loom, pattern: &Pattern) -> Result<Self> {
+        let servo = loom.shedding.servo.as_ref().ok_or_else(|| {
+            LoomError::field(
+                "shedding.drive",
+                "the loom's shedding drive is the dobby: give drive = \"servo\" and [shedding.servo]",
+            )
+        })?;
+        let motion = Motion::new(loom, pattern)?;
+        let n = loom.frame_count();
+        Ok(Self {
+            loom,
+            pass_through: servo.pass_through,
+            motion,
+            laws: (0..n).map(|i| frame_laws(loom, i)).collect::<Result<_>>()?,
+            angles: (0..n).map(|i| file_motion_deg(loom, i)).collect(),
         })
-        .collect()
+    }
+
+    /// Frame `i`'s plan, laws, load and servo; `motion_deg` and `centre_deg` as [`servo_setups`]'s
+    /// for this frame.
+    fn frame(&self, i: usize, motion_deg: Option<f64>, centre_deg: Option<f64>) -> Result<FrameSetup> {
+        let loom = self.loom;
+        let servo = loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
+        let (rise, fall) = self.angles[i];
+        // The move down's angle scaled with the move up's is kept to 12 significant digits
+        // (a change of at most 5·10⁻¹² of it, half a unit of the twelfth digit): the plan
+        // moves by the number the report prints (`360`, not `359.99999999999994` = 312 ×
+        // 300/260), and that number typed back into the loom file gives the same plan bit
+        // for bit.
+        let (phi, phi_fall) = match motion_deg {
+            Some(m) if fall == rise => (m, m),
+            Some(m) => (m, loomkin_units::to_12_digits(m * (fall / rise))),
+            None => (rise, fall),
+        };
+        let check = |key: &str, v: f64| {
+            loomkin_shed::MOTION_DEG.check(&format!("shedding.servo.frame: frame {} {key}", i + 1), v)
+        };
+        let input = FrameInput {
+            up: self.motion.lifts(i),
+            stroke_m: self.motion.stroke_m(i),
+            centre_deg: centre_deg.unwrap_or(self.motion.centre0_deg(i)),
+            motion_deg: check("motion_deg", phi)?,
+            fall_motion_deg: check("fall_motion_deg", phi_fall)?,
+        };
+        let plan = FramePlan::new(&input, self.pass_through)?;
+        let f = &loom.frames[i];
+        let load = FrameLoad {
+            mass_kg: f.mass_kg,
+            spring_n_m: f.spring_n_m,
+            preload_n: f.preload_n,
+            stroke_m: self.motion.stroke_m(i),
+            start_level_m: plan.start_level_m(),
+        };
+        Ok(FrameSetup { plan, laws: self.laws[i].clone(), load, servo: servo.frames[i].clone() })
+    }
 }
 
 /// Frame `i`'s motion angles up and down as the loom file gives them, deg: `[shedding.servo]`'s
@@ -344,6 +373,8 @@ struct ServoSearch<'a> {
     need_m: f64,
     /// The short pattern the search evaluates, and its picks that stand for the repeat's.
     reduced: Reduced,
+    /// The frames' plans on the short pattern, remembered from one evaluation to the next.
+    plans: SearchFrames<'a>,
     evaluations: usize,
     clearance_checks: usize,
     /// The frames' drive points, remembered from one evaluation to the next (a crank and lever's).
@@ -353,17 +384,93 @@ struct ServoSearch<'a> {
     stages: (usize, usize),
 }
 
+/// One frame's plan at one move centre and motion angle, and its RMS motor torque once asked for.
+struct FrameAt {
+    key: [u64; 2],
+    setup: FrameSetup,
+    rms: Option<f64>,
+}
+
+/// The frames' plans as the search meets them. The compass search moves one frame's stagger or
+/// motion angle at a time, so every other frame's plan comes again bit for bit: each frame keeps
+/// its plans (and RMS torques) at the last [`SearchFrames::RECENT`] points it was asked for, and
+/// the plans of the point evaluated last are kept in frame order for the bus and the timing.
+struct SearchFrames<'a> {
+    maker: SetupMaker<'a>,
+    /// Per frame, most recent first.
+    recent: Vec<Vec<FrameAt>>,
+    /// Per frame, the servo check's values of its moves (a move that the search shifts, or brings
+    /// back, is not worked out again).
+    checks: Vec<loomkin_eshed::CheckMemo>,
+    /// The plans of the point asked for last, and their keys.
+    now: Vec<FrameSetup>,
+    now_keys: Vec<[u64; 2]>,
+}
+
+impl<'a> SearchFrames<'a> {
+    /// Points remembered per frame: the current one and the two the search tries about it, and one
+    /// more.
+    const RECENT: usize = 4;
+
+    fn new(maker: SetupMaker<'a>) -> Self {
+        let n = maker.laws.len();
+        Self {
+            maker,
+            recent: (0..n).map(|_| Vec::new()).collect(),
+            checks: vec![Default::default(); n],
+            now: Vec::new(),
+            now_keys: Vec::new(),
+        }
+    }
+
+    /// Frame `i` with its move centre at `centre_deg` and motion angle `motion_deg`: remembered
+    /// (moved to the front), or planned.
+    fn at(&mut self, i: usize, centre_deg: f64, motion_deg: f64) -> Result<&mut FrameAt> {
+        let key = [centre_deg.to_bits(), motion_deg.to_bits()];
+        let recent = &mut self.recent[i];
+        match recent.iter().position(|f| f.key == key) {
+            Some(k) => recent[..=k].rotate_right(1),
+            None => {
+                let setup = self.maker.frame(i, Some(motion_deg), Some(centre_deg))?;
+                recent.truncate(Self::RECENT - 1);
+                recent.insert(0, FrameAt { key, setup, rms: None });
+            }
+        }
+        Ok(&mut recent[0])
+    }
+
+    /// Every frame's plan at the move centres `centre_deg` and motion angles `motion_deg` (what
+    /// [`servo_setups`] makes of them).
+    fn setups(&mut self, centre_deg: &[f64], motion_deg: &[f64]) -> Result<&[FrameSetup]> {
+        for i in 0..centre_deg.len() {
+            let key = [centre_deg[i].to_bits(), motion_deg[i].to_bits()];
+            if self.now_keys.get(i) == Some(&key) {
+                continue;
+            }
+            let setup = self.at(i, centre_deg[i], motion_deg[i])?.setup.clone();
+            if i < self.now.len() {
+                (self.now[i], self.now_keys[i]) = (setup, key);
+            } else {
+                self.now.push(setup);
+                self.now_keys.push(key);
+            }
+        }
+        Ok(&self.now)
+    }
+}
+
 impl ServoSearch<'_> {
-    /// The plans of `x` = every frame's stagger, then every frame's motion angle, weaving `pattern`.
-    fn setups_of(&self, pattern: &Pattern, x: &[f64]) -> Result<Vec<FrameSetup>> {
+    /// The move centres and motion angles of `x` = every frame's stagger, then every frame's motion
+    /// angle.
+    fn centres_and_angles(&self, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let (stagger, motion) = x.split_at(self.frames);
-        let centre: Vec<f64> = stagger.iter().map(|s| self.delta + s).collect();
-        servo_setups(self.loom, pattern, Some(motion), Some(&centre))
+        (stagger.iter().map(|s| self.delta + s).collect(), motion.to_vec())
     }
 
     /// The plans of `x` over the loom's pattern.
     fn setups(&self, x: &[f64]) -> Result<Vec<FrameSetup>> {
-        self.setups_of(self.pattern, x)
+        let (centre, motion) = self.centres_and_angles(x);
+        servo_setups(self.loom, self.pattern, Some(&motion), Some(&centre))
     }
 
     fn objective(&mut self, x: &[f64]) -> Result<f64> {
@@ -371,20 +478,32 @@ impl ServoSearch<'_> {
         self.evaluations += 1;
         let servo = self.loom.shedding.servo.as_ref().ok_or_else(|| LoomError::field("shedding.drive", "dobby"))?;
         let speed = self.loom.speed.rpm();
+        let (centre, motion) = self.centres_and_angles(x);
+        let r = &self.reduced;
         Ok(match self.objective {
-            Objective::Peak if self.reduced.whole => {
-                loomkin_eshed::peak_bus_power_w_memo(&self.setups(x)?, &servo.bus, speed, None, &mut self.memo)?
-            }
             Objective::Peak => {
-                let setups = self.setups_of(&self.reduced.pattern, x)?;
-                let picks = Some(self.reduced.picks.as_slice());
-                loomkin_eshed::peak_bus_power_w_memo(&setups, &servo.bus, speed, picks, &mut self.memo)?
+                let setups = self.plans.setups(&centre, &motion)?;
+                let picks = (!r.whole).then_some(r.picks.as_slice());
+                loomkin_eshed::peak_bus_power_w_memo(setups, &servo.bus, speed, picks, &mut self.memo)?
             }
-            Objective::Rms if self.reduced.whole => loomkin_eshed::worst_rms_torque_n_m(&self.setups(x)?, speed)?,
+            // The worst frame's: each frame's RMS torque is its own plan's, remembered with it.
             Objective::Rms => {
-                let setups = self.setups_of(&self.reduced.pattern, x)?;
-                let r = &self.reduced;
-                loomkin_eshed::worst_rms_torque_n_m_at(&setups, speed, &r.picks, &r.counts, self.pattern.picks())?
+                let mut worst = 0.0f64;
+                for i in 0..self.frames {
+                    let f = self.plans.at(i, centre[i], motion[i])?;
+                    if f.rms.is_none() {
+                        let (f, memo) = (&self.plans.recent[i][0], &mut self.plans.checks[i]);
+                        let rms = if r.whole {
+                            loomkin_eshed::rms_torque_n_m(i, &f.setup, speed, memo)?
+                        } else {
+                            let repeat = self.pattern.picks();
+                            loomkin_eshed::rms_torque_n_m_at(i, &f.setup, speed, &r.picks, &r.counts, repeat, memo)?
+                        };
+                        self.plans.recent[i][0].rms = Some(rms);
+                    }
+                    worst = worst.max(self.plans.recent[i][0].rms.unwrap_or(f64::NAN));
+                }
+                worst
             }
         })
     }
@@ -393,8 +512,8 @@ impl ServoSearch<'_> {
     fn clearance(&mut self, x: &[f64]) -> Result<f64> {
         self.stop.check()?;
         self.clearance_checks += 1;
-        let setups = self.setups_of(&self.reduced.pattern, x)?;
-        let motion = ServoMotion::new(&setups);
+        let (centre, motion) = self.centres_and_angles(x);
+        let motion = ServoMotion::new(self.plans.setups(&centre, &motion)?);
         let timing = Timing::new(self.loom, &motion, &self.reduced.pattern)?;
         Ok(if self.reduced.whole {
             timing.min_clearance_coarse(SEARCH_STEP_DEG)
@@ -586,6 +705,8 @@ fn optimise(
         }
         x
     };
+    let reduced = if reduce { reduced_pattern(loom, pattern)? } else { Reduced::whole(pattern) };
+    let plans = SearchFrames::new(SetupMaker::new(loom, &reduced.pattern)?);
     let mut s = ServoSearch {
         loom,
         pattern,
@@ -593,7 +714,8 @@ fn optimise(
         frames: n,
         delta,
         need_m: 0.0,
-        reduced: if reduce { reduced_pattern(loom, pattern)? } else { Reduced::whole(pattern) },
+        reduced,
+        plans,
         evaluations: 0,
         clearance_checks: 0,
         memo: Default::default(),
@@ -683,6 +805,88 @@ mod tests {
                 assert!(a.peak_bus_power_w_after <= a.peak_bus_power_w_before);
                 // The frames that never move keep the loom file's timing.
                 assert!(a.stagger_deg[4..].iter().all(|&s| s == 0.0) && a.motion_deg[4..].iter().all(|&m| m == 280.0));
+            }
+        }
+    }
+
+    #[test]
+    fn the_searchs_remembered_plans_give_what_planning_afresh_gives() {
+        // A walk like the compass search's (one frame's stagger or motion angle at a time, back
+        // and forth) with a jump of every variable now and then: the objective, both ways, and the
+        // clearance from the remembered plans equal those of every frame planned afresh, bit for
+        // bit; on a linear drive with pass-through and on the crank and lever.
+        let linear = include_str!("../../../examples/servo-shedding-loom.toml")
+            .replace("pass_through = false", "pass_through = true");
+        let crank = include_str!("../../../examples/servo-shedding-crank-loom.toml").to_string();
+        // A 2/2 twill on four frames, a 5/7 and a 1/5 on two more, 240 picks.
+        let lift = |p: usize, i: usize| match i {
+            0..4 => (p + i) % 4 < 2,
+            4 => p % 12 < 5,
+            _ => p % 6 < 1,
+        };
+        let rows: Vec<Vec<bool>> = (0..240).map(|p| (0..6).map(|i| lift(p, i)).collect()).collect();
+        let pattern = Pattern::new(6, rows).unwrap();
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut unit = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for text in [linear, crank] {
+            let loom = Loom::from_toml(&text).unwrap();
+            let (n, speed) = (loom.frame_count(), loom.speed.rpm());
+            let bus = &loom.shedding.servo.as_ref().unwrap().bus;
+            let reduced = reduced_pattern(&loom, &pattern).unwrap();
+            assert!(!reduced.whole, "{reduced:?}");
+            let (stop, progress) = (StopFlag::default(), |_: usize, _: usize| {});
+            for objective in [Objective::Peak, Objective::Rms] {
+                let mut s = ServoSearch {
+                    loom: &loom,
+                    pattern: &pattern,
+                    objective,
+                    frames: n,
+                    delta: crate::crossing_offset_deg(loom.shedding.crossing_deg),
+                    need_m: 0.0,
+                    plans: SearchFrames::new(SetupMaker::new(&loom, &reduced.pattern).unwrap()),
+                    reduced: reduced.clone(),
+                    evaluations: 0,
+                    clearance_checks: 0,
+                    memo: Default::default(),
+                    stop: &stop,
+                    progress: &progress,
+                    stages: (0, 0),
+                };
+                let mut x: Vec<f64> = (0..n).map(|_| 0.0).chain((0..n).map(|_| 280.0)).collect();
+                for step in 0..40 {
+                    if step % 13 == 12 {
+                        for j in 0..n {
+                            x[j] = (unit() - 0.5) * 20.0;
+                            x[n + j] = 240.0 + 60.0 * unit();
+                        }
+                    } else {
+                        let j = (unit() * 2.0 * n as f64) as usize;
+                        x[j] += if unit() < 0.5 { -4.0 } else { 4.0 };
+                    }
+                    let (centre, motion) = s.centres_and_angles(&x);
+                    let fresh = servo_setups(&loom, &reduced.pattern, Some(&motion), Some(&centre)).unwrap();
+                    let want = match objective {
+                        Objective::Peak => loomkin_eshed::peak_bus_power_w_at(&fresh, bus, speed, &reduced.picks),
+                        Objective::Rms => loomkin_eshed::worst_rms_torque_n_m_at(
+                            &fresh,
+                            speed,
+                            &reduced.picks,
+                            &reduced.counts,
+                            pattern.picks(),
+                        ),
+                    }
+                    .unwrap();
+                    assert_eq!(s.objective(&x).unwrap().to_bits(), want.to_bits(), "{objective:?} step {step}");
+                    let paths = ServoMotion::new(&fresh);
+                    let timing = Timing::new(&loom, &paths, &reduced.pattern).unwrap();
+                    let want = timing.min_clearance_coarse_at(SEARCH_STEP_DEG, &reduced.picks);
+                    assert_eq!(s.clearance(&x).unwrap().to_bits(), want.to_bits(), "clearance, step {step}");
+                }
             }
         }
     }

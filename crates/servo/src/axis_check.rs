@@ -275,20 +275,55 @@ fn checked_speed(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<f64> {
     Ok(loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rpm())
 }
 
+/// What a check works out per distinct move (law, stroke, base and length), kept from one check to
+/// the next of the same axis at the same speed: a search that changes a long cycle a little at a
+/// time (the servo-shedding optimiser) meets the same moves again. The results are bit for bit
+/// those without it. Beyond [`CheckMemo::MOVES`] moves (or [`CheckMemo::LAWS`] laws) it forgets
+/// everything before the next check; another axis or speed starts it afresh.
+#[derive(Debug, Clone, Default)]
+pub struct CheckMemo {
+    axis: Option<Axis>,
+    omega: u64,
+    laws: Vec<loomkin_laws::Law>,
+    /// Per move: every event, or only the terms of `∫T² dt` (`all` false).
+    moves: [MoveEvents; 2],
+}
+
+/// A move's events by its law (numbered in [`CheckMemo`]), base, stroke and length (bits).
+type MoveEvents = loomkin_numeric::WordMap<(usize, u64, u64, u64), Vec<Event>>;
+
+impl CheckMemo {
+    /// Moves remembered (of each kind of walk) before the memo starts afresh.
+    pub const MOVES: usize = 1 << 14;
+    /// Distinct laws remembered before the memo starts afresh.
+    pub const LAWS: usize = 256;
+
+    /// Ready for `axis` at `omega` rad/s: emptied when either changed or when full.
+    fn ready(&mut self, axis: &Axis, omega: f64) {
+        let full = self.laws.len() > Self::LAWS || self.moves.iter().any(|m| m.len() > Self::MOVES);
+        if full || self.axis.as_ref() != Some(axis) || self.omega != omega.to_bits() {
+            *self = Self { axis: Some(axis.clone()), omega: omega.to_bits(), ..Default::default() };
+        }
+    }
+}
+
 /// Calls `f` with every segment of `cycle` (run at `omega` rad/s) in order and what it gives the
-/// check. A segment of the same law, stroke, base and length as an earlier one gives the same
-/// values at the same fractions: worked out once, replayed in order (bit for bit the same sums and
-/// maxima as working each out, so a long cycle of repeated moves costs its distinct moves). `all`:
-/// every event of a move, else only its terms of `∫T² dt`.
+/// check. A segment of the same law, stroke, base and length as an earlier one (of this cycle or,
+/// through `memo`, of an earlier check) gives the same values at the same fractions: worked out
+/// once, replayed in order (bit for bit the same sums and maxima as working each out, so a long
+/// cycle of repeated moves costs its distinct moves). `all`: every event of a move, else only its
+/// terms of `∫T² dt`.
 fn walk(
     axis: &Axis,
     cycle: &Cycle,
     omega: f64,
     all: bool,
+    memo: &mut CheckMemo,
     mut f: impl FnMut(&loomkin_laws::CycleSegment, SegmentEvents<'_>),
 ) {
-    let mut laws: Vec<&loomkin_laws::Law> = Vec::new();
-    let mut memo: loomkin_numeric::WordMap<(usize, u64, u64, u64), Vec<Event>> = Default::default();
+    memo.ready(axis, omega);
+    // The laws of this cycle met so far (by address) and their numbers in the memo.
+    let mut seen: Vec<(&loomkin_laws::Law, usize)> = Vec::new();
     for seg in &cycle.segments {
         let Some((_, law)) = &seg.law else {
             let t = if axis.load.crank_lever.is_some() {
@@ -299,15 +334,23 @@ fn walk(
             f(seg, SegmentEvents::Dwell(t));
             continue;
         };
-        let law_id = match laws.iter().position(|l| std::ptr::eq(*l, law) || *l == law) {
-            Some(i) => i,
+        let law_id = match seen.iter().find(|(l, _)| std::ptr::eq(*l, law) || *l == law) {
+            Some(&(_, id)) => id,
             None => {
-                laws.push(law);
-                laws.len() - 1
+                let id = match memo.laws.iter().position(|l| l == law) {
+                    Some(id) => id,
+                    None => {
+                        memo.laws.push(law.clone());
+                        memo.laws.len() - 1
+                    }
+                };
+                seen.push((law, id));
+                id
             }
         };
         let key = (law_id, seg.base_si.to_bits(), seg.stroke_si.to_bits(), seg.length_rad.to_bits());
-        let events = memo.entry(key).or_insert_with(|| moving_events(axis, seg, law, omega, all));
+        let events =
+            memo.moves[usize::from(all)].entry(key).or_insert_with(|| moving_events(axis, seg, law, omega, all));
         f(seg, SegmentEvents::Moving(events));
     }
 }
@@ -315,6 +358,12 @@ fn walk(
 /// Checks `axis` moving `cycle` at `speed_rpm` (main shaft). A crank and lever must move the slave
 /// over the cycle's positions without a dead centre ([`crate::CrankLever::check_stroke`]).
 pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisReport> {
+    check_axis_memo(axis, cycle, speed_rpm, &mut CheckMemo::default())
+}
+
+/// [`check_axis`], the moves' values remembered in `memo` from one check to the next (the same
+/// report bit for bit).
+pub fn check_axis_memo(axis: &Axis, cycle: &Cycle, speed_rpm: f64, memo: &mut CheckMemo) -> Result<AxisReport> {
     let speed_rpm = checked_speed(axis, cycle, speed_rpm)?;
     let omega = loomkin_units::rad_per_s_from_rpm(speed_rpm);
     let cycle_time_s = cycle.period_rad / omega;
@@ -326,7 +375,7 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
         let e = axis.peak_envelope(n).map_or_else(|| line_beyond(axis, n).0, |(e, _)| e);
         t.abs() / e.max(1e-12 * axis.motor.peak_torque_nm)
     };
-    walk(axis, cycle, omega, true, |seg, events| {
+    walk(axis, cycle, omega, true, memo, |seg, events| {
         let start_deg = seg.start_rad.to_degrees();
         match events {
             SegmentEvents::Dwell(t) => {
@@ -381,9 +430,20 @@ pub fn check_axis(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<AxisRepo
 /// integral. What a study needs to weigh parts of a long cycle (the servo-shedding optimiser's
 /// picks standing for classes of picks).
 pub fn torque_squared_by_segment(axis: &Axis, cycle: &Cycle, speed_rpm: f64) -> Result<Vec<f64>> {
+    torque_squared_by_segment_memo(axis, cycle, speed_rpm, &mut CheckMemo::default())
+}
+
+/// [`torque_squared_by_segment`], the moves' terms remembered in `memo` from one call to the next
+/// (the same terms bit for bit).
+pub fn torque_squared_by_segment_memo(
+    axis: &Axis,
+    cycle: &Cycle,
+    speed_rpm: f64,
+    memo: &mut CheckMemo,
+) -> Result<Vec<f64>> {
     let omega = loomkin_units::rad_per_s_from_rpm(checked_speed(axis, cycle, speed_rpm)?);
     let mut out = Vec::with_capacity(cycle.segments.len());
-    walk(axis, cycle, omega, false, |seg, events| {
+    walk(axis, cycle, omega, false, memo, |seg, events| {
         out.push(match events {
             SegmentEvents::Dwell(t) => t * t * seg.length_rad / omega,
             SegmentEvents::Moving(events) => events

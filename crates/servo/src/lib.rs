@@ -45,8 +45,8 @@ mod torque;
 
 pub use axis::{Axis, Limits, Load, Motor};
 pub use axis_check::{
-    AxisReport, Check, OperatingPoint, Polyline, check_axis, envelope_lines, operating_point_at, operating_points,
-    torque_squared_by_segment,
+    AxisReport, Check, CheckMemo, OperatingPoint, Polyline, check_axis, check_axis_memo, envelope_lines,
+    operating_point_at, operating_points, torque_squared_by_segment, torque_squared_by_segment_memo,
 };
 pub use crank_lever::{CrankBranch, CrankLever, DeadCentre, Linkage, MotorMotion, Reach};
 pub use cycle_file::spline_cycle;

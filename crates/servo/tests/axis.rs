@@ -2,7 +2,10 @@
 //! sampling of the operating points, and a trapezoid RMS.
 
 use loomkin_laws::{Cycle, StrokeUnit};
-use loomkin_servo::{Axis, Drive, Motor, SplineLaw, check_axis, operating_points, spline_cycle, summary};
+use loomkin_servo::{
+    Axis, CheckMemo, Drive, Motor, SplineLaw, check_axis, check_axis_memo, operating_points, spline_cycle, summary,
+    torque_squared_by_segment, torque_squared_by_segment_memo,
+};
 
 const AXIS: &str = include_str!("../../../examples/servo-axis.toml");
 const CYCLE: &str = include_str!("../../../examples/needle-rack-cycle.toml");
@@ -202,4 +205,52 @@ fn repeated_moves_are_checked_once_and_different_bases_apart() {
     let int: f64 = pts.windows(2).map(|w| 0.5 * (w[0].torque_nm.powi(2) + w[1].torque_nm.powi(2)) * dt).sum();
     let rms = (int / b.cycle_time_s).sqrt();
     assert!((rms - b.rms_torque_nm).abs() < 1e-6 * b.rms_torque_nm, "{rms} vs {}", b.rms_torque_nm);
+}
+
+/// A memo kept from one check to the next gives the checks made afresh, bit for bit: over cycles
+/// that share some moves and not others, after the axis changes (a spring) and back, and at
+/// another speed; for the full check and for the `∫T² dt` terms alike.
+#[test]
+fn a_memo_kept_across_checks_gives_the_checks_made_afresh() {
+    let base = Axis::from_toml(AXIS, StrokeUnit::Mm).unwrap();
+    let mut sprung = base.clone();
+    sprung.load.spring_n_m = 900.0;
+    // Moves up of `up`° and down of `down`° by two laws, a dwell between.
+    let cycle = |up: u32, down: u32, law: &str| {
+        let mut t = String::from("unit = \"mm\"\nstroke = 40\nperiod_deg = 720\n");
+        for (kind, len, law) in
+            [("rise", up, law), ("dwell", 360 - up, ""), ("return", down, "cycloidal"), ("dwell", 360 - down, "")]
+        {
+            t += &format!("[[segment]]\nkind = \"{kind}\"\nlength_deg = {len}\n");
+            if !law.is_empty() {
+                t += &format!("law = \"{law}\"\n");
+            }
+        }
+        Cycle::from_toml(&t).unwrap()
+    };
+    let (mut memo, mut squares) = (CheckMemo::default(), CheckMemo::default());
+    let steps = [
+        (&base, 600.0, 200, 220, "modified-sine"),
+        (&base, 600.0, 200, 240, "modified-sine"),
+        (&base, 600.0, 180, 220, "cycloidal"),
+        (&sprung, 600.0, 200, 220, "modified-sine"),
+        (&base, 600.0, 200, 220, "modified-sine"),
+        (&base, 450.0, 200, 220, "modified-sine"),
+        (&base, 450.0, 180, 240, "modified-sine"),
+    ];
+    for (k, &(axis, speed, up, down, law)) in steps.iter().enumerate() {
+        let c = cycle(up, down, law);
+        let fresh = check_axis(axis, &c, speed).unwrap();
+        assert_eq!(check_axis_memo(axis, &c, speed, &mut memo).unwrap(), fresh, "step {k}");
+        let fresh: Vec<u64> = torque_squared_by_segment(axis, &c, speed).unwrap().iter().map(|x| x.to_bits()).collect();
+        let kept = torque_squared_by_segment_memo(axis, &c, speed, &mut squares).unwrap();
+        assert_eq!(kept.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), fresh, "step {k}");
+        // The sprung axis's torques differ: the memo did not answer for it with the other's.
+        if std::ptr::eq(axis, &sprung) {
+            assert_ne!(
+                check_axis(&base, &c, speed).unwrap().rms_torque_nm,
+                check_axis(axis, &c, speed).unwrap().rms_torque_nm
+            );
+        }
+    }
 }
