@@ -44,7 +44,7 @@ struct Piece {
     anchor: f64,
     /// Length of the cycle segment, deg.
     len: f64,
-    /// Interned identity of (cycle segment shape, law segment).
+    /// Interned identity of (cycle segment shape, kind of move, law segment).
     ty: u64,
 }
 
@@ -58,12 +58,13 @@ pub(crate) struct Timeline<'a> {
 }
 
 impl<'a> Timeline<'a> {
-    /// `segments`: the cycle's segments in degrees (`(kind, start, length)`, as the plan gives them).
+    /// `segments`: the cycle's segments in degrees (`(kind, start, length, laid end to end)`, as
+    /// the plan gives them: [`crate::FramePlan::parts`]).
     pub(crate) fn new(
         cycle: &'a Cycle,
-        segments: &[(SegmentKind, f64, f64)],
+        segments: &[(SegmentKind, f64, f64, bool)],
         drive: &'a FrameDrive,
-        types: &mut WordMap<[u64; 4], u64>,
+        types: &mut WordMap<[u64; 5], u64>,
         memo: Option<&'a RefCell<FrameMemo>>,
     ) -> Self {
         let period = cycle.period_rad.to_degrees();
@@ -83,11 +84,15 @@ impl<'a> Timeline<'a> {
         };
         let mut cuts: Vec<f64> = Vec::with_capacity(8);
         let friction = drive.axis.load.friction_n > 0.0;
-        for (si, (seg, &(_, s0, len))) in cycle.segments.iter().zip(segments).enumerate() {
-            let shape = [seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits()];
+        for (si, (seg, &(kind, s0, len, through))) in cycle.segments.iter().zip(segments).enumerate() {
+            // The kind of move and whether it is laid end to end tell its law (a frame's laws by
+            // kind of move, `MoveLaws::of`): a move up and a move up laid end to end of the same
+            // length and level may move by different laws.
+            let class = kind as u64 | u64::from(through) << 8;
+            let shape = [seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits(), class];
             let mut intern = |l: u64| {
                 let n = types.len() as u64;
-                *types.entry([shape[0], shape[1], shape[2], l]).or_insert(n)
+                *types.entry([shape[0], shape[1], shape[2], shape[3], l]).or_insert(n)
             };
             match &seg.law {
                 None => place(

@@ -41,13 +41,18 @@ pub(crate) fn kin(seg: &CycleSegment, x: f64, omega: f64) -> [f64; 4] {
 /// values are in time so that two moves of different lengths compare).
 pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
     let segs = &cycle.segments;
-    let mut scales: crate::bus::WordMap<(u8, u64, u64), DerivativeScale<4>> = Default::default();
-    let mut scale = |s: &CycleSegment| {
-        let key = (s.kind as u8, s.length_rad.to_bits(), s.stroke_si.to_bits());
-        *scales.entry(key).or_insert_with(|| {
+    // A segment's scale by its kind, law (`law_id`'s number), length and stroke; a law that is
+    // none of the frame's (3) is not remembered.
+    let mut scales: crate::bus::WordMap<(u8, u64, u64, u64), DerivativeScale<4>> = Default::default();
+    let mut scale = |s: &CycleSegment, id: u64| {
+        let of = || {
             let base = CycleSegment { base_si: 0.0, ..s.clone() };
             DerivativeScale::of_piece(1.0, |x| kin(&base, x, omega))
-        })
+        };
+        if id == 3 {
+            return of();
+        }
+        *scales.entry((s.kind as u8, id, s.length_rad.to_bits(), s.stroke_si.to_bits())).or_insert_with(of)
     };
     let mut rest = 3;
     let mut rest_at_deg = None;
@@ -84,7 +89,7 @@ pub fn joint_class(cycle: &Cycle, laws: &MoveLaws, omega: f64) -> JointClass {
                         // Around the repeat: the position returns to the start.
                         l[0] -= segs.iter().map(|s| s.stroke_si).sum::<f64>();
                     }
-                    let sc = scale(a).max(scale(b));
+                    let sc = scale(a, ids[i]).max(scale(b, ids[j]));
                     let rounding: [f64; 4] = std::array::from_fn(|k| 64.0 * f64::EPSILON * (l[k].abs() + r[k].abs()));
                     let c = sc.first_jump(&l, &r, &rounding).map_or(3, |k| k as i32 - 1);
                     if !wrap {

@@ -309,8 +309,9 @@ impl FramePlan {
         self.parts().into_iter().map(|(kind, start, len, _)| (kind, start, len)).collect()
     }
 
-    /// [`FramePlan::segments`], each with whether it is a move laid end to end with others.
-    fn parts(&self) -> Vec<(SegmentKind, f64, f64, bool)> {
+    /// [`FramePlan::segments`], each with whether it is a move laid end to end with others (which
+    /// takes the through law: [`MoveLaws::of`]).
+    pub fn parts(&self) -> Vec<(SegmentKind, f64, f64, bool)> {
         let mut out = Vec::with_capacity(2 * self.moves.len() + 1);
         let mut at = self.start_deg;
         for m in &self.moves {

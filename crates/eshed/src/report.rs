@@ -130,8 +130,9 @@ pub struct Study {
     pub cycles: Vec<loomkin_laws::Cycle>,
     /// Per frame: the drive.
     pub drives: Vec<FrameDrive>,
-    /// Per frame: the plan's segments in degrees.
-    pub segments: Vec<Vec<(loomkin_laws::SegmentKind, f64, f64)>>,
+    /// Per frame: the plan's segments in degrees, each with whether it is a move laid end to end
+    /// ([`FramePlan::parts`]).
+    pub segments: Vec<Vec<(loomkin_laws::SegmentKind, f64, f64, bool)>>,
 }
 
 impl Study {
@@ -144,7 +145,7 @@ impl Study {
         check_strokes(frames)?;
         for f in frames {
             cycles.push(f.plan.cycle(&f.laws));
-            segments.push(f.plan.segments());
+            segments.push(f.plan.parts());
             drives.push(FrameDrive::new(
                 axis(&f.servo.motor, &f.servo.transmission, &f.load),
                 f.load,
@@ -456,7 +457,7 @@ pub fn curves(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, points: usi
             while j + 1 < segs.len() && th >= segs[j + 1].1 {
                 j += 1;
             }
-            let (seg, (_, s0, len)) = (&cycle.segments[j], segs[j]);
+            let (seg, (_, s0, len, _)) = (&cycle.segments[j], segs[j]);
             let kin = crate::continuity::kin(seg, ((th - s0) / len).clamp(0.0, 1.0), d.omega);
             let p = d.point(kin[0], kin[1], kin[2], kin[3]);
             y[k] = f.plan.start_level_m() + kin[0];

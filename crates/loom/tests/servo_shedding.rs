@@ -605,3 +605,46 @@ fn the_search_varies_a_frames_angle_up_and_scales_its_angle_down_with_it() {
             .unwrap();
     assert!(one.fall_motion_deg.is_none());
 }
+
+/// Two windows alike in everything but the law of one frame's move are not taken for one another:
+/// a frame's plain move up (cycloidal) and its move up laid end to end (3-4-5), both 360° long from
+/// the same level, each followed by a dwell at the top. The bus's net energy over the repeat
+/// (supplied less braked) equals the integral of its sampled power (Simpson's rule on 2·10⁵
+/// points), and its peak is ≥ every sample.
+#[test]
+fn windows_alike_but_for_a_moves_law_are_told_apart() {
+    let text = include_str!("../../../examples/servo-shedding-laws-loom.toml")
+        .replace(r#"rise_law = { law = "modified-trapezoid", params = { ramp = 0.125 } }"#, r#"rise_law = "cycloidal""#)
+        .replace(r#"fall_law = "poly4567""#, r#"fall_law = "cycloidal""#)
+        .replace(
+            r#"through_law = { spline = [[0, 0], [0.1, 0.55], [0.25, 1], [0.4, 0.55], [0.5, 0]], end = "clamped" }"#,
+            r#"through_law = "poly345""#,
+        )
+        .replace("rise_motion_deg = 260", "rise_motion_deg = 360")
+        .replace("fall_motion_deg = 300", "fall_motion_deg = 360")
+        .replace("frames = 24", "frames = 2")
+        .replace("[[shedding.servo.frame]]", "")
+        .replace("frames = [1, 2]\nrise_law = { preset = \"dobby\" }\nrise_motion_deg = 280\n", "");
+    let loom = Loom::from_toml(&text).unwrap();
+    assert!(loom.shedding.servo.as_ref().unwrap().pass_through);
+    // Two frames. The front one: a plain move up into pick 2, a run of two changes into picks 6
+    // and 7 (down, then up laid end to end), each move up followed by a dwell at the top of 1080°;
+    // the back one the other way. The turns of picks 2 and 7 differ only by the laws of the moves.
+    let lifts = [0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 1, 0, 0, 0, 0, 0];
+    let rows: Vec<Vec<bool>> = lifts.iter().map(|&u| vec![u == 1, u == 0]).collect();
+    let pattern = Pattern::new(2, rows).unwrap();
+    let report = loomkin_loom::servo_study(&loom, &pattern).unwrap();
+    let n = 200_001;
+    let curves = loomkin_loom::servo_curves(&loom, &pattern, n).unwrap();
+    let p = &curves.bus_power_w;
+    let h = report.repeat_s / (n - 1) as f64;
+    let simpson: f64 = (0..(n - 1) / 2).map(|k| h / 3.0 * (p[2 * k] + 4.0 * p[2 * k + 1] + p[2 * k + 2])).sum();
+    // The bus's net energy: what the supply gives less what the resistor takes.
+    let net = report.supplied_energy_j - report.braking_energy_j;
+    assert!(
+        (simpson - net).abs() <= 1e-6 * report.supplied_energy_j,
+        "net bus energy {net} J from the study, {simpson} J from the samples"
+    );
+    let top = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!(report.peak_bus_power_w >= top * (1.0 - 1e-12), "{} < {top}", report.peak_bus_power_w);
+}
