@@ -283,7 +283,9 @@ def loom_servo(
     optimize: bool = False,
     objective: str = "peak",
     min_clearance_mm: float = ...,
-) -> Dict[str, Any]: ...
+) -> Dict[str, Any]:
+    """`loomkin loom servo --json`: the bus (W, J), the shed the carrier passes (deg, mm) and `frames`
+    (N·m, rpm, W; `rise_law`, `fall_law`, `through_law`: each kind of move's law as the loom file names it)."""
 def loom_sley_synthesize(
     stroke_mm: float,
     back_dwell_deg: float,

@@ -57,7 +57,8 @@ def servo(loom: Path, wif: Optional[Path] = None, lift_plan: Optional[Path] = No
     """``loomkin loom servo --json`` (a loom file with ``[shedding] drive = "servo"``): the shared
     DC bus (peak and mean power in W, regenerated and braking energy in J per repeat), the shed the
     carrier passes (window in deg, least clearance in mm) and ``frames`` in shaft order (torques in
-    N·m, speeds in rpm, powers in W, motor checks). With ``optimize`` (``--optimize``): every
+    N·m, speeds in rpm, powers in W, motor checks; ``rise_law``, ``fall_law`` and, where the file
+    gives one, ``through_law``: each kind of move's law as the loom file names it). With ``optimize`` (``--optimize``): every
     frame's stagger and motion angle (deg) for the least peak bus power (or "rms": the worst
     frame's RMS torque), the ``_before``/``_after`` keys and the study of the optimum; the search
     keeps at least ``min_clearance_mm`` (mm, ``--min-clearance-mm``; the design's own when it keeps

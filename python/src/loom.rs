@@ -175,7 +175,8 @@ fn objective_of(objective: &str) -> PyResult<Objective> {
 /// `loomkin loom servo LOOM.toml --json` (`[shedding] drive = "servo"`): the bus (peak and mean
 /// power in W, regenerated and braking energy in J per repeat), the shed the carrier passes
 /// (window in deg, least clearance in mm), and `frames` in shaft order (torques in N·m, speeds in
-/// rpm, powers in W, the motor checks). With `optimize`, `--optimize [--objective]
+/// rpm, powers in W, the motor checks; `rise_law`, `fall_law`, `through_law`: each kind of move's
+/// law as the loom file names it). With `optimize`, `--optimize [--objective]
 /// [--min-clearance-mm]`: every frame's stagger and motion angle for the least peak bus power (or
 /// "rms": the worst frame's RMS torque) keeping at least `min_clearance_mm` of clearance to the
 /// carrier (the design's own when it keeps less), with the before/after keys, and the study of the

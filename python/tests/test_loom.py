@@ -39,6 +39,9 @@ def test_servo_matches_loom_servo(cli):
     r = loomkin.loom.servo(EX / "servo-shedding-loom.toml", wif=EX / "point-24.wif")
     same(r, ref)
     assert len(r["frames"]) == 24 and r["min_clearance_mm"] > 0
+    # Each frame's laws by kind of move, as the loom file names them (here the [shedding] preset's).
+    assert (r["frames"][0]["rise_law"], r["frames"][0]["fall_law"]) == ("dobby preset", "dobby preset")
+    assert "through_law" not in r["frames"][0]
     # --optimize: the same search, the same optimum and the same before/after keys.
     ref = cli("loom", "servo", "examples/servo-shedding-loom.toml", "--wif", "examples/twill-2-2.wif", "--optimize",
               "--objective", "rms", "--json")

@@ -32,6 +32,17 @@ pub struct FrameReport {
     /// The motion angle of its moves down, deg, where it differs from the rise's (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fall_motion_deg: Option<f64>,
+    /// The law of its moves up, as the loom file names it ([`MoveLaws::labels`]): a catalogue law
+    /// with its parameters (`cycloidal`, `modified-trapezoid (ramp=0.125)`), a shedding preset
+    /// (`dobby preset`), a spline law (`spline (5 points, clamped)`); the shedding law's where
+    /// `[shedding.servo]` gives none.
+    pub rise_law: String,
+    /// The law of its moves down, named alike.
+    pub fall_law: String,
+    /// The law of the moves laid end to end by pass-through, named alike, where one is given
+    /// (absent otherwise: those moves follow the rise and fall laws).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub through_law: Option<String>,
     /// Largest |motor torque|, N·m (located exactly by the servo check).
     pub peak_torque_n_m: f64,
     /// Where, deg of the repeat.
@@ -241,6 +252,9 @@ pub fn analyse(frames: &[FrameSetup], bus_spec: &Bus, speed_rpm: f64, pass_throu
                 _ => f.plan.moves.first().map_or(0.0, |m| m.length_deg),
             },
             fall_motion_deg: Some(f.plan.motion_deg[1]).filter(|&fall| fall != f.plan.motion_deg[0]),
+            rise_law: f.laws.labels[0].clone(),
+            fall_law: f.laws.labels[1].clone(),
+            through_law: f.laws.through.as_ref().map(|_| f.laws.labels[2].clone()),
             peak_torque_n_m: check.peak_torque_nm,
             peak_torque_at_deg: check.peak_torque_at_deg.rem_euclid(repeat_deg),
             rms_torque_n_m: check.rms_torque_nm,

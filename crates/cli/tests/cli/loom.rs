@@ -376,6 +376,14 @@ fn servo_laws_by_kind_of_move_run_and_a_law_not_c2_at_rest_is_one_usage_line() {
     assert_eq!((frames[0]["motion_deg"].as_f64(), frames[0]["fall_motion_deg"].as_f64()), (Some(280.0), Some(300.0)));
     assert_eq!((frames[2]["motion_deg"].as_f64(), frames[2]["fall_motion_deg"].as_f64()), (Some(260.0), Some(300.0)));
     assert!(frames.iter().all(|f| f["rest_continuity"].as_i64().unwrap() >= 2));
+    // Each frame's laws by kind of move, as the loom file names them (the text's `moves:` words).
+    let laws = |f: &serde_json::Value| {
+        ["rise_law", "fall_law", "through_law"].map(|k| f.get(k).and_then(|v| v.as_str()).map(str::to_string))
+    };
+    let given = |s: &str| Some(s.to_string());
+    let (through, trapezoid) = (given("spline (5 points, clamped)"), given("modified-trapezoid (ramp=0.125)"));
+    assert_eq!(laws(&frames[0]), [given("dobby preset"), given("poly4567"), through.clone()]);
+    assert_eq!(laws(&frames[2]), [trapezoid, given("poly4567"), through]);
     let o = stdout_json(&[
         "loom",
         "servo",
@@ -396,6 +404,11 @@ fn servo_laws_by_kind_of_move_run_and_a_law_not_c2_at_rest_is_one_usage_line() {
         "--json",
     ]);
     assert!(one.get("fall_motion_deg").is_none() && one["frames"][0].get("fall_motion_deg").is_none());
+    // The shedding law's where [shedding.servo] gives none; no law of its own for pass-through.
+    let f = &one["frames"][0];
+    assert_eq!((f["rise_law"].as_str(), f["fall_law"].as_str()), (Some("dobby preset"), Some("dobby preset")));
+    assert!(f.get("through_law").is_none());
+    assert_eq!(o["frames"][2]["rise_law"].as_str(), Some("modified-trapezoid (ramp=0.125)"));
     let dir = scratch("servo-laws");
     let tables = dir.join("tables");
     let out = loomkin()
