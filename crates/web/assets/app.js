@@ -54,6 +54,19 @@ async function api(path, body) {
   }
 }
 
+// The newest request of each kind that a late answer could overwrite (a view's search, the law
+// chosen, a comparison): `const current = newest("loom-stagger")` as one is sent; current() stays
+// true until another of that kind is sent, or the kind is dropped (`newest.drop(kind)`: the state it
+// was asked for is gone, e.g. another loom chosen). An answer, or a refusal, that is no longer
+// current is not shown: it would replace the page's newer state, or send its own state's values
+// with it (the Shedding view's law, 746bbb6, was the first such race).
+const askedCount = {};
+function newest(kind) {
+  const n = (askedCount[kind] = (askedCount[kind] || 0) + 1);
+  return () => askedCount[kind] === n;
+}
+newest.drop = (kind) => { askedCount[kind] = (askedCount[kind] || 0) + 1; };
+
 // The progress line of the longest-running request, if it has run over PROGRESS_AFTER_MS.
 function showProgress() {
   let box = $("#progress");
@@ -600,7 +613,7 @@ function loomPatternPicker(ex, ids, first, changed) {
 }
 
 Object.assign(loomkin, { histories: {}, undo, redo, encodeState, decodeState });
-window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, refuseField, numberIn, numberList, viewHistory, download, api, status, el, num, applyLimits, loomPatternPicker, FRAME_COLOURS };
+window.LoomkinShared = { sliderWithNumber, showFieldError, clearFieldErrors, refuseField, numberIn, numberList, viewHistory, download, api, newest, status, el, num, applyLimits, loomPatternPicker, FRAME_COLOURS };
 
 // ---------------------------------------------------------------- tabs
 
@@ -871,8 +884,16 @@ async function optimise() {
   const btn = $("#optimise");
   btn.disabled = true;
   status("optimising…");
+  // The optimum is of the design sent: a design edited while the search ran (a point dragged, a
+  // drive field typed, undo) keeps its edits, and the optimum is not applied over them.
+  const sent = JSON.stringify(servo.design);
   try {
     const r = await api("/servo/optimize", { design: servo.design, objective: $("#objective").value, move_x: $("#move-x").checked });
+    if (JSON.stringify(servo.design) !== sent) {
+      status("optimise: the design was edited while the search ran: its optimum is not applied (optimise again)");
+      btn.disabled = false;
+      return;
+    }
     servo.design.points = r.def_points;
     renderPointsTable();
     evaluate();
@@ -887,7 +908,7 @@ async function optimise() {
       el("thead", {}, el("tr", {}, el("th", { textContent: "rpm" }), el("th", { textContent: "peak (N·m)" }), el("th", { textContent: "RMS (N·m)" }))),
       el("tbody", {}, ...rows)));
     status(`optimised in ${num(r.elapsed_ms, 0)} ms`);
-  } catch (e) { status("optimise: " + e.message, true); }
+  } catch (e) { if (JSON.stringify(servo.design) === sent) status("optimise: " + e.message, true); }
   btn.disabled = false;
 }
 
@@ -1014,12 +1035,17 @@ function renderCatalogueList() {
 async function compareLaws() {
   const laws = catalogueState.entries.map((e) => ({ name: e.name, params: e.params || {} }));
   if (laws.length === 0) {
+    newest.drop("catalogue");
     for (const k of ["s", "v", "a", "j"]) catalogueState.charts[k].setSeries([]);
     $("#catalogue-metrics tbody").replaceChildren();
     return;
   }
+  // Every edit sends its comparison at once: only the newest one's answer is drawn (an earlier,
+  // slower one may arrive after it).
+  const current = newest("catalogue");
   try {
     const r = await api("/laws/compare", { laws, samples: 801 });
+    if (!current()) return;
     clearFieldErrors();
     for (const k of ["s", "v", "a", "j"]) {
       catalogueState.charts[k].setSeries(r.laws.map((l, i) => ({ label: l.label, x: l.samples.x, y: l.samples[k], color: PALETTE[i % PALETTE.length], dash: DASHES[Math.floor(i / 4) % DASHES.length] })));
@@ -1033,6 +1059,7 @@ async function compareLaws() {
     }));
     status(`${r.laws.length} laws compared`);
   } catch (e) {
+    if (!current()) return;
     showFieldError("compare", e, (f) => {
       const m = /^laws\[(\d+)\]/.exec(f);
       const e = m && catalogueState.entries[+m[1]];
@@ -1301,10 +1328,10 @@ async function chooseLaw(k) {
   const sel = { label: "chosen", mode: "markers", radius: 7, color: "#f59e0b", hover: false, x: [c.criteria.window_deg], y: [c.criteria.peak_accel_m_s2] };
   shed.pareto.setSeries([...shed.series, sel]);
   // Only the answer for the law chosen last is drawn (an earlier choice's may arrive after it).
-  const asked = shed.lawAsked = (shed.lawAsked || 0) + 1;
+  const current = newest("shed-law");
   try {
     const r = await api("/shed/law", { family: shed.asked.family, lengths: c.lengths, motion_deg: c.criteria.motion_deg, conditions: shed.asked.conditions, samples: 2881 });
-    if (asked !== shed.lawAsked) return;
+    if (!current()) return;
     shed.s.setSeries([{ label: "", x: r.angle_deg, y: r.s_mm }]);
     shed.v.setSeries([{ label: "", x: r.angle_deg, y: r.v_m_s }]);
     shed.a.setSeries([{ label: "", x: r.angle_deg, y: r.a_m_s2 }]);
@@ -1327,7 +1354,7 @@ async function chooseLaw(k) {
     ];
     if (jl !== null) rows.push(["within the jerk limit", !jumps && q.peak_jerk_m_s3 <= jl ? `yes (${num(jl)} m/s³)` : `no (${num(jl)} m/s³)`, "shed-jerk-ok"]);
     $("#shed-chosen tbody").replaceChildren(...rows.map(([a, b, id]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b, id: id || "" }))));
-  } catch (e) { if (asked === shed.lawAsked) showFieldError("shedding law", e, shedField); }
+  } catch (e) { if (current()) showFieldError("shedding law", e, shedField); }
 }
 
 
@@ -1435,8 +1462,11 @@ async function synthesizeDobby() {
   if (mmRefused("dobby", dobby.inputs.roller, "roller radius", +dobby.inputs.roller.value)) return;
   const r = dobbyRequest();
   dobby.req = r;
+  // Every change sends its synthesis at once: only the newest one's answer is drawn.
+  const current = newest("dobby");
   try {
     const res = await api("/dobby/synthesize", r);
+    if (!current()) return;
     clearFieldErrors();
     dobby.result = res;
     const c = res.curves;
@@ -1462,7 +1492,7 @@ async function synthesizeDobby() {
     $("#dobby-summary tbody").replaceChildren(...rows.map(([a, b]) => el("tr", {}, el("th", { textContent: a }), el("td", { textContent: b }))));
     status("cams synthesised");
     drawDobby();
-  } catch (e) { showFieldError("dobby", e, dobbyField); }
+  } catch (e) { if (current()) showFieldError("dobby", e, dobbyField); }
 }
 
 function drawDobby() {

@@ -9,7 +9,7 @@
 
 const { Chart, PALETTE, addTools } = window.LoomkinCharts;
 const { api, status, el, num, convert, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, sliderWithNumber, FRAME_COLOURS } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, sliderWithNumber, newest, FRAME_COLOURS } = window.LoomkinShared;
 
 const drv = { inflight: false, queued: false, result: null, side: null, k: 0, playing: false, last: null };
 const ROUTE = "/api/drive/evaluate";
@@ -114,11 +114,15 @@ function driveField(path) {
 
 // Asks for the figures; `side`: the side view too (a new loom or pattern; the flywheel leaves it).
 function evaluate(side) {
+  // Every state asked for, sent now or queued: an answer to an earlier one is drawn (the newest
+  // follows) but fills no field (the flywheel left blank shows the file's value) with its loom's value.
+  drv.current = newest("drive");
   drv.wantSide = drv.wantSide || side || !drv.side;
   if (drv.inflight) { drv.queued = true; return; }
   const withSide = drv.wantSide;
   drv.wantSide = false;
   const q = loomkin.driveRequest(withSide);
+  const current = drv.current;
   drv.inflight = true;
   const t0 = performance.now();
   api("/drive/evaluate", q)
@@ -126,14 +130,15 @@ function evaluate(side) {
       clearFieldErrors();
       drv.result = r;
       if (r.side) { drv.side = r.side; stop(); }
-      render(r);
+      render(r, current());
       status(`drive evaluated in ${(performance.now() - t0).toFixed(0)} ms`);
     })
     .catch((e) => { if (withSide) drv.wantSide = true; showFieldError("drive", e, driveField); })
     .finally(() => { drv.inflight = false; if (drv.queued) { drv.queued = false; evaluate(false); } });
 }
 
-function render(r) {
+// `isNewest`: the answer is to the state shown (no later one asked): it may fill the blank flywheel.
+function render(r, isNewest) {
   const c = r.curves, rep = r.ripple, inr = r.inertia;
   const period = inr.repeat_deg;
   for (const ch of [drv.j, drv.speed, drv.torque]) { ch.opts.x.range = [0, period]; }
@@ -161,7 +166,7 @@ function render(r) {
     drv.flywheel.range.step = "any";
     drv.spanSet = true;
   }
-  if (drv.flywheel.field.value.trim() === "") drv.flywheel.set(rep.flywheel_kg_m2);
+  if (isNewest && drv.flywheel.field.value.trim() === "") drv.flywheel.set(rep.flywheel_kg_m2);
   const rows = [
     ["loom", `${r.loom || "loom file"} at ${num(r.speed_rpm)} rpm`],
     ["repeat", `${inr.picks} picks (${num(period)}°)`],

@@ -10,9 +10,9 @@
 
 const { Chart, addTools } = window.LoomkinCharts;
 const { api, status, el, num, convert, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField, loomPatternPicker, FRAME_COLOURS } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, applyLimits, refuseField, loomPatternPicker, newest, FRAME_COLOURS } = window.LoomkinShared;
 
-const es = { inflight: false, queued: false, result: null, optimum: null, token: 0, picker: null };
+const es = { inflight: false, queued: false, result: null, optimum: null, picker: null };
 const ROUTE = "/loom/servo/view";
 const EXAMPLE = "servo-shedding-loom.toml";
 const CHECK_NAMES = { peak_torque: "peak torque", rms_torque: "RMS torque", peak_speed: "peak speed", torque_speed_envelope: "torque–speed envelope", inertia_ratio: "inertia ratio" };
@@ -126,7 +126,8 @@ function liftCSV() {
 
 function resetOptimum() {
   es.optimum = null;
-  es.token++;
+  // A search still running is for the loom and pattern no longer shown: its answer is dropped.
+  newest.drop("eshed-optimise");
   es.inputs.shown.disabled = true;
   document.querySelector("#eshed-gain").hidden = true;
 }
@@ -149,14 +150,14 @@ async function runOptimise() {
   // A field that holds no number is refused here; a number out of range by the API, naming the
   // field (the library's range and message).
   if (i.minClear.validity && i.minClear.validity.badInput) { refuseField("servo shedding", i.minClear, "least clearance kept: is not a number"); return; }
-  const token = ++es.token;
+  const current = newest("eshed-optimise");
   const q = loomkin.eshedRequest(true);
   for (const x of [i.optimise, i.loomSel, i.patSel, i.objective, i.minClear]) x.disabled = true;
   status("servo shedding: optimising every frame's stagger and motion angle…");
   const t0 = performance.now();
   try {
     const r = await api(ROUTE, q);
-    if (token === es.token) {
+    if (current()) {
       clearFieldErrors();
       es.optimum = r;
       i.shown.disabled = false; i.shown.value = "after";
@@ -164,7 +165,7 @@ async function runOptimise() {
       es.history.commit();
       status(`servo shedding optimised in ${convert(performance.now() - t0, "ms", "s").toFixed(1)} s (${r.result.evaluations} evaluations)`);
     }
-  } catch (e) { showFieldError("servo shedding", e, eshedField); }
+  } catch (e) { if (current()) showFieldError("servo shedding", e, eshedField); }
   for (const x of [i.optimise, i.loomSel, i.patSel, i.objective, i.minClear]) x.disabled = false;
 }
 

@@ -6,7 +6,7 @@
 
 const { Chart, PALETTE, addTools } = window.LoomkinCharts;
 const { api, status, download, el, num, loomkin, register } = window.LoomkinApp;
-const { viewHistory, showFieldError, clearFieldErrors, loomPatternPicker, FRAME_COLOURS } = window.LoomkinShared;
+const { viewHistory, showFieldError, clearFieldErrors, loomPatternPicker, newest, FRAME_COLOURS } = window.LoomkinShared;
 
 const loom = { inflight: false, queued: false, result: null, stagger: null, picker: null };
 
@@ -116,6 +116,8 @@ function source() {
 }
 
 function resetStagger() {
+  // A search still running is for the loom and pattern no longer shown: its answer is dropped.
+  newest.drop("loom-stagger");
   loom.stagger = null;
   loom.inputs.apply.checked = false; loom.inputs.apply.disabled = true; loom.save.disabled = true;
   document.querySelector("#loom-stagger-note").textContent = "";
@@ -252,8 +254,12 @@ async function runStagger() {
   // The least clearance as typed: the API refuses what is out of range, naming the field.
   const mc = loom.inputs.minClearance.value.trim();
   if (mc !== "") q.min_clearance_mm = +mc;
+  // The stagger is of the loom and pattern sent: when another is chosen while the search runs, its
+  // answer (or refusal) is not shown, nor drawn with the new one's frames.
+  const current = newest("loom-stagger");
   try {
     const s = await api("/loom/stagger", q);
+    if (!current()) { btn.disabled = false; return; }
     loom.stagger = s;
     loom.inputs.apply.disabled = false; loom.inputs.apply.checked = true; loom.save.disabled = !s.loom_toml;
     const b = s.result.best;
@@ -262,7 +268,7 @@ async function runStagger() {
     status("stagger optimised");
     evaluate();
     loom.history.commit();
-  } catch (e) { showFieldError("stagger", e, loomField); }
+  } catch (e) { if (current()) showFieldError("stagger", e, loomField); }
   btn.disabled = false;
 }
 

@@ -293,6 +293,31 @@ const RECORD_DOWNLOADS: &str = "window.saved = []; LoomkinCharts.download = (nam
      blob: data instanceof Blob ? data : null}; \
      window.saved.push(rec); }; return true";
 
+/// Holds the answer to the next request whose path ends in `suffix` until the request after it
+/// has been answered and drawn, then delivers it (`window.lateDone` once it has been handled): a
+/// slow earlier answer arriving after a later one, on demand. Every request's path and body is
+/// recorded in `window.asked`.
+const HOLD_NEXT: &str = "window.asked = window.asked || []; if (!window.realFetch) window.realFetch = window.fetch; \
+     window.lateDone = false; const f = window.realFetch, suffix = SUFFIX; let release = null; \
+     const held = new Promise((res) => { release = res; }); let n = 0; \
+     window.fetch = (u, init) => { \
+       window.asked.push({ path: String(u), body: init && init.body ? JSON.parse(init.body) : null }); \
+       const p = f(u, init); if (!String(u).endsWith(suffix)) return p; n++; \
+       if (n === 1) return p.then((r) => held.then(() => r)); \
+       window.fetch = (u2, i2) => { window.asked.push({ path: String(u2), body: i2 && i2.body ? JSON.parse(i2.body) : null }); return f(u2, i2); }; \
+       return p.then((r) => { setTimeout(() => { release(); setTimeout(() => { window.lateDone = true; }, 600); }, 600); return r; }); }; \
+     return true";
+
+/// [`HOLD_NEXT`] for the requests whose path ends in `suffix`.
+fn hold_next(suffix: &str) -> String {
+    HOLD_NEXT.replace("SUFFIX", &format!("'{suffix}'"))
+}
+
+/// Records every request's path and body in `window.asked` (emptied).
+const RECORD_REQUESTS: &str = "window.asked = []; if (!window.realFetch) window.realFetch = window.fetch; const f = window.realFetch; \
+     window.fetch = (u, init) => { window.asked.push({ path: String(u), body: init && init.body ? JSON.parse(init.body) : null }); return f(u, init); }; \
+     return true";
+
 fn peak_torque(d: &Driver) -> f64 {
     let t = d.text("#peak-torque-0");
     t.trim().parse().unwrap_or_else(|_| panic!("peak torque '{t}' is not a number"))
@@ -597,6 +622,22 @@ fn the_workbench_in_a_real_browser() {
     assert_eq!(d.num("return loomkin.charts.cat_a.series.length"), 4.0);
     d.ctrl("z");
     d.wait_for("undo back to one variant's parameter", "return [...document.querySelectorAll('#catalogue-metrics tbody tr td:first-child')].filter((e) => e.textContent === 'modified-trapezoid (ramp=0.125)').length === 2");
+    // Two parameters in a row whose first comparison comes last (held back in the page): the table
+    // and the curves stay the second's (the earlier answer was drawn over them).
+    d.script(&hold_next("/laws/compare"));
+    d.script(
+        "const p = document.querySelector('#cat-param-2'); p.value = '0.15'; p.dispatchEvent(new Event('change')); \
+         p.value = '0.2'; p.dispatchEvent(new Event('change')); return true",
+    );
+    d.wait_for("the late comparison", "return window.lateDone");
+    let labels = d.script(
+        "window.fetch = window.realFetch; return [...document.querySelectorAll('#catalogue-metrics tbody tr td:first-child')].map((e) => e.textContent)",
+    );
+    let labels: Vec<&str> = labels.as_array().expect("labels").iter().filter_map(Value::as_str).collect();
+    assert!(
+        labels.contains(&"modified-trapezoid (ramp=0.2)") && !labels.contains(&"modified-trapezoid (ramp=0.15)"),
+        "the late comparison (ramp 0.15) replaced the newer one (0.2): {labels:?}"
+    );
     d.shot("catalogue");
     lap("catalogue variants");
 
@@ -702,6 +743,23 @@ fn the_workbench_in_a_real_browser() {
     assert!(file("dobby-cams.csv").starts_with("phi2_deg,b_x_m,b_y_m"));
     d.type_into("#dobby-angle", "123.5");
     d.wait_for("the mechanism at 123.5°", "return loomkin.charts.dobby_phi.markerX === 123.5 || Math.abs(loomkin.charts.dobby_phi.markerX - 123.5) <= 0.5");
+    // Two values of α in a row whose first answer comes last (held back in the page): the cams
+    // shown stay the second's, as the field says (the earlier answer was drawn over them).
+    let summary = "document.querySelector('#dobby-summary tbody').textContent";
+    let at47 = d.script(&format!("return document.querySelector('#dobby-alpha').value === '47' ? {summary} : null"));
+    assert!(at47.is_string(), "the default α is 47°: {at47}");
+    d.type_into("#dobby-alpha", "50");
+    let at50 = d.wait_for("the cams at α = 50°", &format!("const t = {summary}; return t !== {at47} ? t : null"));
+    d.script(&hold_next("/dobby/synthesize"));
+    d.script(
+        "const a = document.querySelector('#dobby-alpha'); a.value = '47'; a.dispatchEvent(new Event('change')); \
+         a.value = '50'; a.dispatchEvent(new Event('change')); return true",
+    );
+    d.wait_for("the late answer for α = 47°", "return window.lateDone");
+    let shown = d.script(&format!(
+        "window.fetch = window.realFetch; return [document.querySelector('#dobby-alpha').value, {summary}]"
+    ));
+    assert_eq!(shown, json!(["50", at50]), "the late answer for 47° replaced the cams of 50°");
     d.shot("dobby");
     lap("dobby cams");
 
@@ -924,7 +982,45 @@ fn the_workbench_in_a_real_browser() {
          return window.saved[1].name === 'loom-pattern.svg' && !doc.querySelector('parsererror') && doc.querySelectorAll('path').length >= 16",
     );
     assert_eq!(ok, json!(true), "the pattern as an SVG drawing");
-    lap("loom view: figures, stagger, undo, address, refused picks, pattern downloads");
+    // Another loom chosen while the stagger search runs: the late stagger (the shuttle loom's four
+    // frames) is not drawn with the rapier loom's 24, nor sent with it (it was applied and its
+    // refusal, "stagger_deg" for 24 frames, replaced the page). The server, busy with the search,
+    // refuses the rapier loom's figures meanwhile; asked again, they come without a stagger.
+    d.script(RECORD_REQUESTS);
+    d.script(
+        "document.querySelector('#loom-optimise').click(); const l = document.querySelector('#loom-file'); \
+         l.value = 'rapier-loom.toml'; l.dispatchEvent(new Event('change')); return true",
+    );
+    d.wait_for(
+        "the late stagger",
+        "return !document.querySelector('#loom-optimise').disabled && window.asked.some((a) => a.path.endsWith('/loom/stagger'))",
+    );
+    let late = d.script(
+        "const a = document.querySelector('#loom-apply-stagger'); \
+         return [a.checked, a.disabled, loomkin.loomRequest().stagger_deg === undefined, document.querySelector('#loom-stagger-note').textContent]",
+    );
+    assert_eq!(late, json!([false, true, true, ""]), "the late stagger was taken for the rapier loom: {late}");
+    d.script("const l = document.querySelector('#loom-file'); l.dispatchEvent(new Event('change')); return true");
+    d.wait_for(
+        "the rapier loom's figures",
+        "const r = loomkin.loomView().result; return r && r.report.frames.length === 24 && document.querySelector('#status').className === ''",
+    );
+    let sent = d.script(
+        "return window.asked.filter((q) => q.path.endsWith('/loom/evaluate')).map((q) => q.body.stagger_deg === undefined)",
+    );
+    assert!(
+        sent.as_array().is_some_and(|s| s.len() >= 2 && s.iter().all(|v| v == &json!(true))),
+        "a stagger was sent: {sent}"
+    );
+    d.script(
+        "window.fetch = window.realFetch; const l = document.querySelector('#loom-file'); l.value = 'shuttle-loom.toml'; \
+         l.dispatchEvent(new Event('change')); return true",
+    );
+    d.wait_for(
+        "the shuttle loom again",
+        "const r = loomkin.loomView().result; return r && r.report.frames.length === 4",
+    );
+    lap("loom view: figures, stagger, undo, address, refused picks, pattern downloads, a late stagger");
 
     // 13a. An uploaded WIF travels in the address: the link opens it again in a fresh page (issue 27:
     // it reopened plain weave). The 2/2 twill's text under another name (the loom has 4 frames): the
@@ -1052,7 +1148,25 @@ fn the_workbench_in_a_real_browser() {
         "page {page2} % vs API {api2_pct} % (bare {api_pct} %)"
     );
     d.shot("drive");
-    lap("drive view: figures, scrubber, play, flywheel slider");
+    // Another loom chosen while the first one's answer is on its way: that answer fills no field,
+    // so the loom chosen last is asked for with its own flywheel (none sent: the file's), not with
+    // the loom's before it (0 here, as no example has one; a loom with a flywheel sent its value).
+    d.script(RECORD_REQUESTS);
+    d.script(
+        "const l = document.querySelector('#shaft-loom'); l.value = 'rapier-loom.toml'; l.dispatchEvent(new Event('change')); \
+         l.value = 'shuttle-loom.toml'; l.dispatchEvent(new Event('change')); return true",
+    );
+    d.wait_for(
+        "the shuttle loom after the rapier loom",
+        "const r = loomkin.driveView().result; return r && r.loom.startsWith('shuttle') && \
+         window.asked.filter((a) => a.path.endsWith('/drive/evaluate')).length === 2 && document.querySelector('#shaft-flywheel').value !== ''",
+    );
+    let sent = d.script(
+        "window.fetch = window.realFetch; \
+         return window.asked.filter((a) => a.path.endsWith('/drive/evaluate')).map((a) => a.body.flywheel_kg_m2 === undefined)",
+    );
+    assert_eq!(sent, json!([true, true]), "a flywheel was sent with the loom chosen last");
+    lap("drive view: figures, scrubber, play, flywheel slider, a late answer");
 
     // 13d. The insertion view (issue 30): the rapier loom weaving point-24, its figures the route's
     // (`insert rapier --json`); the least clearance marked where the route locates it; the air-jet
