@@ -44,7 +44,8 @@ struct Piece {
     anchor: f64,
     /// Length of the cycle segment, deg.
     len: f64,
-    /// Interned identity of (cycle segment shape, kind of move, law segment).
+    /// Identity of (cycle segment shape and kind of move, law segment): the shape's interned number
+    /// in the high 32 bits, the law segment's index in the low (all ones for a dwell).
     ty: u64,
 }
 
@@ -64,7 +65,7 @@ impl<'a> Timeline<'a> {
         cycle: &'a Cycle,
         segments: &[(SegmentKind, f64, f64, bool)],
         drive: &'a FrameDrive,
-        types: &mut WordMap<[u64; 5], u64>,
+        types: &mut WordMap<[u64; 4], u64>,
         memo: Option<&'a RefCell<FrameMemo>>,
     ) -> Self {
         let period = cycle.period_rad.to_degrees();
@@ -87,16 +88,17 @@ impl<'a> Timeline<'a> {
         for (si, (seg, &(kind, s0, len, through))) in cycle.segments.iter().zip(segments).enumerate() {
             // The kind of move and whether it is laid end to end tell its law (a frame's laws by
             // kind of move, `MoveLaws::of`): a move up and a move up laid end to end of the same
-            // length and level may move by different laws.
+            // length and level may move by different laws. The shape and kind interned once per
+            // segment; a piece's type is that and its law segment.
             let class = kind as u64 | u64::from(through) << 8;
-            let shape = [seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits(), class];
-            let mut intern = |l: u64| {
+            let shape = {
                 let n = types.len() as u64;
-                *types.entry([shape[0], shape[1], shape[2], shape[3], l]).or_insert(n)
+                *types.entry([seg.stroke_si.to_bits(), len.to_bits(), seg.base_si.to_bits(), class]).or_insert(n)
             };
+            let intern = |l: u32| shape << 32 | u64::from(l);
             match &seg.law {
                 None => place(
-                    Piece { a: s0, b: s0 + len, seg: si, lseg: None, anchor: s0, len, ty: intern(u64::MAX) },
+                    Piece { a: s0, b: s0 + len, seg: si, lseg: None, anchor: s0, len, ty: intern(u32::MAX) },
                     &mut pieces,
                 ),
                 Some((_, law)) => {
@@ -114,7 +116,7 @@ impl<'a> Timeline<'a> {
                             );
                         }
                         cuts.push(end);
-                        let ty = intern(li as u64);
+                        let ty = intern(li as u32);
                         for w in cuts.windows(2) {
                             if w[1] > w[0] {
                                 place(

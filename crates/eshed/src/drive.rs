@@ -18,7 +18,7 @@
 use crate::Transmission;
 use loomkin_cams::profile::Jet;
 use loomkin_laws::{CycleSegment, Segment};
-use loomkin_servo::{Axis, CrankLever, Limits, Load, Motor};
+use loomkin_servo::{Axis, CrankLever, Limits, LinearDrive, Load, Motor};
 
 /// A heald frame as a servo's load.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -117,13 +117,15 @@ pub struct FrameDrive {
     pub omega: f64,
     /// The crank and lever's linkage ([`Axis::linkage`]), built once.
     linkage: Option<loomkin_servo::Linkage>,
+    /// A linear transmission's torque constants ([`Axis::linear_drive`]), worked out once.
+    linear: Option<LinearDrive>,
 }
 
 impl FrameDrive {
     /// `axis` moving `load` at `omega` (main shaft, rad/s), its winding losing `loss` W/(N·m)².
     pub fn new(axis: Axis, load: FrameLoad, loss: f64, omega: f64) -> Self {
-        let linkage = axis.linkage();
-        Self { axis, load, loss, omega, linkage }
+        let (linkage, linear) = (axis.linkage(), axis.linear_drive());
+        Self { axis, load, loss, omega, linkage, linear }
     }
 
     /// The drive at local coordinate `t` of law segment `lseg` of cycle segment `seg`.
@@ -149,15 +151,15 @@ impl FrameDrive {
     /// The drive with the frame at cycle position `s`, velocity `v`, acceleration `a` and jerk `j`
     /// (SI, from the frame's cycle).
     pub fn point(&self, s: f64, v: f64, a: f64, j: f64) -> DrivePoint {
-        let (t, dt, w, dw) = if self.axis.load.crank_lever.is_some() {
-            // The crank and lever: torque and motor angle as series in time.
-            let nan = Jet::cst(f64::NAN);
-            let series = Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0]);
-            let (t, alpha) = self.axis.motor_series_via(self.linkage.as_ref(), series).unwrap_or((nan, nan));
-            (t.v(), t.d(1), alpha.d(1), alpha.d(2))
-        } else {
-            let k = self.axis.motor_rad_per_unit();
-            (self.axis.torque_at(s, v, a), self.axis.torque_rate(v, a, j), k * v, k * a)
+        let (t, dt, w, dw) = match &self.linear {
+            Some(d) => (d.torque_at(s, v, a), d.torque_rate(v, a, j), d.k * v, d.k * a),
+            None => {
+                // The crank and lever: torque and motor angle as series in time.
+                let nan = Jet::cst(f64::NAN);
+                let series = Jet([s, v, 0.5 * a, j / 6.0, 0.0, 0.0]);
+                let (t, alpha) = self.axis.motor_series_via(self.linkage.as_ref(), series).unwrap_or((nan, nan));
+                (t.v(), t.d(1), alpha.d(1), alpha.d(2))
+            }
         };
         DrivePoint {
             torque_n_m: t,

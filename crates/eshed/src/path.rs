@@ -127,6 +127,33 @@ impl FramePath {
         self.level0_m + (s.base_m + s.stroke_m * law.eval(x).s)
     }
 
+    /// The height over mid-stroke where the frame rests over all of `[from_deg, to_deg]` (main-shaft
+    /// angles, `from_deg ≤ to_deg`), m: [`FramePath::y_m`] at every angle of the span, bit for bit
+    /// (a dwell's height does not depend on the angle). `None` when the frame moves there, or
+    /// when the span comes within [`FramePath::REST_MARGIN_DEG`] of a move (so that no rounding
+    /// of an angle in the span can reach it).
+    #[inline]
+    pub fn rest_m(&self, from_deg: f64, to_deg: f64) -> Option<f64> {
+        let n = self.segments.len();
+        if n == 0 || (n == 1 && self.segments[0].kind == SegmentKind::Dwell) {
+            // `y_m` of a frame that never moves: its one level everywhere.
+            return Some(if n == 0 { self.level0_m } else { self.level0_m + self.segments[0].base_m });
+        }
+        let (j, th) = self.locate(from_deg);
+        let s = &self.segments[j];
+        // The dwell's end: the next segment's start, or the plan's end (a move starts it again).
+        let end = self.segments.get(j + 1).map_or(self.start_deg + self.period_deg, |next| next.start_deg);
+        (s.kind == SegmentKind::Dwell
+            && th - s.start_deg >= Self::REST_MARGIN_DEG
+            && end - th > (to_deg - from_deg) + Self::REST_MARGIN_DEG)
+            .then_some(self.level0_m + s.base_m)
+    }
+
+    /// How far from a move's ends a span must keep for [`FramePath::rest_m`], deg: far above the
+    /// rounding of an angle of the longest repeat (10⁵ picks: 3.6·10⁷°, 7.5·10⁻⁹° a unit in the
+    /// last place).
+    pub const REST_MARGIN_DEG: f64 = 1e-6;
+
     /// Appends to `key` words naming what the frame does over `[origin + from_deg, origin +
     /// to_deg]` relative to `origin_deg`: every segment that meets the span, its shape (kind,
     /// length, level) and its place (to 2⁻³⁰°). Two origins with equal words see the same heights

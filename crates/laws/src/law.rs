@@ -3,6 +3,7 @@
 use crate::{Kinematics, LawError, MotionLaw, Result, Segment, Sine};
 use loomkin_units::{Field, Range};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// One piece of acceleration handed to [`Law::from_accel_pieces`]: a width on the `x` axis and the
 /// acceleration `poly(t) + sine(t)` in the piece's local coordinate `t ∈ [0, width]`.
@@ -68,9 +69,30 @@ pub enum EndCondition {
 ///
 /// Normalised laws have `s(0) = 0` and `s(1) = 1`. Outside `[0, 1]` the law is held at its
 /// end values (`x` is clamped).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// The segments are shared: a clone is a reference (a long machine cycle holds a law per move, e.g.
+/// a servo-driven heald frame's ~800 moves over a 10⁴-pick repeat), and two laws holding the same
+/// segments compare equal without comparing them.
+#[derive(Debug, Clone)]
 pub struct Law {
-    segments: Vec<Segment>,
+    segments: Arc<[Segment]>,
+}
+
+impl PartialEq for Law {
+    /// Equal segments (the same shared segments are equal at once).
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.segments, &other.segments) || self.segments == other.segments
+    }
+}
+
+impl Serialize for Law {
+    /// As a struct of its segments: `{"segments": [...]}`.
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut s = serializer.serialize_struct("Law", 1)?;
+        s.serialize_field("segments", &*self.segments)?;
+        s.end()
+    }
 }
 
 impl Law {
@@ -130,7 +152,7 @@ impl Law {
                 });
             }
         }
-        Ok(Self { segments })
+        Ok(Self { segments: segments.into() })
     }
 
     /// Integrates acceleration pieces twice from `s(0) = 0`, `v(0) = 0` in closed form and scales
@@ -252,7 +274,7 @@ impl Law {
                 });
             }
         }
-        Ok(Self { segments: segs })
+        Ok(Self { segments: segs.into() })
     }
 
     /// The segments, in order.
@@ -484,5 +506,27 @@ impl MotionLaw for Law {
 
     fn sample_uniform(&self, n: usize) -> Vec<(f64, Kinematics)> {
         self.sample(n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::LawSpec;
+
+    #[test]
+    fn a_clone_shares_its_segments_and_compares_and_serialises_as_the_law() {
+        let law = LawSpec::ModifiedSine.build().unwrap();
+        let copy = law.clone();
+        assert!(Arc::ptr_eq(&law.segments, &copy.segments));
+        assert_eq!(copy, law);
+        // Built again: other segments, equal values — equal; another law is not.
+        let again = LawSpec::ModifiedSine.build().unwrap();
+        assert!(!Arc::ptr_eq(&law.segments, &again.segments) && again == law);
+        assert_ne!(LawSpec::Cycloidal.build().unwrap(), law);
+        // The JSON is the struct of its segments, `{"segments": [...]}`, as a list of them.
+        let json = serde_json::to_value(&law).unwrap();
+        let list = serde_json::to_value(law.segments().to_vec()).unwrap();
+        assert_eq!(json, serde_json::json!({ "segments": list }));
     }
 }

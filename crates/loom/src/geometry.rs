@@ -153,12 +153,41 @@ impl Geometry {
     /// the lowest raised end down to the highest lowered end, `x·(min_up y_i/d_i − max_down y_j/d_j)`.
     /// `None` when one side has no frame.
     pub fn clear_height(&self, x: f64, y: &[f64], upper: &[bool]) -> Option<f64> {
-        let (mut lo_up, mut hi_down) = (f64::INFINITY, f64::NEG_INFINITY);
-        for ((yi, d), up) in y.iter().zip(&self.frame_m).zip(upper) {
-            let slope = yi / d;
-            if *up { lo_up = lo_up.min(slope) } else { hi_down = hi_down.max(slope) }
+        let mut sheets = Sheets::EMPTY;
+        for ((&yi, &d), &up) in y.iter().zip(&self.frame_m).zip(upper) {
+            sheets.add(yi, d, up);
         }
-        (lo_up.is_finite() && hi_down.is_finite()).then_some(x * (lo_up - hi_down))
+        sheets.clear_height(x)
+    }
+}
+
+/// The two sheets of a shed at one instant, frame by frame: the lowest slope `y_i/d_i` of the
+/// upper sheet and the highest of the lower ([`Geometry::clear_height`]). The least and the
+/// largest of a set of slopes do not depend on the order the frames are added in (`min` and
+/// `max` do not round), so the frames resting over a span can be added once for every instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sheets {
+    lo_up: f64,
+    hi_down: f64,
+}
+
+impl Sheets {
+    /// No frame yet.
+    pub const EMPTY: Self = Self { lo_up: f64::INFINITY, hi_down: f64::NEG_INFINITY };
+
+    /// Adds a frame at distance `d` (m) from the fell, its eye `y` (m) over mid-stroke, in the
+    /// upper sheet when `up`.
+    #[inline]
+    pub fn add(&mut self, y: f64, d: f64, up: bool) {
+        let slope = y / d;
+        if up { self.lo_up = self.lo_up.min(slope) } else { self.hi_down = self.hi_down.max(slope) }
+    }
+
+    /// The clear opening at distance `x` in front of the front frame, `x·(min_up y_i/d_i −
+    /// max_down y_j/d_j)`; `None` when one side has no frame.
+    #[inline]
+    pub fn clear_height(&self, x: f64) -> Option<f64> {
+        (self.lo_up.is_finite() && self.hi_down.is_finite()).then_some(x * (self.lo_up - self.hi_down))
     }
 }
 

@@ -58,7 +58,9 @@ impl Motion {
         let n = loom.frame_count();
         crate::pattern::check_weavable(pattern, n)?;
         let picks = pattern.picks();
-        let up = (0..n).map(|i| (0..picks).map(|p| pattern.is_up(p, i)).collect()).collect();
+        // [`Pattern::is_up`] of every pick, read from the rows (frames beyond the shafts down).
+        let rows = pattern.rows();
+        let up = (0..n).map(|i| rows.iter().map(|r| r.get(i).copied().unwrap_or(false)).collect()).collect();
         let delta = crossing_offset_deg(loom.shedding.crossing_deg);
         Ok(Self {
             law: loom.shedding.law.clone(),

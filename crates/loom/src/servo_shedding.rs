@@ -40,6 +40,11 @@ impl ShedMotion for ServoMotion {
         self.paths[i].y_m(theta_deg)
     }
 
+    /// A frame in a dwell over the whole span ([`FramePath::rest_m`]).
+    fn frame_rest_m(&self, i: usize, from_deg: f64, to_deg: f64) -> Option<f64> {
+        self.paths[i].rest_m(from_deg, to_deg)
+    }
+
     /// Every frame's segments over the span ([`FramePath::key_words`]).
     fn turn_key(&self, pick: usize, from_deg: f64, to_deg: f64, key: &mut Vec<u64>) {
         for p in &self.paths {

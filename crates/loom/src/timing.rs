@@ -14,6 +14,7 @@
 //!
 //! (θ_w in degrees, v̄ in m/s, lengths in m): 213 picks/min for 13.75 m/s, 135°, 1.15 m and 0.30 m.
 
+use crate::geometry::Sheets;
 use crate::turn_rows::{FrameStates, MAX_WHOLE_TURNS, SlopeRows};
 use crate::turns::{Turns, lift_key};
 use crate::{Loom, LoomError, Motion, Pattern, Result, crossing_offset_deg};
@@ -32,6 +33,13 @@ pub trait ShedMotion {
     /// Frame `i`'s height over mid-stroke at main-shaft angle `theta_deg` (any angle: the motion
     /// repeats), m.
     fn frame_y_m(&self, i: usize, theta_deg: f64) -> f64;
+    /// Frame `i`'s height over mid-stroke where it rests over all of `[from_deg, to_deg]`
+    /// (main-shaft angles), m: [`ShedMotion::frame_y_m`] at every angle of the span, bit for bit.
+    /// `None` when it moves there, or when the motion does not tell (the default: every height is
+    /// then evaluated).
+    fn frame_rest_m(&self, _i: usize, _from_deg: f64, _to_deg: f64) -> Option<f64> {
+        None
+    }
     /// Appends to `key` words naming what every frame does over `[360p + from_deg, 360p +
     /// to_deg]` (`p = pick`): two picks with equal words see the same heights over their spans.
     fn turn_key(&self, pick: usize, from_deg: f64, to_deg: f64, key: &mut Vec<u64>);
@@ -120,7 +128,11 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
                 format!("the motion moves {} frames, the loom has {n}", motion.frame_count()),
             ));
         }
-        let upper: Vec<bool> = (0..pattern.picks()).flat_map(|p| (0..n).map(move |i| pattern.is_up(p, i))).collect();
+        // Row by row, the frames beyond the pattern's shafts down ([`Pattern::is_up`]).
+        let mut upper: Vec<bool> = Vec::with_capacity(pattern.picks() * n);
+        for row in pattern.rows() {
+            upper.extend((0..n).map(|i| row.get(i).copied().unwrap_or(false)));
+        }
         let x_c = loom.geometry.reed_m - loom.insertion.carrier_width_m;
         Ok(Self { loom, motion, upper, delta: crossing_offset_deg(loom.shedding.crossing_deg), x_c })
     }
@@ -161,6 +173,46 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
         self.clear_m(pick, self.x_c, 360.0 * pick as f64 + angle_deg) - self.loom.insertion.carrier_height_m
     }
 
+    /// The frames of pick `pick`'s sheets resting over all of `[from_deg, to_deg]` of its turn
+    /// ([`ShedMotion::frame_rest_m`]) added once, and the others: a pick's scans evaluate only
+    /// the moving frames at each angle.
+    fn resting(&self, pick: usize, from_deg: f64, to_deg: f64) -> Resting {
+        let origin = 360.0 * pick as f64;
+        let mut out = Resting { sheets: Sheets::EMPTY, moving: Vec::new() };
+        for (i, &up) in self.upper_row(pick).iter().enumerate() {
+            match self.motion.frame_rest_m(i, origin + from_deg, origin + to_deg) {
+                Some(y) => out.sheets.add(y, self.loom.geometry.frame_m[i], up),
+                None => out.moving.push(i),
+            }
+        }
+        out
+    }
+
+    /// Pick `pick`'s row of [`Timing::upper`].
+    fn upper_row(&self, pick: usize) -> &[bool] {
+        let n = self.loom.frame_count();
+        let row = pick % (self.upper.len() / n) * n;
+        &self.upper[row..row + n]
+    }
+
+    /// [`Timing::clear_m`] at angle `angle_deg` of pick `pick`'s turn, the frames resting there
+    /// taken from `rest` ([`Timing::resting`] over a span holding the angle): the same value bit
+    /// for bit (the sheets' extreme slopes do not depend on the order of the frames).
+    fn clear_resting(&self, pick: usize, x: f64, rest: &Resting, angle_deg: f64) -> f64 {
+        let theta_deg = 360.0 * pick as f64 + angle_deg;
+        let (upper, d) = (self.upper_row(pick), &self.loom.geometry.frame_m);
+        let mut sheets = rest.sheets;
+        for &i in &rest.moving {
+            sheets.add(self.motion.frame_y_m(i, theta_deg), d[i], upper[i]);
+        }
+        sheets.clear_height(x).unwrap_or(0.0)
+    }
+
+    /// [`Timing::clearance_m`] with the frames resting as `rest` gives them.
+    fn clearance_resting(&self, pick: usize, rest: &Resting, angle_deg: f64) -> f64 {
+        self.clear_resting(pick, self.x_c, rest, angle_deg) - self.loom.insertion.carrier_height_m
+    }
+
     /// The turn of pick `p`, in angles of its own turn: from its crossing to the next.
     fn turn(&self) -> (f64, f64) {
         (self.delta, self.delta + 360.0)
@@ -169,7 +221,9 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
     /// Pick `p`'s window (angles in its turn), the least clearance over the required insertion.
     pub fn pick_window(&self, p: usize) -> PickWindow {
         let (a, b) = self.turn();
-        let c = |t: f64| self.clearance_m(p, t);
+        let (from, to) = self.span();
+        let rest = self.resting(p, from, to);
+        let c = |t: f64| self.clearance_resting(p, &rest, t);
         let step = 1.0;
         let n = ((b - a) / step).ceil() as usize;
         let grid: Vec<(f64, f64)> =
@@ -202,14 +256,19 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
             pick: p + 1,
             open_deg,
             close_deg,
-            min_clearance_mm: 1e3 * self.min_over(p, ins.entry_deg, ins.exit_deg),
+            min_clearance_mm: 1e3 * self.min_over_resting(p, &rest, ins.entry_deg, ins.exit_deg),
         }
     }
 
     /// The least clearance of pick `p` over `[from, to]` (angles of its turn), m: the grid's
     /// smallest values (1° apart) refined by golden-section search, and both ends.
     pub fn min_over(&self, p: usize, from: f64, to: f64) -> f64 {
-        let c = |t: f64| self.clearance_m(p, t);
+        self.min_over_resting(p, &self.resting(p, from.min(to), to.max(from)), from, to)
+    }
+
+    /// [`Timing::min_over`] with the frames resting over `[from, to]` at their heights in `rest`.
+    fn min_over_resting(&self, p: usize, rest: &Resting, from: f64, to: f64) -> f64 {
+        let c = |t: f64| self.clearance_resting(p, rest, t);
         let n = ((to - from) / 1.0).ceil().max(1.0) as usize;
         let h = (to - from) / n as f64;
         let vals: Vec<f64> = (0..=n).map(|k| c(from + k as f64 * h)).collect();
@@ -228,21 +287,22 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
     /// The picks grouped by what the frames do over the span a pick's timing reads (its turn,
     /// from the crossing, and the insertion): each group's numbers are those of its first pick.
     fn turns(&self) -> Turns {
+        let (from, to) = self.span();
+        Turns::of(self.motion, from, to)
+    }
+
+    /// The span of a pick's turn its timing reads, in angles of the turn: the turn, from the
+    /// crossing, and the insertion.
+    fn span(&self) -> (f64, f64) {
         let ins = &self.loom.insertion;
         let (a, b) = self.turn();
-        Turns::of(self.motion, a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
+        (a.min(ins.entry_deg).min(ins.exit_deg), b.max(ins.exit_deg).max(ins.entry_deg))
     }
 
     /// [`Timing::turns`], or `None` once more than `cap` distinct turns are found.
     fn turns_within(&self, cap: usize) -> Option<Turns> {
-        let ins = &self.loom.insertion;
-        let (a, b) = self.turn();
-        Turns::of_within(
-            self.motion,
-            a.min(ins.entry_deg).min(ins.exit_deg),
-            b.max(ins.exit_deg).max(ins.entry_deg),
-            cap,
-        )
+        let (from, to) = self.span();
+        Turns::of_within(self.motion, from, to, cap)
     }
 
     /// The least clearance over the required insertion of every pick, m (a cheap form for the
@@ -336,7 +396,8 @@ impl<'a, M: ShedMotion + ?Sized> Timing<'a, M> {
             .first
             .iter()
             .map(|&p| {
-                let f = |t: f64| self.clear_m(p, self.x_c, 360.0 * p as f64 + t);
+                let rest = self.resting(p, a, b);
+                let f = |t: f64| self.clear_resting(p, self.x_c, &rest, t);
                 let (k, v) = (0..=72)
                     .map(|k| (k, f(a + h * k as f64)))
                     .fold((0, f64::NEG_INFINITY), |best, kv| if kv.1 > best.1 { kv } else { best });
@@ -662,6 +723,12 @@ impl Timing<'_, Motion> {
             }
         })
     }
+}
+
+/// A pick's frames over a span of its turn: the sheets of those resting throughout, and the others.
+struct Resting {
+    sheets: Sheets,
+    moving: Vec<usize>,
 }
 
 /// Grid extremes to refine, by bracket (the node and the bits of the grid's values there and at

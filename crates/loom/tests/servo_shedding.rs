@@ -151,6 +151,61 @@ fn every_pick_of_a_pass_through_plan_has_the_window_its_class_reports() {
     }
 }
 
+/// The servo frames' heights without [`ShedMotion::frame_rest_m`]: the timing then evaluates
+/// every frame at every angle.
+struct EveryFrame<'a>(&'a ServoMotion);
+
+impl ShedMotion for EveryFrame<'_> {
+    fn frame_count(&self) -> usize {
+        self.0.frame_count()
+    }
+    fn picks(&self) -> usize {
+        self.0.picks()
+    }
+    fn frame_y_m(&self, i: usize, theta_deg: f64) -> f64 {
+        self.0.frame_y_m(i, theta_deg)
+    }
+    fn turn_key(&self, pick: usize, from_deg: f64, to_deg: f64, key: &mut Vec<u64>) {
+        self.0.turn_key(pick, from_deg, to_deg, key);
+    }
+}
+
+#[test]
+fn the_timing_over_resting_frames_is_the_timing_of_every_frame_bit_for_bit() {
+    // The frames resting over a pick's span are added to its sheets once; every pick's window,
+    // clearance and clear height are those of evaluating every frame at every angle, bit for
+    // bit, with and without pass-through, on drafts whose frames rest, move and run.
+    let drafts = [POINT, include_str!("../../../examples/plain.wif"), include_str!("../../../examples/satin-8.wif")];
+    let mut resting = 0;
+    for loom in [Loom::from_toml(SERVO).unwrap(), pass_through()] {
+        for wif in drafts {
+            let pattern = Pattern::from_wif(wif).unwrap();
+            let setups = servo_setups(&loom, &pattern, None, None).unwrap();
+            let motion = ServoMotion::new(&setups);
+            let every = EveryFrame(&motion);
+            let (fast, plain) =
+                (Timing::new(&loom, &motion, &pattern).unwrap(), Timing::new(&loom, &every, &pattern).unwrap());
+            let (a, b) = (fast.report().unwrap(), plain.report().unwrap());
+            assert_eq!(a.picks, b.picks);
+            let bits = |r: &loomkin_loom::TimingReport| {
+                [r.open_deg, r.close_deg, r.window_deg, r.min_clearance_mm, r.max_speed_rpm, r.max_clear_mm]
+                    .map(f64::to_bits)
+            };
+            assert_eq!(bits(&a), bits(&b));
+            // Frames resting over a pick's insertion (the test is not vacuous).
+            let ins = &loom.insertion;
+            resting += (0..pattern.picks())
+                .flat_map(|p| (0..loom.frame_count()).map(move |i| (p, i)))
+                .filter(|&(p, i)| {
+                    let o = 360.0 * p as f64;
+                    motion.frame_rest_m(i, o + ins.entry_deg, o + ins.exit_deg).is_some()
+                })
+                .count();
+        }
+    }
+    assert!(resting > 100, "{resting}");
+}
+
 #[test]
 fn the_least_clearance_over_pass_through_plans_bounds_a_dense_scan() {
     // An independent route: the clearance on a 0.01° scan of every pick's insertion, from the

@@ -31,7 +31,7 @@
 //! maximum speed — a simplified voltage-limit line; beyond the maximum speed, nothing.
 
 use crate::crank_lever::{CrankLever, Linkage, MotorMotion};
-use crate::{Drive, Result, ServoError};
+use crate::{Drive, LinearDrive, Result, ServoError};
 use loomkin_cams::profile::Jet;
 use loomkin_laws::StrokeUnit;
 use loomkin_units::{Field, Range};
@@ -493,21 +493,29 @@ impl Axis {
     /// force `F` of the model above (the Coulomb friction zero where `v = 0`). What
     /// [`crate::operating_points`] and [`crate::check_axis`] evaluate.
     pub fn torque_at(&self, s: f64, v: f64, a: f64) -> f64 {
-        if self.load.crank_lever.is_some() {
-            return self.motor_series(Self::series(s, v, a, 0.0)).map_or(f64::NAN, |(t, _)| t.v());
+        match self.linear_drive() {
+            Some(d) => d.torque_at(s, v, a),
+            None => self.motor_series(Self::series(s, v, a, 0.0)).map_or(f64::NAN, |(t, _)| t.v()),
         }
-        let k = self.motor_rad_per_unit();
-        let ke = k * self.load.efficiency;
-        let l = &self.load;
-        let fric = if v == 0.0 { 0.0 } else { l.friction_n * v.signum() };
-        self.torque_inertia() * a + (l.viscous_n_s_m * v + fric + l.spring_n_m * s + l.constant_force_n) / ke
+    }
+
+    /// The constants of the torque with a linear transmission, worked out once ([`LinearDrive`]);
+    /// `None` for a crank and lever.
+    pub fn linear_drive(&self) -> Option<LinearDrive> {
+        LinearDrive::of(self)
     }
 
     /// The time derivative of [`Axis::torque_at`] away from a sign change of the velocity (N·m/s),
     /// from the velocity, acceleration and jerk: `(J_m + J_x)·k·j + (c·a + k_s·v)/(k·η)`.
     pub fn torque_rate(&self, v: f64, a: f64, j: f64) -> f64 {
-        let ke = self.motor_rad_per_unit() * self.load.efficiency;
-        self.torque_inertia() * j + (self.load.viscous_n_s_m * a + self.load.spring_n_m * v) / ke
+        match self.linear_drive() {
+            Some(d) => d.torque_rate(v, a, j),
+            // The crank and lever's ratio at mid-stroke (`k`), as the linear formula reads it.
+            None => {
+                let ke = self.motor_rad_per_unit() * self.load.efficiency;
+                self.torque_inertia() * j + (self.load.viscous_n_s_m * a + self.load.spring_n_m * v) / ke
+            }
+        }
     }
 
     /// The motor torque per unit slave acceleration, `(J_m + J_x)·k + m/(k·η)` (N·m per m/s², or

@@ -36,6 +36,7 @@ mod drive;
 mod error;
 mod export;
 mod export_file;
+mod linear_drive;
 mod optimize;
 mod points;
 mod poly;
@@ -58,6 +59,7 @@ pub use export::{
     read_json,
 };
 pub use export_file::{Export, ExportFormat, InterpolationError, TableReport, export, export_until, spline_motion};
+pub use linear_drive::LinearDrive;
 /// The cam-table engine the exports use (re-exported: one engine for `servo export` and `cam table`).
 pub use loomkin_cams::table::{CamTable, Interpolation};
 pub use optimize::{Counter, EVAL_S_PER_POINT_SPEED, Objective, OptimizeOptions, OptimizeReport, StopFlag, optimize};
