@@ -54,6 +54,8 @@ pub(crate) struct Timeline<'a> {
     cycle: &'a Cycle,
     drive: &'a FrameDrive,
     pieces: Vec<Piece>,
+    /// Per cycle segment: a move laid end to end (the plan's, [`crate::FramePlan::parts`]).
+    through: Vec<bool>,
     /// The drive's points remembered across studies ([`crate::DriveMemo`]), if any.
     memo: Option<&'a RefCell<FrameMemo>>,
 }
@@ -131,7 +133,8 @@ impl<'a> Timeline<'a> {
         }
         pieces.retain(|p| p.b > p.a);
         pieces.sort_by(|x, y| x.a.total_cmp(&y.a));
-        Self { cycle, drive, pieces, memo }
+        let through = segments.iter().map(|s| s.3).collect();
+        Self { cycle, drive, pieces, through, memo }
     }
 
     /// The frame's position, velocity, acceleration and jerk at angle `theta` on piece `p`.
@@ -143,6 +146,29 @@ impl<'a> Timeline<'a> {
                 self.drive.state_at_law(seg, &law.segments()[li], t)
             }
             _ => [seg.base_si, 0.0, 0.0, 0.0],
+        }
+    }
+
+    /// Words that tell piece `p` clipped to `[a, b)` within the window from `w0` exactly: what
+    /// the window's values read of it (a dwell: its level alone; a move: its segment's stroke,
+    /// length, level, kind, law segment and where the law starts), offsets as their bits.
+    fn exact_words(&self, p: &Piece, a: f64, b: f64, w0: f64, key: &mut Vec<u64>) {
+        let seg = &self.cycle.segments[p.seg];
+        match p.lseg {
+            None => key.extend([u64::MAX - 1, seg.base_si.to_bits(), (a - w0).to_bits(), (b - w0).to_bits()]),
+            Some(li) => {
+                let class = seg.kind as u64 | u64::from(self.through[p.seg]) << 8 | (li as u64) << 16;
+                key.extend([
+                    class,
+                    seg.stroke_si.to_bits(),
+                    seg.length_rad.to_bits(),
+                    p.len.to_bits(),
+                    seg.base_si.to_bits(),
+                    (a - w0).to_bits(),
+                    (b - w0).to_bits(),
+                    (p.anchor - w0).to_bits(),
+                ])
+            }
         }
     }
 
@@ -175,10 +201,22 @@ impl<'a> Timeline<'a> {
 /// starts afresh; each frame keeps the blocks of two generations, each up to its share of
 /// [`DriveMemo::BLOCKS`], the older dropped when the newer is full (what the search still uses
 /// is copied into the newer).
+///
+/// It also keeps the pick windows of earlier calls by an exact key (the pick and, per frame, every
+/// piece's shape, law segment and offsets as bits: what the window's values read), so that a
+/// window the search's step left alone is not worked out again; a call's own windows are shared
+/// as before (offsets to 2⁻³⁰°), each new one taken from the kept windows when there, so the
+/// values are bit for bit those of a call without the memo. The kept windows are dropped when a
+/// frame's drive or laws, the regeneration efficiency, the speed or the kind of scan differ from
+/// the last call's, and when [`DriveMemo::WINDOWS`] are kept.
 #[derive(Debug)]
 pub struct DriveMemo {
     frames: Vec<RefCell<FrameMemo>>,
     blocks: usize,
+    windows: KeptWindows,
+    /// What the kept windows were worked out for: η_r, ω and the kind of scan, and every frame's
+    /// laws up, down and laid end to end.
+    context: Option<(Vec<u64>, Vec<FrameLaws>)>,
 }
 
 impl Default for DriveMemo {
@@ -186,6 +224,12 @@ impl Default for DriveMemo {
         Self::with_blocks(Self::BLOCKS)
     }
 }
+
+/// A frame's laws up, down and laid end to end (`None`: none given).
+pub(crate) type FrameLaws = [Option<loomkin_laws::Law>; 3];
+
+/// Pick windows by their exact key ([`DriveMemo`]).
+pub(crate) type KeptWindows = RefCell<WordMap<Vec<u64>, WindowValues>>;
 
 /// A block of a scan's states (`[s, v, a, j]` bits at each angle) and its points.
 type Block = [u64; 4 * (SCAN + 1)];
@@ -207,15 +251,37 @@ impl DriveMemo {
     /// Single points (a frame at rest) remembered per frame; forgotten at once beyond.
     const POINTS: usize = 256;
 
+    /// Pick windows kept across calls; all are dropped beyond.
+    pub const WINDOWS: usize = 1 << 12;
+
     /// A memo of `blocks` blocks per generation over all frames (at least one a frame).
     pub fn with_blocks(blocks: usize) -> Self {
-        Self { frames: Vec::new(), blocks }
+        Self { frames: Vec::new(), blocks, windows: RefCell::default(), context: None }
+    }
+
+    /// Keeps the windows of earlier calls only if they were worked out for the same `laws` (per
+    /// frame: up, down, laid end to end), `eta_r`, `omega` and kind of scan.
+    pub(crate) fn windows_for(
+        &mut self,
+        laws: Vec<[Option<loomkin_laws::Law>; 3]>,
+        eta_r: f64,
+        omega: f64,
+        scan_only: bool,
+    ) {
+        let words = vec![eta_r.to_bits(), omega.to_bits(), u64::from(scan_only)];
+        if self.context.as_ref().is_none_or(|(w, l)| *w != words || *l != laws) {
+            self.windows.get_mut().clear();
+            self.context = Some((words, laws));
+        }
     }
 
     /// A memo for `drives`, frame by frame (`None`: a linear drive, not remembered): each frame's
     /// points kept when its drive is the one remembered, else forgotten.
-    pub(crate) fn frames_for(&mut self, drives: &[FrameDrive]) -> Vec<Option<&RefCell<FrameMemo>>> {
+    pub(crate) fn frames_for(&mut self, drives: &[FrameDrive]) -> (Vec<Option<&RefCell<FrameMemo>>>, &KeptWindows) {
         let cap = (self.blocks / drives.len().max(1)).max(1);
+        if self.frames.len() != drives.len() {
+            self.windows.get_mut().clear();
+        }
         self.frames.truncate(drives.len());
         for (i, d) in drives.iter().enumerate() {
             let fresh = || FrameMemo {
@@ -232,11 +298,14 @@ impl DriveMemo {
                     let m = m.get_mut();
                     if m.axis != d.axis || m.loss != d.loss.to_bits() || m.cap != cap {
                         *m = fresh();
+                        self.windows.get_mut().clear();
                     }
                 }
             }
         }
-        self.frames.iter().zip(drives).map(|(m, d)| d.axis.load.crank_lever.is_some().then_some(m)).collect()
+        let frames =
+            self.frames.iter().zip(drives).map(|(m, d)| d.axis.load.crank_lever.is_some().then_some(m)).collect();
+        (frames, &self.windows)
     }
 }
 
@@ -280,7 +349,7 @@ impl FrameMemo {
 
 /// Values of one window, angles relative to its start.
 #[derive(Debug, Clone, Default)]
-struct WindowValues {
+pub(crate) struct WindowValues {
     peak: (f64, f64),
     trough: (f64, f64),
     supplied_j: f64,
@@ -332,8 +401,10 @@ pub(crate) fn bus(
     eta_r: f64,
     omega: f64,
     scan_only: bool,
+    kept: Option<&KeptWindows>,
 ) -> BusTotals {
     let n = frames.len();
+    let mut exact = Vec::new();
     let mut cursor = vec![0usize; n];
     let mut memo: WordMap<Vec<u64>, WindowValues> = WordMap::default();
     let mut tot = BusTotals {
@@ -395,7 +466,32 @@ pub(crate) fn bus(
                     }
                 }
             }
-            let v = window(frames, &items, w0, w1, eta_r, omega, scan_only);
+            let v = match kept {
+                None => window(frames, &items, w0, w1, eta_r, omega, scan_only),
+                Some(kept) => {
+                    // The window exactly: its pick, and what each frame's pieces are within it.
+                    exact.clear();
+                    exact.push(p as u64);
+                    for (f, it) in frames.iter().zip(&items) {
+                        for (pc, a, b) in it {
+                            f.exact_words(pc, *a, *b, w0, &mut exact);
+                        }
+                        exact.push(u64::MAX);
+                    }
+                    let mut kept = kept.borrow_mut();
+                    match kept.get(&exact) {
+                        Some(v) => v.clone(),
+                        None => {
+                            let v = window(frames, &items, w0, w1, eta_r, omega, scan_only);
+                            if kept.len() >= DriveMemo::WINDOWS {
+                                kept.clear();
+                            }
+                            kept.insert(exact.clone(), v.clone());
+                            v
+                        }
+                    }
+                }
+            };
             add_window(&mut tot, &v, w0);
             memo.insert(key.clone(), v);
         }

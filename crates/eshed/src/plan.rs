@@ -43,6 +43,11 @@ pub struct MoveLaws {
 }
 
 impl MoveLaws {
+    /// The laws up, down and laid end to end (`None`: none given), without their specs and names.
+    pub(crate) fn law_values(&self) -> [Option<Law>; 3] {
+        [Some(self.rise.1.clone()), Some(self.fall.1.clone()), self.through.as_ref().map(|t| t.1.clone())]
+    }
+
     /// `rise` going up and `fall` going down, pass-through moves by the same (named `rise` and
     /// `fall` when refused).
     pub fn new(rise: (LawSpec, Law), fall: (LawSpec, Law)) -> Self {

@@ -182,15 +182,18 @@ impl Study {
         memo: Option<&mut DriveMemo>,
     ) -> crate::BusTotals {
         let mut types = crate::bus::WordMap::default();
-        let memos = match memo {
-            Some(m) => m.frames_for(&self.drives),
-            None => vec![None; self.drives.len()],
+        let (memos, kept) = match memo {
+            Some(m) => {
+                let (memos, kept) = m.frames_for(&self.drives);
+                (memos, Some(kept))
+            }
+            None => (vec![None; self.drives.len()], None),
         };
         let lines: Vec<Timeline<'_>> = (0..self.cycles.len())
             .map(|i| Timeline::new(&self.cycles[i], &self.segments[i], &self.drives[i], &mut types, memos[i]))
             .collect();
         let picks = (self.cycles[0].period_rad.to_degrees() / 360.0).round() as usize;
-        bus(&lines, picks, only, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only)
+        bus(&lines, picks, only, bus_spec.regeneration_efficiency, self.drives[0].omega, scan_only, kept)
     }
 }
 
@@ -340,7 +343,13 @@ fn scanned_peak(
     {
         return Err(EshedError::field("picks", format!("picks must increase within the repeat of {repeat}")));
     }
-    Ok(Study::new(frames, speed_rpm)?.bus_at(bus_spec, picks, true, memo).peak_w.0)
+    let study = Study::new(frames, speed_rpm)?;
+    let mut memo = memo;
+    if let Some(m) = memo.as_deref_mut() {
+        let laws = frames.iter().map(|f| f.laws.law_values()).collect();
+        m.windows_for(laws, bus_spec.regeneration_efficiency, study.drives[0].omega, true);
+    }
+    Ok(study.bus_at(bus_spec, picks, true, memo).peak_w.0)
 }
 
 /// The largest of the frames' RMS motor torques, N·m: [`analyse`]'s largest `rms_torque_n_m` (the

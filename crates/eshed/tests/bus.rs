@@ -442,7 +442,8 @@ fn moves_up_and_down_take_their_own_motion_angles() {
 /// The drive points remembered across calls (what the optimiser's search does) give the scan's
 /// peak bit for bit as without: over a sequence of staggers and motion angles (the memo's blocks
 /// met again, in part), over a few picks, after a change of the drive (the memo starts afresh),
-/// and with a memo so small that a frame's blocks outgrow a generation within one call.
+/// after a change of the laws (its pick windows are dropped), and with a memo so small that a
+/// frame's blocks outgrow a generation within one call.
 #[test]
 fn remembered_drive_points_give_the_same_scan_bit_for_bit() {
     let plan = lift_plan(4, 24, 11);
@@ -463,6 +464,14 @@ fn remembered_drive_points_give_the_same_scan_bit_for_bit() {
             let got = peak_bus_power_w_memo(&fs, &bus, SPEED_RPM, Some(&picks), &mut memo).unwrap();
             assert_eq!(got.to_bits(), want.to_bits(), "crank {crank}, step {k}, picks: {got} vs {want}");
         }
+    }
+    // The same frames by other laws, the same memo: its windows are not taken for theirs.
+    let mut memo = DriveMemo::default();
+    for spec in [LawSpec::Cycloidal, LawSpec::Poly345, LawSpec::Poly4567, LawSpec::Cycloidal] {
+        let fs = setups(&plan, true, &servo_by(0.93, 0.0, 15.0, 1.5, None), 2.0, &laws(spec.clone()));
+        let want = peak_bus_power_w(&fs, &Bus::default(), SPEED_RPM, true).unwrap();
+        let got = peak_bus_power_w_memo(&fs, &Bus::default(), SPEED_RPM, None, &mut memo).unwrap();
+        assert_eq!(got.to_bits(), want.to_bits(), "{spec:?}: {got} vs {want}");
     }
     // A memo of 3 blocks a frame: the blocks outgrow a generation within each call.
     let fs = setups(&plan, false, &servo_by(0.93, 0.0, 15.0, 1.5, Some(common::crank_lever())), 1.0, &l);
