@@ -365,15 +365,16 @@ pub fn worst_rms_torque_n_m(frames: &[FrameSetup], speed_rpm: f64) -> Result<f64
 /// first, from 0) naming it in errors, the check's values of its moves remembered in `memo` (the
 /// frame's own: a search that changes one frame at a time keeps one per frame).
 pub fn rms_torque_n_m(i: usize, frame: &FrameSetup, speed_rpm: f64, memo: &mut CheckMemo) -> Result<f64> {
-    let (drive, cycle) = frame_drive(i, frame, speed_rpm)?;
+    let (drive, cycle, _) = frame_drive(i, frame, speed_rpm)?;
     Ok(check_axis_memo(&drive, &cycle, speed_rpm, memo)?.rms_torque_nm)
 }
 
-/// Frame `i`'s axis and cycle at `speed_rpm` (as [`Study::new`] makes them), its stroke checked.
-fn frame_drive(i: usize, f: &FrameSetup, speed_rpm: f64) -> Result<(loomkin_servo::Axis, loomkin_laws::Cycle)> {
-    loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?;
+/// Frame `i`'s axis and cycle (as [`Study::new`] makes them), its stroke checked, and the main
+/// shaft's speed `speed_rpm` in rad/s.
+fn frame_drive(i: usize, f: &FrameSetup, speed_rpm: f64) -> Result<(loomkin_servo::Axis, loomkin_laws::Cycle, f64)> {
+    let omega = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rad_per_s();
     check_stroke(i, f)?;
-    Ok((axis(&f.servo.motor, &f.servo.transmission, &f.load), f.plan.cycle(&f.laws)))
+    Ok((axis(&f.servo.motor, &f.servo.transmission, &f.load), f.plan.cycle(&f.laws), omega))
 }
 
 /// The largest of the frames' RMS motor torques over a repeat of `repeat_picks` picks, N·m, from
@@ -422,8 +423,7 @@ pub fn rms_torque_n_m_at(
             format!("one count for each pick, adding up to the repeat's {repeat_picks} picks"),
         ));
     }
-    let (drive, cycle) = frame_drive(i, frame, speed_rpm)?;
-    let omega = loomkin_units::ShaftSpeed::from_rpm(speed_rpm)?.rad_per_s();
+    let (drive, cycle, omega) = frame_drive(i, frame, speed_rpm)?;
     let repeat_s = (360.0 * repeat_picks as f64).to_radians() / omega;
     let t2 = loomkin_servo::torque_squared_by_segment_memo(&drive, &cycle, speed_rpm, memo)?;
     let cells = frame.plan.cell_sums(&t2, picks);

@@ -444,6 +444,25 @@ impl<'a> SearchFrames<'a> {
         Ok(&mut recent[0])
     }
 
+    /// Frame `i`'s RMS motor torque at `centre_deg` and `motion_deg`: remembered with its plan, or
+    /// worked out by `of` from the plan and the frame's memo of the servo check.
+    fn rms(
+        &mut self,
+        i: usize,
+        centre_deg: f64,
+        motion_deg: f64,
+        of: impl FnOnce(&FrameSetup, &mut loomkin_eshed::CheckMemo) -> Result<f64>,
+    ) -> Result<f64> {
+        self.at(i, centre_deg, motion_deg)?;
+        let f = &mut self.recent[i][0];
+        if let Some(rms) = f.rms {
+            return Ok(rms);
+        }
+        let rms = of(&f.setup, &mut self.checks[i])?;
+        f.rms = Some(rms);
+        Ok(rms)
+    }
+
     /// Every frame's plan at the move centres `centre_deg` and motion angles `motion_deg` (what
     /// [`servo_setups`] makes of them).
     fn setups(&mut self, centre_deg: &[f64], motion_deg: &[f64]) -> Result<&[FrameSetup]> {
@@ -493,20 +512,16 @@ impl ServoSearch<'_> {
             }
             // The worst frame's: each frame's RMS torque is its own plan's, remembered with it.
             Objective::Rms => {
+                let repeat = self.pattern.picks();
                 let mut worst = 0.0f64;
                 for i in 0..self.frames {
-                    let f = self.plans.at(i, centre[i], motion[i])?;
-                    if f.rms.is_none() {
-                        let (f, memo) = (&self.plans.recent[i][0], &mut self.plans.checks[i]);
-                        let rms = if r.whole {
-                            loomkin_eshed::rms_torque_n_m(i, &f.setup, speed, memo)?
+                    worst = worst.max(self.plans.rms(i, centre[i], motion[i], |f, memo| {
+                        Ok(if r.whole {
+                            loomkin_eshed::rms_torque_n_m(i, f, speed, memo)?
                         } else {
-                            let repeat = self.pattern.picks();
-                            loomkin_eshed::rms_torque_n_m_at(i, &f.setup, speed, &r.picks, &r.counts, repeat, memo)?
-                        };
-                        self.plans.recent[i][0].rms = Some(rms);
-                    }
-                    worst = worst.max(self.plans.recent[i][0].rms.unwrap_or(f64::NAN));
+                            loomkin_eshed::rms_torque_n_m_at(i, f, speed, &r.picks, &r.counts, repeat, memo)?
+                        })
+                    })?);
                 }
                 worst
             }
